@@ -1,0 +1,151 @@
+/**
+ * @file   vtkMultiMaterialParameters.h
+ * @brief  The one description of the material and light parameters.
+ *
+ * The material transfer function, its JSON files, the CPU irradiance filter
+ * and (through the GLSL prelude) the GPU shaders all read this table, so the
+ * CPU model and the GPU path cannot drift apart.
+ *
+ * | index | key           | symbol | unit             | default | UI range    |
+ * |-------|---------------|--------|------------------|---------|-------------|
+ * | 0     | ambient       | ka     | -                | 0.2     | 0 .. 1      |
+ * | 1     | diffuse       | kd     | -                | 0.7     | 0 .. 1      |
+ * | 2     | specular      | ks     | -                | 0.2     | 0 .. 1      |
+ * | 3     | shininess     | ke     | Blinn exponent   | 20      | 0 .. 200    |
+ * | 4     | attenuation   | c_t    | x extinction mu  | 1       | 0 .. 2      |
+ * | 5     | scattering    | s      | voxel^2          | 0       | 0 .. 20     |
+ * | 6     | reflection    | r      | -                | 0       | 0 .. 1      |
+ *
+ * Attenuation: the extinction seen by shadow rays is sigma = c_t * mu, where
+ * mu = -ln(1 - alpha) / u is the extinction implied by the scalar opacity
+ * alpha and the volume property's scalar-opacity unit distance u.
+ * Scattering: the diffusion strength of eq. 15, in (data voxel)^2 per unit time,
+ * solved to t = 1 (so it does not change with the irradiance resolution).
+ */
+#ifndef vtkMultiMaterialParameters_h
+#define vtkMultiMaterialParameters_h
+
+#include <cmath>
+#include <string>
+
+namespace mmv
+{
+
+enum MaterialParameter : int
+{
+  Ambient = 0,
+  Diffuse,
+  Specular,
+  Shininess,
+  Attenuation,
+  Scattering,
+  Reflection,
+  MaterialParameterCount
+};
+
+struct MaterialParameterInfo
+{
+  const char* Key;      // JSON key and ParaView label stem
+  const char* GLSLName; // index macro in the GLSL prelude
+  double Default;
+  double SoftMin;       // editor range
+  double SoftMax;
+  double HardMax;       // larger values are rejected as input errors
+};
+
+constexpr MaterialParameterInfo MaterialParameterTable[MaterialParameterCount] = {
+  { "ambient", "MMV_AMBIENT", 0.2, 0.0, 1.0, 1.0e3 },
+  { "diffuse", "MMV_DIFFUSE", 0.7, 0.0, 1.0, 1.0e3 },
+  { "specular", "MMV_SPECULAR", 0.2, 0.0, 1.0, 1.0e3 },
+  { "shininess", "MMV_SHININESS", 20.0, 0.0, 200.0, 1.0e4 },
+  { "attenuation", "MMV_ATTENUATION", 1.0, 0.0, 2.0, 1.0e3 },
+  { "scattering", "MMV_SCATTERING", 0.0, 0.0, 20.0, 1.0e4 },
+  { "reflection", "MMV_REFLECTION", 0.0, 0.0, 1.0, 1.0e3 },
+};
+
+/// Lights the GPU path supports at once (more: the strongest are kept).
+constexpr int MaxLights = 8;
+
+/// Bytes one light costs per irradiance voxel on the GPU (16-bit storage).
+/// The CPU filter uses the same figure so both pick the same resolution.
+constexpr double IrradianceBytesPerVoxelPerLight = 2.0;
+
+/// Default irradiance memory budget in MB (the paper's recommendation).
+constexpr double DefaultIrradianceBudgetMB = 64.0;
+
+/// Opacity is clamped below 1 before taking the log: alpha = 1 would mean
+/// infinite extinction. 1 - 1e-6 gives mu = 13.8 / u, opaque for any use.
+constexpr double MaxOpacity = 1.0 - 1.0e-6;
+
+/// Extinction per world unit implied by a scalar opacity alpha given per unit
+/// distance u (VTK's convention: opacity alpha over a length u).
+inline double ExtinctionFromOpacity(double alpha, double unitDistance)
+{
+  if (!(alpha > 0.0)) // also catches NaN
+  {
+    return 0.0;
+  }
+  const double a = alpha < MaxOpacity ? alpha : MaxOpacity;
+  return -std::log1p(-a) / unitDistance;
+}
+
+/// Checks one material parameter value; fills `why` when it is rejected.
+inline bool IsValidMaterialValue(int parameter, double value, std::string* why = nullptr)
+{
+  if (parameter < 0 || parameter >= MaterialParameterCount)
+  {
+    if (why)
+    {
+      *why = "unknown material parameter index " + std::to_string(parameter);
+    }
+    return false;
+  }
+  const MaterialParameterInfo& info = MaterialParameterTable[parameter];
+  if (!std::isfinite(value))
+  {
+    if (why)
+    {
+      *why = std::string(info.Key) + " is not a finite number";
+    }
+    return false;
+  }
+  if (value < 0.0)
+  {
+    if (why)
+    {
+      *why = std::string(info.Key) + " is negative (" + std::to_string(value) + ")";
+    }
+    return false;
+  }
+  if (value > info.HardMax)
+  {
+    if (why)
+    {
+      *why = std::string(info.Key) + " = " + std::to_string(value) + " exceeds the maximum " +
+        std::to_string(info.HardMax);
+    }
+    return false;
+  }
+  return true;
+}
+
+/// The GLSL `#define` prelude for the material layout: one index macro per
+/// parameter plus the count. Shaders index the material texture only through
+/// these names.
+inline std::string MaterialGLSLPrelude()
+{
+  std::string s;
+  for (int i = 0; i < MaterialParameterCount; ++i)
+  {
+    s += "#define ";
+    s += MaterialParameterTable[i].GLSLName;
+    s += " " + std::to_string(i) + "\n";
+  }
+  s += "#define MMV_MATERIAL_PARAMETER_COUNT " + std::to_string(MaterialParameterCount) + "\n";
+  s += "#define MMV_MAX_LIGHTS " + std::to_string(MaxLights) + "\n";
+  return s;
+}
+
+} // namespace mmv
+
+#endif
