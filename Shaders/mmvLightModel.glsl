@@ -1,4 +1,3 @@
-//VTK::System::Dec
 // Light-source terms of Zhang & Ma eqs. 11-14. Mirrors
 // Rendering/vtkMultiMaterialLightModel.h function for function.
 // Light kinds: 0 directional, 1 point, 2 spot (cone half-angle, as vtkLight).

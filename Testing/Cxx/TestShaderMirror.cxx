@@ -1,0 +1,187 @@
+// The GLSL in Shaders/ against its C++ mirror: each shader function is run on
+// the GPU (llvmpipe under Xvfb in CI) over a grid of inputs, read back from a
+// float framebuffer and compared with the CPU function of the same name.
+#include "vtkMultiMaterialLightModel.h"
+#include "vtkMultiMaterialParameters.h"
+#include "mmvLightModel.h"
+
+#include "vtkNew.h"
+#include "vtkOpenGLFramebufferObject.h"
+#include "vtkOpenGLQuadHelper.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLShaderCache.h"
+#include "vtkOpenGLState.h"
+#include "vtkRenderWindow.h"
+#include "vtkShaderProgram.h"
+#include "vtk_glew.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace
+{
+constexpr int Size = 48;
+
+/// Draws a full-screen quad with `body` as the fragment shader's main() into a
+/// Size x Size RGBA32F target and returns the pixels.
+class ShaderRunner
+{
+public:
+  ShaderRunner()
+  {
+    this->Window->SetOffScreenRendering(1);
+    this->Window->SetSize(Size, Size);
+    this->GL = vtkOpenGLRenderWindow::SafeDownCast(this->Window);
+    if (this->GL)
+    {
+      this->GL->Initialize();
+    }
+  }
+
+  bool Run(const std::string& body, const std::function<void(vtkShaderProgram*)>& setUniforms,
+    std::vector<float>& pixels)
+  {
+    if (!this->GL)
+    {
+      return false;
+    }
+    this->GL->MakeCurrent();
+    const std::string fs = std::string("//VTK::System::Dec\n") + mmv::MaterialGLSLPrelude() +
+      mmvLightModel + "\nin vec2 texCoord;\n//VTK::Output::Dec\n" + body;
+    vtkNew<vtkOpenGLFramebufferObject> fbo;
+    fbo->SetContext(this->GL);
+    this->GL->GetState()->PushFramebufferBindings();
+    fbo->PopulateFramebuffer(Size, Size, true, 1, VTK_FLOAT, false, 0, 0);
+    fbo->Bind();
+    fbo->ActivateDrawBuffer(0);
+    this->GL->GetState()->vtkglViewport(0, 0, Size, Size);
+    this->GL->GetState()->vtkglDisable(GL_BLEND);
+    this->GL->GetState()->vtkglDisable(GL_DEPTH_TEST);
+    this->GL->GetState()->vtkglDisable(GL_SCISSOR_TEST);
+    // -1 marks pixels the quad did not write.
+    this->GL->GetState()->vtkglClearColor(-1.0, -1.0, -1.0, -1.0);
+    this->GL->GetState()->vtkglClear(GL_COLOR_BUFFER_BIT);
+    bool ok = false;
+    {
+      vtkOpenGLQuadHelper quad(this->GL, nullptr, fs.c_str(), "");
+      if (quad.Program && this->GL->GetShaderCache()->ReadyShaderProgram(quad.Program))
+      {
+        setUniforms(quad.Program);
+        quad.Render();
+        pixels.assign(4 * Size * Size, -1.0f);
+        fbo->ActivateReadBuffer(0);
+        glReadPixels(0, 0, Size, Size, GL_RGBA, GL_FLOAT, pixels.data());
+        ok = true;
+      }
+      quad.ReleaseGraphicsResources(this->GL);
+    }
+    this->GL->GetState()->PopFramebufferBindings();
+    return ok;
+  }
+
+  vtkNew<vtkRenderWindow> Window;
+  vtkOpenGLRenderWindow* GL = nullptr;
+};
+
+// Pixel (i, j) samples the point x = (u, v, 0) with u, v in [-2, 2].
+glm::dvec3 PixelPoint(int i, int j)
+{
+  const double u = -2.0 + 4.0 * (i + 0.5) / Size;
+  const double v = -2.0 + 4.0 * (j + 0.5) / Size;
+  return { u, v, 0.0 };
+}
+
+const char* LightGeometryBody = R"(
+uniform int kind;
+uniform vec3 lightPosition;
+uniform vec3 spotAxis;
+uniform float cosCone;
+uniform float radius;
+void main()
+{
+  vec3 x = vec3(-2.0 + 4.0 * texCoord, 0.0);
+  gl_FragData[0] = vec4(mmvLightGeometryTerm(kind, lightPosition, spotAxis, cosCone, radius, x),
+    mmvSpotVisibility(x - lightPosition, spotAxis, cosCone), float(MMV_SCATTERING),
+    float(MMV_MATERIAL_PARAMETER_COUNT));
+}
+)";
+}
+
+TEST(ShaderMirror, LightGeometryTermMatchesCPU)
+{
+  ShaderRunner runner;
+  ASSERT_NE(runner.GL, nullptr);
+
+  for (int kind : { mmv::DirectionalLight, mmv::PointLight, mmv::SpotLight })
+  {
+    mmv::LightSource light;
+    light.Kind = static_cast<mmv::LightKind>(kind);
+    light.Position = { 0.3, -0.2, 1.0 };
+    light.SpotAxis = glm::normalize(glm::dvec3(0.2, 0.1, -1.0));
+    light.CosCone = std::cos(30.0 * M_PI / 180.0);
+    light.Radius = 0.5;
+
+    std::vector<float> pixels;
+    ASSERT_TRUE(runner.Run(LightGeometryBody,
+      [&](vtkShaderProgram* p) {
+        p->SetUniformi("kind", kind);
+        const float pos[3] = { 0.3f, -0.2f, 1.0f };
+        const float axis[3] = { float(light.SpotAxis.x), float(light.SpotAxis.y),
+          float(light.SpotAxis.z) };
+        p->SetUniform3f("lightPosition", pos);
+        p->SetUniform3f("spotAxis", axis);
+        p->SetUniformf("cosCone", float(light.CosCone));
+        p->SetUniformf("radius", float(light.Radius));
+      },
+      pixels));
+
+    int compared = 0;
+    for (int j = 0; j < Size; ++j)
+    {
+      for (int i = 0; i < Size; ++i)
+      {
+        const float* px = &pixels[4 * (j * Size + i)];
+        const glm::dvec3 x = PixelPoint(i, j);
+        const glm::dvec3 toPoint = x - light.Position;
+        // float and double disagree right on the cone edge; skip a thin band.
+        if (std::abs(glm::dot(glm::normalize(toPoint), light.SpotAxis) - light.CosCone) < 1e-4)
+        {
+          continue;
+        }
+        const double cpu = mmv::mmvLightGeometryTerm(light, x);
+        ASSERT_NEAR(px[0], cpu, 1e-5 * std::max(1.0, cpu)) << "kind " << kind << " pixel " << i << "," << j;
+        ASSERT_EQ(px[1], mmv::mmvSpotVisibility(toPoint, light.SpotAxis, light.CosCone));
+        ASSERT_EQ(px[2], float(mmv::Scattering));
+        ASSERT_EQ(px[3], float(mmv::MaterialParameterCount));
+        ++compared;
+      }
+    }
+    EXPECT_GT(compared, Size * Size * 9 / 10);
+  }
+}
+
+TEST(ShaderMirror, SpotLightHasLitAndUnlitPixels)
+{
+  // Guards the comparison above against a degenerate scene: the spot must
+  // light some of the grid and leave some of it dark.
+  mmv::LightSource light;
+  light.Kind = mmv::SpotLight;
+  light.Position = { 0.3, -0.2, 1.0 };
+  light.SpotAxis = glm::normalize(glm::dvec3(0.2, 0.1, -1.0));
+  light.CosCone = std::cos(30.0 * M_PI / 180.0);
+  int lit = 0;
+  for (int j = 0; j < Size; ++j)
+  {
+    for (int i = 0; i < Size; ++i)
+    {
+      lit += mmv::mmvLightGeometryTerm(light, PixelPoint(i, j)) > 0.0 ? 1 : 0;
+    }
+  }
+  EXPECT_GT(lit, Size * Size / 20);
+  EXPECT_LT(lit, Size * Size * 19 / 20);
+}
