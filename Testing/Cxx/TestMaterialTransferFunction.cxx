@@ -1,1 +1,710 @@
+// Tests of vtkMaterialTransferFunction: interpolation, node editing,
+// validation (rejected edits change nothing and raise exactly one error),
+// MTime, GPU tables, JSON and presets.
+#include "vtkCommand.h"
+#include "vtkMaterialLibrary.h"
+#include "vtkMaterialTransferFunction.h"
+#include "vtkMultiMaterialParameters.h"
+#include "vtkNew.h"
+#include "vtkSmartPointer.h"
+
 #include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <limits>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace
+{
+constexpr int P = mmv::MaterialParameterCount;
+constexpr int Stride = vtkMaterialTransferFunction::NodeStride;
+const double NaN = std::numeric_limits<double>::quiet_NaN();
+const double Inf = std::numeric_limits<double>::infinity();
+
+/// Counts ErrorEvents; while it observes, VTK does not print the error.
+class ErrorCounter : public vtkCommand
+{
+public:
+  static ErrorCounter* New() { return new ErrorCounter; }
+  void Execute(vtkObject*, unsigned long, void* callData) override
+  {
+    ++this->Count;
+    this->Last = callData ? static_cast<const char*>(callData) : "";
+  }
+  int Count = 0;
+  std::string Last;
+};
+
+vtkSmartPointer<ErrorCounter> WatchErrors(vtkObject* object)
+{
+  auto counter = vtkSmartPointer<ErrorCounter>::New();
+  object->AddObserver(vtkCommand::ErrorEvent, counter);
+  return counter;
+}
+
+std::vector<double> AllNodes(vtkMaterialTransferFunction* tf)
+{
+  std::vector<double> nodes(static_cast<std::size_t>(tf->GetSize()) * Stride);
+  tf->GetNodes(nodes.data());
+  return nodes;
+}
+
+std::vector<double> Evaluated(vtkMaterialTransferFunction* tf, double x)
+{
+  std::vector<double> parameters(P);
+  tf->Evaluate(x, parameters.data());
+  return parameters;
+}
+
+/// Two nodes whose parameters differ by exactly representable steps, so
+/// interpolated values can be compared exactly.
+void AddTwoNodes(vtkMaterialTransferFunction* tf)
+{
+  ASSERT_EQ(tf->AddNode(0.0, 0.0, 0.5, 1.0, 10.0, 0.0, 2.0, 0.25), 0);
+  ASSERT_EQ(tf->AddNode(10.0, 1.0, 0.25, 0.0, 50.0, 2.0, 6.0, 0.75), 1);
+}
+
+std::string TempPath(const std::string& name)
+{
+  return ::testing::TempDir() + "mmv_" + name;
+}
+}
+
+TEST(MaterialTransferFunction, EmptyFunctionReturnsDefaults)
+{
+  vtkNew<vtkMaterialTransferFunction> tf;
+  EXPECT_EQ(tf->GetSize(), 0);
+  for (double x : { -1.0e9, 0.0, 3.5, 1.0e9 })
+  {
+    const std::vector<double> parameters = Evaluated(tf, x);
+    for (int p = 0; p < P; ++p)
+    {
+      EXPECT_EQ(parameters[p], mmv::MaterialParameterTable[p].Default) << "x=" << x << " p=" << p;
+      EXPECT_EQ(tf->EvaluateParameter(x, p), mmv::MaterialParameterTable[p].Default);
+    }
+  }
+  EXPECT_EQ(Evaluated(tf, 0)[mmv::Shininess], 20.0);
+  EXPECT_EQ(Evaluated(tf, 0)[mmv::Diffuse], 0.7);
+  double range[2] = { -1, -1 };
+  tf->GetRange(range);
+  EXPECT_EQ(range[0], 0.0);
+  EXPECT_EQ(range[1], 0.0);
+}
+
+TEST(MaterialTransferFunction, InterpolatesLinearlyBetweenNodes)
+{
+  vtkNew<vtkMaterialTransferFunction> tf;
+  AddTwoNodes(tf);
+  const std::vector<double> mid = Evaluated(tf, 5.0);
+  const std::vector<double> expectedMid = { 0.5, 0.375, 0.5, 30.0, 1.0, 4.0, 0.5 };
+  for (int p = 0; p < P; ++p)
+  {
+    EXPECT_EQ(mid[p], expectedMid[p]) << "parameter " << mmv::MaterialParameterTable[p].Key;
+  }
+  const std::vector<double> quarter = Evaluated(tf, 2.5);
+  const std::vector<double> expectedQuarter = { 0.25, 0.4375, 0.75, 20.0, 0.5, 3.0, 0.375 };
+  for (int p = 0; p < P; ++p)
+  {
+    EXPECT_EQ(quarter[p], expectedQuarter[p]) << "parameter " << mmv::MaterialParameterTable[p].Key;
+  }
+  EXPECT_EQ(tf->EvaluateParameter(7.5, mmv::Shininess), 40.0);
+  EXPECT_EQ(tf->EvaluateParameter(7.5, mmv::Scattering), 5.0);
+  // At a node the node's own values come back.
+  EXPECT_EQ(tf->EvaluateParameter(10.0, mmv::Attenuation), 2.0);
+  EXPECT_EQ(tf->EvaluateParameter(0.0, mmv::Specular), 1.0);
+}
+
+TEST(MaterialTransferFunction, InterpolatesWithinTheRightInterval)
+{
+  vtkNew<vtkMaterialTransferFunction> tf;
+  tf->AddNode(0.0, 0, 0, 0, 0, 0, 0, 0);
+  tf->AddNode(1.0, 0, 0, 0, 100, 0, 0, 0);
+  tf->AddNode(3.0, 0, 0, 0, 0, 0, 0, 0);
+  EXPECT_EQ(tf->EvaluateParameter(0.5, mmv::Shininess), 50.0);
+  EXPECT_EQ(tf->EvaluateParameter(1.0, mmv::Shininess), 100.0);
+  EXPECT_EQ(tf->EvaluateParameter(2.0, mmv::Shininess), 50.0);
+  EXPECT_EQ(tf->EvaluateParameter(2.5, mmv::Shininess), 25.0);
+}
+
+TEST(MaterialTransferFunction, ClampsOutsideTheNodes)
+{
+  vtkNew<vtkMaterialTransferFunction> tf;
+  AddTwoNodes(tf);
+  const std::vector<double> first = { 0.0, 0.5, 1.0, 10.0, 0.0, 2.0, 0.25 };
+  const std::vector<double> last = { 1.0, 0.25, 0.0, 50.0, 2.0, 6.0, 0.75 };
+  EXPECT_EQ(Evaluated(tf, -0.001), first);
+  EXPECT_EQ(Evaluated(tf, -1.0e30), first);
+  EXPECT_EQ(Evaluated(tf, -Inf), first);
+  EXPECT_EQ(Evaluated(tf, 10.001), last);
+  EXPECT_EQ(Evaluated(tf, 1.0e30), last);
+  EXPECT_EQ(Evaluated(tf, Inf), last);
+  // NaN data must not produce NaN parameters.
+  EXPECT_EQ(Evaluated(tf, NaN), first);
+}
+
+TEST(MaterialTransferFunction, SingleNodeIsConstant)
+{
+  vtkNew<vtkMaterialTransferFunction> tf;
+  tf->AddNode(4.0, 0.1, 0.2, 0.3, 40.0, 0.5, 6.0, 0.7);
+  const std::vector<double> node = { 0.1, 0.2, 0.3, 40.0, 0.5, 6.0, 0.7 };
+  EXPECT_EQ(Evaluated(tf, -100.0), node);
+  EXPECT_EQ(Evaluated(tf, 4.0), node);
+  EXPECT_EQ(Evaluated(tf, 100.0), node);
+}
+
+TEST(MaterialTransferFunction, AddNodeAtExistingValueReplaces)
+{
+  vtkNew<vtkMaterialTransferFunction> tf;
+  AddTwoNodes(tf);
+  const double replacement[P] = { 0.9, 0.8, 0.7, 60.0, 1.5, 3.0, 0.1 };
+  EXPECT_EQ(tf->AddNode(10.0, replacement), 1);
+  EXPECT_EQ(tf->GetSize(), 2);
+  double node[Stride];
+  ASSERT_TRUE(tf->GetNode(1, node));
+  EXPECT_EQ(node[0], 10.0);
+  for (int p = 0; p < P; ++p)
+  {
+    EXPECT_EQ(node[1 + p], replacement[p]);
+  }
+  // The other node is untouched.
+  ASSERT_TRUE(tf->GetNode(0, node));
+  EXPECT_EQ(node[0], 0.0);
+  EXPECT_EQ(node[1 + mmv::Shininess], 10.0);
+}
+
+TEST(MaterialTransferFunction, NodesAreSortedWhenAddedOutOfOrder)
+{
+  vtkNew<vtkMaterialTransferFunction> tf;
+  EXPECT_EQ(tf->AddNode(5.0, 0.5, 0, 0, 0, 0, 0, 0), 0);
+  EXPECT_EQ(tf->AddNode(-1.0, 0.1, 0, 0, 0, 0, 0, 0), 0);
+  EXPECT_EQ(tf->AddNode(3.0, 0.3, 0, 0, 0, 0, 0, 0), 1);
+  EXPECT_EQ(tf->AddNode(9.0, 0.9, 0, 0, 0, 0, 0, 0), 3);
+  ASSERT_EQ(tf->GetSize(), 4);
+  const double expectedValues[] = { -1.0, 3.0, 5.0, 9.0 };
+  const double expectedAmbient[] = { 0.1, 0.3, 0.5, 0.9 };
+  for (int i = 0; i < 4; ++i)
+  {
+    double node[Stride];
+    ASSERT_TRUE(tf->GetNode(i, node));
+    EXPECT_EQ(node[0], expectedValues[i]);
+    EXPECT_EQ(node[1], expectedAmbient[i]);
+  }
+  double node[Stride];
+  EXPECT_FALSE(tf->GetNode(-1, node));
+  EXPECT_FALSE(tf->GetNode(4, node));
+  double range[2];
+  tf->GetRange(range);
+  EXPECT_EQ(range[0], -1.0);
+  EXPECT_EQ(range[1], 9.0);
+  EXPECT_DOUBLE_EQ(tf->EvaluateParameter(4.0, mmv::Ambient), 0.4);
+}
+
+TEST(MaterialTransferFunction, RemoveNode)
+{
+  vtkNew<vtkMaterialTransferFunction> tf;
+  tf->AddNode(1.0, 0.1, 0, 0, 0, 0, 0, 0);
+  tf->AddNode(2.0, 0.2, 0, 0, 0, 0, 0, 0);
+  tf->AddNode(3.0, 0.3, 0, 0, 0, 0, 0, 0);
+  auto errors = WatchErrors(tf);
+  EXPECT_EQ(tf->RemoveNode(2.0), 1);
+  EXPECT_EQ(tf->GetSize(), 2);
+  EXPECT_EQ(tf->RemoveNode(2.0), -1);
+  EXPECT_EQ(tf->RemoveNode(2.5), -1);
+  EXPECT_EQ(tf->GetSize(), 2);
+  EXPECT_DOUBLE_EQ(tf->EvaluateParameter(2.0, mmv::Ambient), 0.2); // now between 0.1 and 0.3
+  EXPECT_EQ(tf->RemoveNode(3.0), 1);
+  EXPECT_EQ(tf->RemoveNode(1.0), 0);
+  EXPECT_EQ(tf->GetSize(), 0);
+  EXPECT_EQ(errors->Count, 0);
+  tf->AddNode(1.0, 0.1, 0, 0, 0, 0, 0, 0);
+  tf->RemoveAllNodes();
+  EXPECT_EQ(tf->GetSize(), 0);
+}
+
+TEST(MaterialTransferFunction, SetNodesGetNodesRoundTrip)
+{
+  vtkNew<vtkMaterialTransferFunction> tf;
+  // Out of order on purpose: SetNodes sorts.
+  const std::vector<double> input = {
+    7.0, 0.7, 0.6, 0.5, 70.0, 1.7, 7.0, 0.07, //
+    -2.0, 0.2, 0.3, 0.4, 2.0, 0.2, 0.5, 0.02, //
+    3.0, 0.3, 0.4, 0.6, 30.0, 1.3, 3.0, 0.03, //
+  };
+  ASSERT_TRUE(tf->SetNodes(static_cast<int>(input.size()), input.data()));
+  ASSERT_EQ(tf->GetSize(), 3);
+  const std::vector<double> expected = {
+    -2.0, 0.2, 0.3, 0.4, 2.0, 0.2, 0.5, 0.02, //
+    3.0, 0.3, 0.4, 0.6, 30.0, 1.3, 3.0, 0.03, //
+    7.0, 0.7, 0.6, 0.5, 70.0, 1.7, 7.0, 0.07, //
+  };
+  EXPECT_EQ(AllNodes(tf), expected);
+  for (int i = 0; i < 3; ++i)
+  {
+    double node[Stride];
+    ASSERT_TRUE(tf->GetNode(i, node));
+    EXPECT_EQ(std::vector<double>(node, node + Stride),
+      std::vector<double>(expected.begin() + i * Stride, expected.begin() + (i + 1) * Stride));
+  }
+  // Feeding GetNodes back gives the same function.
+  vtkNew<vtkMaterialTransferFunction> copy;
+  const std::vector<double> flat = AllNodes(tf);
+  ASSERT_TRUE(copy->SetNodes(static_cast<int>(flat.size()), flat.data()));
+  EXPECT_EQ(AllNodes(copy), expected);
+  // An empty array clears.
+  EXPECT_TRUE(tf->SetNodes(0, nullptr));
+  EXPECT_EQ(tf->GetSize(), 0);
+}
+
+TEST(MaterialTransferFunction, SetNodesDuplicateValuesLastWins)
+{
+  vtkNew<vtkMaterialTransferFunction> tf;
+  const std::vector<double> input = {
+    1.0, 0.1, 0.1, 0.1, 1.0, 0.1, 0.1, 0.1, //
+    1.0, 0.9, 0.9, 0.9, 9.0, 0.9, 0.9, 0.9, //
+  };
+  ASSERT_TRUE(tf->SetNodes(static_cast<int>(input.size()), input.data()));
+  EXPECT_EQ(AllNodes(tf), std::vector<double>(input.begin() + Stride, input.end()));
+}
+
+TEST(MaterialTransferFunction, SetNodesRejectsInvalidInput)
+{
+  std::vector<std::pair<std::string, std::vector<double>>> cases = {
+    { "7 numbers", { 1, 0.1, 0.1, 0.1, 1, 0.1, 0.1 } },
+    { "9 numbers", { 1, 0.1, 0.1, 0.1, 1, 0.1, 0.1, 0.1, 2 } },
+    { "NaN value", { NaN, 0.1, 0.1, 0.1, 1, 0.1, 0.1, 0.1 } },
+    { "infinite value", { Inf, 0.1, 0.1, 0.1, 1, 0.1, 0.1, 0.1 } },
+    { "NaN ambient", { 1, NaN, 0.1, 0.1, 1, 0.1, 0.1, 0.1 } },
+    { "infinite scattering", { 1, 0.1, 0.1, 0.1, 1, 0.1, Inf, 0.1 } },
+    { "negative diffuse", { 1, 0.1, -0.1, 0.1, 1, 0.1, 0.1, 0.1 } },
+    { "negative reflection in second node",
+      { 1, 0.1, 0.1, 0.1, 1, 0.1, 0.1, 0.1, 2, 0.1, 0.1, 0.1, 1, 0.1, 0.1, -1e-9 } },
+  };
+  for (int p = 0; p < P; ++p)
+  {
+    std::vector<double> node = { 1, 0.1, 0.1, 0.1, 1, 0.1, 0.1, 0.1 };
+    node[1 + p] = std::nextafter(mmv::MaterialParameterTable[p].HardMax, Inf);
+    cases.emplace_back(std::string(mmv::MaterialParameterTable[p].Key) + " above HardMax", node);
+  }
+
+  for (const auto& c : cases)
+  {
+    SCOPED_TRACE(c.first);
+    vtkNew<vtkMaterialTransferFunction> tf;
+    AddTwoNodes(tf);
+    const std::vector<double> before = AllNodes(tf);
+    const vtkMTimeType mtime = tf->GetMTime();
+    auto errors = WatchErrors(tf);
+    EXPECT_FALSE(tf->SetNodes(static_cast<int>(c.second.size()), c.second.data()));
+    EXPECT_EQ(AllNodes(tf), before);
+    EXPECT_EQ(errors->Count, 1);
+    EXPECT_EQ(tf->GetMTime(), mtime);
+  }
+}
+
+TEST(MaterialTransferFunction, HardMaxItselfIsAccepted)
+{
+  vtkNew<vtkMaterialTransferFunction> tf;
+  auto errors = WatchErrors(tf);
+  std::vector<double> node = { 0.0 };
+  for (int p = 0; p < P; ++p)
+  {
+    node.push_back(mmv::MaterialParameterTable[p].HardMax);
+  }
+  EXPECT_TRUE(tf->SetNodes(Stride, node.data()));
+  EXPECT_EQ(AllNodes(tf), node);
+  EXPECT_EQ(errors->Count, 0);
+}
+
+TEST(MaterialTransferFunction, AddNodeRejectsInvalidInput)
+{
+  const std::vector<std::pair<std::string, std::vector<double>>> cases = {
+    { "NaN value", { NaN, 0.1, 0.1, 0.1, 1, 0.1, 0.1, 0.1 } },
+    { "-inf value", { -Inf, 0.1, 0.1, 0.1, 1, 0.1, 0.1, 0.1 } },
+    { "NaN specular", { 1, 0.1, 0.1, NaN, 1, 0.1, 0.1, 0.1 } },
+    { "negative attenuation", { 1, 0.1, 0.1, 0.1, 1, -0.5, 0.1, 0.1 } },
+    { "shininess above limit", { 1, 0.1, 0.1, 0.1, 1.0e4 + 1, 0.1, 0.1, 0.1 } },
+  };
+  for (const auto& c : cases)
+  {
+    SCOPED_TRACE(c.first);
+    vtkNew<vtkMaterialTransferFunction> tf;
+    AddTwoNodes(tf);
+    const std::vector<double> before = AllNodes(tf);
+    const vtkMTimeType mtime = tf->GetMTime();
+    auto errors = WatchErrors(tf);
+    const std::vector<double>& n = c.second;
+    EXPECT_EQ(tf->AddNode(n[0], n[1], n[2], n[3], n[4], n[5], n[6], n[7]), -1);
+    EXPECT_EQ(tf->AddNode(n[0], n.data() + 1), -1);
+    EXPECT_EQ(AllNodes(tf), before);
+    EXPECT_EQ(errors->Count, 2);
+    EXPECT_EQ(tf->GetMTime(), mtime);
+  }
+}
+
+TEST(MaterialTransferFunction, ErrorMessageNamesTheParameter)
+{
+  vtkNew<vtkMaterialTransferFunction> tf;
+  auto errors = WatchErrors(tf);
+  EXPECT_EQ(tf->AddNode(0.0, 0.1, 0.1, 0.1, 1.0, 0.1, -3.0, 0.1), -1);
+  ASSERT_EQ(errors->Count, 1);
+  EXPECT_NE(errors->Last.find("scattering"), std::string::npos) << errors->Last;
+  EXPECT_FALSE(tf->FromJSON(R"({"nodes": [{"value": 0, "glossiness": 1}]})"));
+  ASSERT_EQ(errors->Count, 2);
+  EXPECT_NE(errors->Last.find("glossiness"), std::string::npos) << errors->Last;
+}
+
+TEST(MaterialTransferFunction, MTimeIncreasesOnEverySuccessfulEdit)
+{
+  vtkNew<vtkMaterialTransferFunction> tf;
+  vtkNew<vtkMaterialTransferFunction> other;
+  other->AddNode(1.0, 0.1, 0.2, 0.3, 4.0, 0.5, 0.6, 0.7);
+  const std::string path = TempPath("mtime_tf.json");
+  ASSERT_TRUE(other->WriteJSONFile(path.c_str()));
+  const double flat[Stride] = { 2.0, 0.1, 0.2, 0.3, 4.0, 0.5, 0.6, 0.7 };
+  const double parameters[P] = { 0.1, 0.2, 0.3, 4.0, 0.5, 0.6, 0.7 };
+
+  const std::vector<std::pair<std::string, std::function<bool()>>> edits = {
+    { "AddNode", [&] { return tf->AddNode(0.0, 0.1, 0.2, 0.3, 4.0, 0.5, 0.6, 0.7) == 0; } },
+    { "AddNode replacing", [&] { return tf->AddNode(0.0, parameters) == 0; } },
+    { "AddNode second", [&] { return tf->AddNode(5.0, parameters) == 1; } },
+    { "RemoveNode", [&] { return tf->RemoveNode(5.0) == 1; } },
+    { "SetNodes", [&] { return tf->SetNodes(Stride, flat); } },
+    { "FromJSON", [&] { return tf->FromJSON(R"({"nodes": [{"value": 3}]})"); } },
+    { "ApplyPreset", [&] { return tf->ApplyPreset("metal", 0.0, 1.0); } },
+    { "ReadJSONFile", [&] { return tf->ReadJSONFile(path.c_str()); } },
+    { "DeepCopy",
+      [&] {
+        tf->DeepCopy(other);
+        return true;
+      } },
+    { "RemoveAllNodes",
+      [&] {
+        tf->RemoveAllNodes();
+        return true;
+      } },
+  };
+  for (const auto& edit : edits)
+  {
+    const vtkMTimeType before = tf->GetMTime();
+    EXPECT_TRUE(edit.second()) << edit.first;
+    EXPECT_GT(tf->GetMTime(), before) << edit.first;
+  }
+  std::remove(path.c_str());
+}
+
+TEST(MaterialTransferFunction, MTimeUnchangedByRejectedEditsAndQueries)
+{
+  vtkNew<vtkMaterialTransferFunction> tf;
+  AddTwoNodes(tf);
+  auto errors = WatchErrors(tf);
+  const vtkMTimeType mtime = tf->GetMTime();
+  const double bad[Stride] = { 2.0, -0.1, 0.2, 0.3, 4.0, 0.5, 0.6, 0.7 };
+  EXPECT_EQ(tf->AddNode(NaN, 0.1, 0.2, 0.3, 4.0, 0.5, 0.6, 0.7), -1);
+  EXPECT_FALSE(tf->SetNodes(Stride, bad));
+  EXPECT_FALSE(tf->SetNodes(Stride - 1, bad));
+  EXPECT_FALSE(tf->FromJSON("{"));
+  EXPECT_FALSE(tf->ApplyPreset("no-such-material", 0.0, 1.0));
+  EXPECT_FALSE(tf->ReadJSONFile(TempPath("does_not_exist.json").c_str()));
+  EXPECT_EQ(tf->RemoveNode(123.0), -1);
+  EXPECT_EQ(errors->Count, 6);
+  // Queries do not count as edits either.
+  double parameters[P];
+  tf->Evaluate(3.0, parameters);
+  float table[7 * 4];
+  tf->GetTable(0.0, 1.0, 4, table);
+  tf->ToJSON();
+  EXPECT_EQ(tf->GetMTime(), mtime);
+}
+
+TEST(MaterialTransferFunction, GetTableMatchesEvaluate)
+{
+  vtkNew<vtkMaterialTransferFunction> tf;
+  AddTwoNodes(tf);
+  tf->AddNode(4.0, 0.3, 0.9, 0.2, 100.0, 1.0, 12.0, 0.5);
+  const int size = 17;
+  const double xStart = -2.0;
+  const double xEnd = 14.0; // step 1: samples at -2, -1, ..., 14
+  std::vector<float> table(size * P, -1.0f);
+  tf->GetTable(xStart, xEnd, size, table.data());
+  for (int i = 0; i < size; ++i)
+  {
+    const double x = xStart + i;
+    const std::vector<double> expected = Evaluated(tf, x);
+    for (int p = 0; p < P; ++p)
+    {
+      EXPECT_EQ(table[i * P + p], static_cast<float>(expected[p])) << "x=" << x << " p=" << p;
+    }
+  }
+  // Spot checks against hand-computed values: clamped, at a node, interpolated.
+  EXPECT_EQ(table[0 * P + mmv::Shininess], 10.0f);   // x = -2
+  EXPECT_EQ(table[6 * P + mmv::Shininess], 100.0f);  // x = 4, node
+  EXPECT_EQ(table[9 * P + mmv::Shininess], 75.0f);   // x = 7, between 100 and 50
+  EXPECT_EQ(table[16 * P + mmv::Scattering], 6.0f);  // x = 14, clamped
+  EXPECT_EQ(table[4 * P + mmv::Scattering], 7.0f);   // x = 2, between 2 and 12
+
+  // size 1 samples xStart.
+  float one[P];
+  tf->GetTable(4.0, 10.0, 1, one);
+  EXPECT_EQ(one[mmv::Shininess], 100.0f);
+}
+
+TEST(MaterialTransferFunction, GetTableRejectsBadArguments)
+{
+  vtkNew<vtkMaterialTransferFunction> tf;
+  auto errors = WatchErrors(tf);
+  float table[P] = { -7.0f };
+  tf->GetTable(0.0, 1.0, 0, table);
+  tf->GetTable(0.0, 1.0, -3, table);
+  tf->GetTable(0.0, 1.0, 4, nullptr);
+  tf->GetTable(NaN, 1.0, 1, table);
+  EXPECT_EQ(errors->Count, 4);
+  EXPECT_EQ(table[0], -7.0f);
+}
+
+TEST(MaterialTransferFunction, GetMaximum)
+{
+  vtkNew<vtkMaterialTransferFunction> tf;
+  for (int p = 0; p < P; ++p)
+  {
+    EXPECT_EQ(tf->GetMaximum(p), mmv::MaterialParameterTable[p].Default);
+  }
+  AddTwoNodes(tf);
+  tf->AddNode(4.0, 0.3, 0.9, 0.2, 100.0, 1.0, 12.0, 0.5);
+  const double expected[P] = { 1.0, 0.9, 1.0, 100.0, 2.0, 12.0, 0.75 };
+  for (int p = 0; p < P; ++p)
+  {
+    EXPECT_EQ(tf->GetMaximum(p), expected[p]) << mmv::MaterialParameterTable[p].Key;
+  }
+  tf->RemoveNode(4.0);
+  EXPECT_EQ(tf->GetMaximum(mmv::Scattering), 6.0);
+  // All-zero scattering gives 0, the hint that lets renderers skip diffusion.
+  tf->ApplyPreset("metal", 0.0, 1.0);
+  EXPECT_EQ(tf->GetMaximum(mmv::Scattering), 0.0);
+
+  auto errors = WatchErrors(tf);
+  EXPECT_EQ(tf->GetMaximum(-1), 0.0);
+  EXPECT_EQ(tf->GetMaximum(P), 0.0);
+  EXPECT_EQ(errors->Count, 2);
+}
+
+TEST(MaterialTransferFunction, JSONRoundTripIsExact)
+{
+  vtkNew<vtkMaterialTransferFunction> tf;
+  // Values without short decimal forms: the round trip must not round them.
+  tf->AddNode(0.1, 1.0 / 3.0, 0.7, 0.2, 20.0 / 7.0, 1.0, 0.0, 1.0e-300);
+  tf->AddNode(-1234.5678, 0.0, 1.0 / 7.0, 999.9999999999, 1.0e4, 2.0 / 3.0, 0.1 + 0.2, 0.0);
+  tf->AddNode(1.0e12, 5e-324, 0.5, 0.5, 0.0, 1.0e3, 1.0e4, 0.125);
+  const std::string json = tf->ToJSON();
+  for (int p = 0; p < P; ++p)
+  {
+    EXPECT_NE(json.find(std::string("\"") + mmv::MaterialParameterTable[p].Key + "\""),
+      std::string::npos);
+  }
+  vtkNew<vtkMaterialTransferFunction> back;
+  auto errors = WatchErrors(back);
+  ASSERT_TRUE(back->FromJSON(json)) << json;
+  EXPECT_EQ(errors->Count, 0);
+  EXPECT_EQ(AllNodes(back), AllNodes(tf)); // bitwise equal doubles
+  EXPECT_EQ(back->ToJSON(), json);
+
+  // An empty function round-trips too.
+  vtkNew<vtkMaterialTransferFunction> empty;
+  ASSERT_TRUE(back->FromJSON(empty->ToJSON()));
+  EXPECT_EQ(back->GetSize(), 0);
+}
+
+TEST(MaterialTransferFunction, JSONMissingParametersTakeDefaultsAndNodesAreSorted)
+{
+  vtkNew<vtkMaterialTransferFunction> tf;
+  ASSERT_TRUE(tf->FromJSON(R"({"nodes": [
+      {"value": 5, "scattering": 3},
+      {"value": -1, "shininess": 80, "ambient": 0}
+    ]})"));
+  ASSERT_EQ(tf->GetSize(), 2);
+  const std::vector<double> expected = {
+    -1.0, 0.0, 0.7, 0.2, 80.0, 1.0, 0.0, 0.0, //
+    5.0, 0.2, 0.7, 0.2, 20.0, 1.0, 3.0, 0.0,  //
+  };
+  EXPECT_EQ(AllNodes(tf), expected);
+  // Integers are accepted as numbers.
+  ASSERT_TRUE(tf->FromJSON(R"({"nodes": [{"value": 2, "shininess": 7}]})"));
+  EXPECT_EQ(tf->EvaluateParameter(0.0, mmv::Shininess), 7.0);
+}
+
+TEST(MaterialTransferFunction, MalformedJSONIsRejectedAndChangesNothing)
+{
+  const std::vector<std::pair<std::string, std::string>> cases = {
+    { "empty text", "" },
+    { "syntax error", R"({"nodes": [)" },
+    { "trailing garbage", R"({"nodes": []} x)" },
+    { "top level array", R"([{"value": 0}])" },
+    { "top level string", R"("nodes")" },
+    { "top level null", "null" },
+    { "missing nodes", "{}" },
+    { "nodes not an array", R"({"nodes": {"value": 0}})" },
+    { "nodes a number", R"({"nodes": 3})" },
+    { "unknown top-level key", R"({"nodes": [], "version": 2})" },
+    { "node not an object", R"({"nodes": [1]})" },
+    { "node missing value", R"({"nodes": [{"ambient": 0.1}]})" },
+    { "unknown node key", R"({"nodes": [{"value": 0, "glossiness": 1}]})" },
+    { "string instead of number", R"({"nodes": [{"value": 0, "diffuse": "0.5"}]})" },
+    { "string value", R"({"nodes": [{"value": "0"}]})" },
+    { "boolean parameter", R"({"nodes": [{"value": 0, "ambient": true}]})" },
+    { "null parameter", R"({"nodes": [{"value": 0, "ambient": null}]})" },
+    { "negative", R"({"nodes": [{"value": 0, "specular": -0.1}]})" },
+    { "1e400 parameter", R"({"nodes": [{"value": 0, "scattering": 1e400}]})" },
+    { "1e400 value", R"({"nodes": [{"value": 1e400}]})" },
+    { "NaN literal", R"({"nodes": [{"value": NaN}]})" },
+    { "shininess above limit", R"({"nodes": [{"value": 0, "shininess": 10000.5}]})" },
+    { "second node bad", R"({"nodes": [{"value": 0}, {"value": 1, "reflection": -1}]})" },
+  };
+  for (const auto& c : cases)
+  {
+    SCOPED_TRACE(c.first);
+    vtkNew<vtkMaterialTransferFunction> tf;
+    AddTwoNodes(tf);
+    const std::vector<double> before = AllNodes(tf);
+    const vtkMTimeType mtime = tf->GetMTime();
+    auto errors = WatchErrors(tf);
+    EXPECT_FALSE(tf->FromJSON(c.second));
+    EXPECT_EQ(AllNodes(tf), before);
+    EXPECT_EQ(errors->Count, 1);
+    EXPECT_EQ(tf->GetMTime(), mtime);
+  }
+}
+
+TEST(MaterialTransferFunction, FileRoundTrip)
+{
+  vtkNew<vtkMaterialTransferFunction> tf;
+  AddTwoNodes(tf);
+  tf->AddNode(1.0 / 3.0, 0.3, 0.9, 0.2, 100.0, 1.0, 12.0, 0.5);
+  const std::string path = TempPath("tf_round_trip.json");
+  ASSERT_TRUE(tf->WriteJSONFile(path.c_str()));
+  vtkNew<vtkMaterialTransferFunction> back;
+  auto errors = WatchErrors(back);
+  ASSERT_TRUE(back->ReadJSONFile(path.c_str()));
+  EXPECT_EQ(AllNodes(back), AllNodes(tf));
+  EXPECT_EQ(errors->Count, 0);
+  std::remove(path.c_str());
+}
+
+TEST(MaterialTransferFunction, FileErrors)
+{
+  vtkNew<vtkMaterialTransferFunction> tf;
+  AddTwoNodes(tf);
+  const std::vector<double> before = AllNodes(tf);
+  auto errors = WatchErrors(tf);
+
+  EXPECT_FALSE(tf->ReadJSONFile(TempPath("no_such_file.json").c_str()));
+  EXPECT_EQ(errors->Count, 1);
+  EXPECT_NE(errors->Last.find("no_such_file.json"), std::string::npos) << errors->Last;
+  EXPECT_FALSE(tf->ReadJSONFile(nullptr));
+  EXPECT_EQ(errors->Count, 2);
+
+  const std::string bad = TempPath("tf_bad.json");
+  {
+    FILE* f = std::fopen(bad.c_str(), "w");
+    ASSERT_NE(f, nullptr);
+    std::fputs(R"({"nodes": [{"value": 0, "ambient": -1}]})", f);
+    std::fclose(f);
+  }
+  EXPECT_FALSE(tf->ReadJSONFile(bad.c_str()));
+  EXPECT_EQ(errors->Count, 3);
+  std::remove(bad.c_str());
+
+  EXPECT_FALSE(tf->WriteJSONFile(TempPath("no_such_dir/out.json").c_str()));
+  EXPECT_EQ(errors->Count, 4);
+  EXPECT_EQ(AllNodes(tf), before);
+}
+
+TEST(MaterialTransferFunction, ApplyPresetMatchesLibrary)
+{
+  vtkNew<vtkMaterialLibrary> library;
+  ASSERT_GE(library->GetNumberOfPresets(), 7);
+  for (int i = 0; i < library->GetNumberOfPresets(); ++i)
+  {
+    const char* name = library->GetPresetName(i);
+    SCOPED_TRACE(name);
+    std::vector<double> preset(P);
+    ASSERT_TRUE(library->GetPreset(name, preset.data()));
+    vtkNew<vtkMaterialTransferFunction> tf;
+    auto errors = WatchErrors(tf);
+    ASSERT_TRUE(tf->ApplyPreset(name, 10.0, 20.0));
+    EXPECT_EQ(tf->GetSize(), 2);
+    double range[2];
+    tf->GetRange(range);
+    EXPECT_EQ(range[0], 10.0);
+    EXPECT_EQ(range[1], 20.0);
+    for (double x : { -5.0, 10.0, 13.3, 20.0, 1.0e6 })
+    {
+      EXPECT_EQ(Evaluated(tf, x), preset) << "x=" << x;
+    }
+    EXPECT_EQ(errors->Count, 0);
+  }
+  // A concrete number from Rendering/Materials/metal.json.
+  vtkNew<vtkMaterialTransferFunction> tf;
+  tf->ApplyPreset("metal", 0.0, 1.0);
+  EXPECT_EQ(tf->EvaluateParameter(0.5, mmv::Shininess), 120.0);
+  EXPECT_EQ(tf->EvaluateParameter(0.5, mmv::Reflection), 0.6);
+}
+
+TEST(MaterialTransferFunction, ApplyPresetWithEqualRangeUsesOneNode)
+{
+  vtkNew<vtkMaterialTransferFunction> tf;
+  ASSERT_TRUE(tf->ApplyPreset("skin", 3.0, 3.0));
+  ASSERT_EQ(tf->GetSize(), 1);
+  double node[Stride];
+  ASSERT_TRUE(tf->GetNode(0, node));
+  EXPECT_EQ(node[0], 3.0);
+  EXPECT_EQ(node[1 + mmv::Scattering], 8.0);
+  EXPECT_EQ(node[1 + mmv::Attenuation], 0.5);
+}
+
+TEST(MaterialTransferFunction, ApplyPresetRejectsUnknownNamesAndBadRanges)
+{
+  vtkNew<vtkMaterialTransferFunction> tf;
+  AddTwoNodes(tf);
+  const std::vector<double> before = AllNodes(tf);
+  const vtkMTimeType mtime = tf->GetMTime();
+  auto errors = WatchErrors(tf);
+  EXPECT_FALSE(tf->ApplyPreset("unobtainium", 0.0, 1.0));
+  EXPECT_EQ(errors->Count, 1);
+  EXPECT_NE(errors->Last.find("unobtainium"), std::string::npos) << errors->Last;
+  EXPECT_FALSE(tf->ApplyPreset(nullptr, 0.0, 1.0));
+  EXPECT_FALSE(tf->ApplyPreset("metal", 1.0, 0.0));
+  EXPECT_FALSE(tf->ApplyPreset("metal", NaN, 1.0));
+  EXPECT_FALSE(tf->ApplyPreset("metal", 0.0, Inf));
+  EXPECT_EQ(errors->Count, 5);
+  EXPECT_EQ(AllNodes(tf), before);
+  EXPECT_EQ(tf->GetMTime(), mtime);
+}
+
+TEST(MaterialTransferFunction, DeepCopy)
+{
+  vtkNew<vtkMaterialTransferFunction> tf;
+  AddTwoNodes(tf);
+  vtkNew<vtkMaterialTransferFunction> copy;
+  copy->AddNode(100.0, 0, 0, 0, 0, 0, 0, 0);
+  copy->DeepCopy(tf);
+  EXPECT_EQ(AllNodes(copy), AllNodes(tf));
+  // The copy is independent.
+  tf->RemoveAllNodes();
+  EXPECT_EQ(copy->GetSize(), 2);
+}
+
+TEST(MaterialTransferFunction, PrintSelfListsNodes)
+{
+  vtkNew<vtkMaterialTransferFunction> tf;
+  AddTwoNodes(tf);
+  std::ostringstream os;
+  tf->Print(os);
+  const std::string text = os.str();
+  EXPECT_NE(text.find("Nodes: 2"), std::string::npos) << text;
+  EXPECT_NE(text.find("shininess=50"), std::string::npos) << text;
+  EXPECT_NE(text.find("scattering=2"), std::string::npos) << text;
+}
