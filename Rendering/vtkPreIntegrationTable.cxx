@@ -1,1 +1,733 @@
-// placeholder
+#include "vtkPreIntegrationTable.h"
+
+#include "vtkColorTransferFunction.h"
+#include "vtkMaterialTransferFunction.h"
+#include "vtkMultiMaterialParameters.h"
+#include "vtkObjectFactory.h"
+#include "vtkPiecewiseFunction.h"
+#include "vtkSMPTools.h"
+#include "vtkTimeStamp.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+namespace
+{
+
+// 5-point Gauss-Legendre on [-1, 1] (exact to degree 9): colour and
+// attenuation moments within one piece between TF nodes, where every TF is
+// smooth; extinction itself uses the closed form below where it can.
+constexpr int GaussOrder = 5;
+constexpr double GaussX[GaussOrder] = { -0.9061798459386640, -0.5384693101056831, 0.0,
+  0.5384693101056831, 0.9061798459386640 };
+constexpr double GaussW[GaussOrder] = { 0.2369268850561891, 0.4786286704993665, 0.5688888888888889,
+  0.4786286704993665, 0.2369268850561891 };
+
+// Integral of -log(1 - alpha) over `width` for alpha linear from a0 to a1,
+// with the clamp of mmv::ExtinctionFromOpacity (times the unit distance).
+// Closed form, since near alpha = 1 the log is too singular for quadrature.
+double LinearOpacityDepth(double a0, double a1, double width)
+{
+  a0 = std::max(0.0, a0);
+  a1 = std::max(0.0, a1);
+  const double top = mmv::MaxOpacity;
+  if ((a0 > top) != (a1 > top))
+  {
+    // Split where the clamp starts.
+    const double f = (top - a0) / (a1 - a0);
+    return LinearOpacityDepth(a0, top, f * width) + LinearOpacityDepth(top, a1, (1.0 - f) * width);
+  }
+  if (a0 >= top)
+  {
+    return -width * std::log1p(-top);
+  }
+  if (std::abs(a1 - a0) < 1e-8)
+  {
+    return -width * std::log1p(-0.5 * (a0 + a1));
+  }
+  // d/da F(a) = -log(1 - a)
+  const auto F = [](double a) { return a + (1.0 - a) * std::log1p(-a); };
+  return width * (F(a1) - F(a0)) / (a1 - a0);
+}
+
+// g(tau) = int_0^1 q tau exp(-tau q) dq: what a colour slope along the
+// normalised optical depth q adds to a cell of optical depth tau.
+// `a` = 1 - exp(-tau), which the caller has anyway.
+double SlopeWeight(double tau, double a)
+{
+  if (tau < 1e-2)
+  {
+    // Series: the closed form cancels badly for small tau.
+    return tau * (0.5 + tau * (-1.0 / 3.0 + tau * (1.0 / 8.0 - tau / 30.0)));
+  }
+  return (a - tau * (1.0 - a)) / tau;
+}
+
+// Everything the O(n^2) fill needs, sampled once from the TFs (O(n)).
+struct CellData
+{
+  int N = 0;
+  double L = 1.0;
+  double D = 1.0; // table spacing in data units
+  // Per table node k (n entries).
+  std::vector<double> NodeMu, NodeSigma, NodeRGB; // NodeRGB: 3 per node
+  std::vector<char> NodeOpaque;                   // alpha(t_k) > 0
+  std::vector<double> Up;   // first non-zero opacity at or above t_k (data units), +inf if none
+  std::vector<double> Down; // first non-zero opacity at or below t_k going down, -inf if none
+  // Per cell k = [t_k, t_k+1] (n-1 entries): mean extinction, and prefix sums
+  // of the means (n entries).
+  std::vector<double> CellMu;
+  std::vector<double> PrefixMu, PrefixSigma;
+  // Cells are split at TF nodes into pieces on which every TF is smooth; cell
+  // k holds pieces PieceStart[k] .. PieceStart[k+1]-1, front (low t) first.
+  // Per piece: int mu dt (data units), and the colour as c0 + c1 q, linear in
+  // the normalised optical depth q in [0, 1] across the piece, and the range
+  // of the colour over the piece (3 each).
+  std::vector<int> PieceStart;
+  std::vector<double> PieceDepth, PieceColor0, PieceColor1, PieceColorMin, PieceColorMax;
+};
+
+// Fills the tables along diagonals m = |j - i|; diagonals are independent.
+struct DiagonalFiller
+{
+  const CellData& C;
+  float* ColorOpacity;
+  float* Position;
+  float* Shadow;
+
+  void operator()(vtkIdType begin, vtkIdType end) const
+  {
+    const int n = this->C.N;
+    // Per cell at this diagonal's cell length: opacity, and the colour each
+    // cell contributes when crossed upwards (t_k first) or downwards.
+    std::vector<double> a(n > 1 ? n - 1 : 0);
+    std::vector<double> eUp(3 * a.size()), eDown(3 * a.size());
+    // Per piece: opacity and slope weight at this diagonal's length.
+    std::vector<double> pieceA(this->C.PieceDepth.size()), pieceG(pieceA.size());
+    for (vtkIdType mm = begin; mm < end; ++mm)
+    {
+      const int m = static_cast<int>(mm);
+      if (m == 0)
+      {
+        this->FillDiagonal();
+        continue;
+      }
+      const double l = this->C.L / m;     // length of one cell's sub-segment
+      const double scale = l / this->C.D; // data units -> world units
+      for (std::size_t p = 0; p < pieceA.size(); ++p)
+      {
+        const double tau = scale * this->C.PieceDepth[p];
+        pieceA[p] = -std::expm1(-tau);
+        pieceG[p] = SlopeWeight(tau, pieceA[p]);
+      }
+      for (int k = 0; k < n - 1; ++k)
+      {
+        a[k] = -std::expm1(-l * this->C.CellMu[k]);
+        // Composite the cell's pieces front to back in both directions.
+        double up[3] = { 0.0, 0.0, 0.0 }, down[3] = { 0.0, 0.0, 0.0 };
+        double tUp = 1.0, tDown = 1.0;
+        const int first = this->C.PieceStart[k], last = this->C.PieceStart[k + 1] - 1;
+        for (int p = first; p <= last; ++p)
+        {
+          const int r = first + last - p; // the same pieces in reverse order
+          const double aUp = pieceA[p], aDown = pieceA[r];
+          const double gUp = pieceG[p], gDown = pieceG[r];
+          for (int c = 0; c < 3; ++c)
+          {
+            up[c] += tUp * this->Piece(p, c, aUp, this->C.PieceColor0[3 * p + c], gUp);
+            const double c1 = this->C.PieceColor1[3 * r + c];
+            down[c] +=
+              tDown * this->Piece(r, c, aDown, this->C.PieceColor0[3 * r + c] + c1, -gDown);
+          }
+          tUp *= 1.0 - aUp;
+          tDown *= 1.0 - aDown;
+        }
+        for (int c = 0; c < 3; ++c)
+        {
+          eUp[3 * k + c] = up[c];
+          eDown[3 * k + c] = down[c];
+        }
+      }
+      this->FillScalars(m);
+      this->FillColorUp(m, l, a, eUp);
+      this->FillColorDown(m, l, a, eDown);
+    }
+  }
+
+  // Colour of piece p crossed with opacity a, entering at colour `front`
+  // (c0 or c0 + c1) with slope weight g (signed by direction). The true value
+  // is a weighted mean of the piece's colours times a, so it is clamped to
+  // that range: the linear fit may overshoot where the extinction rises from 0.
+  double Piece(int p, int c, double a, double front, double g) const
+  {
+    const double value = front * a + this->C.PieceColor1[3 * p + c] * g;
+    return std::min(
+      this->C.PieceColorMax[3 * p + c] * a, std::max(this->C.PieceColorMin[3 * p + c] * a, value));
+  }
+
+  // t1 == t2: a homogeneous segment, closed form.
+  void FillDiagonal() const
+  {
+    const int n = this->C.N;
+    for (int i = 0; i < n; ++i)
+    {
+      const std::size_t idx = static_cast<std::size_t>(i) * n + i;
+      const double alpha = -std::expm1(-this->C.L * this->C.NodeMu[i]);
+      for (int c = 0; c < 3; ++c)
+      {
+        this->ColorOpacity[4 * idx + c] = static_cast<float>(this->C.NodeRGB[3 * i + c] * alpha);
+      }
+      this->ColorOpacity[4 * idx + 3] = static_cast<float>(alpha);
+      this->Position[idx] = this->C.NodeOpaque[i] ? 0.0f : 1.0f;
+      this->Shadow[idx] = static_cast<float>(-std::expm1(-this->C.L * this->C.NodeSigma[i]));
+    }
+  }
+
+  // Opacity, shadow opacity and shading position for both entries (i, i+m)
+  // and (i+m, i): optical depth = L * mean extinction over [t_i, t_i+m].
+  void FillScalars(int m) const
+  {
+    const int n = this->C.N;
+    const double scale = this->C.L / m;
+    const double span = m * this->C.D;
+    for (int lo = 0; lo + m < n; ++lo)
+    {
+      const int hi = lo + m;
+      const double alpha = -std::expm1(-scale * (this->C.PrefixMu[hi] - this->C.PrefixMu[lo]));
+      const double sigma =
+        -std::expm1(-scale * (this->C.PrefixSigma[hi] - this->C.PrefixSigma[lo]));
+      const std::size_t up = static_cast<std::size_t>(hi) * n + lo;   // front lo, back hi
+      const std::size_t down = static_cast<std::size_t>(lo) * n + hi; // front hi, back lo
+      this->ColorOpacity[4 * up + 3] = static_cast<float>(alpha);
+      this->ColorOpacity[4 * down + 3] = static_cast<float>(alpha);
+      this->Shadow[up] = static_cast<float>(sigma);
+      this->Shadow[down] = static_cast<float>(sigma);
+
+      const double tLo = lo * this->C.D;
+      const double tHi = hi * this->C.D;
+      const double betaUp = this->C.NodeOpaque[lo] ? 0.0 : (this->C.Up[lo] - tLo) / span;
+      const double betaDown = this->C.NodeOpaque[hi] ? 0.0 : (tHi - this->C.Down[hi]) / span;
+      this->Position[up] = static_cast<float>(std::min(1.0, std::max(0.0, betaUp)));
+      this->Position[down] = static_cast<float>(std::min(1.0, std::max(0.0, betaDown)));
+    }
+  }
+
+  // Colour of the segments with front i and back i+m: the exact composite of
+  // the m cells, S_i = sum_k e_k T(i,k) with T the transmittance in front of
+  // cell k. Sliding the window one cell towards the front adds cell i and drops
+  // cell i+m, so each entry costs O(1) and the diagonal O(n). The recurrence
+  // runs from the back so errors are damped by (1 - a_i) instead of amplified
+  // by dividing through it.
+  void FillColorUp(
+    int m, double l, const std::vector<double>& a, const std::vector<double>& e) const
+  {
+    const int n = this->C.N;
+    const std::vector<double>& P = this->C.PrefixMu;
+    int i = n - 1 - m;
+    double s[3] = { 0.0, 0.0, 0.0 };
+    double transmittance = 1.0;
+    for (int k = i; k < i + m; ++k)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        s[c] += e[3 * k + c] * transmittance;
+      }
+      transmittance *= 1.0 - a[k];
+    }
+    for (;;)
+    {
+      const std::size_t idx = static_cast<std::size_t>(i + m) * n + i;
+      for (int c = 0; c < 3; ++c)
+      {
+        this->ColorOpacity[4 * idx + c] = static_cast<float>(s[c]);
+      }
+      if (--i < 0)
+      {
+        break;
+      }
+      const double dropped = std::exp(-l * (P[i + m] - P[i + 1]));
+      for (int c = 0; c < 3; ++c)
+      {
+        const double rest = std::max(0.0, s[c] - e[3 * (i + m) + c] * dropped);
+        s[c] = e[3 * i + c] + (1.0 - a[i]) * rest;
+      }
+    }
+  }
+
+  // Mirror image of FillColorUp: front i, back i-m, cells i-1 down to i-m.
+  void FillColorDown(
+    int m, double l, const std::vector<double>& a, const std::vector<double>& e) const
+  {
+    const int n = this->C.N;
+    const std::vector<double>& P = this->C.PrefixMu;
+    int i = m;
+    double s[3] = { 0.0, 0.0, 0.0 };
+    double transmittance = 1.0;
+    for (int k = i - 1; k >= 0; --k)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        s[c] += e[3 * k + c] * transmittance;
+      }
+      transmittance *= 1.0 - a[k];
+    }
+    for (;;)
+    {
+      const std::size_t idx = static_cast<std::size_t>(i - m) * n + i;
+      for (int c = 0; c < 3; ++c)
+      {
+        this->ColorOpacity[4 * idx + c] = static_cast<float>(s[c]);
+      }
+      if (++i >= n)
+      {
+        break;
+      }
+      // New front cell is i-1; the dropped cell i-1-m sat behind cells i-m..i-2.
+      const double dropped = std::exp(-l * (P[i - 1] - P[i - m]));
+      for (int c = 0; c < 3; ++c)
+      {
+        const double rest = std::max(0.0, s[c] - e[3 * (i - 1 - m) + c] * dropped);
+        s[c] = e[3 * (i - 1) + c] + (1.0 - a[i - 1]) * rest;
+      }
+    }
+  }
+};
+
+} // namespace
+
+class vtkPreIntegrationTable::vtkInternals
+{
+public:
+  vtkSmartPointer<vtkColorTransferFunction> Color;
+  vtkSmartPointer<vtkPiecewiseFunction> Opacity;
+  vtkSmartPointer<vtkMaterialTransferFunction> Material;
+
+  vtkTimeStamp BuildTime;
+  bool Built = false;
+  int N = 0;
+  double Range[2] = { 0.0, 1.0 }; // the range the tables were built over
+  std::vector<float> ColorOpacity;
+  std::vector<float> Position;
+  std::vector<float> Shadow;
+
+  // Bilinear interpolation of channel `c` of a table with `stride` floats per
+  // entry, clamped to the table range.
+  double Lookup(const std::vector<float>& table, int stride, int c, double t1, double t2) const
+  {
+    const double d = (this->Range[1] - this->Range[0]) / (this->N - 1);
+    const auto axis = [&](double t, int& i0, double& f)
+    {
+      double x = (t - this->Range[0]) / d;
+      x = std::isnan(x) ? 0.0 : std::min(static_cast<double>(this->N - 1), std::max(0.0, x));
+      i0 = std::min(static_cast<int>(x), this->N - 2);
+      f = x - i0;
+    };
+    int i0, j0;
+    double fi, fj;
+    axis(t1, i0, fi);
+    axis(t2, j0, fj);
+    const auto at = [&](int i, int j) {
+      return static_cast<double>(table[(static_cast<std::size_t>(j) * this->N + i) * stride + c]);
+    };
+    const double v0 = (1.0 - fi) * at(i0, j0) + fi * at(i0 + 1, j0);
+    const double v1 = (1.0 - fi) * at(i0, j0 + 1) + fi * at(i0 + 1, j0 + 1);
+    return (1.0 - fj) * v0 + fj * v1;
+  }
+};
+
+vtkStandardNewMacro(vtkPreIntegrationTable);
+
+//------------------------------------------------------------------------------
+vtkPreIntegrationTable::vtkPreIntegrationTable()
+  : Internals(new vtkInternals)
+{
+}
+
+//------------------------------------------------------------------------------
+vtkPreIntegrationTable::~vtkPreIntegrationTable()
+{
+  delete this->Internals;
+}
+
+//------------------------------------------------------------------------------
+void vtkPreIntegrationTable::SetColorTransferFunction(vtkColorTransferFunction* ctf)
+{
+  if (this->Internals->Color != ctf)
+  {
+    this->Internals->Color = ctf;
+    this->Modified();
+  }
+}
+
+vtkColorTransferFunction* vtkPreIntegrationTable::GetColorTransferFunction()
+{
+  return this->Internals->Color;
+}
+
+void vtkPreIntegrationTable::SetScalarOpacity(vtkPiecewiseFunction* otf)
+{
+  if (this->Internals->Opacity != otf)
+  {
+    this->Internals->Opacity = otf;
+    this->Modified();
+  }
+}
+
+vtkPiecewiseFunction* vtkPreIntegrationTable::GetScalarOpacity()
+{
+  return this->Internals->Opacity;
+}
+
+void vtkPreIntegrationTable::SetMaterialTransferFunction(vtkMaterialTransferFunction* mtf)
+{
+  if (this->Internals->Material != mtf)
+  {
+    this->Internals->Material = mtf;
+    this->Modified();
+  }
+}
+
+vtkMaterialTransferFunction* vtkPreIntegrationTable::GetMaterialTransferFunction()
+{
+  return this->Internals->Material;
+}
+
+//------------------------------------------------------------------------------
+bool vtkPreIntegrationTable::Update()
+{
+  vtkInternals& internals = *this->Internals;
+  vtkPiecewiseFunction* otf = internals.Opacity;
+  vtkColorTransferFunction* ctf = internals.Color;
+  vtkMaterialTransferFunction* mtf = internals.Material;
+
+  if (!otf)
+  {
+    vtkErrorMacro("No scalar opacity function set.");
+    return false;
+  }
+  if (!(this->StepLength > 0.0) || !std::isfinite(this->StepLength))
+  {
+    vtkErrorMacro("StepLength must be positive and finite, got " << this->StepLength << ".");
+    return false;
+  }
+  if (!(this->ScalarOpacityUnitDistance > 0.0) || !std::isfinite(this->ScalarOpacityUnitDistance))
+  {
+    vtkErrorMacro("ScalarOpacityUnitDistance must be positive and finite, got "
+      << this->ScalarOpacityUnitDistance << ".");
+    return false;
+  }
+  if (this->TableSize < 2 || this->TableSize > 4096)
+  {
+    vtkErrorMacro("TableSize must be in 2..4096, got " << this->TableSize << ".");
+    return false;
+  }
+  if (!std::isfinite(this->ScalarRange[0]) || !std::isfinite(this->ScalarRange[1]))
+  {
+    vtkErrorMacro("ScalarRange is not finite.");
+    return false;
+  }
+
+  vtkMTimeType inputTime = this->GetMTime();
+  inputTime = std::max(inputTime, otf->GetMTime());
+  if (ctf)
+  {
+    inputTime = std::max(inputTime, ctf->GetMTime());
+  }
+  if (mtf)
+  {
+    inputTime = std::max(inputTime, mtf->GetMTime());
+  }
+  if (internals.Built && inputTime <= internals.BuildTime.GetMTime())
+  {
+    return true;
+  }
+
+  const auto start = std::chrono::steady_clock::now();
+
+  double range[2] = { this->ScalarRange[0], this->ScalarRange[1] };
+  if (!(range[0] < range[1]))
+  {
+    const double* otfRange = otf->GetRange();
+    range[0] = otfRange[0];
+    range[1] = otfRange[1];
+  }
+  if (!(range[0] < range[1]))
+  {
+    range[1] = range[0] + 1.0;
+  }
+
+  const int n = this->TableSize;
+  const double u = this->ScalarOpacityUnitDistance;
+  CellData cells;
+  cells.N = n;
+  cells.L = this->StepLength;
+  cells.D = (range[1] - range[0]) / (n - 1);
+
+  // Every TF node inside the range splits the cells into smooth pieces, so
+  // features narrower than a cell (spikes, steps) are integrated exactly and
+  // the first non-zero opacity is found at the node where it starts.
+  std::vector<double> breaks;
+  {
+    double node[8];
+    for (int k = 0; k < otf->GetSize(); ++k)
+    {
+      otf->GetNodeValue(k, node);
+      breaks.push_back(node[0]);
+    }
+    for (int k = 0; ctf && k < ctf->GetSize(); ++k)
+    {
+      ctf->GetNodeValue(k, node);
+      breaks.push_back(node[0]);
+    }
+    for (int k = 0; mtf && k < mtf->GetSize(); ++k)
+    {
+      mtf->GetNode(k, node);
+      breaks.push_back(node[0]);
+    }
+    std::sort(breaks.begin(), breaks.end());
+  }
+
+  const auto sample = [&](double t, double& alpha, double& mu, double& sigma, double rgb[3])
+  {
+    alpha = otf->GetValue(t);
+    mu = mmv::ExtinctionFromOpacity(alpha, u);
+    sigma = mtf ? mu * mtf->EvaluateParameter(t, mmv::Attenuation) : mu;
+    if (ctf)
+    {
+      ctf->GetColor(t, rgb);
+    }
+    else
+    {
+      rgb[0] = rgb[1] = rgb[2] = 1.0;
+    }
+  };
+
+  cells.NodeMu.resize(n);
+  cells.NodeSigma.resize(n);
+  cells.NodeRGB.resize(3 * n);
+  cells.NodeOpaque.resize(n);
+  for (int k = 0; k < n; ++k)
+  {
+    double alpha;
+    sample(
+      range[0] + k * cells.D, alpha, cells.NodeMu[k], cells.NodeSigma[k], &cells.NodeRGB[3 * k]);
+    cells.NodeOpaque[k] = alpha > 0.0;
+  }
+
+  // Cell and piece integrals, and per cell where its non-zero opacity starts
+  // and ends (positions relative to range[0]).
+  const double inf = std::numeric_limits<double>::infinity();
+  cells.CellMu.resize(n - 1);
+  cells.PrefixMu.assign(n, 0.0);
+  cells.PrefixSigma.assign(n, 0.0);
+  cells.PieceStart.assign(1, 0);
+  std::vector<double> firstNonZero(n - 1, inf), lastNonZero(n - 1, -inf);
+  auto nextBreak = breaks.begin();
+  for (int k = 0; k < n - 1; ++k)
+  {
+    const double cellLo = range[0] + k * cells.D;
+    const double cellHi = range[0] + (k + 1) * cells.D;
+    double cellDepth = 0.0, cellSigma = 0.0;
+    double a = cellLo;
+    while (a < cellHi)
+    {
+      while (nextBreak != breaks.end() && *nextBreak <= a)
+      {
+        ++nextBreak;
+      }
+      const double b = (nextBreak != breaks.end() && *nextBreak < cellHi) ? *nextBreak : cellHi;
+      const double half = 0.5 * (b - a);
+      const double alphaA = otf->GetValue(a);
+      const double alphaB = otf->GetValue(b);
+      double x[GaussOrder], mu[GaussOrder], sigma[GaussOrder], rgb[GaussOrder][3];
+      double muGauss = 0.0;
+      bool linear = true, nonZero = false;
+      for (int g = 0; g < GaussOrder; ++g)
+      {
+        double alpha;
+        x[g] = a + half * (1.0 + GaussX[g]);
+        sample(x[g], alpha, mu[g], sigma[g], rgb[g]);
+        muGauss += GaussW[g] * half * mu[g];
+        const double lerp = alphaA + 0.5 * (alphaB - alphaA) * (1.0 + GaussX[g]);
+        linear = linear && std::abs(alpha - lerp) < 1e-9;
+        nonZero = nonZero || alpha > 0.0;
+      }
+      // int_a^x1 mu dt: closed form on a linear piece (the usual case),
+      // Gauss on a curved one (midpoint/sharpness nodes).
+      const auto pieceDepth = [&](double x1)
+      {
+        if (linear)
+        {
+          const double alpha1 = alphaA + (alphaB - alphaA) * (x1 - a) / (b - a);
+          return LinearOpacityDepth(alphaA, alpha1, x1 - a) / u;
+        }
+        const double h = 0.5 * (x1 - a);
+        double sum = 0.0;
+        for (int g = 0; g < GaussOrder; ++g)
+        {
+          const double alpha = otf->GetValue(a + h * (1.0 + GaussX[g]));
+          sum += GaussW[g] * h * mmv::ExtinctionFromOpacity(alpha, u);
+        }
+        return sum;
+      };
+      const double depth = pieceDepth(b);
+      // Rescaling the Gauss weights to the exact integral keeps colour and
+      // attenuation weighted means while the extinction itself stays exact.
+      const double scale = muGauss > 0.0 ? depth / muGauss : 0.0;
+      // Moments in the optical depth q of the extinction (w0, w1) and of the
+      // extinction-weighted colour (s0, s1).
+      double w0 = 0.0, w1 = 0.0, s0[3] = { 0.0, 0.0, 0.0 }, s1[3] = { 0.0, 0.0, 0.0 };
+      // The colour range over the whole piece, ends included.
+      double cMin[3], cMax[3];
+      {
+        double alpha, muEnd, sigmaEnd, rgbA[3], rgbB[3];
+        sample(a, alpha, muEnd, sigmaEnd, rgbA);
+        sample(b, alpha, muEnd, sigmaEnd, rgbB);
+        for (int c = 0; c < 3; ++c)
+        {
+          cMin[c] = std::min(rgbA[c], rgbB[c]);
+          cMax[c] = std::max(rgbA[c], rgbB[c]);
+        }
+      }
+      for (int g = 0; g < GaussOrder; ++g)
+      {
+        if (!(mu[g] > 0.0))
+        {
+          continue;
+        }
+        const double w = GaussW[g] * half * scale;
+        const double q = pieceDepth(x[g]);
+        cellSigma += w * sigma[g];
+        w0 += w * mu[g];
+        w1 += w * mu[g] * q;
+        for (int c = 0; c < 3; ++c)
+        {
+          s0[c] += w * mu[g] * rgb[g][c];
+          s1[c] += w * mu[g] * rgb[g][c] * q;
+          cMin[c] = std::min(cMin[c], rgb[g][c]);
+          cMax[c] = std::max(cMax[c], rgb[g][c]);
+        }
+      }
+      cells.PieceDepth.push_back(depth);
+      for (int c = 0; c < 3; ++c)
+      {
+        // Least-squares fit c0 + c1 q over q in [0, 1]: the mean fixes
+        // c0 + c1/2, the first moment c1.
+        double mean = 0.0, slope = 0.0;
+        if (w0 > 0.0 && depth > 0.0)
+        {
+          mean = s0[c] / w0;
+          slope = s0[c] > 0.0 ? 12.0 * mean * (s1[c] / s0[c] - w1 / w0) / depth : 0.0;
+        }
+        cells.PieceColor0.push_back(mean - 0.5 * slope);
+        cells.PieceColor1.push_back(slope);
+        cells.PieceColorMin.push_back(std::min(cMin[c], mean));
+        cells.PieceColorMax.push_back(std::max(cMax[c], mean));
+      }
+      cellDepth += depth;
+      if (nonZero)
+      {
+        firstNonZero[k] = std::min(firstNonZero[k], a - range[0]);
+        lastNonZero[k] = b - range[0];
+      }
+      a = b;
+    }
+    cells.PieceStart.push_back(static_cast<int>(cells.PieceDepth.size()));
+    cells.CellMu[k] = cellDepth / cells.D;
+    cells.PrefixMu[k + 1] = cells.PrefixMu[k] + cellDepth / cells.D;
+    cells.PrefixSigma[k + 1] = cells.PrefixSigma[k] + cellSigma / cells.D;
+  }
+
+  cells.Up.assign(n, inf);
+  cells.Down.assign(n, -inf);
+  for (int k = n - 2; k >= 0; --k)
+  {
+    cells.Up[k] = firstNonZero[k] < inf ? firstNonZero[k] : cells.Up[k + 1];
+  }
+  for (int k = 1; k < n; ++k)
+  {
+    cells.Down[k] = lastNonZero[k - 1] > -inf ? lastNonZero[k - 1] : cells.Down[k - 1];
+  }
+
+  const std::size_t entries = static_cast<std::size_t>(n) * n;
+  std::vector<float> colorOpacity(4 * entries), position(entries), shadow(entries);
+  DiagonalFiller filler{ cells, colorOpacity.data(), position.data(), shadow.data() };
+  vtkSMPTools::For(0, n, 1, filler);
+
+  internals.ColorOpacity.swap(colorOpacity);
+  internals.Position.swap(position);
+  internals.Shadow.swap(shadow);
+  internals.N = n;
+  internals.Range[0] = range[0];
+  internals.Range[1] = range[1];
+  internals.Built = true;
+  internals.BuildTime.Modified();
+  ++this->BuildCount;
+  this->LastBuildSeconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return true;
+}
+
+//------------------------------------------------------------------------------
+const float* vtkPreIntegrationTable::GetColorOpacityTable() const
+{
+  return this->Internals->Built ? this->Internals->ColorOpacity.data() : nullptr;
+}
+
+const float* vtkPreIntegrationTable::GetShadingPositionTable() const
+{
+  return this->Internals->Built ? this->Internals->Position.data() : nullptr;
+}
+
+const float* vtkPreIntegrationTable::GetShadowOpacityTable() const
+{
+  return this->Internals->Built ? this->Internals->Shadow.data() : nullptr;
+}
+
+//------------------------------------------------------------------------------
+double vtkPreIntegrationTable::LookupOpacity(double t1, double t2) const
+{
+  const vtkInternals& internals = *this->Internals;
+  return internals.Built ? internals.Lookup(internals.ColorOpacity, 4, 3, t1, t2) : 0.0;
+}
+
+double vtkPreIntegrationTable::LookupShadowOpacity(double t1, double t2) const
+{
+  const vtkInternals& internals = *this->Internals;
+  return internals.Built ? internals.Lookup(internals.Shadow, 1, 0, t1, t2) : 0.0;
+}
+
+double vtkPreIntegrationTable::LookupShadingPosition(double t1, double t2) const
+{
+  const vtkInternals& internals = *this->Internals;
+  return internals.Built ? internals.Lookup(internals.Position, 1, 0, t1, t2) : 0.0;
+}
+
+void vtkPreIntegrationTable::LookupColor(double t1, double t2, double rgba[4]) const
+{
+  const vtkInternals& internals = *this->Internals;
+  for (int c = 0; c < 4; ++c)
+  {
+    rgba[c] = internals.Built ? internals.Lookup(internals.ColorOpacity, 4, c, t1, t2) : 0.0;
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkPreIntegrationTable::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "ColorTransferFunction: " << this->Internals->Color.GetPointer() << "\n";
+  os << indent << "ScalarOpacity: " << this->Internals->Opacity.GetPointer() << "\n";
+  os << indent << "MaterialTransferFunction: " << this->Internals->Material.GetPointer() << "\n";
+  os << indent << "StepLength: " << this->StepLength << "\n";
+  os << indent << "ScalarOpacityUnitDistance: " << this->ScalarOpacityUnitDistance << "\n";
+  os << indent << "TableSize: " << this->TableSize << "\n";
+  os << indent << "ScalarRange: " << this->ScalarRange[0] << " " << this->ScalarRange[1] << "\n";
+  os << indent << "Built over: " << this->Internals->Range[0] << " " << this->Internals->Range[1]
+     << "\n";
+  os << indent << "BuildCount: " << this->BuildCount << "\n";
+  os << indent << "LastBuildSeconds: " << this->LastBuildSeconds << "\n";
+}

@@ -4,6 +4,8 @@
 #include "vtkMultiMaterialLightModel.h"
 #include "vtkMultiMaterialParameters.h"
 #include "mmvLightModel.h"
+#include "mmvShading.h"
+#include "vtkMultiMaterialShading.h"
 
 #include "vtkNew.h"
 #include "vtkOpenGLFramebufferObject.h"
@@ -52,7 +54,7 @@ public:
     }
     this->GL->MakeCurrent();
     const std::string fs = std::string("//VTK::System::Dec\n") + mmv::MaterialGLSLPrelude() +
-      mmvLightModel + "\nin vec2 texCoord;\n//VTK::Output::Dec\n" + body;
+      mmvLightModel + mmvShading + "\nin vec2 texCoord;\n//VTK::Output::Dec\n" + body;
     vtkNew<vtkOpenGLFramebufferObject> fbo;
     fbo->SetContext(this->GL);
     this->GL->GetState()->PushFramebufferBindings();
@@ -184,4 +186,67 @@ TEST(ShaderMirror, SpotLightHasLitAndUnlitPixels)
   }
   EXPECT_GT(lit, Size * Size / 20);
   EXPECT_LT(lit, Size * Size * 19 / 20);
+}
+
+namespace
+{
+// Pixel (i, j) -> a light direction sweeping the sphere around n = +z, and
+// a shininess growing along i (0 included: the pow(0, 0) guard).
+glm::dvec3 SweepLight(int i, int j)
+{
+  const double theta = M_PI * (j + 0.5) / Size;
+  const double phi = 2.0 * M_PI * (i + 0.5) / Size;
+  return { std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta) };
+}
+
+const char* BlinnPhongBody = R"(
+void main()
+{
+  float theta = 3.14159265358979 * texCoord.y;
+  float phi = 6.28318530717959 * texCoord.x;
+  vec3 l = vec3(sin(theta) * cos(phi), sin(theta) * sin(phi), cos(theta));
+  vec3 n = vec3(0.0, 0.0, 1.0);
+  vec3 v = normalize(vec3(0.3, -0.2, 1.0));
+  float shininess = floor(texCoord.x * 4.0) * 25.0;
+  vec4 material = vec4(0.2, 0.7, 0.5, shininess);
+  vec4 segment = vec4(0.3, 0.2, 0.1, 0.6);
+  vec3 c = mmvBlinnPhong(material, segment, n, v, l, texCoord.y);
+  vec3 e = mmvEnvironment(l, vec3(0.0, 1.0, 0.0), vec3(0.1, 0.2, 0.3), vec3(0.9, 0.8, 0.7));
+  gl_FragData[0] = vec4(c.x, c.y + c.z, e.x, e.z);
+}
+)";
+}
+
+TEST(ShaderMirror, BlinnPhongAndEnvironmentMatchCPU)
+{
+  ShaderRunner runner;
+  ASSERT_NE(runner.GL, nullptr);
+  std::vector<float> pixels;
+  ASSERT_TRUE(runner.Run(BlinnPhongBody, [](vtkShaderProgram*) {}, pixels));
+  const glm::dvec3 n(0.0, 0.0, 1.0);
+  const glm::dvec3 v = glm::normalize(glm::dvec3(0.3, -0.2, 1.0));
+  int highlights = 0;
+  for (int j = 0; j < Size; ++j)
+  {
+    for (int i = 0; i < Size; ++i)
+    {
+      const float* px = &pixels[4 * (j * Size + i)];
+      const glm::dvec3 l = SweepLight(i, j);
+      const double shininess = std::floor((i + 0.5) / Size * 4.0) * 25.0;
+      const glm::dvec4 material(0.2, 0.7, 0.5, shininess);
+      const glm::dvec4 segment(0.3, 0.2, 0.1, 0.6);
+      const double directional = (j + 0.5) / Size;
+      const glm::dvec3 c = mmv::mmvBlinnPhong(material, segment, n, v, l, directional);
+      const glm::dvec3 e = mmv::mmvEnvironment(
+        l, glm::dvec3(0.0, 1.0, 0.0), glm::dvec3(0.1, 0.2, 0.3), glm::dvec3(0.9, 0.8, 0.7));
+      // float vs double; pow() of a large exponent amplifies the rounding.
+      ASSERT_NEAR(px[0], c.x, 1e-4) << i << "," << j;
+      ASSERT_NEAR(px[1], c.y + c.z, 1e-4) << i << "," << j;
+      ASSERT_NEAR(px[2], e.x, 1e-5);
+      ASSERT_NEAR(px[3], e.z, 1e-5);
+      highlights += c.y - 0.2 * 0.2 > 0.05 ? 1 : 0;
+    }
+  }
+  // The sweep must reach lit, unlit and highlighted configurations.
+  EXPECT_GT(highlights, 10);
 }

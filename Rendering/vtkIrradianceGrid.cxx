@@ -1,0 +1,187 @@
+#include "vtkIrradianceGrid.h"
+
+#include "vtkDataArray.h"
+#include "vtkImageData.h"
+#include "vtkMatrix3x3.h"
+#include "vtkMultiMaterialParameters.h"
+#include "vtkSMPTools.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace
+{
+
+/// Pre-filter samples per axis and irradiance voxel, at most.
+constexpr int MaxFootprintSamples = 8;
+
+/// Trilinear interpolation of `values` (dims, x fastest) at a continuous
+/// index, clamped to the grid.
+double SampleTrilinear(const int dims[3], const float* values, const glm::dvec3& index)
+{
+  int i0[3];
+  int i1[3];
+  double w[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    const double x = std::min(std::max(index[a], 0.0), static_cast<double>(dims[a] - 1));
+    i0[a] = std::min(static_cast<int>(x), dims[a] - 1);
+    i1[a] = std::min(i0[a] + 1, dims[a] - 1);
+    w[a] = x - i0[a];
+  }
+  const vtkIdType sy = dims[0];
+  const vtkIdType sz = static_cast<vtkIdType>(dims[0]) * dims[1];
+  auto at = [&](int i, int j, int k) { return static_cast<double>(values[i + j * sy + k * sz]); };
+  const double c00 = at(i0[0], i0[1], i0[2]) * (1 - w[0]) + at(i1[0], i0[1], i0[2]) * w[0];
+  const double c10 = at(i0[0], i1[1], i0[2]) * (1 - w[0]) + at(i1[0], i1[1], i0[2]) * w[0];
+  const double c01 = at(i0[0], i0[1], i1[2]) * (1 - w[0]) + at(i1[0], i0[1], i1[2]) * w[0];
+  const double c11 = at(i0[0], i1[1], i1[2]) * (1 - w[0]) + at(i1[0], i1[1], i1[2]) * w[0];
+  const double c0 = c00 * (1 - w[1]) + c10 * w[1];
+  const double c1 = c01 * (1 - w[1]) + c11 * w[1];
+  return c0 * (1 - w[2]) + c1 * w[2];
+}
+
+/// One component of the scalars as floats (one virtual call per value, once).
+std::vector<float> CopyComponent(vtkDataArray* scalars, int component)
+{
+  std::vector<float> values(scalars->GetNumberOfTuples());
+  vtkSMPTools::For(0, scalars->GetNumberOfTuples(), [&](vtkIdType begin, vtkIdType end) {
+    for (vtkIdType i = begin; i < end; ++i)
+    {
+      values[i] = static_cast<float>(scalars->GetComponent(i, component));
+    }
+  });
+  return values;
+}
+
+} // namespace
+
+namespace mmv
+{
+
+void ComputeIrradianceDimensions(const int dataDims[3], int numberOfLights, double budgetMB,
+  double scale, int irradianceDims[3])
+{
+  int d[3];
+  int lo[3];
+  int active = 0;
+  for (int a = 0; a < 3; ++a)
+  {
+    d[a] = std::max(1, dataDims[a]);
+    lo[a] = std::min(2, d[a]);
+    active += d[a] > 1 ? 1 : 0;
+  }
+  auto apply = [&](double s) {
+    for (int a = 0; a < 3; ++a)
+    {
+      const int n = static_cast<int>(std::lround(d[a] * s));
+      irradianceDims[a] = std::min(d[a], std::max(lo[a], n));
+    }
+  };
+  if (scale > 0.0)
+  {
+    apply(std::min(scale, 1.0));
+    return;
+  }
+  const double bytesPerVoxel = IrradianceBytesPerVoxelPerLight * std::max(1, numberOfLights);
+  const double budgetVoxels = std::max(0.0, budgetMB) * 1024.0 * 1024.0 / bytesPerVoxel;
+  auto voxels = [&]() {
+    return static_cast<double>(irradianceDims[0]) * irradianceDims[1] * irradianceDims[2];
+  };
+  const double dataVoxels = static_cast<double>(d[0]) * d[1] * d[2];
+  // Start from the continuous answer (only axes longer than 1 shrink), then
+  // step down until the rounded dimensions fit or reach their minimum.
+  double s = active > 0 ? std::min(1.0, std::pow(budgetVoxels / dataVoxels, 1.0 / active)) : 1.0;
+  apply(s);
+  for (int i = 0; i < 4000 && voxels() > budgetVoxels; ++i)
+  {
+    if (irradianceDims[0] == lo[0] && irradianceDims[1] == lo[1] && irradianceDims[2] == lo[2])
+    {
+      break;
+    }
+    s *= 0.998;
+    apply(s);
+  }
+}
+
+IrradianceGrid MakeIrradianceGrid(vtkImageData* image, const int irradianceDims[3])
+{
+  IrradianceGrid grid;
+  const int* extent = image->GetExtent();
+  const double* dataSpacing = image->GetSpacing();
+  const vtkMatrix3x3* direction = image->GetDirectionMatrix();
+  double origin[3];
+  image->TransformContinuousIndexToPhysicalPoint(extent[0], extent[2], extent[4], origin);
+  for (int a = 0; a < 3; ++a)
+  {
+    const int dataDim = extent[2 * a + 1] - extent[2 * a] + 1;
+    grid.Dimensions[a] = irradianceDims[a];
+    grid.Origin[a] = origin[a];
+    grid.Spacing[a] = dataSpacing[a];
+    grid.DataVoxelsPerVoxel[a] = 1.0;
+    if (irradianceDims[a] > 1)
+    {
+      grid.DataVoxelsPerVoxel[a] = (dataDim - 1.0) / (irradianceDims[a] - 1.0);
+      grid.Spacing[a] = dataSpacing[a] * (dataDim - 1) / (irradianceDims[a] - 1);
+    }
+    for (int r = 0; r < 3; ++r)
+    {
+      grid.Direction[a][r] = direction->GetElement(r, a); // glm: [column][row]
+    }
+  }
+  return grid;
+}
+
+void PrefilterScalars(vtkImageData* image, vtkDataArray* scalars, int component,
+  const IrradianceGrid& grid, std::vector<float>& prefiltered)
+{
+  const int* extent = image->GetExtent();
+  const int dataDims[3] = { extent[1] - extent[0] + 1, extent[3] - extent[2] + 1,
+    extent[5] - extent[4] + 1 };
+  double ratio[3];
+  int samples[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    ratio[a] = grid.Dimensions[a] > 1 ? (dataDims[a] - 1.0) / (grid.Dimensions[a] - 1.0) : 0.0;
+    // Axes at full resolution take the data value itself (an exact copy).
+    samples[a] = grid.Dimensions[a] == dataDims[a]
+      ? 1
+      : std::min(MaxFootprintSamples, std::max(2, static_cast<int>(std::ceil(ratio[a]))));
+  }
+  const std::vector<float> values = CopyComponent(scalars, component);
+  const int nx = grid.Dimensions[0];
+  const int ny = grid.Dimensions[1];
+  prefiltered.resize(grid.GetNumberOfVoxels());
+  vtkSMPTools::For(0, grid.GetNumberOfVoxels(), [&](vtkIdType begin, vtkIdType end) {
+    for (vtkIdType v = begin; v < end; ++v)
+    {
+      const glm::dvec3 index(static_cast<double>(v % nx), static_cast<double>((v / nx) % ny),
+        static_cast<double>(v / (static_cast<vtkIdType>(nx) * ny)));
+      const glm::dvec3 centre = index * glm::dvec3(ratio[0], ratio[1], ratio[2]);
+      double sum = 0.0;
+      for (int k = 0; k < samples[2]; ++k)
+      {
+        for (int j = 0; j < samples[1]; ++j)
+        {
+          for (int i = 0; i < samples[0]; ++i)
+          {
+            // Midpoint rule over the footprint, one irradiance spacing wide.
+            const int q[3] = { i, j, k };
+            glm::dvec3 p = centre;
+            for (int a = 0; a < 3; ++a)
+            {
+              if (samples[a] > 1)
+              {
+                p[a] += ratio[a] * ((q[a] + 0.5) / samples[a] - 0.5);
+              }
+            }
+            sum += SampleTrilinear(dataDims, values.data(), p);
+          }
+        }
+      }
+      prefiltered[v] = static_cast<float>(sum / (samples[0] * samples[1] * samples[2]));
+    }
+  });
+}
+
+} // namespace mmv

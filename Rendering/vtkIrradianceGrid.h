@@ -1,0 +1,76 @@
+/**
+ * @file   vtkIrradianceGrid.h
+ * @brief  Geometry and pre-filtered data of the irradiance volume, shared by
+ *         the CPU filter (vtkIrradianceVolumeFilter) and the GPU pass
+ *         (vtkIrradianceVolumePass) so both estimate irradiance on the same grid
+ *         from the same samples.
+ *
+ * The grid spans the same bounds as the data's points: voxel (0,0,0) sits on
+ * the data's first point and the last voxel on its last point, so
+ * spacing = (dataDims - 1) * dataSpacing / (dims - 1) per axis (an axis of one
+ * voxel keeps the data spacing). Positions are in the image's physical
+ * (object) space, direction matrix included.
+ */
+#ifndef vtkIrradianceGrid_h
+#define vtkIrradianceGrid_h
+
+#include "vtkMultiMaterialVolumeModule.h" // export macro
+#include "vtkType.h"                      // vtkIdType
+
+#include <glm/glm.hpp>
+
+#include <vector>
+
+class vtkDataArray;
+class vtkImageData;
+
+namespace mmv
+{
+
+struct IrradianceGrid
+{
+  int Dimensions[3] = { 0, 0, 0 };
+  glm::dvec3 Origin{ 0.0 };   // physical position of voxel (0,0,0)
+  glm::dvec3 Spacing{ 1.0 };  // along the index axes
+  glm::dmat3 Direction{ 1.0 }; // columns: index axes in physical space
+  glm::dvec3 DataVoxelsPerVoxel{ 1.0 }; // irradiance spacing / data spacing
+
+  vtkIdType GetNumberOfVoxels() const
+  {
+    return static_cast<vtkIdType>(this->Dimensions[0]) * this->Dimensions[1] * this->Dimensions[2];
+  }
+  glm::dvec3 IndexToPhysical(const glm::dvec3& ijk) const
+  {
+    return this->Origin + this->Direction * (ijk * this->Spacing);
+  }
+  glm::dvec3 PhysicalToIndex(const glm::dvec3& p) const
+  {
+    return (glm::transpose(this->Direction) * (p - this->Origin)) / this->Spacing;
+  }
+};
+
+/**
+ * Irradiance dimensions for data of `dataDims` points: `scale` in (0, 1]
+ * scales every axis; scale <= 0 picks the largest scale whose
+ * numberOfLights * IrradianceBytesPerVoxelPerLight bytes per voxel fit
+ * `budgetMB`. Axes never exceed the data's and never drop below min(2, data).
+ */
+VTKMULTIMATERIALVOLUME_EXPORT void ComputeIrradianceDimensions(const int dataDims[3],
+  int numberOfLights, double budgetMB, double scale, int irradianceDims[3]);
+
+/// The grid of `irradianceDims` spanning `image`'s points.
+VTKMULTIMATERIALVOLUME_EXPORT IrradianceGrid MakeIrradianceGrid(
+  vtkImageData* image, const int irradianceDims[3]);
+
+/**
+ * Box-filters component `component` of `scalars` (point data of `image`) over
+ * each grid voxel's footprint (trilinear samples on a regular sub-grid,
+ * clamped to the data bounds); an exact copy when the grid equals the data
+ * grid. Values stay in data units. Multithreaded (vtkSMPTools).
+ */
+VTKMULTIMATERIALVOLUME_EXPORT void PrefilterScalars(vtkImageData* image, vtkDataArray* scalars,
+  int component, const IrradianceGrid& grid, std::vector<float>& prefiltered);
+
+} // namespace mmv
+
+#endif

@@ -1,0 +1,114 @@
+/**
+ * @class   vtkIrradianceVolumePass
+ * @brief   The irradiance volume on the GPU (Zhang & Ma §5.1, §5.2, Algorithm 1
+ *          lines 7-9): shadow rays at voxel centres and diffusion passes, in GLSL.
+ *
+ * The GPU twin of vtkIrradianceVolumeFilter: same grid (mmv::IrradianceGrid),
+ * same pre-filtered samples, same pre-integrated shadow table, same light
+ * model (Shaders/mmvLightModel.glsl), so the two agree within 1% of the light
+ * intensity. Results live in RGBA16 3D textures (16 bits per light: 8 bits
+ * bands visibly), four lights per texture: light k is channel k % 4 of
+ * texture k / 4. Values are the fraction of each light reaching the voxel,
+ * without colour and intensity.
+ *
+ * Passes (fragment shaders drawing into 3D-texture slices):
+ *  1. shadow rays for every non-empty voxel (opacity > 0; empty voxels are
+ *     skipped and written as 0), steps of the shadow table's length, exact
+ *     exit distance and partial last step, early termination;
+ *  2. diffusion for multiple scattering (only when some s > 0 and enabled):
+ *     Jacobi sweeps of the backward-Euler system, a convex combination of
+ *     neighbours per sweep, so it is stable for every s and keeps the maximum
+ *     principle;
+ *  3. empty voxels bordering non-empty ones take the mean of those neighbours.
+ *
+ * Needs OpenGL 3.2 core (layered rendering into 3D textures); Render() returns
+ * false with an error when the context cannot do it.
+ */
+#ifndef vtkIrradianceVolumePass_h
+#define vtkIrradianceVolumePass_h
+
+#include "vtkIrradianceGrid.h"         // IrradianceGrid
+#include "vtkMultiMaterialLightModel.h" // LightSource
+#include "vtkMultiMaterialVolumeModule.h" // export macro
+#include "vtkObject.h"
+
+#include <vector> // inputs
+
+class vtkOpenGLRenderWindow;
+class vtkTextureObject;
+class vtkWindow;
+
+class VTKMULTIMATERIALVOLUME_EXPORT vtkIrradianceVolumePass : public vtkObject
+{
+public:
+  static vtkIrradianceVolumePass* New();
+  vtkTypeMacro(vtkIrradianceVolumePass, vtkObject);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /**
+   * Inputs (all on the CPU; uploaded by Render()):
+   *  - grid and the pre-filtered scalars on it, normalised to the tables'
+   *    coordinate: (value - range[0]) / (range[1] - range[0]);
+   *  - the n x n shadow-opacity table of vtkPreIntegrationTable
+   *    (GetShadowOpacityTable) over the same range, built for `stepLength`
+   *    (object units), which is also the shadow-ray step;
+   *  - n-entry classification tables over the same range: opacity (> 0 marks
+   *    a voxel non-empty) and scattering strength s (data voxel^2 units);
+   *  - the lights (at most mmv::MaxLights) in object space.
+   */
+  void SetInputs(const mmv::IrradianceGrid& grid, const std::vector<float>& normalizedScalars,
+    int tableSize, const float* shadowTable, double stepLength, const float* opacityTable,
+    const float* scatteringTable, const std::vector<mmv::LightSource>& lights);
+
+  /// Diffusion for multiple scattering (default on); time T of eq. 15.
+  vtkSetMacro(MultipleScattering, bool);
+  vtkGetMacro(MultipleScattering, bool);
+  vtkSetMacro(DiffusionTime, double);
+  vtkGetMacro(DiffusionTime, double);
+  /// Jacobi sweeps per diffusion solve (default 24).
+  vtkSetClampMacro(DiffusionSweeps, int, 1, 1000);
+  vtkGetMacro(DiffusionSweeps, int);
+
+  /// Runs the passes. Needs the context current. False (with an error) if
+  /// inputs are missing or the context lacks what the passes need.
+  bool Render(vtkOpenGLRenderWindow* context);
+
+  /// RGBA16 3D texture holding lights 4i..4i+3 (nullptr before Render()).
+  vtkTextureObject* GetIrradianceTexture(int i) const;
+  int GetNumberOfIrradianceTextures() const;
+
+  /// Test hook: light k's irradiance, GetNumberOfVoxels() floats, x fastest.
+  bool ReadBack(vtkOpenGLRenderWindow* context, int light, std::vector<float>& values);
+
+  ///@{
+  /// What the last Render() did.
+  vtkGetMacro(NumberOfComputedVoxels, vtkIdType);
+  vtkGetMacro(DiffusionPasses, int);
+  vtkGetMacro(LastRenderSeconds, double);
+  ///@}
+
+  /// GPU memory held by the irradiance textures, in bytes.
+  vtkIdType GetTextureMemoryBytes() const;
+
+  void ReleaseGraphicsResources(vtkWindow* window);
+
+protected:
+  vtkIrradianceVolumePass();
+  ~vtkIrradianceVolumePass() override;
+
+  bool MultipleScattering = true;
+  double DiffusionTime = 1.0;
+  int DiffusionSweeps = 24;
+  vtkIdType NumberOfComputedVoxels = 0;
+  int DiffusionPasses = 0;
+  double LastRenderSeconds = 0.0;
+
+private:
+  vtkIrradianceVolumePass(const vtkIrradianceVolumePass&) = delete;
+  void operator=(const vtkIrradianceVolumePass&) = delete;
+
+  class vtkInternals;
+  vtkInternals* Internals;
+};
+
+#endif

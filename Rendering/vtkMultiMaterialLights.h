@@ -1,0 +1,51 @@
+/**
+ * @file   vtkMultiMaterialLights.h
+ * @brief  vtkLight -> mmv::LightSource, shared by the CPU filter and the mapper.
+ *
+ * Positions come from vtkLight::GetTransformedPosition/FocalPoint (world
+ * coordinates, headlights and camera lights included once the renderer has
+ * placed them) and are mapped into the volume's object (data) space with
+ * `worldToObject` (nullptr: identity).
+ */
+#ifndef vtkMultiMaterialLights_h
+#define vtkMultiMaterialLights_h
+
+#include "vtkMultiMaterialLightModel.h"
+#include "vtkMultiMaterialVolumeModule.h" // export macro
+
+#include <vector>
+
+class vtkLight;
+class vtkLightCollection;
+class vtkMatrix4x4;
+
+namespace mmv
+{
+
+/// A light for shading: its geometry plus colour * intensity.
+struct ShadingLight
+{
+  LightSource Source;
+  glm::dvec3 Radiance{ 1.0 };
+  int Index = 0; // position in the collection it came from
+};
+
+/// True when the light contributes at all (switched on, intensity > 0,
+/// non-black colour). Such lights cost nothing anywhere.
+VTKMULTIMATERIALVOLUME_EXPORT bool IsLightActive(vtkLight* light);
+
+/// The light's geometry in object space. `radius` is epsilon of eq. 12.
+VTKMULTIMATERIALVOLUME_EXPORT LightSource MakeLightSource(
+  vtkLight* light, const vtkMatrix4x4* worldToObject, double radius);
+
+/**
+ * The active lights of a collection, in collection order. With more than
+ * `maxLights` of them, only the strongest (intensity times brightest colour
+ * channel) are kept and `dropped` (if given) receives how many were left out.
+ */
+VTKMULTIMATERIALVOLUME_EXPORT std::vector<ShadingLight> CollectLights(vtkLightCollection* lights,
+  const vtkMatrix4x4* worldToObject, double radius, int maxLights, int* dropped = nullptr);
+
+} // namespace mmv
+
+#endif

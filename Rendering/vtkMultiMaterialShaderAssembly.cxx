@@ -1,0 +1,38 @@
+#include "vtkMultiMaterialShaderAssembly.h"
+
+#include "vtkMultiMaterialParameters.h"
+
+#include "mmvRayCastDec.h"
+#include "mmvRayCastExit.h"
+#include "mmvRayCastImpl.h"
+#include "mmvRayCastInit.h"
+#include "mmvShading.h"
+
+namespace mmv
+{
+
+std::string VariantDefines(const ShaderVariant& variant)
+{
+  const int textures = (variant.NumberOfLights + 3) / 4;
+  std::string s = MaterialGLSLPrelude();
+  s += "#define MMV_NUMBER_OF_LIGHTS " + std::to_string(variant.NumberOfLights) + "\n";
+  s += "#define MMV_IRRADIANCE_TEXTURES " + std::to_string(textures) + "\n";
+  s += "#define MMV_USE_REFLECTION " + std::string(variant.Reflection ? "1" : "0") + "\n";
+  s += "#define MMV_USE_PREINTEGRATION " + std::string(variant.PreIntegration ? "1" : "0") + "\n";
+  return s;
+}
+
+std::vector<std::pair<std::string, std::string>> RayCastReplacements(const ShaderVariant& variant)
+{
+  // Declarations and the per-ray init/exit keep VTK's own code after ours
+  // (the tag is re-emitted); the per-sample shading replaces VTK's.
+  return {
+    { "//VTK::Shading::Dec",
+      VariantDefines(variant) + mmvShading + mmvRayCastDec + "\n//VTK::Shading::Dec" },
+    { "//VTK::Shading::Init", std::string(mmvRayCastInit) + "\n//VTK::Shading::Init" },
+    { "//VTK::Shading::Impl", mmvRayCastImpl },
+    { "//VTK::Shading::Exit", std::string(mmvRayCastExit) + "\n//VTK::Shading::Exit" },
+  };
+}
+
+} // namespace mmv

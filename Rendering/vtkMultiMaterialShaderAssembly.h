@@ -1,0 +1,46 @@
+/**
+ * @file   vtkMultiMaterialShaderAssembly.h
+ * @brief  Which GLSL file of Shaders/ goes to which tag of VTK's ray caster
+ *         (raycasterfs.glsl), and the defines that select the variant.
+ *
+ * The only place that knows the tag table. Variants are chosen by defines,
+ * so a scene gets no code it does not need: no light loop without lights, no
+ * environment lookup when every reflection coefficient is 0, no segment
+ * tables' second fetch without pre-integration.
+ */
+#ifndef vtkMultiMaterialShaderAssembly_h
+#define vtkMultiMaterialShaderAssembly_h
+
+#include "vtkMultiMaterialVolumeModule.h" // export macro
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace mmv
+{
+
+struct ShaderVariant
+{
+  int NumberOfLights = 0;  // 0..MaxLights
+  bool Reflection = false; // some material has r > 0
+  bool PreIntegration = true;
+
+  bool operator==(const ShaderVariant& o) const
+  {
+    return this->NumberOfLights == o.NumberOfLights && this->Reflection == o.Reflection &&
+      this->PreIntegration == o.PreIntegration;
+  }
+  bool operator!=(const ShaderVariant& o) const { return !(*this == o); }
+};
+
+/// The `#define` lines of a variant (the material layout prelude included).
+VTKMULTIMATERIALVOLUME_EXPORT std::string VariantDefines(const ShaderVariant& variant);
+
+/// Fragment-shader replacements (tag, text) for composite ray casting.
+VTKMULTIMATERIALVOLUME_EXPORT std::vector<std::pair<std::string, std::string>>
+RayCastReplacements(const ShaderVariant& variant);
+
+} // namespace mmv
+
+#endif

@@ -1,0 +1,141 @@
+#include "vtkMultiMaterialTextures.h"
+
+#include "vtkMaterialTransferFunction.h"
+#include "vtkMultiMaterialParameters.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkPreIntegrationTable.h"
+#include "vtkTextureObject.h"
+
+#include <vector>
+
+vtkStandardNewMacro(vtkMultiMaterialTextures);
+
+namespace
+{
+void UseLinearClamped(vtkTextureObject* texture)
+{
+  texture->SetMinificationFilter(vtkTextureObject::Linear);
+  texture->SetMagnificationFilter(vtkTextureObject::Linear);
+  texture->SetWrapS(vtkTextureObject::ClampToEdge);
+  texture->SetWrapT(vtkTextureObject::ClampToEdge);
+}
+}
+
+vtkMultiMaterialTextures::vtkMultiMaterialTextures() = default;
+vtkMultiMaterialTextures::~vtkMultiMaterialTextures() = default;
+
+void vtkMultiMaterialTextures::UpdateSegmentTables(
+  vtkOpenGLRenderWindow* context, vtkPreIntegrationTable* table)
+{
+  const bool current = this->SegmentColor->GetHandle() != 0 && table == this->UploadedTable &&
+    table->GetBuildCount() == this->UploadedTableBuild;
+  if (current)
+  {
+    return;
+  }
+  const int n = table->GetTableSize();
+  this->SegmentColor->SetContext(context);
+  this->SegmentPosition->SetContext(context);
+  this->SegmentColor->Create2DFromRaw(
+    n, n, 4, VTK_FLOAT, const_cast<float*>(table->GetColorOpacityTable()));
+  this->SegmentPosition->Create2DFromRaw(
+    n, n, 1, VTK_FLOAT, const_cast<float*>(table->GetShadingPositionTable()));
+  UseLinearClamped(this->SegmentColor);
+  UseLinearClamped(this->SegmentPosition);
+  this->UploadedTable = table;
+  this->UploadedTableBuild = table->GetBuildCount();
+  this->TableSize = n;
+  ++this->SegmentUploads;
+}
+
+void vtkMultiMaterialTextures::UpdateMaterialTable(vtkOpenGLRenderWindow* context,
+  vtkMaterialTransferFunction* materials, const double range[2], int n)
+{
+  const vtkMTimeType time = materials ? materials->GetMTime() : 0;
+  const bool current = this->Material->GetHandle() != 0 && materials == this->UploadedMaterials &&
+    time == this->UploadedMaterialTime && range[0] == this->UploadedRange[0] &&
+    range[1] == this->UploadedRange[1] && n == this->UploadedMaterialSize;
+  if (current)
+  {
+    return;
+  }
+  constexpr int P = mmv::MaterialParameterCount;
+  std::vector<float> samples(static_cast<size_t>(n) * P);
+  if (materials)
+  {
+    materials->GetTable(range[0], range[1], n, samples.data());
+  }
+  else
+  {
+    for (int i = 0; i < n; ++i)
+    {
+      for (int p = 0; p < P; ++p)
+      {
+        samples[i * P + p] = static_cast<float>(mmv::MaterialParameterTable[p].Default);
+      }
+    }
+  }
+  // Row 0: what every shaded segment reads; row 1: reflection (read only by
+  // the reflection variant) and the irradiance parameters (for inspection).
+  std::vector<float> texels(static_cast<size_t>(n) * 2 * 4, 0.0f);
+  for (int i = 0; i < n; ++i)
+  {
+    const float* m = &samples[i * P];
+    float* row0 = &texels[4 * i];
+    float* row1 = &texels[4 * (n + i)];
+    row0[0] = m[mmv::Ambient];
+    row0[1] = m[mmv::Diffuse];
+    row0[2] = m[mmv::Specular];
+    row0[3] = m[mmv::Shininess];
+    row1[0] = m[mmv::Reflection];
+    row1[1] = m[mmv::Attenuation];
+    row1[2] = m[mmv::Scattering];
+  }
+  this->Material->SetContext(context);
+  this->Material->Create2DFromRaw(n, 2, 4, VTK_FLOAT, texels.data());
+  UseLinearClamped(this->Material);
+  this->UploadedMaterials = materials;
+  this->UploadedMaterialTime = time;
+  this->UploadedRange[0] = range[0];
+  this->UploadedRange[1] = range[1];
+  this->UploadedMaterialSize = n;
+  ++this->MaterialUploads;
+}
+
+void vtkMultiMaterialTextures::Activate()
+{
+  this->SegmentColor->Activate();
+  this->SegmentPosition->Activate();
+  this->Material->Activate();
+}
+
+void vtkMultiMaterialTextures::Deactivate()
+{
+  this->SegmentColor->Deactivate();
+  this->SegmentPosition->Deactivate();
+  this->Material->Deactivate();
+}
+
+vtkIdType vtkMultiMaterialTextures::GetMemoryBytes() const
+{
+  const vtkIdType n = this->TableSize;
+  return n * n * (4 + 1) * 4 + static_cast<vtkIdType>(this->UploadedMaterialSize) * 2 * 4 * 4;
+}
+
+void vtkMultiMaterialTextures::ReleaseGraphicsResources(vtkWindow* window)
+{
+  this->SegmentColor->ReleaseGraphicsResources(window);
+  this->SegmentPosition->ReleaseGraphicsResources(window);
+  this->Material->ReleaseGraphicsResources(window);
+  this->UploadedTable = nullptr;
+  this->UploadedMaterials = nullptr;
+  this->UploadedTableBuild = -1;
+}
+
+void vtkMultiMaterialTextures::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "SegmentUploads: " << this->SegmentUploads << "\n";
+  os << indent << "MaterialUploads: " << this->MaterialUploads << "\n";
+}

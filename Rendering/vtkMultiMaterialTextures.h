@@ -1,0 +1,78 @@
+/**
+ * @class   vtkMultiMaterialTextures
+ * @brief   The ray caster's lookup textures: pre-integrated segment tables and
+ *          the material table, uploaded only when their source changed.
+ *
+ * Segment tables: RGBA32F n x n (I_c rgb, I_alpha) and R32F n x n (I_beta)
+ * from vtkPreIntegrationTable. Material table: RGBA32F n x 2, row 0 =
+ * (ka, kd, ks, ke), row 1 = (r, c_t, s, 0), sampled over the scalar range
+ * (the layout of mmv::MaterialParameterTable; the shader reads it at v = 0.25
+ * and v = 0.75).
+ */
+#ifndef vtkMultiMaterialTextures_h
+#define vtkMultiMaterialTextures_h
+
+#include "vtkMultiMaterialVolumeModule.h" // export macro
+#include "vtkNew.h"                       // members
+#include "vtkObject.h"
+
+class vtkMaterialTransferFunction;
+class vtkOpenGLRenderWindow;
+class vtkPreIntegrationTable;
+class vtkTextureObject;
+class vtkWindow;
+
+class VTKMULTIMATERIALVOLUME_EXPORT vtkMultiMaterialTextures : public vtkObject
+{
+public:
+  static vtkMultiMaterialTextures* New();
+  vtkTypeMacro(vtkMultiMaterialTextures, vtkObject);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /// Uploads the segment tables if `table` was rebuilt since the last upload.
+  void UpdateSegmentTables(vtkOpenGLRenderWindow* context, vtkPreIntegrationTable* table);
+
+  /// Uploads the material table (n entries over `range`) if the function,
+  /// the range or n changed. A null function uploads the defaults.
+  void UpdateMaterialTable(vtkOpenGLRenderWindow* context, vtkMaterialTransferFunction* materials,
+    const double range[2], int n);
+
+  vtkTextureObject* GetSegmentColorTexture() { return this->SegmentColor; }
+  vtkTextureObject* GetSegmentPositionTexture() { return this->SegmentPosition; }
+  vtkTextureObject* GetMaterialTexture() { return this->Material; }
+
+  void Activate();
+  void Deactivate();
+
+  /// Number of uploads done (segment tables, material table).
+  vtkGetMacro(SegmentUploads, int);
+  vtkGetMacro(MaterialUploads, int);
+
+  /// GPU memory held, in bytes.
+  vtkIdType GetMemoryBytes() const;
+
+  void ReleaseGraphicsResources(vtkWindow* window);
+
+protected:
+  vtkMultiMaterialTextures();
+  ~vtkMultiMaterialTextures() override;
+
+private:
+  vtkMultiMaterialTextures(const vtkMultiMaterialTextures&) = delete;
+  void operator=(const vtkMultiMaterialTextures&) = delete;
+
+  vtkNew<vtkTextureObject> SegmentColor;
+  vtkNew<vtkTextureObject> SegmentPosition;
+  vtkNew<vtkTextureObject> Material;
+  int SegmentUploads = 0;
+  int MaterialUploads = 0;
+  int UploadedTableBuild = -1;
+  vtkPreIntegrationTable* UploadedTable = nullptr;
+  vtkMTimeType UploadedMaterialTime = 0;
+  vtkMaterialTransferFunction* UploadedMaterials = nullptr;
+  double UploadedRange[2] = { 0.0, 0.0 };
+  int UploadedMaterialSize = 0;
+  int TableSize = 0;
+};
+
+#endif

@@ -1,0 +1,609 @@
+#include "vtkMultiMaterialVolumeMapper.h"
+
+#include "vtkCamera.h"
+#include "vtkColorTransferFunction.h"
+#include "vtkDataArray.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkIrradianceGrid.h"
+#include "vtkIrradianceVolumePass.h"
+#include "vtkLightCollection.h"
+#include "vtkMaterialTransferFunction.h"
+#include "vtkMatrix4x4.h"
+#include "vtkMultiMaterialLights.h"
+#include "vtkMultiMaterialParameters.h"
+#include "vtkMultiMaterialRenderPass.h"
+#include "vtkMultiMaterialShaderAssembly.h"
+#include "vtkMultiMaterialTextures.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkPiecewiseFunction.h"
+#include "vtkPreIntegrationTable.h"
+#include "vtkRenderer.h"
+#include "vtkShaderProgram.h"
+#include "vtkSmartPointer.h"
+#include "vtkTextureObject.h"
+#include "vtkVolume.h"
+#include "vtkVolumeProperty.h"
+#include "vtk_glew.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <set>
+#include <string>
+#include <vector>
+
+vtkStandardNewMacro(vtkMultiMaterialVolumeMapper);
+
+namespace
+{
+using Clock = std::chrono::steady_clock;
+
+double Seconds(Clock::time_point start)
+{
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// Surface (normal-based) shading is at full strength once the normalised
+// value changes by this much per voxel; below, it fades to ambient shading so
+// homogeneous regions do not turn gradient noise into speckles.
+constexpr double FullShadingGradientPerVoxel = 0.005;
+}
+
+class vtkMultiMaterialVolumeMapper::vtkInternals
+{
+public:
+  vtkSmartPointer<vtkMaterialTransferFunction> Materials;
+  vtkNew<vtkPreIntegrationTable> SegmentTable;
+  vtkNew<vtkPreIntegrationTable> ShadowTable;
+  vtkNew<vtkMultiMaterialTextures> Textures;
+  vtkNew<vtkIrradianceVolumePass> Irradiance;
+  vtkNew<vtkMultiMaterialRenderPass> Pass;
+  vtkNew<vtkColorTransferFunction> GrayAsColor;
+  vtkMTimeType GrayTime = 0;
+
+  // What the irradiance volume was computed from; a different key recomputes.
+  std::vector<double> IrradianceKey;
+  // The pre-filtered data on the irradiance grid, normalised to [0, 1].
+  std::vector<double> PrefilterKey;
+  std::vector<float> Prefiltered;
+  mmv::IrradianceGrid Grid;
+
+  // Per-frame shading inputs, read by SetUniforms().
+  mmv::ShaderVariant Variant;
+  std::vector<mmv::ShadingLight> Lights;
+  float IrradianceScale[3] = { 1.0f, 1.0f, 1.0f };
+  float IrradianceBias[3] = { 0.0f, 0.0f, 0.0f };
+  float GradientFade = 1.0f;
+  float TableStep = 1.0f;
+  float EnvironmentUp[3] = { 0.0f, 1.0f, 0.0f };
+  float EnvironmentBottom[3] = { 0.0f, 0.0f, 0.0f };
+  float EnvironmentTop[3] = { 0.0f, 0.0f, 0.0f };
+
+  std::set<std::string> Warnings;
+
+  void SetUniforms(vtkShaderProgram* program);
+  void ActivateTextures(bool on);
+};
+
+void vtkMultiMaterialVolumeMapper::vtkInternals::ActivateTextures(bool on)
+{
+  const int textures = this->Variant.NumberOfLights > 0
+    ? std::min(this->Irradiance->GetNumberOfIrradianceTextures(), 2)
+    : 0;
+  if (on)
+  {
+    this->Textures->Activate();
+  }
+  else
+  {
+    this->Textures->Deactivate();
+  }
+  for (int i = 0; i < textures; ++i)
+  {
+    vtkTextureObject* texture = this->Irradiance->GetIrradianceTexture(i);
+    if (on)
+    {
+      texture->Activate();
+    }
+    else
+    {
+      texture->Deactivate();
+    }
+  }
+}
+
+void vtkMultiMaterialVolumeMapper::vtkInternals::SetUniforms(vtkShaderProgram* program)
+{
+  program->SetUniformi(
+    "mmv_preintColor", this->Textures->GetSegmentColorTexture()->GetTextureUnit());
+  program->SetUniformi(
+    "mmv_preintBeta", this->Textures->GetSegmentPositionTexture()->GetTextureUnit());
+  program->SetUniformi("mmv_material", this->Textures->GetMaterialTexture()->GetTextureUnit());
+  program->SetUniformf("mmv_tableSize", static_cast<float>(this->SegmentTable->GetTableSize()));
+  program->SetUniformf("mmv_tableStep", this->TableStep);
+  program->SetUniformf("mmv_gradientFade", this->GradientFade);
+  program->SetUniform3f("mmv_irradianceScale", this->IrradianceScale);
+  program->SetUniform3f("mmv_irradianceBias", this->IrradianceBias);
+
+  const int count = this->Variant.NumberOfLights;
+  if (count > 0)
+  {
+    program->SetUniformi(
+      "mmv_irradiance0", this->Irradiance->GetIrradianceTexture(0)->GetTextureUnit());
+    if (count > 4)
+    {
+      program->SetUniformi(
+        "mmv_irradiance1", this->Irradiance->GetIrradianceTexture(1)->GetTextureUnit());
+    }
+    std::vector<int> kinds(count);
+    std::vector<float> vectors(3 * count);
+    std::vector<float> radiance(3 * count);
+    for (int k = 0; k < count; ++k)
+    {
+      const mmv::LightSource& source = this->Lights[k].Source;
+      kinds[k] = source.Kind;
+      const glm::dvec3 v = source.Kind == mmv::DirectionalLight ? source.ToLight : source.Position;
+      for (int c = 0; c < 3; ++c)
+      {
+        vectors[3 * k + c] = static_cast<float>(v[c]);
+        radiance[3 * k + c] = static_cast<float>(this->Lights[k].Radiance[c]);
+      }
+    }
+    program->SetUniform1iv("mmv_lightKind", count, kinds.data());
+    program->SetUniform3fv(
+      "mmv_lightVector", count, reinterpret_cast<const float(*)[3]>(vectors.data()));
+    program->SetUniform3fv(
+      "mmv_lightRadiance", count, reinterpret_cast<const float(*)[3]>(radiance.data()));
+  }
+  if (this->Variant.Reflection)
+  {
+    program->SetUniform3f("mmv_environmentUp", this->EnvironmentUp);
+    program->SetUniform3f("mmv_environmentBottom", this->EnvironmentBottom);
+    program->SetUniform3f("mmv_environmentTop", this->EnvironmentTop);
+  }
+}
+
+//------------------------------------------------------------------------------
+vtkMultiMaterialVolumeMapper::vtkMultiMaterialVolumeMapper()
+  : Internals(new vtkInternals)
+{
+  this->Internals->Pass->SetOwner(this);
+  vtkInternals* internals = this->Internals;
+  this->Internals->Pass->SetParameterCallback(
+    [internals](vtkShaderProgram* program) { internals->SetUniforms(program); });
+}
+
+vtkMultiMaterialVolumeMapper::~vtkMultiMaterialVolumeMapper()
+{
+  // The pass may outlive us in a volume's keys: leave it inert.
+  this->Internals->Pass->SetOwner(nullptr);
+  this->Internals->Pass->SetParameterCallback(nullptr);
+  this->Internals->Pass->SetFragmentReplacements({});
+  delete this->Internals;
+}
+
+void vtkMultiMaterialVolumeMapper::SetMaterialTransferFunction(vtkMaterialTransferFunction* m)
+{
+  if (this->Internals->Materials != m)
+  {
+    this->Internals->Materials = m;
+    this->Modified();
+  }
+}
+
+vtkMaterialTransferFunction* vtkMultiMaterialVolumeMapper::GetMaterialTransferFunction()
+{
+  return this->Internals->Materials;
+}
+
+vtkMTimeType vtkMultiMaterialVolumeMapper::GetMTime()
+{
+  vtkMTimeType t = this->Superclass::GetMTime();
+  if (this->Internals->Materials)
+  {
+    t = std::max(t, this->Internals->Materials->GetMTime());
+  }
+  return t;
+}
+
+//------------------------------------------------------------------------------
+namespace
+{
+// The sample distance VTK's ray caster will use (object units), as
+// vtkOpenGLGPUVolumeRayCastMapper computes it, so the segment tables match it
+// and the shader's length correction stays near 1.
+double ExpectedSampleDistance(vtkGPUVolumeRayCastMapper* mapper, vtkVolume* vol,
+  vtkImageData* image, double sampleDistance, bool autoAdjust, bool lock,
+  double spacingAdjusted)
+{
+  if (!autoAdjust)
+  {
+    return lock ? spacingAdjusted : sampleDistance;
+  }
+  (void)mapper;
+  vtkMatrix4x4* m = vol->GetMatrix();
+  const double* spacing = image->GetSpacing();
+  double smallest = VTK_DOUBLE_MAX;
+  for (int i = 0; i < 3; ++i)
+  {
+    const double column = std::sqrt(m->GetElement(0, i) * m->GetElement(0, i) +
+      m->GetElement(1, i) * m->GetElement(1, i) + m->GetElement(2, i) * m->GetElement(2, i));
+    smallest = std::min(smallest, std::abs(spacing[i] * column));
+  }
+  return smallest;
+}
+
+void AppendLightKey(std::vector<double>& key, const mmv::LightSource& s)
+{
+  key.push_back(s.Kind);
+  key.insert(key.end(), { s.Position.x, s.Position.y, s.Position.z, s.ToLight.x, s.ToLight.y,
+                          s.ToLight.z, s.SpotAxis.x, s.SpotAxis.y, s.SpotAxis.z, s.CosCone,
+                          s.Radius });
+}
+}
+
+bool vtkMultiMaterialVolumeMapper::ReadIrradiance(
+  vtkRenderWindow* window, int light, std::vector<float>& values)
+{
+  auto* context = vtkOpenGLRenderWindow::SafeDownCast(window);
+  if (!context || light < 0 || light >= this->NumberOfShadedLights)
+  {
+    vtkErrorMacro("ReadIrradiance: no irradiance for light " << light);
+    return false;
+  }
+  context->MakeCurrent();
+  return this->Internals->Irradiance->ReadBack(context, light, values);
+}
+
+std::string vtkMultiMaterialVolumeMapper::GetLastFragmentShaderSource()
+{
+  return this->Internals->Pass->GetLastFragmentSource();
+}
+
+vtkIdType vtkMultiMaterialVolumeMapper::GetMultiMaterialMemoryBytes()
+{
+  return this->Internals->Irradiance->GetTextureMemoryBytes() +
+    this->Internals->Textures->GetMemoryBytes();
+}
+
+void vtkMultiMaterialVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
+{
+  this->Internals->Textures->ReleaseGraphicsResources(window);
+  this->Internals->Irradiance->ReleaseGraphicsResources(window);
+  this->Internals->IrradianceKey.clear();
+  this->Superclass::ReleaseGraphicsResources(window);
+}
+
+//------------------------------------------------------------------------------
+void vtkMultiMaterialVolumeMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
+{
+  vtkInternals& in = *this->Internals;
+  vtkInformation* keys = vol->GetPropertyKeys();
+  if (!keys)
+  {
+    vtkNew<vtkInformation> newKeys;
+    vol->SetPropertyKeys(newKeys);
+    keys = newKeys;
+  }
+
+  this->MultiMaterialActive = this->PrepareMultiMaterial(ren, vol);
+  if (!this->MultiMaterialActive)
+  {
+    // Exactly the base class: no pass in the volume's keys.
+    in.Pass->SetFragmentReplacements({});
+    in.Pass->RemoveFrom(keys);
+    this->Superclass::GPURender(ren, vol);
+    return;
+  }
+
+  in.Pass->InstallInto(keys);
+  in.ActivateTextures(true);
+  const auto start = Clock::now();
+  if (this->TimeStages)
+  {
+    glFinish();
+  }
+  this->Superclass::GPURender(ren, vol);
+  if (this->TimeStages)
+  {
+    glFinish();
+    this->LastRayCastSeconds = Seconds(start);
+  }
+  in.ActivateTextures(false);
+  ++this->RayCastCount;
+}
+
+//------------------------------------------------------------------------------
+void vtkMultiMaterialVolumeMapper::WarnOnce(const std::string& message)
+{
+  if (this->Internals->Warnings.insert(message).second)
+  {
+    vtkWarningMacro(<< message);
+  }
+}
+
+bool vtkMultiMaterialVolumeMapper::PrepareMultiMaterial(vtkRenderer* ren, vtkVolume* vol)
+{
+  vtkInternals& in = *this->Internals;
+  if (this->BlendMode != vtkVolumeMapper::COMPOSITE_BLEND)
+  {
+    return false; // other blend modes are the base class's business
+  }
+  auto* image = vtkImageData::SafeDownCast(this->GetInput());
+  vtkVolumeProperty* property = vol->GetProperty();
+  auto* context = vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow());
+  if (!image || !property || !context)
+  {
+    if (this->GetInput())
+    {
+      this->WarnOnce("multi-material shading needs vtkImageData input; using VTK's shading");
+    }
+    return false;
+  }
+  int cellFlag = 0;
+  vtkDataArray* scalars = vtkAbstractMapper::GetScalars(image, this->ScalarMode,
+    this->ArrayAccessMode, this->ArrayId, this->ArrayName, cellFlag);
+  if (!scalars)
+  {
+    return false; // the base class reports missing scalars
+  }
+  if (cellFlag)
+  {
+    this->WarnOnce("multi-material shading needs point scalars (cell scalars given); "
+                   "using VTK's shading");
+    return false;
+  }
+  if (scalars->GetNumberOfComponents() != 1)
+  {
+    this->WarnOnce("multi-material shading needs one-component scalars; using VTK's shading");
+    return false;
+  }
+  if (property->GetTransferFunctionMode() != vtkVolumeProperty::TF_1D)
+  {
+    this->WarnOnce("multi-material shading needs a 1D transfer function; using VTK's shading");
+    return false;
+  }
+
+  double range[2];
+  scalars->GetFiniteRange(range, 0);
+  if (!(range[1] > range[0]))
+  {
+    range[1] = range[0] + 1.0; // constant volume: any non-empty range will do
+  }
+
+  // 1. Segment tables (pre-integration): only when the TFs or the step change.
+  vtkColorTransferFunction* color = property->GetRGBTransferFunction(0);
+  if (property->GetColorChannels(0) == 1)
+  {
+    vtkPiecewiseFunction* gray = property->GetGrayTransferFunction(0);
+    if (gray && gray->GetMTime() != in.GrayTime)
+    {
+      in.GrayAsColor->RemoveAllPoints();
+      double node[4];
+      for (int i = 0; i < gray->GetSize(); ++i)
+      {
+        gray->GetNodeValue(i, node);
+        in.GrayAsColor->AddRGBPoint(node[0], node[1], node[1], node[1]);
+      }
+      in.GrayTime = gray->GetMTime();
+    }
+    color = in.GrayAsColor;
+  }
+  int extent[6];
+  image->GetExtent(extent);
+  const double step = ExpectedSampleDistance(this, vol, image, this->SampleDistance,
+    this->AutoAdjustSampleDistances != 0, this->LockSampleDistanceToInputSpacing != 0,
+    this->SpacingAdjustedSampleDistance(image->GetSpacing(), extent));
+  vtkPreIntegrationTable* table = in.SegmentTable;
+  table->SetColorTransferFunction(color);
+  table->SetScalarOpacity(property->GetScalarOpacity(0));
+  table->SetScalarOpacityUnitDistance(property->GetScalarOpacityUnitDistance(0));
+  table->SetTableSize(this->PreIntegrationTableSize);
+  table->SetScalarRange(range);
+  table->SetStepLength(step);
+  const int builds = table->GetBuildCount();
+  if (!table->Update())
+  {
+    return false;
+  }
+  if (table->GetBuildCount() != builds)
+  {
+    ++this->PreIntegrationCount;
+    this->LastPreIntegrationSeconds = table->GetLastBuildSeconds();
+  }
+  in.TableStep = static_cast<float>(step);
+  in.Textures->UpdateSegmentTables(context, table);
+  in.Textures->UpdateMaterialTable(context, in.Materials, range, this->PreIntegrationTableSize);
+
+  // 2. Lights, in the volume's object space.
+  vtkNew<vtkMatrix4x4> worldToObject;
+  vtkMatrix4x4::Invert(vol->GetMatrix(), worldToObject);
+  const double* spacing = image->GetSpacing();
+  const double radius = this->PointLightRadius > 0.0
+    ? this->PointLightRadius
+    : std::min({ std::abs(spacing[0]), std::abs(spacing[1]), std::abs(spacing[2]) });
+  int dropped = 0;
+  in.Lights =
+    mmv::CollectLights(ren->GetLights(), worldToObject, radius, mmv::MaxLights, &dropped);
+  if (dropped > 0)
+  {
+    this->WarnOnce("more than " + std::to_string(mmv::MaxLights) +
+      " active lights: shading with the strongest " + std::to_string(mmv::MaxLights));
+  }
+  if (in.Lights.empty())
+  {
+    this->WarnOnce("no active light: the volume is shaded with its ambient term only");
+  }
+  this->NumberOfShadedLights = static_cast<int>(in.Lights.size());
+
+  // 3. The irradiance volume: only when lights, opacity, materials or data change.
+  if (!in.Lights.empty() && !this->UpdateIrradiance(context, image, scalars, property, range))
+  {
+    return false;
+  }
+
+  // 4. The shader variant and the per-frame uniforms.
+  mmv::ShaderVariant variant;
+  variant.NumberOfLights = this->NumberOfShadedLights;
+  variant.Reflection =
+    in.Materials && in.Materials->GetMaximum(mmv::Reflection) > 0.0 && in.Materials->GetSize() > 0;
+  variant.PreIntegration = this->PreIntegration;
+  in.Variant = variant;
+  in.Pass->SetFragmentReplacements(mmv::RayCastReplacements(variant));
+
+  int dims[3];
+  image->GetDimensions(dims);
+  for (int a = 0; a < 3; ++a)
+  {
+    // Data point i sits at texture coordinate (i + 0.5) / N, irradiance voxel
+    // j at (j + 0.5) / M, and both grids span the same points.
+    const double n = dims[a];
+    const double m = this->IrradianceDimensions[a] > 0 ? this->IrradianceDimensions[a] : 1;
+    if (n > 1 && m > 1)
+    {
+      in.IrradianceScale[a] = static_cast<float>(n * (m - 1) / ((n - 1) * m));
+      in.IrradianceBias[a] = static_cast<float>(0.5 / m - 0.5 * (m - 1) / ((n - 1) * m));
+    }
+    else
+    {
+      in.IrradianceScale[a] = 0.0f;
+      in.IrradianceBias[a] = 0.5f;
+    }
+  }
+  const double smallestSpacing =
+    std::min({ std::abs(spacing[0]), std::abs(spacing[1]), std::abs(spacing[2]) });
+  in.GradientFade = static_cast<float>(FullShadingGradientPerVoxel / smallestSpacing);
+
+  if (variant.Reflection)
+  {
+    const double* up = ren->GetActiveCamera()->GetViewUp();
+    glm::dvec3 u(0.0);
+    for (int i = 0; i < 3; ++i)
+    {
+      u[i] = worldToObject->GetElement(i, 0) * up[0] + worldToObject->GetElement(i, 1) * up[1] +
+        worldToObject->GetElement(i, 2) * up[2];
+    }
+    u = glm::length(u) > 0.0 ? glm::normalize(u) : glm::dvec3(0.0, 1.0, 0.0);
+    const double* bottom = ren->GetBackground();
+    const double* top = ren->GetGradientBackground() ? ren->GetBackground2() : bottom;
+    for (int i = 0; i < 3; ++i)
+    {
+      in.EnvironmentUp[i] = static_cast<float>(u[i]);
+      in.EnvironmentBottom[i] = static_cast<float>(bottom[i]);
+      in.EnvironmentTop[i] = static_cast<float>(top[i]);
+    }
+  }
+  return true;
+}
+
+bool vtkMultiMaterialVolumeMapper::UpdateIrradiance(vtkOpenGLRenderWindow* context,
+  vtkImageData* image, vtkDataArray* scalars, vtkVolumeProperty* property, const double range[2])
+{
+  vtkInternals& in = *this->Internals;
+  vtkPiecewiseFunction* opacity = property->GetScalarOpacity(0);
+  const double unitDistance = property->GetScalarOpacityUnitDistance(0);
+
+  int dataDims[3];
+  image->GetDimensions(dataDims);
+  int dims[3];
+  mmv::ComputeIrradianceDimensions(dataDims, static_cast<int>(in.Lights.size()),
+    this->IrradianceMemoryMB, this->IrradianceScale, dims);
+
+  const vtkMTimeType dataTime = std::max(image->GetMTime(), scalars->GetMTime());
+  std::vector<double> key = { double(dims[0]), double(dims[1]), double(dims[2]), double(dataTime),
+    double(opacity->GetMTime()), double(in.Materials ? in.Materials->GetMTime() : 0), unitDistance,
+    range[0], range[1], double(this->MultipleScattering), double(this->PreIntegrationTableSize) };
+  for (const auto& light : in.Lights)
+  {
+    AppendLightKey(key, light.Source);
+  }
+  if (key == in.IrradianceKey && in.Irradiance->GetNumberOfIrradianceTextures() > 0)
+  {
+    return true;
+  }
+
+  // Pre-filtered data: only when the data or the grid changed.
+  const std::vector<double> prefilterKey = { double(dims[0]), double(dims[1]), double(dims[2]),
+    double(dataTime), range[0], range[1] };
+  if (prefilterKey != in.PrefilterKey)
+  {
+    in.Grid = mmv::MakeIrradianceGrid(image, dims);
+    mmv::PrefilterScalars(image, scalars, 0, in.Grid, in.Prefiltered);
+    const double scale = 1.0 / (range[1] - range[0]);
+    for (float& v : in.Prefiltered)
+    {
+      v = static_cast<float>((v - range[0]) * scale);
+    }
+    in.PrefilterKey = prefilterKey;
+  }
+
+  // Shadow rays step one irradiance voxel, with their own pre-integrated table.
+  const double shadowStep = std::min({ in.Grid.Spacing.x, in.Grid.Spacing.y, in.Grid.Spacing.z });
+  vtkPreIntegrationTable* shadow = in.ShadowTable;
+  shadow->SetScalarOpacity(opacity);
+  shadow->SetMaterialTransferFunction(in.Materials);
+  shadow->SetScalarOpacityUnitDistance(unitDistance);
+  shadow->SetTableSize(this->PreIntegrationTableSize);
+  shadow->SetScalarRange(const_cast<double*>(range));
+  shadow->SetStepLength(shadowStep);
+  if (!shadow->Update())
+  {
+    return false;
+  }
+
+  const int n = this->PreIntegrationTableSize;
+  std::vector<float> opacityTable(n);
+  std::vector<float> scatteringTable(n, 0.0f);
+  for (int i = 0; i < n; ++i)
+  {
+    const double t = range[0] + (range[1] - range[0]) * i / (n - 1);
+    opacityTable[i] = static_cast<float>(opacity->GetValue(t));
+    if (in.Materials && this->MultipleScattering)
+    {
+      scatteringTable[i] = static_cast<float>(in.Materials->EvaluateParameter(t, mmv::Scattering));
+    }
+  }
+  std::vector<mmv::LightSource> sources;
+  for (const auto& light : in.Lights)
+  {
+    sources.push_back(light.Source);
+  }
+
+  vtkIrradianceVolumePass* pass = in.Irradiance;
+  pass->SetMultipleScattering(this->MultipleScattering);
+  pass->SetInputs(in.Grid, in.Prefiltered, n, shadow->GetShadowOpacityTable(), shadowStep,
+    opacityTable.data(), scatteringTable.data(), sources);
+  if (!pass->Render(context))
+  {
+    vtkErrorMacro("the irradiance volume could not be computed on the GPU");
+    return false;
+  }
+  in.IrradianceKey = key;
+  for (int a = 0; a < 3; ++a)
+  {
+    this->IrradianceDimensions[a] = dims[a];
+  }
+  ++this->IrradianceUpdateCount;
+  this->DiffusionPassCount += pass->GetDiffusionPasses();
+  this->LastIrradianceSeconds = pass->GetLastRenderSeconds();
+  vtkDebugMacro(<< "irradiance volume " << dims[0] << "x" << dims[1] << "x" << dims[2] << " for "
+                << in.Lights.size() << " lights");
+  return true;
+}
+
+void vtkMultiMaterialVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "IrradianceMemoryMB: " << this->IrradianceMemoryMB << "\n";
+  os << indent << "IrradianceScale: " << this->IrradianceScale << "\n";
+  os << indent << "MultipleScattering: " << this->MultipleScattering << "\n";
+  os << indent << "PreIntegration: " << this->PreIntegration << "\n";
+  os << indent << "PointLightRadius: " << this->PointLightRadius << "\n";
+  os << indent << "PreIntegrationTableSize: " << this->PreIntegrationTableSize << "\n";
+  os << indent << "IrradianceDimensions: " << this->IrradianceDimensions[0] << " "
+     << this->IrradianceDimensions[1] << " " << this->IrradianceDimensions[2] << "\n";
+  os << indent << "Counts (pre-integration, irradiance, ray cast): " << this->PreIntegrationCount
+     << " " << this->IrradianceUpdateCount << " " << this->RayCastCount << "\n";
+}

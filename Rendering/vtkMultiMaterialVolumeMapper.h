@@ -1,0 +1,157 @@
+/**
+ * @class   vtkMultiMaterialVolumeMapper
+ * @brief   Decoupled multi-material shading (Zhang & Ma) inside VTK's GPU ray caster.
+ *
+ * A vtkOpenGLGPUVolumeRayCastMapper whose composite ray casting shades every
+ * pre-integrated ray segment with the material of its data value (ka, kd, ks,
+ * shininess, reflection from a vtkMaterialTransferFunction), the irradiance
+ * of every renderer light (shadows from an irradiance volume estimated on the
+ * GPU, multiple scattering by diffusion) and an environment reflection.
+ * Colour and opacity come from the usual vtkVolumeProperty; sampling from the
+ * usual SetSampleDistance / AutoAdjustSampleDistances. Everything else VTK's
+ * mapper does (cropping, clipping planes, depth compositing with geometry,
+ * other blend modes) is left to the base class.
+ *
+ * Only what changed is recomputed (the paper's Algorithm 1): segment tables
+ * when the colour/opacity functions or the step change; the irradiance volume
+ * when lights (relative to the volume), opacity, material function or data
+ * change; a camera move costs one ray cast. Counters and stage timers expose
+ * this.
+ *
+ * Shading semantics: with ka = 1, kd = ks = r = 0 and one white light of
+ * intensity 1, a segment emits c * mu * I_k (I_k the light's transmittance to
+ * it, with sigma = attenuation * mu), composited front to back with
+ * transmittance exp(-int mu).
+ *
+ * Falls back to the base class (warning once) for what it does not model:
+ * several components, cell scalars, blend modes other than composite.
+ */
+#ifndef vtkMultiMaterialVolumeMapper_h
+#define vtkMultiMaterialVolumeMapper_h
+
+#include "vtkMultiMaterialVolumeModule.h" // export macro
+#include "vtkOpenGLGPUVolumeRayCastMapper.h"
+
+#include <string> // shader source
+#include <vector> // ReadIrradiance
+
+class vtkDataArray;
+class vtkImageData;
+class vtkMaterialTransferFunction;
+class vtkOpenGLRenderWindow;
+class vtkVolumeProperty;
+
+class VTKMULTIMATERIALVOLUME_EXPORT vtkMultiMaterialVolumeMapper
+  : public vtkOpenGLGPUVolumeRayCastMapper
+{
+public:
+  static vtkMultiMaterialVolumeMapper* New();
+  vtkTypeMacro(vtkMultiMaterialVolumeMapper, vtkOpenGLGPUVolumeRayCastMapper);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /// Material parameters by data value; null means the defaults everywhere.
+  void SetMaterialTransferFunction(vtkMaterialTransferFunction* materials);
+  vtkMaterialTransferFunction* GetMaterialTransferFunction();
+
+  /// Irradiance memory budget in MB (16 bits per light per voxel). Default 64.
+  vtkSetClampMacro(IrradianceMemoryMB, double, 0.001, 1.0e6);
+  vtkGetMacro(IrradianceMemoryMB, double);
+
+  /// Irradiance resolution as a fraction of the data's (0 < x <= 1); 0 (the
+  /// default) chooses it from the memory budget.
+  vtkSetClampMacro(IrradianceScale, double, 0.0, 1.0);
+  vtkGetMacro(IrradianceScale, double);
+
+  /// Diffusion for multiple scattering (default on; skipped when every s = 0).
+  vtkSetMacro(MultipleScattering, bool);
+  vtkGetMacro(MultipleScattering, bool);
+  vtkBooleanMacro(MultipleScattering, bool);
+
+  /// Pre-integrated segments (default on); off: post-classified samples.
+  vtkSetMacro(PreIntegration, bool);
+  vtkGetMacro(PreIntegration, bool);
+  vtkBooleanMacro(PreIntegration, bool);
+
+  /// Radius epsilon of point and spot lights (object units); 0 (default)
+  /// means the smallest data spacing.
+  vtkSetClampMacro(PointLightRadius, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(PointLightRadius, double);
+
+  /// Pre-integration table size n (n x n). Default 256.
+  vtkSetClampMacro(PreIntegrationTableSize, int, 16, 1024);
+  vtkGetMacro(PreIntegrationTableSize, int);
+
+  /// Brackets the stages with glFinish to time them (default off: it stalls
+  /// the pipeline). Counters are always kept.
+  vtkSetMacro(TimeStages, bool);
+  vtkGetMacro(TimeStages, bool);
+  vtkBooleanMacro(TimeStages, bool);
+
+  ///@{
+  /// What rendering did so far / in the last frame.
+  vtkGetMacro(PreIntegrationCount, int);
+  vtkGetMacro(IrradianceUpdateCount, int);
+  vtkGetMacro(DiffusionPassCount, int);
+  vtkGetMacro(RayCastCount, int);
+  vtkGetMacro(LastPreIntegrationSeconds, double);
+  vtkGetMacro(LastIrradianceSeconds, double);
+  vtkGetMacro(LastRayCastSeconds, double);
+  vtkGetVector3Macro(IrradianceDimensions, int);
+  vtkGetMacro(NumberOfShadedLights, int);
+  /// Whether the last render used multi-material shading (false: base class).
+  vtkGetMacro(MultiMaterialActive, bool);
+  ///@}
+
+  /// GPU memory held by our textures (irradiance + tables), in bytes.
+  vtkIdType GetMultiMaterialMemoryBytes();
+
+  /// Test hook: the irradiance of shaded light k (in the order of the
+  /// renderer's active lights), x fastest. Needs the render window.
+  bool ReadIrradiance(vtkRenderWindow* window, int light, std::vector<float>& values);
+
+  /// Test hook: the fragment shader of the last shader build.
+  std::string GetLastFragmentShaderSource();
+
+  void GPURender(vtkRenderer* ren, vtkVolume* vol) override;
+  void ReleaseGraphicsResources(vtkWindow* window) override;
+  vtkMTimeType GetMTime() override;
+
+protected:
+  vtkMultiMaterialVolumeMapper();
+  ~vtkMultiMaterialVolumeMapper() override;
+
+  double IrradianceMemoryMB = 64.0;
+  double IrradianceScale = 0.0;
+  bool MultipleScattering = true;
+  bool PreIntegration = true;
+  double PointLightRadius = 0.0;
+  int PreIntegrationTableSize = 256;
+  bool TimeStages = false;
+
+  int PreIntegrationCount = 0;
+  int IrradianceUpdateCount = 0;
+  int DiffusionPassCount = 0;
+  int RayCastCount = 0;
+  double LastPreIntegrationSeconds = 0.0;
+  double LastIrradianceSeconds = 0.0;
+  double LastRayCastSeconds = 0.0;
+  int IrradianceDimensions[3] = { 0, 0, 0 };
+  int NumberOfShadedLights = 0;
+  bool MultiMaterialActive = false;
+
+private:
+  vtkMultiMaterialVolumeMapper(const vtkMultiMaterialVolumeMapper&) = delete;
+  void operator=(const vtkMultiMaterialVolumeMapper&) = delete;
+
+  // Validates the inputs and refreshes every cache the frame needs; false
+  // means "render with the base class".
+  bool PrepareMultiMaterial(vtkRenderer* ren, vtkVolume* vol);
+  bool UpdateIrradiance(vtkOpenGLRenderWindow* context, vtkImageData* image,
+    vtkDataArray* scalars, vtkVolumeProperty* property, const double range[2]);
+  void WarnOnce(const std::string& message);
+
+  class vtkInternals;
+  vtkInternals* Internals;
+};
+
+#endif

@@ -1,0 +1,322 @@
+// vtkMultiMaterialVolumeMapper: closed-form images, caching (the paper's
+// Algorithm 1), shader variants, fallbacks and graphics resources. Runs under
+// Xvfb with Mesa llvmpipe in CI.
+#include "mmvTestScenes.h"
+
+#include "vtkIrradianceVolumeFilter.h"
+#include "vtkMaterialTransferFunction.h"
+#include "vtkMultiMaterialVolumeMapper.h"
+#include "vtkOpenGLGPUVolumeRayCastMapper.h"
+#include "vtk_glew.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace
+{
+constexpr int Dims = 33; // cube of side D = 32 (spacing 1)
+constexpr double D = Dims - 1;
+constexpr double Mu = 0.05; // extinction per unit length
+const double CubeColor[3] = { 1.0, 0.6, 0.3 };
+
+// A homogeneous cube, ambient-only material (ka = 1), attenuation c_t.
+struct CubeScene : mmvtest::Scene
+{
+  vtkNew<vtkMultiMaterialVolumeMapper> Mapper;
+  vtkNew<vtkMaterialTransferFunction> Materials;
+  vtkSmartPointer<vtkImageData> Image;
+
+  explicit CubeScene(double attenuation)
+  {
+    this->Image = mmvtest::MakeVolume(Dims, [](int, int, int) { return 1.0f; });
+    this->Color->AddRGBPoint(0.0, CubeColor[0], CubeColor[1], CubeColor[2]);
+    this->Color->AddRGBPoint(2.0, CubeColor[0], CubeColor[1], CubeColor[2]);
+    const double alpha = 1.0 - std::exp(-Mu); // unit distance 1
+    this->Opacity->AddPoint(0.0, alpha);
+    this->Opacity->AddPoint(2.0, alpha);
+    this->Property->SetScalarOpacityUnitDistance(1.0);
+    this->Materials->AddNode(1.0, 1.0, 0.0, 0.0, 1.0, attenuation, 0.0, 0.0);
+    this->Mapper->SetInputData(this->Image);
+    this->Mapper->SetMaterialTransferFunction(this->Materials);
+    this->Mapper->AutoAdjustSampleDistancesOff();
+    this->Mapper->SetSampleDistance(0.25);
+    this->Mapper->SetIrradianceScale(1.0);
+    this->Volume->SetMapper(this->Mapper);
+    this->FrameBounds(this->Image->GetBounds());
+  }
+
+  double Center(int c)
+  {
+    this->Window->Render();
+    return this->Pixel(32, 32)[c];
+  }
+};
+
+const double CubeCenter[3] = { 16.0, 16.0, 16.0 };
+}
+
+TEST(MultiMaterialVolumeMapper, LightFromCameraSideMatchesClosedForm)
+{
+  // sigma = mu (attenuation 1): pixel = c mu/(sigma+mu) (1 - exp(-(sigma+mu) D)).
+  CubeScene scene(1.0);
+  const double from[3] = { 16.0, 16.0, 1000.0 };
+  scene.AddDirectionalLight(from, CubeCenter);
+  const double expected = 0.5 * (1.0 - std::exp(-2.0 * Mu * D));
+  for (int c = 0; c < 3; ++c)
+  {
+    EXPECT_NEAR(scene.Center(c), CubeColor[c] * expected, 0.03 * CubeColor[c] * expected + 1.0 / 255)
+      << "channel " << c;
+  }
+  EXPECT_TRUE(scene.Mapper->GetMultiMaterialActive());
+  EXPECT_EQ(scene.Mapper->GetNumberOfShadedLights(), 1);
+}
+
+TEST(MultiMaterialVolumeMapper, LightFromBehindMatchesClosedForm)
+{
+  // sigma = mu: pixel = c mu D exp(-mu D).
+  CubeScene scene(1.0);
+  const double from[3] = { 16.0, 16.0, -1000.0 };
+  scene.AddDirectionalLight(from, CubeCenter);
+  const double expected = Mu * D * std::exp(-Mu * D);
+  for (int c = 0; c < 3; ++c)
+  {
+    EXPECT_NEAR(scene.Center(c), CubeColor[c] * expected, 0.03 * CubeColor[c] * expected + 1.0 / 255)
+      << "channel " << c;
+  }
+}
+
+TEST(MultiMaterialVolumeMapper, NoShadowsWithZeroAttenuation)
+{
+  // sigma = 0: pixel = c (1 - exp(-mu D)), whichever side the light is on.
+  CubeScene scene(0.0);
+  const double from[3] = { 16.0, 16.0, -1000.0 };
+  scene.AddDirectionalLight(from, CubeCenter);
+  const double expected = 1.0 - std::exp(-Mu * D);
+  EXPECT_NEAR(scene.Center(0), expected, 0.03 * expected);
+}
+
+TEST(MultiMaterialVolumeMapper, LightIntensityAndColourScaleTheImage)
+{
+  CubeScene scene(1.0);
+  const double from[3] = { 16.0, 16.0, 1000.0 };
+  vtkLight* light = scene.AddDirectionalLight(from, CubeCenter);
+  const double full = scene.Center(0);
+  light->SetIntensity(0.5);
+  EXPECT_NEAR(scene.Center(0), 0.5 * full, 2.0 / 255);
+  light->SetIntensity(1.0);
+  light->SetColor(0.0, 1.0, 1.0);
+  EXPECT_NEAR(scene.Center(0), 0.0, 1.0 / 255);
+}
+
+TEST(MultiMaterialVolumeMapper, CameraMovesDoNotRecomputeIrradiance)
+{
+  CubeScene scene(1.0);
+  const double from[3] = { 16.0, 16.0, 1000.0 };
+  vtkLight* light = scene.AddDirectionalLight(from, CubeCenter);
+  scene.Window->Render();
+  ASSERT_EQ(scene.Mapper->GetIrradianceUpdateCount(), 1);
+  const int tables = scene.Mapper->GetPreIntegrationCount();
+  const int casts = scene.Mapper->GetRayCastCount();
+
+  // Camera only: no irradiance, no pre-integration, one ray cast per frame.
+  for (int i = 0; i < 3; ++i)
+  {
+    scene.Renderer->GetActiveCamera()->Azimuth(20.0);
+    scene.Window->Render();
+  }
+  EXPECT_EQ(scene.Mapper->GetIrradianceUpdateCount(), 1);
+  EXPECT_EQ(scene.Mapper->GetPreIntegrationCount(), tables);
+  EXPECT_EQ(scene.Mapper->GetRayCastCount(), casts + 3);
+
+  // Light colour only: irradiance is stored without colour.
+  light->SetColor(1.0, 0.5, 0.5);
+  scene.Window->Render();
+  EXPECT_EQ(scene.Mapper->GetIrradianceUpdateCount(), 1);
+
+  // Moving the light: exactly one update.
+  light->SetPosition(16.0, 1000.0, 16.0);
+  scene.Window->Render();
+  scene.Window->Render();
+  EXPECT_EQ(scene.Mapper->GetIrradianceUpdateCount(), 2);
+
+  // Opacity change: tables and irradiance once each.
+  scene.Opacity->AddPoint(1.0, 0.1);
+  scene.Window->Render();
+  EXPECT_EQ(scene.Mapper->GetIrradianceUpdateCount(), 3);
+  EXPECT_EQ(scene.Mapper->GetPreIntegrationCount(), tables + 1);
+}
+
+TEST(MultiMaterialVolumeMapper, SwitchedOffLightCostsNothing)
+{
+  CubeScene scene(1.0);
+  const double from[3] = { 16.0, 16.0, 1000.0 };
+  scene.AddDirectionalLight(from, CubeCenter);
+  const double behind[3] = { 16.0, 16.0, -1000.0 };
+  vtkLight* off = scene.AddDirectionalLight(behind, CubeCenter);
+  off->SwitchOff();
+  const double withOff = scene.Center(0);
+  EXPECT_EQ(scene.Mapper->GetNumberOfShadedLights(), 1);
+  scene.Renderer->RemoveLight(off);
+  EXPECT_NEAR(scene.Center(0), withOff, 1.0 / 255);
+}
+
+TEST(MultiMaterialVolumeMapper, NoDiffusionWithoutScattering)
+{
+  CubeScene scene(1.0);
+  const double from[3] = { 16.0, 16.0, 1000.0 };
+  scene.AddDirectionalLight(from, CubeCenter);
+  scene.Window->Render();
+  EXPECT_EQ(scene.Mapper->GetDiffusionPassCount(), 0);
+  scene.Materials->AddNode(1.0, 1.0, 0.0, 0.0, 1.0, 1.0, 5.0, 0.0);
+  scene.Window->Render();
+  EXPECT_GT(scene.Mapper->GetDiffusionPassCount(), 0);
+}
+
+TEST(MultiMaterialVolumeMapper, ReflectionCodeOnlyWhenSomeMaterialReflects)
+{
+  CubeScene scene(1.0);
+  const double from[3] = { 16.0, 16.0, 1000.0 };
+  scene.AddDirectionalLight(from, CubeCenter);
+  scene.Window->Render();
+  std::string source = scene.Mapper->GetLastFragmentShaderSource();
+  ASSERT_NE(source.find("#define MMV_NUMBER_OF_LIGHTS 1"), std::string::npos);
+  EXPECT_NE(source.find("#define MMV_USE_REFLECTION 0"), std::string::npos);
+  scene.Materials->AddNode(1.0, 1.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.5);
+  scene.Window->Render();
+  source = scene.Mapper->GetLastFragmentShaderSource();
+  EXPECT_NE(source.find("#define MMV_USE_REFLECTION 1"), std::string::npos);
+}
+
+TEST(MultiMaterialVolumeMapper, OtherBlendModesMatchTheBaseClass)
+{
+  auto render = [](vtkOpenGLGPUVolumeRayCastMapper* mapper) {
+    mmvtest::Scene scene;
+    auto image = mmvtest::MakeVolume(
+      17, [](int i, int j, int k) { return static_cast<float>(i + 2 * j + 3 * k); });
+    scene.Color->AddRGBPoint(0.0, 0.0, 0.0, 1.0);
+    scene.Color->AddRGBPoint(96.0, 1.0, 1.0, 0.0);
+    scene.Opacity->AddPoint(0.0, 0.0);
+    scene.Opacity->AddPoint(96.0, 1.0);
+    mapper->SetInputData(image);
+    mapper->SetBlendModeToMaximumIntensity();
+    scene.Volume->SetMapper(mapper);
+    scene.FrameBounds(image->GetBounds());
+    scene.Window->Render();
+    return scene.Pixels();
+  };
+  vtkNew<vtkMultiMaterialVolumeMapper> ours;
+  vtkNew<vtkOpenGLGPUVolumeRayCastMapper> base;
+  const auto a = render(ours);
+  const auto b = render(base);
+  EXPECT_FALSE(ours->GetMultiMaterialActive());
+  ASSERT_EQ(a.size(), b.size());
+  EXPECT_EQ(a, b);
+}
+
+TEST(MultiMaterialVolumeMapper, ReleaseAndNewWindowRenderTheSameImage)
+{
+  std::vector<unsigned char> first;
+  vtkNew<vtkMultiMaterialVolumeMapper> mapper;
+  vtkNew<vtkMaterialTransferFunction> materials;
+  materials->AddNode(1.0, 0.3, 0.7, 0.4, 20.0, 1.0, 2.0, 0.0);
+  auto image = mmvtest::MakeVolume(Dims, [](int i, int j, int k) {
+    const double r = std::sqrt((i - 16.0) * (i - 16.0) + (j - 16.0) * (j - 16.0) + (k - 16.0) * (k - 16.0));
+    return static_cast<float>(r < 10.0 ? 1.0 : 0.0);
+  });
+  mapper->SetInputData(image);
+  mapper->SetMaterialTransferFunction(materials);
+  for (int round = 0; round < 2; ++round)
+  {
+    mmvtest::Scene scene;
+    scene.Color->AddRGBPoint(0.0, 1.0, 0.8, 0.6);
+    scene.Color->AddRGBPoint(1.0, 1.0, 0.8, 0.6);
+    scene.Opacity->AddPoint(0.0, 0.0);
+    scene.Opacity->AddPoint(1.0, 0.3);
+    scene.Volume->SetMapper(mapper);
+    scene.FrameBounds(image->GetBounds());
+    const double from[3] = { 100.0, 200.0, 300.0 };
+    scene.AddDirectionalLight(from, CubeCenter);
+    scene.Window->Render();
+    const auto pixels = scene.Pixels();
+    EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+    mapper->ReleaseGraphicsResources(scene.Window);
+    scene.Window->Render();
+    EXPECT_EQ(scene.Pixels(), pixels) << "after ReleaseGraphicsResources";
+    if (round == 0)
+    {
+      first = pixels;
+    }
+    else
+    {
+      EXPECT_EQ(pixels, first) << "in a new window";
+    }
+    mapper->ReleaseGraphicsResources(scene.Window);
+  }
+}
+
+TEST(MultiMaterialVolumeMapper, GpuIrradianceMatchesCpuFilter)
+{
+  // A sphere lit by a directional and a point light; no diffusion.
+  auto image = mmvtest::MakeVolume(Dims, [](int i, int j, int k) {
+    const double r = std::sqrt((i - 16.0) * (i - 16.0) + (j - 14.0) * (j - 14.0) + (k - 17.0) * (k - 17.0));
+    return static_cast<float>(std::max(0.0, 12.0 - r));
+  });
+  mmvtest::Scene scene;
+  scene.Color->AddRGBPoint(0.0, 1.0, 1.0, 1.0);
+  scene.Opacity->AddPoint(0.0, 0.0);
+  scene.Opacity->AddPoint(12.0, 0.6);
+  vtkNew<vtkMaterialTransferFunction> materials;
+  materials->AddNode(0.0, 0.2, 0.7, 0.2, 20.0, 1.0, 0.0, 0.0);
+  materials->AddNode(12.0, 0.2, 0.7, 0.2, 20.0, 0.5, 0.0, 0.0);
+  vtkNew<vtkMultiMaterialVolumeMapper> mapper;
+  mapper->SetInputData(image);
+  mapper->SetMaterialTransferFunction(materials);
+  mapper->SetIrradianceScale(0.5);
+  scene.Volume->SetMapper(mapper);
+  scene.FrameBounds(image->GetBounds());
+  const double from[3] = { -50.0, 80.0, 100.0 };
+  vtkLight* sun = scene.AddDirectionalLight(from, CubeCenter);
+  vtkNew<vtkLight> lamp;
+  lamp->SetLightTypeToSceneLight();
+  lamp->PositionalOn();
+  lamp->SetConeAngle(180.0);
+  lamp->SetPosition(40.0, 10.0, 20.0);
+  lamp->SetFocalPoint(16.0, 16.0, 16.0);
+  scene.Renderer->AddLight(lamp);
+  scene.Window->Render();
+  ASSERT_TRUE(mapper->GetMultiMaterialActive());
+
+  vtkNew<vtkIrradianceVolumeFilter> cpu;
+  cpu->SetInputData(image);
+  cpu->SetScalarOpacity(scene.Opacity);
+  cpu->SetScalarOpacityUnitDistance(scene.Property->GetScalarOpacityUnitDistance());
+  cpu->SetMaterialTransferFunction(materials);
+  cpu->SetIrradianceScale(0.5);
+  cpu->SetPointLightRadius(1.0); // the mapper's default: the smallest spacing
+  cpu->AddLight(sun);
+  cpu->AddLight(lamp);
+  cpu->MultipleScatteringOff();
+  cpu->Update();
+  int dims[3];
+  mapper->GetIrradianceDimensions(dims);
+  int cpuDims[3];
+  cpu->GetOutput()->GetDimensions(cpuDims);
+  ASSERT_EQ(std::vector<int>(dims, dims + 3), std::vector<int>(cpuDims, cpuDims + 3));
+
+  for (int light = 0; light < 2; ++light)
+  {
+    std::vector<float> gpu;
+    ASSERT_TRUE(mapper->ReadIrradiance(scene.Window, light, gpu));
+    auto* reference = vtkFloatArray::SafeDownCast(
+      cpu->GetOutput()->GetPointData()->GetArray(("Irradiance_" + std::to_string(light)).c_str()));
+    ASSERT_NE(reference, nullptr);
+    ASSERT_EQ(static_cast<vtkIdType>(gpu.size()), reference->GetNumberOfTuples());
+    double worst = 0.0;
+    for (vtkIdType i = 0; i < reference->GetNumberOfTuples(); ++i)
+    {
+      worst = std::max(worst, std::abs(double(gpu[i]) - reference->GetValue(i)));
+    }
+    EXPECT_LE(worst, 0.01) << "light " << light;
+  }
+}

@@ -1,0 +1,127 @@
+/**
+ * Small scenes shared by the rendering tests: an offscreen window with a
+ * parallel camera looking down -z at a volume, and readers of its pixels.
+ */
+#ifndef mmvTestScenes_h
+#define mmvTestScenes_h
+
+#include "vtkCamera.h"
+#include "vtkColorTransferFunction.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkLight.h"
+#include "vtkNew.h"
+#include "vtkPiecewiseFunction.h"
+#include "vtkPointData.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
+#include "vtkSmartPointer.h"
+#include "vtkUnsignedCharArray.h"
+#include "vtkVolume.h"
+#include "vtkVolumeProperty.h"
+
+#include <functional>
+#include <vector>
+
+namespace mmvtest
+{
+
+/// dims^3 points, spacing 1, origin 0, values from f(i, j, k).
+inline vtkSmartPointer<vtkImageData> MakeVolume(
+  int dims, const std::function<float(int, int, int)>& f)
+{
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(dims, dims, dims);
+  vtkNew<vtkFloatArray> values;
+  values->SetName("values");
+  values->SetNumberOfTuples(static_cast<vtkIdType>(dims) * dims * dims);
+  vtkIdType id = 0;
+  for (int k = 0; k < dims; ++k)
+  {
+    for (int j = 0; j < dims; ++j)
+    {
+      for (int i = 0; i < dims; ++i)
+      {
+        values->SetValue(id++, f(i, j, k));
+      }
+    }
+  }
+  image->GetPointData()->SetScalars(values);
+  return image;
+}
+
+/// A window of size x size, black background, parallel camera on +z looking
+/// at the centre of `bounds` and framing it.
+struct Scene
+{
+  vtkNew<vtkRenderWindow> Window;
+  vtkNew<vtkRenderer> Renderer;
+  vtkNew<vtkVolume> Volume;
+  vtkNew<vtkVolumeProperty> Property;
+  vtkNew<vtkColorTransferFunction> Color;
+  vtkNew<vtkPiecewiseFunction> Opacity;
+
+  explicit Scene(int size = 64)
+  {
+    this->Window->SetOffScreenRendering(1);
+    this->Window->SetSize(size, size);
+    this->Window->SetMultiSamples(0);
+    this->Window->AddRenderer(this->Renderer);
+    this->Renderer->SetBackground(0.0, 0.0, 0.0);
+    this->Renderer->AutomaticLightCreationOff();
+    this->Property->SetColor(this->Color);
+    this->Property->SetScalarOpacity(this->Opacity);
+    this->Property->SetInterpolationTypeToLinear();
+    this->Volume->SetProperty(this->Property);
+    this->Renderer->AddVolume(this->Volume);
+  }
+
+  void FrameBounds(const double bounds[6], double margin = 1.5)
+  {
+    vtkCamera* camera = this->Renderer->GetActiveCamera();
+    const double c[3] = { 0.5 * (bounds[0] + bounds[1]), 0.5 * (bounds[2] + bounds[3]),
+      0.5 * (bounds[4] + bounds[5]) };
+    camera->ParallelProjectionOn();
+    camera->SetFocalPoint(c);
+    camera->SetPosition(c[0], c[1], c[2] + 10.0 * (bounds[5] - bounds[4] + 1.0));
+    camera->SetViewUp(0.0, 1.0, 0.0);
+    camera->SetParallelScale(margin * 0.5 * (bounds[3] - bounds[2]));
+    this->Renderer->ResetCameraClippingRange(bounds);
+  }
+
+  /// A white directional light of intensity 1 shining from `from` toward `to`.
+  vtkLight* AddDirectionalLight(const double from[3], const double to[3])
+  {
+    vtkNew<vtkLight> light;
+    light->SetLightTypeToSceneLight();
+    light->PositionalOff();
+    light->SetPosition(from[0], from[1], from[2]);
+    light->SetFocalPoint(to[0], to[1], to[2]);
+    light->SetColor(1.0, 1.0, 1.0);
+    light->SetIntensity(1.0);
+    this->Renderer->AddLight(light);
+    return light;
+  }
+
+  /// RGB of the pixel (x, y) of the last render, in [0, 1].
+  std::vector<double> Pixel(int x, int y)
+  {
+    vtkNew<vtkUnsignedCharArray> rgb;
+    this->Window->GetPixelData(x, y, x, y, /*front*/ 0, rgb);
+    return { rgb->GetValue(0) / 255.0, rgb->GetValue(1) / 255.0, rgb->GetValue(2) / 255.0 };
+  }
+
+  /// All pixels of the last render as RGB bytes, bottom row first.
+  std::vector<unsigned char> Pixels()
+  {
+    int* size = this->Window->GetSize();
+    vtkNew<vtkUnsignedCharArray> rgb;
+    this->Window->GetPixelData(0, 0, size[0] - 1, size[1] - 1, 0, rgb);
+    return std::vector<unsigned char>(
+      rgb->GetPointer(0), rgb->GetPointer(0) + rgb->GetNumberOfValues());
+  }
+};
+
+} // namespace mmvtest
+
+#endif
