@@ -1,0 +1,3 @@
+#include "vtkPVMultiMaterialVolumeRepresentation.h"
+#include "vtkObjectFactory.h"
+vtkStandardNewMacro(vtkPVMultiMaterialVolumeRepresentation);

@@ -1,0 +1,3 @@
+#include "vtkImageErrorMetrics.h"
+#include "vtkObjectFactory.h"
+vtkStandardNewMacro(vtkImageErrorMetrics);

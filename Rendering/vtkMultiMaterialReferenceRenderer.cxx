@@ -1,0 +1,3 @@
+#include "vtkMultiMaterialReferenceRenderer.h"
+#include "vtkObjectFactory.h"
+vtkStandardNewMacro(vtkMultiMaterialReferenceRenderer);
