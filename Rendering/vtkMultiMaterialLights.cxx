@@ -24,20 +24,6 @@ glm::dvec3 TransformPoint(const vtkMatrix4x4* m, const double p[3])
   return { out[0] / w, out[1] / w, out[2] / w };
 }
 
-glm::dvec3 TransformVector(const vtkMatrix4x4* m, const glm::dvec3& v)
-{
-  if (!m)
-  {
-    return v;
-  }
-  glm::dvec3 r(0.0);
-  for (int i = 0; i < 3; ++i)
-  {
-    r[i] = m->GetElement(i, 0) * v.x + m->GetElement(i, 1) * v.y + m->GetElement(i, 2) * v.z;
-  }
-  return r;
-}
-
 glm::dvec3 SafeNormalize(const glm::dvec3& v, const glm::dvec3& fallback)
 {
   const double len = glm::length(v);
