@@ -27,8 +27,13 @@
 #ifndef vtkIrradianceVolumePass_h
 #define vtkIrradianceVolumePass_h
 
+// The wrappers never see the GLM-typed API: parsing GLM's templates makes
+// ParaView's client-server wrapping take minutes, and no wrapped language
+// could call it anyway.
+#ifndef __VTK_WRAP__
 #include "vtkIrradianceGrid.h"         // IrradianceGrid
 #include "vtkMultiMaterialLightModel.h" // LightSource
+#endif
 #include "vtkMultiMaterialVolumeModule.h" // export macro
 #include "vtkObject.h"
 
@@ -56,9 +61,11 @@ public:
    *    a voxel non-empty) and scattering strength s (data voxel^2 units);
    *  - the lights (at most mmv::MaxLights) in object space.
    */
+#ifndef __VTK_WRAP__
   void SetInputs(const mmv::IrradianceGrid& grid, const std::vector<float>& normalizedScalars,
     int tableSize, const float* shadowTable, double stepLength, const float* opacityTable,
     const float* scatteringTable, const std::vector<mmv::LightSource>& lights);
+#endif
 
   /// Diffusion for multiple scattering (default on); time T of eq. 15.
   vtkSetMacro(MultipleScattering, bool);
