@@ -34,7 +34,13 @@ struct DiffusionReport
   int SubSteps = 0;
   int Iterations = 0;          // CG iterations summed over sub-steps
   double FinalResidual = 0.0;  // relative residual of the last solve
-  bool Skipped = false;        // true when every s is zero (nothing to do)
+  /// True when `irradiance` was left untouched (and the counts above are 0):
+  ///  - an argument is null, a dimension is below 1, or Time is not > 0
+  ///    (NaN included);
+  ///  - no voxel has s > 0;
+  ///  - no two face-neighbouring voxels both have s > 0: face coefficients
+  ///    are harmonic means, so every flux is zero and nothing can move.
+  bool Skipped = false;
 };
 
 /**

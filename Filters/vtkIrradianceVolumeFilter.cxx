@@ -6,9 +6,9 @@
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkIrradianceDiffusion.h"
+#include "vtkIrradianceGrid.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
-#include "vtkMatrix3x3.h"
 #include "vtkMaterialTransferFunction.h"
 #include "vtkMultiMaterialLightModel.h"
 #include "vtkMultiMaterialLights.h"
@@ -31,82 +31,19 @@
 namespace
 {
 
-/// Transmittance below which a shadow ray stops (the paper's early termination).
-constexpr double MinTransmittance = 1.0e-4;
 /// Shadow-ray work is split into this many chunks per light, so progress and
 /// AbortExecute are handled on the calling thread between chunks.
 constexpr int ChunksPerLight = 20;
-/// Pre-filter samples per axis and irradiance voxel, at most.
-constexpr int MaxFootprintSamples = 8;
-
-/// A regular grid with a direction matrix, and its index <-> world maps.
-struct Grid
-{
-  int Dims[3] = { 1, 1, 1 };
-  double Origin[3] = { 0.0, 0.0, 0.0 };
-  double Spacing[3] = { 1.0, 1.0, 1.0 };
-  double Direction[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
-  glm::dmat3 IndexToWorld{ 1.0 };
-  glm::dmat3 WorldToIndex{ 1.0 };
-
-  void UpdateMatrices()
-  {
-    for (int r = 0; r < 3; ++r)
-    {
-      for (int c = 0; c < 3; ++c)
-      {
-        this->IndexToWorld[c][r] = this->Direction[3 * r + c] * this->Spacing[c]; // glm: [col][row]
-      }
-    }
-    this->WorldToIndex = glm::inverse(this->IndexToWorld);
-  }
-  vtkIdType Size() const { return static_cast<vtkIdType>(this->Dims[0]) * this->Dims[1] * this->Dims[2]; }
-  glm::dvec3 IndexOf(vtkIdType v) const
-  {
-    const vtkIdType nxy = static_cast<vtkIdType>(this->Dims[0]) * this->Dims[1];
-    return glm::dvec3(static_cast<double>(v % this->Dims[0]),
-      static_cast<double>((v / this->Dims[0]) % this->Dims[1]), static_cast<double>(v / nxy));
-  }
-  glm::dvec3 ToWorld(const glm::dvec3& index) const
-  {
-    return glm::dvec3(this->Origin[0], this->Origin[1], this->Origin[2]) + this->IndexToWorld * index;
-  }
-};
-
-/// Trilinear interpolation at a continuous index, clamped to the grid.
-double SampleTrilinear(const Grid& grid, const float* values, const glm::dvec3& index)
-{
-  int i0[3];
-  int i1[3];
-  double w[3];
-  for (int a = 0; a < 3; ++a)
-  {
-    const double x = std::min(std::max(index[a], 0.0), static_cast<double>(grid.Dims[a] - 1));
-    i0[a] = std::min(static_cast<int>(x), grid.Dims[a] - 1);
-    i1[a] = std::min(i0[a] + 1, grid.Dims[a] - 1);
-    w[a] = x - i0[a];
-  }
-  const vtkIdType sy = grid.Dims[0];
-  const vtkIdType sz = static_cast<vtkIdType>(grid.Dims[0]) * grid.Dims[1];
-  auto at = [&](int i, int j, int k) { return static_cast<double>(values[i + j * sy + k * sz]); };
-  const double c00 = at(i0[0], i0[1], i0[2]) * (1 - w[0]) + at(i1[0], i0[1], i0[2]) * w[0];
-  const double c10 = at(i0[0], i1[1], i0[2]) * (1 - w[0]) + at(i1[0], i1[1], i0[2]) * w[0];
-  const double c01 = at(i0[0], i0[1], i1[2]) * (1 - w[0]) + at(i1[0], i0[1], i1[2]) * w[0];
-  const double c11 = at(i0[0], i1[1], i1[2]) * (1 - w[0]) + at(i1[0], i1[1], i1[2]) * w[0];
-  const double c0 = c00 * (1 - w[1]) + c10 * w[1];
-  const double c1 = c01 * (1 - w[1]) + c11 * w[1];
-  return c0 * (1 - w[2]) + c1 * w[2];
-}
 
 /// Distance along index-space direction `d` from `p` (inside) to the grid's box.
-double ExitDistance(const Grid& grid, const glm::dvec3& p, const glm::dvec3& d)
+double ExitDistance(const mmv::IrradianceGrid& grid, const glm::dvec3& p, const glm::dvec3& d)
 {
   double t = std::numeric_limits<double>::infinity();
   for (int a = 0; a < 3; ++a)
   {
     if (d[a] > 0.0)
     {
-      t = std::min(t, (grid.Dims[a] - 1 - p[a]) / d[a]);
+      t = std::min(t, (grid.Dimensions[a] - 1 - p[a]) / d[a]);
     }
     else if (d[a] < 0.0)
     {
@@ -116,119 +53,41 @@ double ExitDistance(const Grid& grid, const glm::dvec3& p, const glm::dvec3& d)
   return std::max(t, 0.0);
 }
 
-/// The irradiance grid spanning the same bounds as the data grid.
-Grid MakeIrradianceGrid(const Grid& data, const int dims[3])
+/// Origin, spacing and direction of `grid` in VTK's row-major form.
+struct GridGeometry
 {
-  Grid grid = data;
-  for (int a = 0; a < 3; ++a)
+  double Origin[3];
+  double Spacing[3];
+  double Direction[9];
+  explicit GridGeometry(const mmv::IrradianceGrid& grid)
   {
-    grid.Dims[a] = dims[a];
-    if (dims[a] > 1)
+    for (int a = 0; a < 3; ++a)
     {
-      grid.Spacing[a] = data.Spacing[a] * (data.Dims[a] - 1) / (dims[a] - 1);
-    }
-  }
-  grid.UpdateMatrices();
-  return grid;
-}
-
-/// The data grid from pipeline information; the origin moves to the first
-/// point of `extent` so that indices start at 0.
-Grid MakeDataGrid(vtkInformation* info, const int extent[6])
-{
-  Grid grid;
-  info->Get(vtkDataObject::SPACING(), grid.Spacing);
-  double origin[3] = { 0.0, 0.0, 0.0 };
-  info->Get(vtkDataObject::ORIGIN(), origin);
-  if (info->Has(vtkDataObject::DIRECTION()))
-  {
-    info->Get(vtkDataObject::DIRECTION(), grid.Direction);
-  }
-  vtkImageData::TransformContinuousIndexToPhysicalPoint(
-    extent[0], extent[2], extent[4], origin, grid.Spacing, grid.Direction, grid.Origin);
-  for (int a = 0; a < 3; ++a)
-  {
-    grid.Dims[a] = extent[2 * a + 1] - extent[2 * a] + 1;
-  }
-  grid.UpdateMatrices();
-  return grid;
-}
-
-Grid MakeDataGrid(vtkImageData* image)
-{
-  Grid grid;
-  const int* extent = image->GetExtent();
-  image->GetSpacing(grid.Spacing);
-  std::copy(image->GetDirectionMatrix()->GetData(), image->GetDirectionMatrix()->GetData() + 9,
-    grid.Direction);
-  image->TransformContinuousIndexToPhysicalPoint(extent[0], extent[2], extent[4], grid.Origin);
-  for (int a = 0; a < 3; ++a)
-  {
-    grid.Dims[a] = extent[2 * a + 1] - extent[2 * a] + 1;
-  }
-  grid.UpdateMatrices();
-  return grid;
-}
-
-/// Component 0 of the scalars as floats (one virtual call per value, once).
-std::vector<float> CopyScalars(vtkDataArray* scalars)
-{
-  std::vector<float> values(scalars->GetNumberOfTuples());
-  vtkSMPTools::For(0, scalars->GetNumberOfTuples(), [&](vtkIdType begin, vtkIdType end) {
-    for (vtkIdType i = begin; i < end; ++i)
-    {
-      values[i] = static_cast<float>(scalars->GetComponent(i, 0));
-    }
-  });
-  return values;
-}
-
-/**
- * Box filter of the data over each irradiance voxel's footprint (one
- * irradiance spacing wide, clamped to the data), by the midpoint rule on a
- * small sub-grid of trilinear samples. Axes at full resolution take the
- * data value itself, so equal resolutions give an exact copy.
- */
-std::vector<float> Prefilter(const Grid& data, const std::vector<float>& values, const Grid& grid)
-{
-  double ratio[3];
-  int samples[3];
-  for (int a = 0; a < 3; ++a)
-  {
-    ratio[a] = grid.Dims[a] > 1 ? (data.Dims[a] - 1.0) / (grid.Dims[a] - 1.0) : 0.0;
-    samples[a] = grid.Dims[a] == data.Dims[a]
-      ? 1
-      : std::min(MaxFootprintSamples, std::max(2, static_cast<int>(std::ceil(ratio[a]))));
-  }
-  std::vector<float> out(grid.Size());
-  vtkSMPTools::For(0, grid.Size(), [&](vtkIdType begin, vtkIdType end) {
-    for (vtkIdType v = begin; v < end; ++v)
-    {
-      const glm::dvec3 centre = grid.IndexOf(v) * glm::dvec3(ratio[0], ratio[1], ratio[2]);
-      double sum = 0.0;
-      for (int k = 0; k < samples[2]; ++k)
+      this->Origin[a] = grid.Origin[a];
+      this->Spacing[a] = grid.Spacing[a];
+      for (int r = 0; r < 3; ++r)
       {
-        for (int j = 0; j < samples[1]; ++j)
-        {
-          for (int i = 0; i < samples[0]; ++i)
-          {
-            const int q[3] = { i, j, k };
-            glm::dvec3 p = centre;
-            for (int a = 0; a < 3; ++a)
-            {
-              if (samples[a] > 1)
-              {
-                p[a] += ratio[a] * ((q[a] + 0.5) / samples[a] - 0.5);
-              }
-            }
-            sum += SampleTrilinear(data, values.data(), p);
-          }
-        }
+        this->Direction[3 * r + a] = grid.Direction[a][r]; // glm: [column][row]
       }
-      out[v] = static_cast<float>(sum / (samples[0] * samples[1] * samples[2]));
     }
-  });
-  return out;
+  }
+};
+
+/// The output's geometry, in the pipeline information and on the data.
+void SetGridGeometry(const mmv::IrradianceGrid& grid, vtkInformation* info)
+{
+  const GridGeometry g(grid);
+  info->Set(vtkDataObject::ORIGIN(), g.Origin, 3);
+  info->Set(vtkDataObject::SPACING(), g.Spacing, 3);
+  info->Set(vtkDataObject::DIRECTION(), g.Direction, 9);
+}
+
+void SetGridGeometry(const mmv::IrradianceGrid& grid, vtkImageData* image)
+{
+  const GridGeometry g(grid);
+  image->SetOrigin(g.Origin);
+  image->SetSpacing(g.Spacing);
+  image->SetDirectionMatrix(g.Direction);
 }
 
 /// What the shadow rays of one light need.
@@ -285,10 +144,11 @@ void MakeLightTasks(vtkLightCollection* lights, double radius, vtkIdType size,
 /// Everything the shadow rays read; shared by all threads, read-only.
 struct RayContext
 {
-  const Grid* Irradiance;
+  const mmv::IrradianceGrid* Irradiance;
   const float* Prefiltered;
   const vtkPreIntegrationTable* Table;
   double Step;
+  glm::dmat3 PhysicalToIndex; // of *Irradiance, inverted once
 };
 
 /**
@@ -298,38 +158,36 @@ struct RayContext
  */
 double ShadowTransmittance(const RayContext& ctx, const mmv::LightSource& light, vtkIdType v)
 {
-  const Grid& grid = *ctx.Irradiance;
-  const glm::dvec3 start = grid.IndexOf(v);
-  const glm::dvec3 x = grid.ToWorld(start);
+  const mmv::IrradianceGrid& grid = *ctx.Irradiance;
+  const glm::dvec3 start = grid.IndexOfVoxel(v);
+  const glm::dvec3 x = grid.IndexToPhysical(start);
   double lightDistance = 0.0;
   const glm::dvec3 dir = mmv::mmvDirectionToLight(light, x, lightDistance);
-  const glm::dvec3 indexDir = grid.WorldToIndex * dir;
+  const glm::dvec3 indexDir = ctx.PhysicalToIndex * dir;
   double end = ExitDistance(grid, start, indexDir);
   if (lightDistance >= 0.0)
   {
     end = std::min(end, lightDistance);
   }
   const double h = ctx.Step;
-  // The tolerance keeps an end that is a whole number of steps from adding
-  // a zero-length segment (or dropping the last full one) by rounding.
-  const vtkIdType steps = static_cast<vtkIdType>(std::floor(end / h + 1.0e-9));
+  const vtkIdType steps = static_cast<vtkIdType>(std::floor(end / h + mmv::ShadowStepTolerance));
   double previous = ctx.Prefiltered[v];
   double transmittance = 1.0;
   for (vtkIdType n = 1; n <= steps; ++n)
   {
     const double next =
-      SampleTrilinear(grid, ctx.Prefiltered, start + (static_cast<double>(n) * h) * indexDir);
+      mmv::SampleTrilinear(grid, ctx.Prefiltered, start + (static_cast<double>(n) * h) * indexDir);
     transmittance *= 1.0 - ctx.Table->LookupShadowOpacity(previous, next);
-    if (transmittance < MinTransmittance)
+    if (transmittance < mmv::MinShadowTransmittance)
     {
       return transmittance;
     }
     previous = next;
   }
   const double rest = end - static_cast<double>(steps) * h;
-  if (rest > 1.0e-9 * h)
+  if (rest > mmv::ShadowRestTolerance * h)
   {
-    const double next = SampleTrilinear(grid, ctx.Prefiltered, start + end * indexDir);
+    const double next = mmv::SampleTrilinear(grid, ctx.Prefiltered, start + end * indexDir);
     const double alpha = ctx.Table->LookupShadowOpacity(previous, next);
     // Optical depth is linear in the segment length for a linear value ramp.
     transmittance *= std::pow(std::max(0.0, 1.0 - alpha), rest / h);
@@ -338,17 +196,19 @@ double ShadowTransmittance(const RayContext& ctx, const mmv::LightSource& light,
 }
 
 /// Empty voxels next to computed ones take the mean of those neighbours.
-void FillEmptyNeighborVoxels(const Grid& grid, const std::vector<unsigned char>& nonEmpty, float* values)
+void FillEmptyNeighborVoxels(
+  const mmv::IrradianceGrid& grid, const std::vector<unsigned char>& nonEmpty, float* values)
 {
-  const vtkIdType stride[3] = { 1, grid.Dims[0], static_cast<vtkIdType>(grid.Dims[0]) * grid.Dims[1] };
-  vtkSMPTools::For(0, grid.Size(), [&](vtkIdType begin, vtkIdType end) {
+  const int* dims = grid.Dimensions;
+  const vtkIdType stride[3] = { 1, dims[0], static_cast<vtkIdType>(dims[0]) * dims[1] };
+  vtkSMPTools::For(0, grid.GetNumberOfVoxels(), [&](vtkIdType begin, vtkIdType end) {
     for (vtkIdType v = begin; v < end; ++v)
     {
       if (nonEmpty[v])
       {
         continue;
       }
-      const glm::dvec3 index = grid.IndexOf(v);
+      const glm::dvec3 index = grid.IndexOfVoxel(v);
       double sum = 0.0;
       int count = 0;
       for (int a = 0; a < 3; ++a)
@@ -359,7 +219,7 @@ void FillEmptyNeighborVoxels(const Grid& grid, const std::vector<unsigned char>&
           sum += values[v - stride[a]];
           ++count;
         }
-        if (index[a] + 1 < grid.Dims[a] && nonEmpty[v + stride[a]])
+        if (index[a] + 1 < dims[a] && nonEmpty[v + stride[a]])
         {
           sum += values[v + stride[a]];
           ++count;
@@ -378,7 +238,8 @@ bool PrepareTable(vtkPreIntegrationTable* table, vtkPiecewiseFunction* otf,
   vtkMaterialTransferFunction* mtf, double unitDistance, double step, vtkDataArray* scalars)
 {
   double range[2];
-  scalars->GetRange(range, 0);
+  // Finite range: NaN/Inf voxels made the table reject the whole volume.
+  scalars->GetFiniteRange(range, 0);
   if (!(range[0] < range[1]))
   {
     // A constant volume: put its value on the first table node, so lookups
@@ -402,7 +263,7 @@ bool CastShadowRays(vtkAlgorithm* self, const RayContext& ctx, const mmv::LightS
   const std::vector<vtkIdType>& computed, float* irradiance, double progress, double progressSpan,
   vtkIdType& rays)
 {
-  const Grid& grid = *ctx.Irradiance;
+  const mmv::IrradianceGrid& grid = *ctx.Irradiance;
   const vtkIdType n = static_cast<vtkIdType>(computed.size());
   std::atomic<vtkIdType> cast{ 0 };
   for (int chunk = 0; chunk < ChunksPerLight; ++chunk)
@@ -414,7 +275,7 @@ bool CastShadowRays(vtkAlgorithm* self, const RayContext& ctx, const mmv::LightS
       for (vtkIdType c = begin; c < end; ++c)
       {
         const vtkIdType v = computed[c];
-        const double geometry = mmv::mmvLightGeometryTerm(light, grid.ToWorld(grid.IndexOf(v)));
+        const double geometry = mmv::mmvLightGeometryTerm(light, grid.IndexToPhysical(grid.IndexOfVoxel(v)));
         if (geometry > 0.0) // outside a spot light's cone: no ray
         {
           irradiance[v] = static_cast<float>(geometry * ShadowTransmittance(ctx, light, v));
@@ -439,11 +300,11 @@ bool CastShadowRays(vtkAlgorithm* self, const RayContext& ctx, const mmv::LightS
  * given in data voxels^2, so the grid spacing is passed in data voxels.
  * Returns the CG iterations.
  */
-int DiffuseLights(const Grid& grid, const Grid& data, const std::vector<float>& prefiltered,
+int DiffuseLights(const mmv::IrradianceGrid& grid, const std::vector<float>& prefiltered,
   const std::vector<vtkIdType>& computed, vtkMaterialTransferFunction* mtf,
   const std::vector<LightTask>& tasks, const std::vector<vtkSmartPointer<vtkFloatArray>>& arrays)
 {
-  std::vector<float> strength(grid.Size(), 0.0f);
+  std::vector<float> strength(grid.GetNumberOfVoxels(), 0.0f);
   bool any = false;
   for (const vtkIdType v : computed)
   {
@@ -456,18 +317,15 @@ int DiffuseLights(const Grid& grid, const Grid& data, const std::vector<float>& 
   {
     return 0;
   }
-  double spacing[3];
-  for (int a = 0; a < 3; ++a)
-  {
-    spacing[a] = grid.Dims[a] > 1 ? (data.Dims[a] - 1.0) / (grid.Dims[a] - 1.0) : 1.0;
-  }
+  const double spacing[3] = { grid.DataVoxelsPerVoxel[0], grid.DataVoxelsPerVoxel[1],
+    grid.DataVoxelsPerVoxel[2] };
   int iterations = 0;
   for (size_t l = 0; l < tasks.size(); ++l)
   {
     if (tasks[l].Active)
     {
       iterations += mmv::DiffuseIrradiance(
-        grid.Dims, spacing, strength.data(), arrays[l]->GetPointer(0))
+        grid.Dimensions, spacing, strength.data(), arrays[l]->GetPointer(0))
                       .Iterations;
     }
   }
@@ -587,46 +445,7 @@ vtkMTimeType vtkIrradianceVolumeFilter::GetMTime()
 void vtkIrradianceVolumeFilter::ComputeIrradianceDimensions(const int dataDims[3],
   int numberOfLights, double budgetMB, double scale, int irradianceDims[3])
 {
-  int d[3];
-  int lo[3];
-  int active = 0;
-  for (int a = 0; a < 3; ++a)
-  {
-    d[a] = std::max(1, dataDims[a]);
-    lo[a] = std::min(2, d[a]);
-    active += d[a] > 1 ? 1 : 0;
-  }
-  auto apply = [&](double s) {
-    for (int a = 0; a < 3; ++a)
-    {
-      const int n = static_cast<int>(std::lround(d[a] * s));
-      irradianceDims[a] = std::min(d[a], std::max(lo[a], n));
-    }
-  };
-  if (scale > 0.0)
-  {
-    apply(std::min(scale, 1.0));
-    return;
-  }
-  const double bytesPerVoxel = mmv::IrradianceBytesPerVoxelPerLight * std::max(1, numberOfLights);
-  const double budgetVoxels = std::max(0.0, budgetMB) * 1024.0 * 1024.0 / bytesPerVoxel;
-  auto voxels = [&]() {
-    return static_cast<double>(irradianceDims[0]) * irradianceDims[1] * irradianceDims[2];
-  };
-  const double dataVoxels = static_cast<double>(d[0]) * d[1] * d[2];
-  // Start from the continuous answer (only axes longer than 1 shrink), then
-  // step down until the rounded dimensions fit or reach their minimum.
-  double s = active > 0 ? std::min(1.0, std::pow(budgetVoxels / dataVoxels, 1.0 / active)) : 1.0;
-  apply(s);
-  for (int i = 0; i < 4000 && voxels() > budgetVoxels; ++i)
-  {
-    if (irradianceDims[0] == lo[0] && irradianceDims[1] == lo[1] && irradianceDims[2] == lo[2])
-    {
-      break;
-    }
-    s *= 0.998;
-    apply(s);
-  }
+  mmv::ComputeIrradianceDimensions(dataDims, numberOfLights, budgetMB, scale, irradianceDims);
 }
 
 int vtkIrradianceVolumeFilter::RequestInformation(
@@ -635,17 +454,26 @@ int vtkIrradianceVolumeFilter::RequestInformation(
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   int extent[6];
+  double origin[3] = { 0.0, 0.0, 0.0 };
+  double spacing[3] = { 1.0, 1.0, 1.0 };
+  double direction[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
   inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent);
-  const Grid data = MakeDataGrid(inInfo, extent);
+  inInfo->Get(vtkDataObject::ORIGIN(), origin);
+  inInfo->Get(vtkDataObject::SPACING(), spacing);
+  if (inInfo->Has(vtkDataObject::DIRECTION()))
+  {
+    inInfo->Get(vtkDataObject::DIRECTION(), direction);
+  }
+  const int dataDims[3] = { extent[1] - extent[0] + 1, extent[3] - extent[2] + 1,
+    extent[5] - extent[4] + 1 };
   int dims[3];
-  ComputeIrradianceDimensions(data.Dims, this->Internals->Lights->GetNumberOfItems(),
+  ComputeIrradianceDimensions(dataDims, this->Internals->Lights->GetNumberOfItems(),
     this->IrradianceMemoryMB, this->IrradianceScale, dims);
-  const Grid grid = MakeIrradianceGrid(data, dims);
+  const mmv::IrradianceGrid grid =
+    mmv::MakeIrradianceGrid(extent, origin, spacing, direction, dims);
   const int outExtent[6] = { 0, dims[0] - 1, 0, dims[1] - 1, 0, dims[2] - 1 };
   outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), outExtent, 6);
-  outInfo->Set(vtkDataObject::ORIGIN(), grid.Origin, 3);
-  outInfo->Set(vtkDataObject::SPACING(), grid.Spacing, 3);
-  outInfo->Set(vtkDataObject::DIRECTION(), grid.Direction, 9);
+  SetGridGeometry(grid, outInfo);
   vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_FLOAT, 1);
   return 1;
 }
@@ -694,19 +522,39 @@ int vtkIrradianceVolumeFilter::RequestData(
   }
 
   // Step 1: geometry of the irradiance grid.
-  const Grid data = MakeDataGrid(input);
+  const int* inExtent = input->GetExtent();
+  const int dataDims[3] = { inExtent[1] - inExtent[0] + 1, inExtent[3] - inExtent[2] + 1,
+    inExtent[5] - inExtent[4] + 1 };
   const int numberOfLights = this->Internals->Lights->GetNumberOfItems();
-  ComputeIrradianceDimensions(
-    data.Dims, numberOfLights, this->IrradianceMemoryMB, this->IrradianceScale, this->IrradianceDimensions);
-  const Grid grid = MakeIrradianceGrid(data, this->IrradianceDimensions);
-  output->SetExtent(0, grid.Dims[0] - 1, 0, grid.Dims[1] - 1, 0, grid.Dims[2] - 1);
-  output->SetOrigin(grid.Origin);
-  output->SetSpacing(grid.Spacing);
-  output->SetDirectionMatrix(grid.Direction);
+  ComputeIrradianceDimensions(dataDims, numberOfLights, this->IrradianceMemoryMB,
+    this->IrradianceScale, this->IrradianceDimensions);
+  const mmv::IrradianceGrid grid = mmv::MakeIrradianceGrid(input, this->IrradianceDimensions);
+  output->SetExtent(0, grid.Dimensions[0] - 1, 0, grid.Dimensions[1] - 1, 0, grid.Dimensions[2] - 1);
+  SetGridGeometry(grid, output);
 
   // Step 2: pre-filter and find the voxels worth computing.
-  const std::vector<float> values = CopyScalars(scalars);
-  const std::vector<float> prefiltered = Prefilter(data, values, grid);
+  std::vector<float> prefiltered;
+  mmv::PrefilterScalars(input, scalars, 0, grid, prefiltered);
+  {
+    // NaN/Inf voxels (TestBadInput.NonFiniteVoxels) must not reach the table
+    // lookups: NaN and -Inf become the finite minimum, +Inf the maximum.
+    double finite[2];
+    scalars->GetFiniteRange(finite, 0);
+    bool nonFinite = false;
+    for (float& v : prefiltered)
+    {
+      if (!std::isfinite(v))
+      {
+        nonFinite = true;
+        v = static_cast<float>(v > 0.0f ? finite[1] : finite[0]);
+      }
+    }
+    if (nonFinite)
+    {
+      vtkWarningMacro("The scalars contain NaN or Inf: NaN and -Inf are lit as the finite "
+                      "minimum, +Inf as the maximum.");
+    }
+  }
   std::vector<unsigned char> nonEmpty;
   const std::vector<vtkIdType> computed = FindComputedVoxels(otf, prefiltered, nonEmpty);
   this->NumberOfComputedVoxels = static_cast<vtkIdType>(computed.size());
@@ -728,11 +576,12 @@ int vtkIrradianceVolumeFilter::RequestData(
   }
   const double radius = this->PointLightRadius > 0.0
     ? this->PointLightRadius
-    : std::min({ data.Spacing[0], data.Spacing[1], data.Spacing[2] });
+    : std::min({ input->GetSpacing()[0], input->GetSpacing()[1], input->GetSpacing()[2] });
   std::vector<LightTask> tasks;
   std::vector<vtkSmartPointer<vtkFloatArray>> arrays;
-  MakeLightTasks(this->Internals->Lights, radius, grid.Size(), tasks, arrays);
-  const RayContext ctx{ &grid, prefiltered.data(), this->Internals->Table, step };
+  MakeLightTasks(this->Internals->Lights, radius, grid.GetNumberOfVoxels(), tasks, arrays);
+  const RayContext ctx{ &grid, prefiltered.data(), this->Internals->Table, step,
+    grid.PhysicalToIndexMatrix() };
   for (size_t l = 0; l < tasks.size(); ++l)
   {
     if (tasks[l].Active &&
@@ -747,8 +596,8 @@ int vtkIrradianceVolumeFilter::RequestData(
   // Steps 4 and 5: multiple scattering, then the empty neighbours.
   if (this->MultipleScattering)
   {
-    this->DiffusionIterations = DiffuseLights(
-      grid, data, prefiltered, computed, this->Internals->Material, tasks, arrays);
+    this->DiffusionIterations =
+      DiffuseLights(grid, prefiltered, computed, this->Internals->Material, tasks, arrays);
   }
   for (size_t l = 0; l < tasks.size(); ++l)
   {

@@ -15,14 +15,16 @@
  *     scale whose 16-bit-per-light storage fits IrradianceMemoryMB (never above
  *     the data resolution); see ComputeIrradianceDimensions().
  *  2. Pre-filter the data to that resolution (box filter over each irradiance
- *     voxel's footprint).
+ *     voxel's footprint). Grid and pre-filter are vtkIrradianceGrid.h's, which
+ *     the GPU path uses too.
  *  3. For every voxel whose pre-filtered value has opacity > 0 (sparse; the
  *     count is NumberOfComputedVoxels), cast one shadow ray per light with the
  *     pre-integrated shadow opacity (sigma = attenuation * mu), steps of
  *     ShadowStepScale irradiance voxels, early termination at transmittance
- *     1e-4. Directional lights: ray to the volume boundary; point and spot
- *     lights: to the light or the boundary, times eps^2/max(eps^2, d^2), spot
- *     visibility by vtkLight's cone half-angle.
+ *     mmv::MinShadowTransmittance (1e-4). Directional lights: ray to the
+ *     volume boundary; point and spot lights: to the light or the boundary,
+ *     times eps^2/max(eps^2, d^2), spot visibility by vtkLight's cone
+ *     half-angle (vtkMultiMaterialLightModel.h).
  *  4. Multiple scattering: diffusion with per-voxel s from the material TF
  *     (vtkIrradianceDiffusion.h), skipped when every s is zero or
  *     MultipleScattering is off.
@@ -112,10 +114,16 @@ public:
    * The irradiance grid for data of `dataDims` points: `scale` in (0, 1]
    * scales every axis; scale <= 0 picks the largest scale whose
    * numberOfLights * 2 bytes per voxel fit `budgetMB`. Axes never exceed the
-   * data's and never drop below min(2, data). Shared with the GPU mapper.
+   * data's and never drop below min(2, data). Same as
+   * mmv::ComputeIrradianceDimensions (vtkIrradianceGrid.h), which the GPU
+   * mapper calls, so both pick the same resolution.
    */
   static void ComputeIrradianceDimensions(const int dataDims[3], int numberOfLights,
     double budgetMB, double scale, int irradianceDims[3]);
+
+  /// Includes the opacity and material functions and the lights, so that
+  /// editing any of them re-executes the filter.
+  vtkMTimeType GetMTime() override;
 
 protected:
   vtkIrradianceVolumeFilter();
@@ -124,8 +132,6 @@ protected:
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
-  vtkMTimeType GetMTime() override;
-
   double ScalarOpacityUnitDistance = 1.0;
   double IrradianceScale = 0.0;
   double IrradianceMemoryMB = 64.0;

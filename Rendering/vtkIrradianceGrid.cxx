@@ -17,7 +17,7 @@ constexpr int MaxFootprintSamples = 8;
 
 /// Trilinear interpolation of `values` (dims, x fastest) at a continuous
 /// index, clamped to the grid.
-double SampleTrilinear(const int dims[3], const float* values, const glm::dvec3& index)
+double Interpolate(const int dims[3], const float* values, const glm::dvec3& index)
 {
   int i0[3];
   int i1[3];
@@ -106,30 +106,43 @@ void ComputeIrradianceDimensions(const int dataDims[3], int numberOfLights, doub
 
 IrradianceGrid MakeIrradianceGrid(vtkImageData* image, const int irradianceDims[3])
 {
+  return MakeIrradianceGrid(image->GetExtent(), image->GetOrigin(), image->GetSpacing(),
+    image->GetDirectionMatrix()->GetData(), irradianceDims);
+}
+
+IrradianceGrid MakeIrradianceGrid(const int extent[6], const double origin[3],
+  const double spacing[3], const double* direction, const int irradianceDims[3])
+{
+  static constexpr double Identity[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
+  const double* dir = direction ? direction : Identity;
   IrradianceGrid grid;
-  const int* extent = image->GetExtent();
-  const double* dataSpacing = image->GetSpacing();
-  const vtkMatrix3x3* direction = image->GetDirectionMatrix();
-  double origin[3];
-  image->TransformContinuousIndexToPhysicalPoint(extent[0], extent[2], extent[4], origin);
+  // Voxel (0,0,0) sits on the extent's first point, not on the image origin.
+  double first[3];
+  vtkImageData::TransformContinuousIndexToPhysicalPoint(
+    extent[0], extent[2], extent[4], origin, spacing, dir, first);
   for (int a = 0; a < 3; ++a)
   {
     const int dataDim = extent[2 * a + 1] - extent[2 * a] + 1;
     grid.Dimensions[a] = irradianceDims[a];
-    grid.Origin[a] = origin[a];
-    grid.Spacing[a] = dataSpacing[a];
+    grid.Origin[a] = first[a];
+    grid.Spacing[a] = spacing[a];
     grid.DataVoxelsPerVoxel[a] = 1.0;
     if (irradianceDims[a] > 1)
     {
       grid.DataVoxelsPerVoxel[a] = (dataDim - 1.0) / (irradianceDims[a] - 1.0);
-      grid.Spacing[a] = dataSpacing[a] * (dataDim - 1) / (irradianceDims[a] - 1);
+      grid.Spacing[a] = spacing[a] * (dataDim - 1) / (irradianceDims[a] - 1);
     }
     for (int r = 0; r < 3; ++r)
     {
-      grid.Direction[a][r] = direction->GetElement(r, a); // glm: [column][row]
+      grid.Direction[a][r] = dir[3 * r + a]; // glm: [column][row]
     }
   }
   return grid;
+}
+
+double SampleTrilinear(const IrradianceGrid& grid, const float* values, const glm::dvec3& index)
+{
+  return Interpolate(grid.Dimensions, values, index);
 }
 
 void PrefilterScalars(vtkImageData* image, vtkDataArray* scalars, int component,
@@ -149,15 +162,11 @@ void PrefilterScalars(vtkImageData* image, vtkDataArray* scalars, int component,
       : std::min(MaxFootprintSamples, std::max(2, static_cast<int>(std::ceil(ratio[a]))));
   }
   const std::vector<float> values = CopyComponent(scalars, component);
-  const int nx = grid.Dimensions[0];
-  const int ny = grid.Dimensions[1];
   prefiltered.resize(grid.GetNumberOfVoxels());
   vtkSMPTools::For(0, grid.GetNumberOfVoxels(), [&](vtkIdType begin, vtkIdType end) {
     for (vtkIdType v = begin; v < end; ++v)
     {
-      const glm::dvec3 index(static_cast<double>(v % nx), static_cast<double>((v / nx) % ny),
-        static_cast<double>(v / (static_cast<vtkIdType>(nx) * ny)));
-      const glm::dvec3 centre = index * glm::dvec3(ratio[0], ratio[1], ratio[2]);
+      const glm::dvec3 centre = grid.IndexOfVoxel(v) * glm::dvec3(ratio[0], ratio[1], ratio[2]);
       double sum = 0.0;
       for (int k = 0; k < samples[2]; ++k)
       {
@@ -175,7 +184,7 @@ void PrefilterScalars(vtkImageData* image, vtkDataArray* scalars, int component,
                 p[a] += ratio[a] * ((q[a] + 0.5) / samples[a] - 0.5);
               }
             }
-            sum += SampleTrilinear(dataDims, values.data(), p);
+            sum += Interpolate(dataDims, values.data(), p);
           }
         }
       }

@@ -39,13 +39,30 @@ struct IrradianceGrid
   {
     return static_cast<vtkIdType>(this->Dimensions[0]) * this->Dimensions[1] * this->Dimensions[2];
   }
+  /// The integer index of voxel `v` (x fastest), as doubles for the maps below.
+  glm::dvec3 IndexOfVoxel(vtkIdType v) const
+  {
+    const vtkIdType nx = this->Dimensions[0];
+    const vtkIdType nxy = nx * this->Dimensions[1];
+    return glm::dvec3(static_cast<double>(v % nx), static_cast<double>((v / nx) % this->Dimensions[1]),
+      static_cast<double>(v / nxy));
+  }
+  /// Linear part of the index -> physical map: Direction * diag(Spacing).
+  glm::dmat3 IndexToPhysicalMatrix() const
+  {
+    return this->Direction *
+      glm::dmat3(glm::dvec3(this->Spacing[0], 0.0, 0.0), glm::dvec3(0.0, this->Spacing[1], 0.0),
+        glm::dvec3(0.0, 0.0, this->Spacing[2]));
+  }
+  /// Its inverse: a true inverse, since VTK allows non-orthonormal directions.
+  glm::dmat3 PhysicalToIndexMatrix() const { return glm::inverse(this->IndexToPhysicalMatrix()); }
   glm::dvec3 IndexToPhysical(const glm::dvec3& ijk) const
   {
-    return this->Origin + this->Direction * (ijk * this->Spacing);
+    return this->Origin + this->IndexToPhysicalMatrix() * ijk;
   }
   glm::dvec3 PhysicalToIndex(const glm::dvec3& p) const
   {
-    return (glm::transpose(this->Direction) * (p - this->Origin)) / this->Spacing;
+    return this->PhysicalToIndexMatrix() * (p - this->Origin);
   }
 };
 
@@ -61,6 +78,24 @@ VTKMULTIMATERIALVOLUME_EXPORT void ComputeIrradianceDimensions(const int dataDim
 /// The grid of `irradianceDims` spanning `image`'s points.
 VTKMULTIMATERIALVOLUME_EXPORT IrradianceGrid MakeIrradianceGrid(
   vtkImageData* image, const int irradianceDims[3]);
+
+/**
+ * The same from image geometry alone (e.g. pipeline information, before the
+ * data exists): `direction` is row-major like vtkImageData's; null means
+ * identity.
+ */
+VTKMULTIMATERIALVOLUME_EXPORT IrradianceGrid MakeIrradianceGrid(const int extent[6],
+  const double origin[3], const double spacing[3], const double* direction,
+  const int irradianceDims[3]);
+
+/**
+ * Trilinear interpolation of `values` (one per voxel, x fastest) at the
+ * continuous index `index`, clamped to the grid. The prefilter samples the
+ * data this way and the CPU shadow rays sample the prefiltered values; the
+ * GPU pass gets the same from a linear 3D texture.
+ */
+VTKMULTIMATERIALVOLUME_EXPORT double SampleTrilinear(
+  const IrradianceGrid& grid, const float* values, const glm::dvec3& index);
 
 /**
  * Box-filters component `component` of `scalars` (point data of `image`) over

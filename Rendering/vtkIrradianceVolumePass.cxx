@@ -31,13 +31,6 @@ namespace
 
 constexpr int LightsPerTexture = 4;
 
-/// Ray-march constants shared with Filters/vtkIrradianceVolumeFilter.cxx.
-/// The two tolerances absorb rounding of the step count and of the rest;
-/// float needs a wider one than the CPU's double for the former.
-const char* const RayMarchDefines = "#define MMV_MIN_TRANSMITTANCE 1.0e-4\n"
-                                    "#define MMV_STEP_TOLERANCE 1.0e-5\n"
-                                    "#define MMV_REST_TOLERANCE 1.0e-9\n";
-
 /// Linear interpolation of an n-entry table over the normalised range, as a
 /// bilinear texture lookup at (x + 0.5) / n would do it.
 float LookupTable(const std::vector<float>& table, float t)
@@ -53,6 +46,19 @@ float LookupTable(const std::vector<float>& table, float t)
 double HarmonicMean(double a, double b)
 {
   return (a > 0.0 && b > 0.0) ? 2.0 * a * b / (a + b) : 0.0;
+}
+
+/// 1/h^2 per axis of the diffusion operator, h in data voxels (the unit of
+/// the scattering strength s), for both the CPU estimate and the shader.
+glm::dvec3 InverseSquaredSpacing(const mmv::IrradianceGrid& grid)
+{
+  glm::dvec3 invH2;
+  for (int a = 0; a < 3; ++a)
+  {
+    const double h = grid.DataVoxelsPerVoxel[a] > 0.0 ? grid.DataVoxelsPerVoxel[a] : 1.0;
+    invH2[a] = 1.0 / (h * h);
+  }
+  return invH2;
 }
 
 /// The fragment shader: system declarations, `defines`, optionally the light
@@ -193,12 +199,7 @@ void vtkIrradianceVolumePass::vtkInternals::ComputeMaxDiffusionRate()
 {
   const int* dims = this->Grid.Dimensions;
   const vtkIdType stride[3] = { 1, dims[0], static_cast<vtkIdType>(dims[0]) * dims[1] };
-  double invH2[3];
-  for (int a = 0; a < 3; ++a)
-  {
-    const double h = this->Grid.DataVoxelsPerVoxel[a] > 0.0 ? this->Grid.DataVoxelsPerVoxel[a] : 1.0;
-    invH2[a] = 1.0 / (h * h);
-  }
+  const glm::dvec3 invH2 = InverseSquaredSpacing(this->Grid);
   auto strength = [&](vtkIdType v) { return std::max(0.0, static_cast<double>(this->Classes[v])); };
   this->MaxDiffusionRate = 0.0;
   vtkIdType v = 0;
@@ -338,17 +339,13 @@ void vtkIrradianceVolumePass::vtkInternals::DrawSlices(
 bool vtkIrradianceVolumePass::vtkInternals::ShadowPass(vtkOpenGLRenderWindow* context, int group)
 {
   vtkShaderProgram* program =
-    this->Ready(context, this->ShadowQuad, mmvIrradianceFS, RayMarchDefines, true);
+    this->Ready(context, this->ShadowQuad, mmvIrradianceFS, mmv::ShadowRayGLSLPrelude(), true);
   if (!program)
   {
     return false;
   }
-  const glm::dmat3 indexToWorld =
-    this->Grid.Direction * glm::dmat3(glm::dvec3(this->Grid.Spacing[0], 0.0, 0.0),
-                             glm::dvec3(0.0, this->Grid.Spacing[1], 0.0),
-                             glm::dvec3(0.0, 0.0, this->Grid.Spacing[2]));
-  glm::mat3 toWorld(indexToWorld);
-  glm::mat3 toIndex(glm::inverse(indexToWorld));
+  glm::mat3 toWorld(this->Grid.IndexToPhysicalMatrix());
+  glm::mat3 toIndex(this->Grid.PhysicalToIndexMatrix());
   const glm::vec3 origin(this->Grid.Origin);
   this->ScalarTexture->Activate();
   this->ClassTexture->Activate();
@@ -383,16 +380,11 @@ int vtkIrradianceVolumePass::vtkInternals::Diffuse(
     return -1;
   }
   const int steps = this->DiffusionSteps(time);
-  float invH2[3];
-  for (int a = 0; a < 3; ++a)
-  {
-    const double h = this->Grid.DataVoxelsPerVoxel[a] > 0.0 ? this->Grid.DataVoxelsPerVoxel[a] : 1.0;
-    invH2[a] = static_cast<float>(1.0 / (h * h));
-  }
+  const glm::vec3 invH2(InverseSquaredSpacing(this->Grid));
   this->ClassTexture->Activate();
   program->SetUniformi("classes", this->ClassTexture->GetTextureUnit());
   this->SetGridUniforms(program);
-  program->SetUniform3f("invH2", invH2);
+  program->SetUniform3f("invH2", glm::value_ptr(invH2));
   program->SetUniformf("dt", static_cast<float>(time / steps));
   int rhs = 0;
   int current = 0;

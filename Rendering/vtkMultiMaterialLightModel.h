@@ -38,12 +38,16 @@ struct LightSource
   double Radius = 1.0;             // point/spot: epsilon of eq. 12
 };
 
-/// eq. 12: epsilon^2 / max(epsilon^2, d^2). Equal to 1 inside the radius;
-/// the clamp keeps a light sitting on a voxel centre finite.
+/// eq. 12: epsilon^2 / max(epsilon^2, d^2), i.e. 1 within the radius and
+/// epsilon^2 / d^2 beyond it; the clamp keeps a light sitting on a voxel
+/// centre finite. Radius 0 is the limit of eq. 12 (1 at the light's own
+/// position, 0 elsewhere) rather than 0/0: the formula is normalised at
+/// d = epsilon, so an unnormalised 1/d^2 would not be its limit. Written as a
+/// branch so that no 0/0 can occur; for radius > 0 it equals the formula.
 inline double mmvPointFalloff(double radius, double distance2)
 {
   const double e2 = radius * radius;
-  return e2 / glm::max(e2, distance2);
+  return distance2 <= e2 ? 1.0 : e2 / distance2;
 }
 
 /// eq. 14: 1 inside the open cone, 0 outside (and on its edge).
@@ -57,18 +61,25 @@ inline double mmvSpotVisibility(const glm::dvec3& lightToPoint, const glm::dvec3
   return glm::dot(lightToPoint / len, axis) > cosCone ? 1.0 : 0.0;
 }
 
-/// Direction and distance from point x toward the light. For directional
-/// lights the distance is infinite (returned as a negative number).
-inline glm::dvec3 mmvDirectionToLight(const LightSource& light, const glm::dvec3& x, double& distance)
+/// Unit direction and distance from point x toward the light. Directional
+/// lights are infinitely far: distance -1. A point on a positional light gets
+/// +z (any unit vector would do: its shadow ray has length 0).
+inline glm::dvec3 mmvDirectionToLight(
+  int kind, const glm::dvec3& position, const glm::dvec3& toLight, const glm::dvec3& x, double& distance)
 {
-  if (light.Kind == DirectionalLight)
+  if (kind == DirectionalLight)
   {
     distance = -1.0;
-    return light.ToLight;
+    return toLight;
   }
-  const glm::dvec3 d = light.Position - x;
+  const glm::dvec3 d = position - x;
   distance = glm::length(d);
   return distance > 0.0 ? d / distance : glm::dvec3(0.0, 0.0, 1.0);
+}
+
+inline glm::dvec3 mmvDirectionToLight(const LightSource& light, const glm::dvec3& x, double& distance)
+{
+  return mmvDirectionToLight(light.Kind, light.Position, light.ToLight, x, distance);
 }
 
 /// Unshadowed part of I_k(x) (eqs. 11-13 without the transmittance).

@@ -26,6 +26,7 @@
 #define vtkMultiMaterialParameters_h
 
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 namespace mmv
@@ -72,6 +73,21 @@ constexpr double IrradianceBytesPerVoxelPerLight = 2.0;
 
 /// Default irradiance memory budget in MB (the paper's recommendation).
 constexpr double DefaultIrradianceBudgetMB = 64.0;
+
+/// Transmittance below which a shadow ray stops (the paper's early
+/// termination); GLSL: MMV_MIN_TRANSMITTANCE.
+constexpr double MinShadowTransmittance = 1.0e-4;
+
+/// A shadow ray of length `end` takes floor(end / h + tolerance) full steps:
+/// the tolerance keeps an end that is a whole number of steps from dropping
+/// the last one by rounding. The GPU's float needs a wider one than the
+/// CPU's double (GLSL: MMV_STEP_TOLERANCE).
+constexpr double ShadowStepTolerance = 1.0e-9;
+constexpr double ShadowStepToleranceFloat = 1.0e-5;
+
+/// A last partial segment shorter than this fraction of a step is dropped, so
+/// that rounding adds no zero-length segment (GLSL: MMV_REST_TOLERANCE).
+constexpr double ShadowRestTolerance = 1.0e-9;
 
 /// Opacity is clamped below 1 before taking the log: alpha = 1 would mean
 /// infinite extinction. 1 - 1e-6 gives mu = 13.8 / u, opaque for any use.
@@ -144,6 +160,21 @@ inline std::string MaterialGLSLPrelude()
   s += "#define MMV_MATERIAL_PARAMETER_COUNT " + std::to_string(MaterialParameterCount) + "\n";
   s += "#define MMV_MAX_LIGHTS " + std::to_string(MaxLights) + "\n";
   return s;
+}
+
+/// The GLSL `#define`s of the shadow-ray constants above, from those
+/// constants, so the GPU ray march stops where the CPU one does.
+inline std::string ShadowRayGLSLPrelude()
+{
+  // Enough digits that the float the shader sees is the nearest to ours.
+  auto literal = [](double value) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof(buffer), "%.9e", value);
+    return std::string(buffer);
+  };
+  return "#define MMV_MIN_TRANSMITTANCE " + literal(MinShadowTransmittance) + "\n" +
+    "#define MMV_STEP_TOLERANCE " + literal(ShadowStepToleranceFloat) + "\n" +
+    "#define MMV_REST_TOLERANCE " + literal(ShadowRestTolerance) + "\n";
 }
 
 } // namespace mmv

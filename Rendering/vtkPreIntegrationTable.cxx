@@ -672,6 +672,13 @@ bool vtkPreIntegrationTable::Update()
 }
 
 //------------------------------------------------------------------------------
+void vtkPreIntegrationTable::GetTableRange(double range[2]) const
+{
+  range[0] = this->Internals->Range[0];
+  range[1] = this->Internals->Range[1];
+}
+
+//------------------------------------------------------------------------------
 const float* vtkPreIntegrationTable::GetColorOpacityTable() const
 {
   return this->Internals->Built ? this->Internals->ColorOpacity.data() : nullptr;

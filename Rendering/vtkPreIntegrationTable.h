@@ -13,12 +13,31 @@
  *   I_beta(t1,t2)  = fraction of the segment before the first non-zero opacity (eq. 7)
  *   I_sigma(t1,t2) = 1 - exp(-int_0^L c_t mu dx)   (shadow opacity, c_t = attenuation)
  *
- * Tables are TableSize x TableSize over ScalarRange; entry (i, j) has front
- * value t1 = range[0] + i*d and back value t2 = range[0] + j*d, with
- * d = (range[1]-range[0])/(TableSize-1), stored at index j*TableSize + i.
- * Opacity and shadow opacity are exact for the piecewise-linear TFs sampled at
- * the table nodes; colour is built in O(n^2) by the incremental scheme of
- * Lum, Wilson & Ma (2004). t1 = t2 gives the homogeneous-segment limit.
+ * Tables are TableSize x TableSize over the table range (GetTableRange());
+ * entry (i, j) has front value t1 = range[0] + i*d and back value
+ * t2 = range[0] + j*d, with d = (range[1]-range[0])/(TableSize-1), stored at
+ * index j*TableSize + i. t1 = t2 gives the homogeneous-segment limit.
+ *
+ * How the entries are computed (not Lum, Wilson & Ma's colour rescaling):
+ *  - Each table cell [t_k, t_k+1] is split at every node of the opacity,
+ *    colour and material functions into pieces on which all of them are
+ *    smooth, so features narrower than a cell (spikes, steps) are resolved.
+ *  - Opacity I_alpha: the optical depth of each piece is integrated in closed
+ *    form where the opacity is linear (the usual case; exact for the true
+ *    TF, the MaxOpacity clamp included) and by 5-point Gauss-Legendre where
+ *    it is curved (midpoint/sharpness); a segment's depth is then a
+ *    difference of prefix sums over its cells.
+ *  - Shadow opacity I_sigma: the same with c_t * mu, c_t by the piece's
+ *    Gauss rule, weighted so that the depth of mu stays exact.
+ *  - Colour I_c: per piece, a least-squares fit c0 + c1 q in the normalised
+ *    optical depth q (clamped to the colour's range over the piece), whose
+ *    emission is integrated exactly; pieces are composited front to back
+ *    within each cell, in both directions, and cells front to back along the
+ *    segment, exactly. Each diagonal |j - i| = m is filled with a sliding
+ *    window (add the front cell, drop the back one: O(1) per entry), so the
+ *    whole table costs O(n^2) (diagonals run in parallel).
+ *  - Shading position I_beta: found at the TF node where non-zero opacity
+ *    starts, not at table resolution.
  *
  * Update() rebuilds only when an input (or a setting) changed since the last
  * build; GetBuildCount() tells how often it did.
@@ -64,9 +83,14 @@ public:
   vtkSetMacro(TableSize, int);
   vtkGetMacro(TableSize, int);
 
-  /// Data range mapped onto the table axes. Default: the opacity TF's range.
+  /// Data range mapped onto the table axes. When empty (the default: min >=
+  /// max), the opacity TF's range; when that is empty too, [min, min + 1].
   vtkSetVector2Macro(ScalarRange, double);
   vtkGetVector2Macro(ScalarRange, double);
+
+  /// The range the current tables were built over, after the fallbacks of
+  /// ScalarRange; { 0, 1 } before the first successful build.
+  void GetTableRange(double range[2]) const;
 
   /**
    * Rebuilds the tables if anything changed. Returns false (with an error)
@@ -75,15 +99,20 @@ public:
    */
   bool Update();
 
+  ///@{
+  /// The tables (layout above). nullptr before the first successful Update();
+  /// a failed Update() keeps the previous tables.
   /// RGBA, 4 floats per entry: I_c (opacity-weighted colour) and I_alpha.
   const float* GetColorOpacityTable() const;
   /// 1 float per entry: I_beta in [0, 1].
   const float* GetShadingPositionTable() const;
   /// 1 float per entry: I_sigma, the shadow-ray opacity.
   const float* GetShadowOpacityTable() const;
+  ///@}
 
   ///@{
-  /// Bilinear lookups by data value (clamped to ScalarRange) for CPU users.
+  /// Bilinear lookups by data value (clamped to the table range) for CPU
+  /// users; 0 before the first successful build.
   double LookupOpacity(double t1, double t2) const;
   double LookupShadowOpacity(double t1, double t2) const;
   double LookupShadingPosition(double t1, double t2) const;

@@ -1,8 +1,9 @@
 // Shadow rays of the irradiance volume (Zhang & Ma §5.1), one fragment per
 // voxel of z slice `slice`, up to four lights per output texture. Mirrors
 // ShadowTransmittance() of Filters/vtkIrradianceVolumeFilter.cxx line for
-// line. Prepended by the pass: the material prelude, MMV_MIN_TRANSMITTANCE,
-// MMV_STEP_TOLERANCE, MMV_REST_TOLERANCE and mmvLightModel.glsl.
+// line. Prepended by the pass: the material prelude, the shadow-ray constants
+// of mmv::ShadowRayGLSLPrelude() (MMV_MIN_TRANSMITTANCE, MMV_STEP_TOLERANCE,
+// MMV_REST_TOLERANCE) and mmvLightModel.glsl.
 
 uniform sampler3D scalars;     // normalised pre-filtered values, linear
 uniform sampler3D classes;     // s per voxel, < 0 where the voxel is empty
@@ -35,20 +36,6 @@ float mmvShadowOpacity(float t1, float t2)
   return texture(shadowTable, (x + 0.5) / tableSize).r;
 }
 
-// Mirrors mmvDirectionToLight() of vtkMultiMaterialLightModel.h; lightDistance < 0
-// means the light is infinitely far away.
-vec3 mmvDirectionToLight(int light, vec3 x, out float lightDistance)
-{
-  if (lightKind[light] == 0)
-  {
-    lightDistance = -1.0;
-    return lightToLight[light];
-  }
-  vec3 d = lightPosition[light] - x;
-  lightDistance = length(d);
-  return lightDistance > 0.0 ? d / lightDistance : vec3(0.0, 0.0, 1.0);
-}
-
 // Distance along index-space direction d from p (inside) to the grid's box.
 float mmvExitDistance(vec3 p, vec3 d)
 {
@@ -73,7 +60,8 @@ float mmvExitDistance(vec3 p, vec3 d)
 float mmvShadowTransmittance(int light, vec3 start, vec3 x, float startValue)
 {
   float lightDistance;
-  vec3 dir = mmvDirectionToLight(light, x, lightDistance);
+  vec3 dir = mmvDirectionToLight(lightKind[light], lightPosition[light], lightToLight[light], x,
+    lightDistance);
   vec3 indexDir = worldToIndex * dir;
   float end = mmvExitDistance(start, indexDir);
   if (lightDistance >= 0.0)

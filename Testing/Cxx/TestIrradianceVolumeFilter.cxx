@@ -14,6 +14,7 @@
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
 #include "vtkSmartPointer.h"
+#include "mmvTestUtilities.h"
 
 #include <gtest/gtest.h>
 
@@ -106,25 +107,6 @@ double DistanceToBoxExit(const double p[3], const double d[3], const double lo[3
   }
   return t;
 }
-
-/// Counts error and warning events, so expected failures print nothing.
-class EventCounter : public vtkCommand
-{
-public:
-  static EventCounter* New() { return new EventCounter; }
-  void Execute(vtkObject*, unsigned long event, void*) override
-  {
-    (event == vtkCommand::ErrorEvent ? this->Errors : this->Warnings)++;
-  }
-  void Watch(vtkAlgorithm* algorithm)
-  {
-    algorithm->AddObserver(vtkCommand::ErrorEvent, this);
-    algorithm->AddObserver(vtkCommand::WarningEvent, this);
-    algorithm->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, this);
-  }
-  int Errors = 0;
-  int Warnings = 0;
-};
 
 /**
  * Homogeneous slab (value 1, opacity alpha per unit distance u, attenuation
@@ -564,46 +546,46 @@ TEST(IrradianceVolumeFilter, ErrorsFailWithoutCrashing)
   const double toLight[3] = { 0.0, 0.0, 1.0 };
   {
     vtkNew<vtkIrradianceVolumeFilter> filter; // no opacity function
-    vtkNew<EventCounter> events;
-    events->Watch(filter);
+    mmvTest::ErrorCounter events(filter);
+    events.Watch(filter->GetExecutive());
     filter->SetInputData(image);
     filter->AddLight(DirectionalLight(toLight));
     EXPECT_EQ(filter->GetExecutive()->Update(), 0);
-    EXPECT_GE(events->Errors, 1);
+    EXPECT_GE(events.Errors(), 1);
     EXPECT_EQ(Irradiance(filter, 0), nullptr);
   }
   {
     vtkNew<vtkIrradianceVolumeFilter> filter;
-    vtkNew<EventCounter> events;
-    events->Watch(filter);
+    mmvTest::ErrorCounter events(filter);
+    events.Watch(filter->GetExecutive());
     filter->SetInputData(image);
     filter->SetScalarOpacity(ConstantOpacity(0.5));
     filter->SetScalarOpacityUnitDistance(0.0);
     filter->AddLight(DirectionalLight(toLight));
     EXPECT_EQ(filter->GetExecutive()->Update(), 0);
-    EXPECT_GE(events->Errors, 1);
+    EXPECT_GE(events.Errors(), 1);
   }
   {
     vtkNew<vtkImageData> bare; // no scalars
     bare->SetDimensions(4, 4, 4);
     vtkNew<vtkIrradianceVolumeFilter> filter;
-    vtkNew<EventCounter> events;
-    events->Watch(filter);
+    mmvTest::ErrorCounter events(filter);
+    events.Watch(filter->GetExecutive());
     filter->SetInputData(bare);
     filter->SetScalarOpacity(ConstantOpacity(0.5));
     filter->AddLight(DirectionalLight(toLight));
     EXPECT_EQ(filter->GetExecutive()->Update(), 0);
-    EXPECT_GE(events->Errors, 1);
+    EXPECT_GE(events.Errors(), 1);
   }
   {
     vtkNew<vtkIrradianceVolumeFilter> filter; // no lights: a warning only
-    vtkNew<EventCounter> events;
-    events->Watch(filter);
+    mmvTest::ErrorCounter events(filter);
+    events.Watch(filter->GetExecutive());
     filter->SetInputData(image);
     filter->SetScalarOpacity(ConstantOpacity(0.5));
     EXPECT_EQ(filter->GetExecutive()->Update(), 1);
-    EXPECT_EQ(events->Errors, 0);
-    EXPECT_EQ(events->Warnings, 1);
+    EXPECT_EQ(events.Errors(), 0);
+    EXPECT_EQ(events.Warnings(), 1);
     EXPECT_EQ(filter->GetOutput()->GetPointData()->GetNumberOfArrays(), 0);
     EXPECT_EQ(filter->GetNumberOfComputedVoxels(), 216);
   }
@@ -624,17 +606,15 @@ TEST(IrradianceVolumeFilter, ModifiedInputsReexecute)
   filter->Update();
   const float before = Irradiance(filter, 0)->GetValue(0);
 
-  // GetMTime is protected in the filter's header; call it as vtkObject's.
-  vtkObject* object = filter;
-  vtkMTimeType mtime = object->GetMTime();
+  vtkMTimeType mtime = filter->GetMTime();
   light->SetPosition(1.0, 0.0, 0.0);
-  EXPECT_GT(object->GetMTime(), mtime);
-  mtime = object->GetMTime();
+  EXPECT_GT(filter->GetMTime(), mtime);
+  mtime = filter->GetMTime();
   otf->AddPoint(1.0, 0.6);
-  EXPECT_GT(object->GetMTime(), mtime);
-  mtime = object->GetMTime();
+  EXPECT_GT(filter->GetMTime(), mtime);
+  mtime = filter->GetMTime();
   material->AddNode(0.0, 0.2, 0.7, 0.2, 20.0, 2.0, 0.0, 0.0);
-  EXPECT_GT(object->GetMTime(), mtime);
+  EXPECT_GT(filter->GetMTime(), mtime);
 
   filter->Update();
   EXPECT_NE(Irradiance(filter, 0)->GetValue(0), before);

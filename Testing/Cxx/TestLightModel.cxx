@@ -44,6 +44,22 @@ TEST(LightModel, PointFalloffIsFiniteAtTheLight)
   EXPECT_DOUBLE_EQ(f, 1.0);
 }
 
+TEST(LightModel, ZeroRadiusIsTheLimitOfEquation12)
+{
+  // Radius 0: 1 at the light itself (not 0/0), 0 everywhere else, which is
+  // where eq. 12 goes as the radius shrinks.
+  EXPECT_EQ(mmv::mmvPointFalloff(0.0, 0.0), 1.0);
+  EXPECT_EQ(mmv::mmvPointFalloff(0.0, 1.0e-12), 0.0);
+  EXPECT_EQ(mmv::mmvPointFalloff(0.0, 4.0), 0.0);
+  EXPECT_LT(mmv::mmvPointFalloff(1.0e-3, 4.0), 1.0e-6);
+  mmv::LightSource light;
+  light.Kind = mmv::PointLight;
+  light.Position = { 1.0, 2.0, 3.0 };
+  light.Radius = 0.0;
+  EXPECT_EQ(mmv::mmvLightGeometryTerm(light, light.Position), 1.0);
+  EXPECT_EQ(mmv::mmvLightGeometryTerm(light, glm::dvec3(0.0)), 0.0);
+}
+
 TEST(LightModel, SpotVisibilityInsideOutsideAndOnTheEdge)
 {
   const glm::dvec3 axis(0.0, 0.0, -1.0);

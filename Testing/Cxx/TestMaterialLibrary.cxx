@@ -1,11 +1,11 @@
 // Tests of vtkMaterialLibrary: the built-in presets against their JSON files,
 // editing, validation (all-or-nothing, one error per rejected call), JSON and
 // file round trips.
-#include "vtkCommand.h"
 #include "vtkMaterialLibrary.h"
 #include "vtkMultiMaterialParameters.h"
 #include "vtkNew.h"
 #include "vtkSmartPointer.h"
+#include "mmvTestUtilities.h"
 
 #include <gtest/gtest.h>
 
@@ -24,27 +24,6 @@ namespace
 {
 constexpr int P = mmv::MaterialParameterCount;
 const char* const BuiltinNames[] = { "plastic", "metal", "skin", "bone", "glass", "leaf", "matte" };
-
-/// Counts ErrorEvents; while it observes, VTK does not print the error.
-class ErrorCounter : public vtkCommand
-{
-public:
-  static ErrorCounter* New() { return new ErrorCounter; }
-  void Execute(vtkObject*, unsigned long, void* callData) override
-  {
-    ++this->Count;
-    this->Last = callData ? static_cast<const char*>(callData) : "";
-  }
-  int Count = 0;
-  std::string Last;
-};
-
-vtkSmartPointer<ErrorCounter> WatchErrors(vtkObject* object)
-{
-  auto counter = vtkSmartPointer<ErrorCounter>::New();
-  object->AddObserver(vtkCommand::ErrorEvent, counter);
-  return counter;
-}
 
 std::vector<double> PresetOf(vtkMaterialLibrary* library, const char* name)
 {
@@ -185,9 +164,9 @@ TEST(MaterialLibrary, BuiltinSpotValues)
 TEST(MaterialLibrary, EveryBuiltinIsValidAndLoadsWithoutErrors)
 {
   vtkNew<vtkMaterialLibrary> library;
-  auto errors = WatchErrors(library);
+  mmvTest::ErrorCounter errors(library);
   library->ResetToBuiltins(); // reloads with the observer in place
-  EXPECT_EQ(errors->Count, 0) << errors->Last;
+  EXPECT_EQ(errors.Errors(), 0) << errors.LastMessage();
   ASSERT_EQ(library->GetNumberOfPresets(), 7);
   for (int i = 0; i < library->GetNumberOfPresets(); ++i)
   {
@@ -219,13 +198,13 @@ TEST(MaterialLibrary, PresetNamesAndUnknownLookups)
   EXPECT_EQ(library->GetPresetName(-1), nullptr);
   EXPECT_EQ(library->GetPresetName(7), nullptr);
 
-  auto errors = WatchErrors(library);
+  mmvTest::ErrorCounter errors(library);
   double parameters[P] = { -5 };
   double rgb[3] = { -5 };
   EXPECT_FALSE(library->GetPreset("unobtainium", parameters));
   EXPECT_FALSE(library->GetPresetColor("unobtainium", rgb));
   EXPECT_FALSE(library->GetPreset(nullptr, parameters));
-  EXPECT_EQ(errors->Count, 3);
+  EXPECT_EQ(errors.Errors(), 3);
   EXPECT_EQ(parameters[0], -5.0);
   EXPECT_EQ(rgb[0], -5.0);
 }
@@ -233,7 +212,7 @@ TEST(MaterialLibrary, PresetNamesAndUnknownLookups)
 TEST(MaterialLibrary, AddReplaceRemove)
 {
   vtkNew<vtkMaterialLibrary> library;
-  auto errors = WatchErrors(library);
+  mmvTest::ErrorCounter errors(library);
   const double chrome[P] = { 0.05, 0.1, 1.0, 300.0, 1.0, 0.0, 0.9 };
   const double chromeColor[3] = { 0.9, 0.9, 0.95 };
   ASSERT_TRUE(library->AddPreset("chrome", chrome, chromeColor));
@@ -257,7 +236,7 @@ TEST(MaterialLibrary, AddReplaceRemove)
     (std::vector<std::string>{ "bone", "leaf", "matte", "metal", "plastic", "skin", "chrome" }));
   EXPECT_FALSE(library->RemovePreset("glass"));
   EXPECT_FALSE(library->RemovePreset(nullptr));
-  EXPECT_EQ(errors->Count, 0);
+  EXPECT_EQ(errors.Errors(), 0);
 
   library->ResetToBuiltins();
   EXPECT_EQ(library->GetNumberOfPresets(), 7);
@@ -269,7 +248,7 @@ TEST(MaterialLibrary, AddReplaceRemove)
 TEST(MaterialLibrary, MTimeChangesOnEditsOnly)
 {
   vtkNew<vtkMaterialLibrary> library;
-  auto errors = WatchErrors(library);
+  mmvTest::ErrorCounter errors(library);
   const double parameters[P] = { 0.1, 0.2, 0.3, 4.0, 0.5, 0.6, 0.7 };
   vtkMTimeType mtime = library->GetMTime();
   ASSERT_TRUE(library->AddPreset("new", parameters));
@@ -293,7 +272,7 @@ TEST(MaterialLibrary, MTimeChangesOnEditsOnly)
   library->GetPreset("metal", out);
   library->ToJSON();
   EXPECT_EQ(library->GetMTime(), mtime);
-  EXPECT_EQ(errors->Count, 2);
+  EXPECT_EQ(errors.Errors(), 2);
 }
 
 TEST(MaterialLibrary, AddPresetRejectsInvalidInput)
@@ -331,18 +310,18 @@ TEST(MaterialLibrary, AddPresetRejectsInvalidInput)
     vtkNew<vtkMaterialLibrary> library;
     const std::string before = library->ToJSON();
     const vtkMTimeType mtime = library->GetMTime();
-    auto errors = WatchErrors(library);
+    mmvTest::ErrorCounter errors(library);
     EXPECT_FALSE(library->AddPreset(
       c.Name.c_str(), c.Parameters.data(), c.Color.empty() ? nullptr : c.Color.data()));
-    EXPECT_EQ(errors->Count, 1);
+    EXPECT_EQ(errors.Errors(), 1);
     EXPECT_EQ(library->ToJSON(), before);
     EXPECT_EQ(library->GetMTime(), mtime);
   }
   vtkNew<vtkMaterialLibrary> library;
-  auto errors = WatchErrors(library);
+  mmvTest::ErrorCounter errors(library);
   EXPECT_FALSE(library->AddPreset(nullptr, good));
   EXPECT_FALSE(library->AddPreset("x", nullptr));
-  EXPECT_EQ(errors->Count, 2);
+  EXPECT_EQ(errors.Errors(), 2);
   EXPECT_EQ(library->GetNumberOfPresets(), 7);
 }
 
@@ -359,9 +338,9 @@ TEST(MaterialLibrary, JSONRoundTrip)
 
   vtkNew<vtkMaterialLibrary> back;
   RemoveAll(back);
-  auto errors = WatchErrors(back);
+  mmvTest::ErrorCounter errors(back);
   ASSERT_TRUE(back->AddPresetsFromJSON(json)) << json;
-  EXPECT_EQ(errors->Count, 0);
+  EXPECT_EQ(errors.Errors(), 0);
   EXPECT_EQ(NamesOf(back), NamesOf(library));
   for (const std::string& name : NamesOf(library))
   {
@@ -385,9 +364,9 @@ TEST(MaterialLibrary, FileRoundTrip)
 
   vtkNew<vtkMaterialLibrary> back;
   RemoveAll(back);
-  auto errors = WatchErrors(back);
+  mmvTest::ErrorCounter errors(back);
   ASSERT_TRUE(back->ReadJSONFile(path.c_str()));
-  EXPECT_EQ(errors->Count, 0);
+  EXPECT_EQ(errors.Errors(), 0);
   EXPECT_EQ(back->ToJSON(), library->ToJSON());
   EXPECT_EQ(PresetOf(back, "custom"), std::vector<double>(custom, custom + P));
   EXPECT_EQ(ColorOf(back, "custom"), std::vector<double>(customColor, customColor + 3));
@@ -411,22 +390,22 @@ TEST(MaterialLibrary, FileErrors)
 {
   vtkNew<vtkMaterialLibrary> library;
   const std::string before = library->ToJSON();
-  auto errors = WatchErrors(library);
+  mmvTest::ErrorCounter errors(library);
   EXPECT_FALSE(library->ReadJSONFile(TempPath("no_such_library.json").c_str()));
-  EXPECT_EQ(errors->Count, 1);
-  EXPECT_NE(errors->Last.find("no_such_library.json"), std::string::npos) << errors->Last;
+  EXPECT_EQ(errors.Errors(), 1);
+  EXPECT_NE(errors.LastMessage().find("no_such_library.json"), std::string::npos) << errors.LastMessage();
   EXPECT_FALSE(library->ReadJSONFile(nullptr));
-  EXPECT_EQ(errors->Count, 2);
+  EXPECT_EQ(errors.Errors(), 2);
 
   const std::string bad = TempPath("bad_library.json");
   WriteFile(bad, R"([{"name": "ok"}, {"name": "bad", "specular": -1}])");
   EXPECT_FALSE(library->ReadJSONFile(bad.c_str()));
-  EXPECT_EQ(errors->Count, 3);
+  EXPECT_EQ(errors.Errors(), 3);
   EXPECT_FALSE(library->HasPreset("ok"));
   std::remove(bad.c_str());
 
   EXPECT_FALSE(library->WriteJSONFile(TempPath("no_such_dir/library.json").c_str()));
-  EXPECT_EQ(errors->Count, 4);
+  EXPECT_EQ(errors.Errors(), 4);
   EXPECT_EQ(library->ToJSON(), before);
 }
 
@@ -435,7 +414,7 @@ TEST(MaterialLibrary, ArrayIsAllOrNothing)
   vtkNew<vtkMaterialLibrary> library;
   const std::string before = library->ToJSON();
   const vtkMTimeType mtime = library->GetMTime();
-  auto errors = WatchErrors(library);
+  mmvTest::ErrorCounter errors(library);
   // The first element is valid and the last replaces a built-in: neither may
   // be applied because the middle one is bad.
   EXPECT_FALSE(library->AddPresetsFromJSON(R"([
@@ -443,8 +422,8 @@ TEST(MaterialLibrary, ArrayIsAllOrNothing)
       {"name": "second", "shininess": -3},
       {"name": "metal", "shininess": 1}
     ])"));
-  EXPECT_EQ(errors->Count, 1);
-  EXPECT_NE(errors->Last.find("shininess"), std::string::npos) << errors->Last;
+  EXPECT_EQ(errors.Errors(), 1);
+  EXPECT_NE(errors.LastMessage().find("shininess"), std::string::npos) << errors.LastMessage();
   EXPECT_FALSE(library->HasPreset("first"));
   EXPECT_EQ(PresetOf(library, "metal")[mmv::Shininess], 120.0);
   EXPECT_EQ(library->ToJSON(), before);
@@ -459,7 +438,7 @@ TEST(MaterialLibrary, ArrayIsAllOrNothing)
   EXPECT_EQ(PresetOf(library, "first")[mmv::Ambient], 0.5);
   EXPECT_EQ(PresetOf(library, "metal")[mmv::Shininess], 1.0);
   EXPECT_STREQ(library->GetPresetName(4), "metal");
-  EXPECT_EQ(errors->Count, 1);
+  EXPECT_EQ(errors.Errors(), 1);
 }
 
 TEST(MaterialLibrary, MalformedJSONIsRejected)
@@ -493,9 +472,9 @@ TEST(MaterialLibrary, MalformedJSONIsRejected)
     SCOPED_TRACE(c.first);
     vtkNew<vtkMaterialLibrary> library;
     const std::string before = library->ToJSON();
-    auto errors = WatchErrors(library);
+    mmvTest::ErrorCounter errors(library);
     EXPECT_FALSE(library->AddPresetsFromJSON(c.second));
-    EXPECT_EQ(errors->Count, 1);
+    EXPECT_EQ(errors.Errors(), 1);
     EXPECT_EQ(library->ToJSON(), before);
   }
 }
@@ -503,10 +482,10 @@ TEST(MaterialLibrary, MalformedJSONIsRejected)
 TEST(MaterialLibrary, ColourBoundsAreInclusive)
 {
   vtkNew<vtkMaterialLibrary> library;
-  auto errors = WatchErrors(library);
+  mmvTest::ErrorCounter errors(library);
   ASSERT_TRUE(library->AddPresetsFromJSON(R"({"name": "x", "color": [0, 1, 0.5]})"));
   EXPECT_EQ(ColorOf(library, "x"), (std::vector<double>{ 0.0, 1.0, 0.5 }));
-  EXPECT_EQ(errors->Count, 0);
+  EXPECT_EQ(errors.Errors(), 0);
 }
 
 TEST(MaterialLibrary, EmptyArrayIsAcceptedAndChangesNothing)

@@ -1,12 +1,12 @@
 // Tests of vtkMaterialTransferFunction: interpolation, node editing,
 // validation (rejected edits change nothing and raise exactly one error),
 // MTime, GPU tables, JSON and presets.
-#include "vtkCommand.h"
 #include "vtkMaterialLibrary.h"
 #include "vtkMaterialTransferFunction.h"
 #include "vtkMultiMaterialParameters.h"
 #include "vtkNew.h"
 #include "vtkSmartPointer.h"
+#include "mmvTestUtilities.h"
 
 #include <gtest/gtest.h>
 
@@ -25,27 +25,6 @@ constexpr int P = mmv::MaterialParameterCount;
 constexpr int Stride = vtkMaterialTransferFunction::NodeStride;
 const double NaN = std::numeric_limits<double>::quiet_NaN();
 const double Inf = std::numeric_limits<double>::infinity();
-
-/// Counts ErrorEvents; while it observes, VTK does not print the error.
-class ErrorCounter : public vtkCommand
-{
-public:
-  static ErrorCounter* New() { return new ErrorCounter; }
-  void Execute(vtkObject*, unsigned long, void* callData) override
-  {
-    ++this->Count;
-    this->Last = callData ? static_cast<const char*>(callData) : "";
-  }
-  int Count = 0;
-  std::string Last;
-};
-
-vtkSmartPointer<ErrorCounter> WatchErrors(vtkObject* object)
-{
-  auto counter = vtkSmartPointer<ErrorCounter>::New();
-  object->AddObserver(vtkCommand::ErrorEvent, counter);
-  return counter;
-}
 
 std::vector<double> AllNodes(vtkMaterialTransferFunction* tf)
 {
@@ -210,7 +189,7 @@ TEST(MaterialTransferFunction, RemoveNode)
   tf->AddNode(1.0, 0.1, 0, 0, 0, 0, 0, 0);
   tf->AddNode(2.0, 0.2, 0, 0, 0, 0, 0, 0);
   tf->AddNode(3.0, 0.3, 0, 0, 0, 0, 0, 0);
-  auto errors = WatchErrors(tf);
+  mmvTest::ErrorCounter errors(tf);
   EXPECT_EQ(tf->RemoveNode(2.0), 1);
   EXPECT_EQ(tf->GetSize(), 2);
   EXPECT_EQ(tf->RemoveNode(2.0), -1);
@@ -220,7 +199,7 @@ TEST(MaterialTransferFunction, RemoveNode)
   EXPECT_EQ(tf->RemoveNode(3.0), 1);
   EXPECT_EQ(tf->RemoveNode(1.0), 0);
   EXPECT_EQ(tf->GetSize(), 0);
-  EXPECT_EQ(errors->Count, 0);
+  EXPECT_EQ(errors.Errors(), 0);
   tf->AddNode(1.0, 0.1, 0, 0, 0, 0, 0, 0);
   tf->RemoveAllNodes();
   EXPECT_EQ(tf->GetSize(), 0);
@@ -298,10 +277,10 @@ TEST(MaterialTransferFunction, SetNodesRejectsInvalidInput)
     AddTwoNodes(tf);
     const std::vector<double> before = AllNodes(tf);
     const vtkMTimeType mtime = tf->GetMTime();
-    auto errors = WatchErrors(tf);
+    mmvTest::ErrorCounter errors(tf);
     EXPECT_FALSE(tf->SetNodes(static_cast<int>(c.second.size()), c.second.data()));
     EXPECT_EQ(AllNodes(tf), before);
-    EXPECT_EQ(errors->Count, 1);
+    EXPECT_EQ(errors.Errors(), 1);
     EXPECT_EQ(tf->GetMTime(), mtime);
   }
 }
@@ -309,7 +288,7 @@ TEST(MaterialTransferFunction, SetNodesRejectsInvalidInput)
 TEST(MaterialTransferFunction, HardMaxItselfIsAccepted)
 {
   vtkNew<vtkMaterialTransferFunction> tf;
-  auto errors = WatchErrors(tf);
+  mmvTest::ErrorCounter errors(tf);
   std::vector<double> node = { 0.0 };
   for (int p = 0; p < P; ++p)
   {
@@ -317,7 +296,7 @@ TEST(MaterialTransferFunction, HardMaxItselfIsAccepted)
   }
   EXPECT_TRUE(tf->SetNodes(Stride, node.data()));
   EXPECT_EQ(AllNodes(tf), node);
-  EXPECT_EQ(errors->Count, 0);
+  EXPECT_EQ(errors.Errors(), 0);
 }
 
 TEST(MaterialTransferFunction, AddNodeRejectsInvalidInput)
@@ -336,12 +315,12 @@ TEST(MaterialTransferFunction, AddNodeRejectsInvalidInput)
     AddTwoNodes(tf);
     const std::vector<double> before = AllNodes(tf);
     const vtkMTimeType mtime = tf->GetMTime();
-    auto errors = WatchErrors(tf);
+    mmvTest::ErrorCounter errors(tf);
     const std::vector<double>& n = c.second;
     EXPECT_EQ(tf->AddNode(n[0], n[1], n[2], n[3], n[4], n[5], n[6], n[7]), -1);
     EXPECT_EQ(tf->AddNode(n[0], n.data() + 1), -1);
     EXPECT_EQ(AllNodes(tf), before);
-    EXPECT_EQ(errors->Count, 2);
+    EXPECT_EQ(errors.Errors(), 2);
     EXPECT_EQ(tf->GetMTime(), mtime);
   }
 }
@@ -349,13 +328,13 @@ TEST(MaterialTransferFunction, AddNodeRejectsInvalidInput)
 TEST(MaterialTransferFunction, ErrorMessageNamesTheParameter)
 {
   vtkNew<vtkMaterialTransferFunction> tf;
-  auto errors = WatchErrors(tf);
+  mmvTest::ErrorCounter errors(tf);
   EXPECT_EQ(tf->AddNode(0.0, 0.1, 0.1, 0.1, 1.0, 0.1, -3.0, 0.1), -1);
-  ASSERT_EQ(errors->Count, 1);
-  EXPECT_NE(errors->Last.find("scattering"), std::string::npos) << errors->Last;
+  ASSERT_EQ(errors.Errors(), 1);
+  EXPECT_NE(errors.LastMessage().find("scattering"), std::string::npos) << errors.LastMessage();
   EXPECT_FALSE(tf->FromJSON(R"({"nodes": [{"value": 0, "glossiness": 1}]})"));
-  ASSERT_EQ(errors->Count, 2);
-  EXPECT_NE(errors->Last.find("glossiness"), std::string::npos) << errors->Last;
+  ASSERT_EQ(errors.Errors(), 2);
+  EXPECT_NE(errors.LastMessage().find("glossiness"), std::string::npos) << errors.LastMessage();
 }
 
 TEST(MaterialTransferFunction, MTimeIncreasesOnEverySuccessfulEdit)
@@ -401,7 +380,7 @@ TEST(MaterialTransferFunction, MTimeUnchangedByRejectedEditsAndQueries)
 {
   vtkNew<vtkMaterialTransferFunction> tf;
   AddTwoNodes(tf);
-  auto errors = WatchErrors(tf);
+  mmvTest::ErrorCounter errors(tf);
   const vtkMTimeType mtime = tf->GetMTime();
   const double bad[Stride] = { 2.0, -0.1, 0.2, 0.3, 4.0, 0.5, 0.6, 0.7 };
   EXPECT_EQ(tf->AddNode(NaN, 0.1, 0.2, 0.3, 4.0, 0.5, 0.6, 0.7), -1);
@@ -411,7 +390,7 @@ TEST(MaterialTransferFunction, MTimeUnchangedByRejectedEditsAndQueries)
   EXPECT_FALSE(tf->ApplyPreset("no-such-material", 0.0, 1.0));
   EXPECT_FALSE(tf->ReadJSONFile(TempPath("does_not_exist.json").c_str()));
   EXPECT_EQ(tf->RemoveNode(123.0), -1);
-  EXPECT_EQ(errors->Count, 6);
+  EXPECT_EQ(errors.Errors(), 6);
   // Queries do not count as edits either.
   double parameters[P];
   tf->Evaluate(3.0, parameters);
@@ -456,13 +435,13 @@ TEST(MaterialTransferFunction, GetTableMatchesEvaluate)
 TEST(MaterialTransferFunction, GetTableRejectsBadArguments)
 {
   vtkNew<vtkMaterialTransferFunction> tf;
-  auto errors = WatchErrors(tf);
+  mmvTest::ErrorCounter errors(tf);
   float table[P] = { -7.0f };
   tf->GetTable(0.0, 1.0, 0, table);
   tf->GetTable(0.0, 1.0, -3, table);
   tf->GetTable(0.0, 1.0, 4, nullptr);
   tf->GetTable(NaN, 1.0, 1, table);
-  EXPECT_EQ(errors->Count, 4);
+  EXPECT_EQ(errors.Errors(), 4);
   EXPECT_EQ(table[0], -7.0f);
 }
 
@@ -486,10 +465,10 @@ TEST(MaterialTransferFunction, GetMaximum)
   tf->ApplyPreset("metal", 0.0, 1.0);
   EXPECT_EQ(tf->GetMaximum(mmv::Scattering), 0.0);
 
-  auto errors = WatchErrors(tf);
+  mmvTest::ErrorCounter errors(tf);
   EXPECT_EQ(tf->GetMaximum(-1), 0.0);
   EXPECT_EQ(tf->GetMaximum(P), 0.0);
-  EXPECT_EQ(errors->Count, 2);
+  EXPECT_EQ(errors.Errors(), 2);
 }
 
 TEST(MaterialTransferFunction, JSONRoundTripIsExact)
@@ -506,9 +485,9 @@ TEST(MaterialTransferFunction, JSONRoundTripIsExact)
       std::string::npos);
   }
   vtkNew<vtkMaterialTransferFunction> back;
-  auto errors = WatchErrors(back);
+  mmvTest::ErrorCounter errors(back);
   ASSERT_TRUE(back->FromJSON(json)) << json;
-  EXPECT_EQ(errors->Count, 0);
+  EXPECT_EQ(errors.Errors(), 0);
   EXPECT_EQ(AllNodes(back), AllNodes(tf)); // bitwise equal doubles
   EXPECT_EQ(back->ToJSON(), json);
 
@@ -570,10 +549,10 @@ TEST(MaterialTransferFunction, MalformedJSONIsRejectedAndChangesNothing)
     AddTwoNodes(tf);
     const std::vector<double> before = AllNodes(tf);
     const vtkMTimeType mtime = tf->GetMTime();
-    auto errors = WatchErrors(tf);
+    mmvTest::ErrorCounter errors(tf);
     EXPECT_FALSE(tf->FromJSON(c.second));
     EXPECT_EQ(AllNodes(tf), before);
-    EXPECT_EQ(errors->Count, 1);
+    EXPECT_EQ(errors.Errors(), 1);
     EXPECT_EQ(tf->GetMTime(), mtime);
   }
 }
@@ -586,10 +565,10 @@ TEST(MaterialTransferFunction, FileRoundTrip)
   const std::string path = TempPath("tf_round_trip.json");
   ASSERT_TRUE(tf->WriteJSONFile(path.c_str()));
   vtkNew<vtkMaterialTransferFunction> back;
-  auto errors = WatchErrors(back);
+  mmvTest::ErrorCounter errors(back);
   ASSERT_TRUE(back->ReadJSONFile(path.c_str()));
   EXPECT_EQ(AllNodes(back), AllNodes(tf));
-  EXPECT_EQ(errors->Count, 0);
+  EXPECT_EQ(errors.Errors(), 0);
   std::remove(path.c_str());
 }
 
@@ -598,13 +577,13 @@ TEST(MaterialTransferFunction, FileErrors)
   vtkNew<vtkMaterialTransferFunction> tf;
   AddTwoNodes(tf);
   const std::vector<double> before = AllNodes(tf);
-  auto errors = WatchErrors(tf);
+  mmvTest::ErrorCounter errors(tf);
 
   EXPECT_FALSE(tf->ReadJSONFile(TempPath("no_such_file.json").c_str()));
-  EXPECT_EQ(errors->Count, 1);
-  EXPECT_NE(errors->Last.find("no_such_file.json"), std::string::npos) << errors->Last;
+  EXPECT_EQ(errors.Errors(), 1);
+  EXPECT_NE(errors.LastMessage().find("no_such_file.json"), std::string::npos) << errors.LastMessage();
   EXPECT_FALSE(tf->ReadJSONFile(nullptr));
-  EXPECT_EQ(errors->Count, 2);
+  EXPECT_EQ(errors.Errors(), 2);
 
   const std::string bad = TempPath("tf_bad.json");
   {
@@ -614,11 +593,11 @@ TEST(MaterialTransferFunction, FileErrors)
     std::fclose(f);
   }
   EXPECT_FALSE(tf->ReadJSONFile(bad.c_str()));
-  EXPECT_EQ(errors->Count, 3);
+  EXPECT_EQ(errors.Errors(), 3);
   std::remove(bad.c_str());
 
   EXPECT_FALSE(tf->WriteJSONFile(TempPath("no_such_dir/out.json").c_str()));
-  EXPECT_EQ(errors->Count, 4);
+  EXPECT_EQ(errors.Errors(), 4);
   EXPECT_EQ(AllNodes(tf), before);
 }
 
@@ -633,7 +612,7 @@ TEST(MaterialTransferFunction, ApplyPresetMatchesLibrary)
     std::vector<double> preset(P);
     ASSERT_TRUE(library->GetPreset(name, preset.data()));
     vtkNew<vtkMaterialTransferFunction> tf;
-    auto errors = WatchErrors(tf);
+    mmvTest::ErrorCounter errors(tf);
     ASSERT_TRUE(tf->ApplyPreset(name, 10.0, 20.0));
     EXPECT_EQ(tf->GetSize(), 2);
     double range[2];
@@ -644,7 +623,7 @@ TEST(MaterialTransferFunction, ApplyPresetMatchesLibrary)
     {
       EXPECT_EQ(Evaluated(tf, x), preset) << "x=" << x;
     }
-    EXPECT_EQ(errors->Count, 0);
+    EXPECT_EQ(errors.Errors(), 0);
   }
   // A concrete number from Rendering/Materials/metal.json.
   vtkNew<vtkMaterialTransferFunction> tf;
@@ -671,15 +650,15 @@ TEST(MaterialTransferFunction, ApplyPresetRejectsUnknownNamesAndBadRanges)
   AddTwoNodes(tf);
   const std::vector<double> before = AllNodes(tf);
   const vtkMTimeType mtime = tf->GetMTime();
-  auto errors = WatchErrors(tf);
+  mmvTest::ErrorCounter errors(tf);
   EXPECT_FALSE(tf->ApplyPreset("unobtainium", 0.0, 1.0));
-  EXPECT_EQ(errors->Count, 1);
-  EXPECT_NE(errors->Last.find("unobtainium"), std::string::npos) << errors->Last;
+  EXPECT_EQ(errors.Errors(), 1);
+  EXPECT_NE(errors.LastMessage().find("unobtainium"), std::string::npos) << errors.LastMessage();
   EXPECT_FALSE(tf->ApplyPreset(nullptr, 0.0, 1.0));
   EXPECT_FALSE(tf->ApplyPreset("metal", 1.0, 0.0));
   EXPECT_FALSE(tf->ApplyPreset("metal", NaN, 1.0));
   EXPECT_FALSE(tf->ApplyPreset("metal", 0.0, Inf));
-  EXPECT_EQ(errors->Count, 5);
+  EXPECT_EQ(errors.Errors(), 5);
   EXPECT_EQ(AllNodes(tf), before);
   EXPECT_EQ(tf->GetMTime(), mtime);
 }

@@ -8,6 +8,7 @@
 #include "vtkMultiMaterialParameters.h"
 #include "vtkNew.h"
 #include "vtkPiecewiseFunction.h"
+#include "mmvTestUtilities.h"
 
 #include <gtest/gtest.h>
 
@@ -22,15 +23,6 @@
 
 namespace
 {
-
-// Counts ErrorEvents; observing them also keeps vtkErrorMacro from printing.
-class ErrorCounter : public vtkCommand
-{
-public:
-  static ErrorCounter* New() { return new ErrorCounter; }
-  void Execute(vtkObject*, unsigned long, void*) override { ++this->Count; }
-  int Count = 0;
-};
 
 struct Segment
 {
@@ -113,6 +105,20 @@ double NodeValue(int i, int n)
   return static_cast<double>(i) / (n - 1);
 }
 
+// The table settings the accuracy tests share: range [0, 1].
+void Configure(vtkPreIntegrationTable* table, vtkPiecewiseFunction* otf,
+  vtkColorTransferFunction* ctf, vtkMaterialTransferFunction* mtf, double length, int n,
+  double unitDistance = 1.0)
+{
+  table->SetScalarOpacity(otf);
+  table->SetColorTransferFunction(ctf);
+  table->SetMaterialTransferFunction(mtf);
+  table->SetStepLength(length);
+  table->SetScalarOpacityUnitDistance(unitDistance);
+  table->SetTableSize(n);
+  table->SetScalarRange(0.0, 1.0);
+}
+
 } // namespace
 
 TEST(PreIntegrationTable, BruteForceOpacityAndColor)
@@ -124,11 +130,7 @@ TEST(PreIntegrationTable, BruteForceOpacityAndColor)
   const int n = 128;
   const double length = 1.5;
   vtkNew<vtkPreIntegrationTable> table;
-  table->SetScalarOpacity(otf);
-  table->SetColorTransferFunction(ctf);
-  table->SetStepLength(length);
-  table->SetTableSize(n);
-  table->SetScalarRange(0.0, 1.0);
+  Configure(table, otf, ctf, nullptr, length, n);
   ASSERT_TRUE(table->Update());
   const float* rgba = table->GetColorOpacityTable();
   ASSERT_NE(rgba, nullptr);
@@ -187,12 +189,7 @@ TEST(PreIntegrationTable, BruteForceShadowOpacity)
   const double length = 1.6;
   const double unitDistance = 0.5;
   vtkNew<vtkPreIntegrationTable> table;
-  table->SetScalarOpacity(otf);
-  table->SetMaterialTransferFunction(mtf);
-  table->SetStepLength(length);
-  table->SetScalarOpacityUnitDistance(unitDistance);
-  table->SetTableSize(n);
-  table->SetScalarRange(0.0, 1.0);
+  Configure(table, otf, nullptr, mtf, length, n, unitDistance);
   ASSERT_TRUE(table->Update());
   const float* shadow = table->GetShadowOpacityTable();
   ASSERT_NE(shadow, nullptr);
@@ -226,11 +223,7 @@ TEST(PreIntegrationTable, DiagonalLimitAndConstantColor)
   const int n = 64;
   const double length = 2.0;
   vtkNew<vtkPreIntegrationTable> table;
-  table->SetScalarOpacity(otf);
-  table->SetColorTransferFunction(ctf);
-  table->SetStepLength(length);
-  table->SetTableSize(n);
-  table->SetScalarRange(0.0, 1.0);
+  Configure(table, otf, ctf, nullptr, length, n);
   ASSERT_TRUE(table->Update());
   const float* rgba = table->GetColorOpacityTable();
 
@@ -267,10 +260,7 @@ TEST(PreIntegrationTable, SharpStep)
   const double length = 1.3;
   const double cell = 1.0 / (n - 1);
   vtkNew<vtkPreIntegrationTable> table;
-  table->SetScalarOpacity(otf);
-  table->SetStepLength(length);
-  table->SetTableSize(n);
-  table->SetScalarRange(0.0, 1.0);
+  Configure(table, otf, nullptr, nullptr, length, n);
   ASSERT_TRUE(table->Update());
 
   const double muHigh = mmv::ExtinctionFromOpacity(high, 1.0);
@@ -309,10 +299,7 @@ TEST(PreIntegrationTable, ThinSpikeBetweenNodes)
   const int n = 64;
   const double length = 1.0;
   vtkNew<vtkPreIntegrationTable> table;
-  table->SetScalarOpacity(otf);
-  table->SetStepLength(length);
-  table->SetTableSize(n);
-  table->SetScalarRange(0.0, 1.0);
+  Configure(table, otf, nullptr, nullptr, length, n);
   ASSERT_TRUE(table->Update());
 
   // int mu dt over the spike: 2 (w/p) (p + (1-p) ln(1-p)).
@@ -340,9 +327,7 @@ TEST(PreIntegrationTable, ShadingPositionLimits)
   otf->AddPoint(1.0, 0.0);
 
   vtkNew<vtkPreIntegrationTable> table;
-  table->SetScalarOpacity(otf);
-  table->SetTableSize(101);
-  table->SetScalarRange(0.0, 1.0);
+  Configure(table, otf, nullptr, nullptr, 1.0, 101);
   ASSERT_TRUE(table->Update());
 
   // Front value opaque.
@@ -367,10 +352,7 @@ TEST(PreIntegrationTable, ShadowAttenuation)
   MakeRandomFunctions(otf, nullptr, nullptr, 99u);
   const int n = 48;
   vtkNew<vtkPreIntegrationTable> table;
-  table->SetScalarOpacity(otf);
-  table->SetTableSize(n);
-  table->SetStepLength(1.7);
-  table->SetScalarRange(0.0, 1.0);
+  Configure(table, otf, nullptr, nullptr, 1.7, n);
 
   // No material function: attenuation 1, shadow opacity == opacity.
   ASSERT_TRUE(table->Update());
@@ -458,12 +440,11 @@ TEST(PreIntegrationTable, InvalidSettingsKeepPreviousTable)
   otf->AddPoint(0.0, 0.1);
   otf->AddPoint(1.0, 0.7);
   vtkNew<vtkPreIntegrationTable> table;
-  vtkNew<ErrorCounter> errors;
-  table->AddObserver(vtkCommand::ErrorEvent, errors);
+  mmvTest::ErrorCounter errors(table);
 
   // Nothing built yet: lookups give 0.
   EXPECT_FALSE(table->Update());
-  EXPECT_EQ(errors->Count, 1);
+  EXPECT_EQ(errors.Errors(), 1);
   EXPECT_EQ(table->GetBuildCount(), 0);
   EXPECT_EQ(table->LookupOpacity(0.2, 0.8), 0.0);
   EXPECT_EQ(table->LookupShadowOpacity(0.2, 0.8), 0.0);
@@ -501,10 +482,10 @@ TEST(PreIntegrationTable, InvalidSettingsKeepPreviousTable)
   for (const auto& c : cases)
   {
     const int builds = table->GetBuildCount();
-    errors->Count = 0;
+    errors.Reset();
     c.second(table);
     EXPECT_FALSE(table->Update()) << c.first;
-    EXPECT_EQ(errors->Count, 1) << c.first;
+    EXPECT_EQ(errors.Errors(), 1) << c.first;
     EXPECT_EQ(table->GetBuildCount(), builds) << c.first;
     EXPECT_EQ(table->LookupOpacity(0.2, 0.8), goodOpacity) << c.first;
     ASSERT_NE(table->GetColorOpacityTable(), nullptr);
@@ -515,12 +496,56 @@ TEST(PreIntegrationTable, InvalidSettingsKeepPreviousTable)
     table->SetStepLength(1.0);
     table->SetScalarOpacityUnitDistance(1.0);
     table->SetTableSize(16);
-    errors->Count = 0;
+    errors.Reset();
     EXPECT_TRUE(table->Update()) << c.first;
-    EXPECT_EQ(errors->Count, 0) << c.first;
+    EXPECT_EQ(errors.Errors(), 0) << c.first;
     EXPECT_EQ(table->GetBuildCount(), builds + 1) << c.first;
     EXPECT_TRUE(std::equal(good.begin(), good.end(), table->GetColorOpacityTable())) << c.first;
   }
+}
+
+TEST(PreIntegrationTable, TableRangeIsTheRangeActuallyUsed)
+{
+  vtkNew<vtkPreIntegrationTable> table;
+  table->SetTableSize(8);
+  double range[2] = { -1.0, -1.0 };
+  table->GetTableRange(range);
+  EXPECT_EQ(range[0], 0.0); // nothing built yet
+  EXPECT_EQ(range[1], 1.0);
+
+  vtkNew<vtkPiecewiseFunction> otf;
+  otf->AddPoint(-1.0, 0.1);
+  otf->AddPoint(3.0, 0.7);
+  table->SetScalarOpacity(otf);
+  table->SetScalarRange(2.0, 5.0); // an explicit range wins
+  ASSERT_TRUE(table->Update());
+  table->GetTableRange(range);
+  EXPECT_EQ(range[0], 2.0);
+  EXPECT_EQ(range[1], 5.0);
+
+  table->SetScalarRange(0.0, 0.0); // empty: the opacity TF's range
+  ASSERT_TRUE(table->Update());
+  table->GetTableRange(range);
+  EXPECT_EQ(range[0], -1.0);
+  EXPECT_EQ(range[1], 3.0);
+
+  vtkNew<vtkPiecewiseFunction> single; // empty TF range too: [t, t + 1]
+  single->AddPoint(4.0, 0.5);
+  table->SetScalarOpacity(single);
+  ASSERT_TRUE(table->Update());
+  table->GetTableRange(range);
+  EXPECT_EQ(range[0], 4.0);
+  EXPECT_EQ(range[1], 5.0);
+
+  // A failed build keeps the previous tables, and so their range.
+  mmvTest::ErrorCounter errors(table);
+  table->SetScalarRange(7.0, 9.0);
+  table->SetStepLength(0.0);
+  EXPECT_FALSE(table->Update());
+  EXPECT_EQ(errors.Errors(), 1);
+  table->GetTableRange(range);
+  EXPECT_EQ(range[0], 4.0);
+  EXPECT_EQ(range[1], 5.0);
 }
 
 TEST(PreIntegrationTable, LookupInterpolatesAndClamps)

@@ -98,6 +98,20 @@ glm::dvec3 PixelPoint(int i, int j)
   return { u, v, 0.0 };
 }
 
+// The light of the tests below: above the grid's plane, its spot cone
+// cutting through the grid.
+mmv::LightSource TestLight(int kind)
+{
+  mmv::LightSource light;
+  light.Kind = static_cast<mmv::LightKind>(kind);
+  light.Position = { 0.3, -0.2, 1.0 };
+  light.ToLight = glm::normalize(glm::dvec3(-0.4, 0.5, 1.0));
+  light.SpotAxis = glm::normalize(glm::dvec3(0.2, 0.1, -1.0));
+  light.CosCone = std::cos(30.0 * M_PI / 180.0);
+  light.Radius = 0.5;
+  return light;
+}
+
 const char* LightGeometryBody = R"(
 uniform int kind;
 uniform vec3 lightPosition;
@@ -121,12 +135,7 @@ TEST(ShaderMirror, LightGeometryTermMatchesCPU)
 
   for (int kind : { mmv::DirectionalLight, mmv::PointLight, mmv::SpotLight })
   {
-    mmv::LightSource light;
-    light.Kind = static_cast<mmv::LightKind>(kind);
-    light.Position = { 0.3, -0.2, 1.0 };
-    light.SpotAxis = glm::normalize(glm::dvec3(0.2, 0.1, -1.0));
-    light.CosCone = std::cos(30.0 * M_PI / 180.0);
-    light.Radius = 0.5;
+    const mmv::LightSource light = TestLight(kind);
 
     std::vector<float> pixels;
     ASSERT_TRUE(runner.Run(LightGeometryBody,
@@ -167,15 +176,110 @@ TEST(ShaderMirror, LightGeometryTermMatchesCPU)
   }
 }
 
+namespace
+{
+const char* DirectionToLightBody = R"(
+uniform int kind;
+uniform vec3 lightPosition;
+uniform vec3 toLight;
+void main()
+{
+  vec3 x = vec3(-2.0 + 4.0 * texCoord, 0.0);
+  float lightDistance;
+  vec3 dir = mmvDirectionToLight(kind, lightPosition, toLight, x, lightDistance);
+  gl_FragData[0] = vec4(dir, lightDistance);
+}
+)";
+}
+
+TEST(ShaderMirror, DirectionToLightMatchesCPU)
+{
+  ShaderRunner runner;
+  ASSERT_NE(runner.GL, nullptr);
+
+  for (int kind : { mmv::DirectionalLight, mmv::PointLight, mmv::SpotLight })
+  {
+    const mmv::LightSource light = TestLight(kind);
+
+    std::vector<float> pixels;
+    ASSERT_TRUE(runner.Run(DirectionToLightBody,
+      [&](vtkShaderProgram* p) {
+        p->SetUniformi("kind", kind);
+        const glm::vec3 position(light.Position);
+        const glm::vec3 toLight(light.ToLight);
+        p->SetUniform3f("lightPosition", &position.x);
+        p->SetUniform3f("toLight", &toLight.x);
+      },
+      pixels));
+
+    for (int j = 0; j < Size; ++j)
+    {
+      for (int i = 0; i < Size; ++i)
+      {
+        const float* px = &pixels[4 * (j * Size + i)];
+        double distance = 0.0;
+        const glm::dvec3 dir = mmv::mmvDirectionToLight(light, PixelPoint(i, j), distance);
+        for (int a = 0; a < 3; ++a)
+        {
+          ASSERT_NEAR(px[a], dir[a], 1e-5) << "kind " << kind << " pixel " << i << "," << j;
+        }
+        if (kind == mmv::DirectionalLight)
+        {
+          ASSERT_EQ(distance, -1.0);
+          ASSERT_EQ(px[3], -1.0f);
+        }
+        else
+        {
+          ASSERT_NEAR(px[3], distance, 1e-5 * std::max(1.0, distance))
+            << "kind " << kind << " pixel " << i << "," << j;
+        }
+      }
+    }
+  }
+}
+
+namespace
+{
+// Column block -> radius 0, 0.25, 0.5, 0.75; row j -> squared distance
+// 0.02 j (row 0 is the light's own position: 0/0 without the guard).
+const char* PointFalloffBody = R"(
+void main()
+{
+  float radius = floor(texCoord.x * 4.0) * 0.25;
+  float distance2 = floor(texCoord.y * float(SIZE)) * 0.02;
+  gl_FragData[0] = vec4(mmvPointFalloff(radius, distance2), radius, distance2, 0.0);
+}
+)";
+}
+
+TEST(ShaderMirror, PointFalloffMatchesCPUIncludingZeroRadius)
+{
+  ShaderRunner runner;
+  ASSERT_NE(runner.GL, nullptr);
+  std::vector<float> pixels;
+  const std::string body = "#define SIZE " + std::to_string(Size) + "\n" + PointFalloffBody;
+  ASSERT_TRUE(runner.Run(body, [](vtkShaderProgram*) {}, pixels));
+  for (int j = 0; j < Size; ++j)
+  {
+    for (int i = 0; i < Size; ++i)
+    {
+      const float* px = &pixels[4 * (j * Size + i)];
+      const double radius = std::floor((i + 0.5) / Size * 4.0) * 0.25;
+      const double distance2 = j * 0.02;
+      ASSERT_EQ(px[1], float(radius)) << i << "," << j;
+      ASSERT_NEAR(px[2], distance2, 1e-6) << i << "," << j;
+      const double cpu = mmv::mmvPointFalloff(radius, distance2);
+      ASSERT_FALSE(std::isnan(px[0])) << i << "," << j;
+      ASSERT_NEAR(px[0], cpu, 1e-6) << "radius " << radius << " d2 " << distance2;
+    }
+  }
+}
+
 TEST(ShaderMirror, SpotLightHasLitAndUnlitPixels)
 {
   // Guards the comparison above against a degenerate scene: the spot must
   // light some of the grid and leave some of it dark.
-  mmv::LightSource light;
-  light.Kind = mmv::SpotLight;
-  light.Position = { 0.3, -0.2, 1.0 };
-  light.SpotAxis = glm::normalize(glm::dvec3(0.2, 0.1, -1.0));
-  light.CosCone = std::cos(30.0 * M_PI / 180.0);
+  const mmv::LightSource light = TestLight(mmv::SpotLight);
   int lit = 0;
   for (int j = 0; j < Size; ++j)
   {
