@@ -1,3 +1,692 @@
 #include "vtkMultiMaterialReferenceRenderer.h"
+
+#include "vtkAbstractVolumeMapper.h"
+#include "vtkCamera.h"
+#include "vtkColorTransferFunction.h"
+#include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkImageData.h"
+#include "vtkIrradianceDiffusion.h"
+#include "vtkLightCollection.h"
+#include "vtkMaterialTransferFunction.h"
+#include "vtkMatrix3x3.h"
+#include "vtkMatrix4x4.h"
+#include "vtkMultiMaterialLights.h"
+#include "vtkMultiMaterialParameters.h"
+#include "vtkMultiMaterialShading.h"
+#include "vtkMultiMaterialVolumeMapper.h"
 #include "vtkObjectFactory.h"
+#include "vtkPiecewiseFunction.h"
+#include "vtkPointData.h"
+#include "vtkRenderer.h"
+#include "vtkSMPTools.h"
+#include "vtkUnsignedCharArray.h"
+#include "vtkVolume.h"
+#include "vtkVolumeProperty.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <vector>
+
 vtkStandardNewMacro(vtkMultiMaterialReferenceRenderer);
+
+namespace
+{
+using glm::dvec3;
+using glm::dvec4;
+
+// Fine enough that linear interpolation between entries is indistinguishable
+// from evaluating the piecewise-linear functions directly.
+constexpr int TableSize = 65536;
+
+// Surface shading reaches full strength at this normalised value change per
+// voxel; the GPU mapper's constant (mmv_gradientFade).
+constexpr double FullShadingGradientPerVoxel = 0.005;
+
+// Every transfer function, tabulated over the scalar range.
+struct TransferTables
+{
+  double Min = 0.0;
+  double Scale = 1.0; // table index per data unit
+  std::vector<double> Color;    // rgb
+  std::vector<double> Mu;       // extinction per object unit
+  std::vector<double> Sigma;    // shadow extinction, attenuation * mu
+  std::vector<double> Material; // the 7 parameters
+
+  // Entry index and weight of data value s.
+  void Locate(double s, int& i, double& w) const
+  {
+    const double x = std::min(std::max((s - this->Min) * this->Scale, 0.0), TableSize - 1.0);
+    i = std::min(static_cast<int>(x), TableSize - 2);
+    w = x - i;
+  }
+  static double Lerp(const std::vector<double>& t, int stride, int c, int i, double w)
+  {
+    return (1.0 - w) * t[i * stride + c] + w * t[(i + 1) * stride + c];
+  }
+};
+
+// The data on its grid: trilinear sampling at continuous index coordinates.
+struct Field
+{
+  int Dims[3] = { 0, 0, 0 };
+  const double* Values = nullptr;
+
+  double Sample(const dvec3& p) const { return SampleArray(this->Values, p); }
+
+  template <typename T>
+  T SampleArray(const T* a, const dvec3& p) const
+  {
+    int i0[3];
+    double f[3];
+    for (int c = 0; c < 3; ++c)
+    {
+      // Clamping mirrors the GPU's clamp-to-edge textures.
+      const double x = std::min(std::max(p[c], 0.0), this->Dims[c] - 1.0);
+      i0[c] = std::min(static_cast<int>(x), this->Dims[c] - 2);
+      f[c] = x - i0[c];
+    }
+    const vtkIdType sx = 1;
+    const vtkIdType sy = this->Dims[0];
+    const vtkIdType sz = static_cast<vtkIdType>(this->Dims[0]) * this->Dims[1];
+    const T* b = a + i0[0] + i0[1] * sy + i0[2] * sz;
+    const double c00 = b[0] + f[0] * (b[sx] - b[0]);
+    const double c10 = b[sy] + f[0] * (b[sy + sx] - b[sy]);
+    const double c01 = b[sz] + f[0] * (b[sz + sx] - b[sz]);
+    const double c11 = b[sz + sy] + f[0] * (b[sz + sy + sx] - b[sz + sy]);
+    const double c0 = c00 + f[1] * (c10 - c00);
+    const double c1 = c01 + f[1] * (c11 - c01);
+    return static_cast<T>(c0 + f[2] * (c1 - c0));
+  }
+};
+
+// Everything a ray needs, shared read-only by the threads.
+struct Scene
+{
+  Field Data;
+  TransferTables Tables;
+  double RangeMin = 0.0;
+  double InverseRange = 1.0; // normalised value per data unit
+  dvec3 Origin{ 0.0 };
+  glm::dmat3 IndexToObject{ 1.0 };
+  glm::dmat3 ObjectToIndex{ 1.0 };
+  glm::dmat3 GradientToObject{ 1.0 }; // (ObjectToIndex)^T: gradients are covectors
+  double PrimaryStep = 1.0;
+  double ShadowStep = 1.0;
+  double MaxOpticalDepth = 13.8;
+  double GradientFade = 1.0;
+  std::vector<mmv::ShadingLight> Lights;
+  // Per light: diffused minus direct irradiance at the voxels (empty: none).
+  std::vector<std::vector<float>> ScatteringDelta;
+  bool Reflection = false;
+  dvec3 EnvironmentUp{ 0.0, 1.0, 0.0 };
+  dvec3 EnvironmentBottom{ 0.0 };
+  dvec3 EnvironmentTop{ 0.0 };
+
+  dvec3 ToIndex(const dvec3& x) const { return this->ObjectToIndex * (x - this->Origin); }
+
+  // Object-space distances [t0, t1] where the line x + t d (d in object
+  // space) is inside the data box; false when it misses.
+  bool Clip(const dvec3& x, const dvec3& d, double& t0, double& t1) const
+  {
+    const dvec3 p = this->ToIndex(x);
+    const dvec3 q = this->ObjectToIndex * d;
+    for (int a = 0; a < 3; ++a)
+    {
+      const double hi = this->Data.Dims[a] - 1.0;
+      if (q[a] == 0.0)
+      {
+        if (p[a] < 0.0 || p[a] > hi)
+        {
+          return false;
+        }
+        continue;
+      }
+      double ta = (0.0 - p[a]) / q[a];
+      double tb = (hi - p[a]) / q[a];
+      if (ta > tb)
+      {
+        std::swap(ta, tb);
+      }
+      t0 = std::max(t0, ta);
+      t1 = std::min(t1, tb);
+    }
+    return t1 > t0;
+  }
+
+  double Extinction(double s, int& i, double& w) const
+  {
+    this->Tables.Locate(s, i, w);
+    return TransferTables::Lerp(this->Tables.Mu, 1, 0, i, w);
+  }
+
+  // Light k's transmittance from object point x (eqs. 9-10 by midpoint rule),
+  // times its geometry term; 0 outside a spot cone.
+  double DirectIrradiance(const mmv::LightSource& light, const dvec3& x) const
+  {
+    const double geometry = mmv::mmvLightGeometryTerm(light, x);
+    if (geometry <= 0.0)
+    {
+      return 0.0;
+    }
+    double distance = 0.0;
+    const dvec3 dir = mmv::mmvDirectionToLight(light, x, distance);
+    double t0 = 0.0;
+    double t1 = std::numeric_limits<double>::max();
+    if (distance >= 0.0)
+    {
+      t1 = distance;
+    }
+    if (!this->Clip(x, dir, t0, t1))
+    {
+      return geometry; // already on the boundary, heading out
+    }
+    const int n = std::max(1, static_cast<int>(std::ceil((t1 - t0) / this->ShadowStep - 1e-9)));
+    const double h = (t1 - t0) / n;
+    const dvec3 p0 = this->ToIndex(x);
+    const dvec3 q = this->ObjectToIndex * dir;
+    double depth = 0.0;
+    for (int m = 0; m < n && depth < this->MaxOpticalDepth; ++m)
+    {
+      const double s = this->Data.Sample(p0 + (t0 + (m + 0.5) * h) * q);
+      int i;
+      double w;
+      this->Tables.Locate(s, i, w);
+      depth += h * TransferTables::Lerp(this->Tables.Sigma, 1, 0, i, w);
+    }
+    return geometry * std::exp(-depth);
+  }
+
+  // Normalised-value gradient in object space at continuous index p,
+  // central differences of one voxel like mmvGradient().
+  dvec3 Gradient(const dvec3& p) const
+  {
+    dvec3 g;
+    for (int a = 0; a < 3; ++a)
+    {
+      dvec3 e(0.0);
+      e[a] = 1.0;
+      g[a] = 0.5 * (this->Data.Sample(p + e) - this->Data.Sample(p - e)) * this->InverseRange;
+    }
+    return this->GradientToObject * g;
+  }
+
+  // mmvShadeSegment(): radiance of one segment at object point x.
+  dvec3 Shade(const dvec3& x, const dvec3& p, double s, const dvec4& segment, const dvec3& v,
+    vtkIdType& shadowRays) const
+  {
+    int i;
+    double w;
+    this->Tables.Locate(s, i, w);
+    double m[mmv::MaterialParameterCount];
+    for (int c = 0; c < mmv::MaterialParameterCount; ++c)
+    {
+      m[c] = TransferTables::Lerp(this->Tables.Material, mmv::MaterialParameterCount, c, i, w);
+    }
+    const dvec4 material(m[mmv::Ambient], m[mmv::Diffuse], m[mmv::Specular], m[mmv::Shininess]);
+    const dvec3 gradient = this->Gradient(p);
+    const double gradientLength = glm::length(gradient);
+    dvec3 n = gradientLength > 0.0 ? -gradient / gradientLength : dvec3(0.0);
+    n = glm::dot(n, v) < 0.0 ? -n : n; // two-sided
+    const double directional = std::min(std::max(gradientLength / this->GradientFade, 0.0), 1.0);
+
+    dvec3 radiance(0.0);
+    if (this->Lights.empty())
+    {
+      radiance = material.x * dvec3(segment);
+    }
+    for (size_t k = 0; k < this->Lights.size(); ++k)
+    {
+      const mmv::ShadingLight& light = this->Lights[k];
+      double irradiance = this->DirectIrradiance(light.Source, x);
+      ++shadowRays;
+      if (!this->ScatteringDelta.empty())
+      {
+        irradiance = std::max(0.0, irradiance + this->Data.SampleArray(this->ScatteringDelta[k].data(), p));
+      }
+      if (irradiance <= 0.0)
+      {
+        continue;
+      }
+      dvec3 l = light.Source.ToLight;
+      if (light.Source.Kind != mmv::DirectionalLight)
+      {
+        const dvec3 toLight = light.Source.Position - x;
+        const double distance = glm::length(toLight);
+        l = distance > 0.0 ? toLight / distance : n;
+      }
+      radiance += irradiance * light.Radiance * mmv::mmvBlinnPhong(material, segment, n, v, l, directional);
+    }
+    if (this->Reflection && m[mmv::Reflection] > 0.0)
+    {
+      const dvec3 mirrored = glm::reflect(-v, n);
+      radiance += directional * m[mmv::Reflection] * segment.w *
+        mmv::mmvEnvironment(mirrored, this->EnvironmentUp, this->EnvironmentBottom, this->EnvironmentTop);
+    }
+    return radiance;
+  }
+
+  // Front-to-back composite of the ray x + t d, t in [tNear, tFar]; rgb and
+  // alpha of the volume (premultiplied).
+  dvec4 Trace(const dvec3& x, const dvec3& d, double tNear, double tFar, double minTransmittance,
+    vtkIdType& samples, vtkIdType& shadowRays) const
+  {
+    dvec4 result(0.0);
+    double t0 = tNear;
+    double t1 = tFar;
+    if (!this->Clip(x, d, t0, t1))
+    {
+      return result;
+    }
+    const int n = std::max(1, static_cast<int>(std::ceil((t1 - t0) / this->PrimaryStep - 1e-9)));
+    const double h = (t1 - t0) / n;
+    const dvec3 v = -d;
+    double transmittance = 1.0;
+    dvec3 color(0.0);
+    for (int m = 0; m < n && transmittance >= minTransmittance; ++m)
+    {
+      const dvec3 xm = x + (t0 + (m + 0.5) * h) * d;
+      const dvec3 p = this->ToIndex(xm);
+      const double s = this->Data.Sample(p);
+      ++samples;
+      int i;
+      double w;
+      this->Tables.Locate(s, i, w);
+      const double mu = TransferTables::Lerp(this->Tables.Mu, 1, 0, i, w);
+      if (mu <= 0.0)
+      {
+        continue;
+      }
+      const double alpha = -std::expm1(-mu * h);
+      const dvec3 c(TransferTables::Lerp(this->Tables.Color, 3, 0, i, w),
+        TransferTables::Lerp(this->Tables.Color, 3, 1, i, w),
+        TransferTables::Lerp(this->Tables.Color, 3, 2, i, w));
+      const dvec4 segment(c * alpha, alpha);
+      color += transmittance * this->Shade(xm, p, s, segment, v, shadowRays);
+      transmittance *= 1.0 - alpha;
+    }
+    return dvec4(color, 1.0 - transmittance);
+  }
+};
+
+double Seconds(std::chrono::steady_clock::time_point start)
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+dvec3 TransformPoint(const vtkMatrix4x4* m, const dvec3& x)
+{
+  double in[4] = { x.x, x.y, x.z, 1.0 };
+  double out[4];
+  vtkMatrix4x4::MultiplyPoint(m->GetData(), in, out);
+  return dvec3(out[0], out[1], out[2]) / out[3];
+}
+}
+
+vtkMultiMaterialReferenceRenderer::vtkMultiMaterialReferenceRenderer() = default;
+vtkMultiMaterialReferenceRenderer::~vtkMultiMaterialReferenceRenderer() = default;
+
+void vtkMultiMaterialReferenceRenderer::SetInputData(vtkImageData* image)
+{
+  if (this->Input != image)
+  {
+    this->Input = image;
+    this->Modified();
+  }
+}
+
+vtkImageData* vtkMultiMaterialReferenceRenderer::GetInput()
+{
+  return this->Input;
+}
+
+void vtkMultiMaterialReferenceRenderer::SetVolumeProperty(vtkVolumeProperty* property)
+{
+  if (this->Property != property)
+  {
+    this->Property = property;
+    this->Modified();
+  }
+}
+
+vtkVolumeProperty* vtkMultiMaterialReferenceRenderer::GetVolumeProperty()
+{
+  return this->Property;
+}
+
+void vtkMultiMaterialReferenceRenderer::SetMaterialTransferFunction(
+  vtkMaterialTransferFunction* materials)
+{
+  if (this->Materials != materials)
+  {
+    this->Materials = materials;
+    this->Modified();
+  }
+}
+
+vtkMaterialTransferFunction* vtkMultiMaterialReferenceRenderer::GetMaterialTransferFunction()
+{
+  return this->Materials;
+}
+
+void vtkMultiMaterialReferenceRenderer::SetVolumeMatrix(vtkMatrix4x4* matrix)
+{
+  if (this->Matrix != matrix)
+  {
+    this->Matrix = matrix;
+    this->Modified();
+  }
+}
+
+vtkMatrix4x4* vtkMultiMaterialReferenceRenderer::GetVolumeMatrix()
+{
+  return this->Matrix;
+}
+
+vtkImageData* vtkMultiMaterialReferenceRenderer::RenderToImage(vtkRenderer* ren, vtkVolume* volume)
+{
+  if (!ren || !volume || !volume->GetMapper())
+  {
+    vtkErrorMacro("RenderToImage needs a renderer and a volume with a mapper");
+    return nullptr;
+  }
+  vtkAbstractVolumeMapper* mapper = volume->GetMapper();
+  this->SetInputData(vtkImageData::SafeDownCast(mapper->GetDataSetInput()));
+  this->SetVolumeProperty(volume->GetProperty());
+  this->SetVolumeMatrix(volume->GetMatrix());
+  if (auto* mmvMapper = vtkMultiMaterialVolumeMapper::SafeDownCast(mapper))
+  {
+    this->SetMaterialTransferFunction(mmvMapper->GetMaterialTransferFunction());
+    this->SetMultipleScattering(mmvMapper->GetMultipleScattering());
+    this->SetPointLightRadius(mmvMapper->GetPointLightRadius());
+  }
+  const int* size = ren->GetSize();
+  return this->Render(ren, size[0], size[1]);
+}
+
+vtkImageData* vtkMultiMaterialReferenceRenderer::Render(vtkRenderer* ren, int width, int height)
+{
+  const auto start = std::chrono::steady_clock::now();
+  vtkImageData* image = this->Input;
+  vtkVolumeProperty* property = this->Property;
+  if (!ren || !ren->GetActiveCamera() || width < 1 || height < 1)
+  {
+    vtkErrorMacro("Render needs a renderer with a camera and a positive image size");
+    return nullptr;
+  }
+  if (!image || !property || !property->GetScalarOpacity(0))
+  {
+    vtkErrorMacro("Render needs input data and a volume property with a scalar opacity");
+    return nullptr;
+  }
+  vtkDataArray* scalars = image->GetPointData()->GetScalars();
+  if (!scalars)
+  {
+    vtkErrorMacro("the input has no point scalars");
+    return nullptr;
+  }
+  Scene scene;
+  image->GetDimensions(scene.Data.Dims);
+  if (scene.Data.Dims[0] < 2 || scene.Data.Dims[1] < 2 || scene.Data.Dims[2] < 2)
+  {
+    vtkErrorMacro("the input needs at least 2 points along every axis");
+    return nullptr;
+  }
+  const vtkIdType count = image->GetNumberOfPoints();
+  std::vector<double> values(count);
+  for (vtkIdType v = 0; v < count; ++v)
+  {
+    values[v] = scalars->GetComponent(v, 0);
+  }
+  scene.Data.Values = values.data();
+
+  double range[2];
+  scalars->GetFiniteRange(range, 0);
+  if (!(range[1] > range[0]))
+  {
+    range[1] = range[0] + 1.0; // constant volume, as the mapper does
+  }
+  scene.RangeMin = range[0];
+  scene.InverseRange = 1.0 / (range[1] - range[0]);
+
+  // Geometry: index -> object is origin + direction * diag(spacing).
+  const double* spacing = image->GetSpacing();
+  const double* origin = image->GetOrigin();
+  const double* direction = image->GetDirectionMatrix()->GetData();
+  for (int r = 0; r < 3; ++r)
+  {
+    scene.Origin[r] = origin[r];
+    for (int c = 0; c < 3; ++c)
+    {
+      scene.IndexToObject[c][r] = direction[r * 3 + c] * spacing[c]; // glm is column-major
+    }
+  }
+  if (glm::determinant(scene.IndexToObject) == 0.0)
+  {
+    vtkErrorMacro("the input's spacing or direction is degenerate");
+    return nullptr;
+  }
+  scene.ObjectToIndex = glm::inverse(scene.IndexToObject);
+  scene.GradientToObject = glm::transpose(scene.ObjectToIndex);
+  const double smallestSpacing =
+    std::min({ std::abs(spacing[0]), std::abs(spacing[1]), std::abs(spacing[2]) });
+  scene.PrimaryStep = this->SampleDistance > 0.0 ? this->SampleDistance : smallestSpacing / 8.0;
+  scene.ShadowStep =
+    this->ShadowSampleDistance > 0.0 ? this->ShadowSampleDistance : smallestSpacing / 8.0;
+  scene.GradientFade = FullShadingGradientPerVoxel / smallestSpacing;
+  const double minTransmittance = this->MinimumTransmittance;
+  scene.MaxOpticalDepth = minTransmittance > 0.0 ? -std::log(minTransmittance)
+                                                 : std::numeric_limits<double>::infinity();
+
+  // Transfer functions.
+  TransferTables& tables = scene.Tables;
+  tables.Min = range[0];
+  tables.Scale = (TableSize - 1) / (range[1] - range[0]);
+  tables.Color.resize(3 * TableSize);
+  if (property->GetColorChannels(0) == 1 && property->GetGrayTransferFunction(0))
+  {
+    std::vector<double> gray(TableSize);
+    property->GetGrayTransferFunction(0)->GetTable(range[0], range[1], TableSize, gray.data());
+    for (int i = 0; i < TableSize; ++i)
+    {
+      tables.Color[3 * i] = tables.Color[3 * i + 1] = tables.Color[3 * i + 2] = gray[i];
+    }
+  }
+  else if (vtkColorTransferFunction* color = property->GetRGBTransferFunction(0))
+  {
+    color->GetTable(range[0], range[1], TableSize, tables.Color.data());
+  }
+  else
+  {
+    std::fill(tables.Color.begin(), tables.Color.end(), 1.0); // white, as the tables do
+  }
+  std::vector<double> alpha(TableSize);
+  property->GetScalarOpacity(0)->GetTable(range[0], range[1], TableSize, alpha.data());
+  const double unitDistance = property->GetScalarOpacityUnitDistance(0);
+  tables.Mu.resize(TableSize);
+  tables.Sigma.resize(TableSize);
+  tables.Material.resize(static_cast<size_t>(mmv::MaterialParameterCount) * TableSize);
+  vtkMaterialTransferFunction* materials = this->Materials;
+  for (int i = 0; i < TableSize; ++i)
+  {
+    const double s = range[0] + (range[1] - range[0]) * i / (TableSize - 1.0);
+    double* m = &tables.Material[static_cast<size_t>(mmv::MaterialParameterCount) * i];
+    if (materials)
+    {
+      materials->Evaluate(s, m);
+    }
+    else
+    {
+      for (int c = 0; c < mmv::MaterialParameterCount; ++c)
+      {
+        m[c] = mmv::MaterialParameterTable[c].Default;
+      }
+    }
+    tables.Mu[i] = mmv::ExtinctionFromOpacity(alpha[i], unitDistance);
+    tables.Sigma[i] = m[mmv::Attenuation] * tables.Mu[i];
+  }
+
+  // Lights and environment in object space.
+  vtkNew<vtkMatrix4x4> objectToWorld;
+  if (this->Matrix)
+  {
+    objectToWorld->DeepCopy(this->Matrix);
+  }
+  vtkNew<vtkMatrix4x4> worldToObject;
+  vtkMatrix4x4::Invert(objectToWorld, worldToObject);
+  const double radius = this->PointLightRadius > 0.0 ? this->PointLightRadius : smallestSpacing;
+  scene.Lights = mmv::CollectLights(ren->GetLights(), worldToObject, radius, mmv::MaxLights);
+  vtkCamera* camera = ren->GetActiveCamera();
+  scene.Reflection =
+    materials && materials->GetSize() > 0 && materials->GetMaximum(mmv::Reflection) > 0.0;
+  {
+    const double* up = camera->GetViewUp();
+    dvec3 u(0.0);
+    for (int i = 0; i < 3; ++i)
+    {
+      u[i] = worldToObject->GetElement(i, 0) * up[0] + worldToObject->GetElement(i, 1) * up[1] +
+        worldToObject->GetElement(i, 2) * up[2];
+    }
+    scene.EnvironmentUp = glm::length(u) > 0.0 ? glm::normalize(u) : dvec3(0.0, 1.0, 0.0);
+    const double* bottom = ren->GetBackground();
+    const double* top = ren->GetGradientBackground() ? ren->GetBackground2() : bottom;
+    scene.EnvironmentBottom = dvec3(bottom[0], bottom[1], bottom[2]);
+    scene.EnvironmentTop = dvec3(top[0], top[1], top[2]);
+  }
+
+  // Multiple scattering: diffuse the direct irradiance of every voxel.
+  this->ScatteringApplied = false;
+  this->LastScatteringSeconds = 0.0;
+  std::atomic<vtkIdType> shadowRays(0);
+  const bool scatters =
+    this->MultipleScattering && materials && materials->GetMaximum(mmv::Scattering) > 0.0;
+  if (scatters && !scene.Lights.empty())
+  {
+    const auto scatterStart = std::chrono::steady_clock::now();
+    std::vector<float> strength(count, 0.0f);
+    bool any = false;
+    for (vtkIdType v = 0; v < count; ++v)
+    {
+      int i;
+      double w;
+      if (scene.Extinction(values[v], i, w) > 0.0)
+      {
+        strength[v] = static_cast<float>(
+          TransferTables::Lerp(tables.Material, mmv::MaterialParameterCount, mmv::Scattering, i, w));
+        any = any || strength[v] > 0.0f;
+      }
+    }
+    if (any)
+    {
+      const int* dims = scene.Data.Dims;
+      const double voxel[3] = { 1.0, 1.0, 1.0 };
+      for (const mmv::ShadingLight& light : scene.Lights)
+      {
+        std::vector<float> direct(count);
+        vtkSMPTools::For(0, count, [&](vtkIdType first, vtkIdType last) {
+          for (vtkIdType v = first; v < last; ++v)
+          {
+            const dvec3 p(v % dims[0], (v / dims[0]) % dims[1], v / (vtkIdType(dims[0]) * dims[1]));
+            direct[v] = static_cast<float>(
+              scene.DirectIrradiance(light.Source, scene.Origin + scene.IndexToObject * p));
+          }
+          shadowRays += last - first;
+        });
+        std::vector<float> diffused = direct;
+        mmv::DiffuseIrradiance(dims, voxel, strength.data(), diffused.data());
+        for (vtkIdType v = 0; v < count; ++v)
+        {
+          diffused[v] -= direct[v];
+        }
+        scene.ScatteringDelta.push_back(std::move(diffused));
+      }
+      this->ScatteringApplied = true;
+    }
+    this->LastScatteringSeconds = Seconds(scatterStart);
+  }
+
+  // Camera: unproject each pixel centre from the near to the far plane.
+  vtkNew<vtkMatrix4x4> ndcToWorld;
+  ndcToWorld->DeepCopy(
+    camera->GetCompositeProjectionTransformMatrix(static_cast<double>(width) / height, -1.0, 1.0));
+  ndcToWorld->Invert();
+  vtkNew<vtkMatrix4x4> ndcToObject;
+  vtkMatrix4x4::Multiply4x4(worldToObject, ndcToWorld, ndcToObject);
+
+  const double* bg1 = ren->GetBackground();
+  const double* bg2 = ren->GetGradientBackground() ? ren->GetBackground2() : bg1;
+  const dvec3 background1(bg1[0], bg1[1], bg1[2]);
+  const dvec3 background2(bg2[0], bg2[1], bg2[2]);
+
+  const vtkIdType pixels = static_cast<vtkIdType>(width) * height;
+  vtkNew<vtkDoubleArray> radiance;
+  radiance->SetName("Radiance");
+  radiance->SetNumberOfComponents(3);
+  radiance->SetNumberOfTuples(pixels);
+  vtkNew<vtkUnsignedCharArray> colors;
+  colors->SetName("Colors");
+  colors->SetNumberOfComponents(3);
+  colors->SetNumberOfTuples(pixels);
+  double* out = radiance->GetPointer(0);
+  unsigned char* bytes = colors->GetPointer(0);
+
+  std::atomic<vtkIdType> samples(0);
+  vtkSMPTools::For(0, height, 1, [&](vtkIdType firstRow, vtkIdType lastRow) {
+    vtkIdType localSamples = 0;
+    vtkIdType localShadowRays = 0;
+    for (vtkIdType j = firstRow; j < lastRow; ++j)
+    {
+      const double y = (j + 0.5) / height * 2.0 - 1.0;
+      // VTK draws the gradient background bottom (Background) to top.
+      const dvec3 background = glm::mix(background1, background2, (j + 0.5) / height);
+      for (int i = 0; i < width; ++i)
+      {
+        const double x = (i + 0.5) / width * 2.0 - 1.0;
+        const dvec3 nearPoint = TransformPoint(ndcToObject, dvec3(x, y, -1.0));
+        const dvec3 farPoint = TransformPoint(ndcToObject, dvec3(x, y, 1.0));
+        const double length = glm::length(farPoint - nearPoint);
+        dvec4 c(0.0);
+        if (length > 0.0)
+        {
+          c = scene.Trace(nearPoint, (farPoint - nearPoint) / length, 0.0, length,
+            minTransmittance, localSamples, localShadowRays);
+        }
+        const dvec3 rgb = dvec3(c) + (1.0 - c.w) * background;
+        const vtkIdType id = j * width + i;
+        for (int k = 0; k < 3; ++k)
+        {
+          out[3 * id + k] = rgb[k];
+          bytes[3 * id + k] =
+            static_cast<unsigned char>(std::lround(std::min(std::max(rgb[k], 0.0), 1.0) * 255.0));
+        }
+      }
+    }
+    samples += localSamples;
+    shadowRays += localShadowRays;
+  });
+
+  this->Output = vtkSmartPointer<vtkImageData>::New();
+  this->Output->SetDimensions(width, height, 1);
+  this->Output->GetPointData()->SetScalars(colors);
+  this->Output->GetPointData()->AddArray(radiance);
+  this->NumberOfSamples = samples;
+  this->NumberOfShadowRays = shadowRays;
+  this->LastRenderSeconds = Seconds(start);
+  return this->Output;
+}
+
+void vtkMultiMaterialReferenceRenderer::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "SampleDistance: " << this->SampleDistance << "\n";
+  os << indent << "ShadowSampleDistance: " << this->ShadowSampleDistance << "\n";
+  os << indent << "PointLightRadius: " << this->PointLightRadius << "\n";
+  os << indent << "MultipleScattering: " << this->MultipleScattering << "\n";
+  os << indent << "MinimumTransmittance: " << this->MinimumTransmittance << "\n";
+  os << indent << "LastRenderSeconds: " << this->LastRenderSeconds << "\n";
+  os << indent << "NumberOfSamples: " << this->NumberOfSamples << "\n";
+  os << indent << "NumberOfShadowRays: " << this->NumberOfShadowRays << "\n";
+}

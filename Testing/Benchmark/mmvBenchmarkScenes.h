@@ -1,0 +1,219 @@
+/**
+ * The three benchmark scenes: data, colour/opacity, materials, the light and
+ * the start of the camera path.
+ *
+ *  - "synthetic": 64^3 voxels, three objects of three materials: a polished
+ *    metal ball (reflective), a strongly scattering translucent blob (s = 15)
+ *    and a glossy plastic slab.
+ *  - "headsq": Testing/Data/headsq.vti (64 x 64 x 93 MR head), skin
+ *    (scattering 8) and bone, the transfer functions of the demo program.
+ *  - "orbital": 64^3 samples of the hydrogen 3d_z2 orbital density
+ *    |psi_320|^2 (fourth root, normalised), three materials by density:
+ *    a scattering haze, a diffuse shell and a glossy core.
+ */
+#ifndef mmvBenchmarkScenes_h
+#define mmvBenchmarkScenes_h
+
+#include "vtkColorTransferFunction.h"
+#include "vtkDataArray.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkMaterialTransferFunction.h"
+#include "vtkNew.h"
+#include "vtkPiecewiseFunction.h"
+#include "vtkPointData.h"
+#include "vtkSmartPointer.h"
+#include "vtkXMLImageDataReader.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <string>
+
+namespace mmvbench
+{
+
+struct SceneSpec
+{
+  std::string Name;
+  vtkSmartPointer<vtkImageData> Image;
+  vtkSmartPointer<vtkColorTransferFunction> Color;
+  vtkSmartPointer<vtkPiecewiseFunction> Opacity;
+  vtkSmartPointer<vtkMaterialTransferFunction> Materials;
+  double UnitDistance = 1.0;
+  double Background[3] = { 0.1, 0.1, 0.12 };
+  double Background2[3] = { 0.4, 0.42, 0.5 };
+  // Camera start: direction from the centre toward the eye, and view-up.
+  double ViewDirection[3] = { 0.0, -1.0, 0.35 };
+  double ViewUp[3] = { 0.0, 0.0, 1.0 };
+  // Direction toward the key light (world space).
+  double ToLight[3] = { -0.5, -0.6, 0.8 };
+};
+
+inline vtkSmartPointer<vtkImageData> Sample(int nx, int ny, int nz,
+  const std::function<double(double, double, double)>& f)
+{
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(nx, ny, nz);
+  vtkNew<vtkFloatArray> values;
+  values->SetName("values");
+  values->SetNumberOfTuples(static_cast<vtkIdType>(nx) * ny * nz);
+  vtkIdType id = 0;
+  for (int k = 0; k < nz; ++k)
+  {
+    for (int j = 0; j < ny; ++j)
+    {
+      for (int i = 0; i < nx; ++i)
+      {
+        values->SetValue(id++, static_cast<float>(f(i, j, k)));
+      }
+    }
+  }
+  image->GetPointData()->SetScalars(values);
+  return image;
+}
+
+// Material node pairs spanning a value band [lo, hi].
+inline void AddBand(vtkMaterialTransferFunction* m, double lo, double hi, double ka, double kd,
+  double ks, double ke, double ct, double s, double r)
+{
+  m->AddNode(lo, ka, kd, ks, ke, ct, s, r);
+  m->AddNode(hi, ka, kd, ks, ke, ct, s, r);
+}
+
+inline SceneSpec MakeSynthetic()
+{
+  SceneSpec s;
+  s.Name = "synthetic";
+  // value_i * (soft inside-ness over ~1 voxel), the largest object wins.
+  // Values grow with opacity (blob 0.2, slab 0.5, metal 0.85) so the thin
+  // shells an object's edge passes through belong to fainter materials.
+  auto ramp = [](double distance) { return std::min(std::max(0.5 - distance, 0.0), 1.0); };
+  s.Image = Sample(64, 64, 64, [&](double x, double y, double z) {
+    const double metal = std::sqrt((x - 20) * (x - 20) + (y - 34) * (y - 34) + (z - 30) * (z - 30)) - 11.0;
+    const double blob = std::sqrt((x - 44) * (x - 44) + 0.6 * (y - 30) * (y - 30) + (z - 32) * (z - 32)) - 13.0;
+    const double slab = std::max({ std::abs(x - 32) - 27.0, std::abs(y - 32) - 27.0, std::abs(z - 9) - 4.0 });
+    return std::max({ 0.85 * ramp(metal), 0.2 * ramp(blob), 0.5 * ramp(slab) });
+  });
+  s.Color = vtkSmartPointer<vtkColorTransferFunction>::New();
+  s.Color->AddRGBPoint(0.0, 0.95, 0.7, 0.35);
+  s.Color->AddRGBPoint(0.3, 0.95, 0.7, 0.35);  // scattering blob: amber
+  s.Color->AddRGBPoint(0.4, 0.3, 0.5, 0.9);
+  s.Color->AddRGBPoint(0.6, 0.3, 0.5, 0.9);    // plastic: blue
+  s.Color->AddRGBPoint(0.7, 0.85, 0.85, 0.88);
+  s.Color->AddRGBPoint(1.0, 0.85, 0.85, 0.88); // metal
+  s.Opacity = vtkSmartPointer<vtkPiecewiseFunction>::New();
+  s.Opacity->AddPoint(0.0, 0.0);
+  s.Opacity->AddPoint(0.1, 0.0);
+  s.Opacity->AddPoint(0.15, 0.06);
+  s.Opacity->AddPoint(0.27, 0.06);
+  s.Opacity->AddPoint(0.32, 0.0);
+  s.Opacity->AddPoint(0.4, 0.0);
+  s.Opacity->AddPoint(0.45, 0.5);
+  s.Opacity->AddPoint(0.56, 0.5);
+  s.Opacity->AddPoint(0.6, 0.0);
+  s.Opacity->AddPoint(0.7, 0.0);
+  s.Opacity->AddPoint(0.75, 0.9);
+  s.Opacity->AddPoint(1.0, 0.9);
+  s.Materials = vtkSmartPointer<vtkMaterialTransferFunction>::New();
+  AddBand(s.Materials, 0.12, 0.3, 0.3, 0.6, 0.1, 10, 0.5, 15.0, 0.0); // scattering
+  AddBand(s.Materials, 0.42, 0.58, 0.2, 0.8, 0.3, 30, 1.0, 0.0, 0.0); // plastic
+  AddBand(s.Materials, 0.72, 1.0, 0.1, 0.3, 0.9, 120, 1.0, 0.0, 0.6); // metal
+  return s;
+}
+
+inline SceneSpec MakeHead(const std::string& path)
+{
+  SceneSpec s;
+  s.Name = "headsq";
+  vtkNew<vtkXMLImageDataReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  s.Image = reader->GetOutput();
+  if (!s.Image || !s.Image->GetPointData()->GetScalars())
+  {
+    s.Image = nullptr;
+    return s;
+  }
+  double range[2];
+  s.Image->GetPointData()->GetScalars()->GetRange(range);
+  const double r0 = range[0];
+  const double dr = range[1] - range[0];
+  s.Color = vtkSmartPointer<vtkColorTransferFunction>::New();
+  s.Color->AddRGBPoint(r0, 0.0, 0.0, 0.0);
+  s.Color->AddRGBPoint(r0 + 0.15 * dr, 0.90, 0.60, 0.50);
+  s.Color->AddRGBPoint(r0 + 0.28 * dr, 0.90, 0.65, 0.55);
+  s.Color->AddRGBPoint(r0 + 0.35 * dr, 1.00, 0.98, 0.90);
+  s.Color->AddRGBPoint(range[1], 1.00, 1.00, 0.95);
+  s.Opacity = vtkSmartPointer<vtkPiecewiseFunction>::New();
+  s.Opacity->AddPoint(r0, 0.0);
+  s.Opacity->AddPoint(r0 + 0.12 * dr, 0.0);
+  s.Opacity->AddPoint(r0 + 0.18 * dr, 0.25);
+  s.Opacity->AddPoint(r0 + 0.28 * dr, 0.25);
+  s.Opacity->AddPoint(r0 + 0.33 * dr, 0.6);
+  s.Opacity->AddPoint(range[1], 0.8);
+  s.Materials = vtkSmartPointer<vtkMaterialTransferFunction>::New();
+  s.Materials->AddNode(r0 + 0.20 * dr, 0.35, 0.7, 0.3, 15, 0.5, 8, 0); // skin
+  s.Materials->AddNode(r0 + 0.35 * dr, 0.2, 0.8, 0.2, 25, 1.0, 1, 0);  // bone
+  s.UnitDistance = s.Image->GetSpacing()[0];
+  s.ViewDirection[0] = 0.3;
+  s.ViewDirection[1] = -1.0;
+  s.ViewDirection[2] = 0.25;
+  return s;
+}
+
+inline SceneSpec MakeOrbital()
+{
+  SceneSpec s;
+  s.Name = "orbital";
+  // psi_320 ~ r^2 exp(-r/3) (3 cos^2 theta - 1), r in Bohr radii over
+  // [-24, 24]^3; the fourth root of the density spreads its range.
+  double peak = 0.0;
+  auto density = [](double x, double y, double z) {
+    const double r2 = x * x + y * y + z * z;
+    const double psi = (3.0 * z * z - r2) * std::exp(-std::sqrt(r2) / 3.0);
+    return psi * psi;
+  };
+  const double h = 48.0 / 63.0;
+  for (int k = 0; k < 64; ++k)
+  {
+    for (int j = 0; j < 64; ++j)
+    {
+      for (int i = 0; i < 64; ++i)
+      {
+        peak = std::max(peak, density(i * h - 24, j * h - 24, k * h - 24));
+      }
+    }
+  }
+  s.Image = Sample(64, 64, 64, [&](double i, double j, double k) {
+    return std::pow(density(i * h - 24, j * h - 24, k * h - 24) / peak, 0.25);
+  });
+  s.Color = vtkSmartPointer<vtkColorTransferFunction>::New();
+  s.Color->AddRGBPoint(0.0, 0.35, 0.55, 1.0);
+  s.Color->AddRGBPoint(0.3, 0.35, 0.55, 1.0);  // haze: blue
+  s.Color->AddRGBPoint(0.5, 0.4, 0.9, 0.5);
+  s.Color->AddRGBPoint(0.65, 0.4, 0.9, 0.5);   // shell: green
+  s.Color->AddRGBPoint(0.8, 1.0, 0.85, 0.4);
+  s.Color->AddRGBPoint(1.0, 1.0, 0.85, 0.4);   // core: gold
+  s.Opacity = vtkSmartPointer<vtkPiecewiseFunction>::New();
+  s.Opacity->AddPoint(0.0, 0.0);
+  s.Opacity->AddPoint(0.15, 0.0);
+  s.Opacity->AddPoint(0.25, 0.03);
+  s.Opacity->AddPoint(0.45, 0.03);
+  s.Opacity->AddPoint(0.55, 0.25);
+  s.Opacity->AddPoint(0.7, 0.25);
+  s.Opacity->AddPoint(0.8, 0.8);
+  s.Opacity->AddPoint(1.0, 0.8);
+  s.Materials = vtkSmartPointer<vtkMaterialTransferFunction>::New();
+  AddBand(s.Materials, 0.15, 0.42, 0.4, 0.5, 0.0, 1, 0.5, 10.0, 0.0); // haze
+  AddBand(s.Materials, 0.5, 0.68, 0.2, 0.8, 0.3, 20, 1.0, 1.0, 0.0);  // shell
+  AddBand(s.Materials, 0.78, 1.0, 0.15, 0.5, 0.9, 60, 1.0, 0.0, 0.2); // core
+  s.ViewDirection[0] = 1.0;
+  s.ViewDirection[1] = -0.8;
+  s.ViewDirection[2] = 0.3;
+  return s;
+}
+
+} // namespace mmvbench
+
+#endif
