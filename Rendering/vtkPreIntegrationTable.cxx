@@ -34,15 +34,20 @@ double LinearOpacityDepth(double a0, double a1, double width)
   a0 = std::max(0.0, a0);
   a1 = std::max(0.0, a1);
   const double top = mmv::MaxOpacity;
-  if ((a0 > top) != (a1 > top))
+  const double clamped = -std::log1p(-top); // depth per width where alpha is clamped
+  if (a0 >= top && a1 >= top)
   {
-    // Split where the clamp starts.
-    const double f = (top - a0) / (a1 - a0);
-    return LinearOpacityDepth(a0, top, f * width) + LinearOpacityDepth(top, a1, (1.0 - f) * width);
+    return width * clamped;
   }
-  if (a0 >= top)
+  if (a0 > top || a1 > top)
   {
-    return -width * std::log1p(-top);
+    // One end above the clamp: split where it starts. The unclamped piece
+    // ends exactly at `top`, which the closed form below handles (no
+    // recursion: an end equal to `top` is not above it).
+    const double f = (top - a0) / (a1 - a0);
+    return a0 > top
+      ? f * width * clamped + LinearOpacityDepth(top, a1, (1.0 - f) * width)
+      : LinearOpacityDepth(a0, top, f * width) + (1.0 - f) * width * clamped;
   }
   if (std::abs(a1 - a0) < 1e-8)
   {

@@ -1,12 +1,133 @@
-// placeholder (being written)
+/**
+ * @class   vtkPVMultiMaterialVolumeRepresentation
+ * @brief   ParaView's "Multi-Material Volume" representation of image data.
+ *
+ * A vtkImageVolumeRepresentation whose mapper is a vtkMultiMaterialVolumeMapper
+ * (installed in the constructor, as ParaView's NVIDIA IndeX plugin does).
+ * Everything the base class does (data delivery, ordered compositing, colour
+ * and opacity transfer functions, cropping, outline LOD) is kept; the base
+ * class forwards some settings by down-casting to its own mapper types, so
+ * this class forwards the multi-material and sampling settings itself, in
+ * UpdateMapperParameters().
+ *
+ * Materials: MaterialNodes (8 numbers per node, see
+ * vtkMaterialTransferFunction::SetNodes) or, when MaterialPreset names a
+ * preset of vtkMaterialLibrary, that preset spread over the colour map's
+ * range (the range ParaView keeps consistent on every rank). Invalid nodes
+ * and unknown presets are reported with vtkErrorMacro and ignored, so the
+ * previous materials stay in use.
+ *
+ * Lights are the view's renderer lights (light kit, headlight, lights added
+ * with the Light Inspector or AddLight()); the mapper reads them every frame.
+ *
+ * Under MPI every rank renders its own piece and computes irradiance from it
+ * alone: shadows and scattered light do not cross piece boundaries.
+ */
 #ifndef vtkPVMultiMaterialVolumeRepresentation_h
 #define vtkPVMultiMaterialVolumeRepresentation_h
-#include "vtkMultiMaterialVolumeParaViewModule.h"
+
+#include "vtkDoubleArray.h" // for vtkNew ivar
 #include "vtkImageVolumeRepresentation.h"
-class VTKMULTIMATERIALVOLUMEPARAVIEW_EXPORT vtkPVMultiMaterialVolumeRepresentation : public vtkImageVolumeRepresentation
+#include "vtkMaterialTransferFunction.h"          // for vtkNew ivar
+#include "vtkMultiMaterialVolumeParaViewModule.h" // export macro
+#include "vtkNew.h"                               // for vtkNew
+#include "vtkPVMaterialNodeBuffer.h"              // for ivar
+#include "vtkStringArray.h"                       // for vtkNew ivar
+
+#include <string> // for the preset name
+
+class vtkMultiMaterialVolumeMapper;
+
+class VTKMULTIMATERIALVOLUMEPARAVIEW_EXPORT vtkPVMultiMaterialVolumeRepresentation
+  : public vtkImageVolumeRepresentation
 {
 public:
   static vtkPVMultiMaterialVolumeRepresentation* New();
   vtkTypeMacro(vtkPVMultiMaterialVolumeRepresentation, vtkImageVolumeRepresentation);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /**
+   * MaterialNodes arrive as ParaView pushes a repeated, indexed property: the
+   * count first, then every value. The nodes are validated and applied once
+   * the last value arrives, all or nothing.
+   */
+  void SetNumberOfMaterialNodeValues(int count);
+  void SetMaterialNodeValue(int index, double value);
+  ///@}
+
+  /// The nodes in use (8 numbers per node), presets included.
+  vtkDoubleArray* GetAppliedMaterialNodes();
+
+  ///@{
+  /**
+   * A preset name of vtkMaterialLibrary, or "" / "Custom" to use
+   * MaterialNodes. Unknown names are errors and change nothing.
+   */
+  void SetMaterialPreset(const char* name);
+  const char* GetMaterialPreset() const { return this->MaterialPreset.c_str(); }
+  ///@}
+
+  /// The names of the built-in presets (the MaterialPreset domain).
+  vtkStringArray* GetMaterialPresetNames();
+
+  ///@{
+  /// Forwarded to vtkMultiMaterialVolumeMapper.
+  void SetIrradianceMemoryMB(double megabytes);
+  void SetIrradianceScale(double scale);
+  void SetMultipleScattering(bool enabled);
+  void SetPreIntegration(bool enabled);
+  void SetPointLightRadius(double radius);
+  void SetSampleDistance(double distance);
+  void SetAutoAdjustSampleDistances(bool enabled);
+  void SetLockSampleDistanceToInputSpacing(bool enabled);
+  ///@}
+
+  ///@{
+  /// The mapper's counters on this process (see vtkMultiMaterialVolumeMapper).
+  int GetIrradianceUpdateCount();
+  int GetDiffusionPassCount();
+  int GetPreIntegrationCount();
+  int GetRayCastCount();
+  int GetNumberOfShadedLights();
+  int GetMultiMaterialActive();
+  ///@}
+
+  vtkMultiMaterialVolumeMapper* GetMultiMaterialMapper();
+
+protected:
+  vtkPVMultiMaterialVolumeRepresentation();
+  ~vtkPVMultiMaterialVolumeRepresentation() override;
+
+  void UpdateMapperParameters() override;
+
+private:
+  vtkPVMultiMaterialVolumeRepresentation(const vtkPVMultiMaterialVolumeRepresentation&) = delete;
+  void operator=(const vtkPVMultiMaterialVolumeRepresentation&) = delete;
+
+  bool UsesPreset() const;
+
+  // Nodes from MaterialNodes; kept apart from the mapper's function so that
+  // switching a preset off brings them back.
+  vtkNew<vtkMaterialTransferFunction> CustomMaterials;
+  // What the mapper shades with: CustomMaterials or the preset.
+  vtkNew<vtkMaterialTransferFunction> Materials;
+  vtkNew<vtkDoubleArray> AppliedNodes;
+  vtkNew<vtkStringArray> PresetNames;
+
+  vtkPVMaterialNodeBuffer PendingNodes;
+
+  std::string MaterialPreset;
+  double PresetRange[2] = { 0.0, -1.0 };
+
+  double IrradianceMemoryMB = 64.0;
+  double IrradianceScale = 0.0;
+  bool MultipleScattering = true;
+  bool PreIntegration = true;
+  double PointLightRadius = 0.0;
+  double SampleDistance = 1.0;
+  bool AutoAdjustSampleDistances = true;
+  bool LockSampleDistanceToInputSpacing = false;
 };
+
 #endif

@@ -592,7 +592,7 @@ TEST(PreIntegrationTable, LookupInterpolatesAndClamps)
   EXPECT_NEAR(alpha, 0.5, 1e-6); // alpha per unit distance over L = u = 1
 }
 
-TEST(PreIntegrationTable, BuildTimeAt256)
+TEST(PreIntegrationTable, FullSizeTableStaysInBounds)
 {
   vtkNew<vtkPiecewiseFunction> otf;
   vtkNew<vtkColorTransferFunction> ctf;
@@ -619,4 +619,30 @@ TEST(PreIntegrationTable, BuildTimeAt256)
     ASSERT_GE(table->GetShadingPositionTable()[k], 0.0f);
     ASSERT_LE(table->GetShadingPositionTable()[k], 1.0f);
   }
+}
+
+TEST(PreIntegrationTable, FullyOpaqueNodesAreClampedNotRecursedOn)
+{
+  // ParaView's default opacity ramp reaches 1.0, above mmv::MaxOpacity: the
+  // build must clamp (it once recursed without end there).
+  vtkNew<vtkPiecewiseFunction> otf;
+  otf->AddPoint(0.0, 0.0);
+  otf->AddPoint(1.0, 1.0);
+  vtkNew<vtkPreIntegrationTable> table;
+  table->SetScalarOpacity(otf);
+  table->SetTableSize(64);
+  table->SetStepLength(0.5);
+  ASSERT_TRUE(table->Update());
+  const double clampedDepth = -std::log1p(-mmv::MaxOpacity);
+  // A homogeneous segment at the opaque end: the clamped extinction.
+  EXPECT_NEAR(table->LookupOpacity(1.0, 1.0), 1.0 - std::exp(-0.5 * clampedDepth), 1e-6);
+  // Segments crossing into the clamp stay finite and inside [0, 1].
+  for (double t1 : { 0.0, 0.5, 0.99 })
+  {
+    const double a = table->LookupOpacity(t1, 1.0);
+    EXPECT_TRUE(std::isfinite(a));
+    EXPECT_GE(a, 0.0);
+    EXPECT_LE(a, 1.0);
+  }
+  EXPECT_GT(table->LookupOpacity(0.99, 1.0), table->LookupOpacity(0.5, 1.0));
 }

@@ -1,0 +1,57 @@
+"""Bad MaterialNodes and an unknown preset are reported (VTK errors, which
+pvpython prints) and ignored: the previous materials stay and rendering goes on."""
+
+import math
+import os
+
+from paraview import simple
+
+import mmv_testing as mmv
+
+args = mmv.parse_args()
+mmv.load_plugin(args)
+checker = mmv.Checker()
+errors = mmv.ErrorCapture()
+
+GOOD = [37.0, 0.1, 0.8, 0.3, 20.0, 1.0, 0.5, 0.0,
+        277.0, 0.1, 0.8, 0.3, 20.0, 1.0, 0.5, 0.0]
+
+view = mmv.make_view()
+rep = mmv.show_volume(mmv.make_volume(), view, preset="Custom")
+rep.MaterialNodes = GOOD
+reference = mmv.render_image(view, os.path.join(args.temp_dir, "bad_reference.png"))
+checker.check(errors.take_errors() == "", "good nodes: no error")
+
+
+def expect_rejected(what, message_part):
+    log = errors.take_errors()
+    checker.check(message_part in log, "%s is reported: %r" % (what, log.strip()[-200:]))
+    image = mmv.render_image(view, os.path.join(args.temp_dir, "bad_%s.png" % what.replace(" ", "_")))
+    checker.check(mmv.info(rep, "AppliedMaterialNodes") == GOOD, "%s: previous nodes kept" % what)
+    checker.check(mmv.mean_difference(image, reference) <= mmv.BASELINE_THRESHOLD,
+                  "%s: the next render still works and is unchanged" % what)
+    checker.check(mmv.info(rep, "MultiMaterialActive") == 1, "%s: still multi-material" % what)
+
+
+rep.MaterialNodes = GOOD[:-1]
+expect_rejected("15 numbers", "8 numbers per node")
+
+nan = list(GOOD)
+nan[2] = float("nan")
+rep.MaterialNodes = nan
+expect_rejected("NaN", "ERROR")
+
+negative = list(GOOD)
+negative[5] = -1.0
+rep.MaterialNodes = negative
+expect_rejected("negative attenuation", "ERROR")
+
+rep.MaterialPreset = "unobtainium"
+expect_rejected("unknown preset", "Unknown material preset")
+
+# A good list afterwards is taken again.
+rep.MaterialNodes = GOOD[:8]
+mmv.render_image(view, os.path.join(args.temp_dir, "bad_recovered.png"))
+checker.check(mmv.info(rep, "AppliedMaterialNodes") == GOOD[:8], "a valid list is accepted again")
+checker.check(errors.take_errors() == "", "no further errors")
+checker.finish()

@@ -1,0 +1,163 @@
+"""Every representation property reaches the mapper and changes the image or
+the stage it should; lights added to the view reach the mapper."""
+
+import os
+
+from paraview import simple
+
+import mmv_testing as mmv
+
+args = mmv.parse_args()
+mmv.load_plugin(args)
+checker = mmv.Checker()
+errors = mmv.ErrorCapture()
+
+view = mmv.make_view()
+rep = mmv.show_volume(mmv.make_volume(), view, preset="bone")
+frame = [0]
+
+
+def render():
+    frame[0] += 1
+    return mmv.render_image(view, os.path.join(args.temp_dir, "properties_%02d.png" % frame[0]))
+
+
+def counters():
+    return {name: mmv.info(rep, name) for name in
+            ("IrradianceUpdateCount", "DiffusionPassCount", "PreIntegrationCount", "RayCastCount",
+             "NumberOfShadedLights")}
+
+
+def changed(a, b, what, minimum=0.5):
+    d = mmv.mean_difference(a, b)
+    return checker.check(d > minimum, "%s changes the image (mean |difference| %.2f)" % (what, d))
+
+
+base = render()
+c0 = counters()
+checker.check(c0["IrradianceUpdateCount"] >= 1 and c0["DiffusionPassCount"] >= 1,
+              "bone scatters: irradiance and diffusion ran (%s)" % c0)
+
+# A camera move: the light kit's lights follow the camera, so the irradiance
+# follows too, but the segment tables do not change.
+camera = view.GetActiveCamera()
+camera.Azimuth(20)
+render()
+c1 = counters()
+checker.check(c1["IrradianceUpdateCount"] > c0["IrradianceUpdateCount"] and
+              c1["PreIntegrationCount"] == c0["PreIntegrationCount"],
+              "camera move with the light kit: irradiance again, same tables (%s)" % c1)
+camera.Azimuth(-20)
+
+# MultipleScattering off: irradiance recomputed without a diffusion pass.
+rep.MultipleScattering = 0
+noScatter = render()
+c2 = counters()
+checker.check(c2["IrradianceUpdateCount"] > c1["IrradianceUpdateCount"],
+              "MultipleScattering off recomputes the irradiance")
+checker.check(c2["DiffusionPassCount"] == c1["DiffusionPassCount"],
+              "MultipleScattering off runs no diffusion pass (%d -> %d)"
+              % (c1["DiffusionPassCount"], c2["DiffusionPassCount"]))
+changed(base, noScatter, "MultipleScattering", minimum=0.05)
+rep.MultipleScattering = 1
+render()
+
+# IrradianceScale: new resolution, irradiance recomputed.
+before = counters()["IrradianceUpdateCount"]
+rep.IrradianceScale = 0.25
+render()
+checker.check(counters()["IrradianceUpdateCount"] > before, "IrradianceScale recomputes the irradiance")
+rep.IrradianceScale = 0.0
+
+# IrradianceMemoryMB: a tiny budget forces a coarser grid.
+render()
+before = counters()["IrradianceUpdateCount"]
+rep.IrradianceMemoryMB = 0.01
+render()
+checker.check(counters()["IrradianceUpdateCount"] > before,
+              "IrradianceMemoryMB recomputes the irradiance")
+rep.IrradianceMemoryMB = 64
+base = render()
+
+# Presets.
+rep.MaterialPreset = "metal"
+metal = render()
+changed(base, metal, "MaterialPreset bone -> metal")
+rep.MaterialPreset = "bone"
+
+# MaterialNodes (used once the preset is "Custom").
+rep.MaterialNodes = [37.0, 0.1, 0.9, 0.0, 10.0, 1.0, 0.0, 0.0,
+                     277.0, 0.1, 0.9, 0.0, 10.0, 1.0, 0.0, 0.0]
+rep.MaterialPreset = "Custom"
+custom = render()
+changed(base, custom, "MaterialNodes")
+checker.check(mmv.info(rep, "AppliedMaterialNodes") == list(rep.MaterialNodes),
+              "the mapper uses MaterialNodes")
+rep.MaterialPreset = "bone"
+base = render()
+
+# PreIntegration off: post-classified samples.
+rep.PreIntegration = 0
+changed(base, render(), "PreIntegration off", minimum=0.05)
+rep.PreIntegration = 1
+
+# Sample distance: a coarse fixed step rebuilds the tables and shows.
+render()
+before = counters()["PreIntegrationCount"]
+rep.AutoAdjustSampleDistances = 0
+rep.SampleDistance = 3.0
+coarse = render()
+checker.check(counters()["PreIntegrationCount"] > before, "SampleDistance rebuilds the tables")
+changed(base, coarse, "SampleDistance 3", minimum=0.05)
+rep.AutoAdjustSampleDistances = 1
+rep.SampleDistance = 1.0
+# Point and spot lights fall off as (radius / distance)^2 beyond PointLightRadius;
+# the default (one voxel) makes a light 40 voxels away invisible.
+rep.PointLightRadius = 30.0
+base = render()
+
+# A spot light added with AddLight reaches the mapper.
+lightsBefore = counters()
+light = simple.AddLight(view=view)
+light.Coords = "Scene"
+light.Type = "Positional"
+light.ConeAngle = 25.0
+light.Position = [0.0, -40.0, 10.0]
+light.FocalPoint = [0.0, 0.0, 0.0]
+light.Intensity = 1.5
+light.DiffuseColor = [1.0, 0.6, 0.3]
+spot = render()
+lightsAfter = counters()
+checker.check(lightsAfter["NumberOfShadedLights"] == lightsBefore["NumberOfShadedLights"] + 1,
+              "the spot light is shaded (%d -> %d lights)"
+              % (lightsBefore["NumberOfShadedLights"], lightsAfter["NumberOfShadedLights"]))
+checker.check(lightsAfter["IrradianceUpdateCount"] > lightsBefore["IrradianceUpdateCount"],
+              "the spot light recomputes the irradiance")
+changed(base, spot, "AddLight (spot)")
+
+# PointLightRadius matters for the spot light.
+rep.PointLightRadius = 0.0
+changed(spot, render(), "PointLightRadius", minimum=0.05)
+rep.PointLightRadius = 30.0
+
+# The light kit off: the spot light alone, and a camera move then costs no
+# irradiance update (scene lights stay put relative to the volume).
+view.UseLight = 0
+render()
+alone = counters()
+checker.check(alone["NumberOfShadedLights"] == 1,
+              "light kit off: only the spot light is shaded (%d)" % alone["NumberOfShadedLights"])
+camera.Azimuth(30)
+render()
+checker.check(counters()["IrradianceUpdateCount"] == alone["IrradianceUpdateCount"],
+              "camera move with a scene light only: no irradiance update")
+camera.Azimuth(-30)
+view.UseLight = 1
+simple.RemoveLight(light)
+render()
+checker.check(counters()["NumberOfShadedLights"] == lightsBefore["NumberOfShadedLights"],
+              "removing the light is seen by the mapper")
+
+log = errors.take_errors()
+checker.check(log == "", "no VTK errors: %r" % log[:500])
+checker.finish()
