@@ -24,6 +24,8 @@
 #include "vtkSmartPointer.h"
 #include "vtkTextureObject.h"
 #include "vtkVolume.h"
+#include "vtkVolumeInputHelper.h"
+#include "vtkVolumeTexture.h"
 #include "vtkVolumeProperty.h"
 #include "vtk_glew.h"
 
@@ -49,6 +51,31 @@ double Seconds(Clock::time_point start)
 // value changes by this much per voxel; below, it fades to ambient shading so
 // homogeneous regions do not turn gradient noise into speckles.
 constexpr double FullShadingGradientPerVoxel = 0.005;
+
+const char* const PartitionWarning = "multi-material shading does not support partitioned "
+                                     "volumes (SetPartitions); using VTK's shading";
+
+// Partitioned textures (SetPartitions) render blocks whose texture
+// coordinates our shading does not map (TestBadInput.PartitionedVolume gave a
+// wrong image). VTK only partitions the texture during the first render, so
+// GPURender checks again afterwards: that first frame is wrong but warned.
+bool HasPartitions(vtkOpenGLGPUVolumeRayCastMapper::VolumeInputMap& inputs)
+{
+  for (auto& input : inputs)
+  {
+    vtkVolumeTexture* texture = input.second.Texture;
+    if (texture)
+    {
+      const auto& parts = texture->GetPartitions();
+      if (parts[0] * parts[1] * parts[2] > 1)
+      {
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
 }
 
 class vtkMultiMaterialVolumeMapper::vtkInternals
@@ -276,6 +303,13 @@ void vtkMultiMaterialVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
   this->Superclass::ReleaseGraphicsResources(window);
 }
 
+void vtkMultiMaterialVolumeMapper::SetPartitions(
+  unsigned short x, unsigned short y, unsigned short z)
+{
+  this->PartitionsRequested = static_cast<int>(x) * y * z > 1;
+  this->Superclass::SetPartitions(x, y, z);
+}
+
 //------------------------------------------------------------------------------
 void vtkMultiMaterialVolumeMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
 {
@@ -313,6 +347,10 @@ void vtkMultiMaterialVolumeMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
   }
   in.ActivateTextures(false);
   ++this->RayCastCount;
+  if (HasPartitions(this->AssembledInputs))
+  {
+    this->WarnOnce(PartitionWarning); // later frames use the base class
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -330,6 +368,11 @@ bool vtkMultiMaterialVolumeMapper::PrepareMultiMaterial(vtkRenderer* ren, vtkVol
   if (this->BlendMode != vtkVolumeMapper::COMPOSITE_BLEND)
   {
     return false; // other blend modes are the base class's business
+  }
+  if (this->PartitionsRequested || HasPartitions(this->AssembledInputs))
+  {
+    this->WarnOnce(PartitionWarning);
+    return false;
   }
   auto* image = vtkImageData::SafeDownCast(this->GetInput());
   vtkVolumeProperty* property = vol->GetProperty();
@@ -349,11 +392,28 @@ bool vtkMultiMaterialVolumeMapper::PrepareMultiMaterial(vtkRenderer* ren, vtkVol
   {
     return false; // the base class reports missing scalars
   }
+  // An empty image (0 points) crashed the irradiance pre-filter
+  // (TestBadInput.EmptyVolume); fewer scalars than points would read past them.
+  if (image->GetNumberOfPoints() < 1 ||
+    scalars->GetNumberOfTuples() < (cellFlag ? image->GetNumberOfCells() : image->GetNumberOfPoints()))
+  {
+    this->WarnOnce("the input has no points or fewer scalars than points; nothing to shade");
+    return false;
+  }
   if (cellFlag)
   {
     this->WarnOnce("multi-material shading needs point scalars (cell scalars given); "
                    "using VTK's shading");
     return false;
+  }
+  int dataDims[3];
+  image->GetDimensions(dataDims);
+  if (dataDims[0] < 2 || dataDims[1] < 2 || dataDims[2] < 2)
+  {
+    // Found by TestBadInput.SingleSliceAnd2DImages: a single slice has no
+    // thickness, so seen face-on it integrates to nothing (a black image).
+    this->WarnOnce("the input is a single slice (one point along an axis): it has no "
+                   "thickness and may render empty");
   }
   if (scalars->GetNumberOfComponents() != 1)
   {
@@ -532,9 +592,23 @@ bool vtkMultiMaterialVolumeMapper::UpdateIrradiance(vtkOpenGLRenderWindow* conte
     in.Grid = mmv::MakeIrradianceGrid(image, dims);
     mmv::PrefilterScalars(image, scalars, 0, in.Grid, in.Prefiltered);
     const double scale = 1.0 / (range[1] - range[0]);
+    bool nonFinite = false;
     for (float& v : in.Prefiltered)
     {
       v = static_cast<float>((v - range[0]) * scale);
+      // NaN/Inf voxels (TestBadInput.NonFiniteVoxels) used to index the
+      // opacity tables out of bounds: NaN counts as empty, +-Inf as the
+      // range's ends.
+      if (!std::isfinite(v))
+      {
+        nonFinite = true;
+        v = std::isnan(v) ? 0.0f : (v > 0.0f ? 1.0f : 0.0f);
+      }
+    }
+    if (nonFinite)
+    {
+      this->WarnOnce("the scalars contain NaN or Inf: lit as empty (NaN) or as the ends of the "
+                     "finite range (Inf)");
     }
     in.PrefilterKey = prefilterKey;
   }

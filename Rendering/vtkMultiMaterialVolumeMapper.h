@@ -112,6 +112,10 @@ public:
   /// Test hook: the fragment shader of the last shader build.
   std::string GetLastFragmentShaderSource();
 
+  /// Partitioned volumes render with VTK's shading (with a warning): the
+  /// multi-material shading maps one texture over the whole volume.
+  void SetPartitions(unsigned short x, unsigned short y, unsigned short z);
+
   void GPURender(vtkRenderer* ren, vtkVolume* vol) override;
   void ReleaseGraphicsResources(vtkWindow* window) override;
   vtkMTimeType GetMTime() override;
@@ -138,6 +142,7 @@ protected:
   int IrradianceDimensions[3] = { 0, 0, 0 };
   int NumberOfShadedLights = 0;
   bool MultiMaterialActive = false;
+  bool PartitionsRequested = false;
 
 private:
   vtkMultiMaterialVolumeMapper(const vtkMultiMaterialVolumeMapper&) = delete;

@@ -1,1 +1,440 @@
+// Bad input: every case gives a clear error or warning or a correct image;
+// never a crash, never a silently wrong image. Runs under Xvfb with Mesa
+// llvmpipe; volumes <= 33^3, windows 64x64.
+#include "mmvTestScenes.h"
+#include "mmvTestUtilities.h"
+
+#include "vtkCharArray.h"
+#include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkIrradianceVolumeFilter.h"
+#include "vtkMaterialLibrary.h"
+#include "vtkMaterialTransferFunction.h"
+#include "vtkMatrix3x3.h"
+#include "vtkMultiMaterialVolumeMapper.h"
+#include "vtkCellData.h"
+#include "vtkExecutive.h"
+
 #include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+namespace
+{
+const double Center[3] = { 16.0, 16.0, 16.0 };
+
+float Sphere(int i, int j, int k)
+{
+  const double r = std::sqrt((i - 16.0) * (i - 16.0) + (j - 16.0) * (j - 16.0) + (k - 16.0) * (k - 16.0));
+  return static_cast<float>(std::max(0.0, 12.0 - r) * 10.0); // 0 .. 120
+}
+
+struct Result
+{
+  bool Active = false;
+  int Warnings = 0;
+  int Errors = 0;
+  std::string Message;
+  std::vector<unsigned char> Pixels;
+  double CenterLuminance = 0.0;
+};
+
+// Renders `image` with a lit multi-material mapper and a 0..120 colour and
+// opacity ramp; `setup` may change the scene before the render.
+Result Render(vtkImageData* image, const std::function<void(mmvtest::Scene&, vtkMultiMaterialVolumeMapper*)>& setup = nullptr, bool light = true)
+{
+  Result result;
+  mmvtest::Scene scene;
+  scene.Color->AddRGBPoint(0.0, 1.0, 0.8, 0.6);
+  scene.Color->AddRGBPoint(120.0, 1.0, 0.8, 0.6);
+  scene.Opacity->AddPoint(0.0, 0.0);
+  scene.Opacity->AddPoint(120.0, 0.5);
+  vtkNew<vtkMaterialTransferFunction> materials;
+  materials->AddNode(60.0, 0.3, 0.6, 0.3, 20.0, 1.0, 0.0, 0.0);
+  vtkNew<vtkMultiMaterialVolumeMapper> mapper;
+  mmvTest::ErrorCounter counter(mapper);
+  mapper->SetInputData(image);
+  mapper->SetMaterialTransferFunction(materials);
+  scene.Volume->SetMapper(mapper);
+  double bounds[6] = { 0, 32, 0, 32, 0, 32 };
+  scene.FrameBounds(bounds);
+  if (light)
+  {
+    const double from[3] = { 50.0, 80.0, 100.0 };
+    scene.AddDirectionalLight(from, Center);
+  }
+  if (setup)
+  {
+    setup(scene, mapper);
+  }
+  scene.Window->Render();
+  result.Active = mapper->GetMultiMaterialActive();
+  result.Warnings = counter.Warnings();
+  result.Errors = counter.Errors();
+  result.Message = counter.LastMessage();
+  result.Pixels = scene.Pixels();
+  result.CenterLuminance = 0.0;
+  for (int c = 0; c < 3; ++c)
+  {
+    const int half = scene.Window->GetSize()[0] / 2;
+    result.CenterLuminance += scene.Pixel(half, half)[c] / 3.0;
+  }
+  return result;
+}
+
+int MaxDifference(const std::vector<unsigned char>& a, const std::vector<unsigned char>& b)
+{
+  int worst = 255;
+  if (a.size() == b.size())
+  {
+    worst = 0;
+    for (size_t i = 0; i < a.size(); ++i)
+    {
+      worst = std::max(worst, std::abs(int(a[i]) - int(b[i])));
+    }
+  }
+  return worst;
+}
+
+vtkSmartPointer<vtkImageData> SphereVolume()
+{
+  return mmvtest::MakeVolume(33, Sphere);
+}
+}
+
+//------------------------------------------------------------------------------
+TEST(BadInput, ReferenceSphereRendersCleanly)
+{
+  const Result r = Render(SphereVolume());
+  EXPECT_TRUE(r.Active);
+  EXPECT_EQ(r.Warnings + r.Errors, 0) << r.Message;
+  EXPECT_GT(r.CenterLuminance, 0.05);
+}
+
+TEST(BadInput, NonFiniteVoxels)
+{
+  // A few NaN and Inf voxels outside the sphere: the finite range is used,
+  // so the sphere itself must render as without them.
+  const Result reference = Render(SphereVolume());
+  auto image = SphereVolume();
+  auto* values = vtkFloatArray::SafeDownCast(image->GetPointData()->GetScalars());
+  values->SetValue(0, std::numeric_limits<float>::quiet_NaN());
+  values->SetValue(1, std::numeric_limits<float>::infinity());
+  values->SetValue(2, -std::numeric_limits<float>::infinity());
+  values->Modified();
+  const Result r = Render(image);
+  EXPECT_TRUE(r.Active);
+  EXPECT_NEAR(r.CenterLuminance, reference.CenterLuminance, 2.0 / 255) << r.Message;
+  std::printf("non-finite voxels: active %d, warnings %d, errors %d, max pixel difference %d (%s)\n",
+    r.Active, r.Warnings, r.Errors, MaxDifference(r.Pixels, reference.Pixels), r.Message.c_str());
+  EXPECT_EQ(r.Warnings, 1) << "NaN/Inf must be reported";
+
+  // The filter: finite irradiance in [0, 1] at full and coarse resolution.
+  for (double scale : { 1.0, 0.5 })
+  {
+    vtkNew<vtkIrradianceVolumeFilter> filter;
+    mmvTest::ErrorCounter counter(filter);
+    vtkNew<vtkPiecewiseFunction> opacity;
+    opacity->AddPoint(0.0, 0.0);
+    opacity->AddPoint(120.0, 0.5);
+    vtkNew<vtkLight> light;
+    light->SetPosition(50.0, 80.0, 100.0);
+    light->SetFocalPoint(16.0, 16.0, 16.0);
+    filter->SetInputData(image);
+    filter->SetScalarOpacity(opacity);
+    filter->SetIrradianceScale(scale);
+    filter->AddLight(light);
+    filter->Update();
+    auto* irradiance = vtkFloatArray::SafeDownCast(filter->GetOutput()->GetPointData()->GetArray("Irradiance_0"));
+    ASSERT_NE(irradiance, nullptr);
+    for (vtkIdType p = 0; p < irradiance->GetNumberOfTuples(); ++p)
+    {
+      ASSERT_TRUE(std::isfinite(irradiance->GetValue(p))) << "scale " << scale << " voxel " << p;
+      ASSERT_GE(irradiance->GetValue(p), 0.0f);
+      ASSERT_LE(irradiance->GetValue(p), 1.0f + 1e-5f);
+    }
+    EXPECT_EQ(counter.Warnings(), 1) << "NaN/Inf must be reported";
+    std::printf("non-finite voxels, filter at scale %.1f: warnings %d errors %d (%s)\n", scale,
+      counter.Warnings(), counter.Errors(), counter.LastMessage().c_str());
+  }
+}
+
+TEST(BadInput, ConstantVolume)
+{
+  auto image = mmvtest::MakeVolume(33, [](int, int, int) { return 60.0f; });
+  const Result r = Render(image);
+  EXPECT_TRUE(r.Active);
+  EXPECT_EQ(r.Errors, 0) << r.Message;
+  EXPECT_GT(r.CenterLuminance, 0.05) << "a constant, opaque volume is visible";
+}
+
+TEST(BadInput, EmptyVolume)
+{
+  vtkNew<vtkImageData> image;
+  vtkNew<vtkFloatArray> values;
+  image->GetPointData()->SetScalars(values);
+  const Result r = Render(image);
+  EXPECT_FALSE(r.Active);
+  EXPECT_LT(r.CenterLuminance, 1.0 / 255) << "nothing to draw";
+  std::printf("empty volume: warnings %d, errors %d (%s)\n", r.Warnings, r.Errors, r.Message.c_str());
+
+  // The filter reports empty input and produces an empty output.
+  vtkNew<vtkIrradianceVolumeFilter> filter;
+  mmvTest::ErrorCounter counter(filter);
+  counter.Watch(filter->GetExecutive());
+  vtkNew<vtkPiecewiseFunction> opacity;
+  opacity->AddPoint(0.0, 0.5);
+  filter->SetScalarOpacity(opacity);
+  filter->SetInputData(image);
+  filter->Update();
+  EXPECT_EQ(filter->GetOutput()->GetNumberOfPoints(), 0);
+  std::printf("empty volume filter: warnings %d, errors %d (%s)\n", counter.Warnings(),
+    counter.Errors(), counter.LastMessage().c_str());
+}
+
+void SliceCase(int depth)
+{
+  {
+    auto image = vtkSmartPointer<vtkImageData>::New();
+    image->SetDimensions(33, 33, depth);
+    vtkNew<vtkFloatArray> values;
+    values->SetNumberOfTuples(33 * 33 * depth);
+    for (vtkIdType p = 0; p < values->GetNumberOfTuples(); ++p)
+    {
+      values->SetValue(p, Sphere(p % 33, (p / 33) % 33, 16));
+    }
+    image->GetPointData()->SetScalars(values);
+    // A 16x16 window: face-on, the zero-thickness slice makes llvmpipe spend
+    // ~0.25 ms per pixel in the ray cast (16 s at 64x64).
+    const Result r = Render(image, [](mmvtest::Scene& s, vtkMultiMaterialVolumeMapper*) {
+      s.Window->SetSize(16, 16);
+    });
+    std::printf("depth %d: active %d, warnings %d, errors %d, centre %.3f (%s)\n", depth, r.Active,
+      r.Warnings, r.Errors, r.CenterLuminance, r.Message.c_str());
+    if (depth == 1)
+    {
+      // Zero thickness seen face-on: black, so it must say so.
+      EXPECT_EQ(r.Warnings, 1) << "a single slice must be reported";
+      EXPECT_NE(r.Message.find("single slice"), std::string::npos) << r.Message;
+    }
+    else if (r.Active)
+    {
+      EXPECT_GT(r.CenterLuminance, 0.05) << "depth " << depth;
+    }
+    else
+    {
+      EXPECT_GT(r.Warnings + r.Errors, 0) << "fallback without a message, depth " << depth;
+    }
+  }
+}
+
+TEST(BadInput, SingleSlice)
+{
+  SliceCase(1);
+}
+
+TEST(BadInput, TwoSlices)
+{
+  SliceCase(2);
+}
+
+TEST(BadInput, NonUniformSpacingAndOrientation)
+{
+  auto image = SphereVolume();
+  image->SetSpacing(1.0, 0.5, 2.0);
+  image->SetOrigin(0.0, 8.0, -16.0); // same bounds as the unit cube 0..32
+  Result r = Render(image);
+  EXPECT_TRUE(r.Active);
+  EXPECT_EQ(r.Errors, 0) << r.Message;
+  EXPECT_GT(r.CenterLuminance, 0.05);
+
+  // A direction matrix rotating the image 90 degrees about z around its
+  // centre: the sphere is symmetric, so the image must match the axis-aligned one.
+  const Result reference = Render(SphereVolume());
+  auto rotated = SphereVolume();
+  rotated->SetDirectionMatrix(0, -1, 0, 1, 0, 0, 0, 0, 1);
+  rotated->SetOrigin(32.0, 0.0, 0.0);
+  r = Render(rotated);
+  std::printf("oriented: active %d, warnings %d, max pixel difference %d (%s)\n", r.Active,
+    r.Warnings, MaxDifference(r.Pixels, reference.Pixels), r.Message.c_str());
+  if (r.Active)
+  {
+    EXPECT_NEAR(r.CenterLuminance, reference.CenterLuminance, 3.0 / 255);
+  }
+  else
+  {
+    EXPECT_GT(r.Warnings, 0);
+  }
+}
+
+TEST(BadInput, CellDataFallsBackWithAWarning)
+{
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(17, 17, 17);
+  vtkNew<vtkFloatArray> values;
+  values->SetNumberOfTuples(16 * 16 * 16);
+  for (vtkIdType c = 0; c < values->GetNumberOfTuples(); ++c)
+  {
+    values->SetValue(c, Sphere(2 * (c % 16), 2 * ((c / 16) % 16), 2 * (c / 256)));
+  }
+  image->GetCellData()->SetScalars(values);
+  const Result r = Render(image, [](mmvtest::Scene&, vtkMultiMaterialVolumeMapper* m) {
+    m->SetScalarModeToUseCellData();
+  });
+  EXPECT_FALSE(r.Active);
+  EXPECT_EQ(r.Warnings, 1);
+  EXPECT_NE(r.Message.find("cell scalars"), std::string::npos) << r.Message;
+}
+
+TEST(BadInput, EveryScalarType)
+{
+  const Result reference = Render(SphereVolume());
+  for (int type : { VTK_CHAR, VTK_SIGNED_CHAR, VTK_UNSIGNED_CHAR, VTK_SHORT, VTK_UNSIGNED_SHORT,
+         VTK_INT, VTK_UNSIGNED_INT, VTK_LONG, VTK_UNSIGNED_LONG, VTK_LONG_LONG,
+         VTK_UNSIGNED_LONG_LONG, VTK_FLOAT, VTK_DOUBLE })
+  {
+    auto image = SphereVolume();
+    vtkSmartPointer<vtkDataArray> typed = vtkSmartPointer<vtkDataArray>::Take(vtkDataArray::CreateDataArray(type));
+    typed->DeepCopy(image->GetPointData()->GetScalars());
+    image->GetPointData()->SetScalars(typed);
+    const Result r = Render(image);
+    const int diff = MaxDifference(r.Pixels, reference.Pixels);
+    std::printf("%-20s active %d warnings %d errors %d max pixel difference %d\n",
+      typed->GetClassName(), r.Active, r.Warnings, r.Errors, diff);
+    if (r.Active)
+    {
+      // Integer types round the 0..120 ramp: a few grey levels at most.
+      EXPECT_LE(diff, 12) << typed->GetClassName();
+    }
+    else
+    {
+      EXPECT_GT(r.Warnings + r.Errors, 0) << "silent fallback for " << typed->GetClassName();
+    }
+  }
+}
+
+TEST(BadInput, MultiComponentDataFallsBack)
+{
+  for (bool independent : { true, false })
+  {
+    auto image = vtkSmartPointer<vtkImageData>::New();
+    image->SetDimensions(17, 17, 17);
+    vtkNew<vtkFloatArray> values;
+    values->SetNumberOfComponents(4);
+    values->SetNumberOfTuples(17 * 17 * 17);
+    for (vtkIdType p = 0; p < values->GetNumberOfTuples(); ++p)
+    {
+      const float v = Sphere(2 * (p % 17), 2 * ((p / 17) % 17), 2 * (p / 289));
+      const float t[4] = { v, v, v, v };
+      values->SetTypedTuple(p, t);
+    }
+    image->GetPointData()->SetScalars(values);
+    const Result r = Render(image, [independent](mmvtest::Scene& s, vtkMultiMaterialVolumeMapper*) {
+      s.Property->SetIndependentComponents(independent);
+    });
+    EXPECT_FALSE(r.Active);
+    EXPECT_EQ(r.Warnings, 1) << r.Message;
+    EXPECT_NE(r.Message.find("one-component"), std::string::npos) << r.Message;
+  }
+}
+
+TEST(BadInput, NoLightsRendersAmbientWithAWarning)
+{
+  const Result r = Render(SphereVolume(), nullptr, /*light*/ false);
+  EXPECT_TRUE(r.Active);
+  EXPECT_EQ(r.Warnings, 1);
+  EXPECT_NE(r.Message.find("no active light"), std::string::npos) << r.Message;
+  EXPECT_GT(r.CenterLuminance, 0.02) << "ambient shading keeps the volume visible";
+}
+
+TEST(BadInput, PartitionedVolume)
+{
+  // The mapper sees SetPartitions and hands the very first frame to VTK's
+  // shading (partitioned blocks have their own texture coordinates).
+  const Result r = Render(SphereVolume(), [](mmvtest::Scene&, vtkMultiMaterialVolumeMapper* m) {
+    m->SetPartitions(2, 1, 1);
+  });
+  EXPECT_FALSE(r.Active);
+  EXPECT_EQ(r.Warnings, 1);
+  EXPECT_NE(r.Message.find("partitioned"), std::string::npos) << r.Message;
+  EXPECT_GT(r.CenterLuminance, 0.02) << "the base class still draws the volume";
+}
+
+//------------------------------------------------------------------------------
+TEST(BadInput, MalformedMaterialNodes)
+{
+  vtkNew<vtkMaterialTransferFunction> materials;
+  mmvTest::ErrorCounter counter(materials);
+  const double good[8] = { 0.0, 0.2, 0.7, 0.3, 20.0, 1.0, 0.0, 0.0 };
+  ASSERT_TRUE(materials->SetNodes(8, good));
+  const vtkMTimeType time = materials->GetMTime();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  struct Case
+  {
+    const char* What;
+    int Count;
+    std::vector<double> Nodes;
+  };
+  const std::vector<Case> cases = {
+    { "count not a multiple of 8", 7, { 0, 1, 1, 1, 1, 1, 1 } },
+    { "count 9", 9, { 0, 1, 1, 1, 1, 1, 1, 0, 5 } },
+    { "negative count", -8, { 0, 1, 1, 1, 1, 1, 1, 0 } },
+    { "NaN value", 8, { nan, 1, 1, 1, 1, 1, 1, 0 } },
+    { "NaN parameter", 8, { 0, 1, nan, 1, 1, 1, 1, 0 } },
+    { "Inf parameter", 8, { 0, 1, 1, 1, inf, 1, 1, 0 } },
+    { "negative parameter", 8, { 0, -0.5, 1, 1, 1, 1, 1, 0 } },
+    { "huge parameter", 8, { 0, 1, 1, 1, 1e300, 1, 1, 0 } },
+    { "null nodes", 8, {} },
+  };
+  for (const Case& c : cases)
+  {
+    counter.Reset();
+    EXPECT_FALSE(materials->SetNodes(c.Count, c.Nodes.empty() ? nullptr : c.Nodes.data())) << c.What;
+    EXPECT_EQ(counter.Errors(), 1) << c.What;
+    EXPECT_EQ(materials->GetSize(), 1) << c.What;
+    EXPECT_EQ(materials->GetMTime(), time) << c.What << " must leave the function unchanged";
+  }
+  double node[8];
+  ASSERT_TRUE(materials->GetNode(0, node));
+  for (int i = 0; i < 8; ++i)
+  {
+    EXPECT_EQ(node[i], good[i]);
+  }
+}
+
+TEST(BadInput, UnknownPresetAndMalformedJSON)
+{
+  vtkNew<vtkMaterialTransferFunction> materials;
+  vtkNew<vtkMaterialLibrary> library;
+  mmvTest::ErrorCounter counter(materials);
+  counter.Watch(library);
+  materials->AddNode(1.0, 0.2, 0.7, 0.3, 20.0, 1.0, 0.0, 0.0);
+  const int presets = library->GetNumberOfPresets();
+
+  EXPECT_FALSE(materials->ApplyPreset("no-such-material", 0.0, 1.0));
+  EXPECT_FALSE(materials->ApplyPreset(nullptr, 0.0, 1.0));
+  EXPECT_EQ(counter.Errors(), 2);
+  EXPECT_EQ(materials->GetSize(), 1);
+
+  for (const char* json : { "", "{", "[", "null", "42", "{\"nodes\": 3}", "{\"nodes\": [{}]}",
+         "{\"nodes\": [{\"value\": \"a\"}]}", "{\"nodes\": [{\"value\": 0, \"shininess\": -1}]}",
+         "{\"nodes\": [{\"value\": 0, \"bogus\": 1}]}", "{\"nodes\": [{\"value\": 1e999}]}",
+         "{\"nodes\": [{\"value\": 0, \"ambient\": NaN}]}" })
+  {
+    counter.Reset();
+    EXPECT_FALSE(materials->FromJSON(json)) << json;
+    EXPECT_EQ(counter.Errors(), 1) << json;
+    EXPECT_EQ(materials->GetSize(), 1) << json;
+  }
+  for (const char* json : { "", "{", "[{]", "{}", "[{\"name\": 3}]", "{\"name\": \"x\", \"ambient\": -1}",
+         "{\"name\": \"x\", \"color\": [1, 2]}", "{\"name\": \"x\", \"unknown\": 0}",
+         "[{\"name\": \"ok\"}, {\"name\": \"bad\", \"diffuse\": \"x\"}]" })
+  {
+    counter.Reset();
+    EXPECT_FALSE(library->AddPresetsFromJSON(json)) << json;
+    EXPECT_EQ(counter.Errors(), 1) << json;
+    EXPECT_EQ(library->GetNumberOfPresets(), presets) << json << " must leave the library unchanged";
+  }
+}
