@@ -14,6 +14,8 @@
 #ifndef mmvBenchmarkScenes_h
 #define mmvBenchmarkScenes_h
 
+#include "mmvTestScenes.h" // MakeVolume, shared with the tests
+
 #include "vtkColorTransferFunction.h"
 #include "vtkDataArray.h"
 #include "vtkFloatArray.h"
@@ -50,29 +52,6 @@ struct SceneSpec
   double ToLight[3] = { -0.5, -0.6, 0.8 };
 };
 
-inline vtkSmartPointer<vtkImageData> Sample(int nx, int ny, int nz,
-  const std::function<double(double, double, double)>& f)
-{
-  auto image = vtkSmartPointer<vtkImageData>::New();
-  image->SetDimensions(nx, ny, nz);
-  vtkNew<vtkFloatArray> values;
-  values->SetName("values");
-  values->SetNumberOfTuples(static_cast<vtkIdType>(nx) * ny * nz);
-  vtkIdType id = 0;
-  for (int k = 0; k < nz; ++k)
-  {
-    for (int j = 0; j < ny; ++j)
-    {
-      for (int i = 0; i < nx; ++i)
-      {
-        values->SetValue(id++, static_cast<float>(f(i, j, k)));
-      }
-    }
-  }
-  image->GetPointData()->SetScalars(values);
-  return image;
-}
-
 // Material node pairs spanning a value band [lo, hi].
 inline void AddBand(vtkMaterialTransferFunction* m, double lo, double hi, double ka, double kd,
   double ks, double ke, double ct, double s, double r)
@@ -89,7 +68,7 @@ inline SceneSpec MakeSynthetic()
   // Values grow with opacity (blob 0.2, slab 0.5, metal 0.85) so the thin
   // shells an object's edge passes through belong to fainter materials.
   auto ramp = [](double distance) { return std::min(std::max(0.5 - distance, 0.0), 1.0); };
-  s.Image = Sample(64, 64, 64, [&](double x, double y, double z) {
+  s.Image = mmvtest::MakeVolume(64, [&](double x, double y, double z) {
     const double metal = std::sqrt((x - 20) * (x - 20) + (y - 34) * (y - 34) + (z - 30) * (z - 30)) - 11.0;
     const double blob = std::sqrt((x - 44) * (x - 44) + 0.6 * (y - 30) * (y - 30) + (z - 32) * (z - 32)) - 13.0;
     const double slab = std::max({ std::abs(x - 32) - 27.0, std::abs(y - 32) - 27.0, std::abs(z - 9) - 4.0 });
@@ -185,7 +164,7 @@ inline SceneSpec MakeOrbital()
       }
     }
   }
-  s.Image = Sample(64, 64, 64, [&](double i, double j, double k) {
+  s.Image = mmvtest::MakeVolume(64, [&](double i, double j, double k) {
     return std::pow(density(i * h - 24, j * h - 24, k * h - 24) / peak, 0.25);
   });
   s.Color = vtkSmartPointer<vtkColorTransferFunction>::New();
