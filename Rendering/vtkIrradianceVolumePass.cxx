@@ -129,6 +129,12 @@ void SetLightUniforms(vtkShaderProgram* program, const std::vector<mmv::LightSou
   program->SetUniform1fv("lightRadius", LightsPerTexture, radius);
 }
 
+bool SameGrid(const mmv::IrradianceGrid& a, const mmv::IrradianceGrid& b)
+{
+  return std::equal(a.Dimensions, a.Dimensions + 3, b.Dimensions) && a.Origin == b.Origin &&
+    a.Spacing == b.Spacing && a.Direction == b.Direction;
+}
+
 } // namespace
 
 class vtkIrradianceVolumePass::vtkInternals
@@ -140,9 +146,12 @@ public:
   int TableSize = 0;
   std::vector<float> ShadowTable;
   double StepLength = 0.0;
+  std::vector<float> OpacityTable;
+  std::vector<float> ScatteringTable;
   std::vector<mmv::LightSource> Lights;
   bool HasInputs = false;
   bool Uploaded = false;
+  vtkIdType VolumeUploads = 0;
 
   // Derived on the CPU: s per voxel (-1 where empty), and what it implies.
   std::vector<float> Classes;
@@ -248,6 +257,7 @@ bool vtkIrradianceVolumePass::vtkInternals::Upload(vtkOpenGLRenderWindow* contex
   this->ScalarTexture = NewTexture(context, GL_R32F, GL_RED, GL_FLOAT, true);
   this->ClassTexture = NewTexture(context, GL_R32F, GL_RED, GL_FLOAT, false);
   this->TableTexture = NewTexture(context, GL_R32F, GL_RED, GL_FLOAT, true);
+  ++this->VolumeUploads;
   this->Uploaded = this->ScalarTexture->Create3DFromRaw(d[0], d[1], d[2], 1, VTK_FLOAT,
                      this->Scalars.data()) &&
     this->ClassTexture->Create3DFromRaw(d[0], d[1], d[2], 1, VTK_FLOAT, this->Classes.data()) &&
@@ -505,13 +515,12 @@ void vtkIrradianceVolumePass::SetInputs(const mmv::IrradianceGrid& grid,
   const std::vector<mmv::LightSource>& lights)
 {
   vtkInternals& internals = *this->Internals;
-  internals.HasInputs = false;
-  internals.Uploaded = false;
   this->Modified();
   if (static_cast<vtkIdType>(normalizedScalars.size()) != grid.GetNumberOfVoxels() ||
     grid.GetNumberOfVoxels() <= 0 || tableSize < 2 || !shadowTable || !opacityTable ||
     !scatteringTable || !(stepLength > 0.0))
   {
+    internals.HasInputs = false;
     vtkErrorMacro("Invalid irradiance inputs: need " << grid.GetNumberOfVoxels()
                                                      << " scalars, tables of size >= 2 and a "
                                                         "positive step length.");
@@ -522,16 +531,30 @@ void vtkIrradianceVolumePass::SetInputs(const mmv::IrradianceGrid& grid,
     vtkWarningMacro("" << lights.size() << " lights given; only the first " << mmv::MaxLights
                        << " are used.");
   }
-  internals.Grid = grid;
-  internals.Scalars = normalizedScalars;
-  internals.TableSize = tableSize;
-  internals.ShadowTable.assign(shadowTable, shadowTable + tableSize * tableSize);
-  internals.StepLength = stepLength;
   internals.Lights.assign(
     lights.begin(), lights.begin() + std::min<size_t>(lights.size(), mmv::MaxLights));
-  internals.Classify(std::vector<float>(opacityTable, opacityTable + tableSize),
-    std::vector<float>(scatteringTable, scatteringTable + tableSize));
-  internals.ComputeMaxDiffusionRate();
+  // A light move changes only the lights: keep the classified, uploaded
+  // volume and tables unless one of them differs.
+  const std::vector<float> shadow(shadowTable, shadowTable + tableSize * tableSize);
+  const std::vector<float> opacity(opacityTable, opacityTable + tableSize);
+  const std::vector<float> scattering(scatteringTable, scatteringTable + tableSize);
+  const bool sameVolume = internals.HasInputs && SameGrid(internals.Grid, grid) &&
+    internals.StepLength == stepLength && internals.Scalars == normalizedScalars &&
+    internals.ShadowTable == shadow && internals.OpacityTable == opacity &&
+    internals.ScatteringTable == scattering;
+  if (!sameVolume)
+  {
+    internals.Grid = grid;
+    internals.Scalars = normalizedScalars;
+    internals.TableSize = tableSize;
+    internals.ShadowTable = shadow;
+    internals.StepLength = stepLength;
+    internals.OpacityTable = opacity;
+    internals.ScatteringTable = scattering;
+    internals.Classify(opacity, scattering);
+    internals.ComputeMaxDiffusionRate();
+    internals.Uploaded = false;
+  }
   internals.HasInputs = true;
 }
 
@@ -651,6 +674,11 @@ bool vtkIrradianceVolumePass::ReadBack(
 }
 
 //------------------------------------------------------------------------------
+vtkIdType vtkIrradianceVolumePass::GetNumberOfVolumeUploads() const
+{
+  return this->Internals->VolumeUploads;
+}
+
 vtkIdType vtkIrradianceVolumePass::GetTextureMemoryBytes() const
 {
   const vtkIdType bytesPerVoxel = 4 * sizeof(unsigned short);

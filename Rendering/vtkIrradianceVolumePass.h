@@ -94,6 +94,10 @@ public:
   vtkGetMacro(LastRenderSeconds, double);
   ///@}
 
+  /// How often the pre-filtered volume and tables went to the GPU: only when
+  /// they change, not when only the lights move.
+  vtkIdType GetNumberOfVolumeUploads() const;
+
   /// GPU memory held by the irradiance textures, in bytes.
   vtkIdType GetTextureMemoryBytes() const;
 

@@ -71,6 +71,12 @@ constexpr int MaxLights = 8;
 /// The CPU filter uses the same figure so both pick the same resolution.
 constexpr double IrradianceBytesPerVoxelPerLight = 2.0;
 
+/// Surface (normal-based) shading reaches full strength once the normalised
+/// value changes by this much per voxel; below, it fades to ambient shading,
+/// so homogeneous regions do not turn gradient noise into speckles. Read by
+/// the mapper (mmv_gradientFade) and the reference renderer.
+constexpr double FullShadingGradientPerVoxel = 0.005;
+
 /// Default irradiance memory budget in MB (the paper's recommendation).
 constexpr double DefaultIrradianceBudgetMB = 64.0;
 

@@ -42,9 +42,6 @@ using glm::dvec4;
 // from evaluating the piecewise-linear functions directly.
 constexpr int TableSize = 65536;
 
-// Surface shading reaches full strength at this normalised value change per
-// voxel; the GPU mapper's constant (mmv_gradientFade).
-constexpr double FullShadingGradientPerVoxel = 0.005;
 
 // Every transfer function, tabulated over the scalar range.
 struct TransferTables
@@ -476,7 +473,7 @@ vtkImageData* vtkMultiMaterialReferenceRenderer::Render(vtkRenderer* ren, int wi
   scene.PrimaryStep = this->SampleDistance > 0.0 ? this->SampleDistance : smallestSpacing / 8.0;
   scene.ShadowStep =
     this->ShadowSampleDistance > 0.0 ? this->ShadowSampleDistance : smallestSpacing / 8.0;
-  scene.GradientFade = FullShadingGradientPerVoxel / smallestSpacing;
+  scene.GradientFade = mmv::FullShadingGradientPerVoxel / smallestSpacing;
   const double minTransmittance = this->MinimumTransmittance;
   scene.MaxOpticalDepth = minTransmittance > 0.0 ? -std::log(minTransmittance)
                                                  : std::numeric_limits<double>::infinity();

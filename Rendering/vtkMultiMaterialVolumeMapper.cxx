@@ -47,11 +47,6 @@ double Seconds(Clock::time_point start)
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-// Surface (normal-based) shading is at full strength once the normalised
-// value changes by this much per voxel; below, it fades to ambient shading so
-// homogeneous regions do not turn gradient noise into speckles.
-constexpr double FullShadingGradientPerVoxel = 0.005;
-
 const char* const PartitionWarning = "multi-material shading does not support partitioned "
                                      "volumes (SetPartitions); using VTK's shading";
 
@@ -96,6 +91,13 @@ public:
   std::vector<double> PrefilterKey;
   std::vector<float> Prefiltered;
   mmv::IrradianceGrid Grid;
+  // The material parameters the irradiance depends on (attenuation and
+  // scattering), sampled over the range, and a version bumped only when they
+  // change, so editing a colour-only parameter keeps the irradiance.
+  std::vector<double> MaterialSampleKey;
+  std::vector<float> Attenuation;
+  std::vector<float> Scattering;
+  int MaterialVersion = 0;
 
   // Per-frame shading inputs, read by SetUniforms().
   mmv::ShaderVariant Variant;
@@ -510,8 +512,11 @@ bool vtkMultiMaterialVolumeMapper::PrepareMultiMaterial(vtkRenderer* ren, vtkVol
   variant.Reflection =
     in.Materials && in.Materials->GetMaximum(mmv::Reflection) > 0.0 && in.Materials->GetSize() > 0;
   variant.PreIntegration = this->PreIntegration;
+  if (variant != in.Variant || in.Pass->GetFragmentReplacements().empty())
+  {
+    in.Pass->SetFragmentReplacements(mmv::RayCastReplacements(variant));
+  }
   in.Variant = variant;
-  in.Pass->SetFragmentReplacements(mmv::RayCastReplacements(variant));
 
   int dims[3];
   image->GetDimensions(dims);
@@ -534,7 +539,7 @@ bool vtkMultiMaterialVolumeMapper::PrepareMultiMaterial(vtkRenderer* ren, vtkVol
   }
   const double smallestSpacing =
     std::min({ std::abs(spacing[0]), std::abs(spacing[1]), std::abs(spacing[2]) });
-  in.GradientFade = static_cast<float>(FullShadingGradientPerVoxel / smallestSpacing);
+  in.GradientFade = static_cast<float>(mmv::FullShadingGradientPerVoxel / smallestSpacing);
 
   if (variant.Reflection)
   {
@@ -571,9 +576,31 @@ bool vtkMultiMaterialVolumeMapper::UpdateIrradiance(vtkOpenGLRenderWindow* conte
   mmv::ComputeIrradianceDimensions(dataDims, static_cast<int>(in.Lights.size()),
     this->IrradianceMemoryMB, this->IrradianceScale, dims);
 
+  const int n = this->PreIntegrationTableSize;
+  const std::vector<double> materialKey = { double(in.Materials ? in.Materials->GetMTime() : 0),
+    range[0], range[1], double(n) };
+  if (materialKey != in.MaterialSampleKey)
+  {
+    std::vector<float> attenuation(n, 1.0f);
+    std::vector<float> scattering(n, 0.0f);
+    for (int i = 0; in.Materials && i < n; ++i)
+    {
+      const double t = range[0] + (range[1] - range[0]) * i / (n - 1);
+      attenuation[i] = static_cast<float>(in.Materials->EvaluateParameter(t, mmv::Attenuation));
+      scattering[i] = static_cast<float>(in.Materials->EvaluateParameter(t, mmv::Scattering));
+    }
+    if (attenuation != in.Attenuation || scattering != in.Scattering)
+    {
+      in.Attenuation = attenuation;
+      in.Scattering = scattering;
+      ++in.MaterialVersion;
+    }
+    in.MaterialSampleKey = materialKey;
+  }
+
   const vtkMTimeType dataTime = std::max(image->GetMTime(), scalars->GetMTime());
   std::vector<double> key = { double(dims[0]), double(dims[1]), double(dims[2]), double(dataTime),
-    double(opacity->GetMTime()), double(in.Materials ? in.Materials->GetMTime() : 0), unitDistance,
+    double(opacity->GetMTime()), double(in.MaterialVersion), unitDistance,
     range[0], range[1], double(this->MultipleScattering), double(this->PreIntegrationTableSize) };
   for (const auto& light : in.Lights)
   {
@@ -627,18 +654,13 @@ bool vtkMultiMaterialVolumeMapper::UpdateIrradiance(vtkOpenGLRenderWindow* conte
     return false;
   }
 
-  const int n = this->PreIntegrationTableSize;
   std::vector<float> opacityTable(n);
-  std::vector<float> scatteringTable(n, 0.0f);
   for (int i = 0; i < n; ++i)
   {
-    const double t = range[0] + (range[1] - range[0]) * i / (n - 1);
-    opacityTable[i] = static_cast<float>(opacity->GetValue(t));
-    if (in.Materials && this->MultipleScattering)
-    {
-      scatteringTable[i] = static_cast<float>(in.Materials->EvaluateParameter(t, mmv::Scattering));
-    }
+    opacityTable[i] = static_cast<float>(opacity->GetValue(range[0] + (range[1] - range[0]) * i / (n - 1)));
   }
+  const std::vector<float> scatteringTable =
+    this->MultipleScattering ? in.Scattering : std::vector<float>(n, 0.0f);
   std::vector<mmv::LightSource> sources;
   for (const auto& light : in.Lights)
   {

@@ -480,3 +480,33 @@ TEST(IrradianceVolumePass, RejectsMissingInputs)
   EXPECT_FALSE(pass->ReadBack(ctx.GL, 0, values));
   pass->GlobalWarningDisplayOn();
 }
+
+TEST(IrradianceVolumePass, MovingALightKeepsTheUploadedVolume)
+{
+  const Context& ctx = SharedContext();
+  ASSERT_NE(ctx.GL, nullptr);
+  Scene scene = TwoBlocks(0.0);
+  vtkNew<vtkIrradianceVolumePass> pass;
+  SetPassInputs(scene, pass);
+  ASSERT_TRUE(pass->Render(ctx.GL));
+  EXPECT_EQ(pass->GetNumberOfVolumeUploads(), 1);
+  std::vector<float> before;
+  ASSERT_TRUE(pass->ReadBack(ctx.GL, 0, before));
+
+  // Only the lights change: same volume on the GPU, a different result.
+  scene.Lights[0]->SetPosition(-1.0, 0.5, 0.2);
+  SetPassInputs(scene, pass);
+  ASSERT_TRUE(pass->Render(ctx.GL));
+  EXPECT_EQ(pass->GetNumberOfVolumeUploads(), 1);
+  std::vector<float> after;
+  ASSERT_TRUE(pass->ReadBack(ctx.GL, 0, after));
+  EXPECT_NE(before, after);
+  EXPECT_LE(MaxDifference(after, RunFilter(scene, false)[0], OnConeEdge(GridOf(scene), {})), 0.01);
+
+  // The opacity changes: the volume's classification goes up again.
+  scene.Opacity->AddPoint(1.5, 0.05);
+  SetPassInputs(scene, pass);
+  ASSERT_TRUE(pass->Render(ctx.GL));
+  EXPECT_EQ(pass->GetNumberOfVolumeUploads(), 2);
+  pass->ReleaseGraphicsResources(ctx.GL);
+}

@@ -147,6 +147,31 @@ TEST(MultiMaterialVolumeMapper, CameraMovesDoNotRecomputeIrradiance)
   EXPECT_EQ(scene.Mapper->GetPreIntegrationCount(), tables + 1);
 }
 
+TEST(MultiMaterialVolumeMapper, ColourOnlyMaterialEditsKeepTheIrradiance)
+{
+  CubeScene scene(1.0);
+  const double from[3] = { 16.0, 16.0, 1000.0 };
+  scene.AddDirectionalLight(from, CubeCenter);
+  scene.Window->Render();
+  ASSERT_EQ(scene.Mapper->GetIrradianceUpdateCount(), 1);
+  const std::string shader = scene.Mapper->GetLastFragmentShaderSource();
+
+  // Ambient, diffuse, specular and shininess only change the shading: the
+  // irradiance stays, the shader stays, the image changes.
+  const double before = scene.Center(0);
+  scene.Materials->AddNode(1.0, 0.5, 0.3, 0.4, 30.0, 1.0, 0.0, 0.0);
+  const double after = scene.Center(0);
+  EXPECT_EQ(scene.Mapper->GetIrradianceUpdateCount(), 1);
+  EXPECT_EQ(scene.Mapper->GetLastFragmentShaderSource(), shader);
+  EXPECT_LT(after, before - 0.1);
+
+  // Attenuation reaches the shadows: exactly one update.
+  scene.Materials->AddNode(1.0, 0.5, 0.3, 0.4, 30.0, 0.5, 0.0, 0.0);
+  scene.Window->Render();
+  scene.Window->Render();
+  EXPECT_EQ(scene.Mapper->GetIrradianceUpdateCount(), 2);
+}
+
 TEST(MultiMaterialVolumeMapper, SwitchedOffLightCostsNothing)
 {
   CubeScene scene(1.0);
