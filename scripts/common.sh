@@ -37,10 +37,13 @@ mmv_build() {
 }
 
 # Runs a command with an X display: the current one, or a private Xvfb.
+# -noreset: by default Xvfb resets when its last client disconnects, and a
+# window opened during the reset dies with "bad X server connection"
+# (measured: 2 of 10 runs of a three-window program; 0 of 10 with -noreset).
 mmv_with_display() {
   if [ -n "${DISPLAY:-}" ]; then
     "$@"
   else
-    xvfb-run -a -s "-screen 0 1280x1024x24" "$@"
+    xvfb-run -a -s "-noreset -screen 0 1280x1024x24" "$@"
   fi
 }

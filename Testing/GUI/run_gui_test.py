@@ -92,7 +92,7 @@ def content_stats(width, height, rows):
 def start_xvfb(fbdir):
     read_fd, write_fd = os.pipe()
     xvfb = subprocess.Popen(
-        ["Xvfb", "-displayfd", str(write_fd), "-screen", "0", "%dx%dx24" % SCREEN,
+        ["Xvfb", "-noreset", "-displayfd", str(write_fd), "-screen", "0", "%dx%dx24" % SCREEN,
          "-fbdir", fbdir, "-nolisten", "tcp", "+extension", "GLX"],
         pass_fds=(write_fd,), stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     os.close(write_fd)
