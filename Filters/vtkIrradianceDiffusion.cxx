@@ -9,12 +9,7 @@
 namespace
 {
 
-// Face coefficient between two voxels: harmonic mean of their strengths, so a
-// voxel with s = 0 blocks the flux completely (the arithmetic mean would not).
-inline double HarmonicMean(double a, double b)
-{
-  return (a > 0.0 && b > 0.0) ? 2.0 * a * b / (a + b) : 0.0;
-}
+using mmv::DiffusionFaceStrength;
 
 /**
  * The system (I + dt*A) x = b of one backward-Euler step, A the flux-form
@@ -28,7 +23,10 @@ inline double HarmonicMean(double a, double b)
 class DiffusionSystem
 {
 public:
-  DiffusionSystem(const int dims[3], const double spacing[3], const float* strength)
+  /// `capacity` (may be null: 1 everywhere) weighs each voxel's storage:
+  /// the system becomes (C + dt*A) x = C b. Voxels with capacity 0 keep b.
+  DiffusionSystem(
+    const int dims[3], const double spacing[3], const float* strength, const float* capacity)
   {
     for (int a = 0; a < 3; ++a)
     {
@@ -43,13 +41,23 @@ public:
     this->RowsPerBlock = std::max<vtkIdType>(1, 16384 / dims[0]);
     this->Blocks = (this->Rows + this->RowsPerBlock - 1) / this->RowsPerBlock;
     this->Partial.resize(static_cast<size_t>(this->Blocks) * 2);
+    if (capacity)
+    {
+      this->Capacity.resize(this->Size);
+      for (vtkIdType v = 0; v < this->Size; ++v)
+      {
+        this->Capacity[v] = capacity[v] > 0.0f ? capacity[v] : 1.0f;
+      }
+    }
     this->BuildCoefficients(spacing, strength);
   }
 
+  /// The largest row sum of A over the capacity (Gershgorin: bounds the
+  /// rates of C^-1 A).
   double GetMaxRowSum() const { return this->MaxRowSum; }
   vtkIdType GetSize() const { return this->Size; }
 
-  /// Jacobi preconditioner of I + dt*A.
+  /// Jacobi preconditioner of C + dt*A.
   void SetTimeStep(double dt)
   {
     this->Dt = dt;
@@ -57,27 +65,33 @@ public:
     vtkSMPTools::For(0, this->Size, [&](vtkIdType begin, vtkIdType end) {
       for (vtkIdType i = begin; i < end; ++i)
       {
-        this->InvDiag[i] = static_cast<float>(1.0 / (1.0 + dt * this->RowSum(i)));
+        this->InvDiag[i] = static_cast<float>(1.0 / (this->CapacityOf(i) + dt * this->RowSum(i)));
       }
     });
   }
 
-  /// Solves (I + dt*A) x = b in place (x holds b on entry). Returns the
+  double CapacityOf(vtkIdType v) const
+  {
+    return this->Capacity.empty() ? 1.0 : this->Capacity[v];
+  }
+
+  /// Solves (C + dt*A) x = C b in place (x holds b on entry). Returns the
   /// iterations; `residual` receives the final relative residual.
   int Solve(std::vector<double>& x, double tolerance, int maxIterations, double& residual)
   {
     const vtkIdType n = this->Size;
     std::vector<double> r(n), p(n), q(n);
     double bNorm2 = 0.0;
-    // x0 = b: r0 = b - (I + dt A) b = -dt A b, zero for a uniform field.
+    // x0 = b: r0 = C b - (C + dt A) b = -dt A b, zero for a uniform field.
     this->ForRows([&](vtkIdType row, double* acc) {
       this->ApplyRow(row, x.data(), q.data());
       for (vtkIdType i = this->RowStart(row), e = i + this->Dims[0]; i < e; ++i)
       {
-        r[i] = x[i] - q[i];
+        const double rhs = this->CapacityOf(i) * x[i];
+        r[i] = rhs - q[i];
         p[i] = 0.0;
         acc[0] += r[i] * r[i] * this->InvDiag[i];
-        acc[1] += x[i] * x[i];
+        acc[1] += rhs * rhs;
       }
     });
     double rz = this->Sum(0);
@@ -159,7 +173,7 @@ private:
             if (hasNext[a])
             {
               this->Coefficient[a][v] = static_cast<float>(
-                HarmonicMean(s, strength[v + this->Stride[a]]) * this->InvH2[a]);
+                DiffusionFaceStrength(s, strength[v + this->Stride[a]]) * this->InvH2[a]);
             }
           }
         }
@@ -171,7 +185,7 @@ private:
       {
         for (vtkIdType v = this->RowStart(row), e = v + this->Dims[0]; v < e; ++v)
         {
-          rowMax[row] = std::max(rowMax[row], this->RowSum(v));
+          rowMax[row] = std::max(rowMax[row], this->RowSum(v) / this->CapacityOf(v));
         }
       }
     });
@@ -240,7 +254,7 @@ private:
       {
         flux += cz[v - sz] * (c - in[v - sz]);
       }
-      out[v] = c + this->Dt * flux;
+      out[v] = this->CapacityOf(v) * c + this->Dt * flux;
     }
   }
 
@@ -296,6 +310,7 @@ private:
   double MaxRowSum = 0.0;
   std::vector<float> Coefficient[3];
   std::vector<float> InvDiag;
+  std::vector<float> Capacity; // empty: 1 everywhere
   std::vector<double> Partial;
 };
 
@@ -309,8 +324,151 @@ bool AnyPositive(const float* strength, vtkIdType n)
 namespace mmv
 {
 
+double MaxDiffusionRate(
+  const int dims[3], const double spacing[3], const float* strength, const float* capacity)
+{
+  const vtkIdType n = static_cast<vtkIdType>(dims[0]) * dims[1] * dims[2];
+  if (n < 1 || !AnyPositive(strength, n))
+  {
+    return 0.0;
+  }
+  return DiffusionSystem(dims, spacing, strength, capacity).GetMaxRowSum();
+}
+
+int DiffusionSubSteps(double maxRate, const DiffusionSettings& settings)
+{
+  // As many sub-steps as an explicit scheme would need to stay stable
+  // (dt * maxRate <= 1), capped: below that limit one implicit step is already
+  // accurate; above it, extra steps buy first-order accuracy in time.
+  const double explicitSteps = std::ceil(settings.Time * maxRate);
+  return static_cast<int>(
+    std::min<double>(std::max(1, settings.MaxSubSteps), std::max(1.0, explicitSteps)));
+}
+
+double JacobiSpectralRadius(double dtTimesMaxRate)
+{
+  return dtTimesMaxRate > 0.0 ? dtTimesMaxRate / (1.0 + dtTimesMaxRate) : 0.0;
+}
+
+int JacobiSweeps(double dtTimesMaxRate, const DiffusionSettings& settings)
+{
+  const double rho = JacobiSpectralRadius(dtTimesMaxRate);
+  if (!(rho > 0.0))
+  {
+    return 1;
+  }
+  const double tolerance = std::min(std::max(settings.SweepTolerance, 1.0e-12), 0.5);
+  return std::max(1, static_cast<int>(std::ceil(std::log(tolerance) / std::log(rho))));
+}
+
+int ChebyshevSweeps(double dtTimesMaxRate, const DiffusionSettings& settings)
+{
+  const double rho = JacobiSpectralRadius(dtTimesMaxRate);
+  if (!(rho > 0.0))
+  {
+    return 1;
+  }
+  const double c = rho / (1.0 + std::sqrt(1.0 - rho * rho));
+  const double tolerance = std::min(std::max(settings.SweepTolerance, 1.0e-12), 0.5);
+  // 2 c^k / (1 + c^2k) <= 2 c^k <= tolerance.
+  return std::max(1, static_cast<int>(std::ceil(std::log(0.5 * tolerance) / std::log(c))));
+}
+
+double ChebyshevWeight(int k, double rho)
+{
+  double omega = 1.0;
+  for (int i = 2; i <= k; ++i)
+  {
+    omega = i == 2 ? 1.0 / (1.0 - 0.5 * rho * rho) : 1.0 / (1.0 - 0.25 * rho * rho * omega);
+  }
+  return omega;
+}
+
+DiffusionGrid PlanDiffusionGrid(const int dims[3], const double spacing[3], double maxStrength,
+  const DiffusionSettings& settings)
+{
+  DiffusionGrid grid;
+  grid.DiffusionLength =
+    maxStrength > 0.0 && settings.Time > 0.0 ? std::sqrt(2.0 * maxStrength * settings.Time) : 0.0;
+  const double target = settings.VoxelsPerDiffusionLength > 0.0
+    ? grid.DiffusionLength / settings.VoxelsPerDiffusionLength
+    : 0.0;
+  for (int a = 0; a < 3; ++a)
+  {
+    const double h = spacing[a] > 0.0 ? spacing[a] : 1.0;
+    const int largest = std::max(1, dims[a] / std::max(1, settings.MinimumVoxelsPerAxis));
+    grid.Factor[a] = std::min(largest, std::max(1, static_cast<int>(std::floor(target / h))));
+    grid.Dimensions[a] = (dims[a] + grid.Factor[a] - 1) / grid.Factor[a];
+    grid.Spacing[a] = h * grid.Factor[a];
+  }
+  return grid;
+}
+
+void RestrictToDiffusionGrid(const int dims[3], const DiffusionGrid& coarse,
+  const float* strength, const float* fine, std::vector<float>* coarseStrength,
+  std::vector<float>* coarseIrradiance, std::vector<float>* coarseCapacity)
+{
+  const vtkIdType count = coarse.GetNumberOfVoxels();
+  if (coarseStrength)
+  {
+    coarseStrength->assign(count, 0.0f);
+  }
+  if (coarseCapacity)
+  {
+    coarseCapacity->assign(count, 0.0f);
+  }
+  if (coarseIrradiance)
+  {
+    coarseIrradiance->assign(count, 0.0f);
+  }
+  const int* cd = coarse.Dimensions;
+  const int* f = coarse.Factor;
+  vtkSMPTools::For(0, count, [&](vtkIdType begin, vtkIdType end) {
+    for (vtkIdType c = begin; c < end; ++c)
+    {
+      const int ci = static_cast<int>(c % cd[0]);
+      const int cj = static_cast<int>((c / cd[0]) % cd[1]);
+      const int ck = static_cast<int>(c / (static_cast<vtkIdType>(cd[0]) * cd[1]));
+      double sSum = 0.0;
+      double iSum = 0.0;
+      int voxels = 0;
+      int scattering = 0;
+      for (int k = ck * f[2]; k < std::min(dims[2], (ck + 1) * f[2]); ++k)
+      {
+        for (int j = cj * f[1]; j < std::min(dims[1], (cj + 1) * f[1]); ++j)
+        {
+          for (int i = ci * f[0]; i < std::min(dims[0], (ci + 1) * f[0]); ++i)
+          {
+            const vtkIdType v = i + static_cast<vtkIdType>(dims[0]) * (j + static_cast<vtkIdType>(dims[1]) * k);
+            ++voxels;
+            if (strength[v] > 0.0f)
+            {
+              sSum += strength[v];
+              iSum += fine ? fine[v] : 0.0;
+              ++scattering;
+            }
+          }
+        }
+      }
+      if (coarseStrength)
+      {
+        (*coarseStrength)[c] = static_cast<float>(sSum / voxels);
+      }
+      if (coarseIrradiance && scattering > 0)
+      {
+        (*coarseIrradiance)[c] = static_cast<float>(iSum / scattering);
+      }
+      if (coarseCapacity)
+      {
+        (*coarseCapacity)[c] = static_cast<float>(static_cast<double>(scattering) / voxels);
+      }
+    }
+  });
+}
+
 DiffusionReport DiffuseIrradiance(const int dims[3], const double spacing[3],
-  const float* strength, float* irradiance, const DiffusionSettings& settings)
+  const float* strength, float* irradiance, const DiffusionSettings& settings,
+  const float* capacity)
 {
   DiffusionReport report;
   report.Skipped = true;
@@ -324,7 +482,7 @@ DiffusionReport DiffuseIrradiance(const int dims[3], const double spacing[3],
   {
     return report;
   }
-  DiffusionSystem system(dims, spacing, strength);
+  DiffusionSystem system(dims, spacing, strength, capacity);
   // The largest row sum of A bounds its spectrum (Gershgorin); zero means no
   // two neighbouring voxels both scatter, so nothing can move.
   const double maxRate = system.GetMaxRowSum();
@@ -333,12 +491,7 @@ DiffusionReport DiffuseIrradiance(const int dims[3], const double spacing[3],
     return report;
   }
   report.Skipped = false;
-  // As many sub-steps as an explicit scheme would need to stay stable
-  // (dt * maxRate <= 1), capped: below that limit one implicit step is already
-  // accurate; above it, extra steps buy first-order accuracy in time.
-  const double explicitSteps = std::ceil(settings.Time * maxRate);
-  report.SubSteps =
-    static_cast<int>(std::min<double>(std::max(1, settings.MaxSubSteps), std::max(1.0, explicitSteps)));
+  report.SubSteps = DiffusionSubSteps(maxRate, settings);
   const double dt = settings.Time / report.SubSteps;
   system.SetTimeStep(dt);
 
@@ -349,6 +502,87 @@ DiffusionReport DiffuseIrradiance(const int dims[3], const double spacing[3],
       system.Solve(x, settings.Tolerance, std::max(1, settings.MaxIterations), report.FinalResidual);
   }
   std::copy(x.begin(), x.end(), irradiance);
+  return report;
+}
+
+DiffusionReport DiffuseIrradianceOnDiffusionGrid(const int dims[3], const double spacing[3],
+  const float* strength, float* irradiance, const DiffusionSettings& settings,
+  DiffusionGrid* usedGrid)
+{
+  DiffusionReport report;
+  report.Skipped = true;
+  if (!dims || !spacing || !strength || !irradiance || dims[0] < 1 || dims[1] < 1 ||
+    dims[2] < 1)
+  {
+    return report;
+  }
+  const vtkIdType n = static_cast<vtkIdType>(dims[0]) * dims[1] * dims[2];
+  const double maxStrength = *std::max_element(strength, strength + n);
+  const DiffusionGrid coarse = PlanDiffusionGrid(dims, spacing, maxStrength, settings);
+  if (usedGrid)
+  {
+    *usedGrid = coarse;
+  }
+  std::vector<float> coarseStrength;
+  std::vector<float> before;
+  std::vector<float> capacity;
+  RestrictToDiffusionGrid(dims, coarse, strength, irradiance, &coarseStrength, &before, &capacity);
+  std::vector<float> after = before;
+  report = DiffuseIrradiance(coarse.Dimensions, coarse.Spacing, coarseStrength.data(),
+    after.data(), settings, capacity.data());
+  if (report.Skipped)
+  {
+    return report;
+  }
+  // Where the fine grid scatters, the diffused field interpolated trilinearly.
+  const int* cd = coarse.Dimensions;
+  vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
+    for (vtkIdType v = begin; v < end; ++v)
+    {
+      if (!(strength[v] > 0.0f))
+      {
+        continue;
+      }
+      const int index[3] = { static_cast<int>(v % dims[0]),
+        static_cast<int>((v / dims[0]) % dims[1]),
+        static_cast<int>(v / (static_cast<vtkIdType>(dims[0]) * dims[1])) };
+      int lo[3];
+      int hi[3];
+      double w[3];
+      for (int a = 0; a < 3; ++a)
+      {
+        const double u = coarse.CoarseCoordinate(a, index[a]);
+        lo[a] = std::min(static_cast<int>(u), cd[a] - 1);
+        hi[a] = std::min(lo[a] + 1, cd[a] - 1);
+        w[a] = u - lo[a];
+      }
+      // Trilinear over the corners that scatter, renormalised: a corner
+      // block without scattering voxels has no light to give.
+      double sum = 0.0;
+      double weights = 0.0;
+      for (int corner = 0; corner < 8; ++corner)
+      {
+        double weight = 1.0;
+        int c[3];
+        for (int a = 0; a < 3; ++a)
+        {
+          const bool upper = (corner >> a) & 1;
+          c[a] = upper ? hi[a] : lo[a];
+          weight *= upper ? w[a] : 1.0 - w[a];
+        }
+        const vtkIdType id = c[0] + static_cast<vtkIdType>(cd[0]) * (c[1] + static_cast<vtkIdType>(cd[1]) * c[2]);
+        if (weight > 0.0 && capacity[id] > 0.0f)
+        {
+          sum += weight * (after[id] - before[id]);
+          weights += weight;
+        }
+      }
+      if (weights > 0.0)
+      {
+        irradiance[v] = static_cast<float>(std::max(0.0, irradiance[v] + sum / weights));
+      }
+    }
+  });
   return report;
 }
 

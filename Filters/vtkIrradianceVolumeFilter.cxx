@@ -298,7 +298,8 @@ bool CastShadowRays(vtkAlgorithm* self, const RayContext& ctx, const mmv::LightS
  * Multiple scattering (eq. 15) of every active light's irradiance. s is the
  * material's scattering at the pre-filtered value, 0 in empty voxels, and is
  * given in data voxels^2, so the grid spacing is passed in data voxels.
- * Returns the CG iterations.
+ * The change is computed on the diffusion grid (DiffuseIrradianceOnDiffusionGrid),
+ * as the GPU pass does. Returns the CG iterations.
  */
 int DiffuseLights(const mmv::IrradianceGrid& grid, const std::vector<float>& prefiltered,
   const std::vector<vtkIdType>& computed, vtkMaterialTransferFunction* mtf,
@@ -324,7 +325,7 @@ int DiffuseLights(const mmv::IrradianceGrid& grid, const std::vector<float>& pre
   {
     if (tasks[l].Active)
     {
-      iterations += mmv::DiffuseIrradiance(
+      iterations += mmv::DiffuseIrradianceOnDiffusionGrid(
         grid.Dimensions, spacing, strength.data(), arrays[l]->GetPointer(0))
                       .Iterations;
     }

@@ -25,9 +25,10 @@
  *     volume boundary; point and spot lights: to the light or the boundary,
  *     times eps^2/max(eps^2, d^2), spot visibility by vtkLight's cone
  *     half-angle (vtkMultiMaterialLightModel.h).
- *  4. Multiple scattering: diffusion with per-voxel s from the material TF
- *     (vtkIrradianceDiffusion.h), skipped when every s is zero or
- *     MultipleScattering is off.
+ *  4. Multiple scattering: diffusion with per-voxel s from the material TF,
+ *     its change computed on a grid coarsened to the diffusion length
+ *     (mmv::DiffuseIrradianceOnDiffusionGrid, as the GPU pass does), skipped
+ *     when every s is zero or MultipleScattering is off.
  *  5. Empty voxels next to computed ones take the mean of their computed
  *     neighbours, so trilinear lookups at material boundaries are not darkened
  *     by empty space; other empty voxels stay 0.
