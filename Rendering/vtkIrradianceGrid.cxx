@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace
 {
@@ -102,6 +103,51 @@ void ComputeIrradianceDimensions(const int dataDims[3], int numberOfLights, doub
     s *= 0.998;
     apply(s);
   }
+}
+
+IrradianceResolution ChooseIrradianceResolution(const int dataDims[3], int numberOfLights,
+  double budgetMB, double userScale, double pixelsPerDataVoxel)
+{
+  IrradianceResolution result;
+  char text[256];
+  if (userScale > 0.0)
+  {
+    result.Scale = std::min(userScale, 1.0);
+    ComputeIrradianceDimensions(dataDims, numberOfLights, budgetMB, result.Scale, result.Dimensions);
+    std::snprintf(text, sizeof(text), "IrradianceScale %.3g (set by the user)", result.Scale);
+    result.Reason = text;
+    return result;
+  }
+  ComputeIrradianceDimensions(dataDims, numberOfLights, budgetMB, 0.0, result.Dimensions);
+  double budgetScale = 0.0;
+  for (int a = 0; a < 3; ++a)
+  {
+    if (dataDims[a] > 1)
+    {
+      budgetScale = std::max(budgetScale, static_cast<double>(result.Dimensions[a]) / dataDims[a]);
+    }
+  }
+  budgetScale = budgetScale > 0.0 ? budgetScale : 1.0;
+  result.Scale = budgetScale;
+  std::snprintf(text, sizeof(text), "memory budget %.4g MB for %d light(s): scale %.3g", budgetMB,
+    numberOfLights, budgetScale);
+  result.Reason = text;
+  if (pixelsPerDataVoxel > 0.0 && std::isfinite(pixelsPerDataVoxel))
+  {
+    const double wanted = pixelsPerDataVoxel / PixelsPerIrradianceVoxel;
+    const double screenScale = std::min(1.0, std::exp2(std::ceil(4.0 * std::log2(wanted)) / 4.0));
+    if (screenScale < budgetScale)
+    {
+      result.Scale = screenScale;
+      ComputeIrradianceDimensions(dataDims, numberOfLights, budgetMB, screenScale, result.Dimensions);
+      std::snprintf(text, sizeof(text),
+        "screen: %.3g px per data voxel, %.3g px per irradiance voxel: scale %.3g (the budget "
+        "allows %.3g)",
+        pixelsPerDataVoxel, PixelsPerIrradianceVoxel, screenScale, budgetScale);
+      result.Reason = text;
+    }
+  }
+  return result;
 }
 
 IrradianceGrid MakeIrradianceGrid(vtkImageData* image, const int irradianceDims[3])

@@ -19,6 +19,7 @@
 
 #include <glm/glm.hpp>
 
+#include <string>
 #include <vector>
 
 class vtkDataArray;
@@ -74,6 +75,29 @@ struct IrradianceGrid
  */
 VTKMULTIMATERIALVOLUME_EXPORT void ComputeIrradianceDimensions(const int dataDims[3],
   int numberOfLights, double budgetMB, double scale, int irradianceDims[3]);
+
+/// The irradiance resolution a frame uses, and why (for logs and the UI).
+struct IrradianceResolution
+{
+  int Dimensions[3] = { 0, 0, 0 };
+  double Scale = 1.0; // the scale applied to every axis
+  std::string Reason;
+};
+
+/**
+ * Models no more than the image can show:
+ *  - userScale > 0: that scale, as ComputeIrradianceDimensions applies it;
+ *  - otherwise the coarser of the memory budget's scale and the screen's:
+ *    an irradiance voxel need not cover fewer than
+ *    mmv::PixelsPerIrradianceVoxel pixels, so with `pixelsPerDataVoxel`
+ *    pixels per data voxel the scale is pixelsPerDataVoxel /
+ *    PixelsPerIrradianceVoxel, rounded up to quarter octaves (2^(k/4)) so
+ *    that small zooms keep the grid. pixelsPerDataVoxel <= 0 (unknown, e.g.
+ *    no camera) leaves the budget alone in charge.
+ */
+VTKMULTIMATERIALVOLUME_EXPORT IrradianceResolution ChooseIrradianceResolution(
+  const int dataDims[3], int numberOfLights, double budgetMB, double userScale,
+  double pixelsPerDataVoxel);
 
 /// The grid of `irradianceDims` spanning `image`'s points.
 VTKMULTIMATERIALVOLUME_EXPORT IrradianceGrid MakeIrradianceGrid(

@@ -8,13 +8,17 @@
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLShaderCache.h"
 #include "vtkOpenGLState.h"
+#include "vtkOpenGLVertexArrayObject.h"
 #include "vtkShaderProgram.h"
 #include "vtkSmartPointer.h"
 #include "vtkTextureObject.h"
 #include "vtk_glew.h"
 
 #include "mmvDiffusionFS.h"
+#include "mmvDiffusionGridFS.h"
 #include "mmvIrradianceFS.h"
+#include "mmvLayerGS.h"
+#include "mmvLayerVS.h"
 #include "mmvLightModel.h"
 
 #include <glm/gtc/type_ptr.hpp>
@@ -23,6 +27,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <initializer_list>
 #include <memory>
 #include <string>
 
@@ -40,25 +45,6 @@ float LookupTable(const std::vector<float>& table, float t)
   const int i0 = std::min(static_cast<int>(x), n - 2);
   const float f = x - static_cast<float>(i0);
   return (1.0f - f) * table[i0] + f * table[i0 + 1];
-}
-
-/// Face coefficient of the CPU diffusion (vtkIrradianceDiffusion.cxx).
-double HarmonicMean(double a, double b)
-{
-  return (a > 0.0 && b > 0.0) ? 2.0 * a * b / (a + b) : 0.0;
-}
-
-/// 1/h^2 per axis of the diffusion operator, h in data voxels (the unit of
-/// the scattering strength s), for both the CPU estimate and the shader.
-glm::dvec3 InverseSquaredSpacing(const mmv::IrradianceGrid& grid)
-{
-  glm::dvec3 invH2;
-  for (int a = 0; a < 3; ++a)
-  {
-    const double h = grid.DataVoxelsPerVoxel[a] > 0.0 ? grid.DataVoxelsPerVoxel[a] : 1.0;
-    invH2[a] = 1.0 / (h * h);
-  }
-  return invH2;
 }
 
 /// The fragment shader: system declarations, `defines`, optionally the light
@@ -97,8 +83,28 @@ vtkSmartPointer<vtkTextureObject> NewTexture(vtkOpenGLRenderWindow* context,
   return texture;
 }
 
-void SetLightUniforms(vtkShaderProgram* program, const std::vector<mmv::LightSource>& lights,
-  int first)
+bool HasSize(vtkTextureObject* t, const int d[3])
+{
+  return t && t->GetHandle() && static_cast<int>(t->GetWidth()) == d[0] &&
+    static_cast<int>(t->GetHeight()) == d[1] && static_cast<int>(t->GetDepth()) == d[2];
+}
+
+/// A float RGBA 3D texture of size d, kept when it already has that size.
+bool EnsureFloatTexture(
+  vtkOpenGLRenderWindow* context, vtkSmartPointer<vtkTextureObject>& texture, const int d[3])
+{
+  if (HasSize(texture, d))
+  {
+    return true;
+  }
+  // Linear: the prolongation interpolates the diffusion grid; the other
+  // passes read with texelFetch, which ignores filtering.
+  texture = NewTexture(context, GL_RGBA32F, GL_RGBA, GL_FLOAT, true);
+  return texture->Allocate3D(d[0], d[1], d[2], 4, VTK_FLOAT);
+}
+
+void SetLightUniforms(
+  vtkShaderProgram* program, const std::vector<mmv::LightSource>& lights, int first, int mask)
 {
   const int count = std::min(LightsPerTexture, static_cast<int>(lights.size()) - first);
   int kind[LightsPerTexture] = { 0, 0, 0, 0 };
@@ -121,6 +127,7 @@ void SetLightUniforms(vtkShaderProgram* program, const std::vector<mmv::LightSou
     radius[l] = static_cast<float>(light.Radius);
   }
   program->SetUniformi("numberOfLights", count);
+  program->SetUniformi("lightMask", mask);
   program->SetUniform1iv("lightKind", LightsPerTexture, kind);
   program->SetUniform3fv("lightPosition", LightsPerTexture, position);
   program->SetUniform3fv("lightToLight", LightsPerTexture, toLight);
@@ -134,6 +141,42 @@ bool SameGrid(const mmv::IrradianceGrid& a, const mmv::IrradianceGrid& b)
   return std::equal(a.Dimensions, a.Dimensions + 3, b.Dimensions) && a.Origin == b.Origin &&
     a.Spacing == b.Spacing && a.Direction == b.Direction;
 }
+
+bool SameLight(const mmv::LightSource& a, const mmv::LightSource& b)
+{
+  return a.Kind == b.Kind && a.Position == b.Position && a.ToLight == b.ToLight &&
+    a.SpotAxis == b.SpotAxis && a.CosCone == b.CosCone && a.Radius == b.Radius;
+}
+
+/// Activates textures for one draw and deactivates them when it ends.
+class ScopedTextures
+{
+public:
+  ScopedTextures(std::initializer_list<vtkTextureObject*> textures)
+  {
+    for (vtkTextureObject* t : textures)
+    {
+      if (std::find(this->Textures.begin(), this->Textures.end(), t) == this->Textures.end())
+      {
+        this->Textures.push_back(t);
+      }
+    }
+    for (vtkTextureObject* t : this->Textures)
+    {
+      t->Activate();
+    }
+  }
+  ~ScopedTextures()
+  {
+    for (vtkTextureObject* t : this->Textures)
+    {
+      t->Deactivate();
+    }
+  }
+
+private:
+  std::vector<vtkTextureObject*> Textures;
+};
 
 } // namespace
 
@@ -152,37 +195,58 @@ public:
   bool HasInputs = false;
   bool Uploaded = false;
   vtkIdType VolumeUploads = 0;
+  // The lights the irradiance textures hold, and whether the volume they
+  // were computed from is still the current one.
+  std::vector<mmv::LightSource> ComputedLights;
+  bool VolumeChanged = true;
+  bool MultipleScatteringUsed = true;
 
-  // Derived on the CPU: s per voxel (-1 where empty), and what it implies.
+  // Derived on the CPU: s per voxel (-1 where empty), and the diffusion
+  // grid (vtkIrradianceDiffusion.h) with its strength and capacity per block
+  // (interleaved) and solve lengths.
   std::vector<float> Classes;
   vtkIdType NonEmptyVoxels = 0;
-  double MaxDiffusionRate = 0.0; // largest row sum of the diffusion operator
+  mmv::DiffusionSettings Diffusion;
+  mmv::DiffusionGrid Coarse;
+  std::vector<float> CoarseStrength;
+  double CoarseMaxRate = 0.0;
+  int SubSteps = 0;
+  int SweepsPerStep = 0;
+  double SpectralRadius = 0.0; // of the Jacobi iteration, for the Chebyshev weights
 
   // GPU resources.
   vtkSmartPointer<vtkTextureObject> ScalarTexture;
   vtkSmartPointer<vtkTextureObject> ClassTexture;
   vtkSmartPointer<vtkTextureObject> TableTexture;
+  vtkSmartPointer<vtkTextureObject> CoarseStrengthTexture;
   std::vector<vtkSmartPointer<vtkTextureObject>> Irradiance;
-  std::array<vtkSmartPointer<vtkTextureObject>, 3> Scratch;
+  // Irradiance grid: [0] shadow rays, [1] after the diffusion. Diffusion
+  // grid: [0] restricted, [1..4] rotate through the sweeps (right-hand side,
+  // previous, current and next iterate).
+  std::array<vtkSmartPointer<vtkTextureObject>, 2> FineScratch;
+  std::array<vtkSmartPointer<vtkTextureObject>, 5> CoarseScratch;
   vtkSmartPointer<vtkOpenGLFramebufferObject> Framebuffer;
   std::unique_ptr<vtkOpenGLQuadHelper> ShadowQuad;
+  std::unique_ptr<vtkOpenGLQuadHelper> RestrictQuad;
   std::unique_ptr<vtkOpenGLQuadHelper> SweepQuad;
+  std::unique_ptr<vtkOpenGLQuadHelper> ProlongQuad;
   std::unique_ptr<vtkOpenGLQuadHelper> FillQuad;
 
   void Classify(const std::vector<float>& opacity, const std::vector<float>& scattering);
-  void ComputeMaxDiffusionRate();
-  int DiffusionSteps(double time) const;
+  void PlanDiffusion(double time);
 
   bool Upload(vtkOpenGLRenderWindow* context);
-  bool AllocateTargets(vtkOpenGLRenderWindow* context, bool diffusion);
+  bool AllocateTargets(vtkOpenGLRenderWindow* context, bool diffusion, bool& reallocated);
   vtkShaderProgram* Ready(vtkOpenGLRenderWindow* context, std::unique_ptr<vtkOpenGLQuadHelper>& quad,
     const char* body, const std::string& defines, bool lightModel);
-  void DrawSlices(vtkOpenGLQuadHelper& quad, vtkTextureObject* target);
-  void SetGridUniforms(vtkShaderProgram* program) const;
+  void DrawLayers(vtkOpenGLRenderWindow* context, vtkOpenGLQuadHelper& quad,
+    vtkTextureObject* target, bool layered);
+  void SetTransferUniforms(vtkShaderProgram* program) const;
 
-  bool ShadowPass(vtkOpenGLRenderWindow* context, int group);
-  int Diffuse(vtkOpenGLRenderWindow* context, double time, int sweeps);
-  bool FillPass(vtkOpenGLRenderWindow* context, int source, int group);
+  bool ShadowPass(vtkOpenGLRenderWindow* context, int group, int mask, bool skipEmpty, bool layered);
+  int Diffuse(vtkOpenGLRenderWindow* context, bool layered);
+  bool FillPass(vtkOpenGLRenderWindow* context, vtkTextureObject* source, int group, int mask,
+    bool layered);
   void ReleaseScratch(vtkWindow* window);
   void Release(vtkWindow* window);
 };
@@ -202,48 +266,39 @@ void vtkIrradianceVolumePass::vtkInternals::Classify(
 }
 
 //------------------------------------------------------------------------------
-// The CPU solver's stiffness estimate (Gershgorin bound of its operator),
-// from which both pick the same number of backward-Euler steps.
-void vtkIrradianceVolumePass::vtkInternals::ComputeMaxDiffusionRate()
+// The diffusion grid and how long its solve runs, exactly as the CPU's
+// mmv::DiffuseIrradianceOnDiffusionGrid plans them.
+void vtkIrradianceVolumePass::vtkInternals::PlanDiffusion(double time)
 {
-  const int* dims = this->Grid.Dimensions;
-  const vtkIdType stride[3] = { 1, dims[0], static_cast<vtkIdType>(dims[0]) * dims[1] };
-  const glm::dvec3 invH2 = InverseSquaredSpacing(this->Grid);
-  auto strength = [&](vtkIdType v) { return std::max(0.0, static_cast<double>(this->Classes[v])); };
-  this->MaxDiffusionRate = 0.0;
-  vtkIdType v = 0;
-  for (int k = 0; k < dims[2]; ++k)
+  this->Diffusion.Time = time;
+  std::vector<float> strength(this->Classes.size());
+  float maxStrength = 0.0f;
+  for (size_t v = 0; v < strength.size(); ++v)
   {
-    for (int j = 0; j < dims[1]; ++j)
-    {
-      for (int i = 0; i < dims[0]; ++i, ++v)
-      {
-        const int index[3] = { i, j, k };
-        double sum = 0.0;
-        for (int a = 0; a < 3; ++a)
-        {
-          if (index[a] > 0)
-          {
-            sum += static_cast<float>(HarmonicMean(strength(v), strength(v - stride[a])) * invH2[a]);
-          }
-          if (index[a] + 1 < dims[a])
-          {
-            sum += static_cast<float>(HarmonicMean(strength(v), strength(v + stride[a])) * invH2[a]);
-          }
-        }
-        this->MaxDiffusionRate = std::max(this->MaxDiffusionRate, sum);
-      }
-    }
+    strength[v] = std::max(0.0f, this->Classes[v]);
+    maxStrength = std::max(maxStrength, strength[v]);
   }
-}
-
-//------------------------------------------------------------------------------
-// As many backward-Euler steps as an explicit scheme would need, capped like
-// the CPU solver.
-int vtkIrradianceVolumePass::vtkInternals::DiffusionSteps(double time) const
-{
-  return static_cast<int>(std::min<double>(mmv::DiffusionSettings().MaxSubSteps,
-    std::max(1.0, std::ceil(time * this->MaxDiffusionRate))));
+  const double spacing[3] = { this->Grid.DataVoxelsPerVoxel[0], this->Grid.DataVoxelsPerVoxel[1],
+    this->Grid.DataVoxelsPerVoxel[2] };
+  this->Coarse = mmv::PlanDiffusionGrid(this->Grid.Dimensions, spacing, maxStrength, this->Diffusion);
+  std::vector<float> coarseStrength;
+  std::vector<float> capacity;
+  mmv::RestrictToDiffusionGrid(this->Grid.Dimensions, this->Coarse, strength.data(), nullptr,
+    &coarseStrength, nullptr, &capacity);
+  this->CoarseMaxRate = time > 0.0 ? mmv::MaxDiffusionRate(this->Coarse.Dimensions,
+                                       this->Coarse.Spacing, coarseStrength.data(), capacity.data())
+                                   : 0.0;
+  // One RG texel per block: strength, capacity.
+  this->CoarseStrength.resize(2 * coarseStrength.size());
+  for (size_t c = 0; c < coarseStrength.size(); ++c)
+  {
+    this->CoarseStrength[2 * c] = coarseStrength[c];
+    this->CoarseStrength[2 * c + 1] = capacity[c];
+  }
+  this->SubSteps = mmv::DiffusionSubSteps(this->CoarseMaxRate, this->Diffusion);
+  const double stiffness = this->CoarseMaxRate * time / this->SubSteps;
+  this->SweepsPerStep = mmv::ChebyshevSweeps(stiffness, this->Diffusion);
+  this->SpectralRadius = mmv::JacobiSpectralRadius(stiffness);
 }
 
 //------------------------------------------------------------------------------
@@ -254,47 +309,48 @@ bool vtkIrradianceVolumePass::vtkInternals::Upload(vtkOpenGLRenderWindow* contex
     return true;
   }
   const int* d = this->Grid.Dimensions;
+  const int* c = this->Coarse.Dimensions;
   this->ScalarTexture = NewTexture(context, GL_R32F, GL_RED, GL_FLOAT, true);
   this->ClassTexture = NewTexture(context, GL_R32F, GL_RED, GL_FLOAT, false);
   this->TableTexture = NewTexture(context, GL_R32F, GL_RED, GL_FLOAT, true);
+  this->CoarseStrengthTexture = NewTexture(context, GL_RG32F, GL_RG, GL_FLOAT, false);
   ++this->VolumeUploads;
   this->Uploaded = this->ScalarTexture->Create3DFromRaw(d[0], d[1], d[2], 1, VTK_FLOAT,
                      this->Scalars.data()) &&
     this->ClassTexture->Create3DFromRaw(d[0], d[1], d[2], 1, VTK_FLOAT, this->Classes.data()) &&
     this->TableTexture->Create2DFromRaw(
-      this->TableSize, this->TableSize, 1, VTK_FLOAT, this->ShadowTable.data());
+      this->TableSize, this->TableSize, 1, VTK_FLOAT, this->ShadowTable.data()) &&
+    this->CoarseStrengthTexture->Create3DFromRaw(
+      c[0], c[1], c[2], 2, VTK_FLOAT, this->CoarseStrength.data());
   return this->Uploaded;
 }
 
 //------------------------------------------------------------------------------
 bool vtkIrradianceVolumePass::vtkInternals::AllocateTargets(
-  vtkOpenGLRenderWindow* context, bool diffusion)
+  vtkOpenGLRenderWindow* context, bool diffusion, bool& reallocated)
 {
   const int* d = this->Grid.Dimensions;
   const size_t textures = (this->Lights.size() + LightsPerTexture - 1) / LightsPerTexture;
-  auto sameSize = [&](vtkTextureObject* t) {
-    return t && t->GetHandle() && static_cast<int>(t->GetWidth()) == d[0] &&
-      static_cast<int>(t->GetHeight()) == d[1] && static_cast<int>(t->GetDepth()) == d[2];
-  };
+  reallocated = this->Irradiance.size() != textures;
   this->Irradiance.resize(textures);
   bool ok = true;
   for (auto& texture : this->Irradiance)
   {
-    if (!sameSize(texture))
+    if (!HasSize(texture, d))
     {
       // 16-bit unsigned normalised: values are fractions in [0, 1].
       texture = NewTexture(context, GL_RGBA16, GL_RGBA, GL_UNSIGNED_SHORT, true);
       ok = ok && texture->Allocate3D(d[0], d[1], d[2], 4, VTK_UNSIGNED_SHORT);
+      reallocated = true;
     }
   }
-  const size_t scratch = diffusion ? this->Scratch.size() : 1;
-  for (size_t i = 0; i < scratch; ++i)
+  for (size_t i = 0; i < (diffusion ? this->FineScratch.size() : 1); ++i)
   {
-    if (!sameSize(this->Scratch[i]))
-    {
-      this->Scratch[i] = NewTexture(context, GL_RGBA32F, GL_RGBA, GL_FLOAT, false);
-      ok = ok && this->Scratch[i]->Allocate3D(d[0], d[1], d[2], 4, VTK_FLOAT);
-    }
+    ok = ok && EnsureFloatTexture(context, this->FineScratch[i], d);
+  }
+  for (size_t i = 0; diffusion && i < this->CoarseScratch.size(); ++i)
+  {
+    ok = ok && EnsureFloatTexture(context, this->CoarseScratch[i], this->Coarse.Dimensions);
   }
   if (!this->Framebuffer)
   {
@@ -312,7 +368,7 @@ vtkShaderProgram* vtkIrradianceVolumePass::vtkInternals::Ready(vtkOpenGLRenderWi
   if (!quad)
   {
     const std::string source = ComposeShader(body, defines, lightModel);
-    quad = std::make_unique<vtkOpenGLQuadHelper>(context, nullptr, source.c_str(), "");
+    quad = std::make_unique<vtkOpenGLQuadHelper>(context, mmvLayerVS, source.c_str(), mmvLayerGS);
   }
   if (!quad->Program || !context->GetShaderCache()->ReadyShaderProgram(quad->Program))
   {
@@ -322,31 +378,49 @@ vtkShaderProgram* vtkIrradianceVolumePass::vtkInternals::Ready(vtkOpenGLRenderWi
 }
 
 //------------------------------------------------------------------------------
-void vtkIrradianceVolumePass::vtkInternals::SetGridUniforms(vtkShaderProgram* program) const
+// Every slice of `target` in one instanced draw into the whole 3D texture
+// (layered rendering), or, with `layered` off, one draw per slice.
+void vtkIrradianceVolumePass::vtkInternals::DrawLayers(vtkOpenGLRenderWindow* context,
+  vtkOpenGLQuadHelper& quad, vtkTextureObject* target, bool layered)
 {
-  program->SetUniform1iv("dims", 3, this->Grid.Dimensions);
-}
-
-//------------------------------------------------------------------------------
-// One draw per z slice: the framebuffer's attachment is switched to the
-// slice (removed first: re-adding the same texture keeps the old slice).
-void vtkIrradianceVolumePass::vtkInternals::DrawSlices(
-  vtkOpenGLQuadHelper& quad, vtkTextureObject* target)
-{
+  const int depth = target->GetDepth();
+  context->GetState()->vtkglViewport(0, 0, target->GetWidth(), target->GetHeight());
   this->Framebuffer->Bind();
-  for (int z = 0; z < this->Grid.Dimensions[2]; ++z)
+  if (layered)
   {
+    glFramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, target->GetHandle(), 0);
+    this->Framebuffer->ActivateDrawBuffers(1);
+    quad.Program->SetUniformi("firstLayer", 0);
+    quad.VAO->Bind();
+    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, depth);
+    quad.VAO->Release();
+    glFramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, 0, 0);
+    return;
+  }
+  for (int z = 0; z < depth; ++z)
+  {
+    // Removed first: re-adding the same texture keeps the old slice.
     this->Framebuffer->RemoveColorAttachment(0);
     this->Framebuffer->AddColorAttachment(0, target, z);
     this->Framebuffer->ActivateDrawBuffers(1);
-    quad.Program->SetUniformi("slice", z);
+    quad.Program->SetUniformi("firstLayer", z);
     quad.Render();
   }
   this->Framebuffer->RemoveColorAttachment(0);
 }
 
 //------------------------------------------------------------------------------
-bool vtkIrradianceVolumePass::vtkInternals::ShadowPass(vtkOpenGLRenderWindow* context, int group)
+// The uniforms of the transfers between the irradiance and diffusion grids.
+void vtkIrradianceVolumePass::vtkInternals::SetTransferUniforms(vtkShaderProgram* program) const
+{
+  program->SetUniform1iv("dims", 3, this->Grid.Dimensions);
+  program->SetUniform1iv("factor", 3, this->Coarse.Factor);
+  program->SetUniform1iv("coarseDims", 3, this->Coarse.Dimensions);
+}
+
+//------------------------------------------------------------------------------
+bool vtkIrradianceVolumePass::vtkInternals::ShadowPass(
+  vtkOpenGLRenderWindow* context, int group, int mask, bool skipEmpty, bool layered)
 {
   vtkShaderProgram* program =
     this->Ready(context, this->ShadowQuad, mmvIrradianceFS, mmv::ShadowRayGLSLPrelude(), true);
@@ -357,76 +431,101 @@ bool vtkIrradianceVolumePass::vtkInternals::ShadowPass(vtkOpenGLRenderWindow* co
   glm::mat3 toWorld(this->Grid.IndexToPhysicalMatrix());
   glm::mat3 toIndex(this->Grid.PhysicalToIndexMatrix());
   const glm::vec3 origin(this->Grid.Origin);
-  this->ScalarTexture->Activate();
-  this->ClassTexture->Activate();
-  this->TableTexture->Activate();
+  ScopedTextures bound{ this->ScalarTexture, this->ClassTexture, this->TableTexture };
   program->SetUniformi("scalars", this->ScalarTexture->GetTextureUnit());
   program->SetUniformi("classes", this->ClassTexture->GetTextureUnit());
   program->SetUniformi("shadowTable", this->TableTexture->GetTextureUnit());
   program->SetUniformf("tableSize", static_cast<float>(this->TableSize));
-  this->SetGridUniforms(program);
+  program->SetUniform1iv("dims", 3, this->Grid.Dimensions);
   program->SetUniform3f("origin", glm::value_ptr(origin));
   program->SetUniformMatrix3x3("indexToWorld", glm::value_ptr(toWorld));
   program->SetUniformMatrix3x3("worldToIndex", glm::value_ptr(toIndex));
   program->SetUniformf("stepLength", static_cast<float>(this->StepLength));
-  SetLightUniforms(program, this->Lights, group * LightsPerTexture);
-  this->DrawSlices(*this->ShadowQuad, this->Scratch[0]);
-  this->ScalarTexture->Deactivate();
-  this->ClassTexture->Deactivate();
-  this->TableTexture->Deactivate();
+  program->SetUniformi("computeEmptyVoxels", skipEmpty ? 0 : 1);
+  SetLightUniforms(program, this->Lights, group * LightsPerTexture, mask);
+  this->DrawLayers(context, *this->ShadowQuad, this->FineScratch[0], layered);
   return true;
 }
 
 //------------------------------------------------------------------------------
-// Backward-Euler steps from Scratch[0], each solved by `sweeps` Jacobi sweeps
-// from the previous step's result, rotating over the three scratch textures.
-// Returns the scratch index holding the result, or -1 on failure.
-int vtkIrradianceVolumePass::vtkInternals::Diffuse(
-  vtkOpenGLRenderWindow* context, double time, int sweeps)
+// Multiple scattering of FineScratch[0] into FineScratch[1]: restriction to
+// the diffusion grid, backward-Euler sub-steps each solved by Chebyshev-
+// accelerated Jacobi sweeps (their number from the error bound,
+// mmv::ChebyshevSweeps), then the prolongation of the diffused field. Returns the
+// sweeps drawn, or -1 on failure.
+int vtkIrradianceVolumePass::vtkInternals::Diffuse(vtkOpenGLRenderWindow* context, bool layered)
 {
-  vtkShaderProgram* program = this->Ready(context, this->SweepQuad, mmvDiffusionFS, "", false);
-  if (!program)
+  vtkShaderProgram* restriction =
+    this->Ready(context, this->RestrictQuad, mmvDiffusionGridFS, "#define MMV_RESTRICT\n", false);
+  vtkShaderProgram* sweep = this->Ready(context, this->SweepQuad, mmvDiffusionFS, "", false);
+  vtkShaderProgram* prolong = this->Ready(context, this->ProlongQuad, mmvDiffusionGridFS, "", false);
+  if (!restriction || !sweep || !prolong)
   {
     return -1;
   }
-  const int steps = this->DiffusionSteps(time);
-  const glm::vec3 invH2(InverseSquaredSpacing(this->Grid));
-  this->ClassTexture->Activate();
-  program->SetUniformi("classes", this->ClassTexture->GetTextureUnit());
-  this->SetGridUniforms(program);
-  program->SetUniform3f("invH2", glm::value_ptr(invH2));
-  program->SetUniformf("dt", static_cast<float>(time / steps));
+  auto& coarse = this->CoarseScratch;
+  {
+    context->GetShaderCache()->ReadyShaderProgram(restriction);
+    ScopedTextures bound{ this->FineScratch[0], this->ClassTexture };
+    restriction->SetUniformi("fine", this->FineScratch[0]->GetTextureUnit());
+    restriction->SetUniformi("classes", this->ClassTexture->GetTextureUnit());
+    this->SetTransferUniforms(restriction);
+    this->DrawLayers(context, *this->RestrictQuad, coarse[0], layered);
+  }
+
+  context->GetShaderCache()->ReadyShaderProgram(sweep);
+  const glm::vec3 invH2(1.0 / (this->Coarse.Spacing[0] * this->Coarse.Spacing[0]),
+    1.0 / (this->Coarse.Spacing[1] * this->Coarse.Spacing[1]),
+    1.0 / (this->Coarse.Spacing[2] * this->Coarse.Spacing[2]));
+  this->CoarseStrengthTexture->Activate();
+  sweep->SetUniformi("classes", this->CoarseStrengthTexture->GetTextureUnit());
+  sweep->SetUniform1iv("dims", 3, this->Coarse.Dimensions);
+  sweep->SetUniform3f("invH2", glm::value_ptr(invH2));
+  sweep->SetUniformf("dt", static_cast<float>(this->Diffusion.Time / this->SubSteps));
   int rhs = 0;
   int current = 0;
-  for (int step = 0; step < steps; ++step)
+  for (int step = 0; step < this->SubSteps; ++step)
   {
-    for (int sweep = 0; sweep < sweeps; ++sweep)
+    int previous = current;
+    for (int k = 1; k <= this->SweepsPerStep; ++k)
     {
-      const int target = (current + 1) % 3 == rhs ? (current + 2) % 3 : (current + 1) % 3;
-      this->Scratch[rhs]->Activate();
-      if (current != rhs)
+      int next = 1;
+      while (next == rhs || next == current || next == previous)
       {
-        this->Scratch[current]->Activate();
+        ++next;
       }
-      program->SetUniformi("rhs", this->Scratch[rhs]->GetTextureUnit());
-      program->SetUniformi("current", this->Scratch[current]->GetTextureUnit());
-      this->DrawSlices(*this->SweepQuad, this->Scratch[target]);
-      this->Scratch[rhs]->Deactivate();
-      if (current != rhs)
-      {
-        this->Scratch[current]->Deactivate();
-      }
-      current = target;
+      ScopedTextures bound{ coarse[rhs], coarse[current], coarse[previous] };
+      sweep->SetUniformi("rhs", coarse[rhs]->GetTextureUnit());
+      sweep->SetUniformi("current", coarse[current]->GetTextureUnit());
+      sweep->SetUniformi("previous", coarse[previous]->GetTextureUnit());
+      sweep->SetUniformf(
+        "omega", static_cast<float>(mmv::ChebyshevWeight(k, this->SpectralRadius)));
+      this->DrawLayers(context, *this->SweepQuad, coarse[next], layered);
+      previous = current;
+      current = next;
     }
     rhs = current;
   }
-  this->ClassTexture->Deactivate();
-  return current;
+  this->CoarseStrengthTexture->Deactivate();
+
+  context->GetShaderCache()->ReadyShaderProgram(prolong);
+  ScopedTextures bound{ this->FineScratch[0], this->ClassTexture, coarse[current],
+    this->CoarseStrengthTexture, coarse[0] };
+  prolong->SetUniformi("before", coarse[0]->GetTextureUnit());
+  prolong->SetUniformi("coarseStrength", this->CoarseStrengthTexture->GetTextureUnit());
+  prolong->SetUniformi("fine", this->FineScratch[0]->GetTextureUnit());
+  prolong->SetUniformi("classes", this->ClassTexture->GetTextureUnit());
+  prolong->SetUniformi("after", coarse[current]->GetTextureUnit());
+  this->SetTransferUniforms(prolong);
+  this->DrawLayers(context, *this->ProlongQuad, this->FineScratch[1], layered);
+  return this->SubSteps * this->SweepsPerStep;
 }
 
 //------------------------------------------------------------------------------
-bool vtkIrradianceVolumePass::vtkInternals::FillPass(
-  vtkOpenGLRenderWindow* context, int source, int group)
+// The final write of the lights in `mask`: the other channels of the
+// irradiance texture keep what they hold.
+bool vtkIrradianceVolumePass::vtkInternals::FillPass(vtkOpenGLRenderWindow* context,
+  vtkTextureObject* source, int group, int mask, bool layered)
 {
   vtkShaderProgram* program =
     this->Ready(context, this->FillQuad, mmvDiffusionFS, "#define MMV_FILL_PASS\n", false);
@@ -434,14 +533,14 @@ bool vtkIrradianceVolumePass::vtkInternals::FillPass(
   {
     return false;
   }
-  this->ClassTexture->Activate();
-  this->Scratch[source]->Activate();
+  ScopedTextures bound{ this->ClassTexture, source };
   program->SetUniformi("classes", this->ClassTexture->GetTextureUnit());
-  program->SetUniformi("current", this->Scratch[source]->GetTextureUnit());
-  this->SetGridUniforms(program);
-  this->DrawSlices(*this->FillQuad, this->Irradiance[group]);
-  this->ClassTexture->Deactivate();
-  this->Scratch[source]->Deactivate();
+  program->SetUniformi("current", source->GetTextureUnit());
+  program->SetUniform1iv("dims", 3, this->Grid.Dimensions);
+  context->GetState()->vtkglColorMask(
+    (mask & 1) != 0, (mask & 2) != 0, (mask & 4) != 0, (mask & 8) != 0);
+  this->DrawLayers(context, *this->FillQuad, this->Irradiance[group], layered);
+  context->GetState()->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   return true;
 }
 
@@ -449,12 +548,17 @@ bool vtkIrradianceVolumePass::vtkInternals::FillPass(
 void vtkIrradianceVolumePass::vtkInternals::ReleaseScratch(vtkWindow* window)
 {
   // The float scratch is 8x the result per texture: not worth keeping.
-  for (auto& texture : this->Scratch)
+  for (auto* scratch : { this->FineScratch.data(), this->CoarseScratch.data() })
   {
-    if (texture)
+    const size_t count = scratch == this->FineScratch.data() ? this->FineScratch.size()
+                                                             : this->CoarseScratch.size();
+    for (size_t i = 0; i < count; ++i)
     {
-      texture->ReleaseGraphicsResources(window);
-      texture = nullptr;
+      if (scratch[i])
+      {
+        scratch[i]->ReleaseGraphicsResources(window);
+        scratch[i] = nullptr;
+      }
     }
   }
 }
@@ -463,28 +567,28 @@ void vtkIrradianceVolumePass::vtkInternals::ReleaseScratch(vtkWindow* window)
 void vtkIrradianceVolumePass::vtkInternals::Release(vtkWindow* window)
 {
   this->ReleaseScratch(window);
-  for (vtkTextureObject* texture :
-    { this->ScalarTexture.Get(), this->ClassTexture.Get(), this->TableTexture.Get() })
+  for (auto* texture : { &this->ScalarTexture, &this->ClassTexture, &this->TableTexture,
+         &this->CoarseStrengthTexture })
   {
-    if (texture)
+    if (*texture)
     {
-      texture->ReleaseGraphicsResources(window);
+      (*texture)->ReleaseGraphicsResources(window);
+      *texture = nullptr;
     }
   }
-  this->ScalarTexture = nullptr;
-  this->ClassTexture = nullptr;
-  this->TableTexture = nullptr;
   for (auto& texture : this->Irradiance)
   {
     texture->ReleaseGraphicsResources(window);
   }
   this->Irradiance.clear();
+  this->ComputedLights.clear();
   if (this->Framebuffer)
   {
     this->Framebuffer->ReleaseGraphicsResources(window);
     this->Framebuffer = nullptr;
   }
-  for (auto* quad : { &this->ShadowQuad, &this->SweepQuad, &this->FillQuad })
+  for (auto* quad :
+    { &this->ShadowQuad, &this->RestrictQuad, &this->SweepQuad, &this->ProlongQuad, &this->FillQuad })
   {
     if (*quad)
     {
@@ -552,8 +656,9 @@ void vtkIrradianceVolumePass::SetInputs(const mmv::IrradianceGrid& grid,
     internals.OpacityTable = opacity;
     internals.ScatteringTable = scattering;
     internals.Classify(opacity, scattering);
-    internals.ComputeMaxDiffusionRate();
+    internals.PlanDiffusion(this->DiffusionTime);
     internals.Uploaded = false;
+    internals.VolumeChanged = true;
   }
   internals.HasInputs = true;
 }
@@ -564,6 +669,7 @@ bool vtkIrradianceVolumePass::Render(vtkOpenGLRenderWindow* context)
   vtkInternals& internals = *this->Internals;
   this->NumberOfComputedVoxels = 0;
   this->DiffusionPasses = 0;
+  this->NumberOfUpdatedLights = 0;
   if (!context || !internals.HasInputs)
   {
     vtkErrorMacro("Render() needs a context and valid inputs (SetInputs).");
@@ -578,8 +684,19 @@ bool vtkIrradianceVolumePass::Render(vtkOpenGLRenderWindow* context)
                                                                              << minor << ".");
     return false;
   }
+  if (internals.Diffusion.Time != this->DiffusionTime)
+  {
+    internals.PlanDiffusion(this->DiffusionTime);
+    internals.Uploaded = false;
+    internals.VolumeChanged = true;
+  }
+  if (internals.MultipleScatteringUsed != this->MultipleScattering)
+  {
+    internals.MultipleScatteringUsed = this->MultipleScattering;
+    internals.VolumeChanged = true;
+  }
   const bool diffusion = this->MultipleScattering && this->DiffusionTime > 0.0 &&
-    internals.MaxDiffusionRate > 0.0;
+    internals.CoarseMaxRate > 0.0;
   glFinish();
   const auto start = std::chrono::steady_clock::now();
   vtkOpenGLState* state = context->GetState();
@@ -595,16 +712,39 @@ bool vtkIrradianceVolumePass::Render(vtkOpenGLRenderWindow* context)
     state->vtkglDisable(GL_DEPTH_TEST);
     state->vtkglDisable(GL_SCISSOR_TEST);
     state->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    state->vtkglViewport(0, 0, internals.Grid.Dimensions[0], internals.Grid.Dimensions[1]);
-    ok = internals.Upload(context) && internals.AllocateTargets(context, diffusion);
+    bool reallocated = false;
+    ok = internals.Upload(context) && internals.AllocateTargets(context, diffusion, reallocated);
+    // Only the lights that moved (or all, when the volume changed) are
+    // recomputed: each light keeps its own channel.
+    const bool all = internals.VolumeChanged || reallocated;
     for (int group = 0; ok && group < this->GetNumberOfIrradianceTextures(); ++group)
     {
-      int result = internals.ShadowPass(context, group) ? 0 : -1;
-      if (diffusion && result == 0)
+      int mask = 0;
+      for (int l = 0; l < LightsPerTexture; ++l)
       {
-        result = internals.Diffuse(context, this->DiffusionTime, this->DiffusionSweeps);
+        const size_t k = static_cast<size_t>(group * LightsPerTexture + l);
+        if (k < internals.Lights.size() &&
+          (all || k >= internals.ComputedLights.size() ||
+            !SameLight(internals.Lights[k], internals.ComputedLights[k])))
+        {
+          mask |= 1 << l;
+          ++this->NumberOfUpdatedLights;
+        }
       }
-      ok = result >= 0 && internals.FillPass(context, result, group);
+      if (mask == 0)
+      {
+        continue;
+      }
+      ok = internals.ShadowPass(context, group, mask, this->SkipEmptyVoxels, this->LayeredRendering);
+      vtkTextureObject* result = internals.FineScratch[0];
+      if (ok && diffusion)
+      {
+        const int sweeps = internals.Diffuse(context, this->LayeredRendering);
+        ok = sweeps >= 0;
+        this->DiffusionPasses += std::max(0, sweeps);
+        result = internals.FineScratch[1];
+      }
+      ok = ok && internals.FillPass(context, result, group, mask, this->LayeredRendering);
     }
     internals.ReleaseScratch(context);
   }
@@ -614,16 +754,38 @@ bool vtkIrradianceVolumePass::Render(vtkOpenGLRenderWindow* context)
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!ok)
   {
+    internals.ComputedLights.clear();
     vtkErrorMacro("The irradiance passes failed (shader or texture setup).");
     return false;
   }
+  internals.ComputedLights = internals.Lights;
+  internals.VolumeChanged = false;
   this->NumberOfComputedVoxels = internals.NonEmptyVoxels;
-  if (diffusion)
-  {
-    this->DiffusionPasses = internals.DiffusionSteps(this->DiffusionTime) * this->DiffusionSweeps *
-      this->GetNumberOfIrradianceTextures();
-  }
   return true;
+}
+
+//------------------------------------------------------------------------------
+void vtkIrradianceVolumePass::GetDiffusionGridDimensions(int dims[3]) const
+{
+  for (int a = 0; a < 3; ++a)
+  {
+    dims[a] = this->Internals->Coarse.Dimensions[a];
+  }
+}
+
+int vtkIrradianceVolumePass::GetDiffusionSubSteps() const
+{
+  return this->Internals->SubSteps;
+}
+
+int vtkIrradianceVolumePass::GetDiffusionSweepsPerStep() const
+{
+  return this->Internals->SweepsPerStep;
+}
+
+double vtkIrradianceVolumePass::GetDiffusionLength() const
+{
+  return this->Internals->Coarse.DiffusionLength;
 }
 
 //------------------------------------------------------------------------------
@@ -707,7 +869,12 @@ void vtkIrradianceVolumePass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Lights: " << internals.Lights.size() << "\n";
   os << indent << "MultipleScattering: " << this->MultipleScattering << "\n";
   os << indent << "DiffusionTime: " << this->DiffusionTime << "\n";
-  os << indent << "DiffusionSweeps: " << this->DiffusionSweeps << "\n";
+  os << indent << "LayeredRendering: " << this->LayeredRendering << "\n";
+  os << indent << "SkipEmptyVoxels: " << this->SkipEmptyVoxels << "\n";
+  os << indent << "DiffusionGrid: " << internals.Coarse.Dimensions[0] << " "
+     << internals.Coarse.Dimensions[1] << " " << internals.Coarse.Dimensions[2] << " ("
+     << internals.SubSteps << " sub-steps x " << internals.SweepsPerStep << " sweeps)\n";
+  os << indent << "NumberOfUpdatedLights: " << this->NumberOfUpdatedLights << "\n";
   os << indent << "NumberOfComputedVoxels: " << this->NumberOfComputedVoxels << "\n";
   os << indent << "DiffusionPasses: " << this->DiffusionPasses << "\n";
   os << indent << "LastRenderSeconds: " << this->LastRenderSeconds << "\n";

@@ -11,15 +11,23 @@
  * texture k / 4. Values are the fraction of each light reaching the voxel,
  * without colour and intensity.
  *
- * Passes (fragment shaders drawing into 3D-texture slices):
+ * Passes (fragment shaders; each fills a whole 3D texture in one instanced
+ * draw, layered rendering):
  *  1. shadow rays for every non-empty voxel (opacity > 0; empty voxels are
  *     skipped and written as 0), steps of the shadow table's length, exact
  *     exit distance and partial last step, early termination;
- *  2. diffusion for multiple scattering (only when some s > 0 and enabled):
- *     Jacobi sweeps of the backward-Euler system, a convex combination of
- *     neighbours per sweep, so it is stable for every s and keeps the maximum
- *     principle;
+ *  2. multiple scattering (only when some s > 0 and enabled), as
+ *     mmv::DiffuseIrradianceOnDiffusionGrid does it on the CPU: restriction
+ *     to the diffusion grid (coarsened to the diffusion length), backward-
+ *     Euler sub-steps solved by Chebyshev-accelerated Jacobi sweeps (as
+ *     many as the error bound needs for mmv::DiffusionSettings::
+ *     SweepTolerance), and the diffused field prolonged trilinearly to the
+ *     irradiance grid;
  *  3. empty voxels bordering non-empty ones take the mean of those neighbours.
+ *
+ * Each light keeps its own channel: Render() recomputes only the lights that
+ * changed since the last Render() (all of them when the volume, tables or
+ * grid changed), writing their channels alone.
  *
  * Needs OpenGL 3.2 core (layered rendering into 3D textures); Render() returns
  * false with an error when the context cannot do it.
@@ -72,9 +80,16 @@ public:
   vtkGetMacro(MultipleScattering, bool);
   vtkSetMacro(DiffusionTime, double);
   vtkGetMacro(DiffusionTime, double);
-  /// Jacobi sweeps per diffusion solve (default 24).
-  vtkSetClampMacro(DiffusionSweeps, int, 1, 1000);
-  vtkGetMacro(DiffusionSweeps, int);
+
+  /// One instanced draw per pass into the whole 3D texture (default on), or
+  /// one draw per slice; kept switchable to measure the difference.
+  vtkSetMacro(LayeredRendering, bool);
+  vtkGetMacro(LayeredRendering, bool);
+
+  /// Empty voxels cost nothing (default on); off computes their shadow rays
+  /// too, to measure what the skipping saves.
+  vtkSetMacro(SkipEmptyVoxels, bool);
+  vtkGetMacro(SkipEmptyVoxels, bool);
 
   /// Runs the passes. Needs the context current. False (with an error) if
   /// inputs are missing or the context lacks what the passes need.
@@ -90,8 +105,17 @@ public:
   ///@{
   /// What the last Render() did.
   vtkGetMacro(NumberOfComputedVoxels, vtkIdType);
-  vtkGetMacro(DiffusionPasses, int);
+  vtkGetMacro(DiffusionPasses, int); // Jacobi sweeps drawn
+  vtkGetMacro(NumberOfUpdatedLights, int);
   vtkGetMacro(LastRenderSeconds, double);
+  ///@}
+
+  ///@{
+  /// The diffusion grid of the current inputs and its solve.
+  void GetDiffusionGridDimensions(int dims[3]) const;
+  int GetDiffusionSubSteps() const;
+  int GetDiffusionSweepsPerStep() const;
+  double GetDiffusionLength() const; // in data voxels
   ///@}
 
   /// How often the pre-filtered volume and tables went to the GPU: only when
@@ -109,9 +133,11 @@ protected:
 
   bool MultipleScattering = true;
   double DiffusionTime = 1.0;
-  int DiffusionSweeps = 24;
+  bool LayeredRendering = true;
+  bool SkipEmptyVoxels = true;
   vtkIdType NumberOfComputedVoxels = 0;
   int DiffusionPasses = 0;
+  int NumberOfUpdatedLights = 0;
   double LastRenderSeconds = 0.0;
 
 private:

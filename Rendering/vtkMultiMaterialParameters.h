@@ -77,6 +77,14 @@ constexpr double IrradianceBytesPerVoxelPerLight = 2.0;
 /// the mapper (mmv_gradientFade) and the reference renderer.
 constexpr double FullShadingGradientPerVoxel = 0.005;
 
+/// With an automatic irradiance resolution, an irradiance voxel need not
+/// cover fewer pixels than this on screen (mmv::ChooseIrradianceResolution):
+/// sub-pixel irradiance detail cannot show. Measured (docs/benchmark.md):
+/// 1 keeps the benchmark scenes' error unchanged at 128 x 128; 1.5 already
+/// cost the synthetic scene's thin shells 4.5 dB, so coarser is not a safe
+/// default.
+constexpr double PixelsPerIrradianceVoxel = 1.0;
+
 /// Default irradiance memory budget in MB (the paper's recommendation).
 constexpr double DefaultIrradianceBudgetMB = 64.0;
 

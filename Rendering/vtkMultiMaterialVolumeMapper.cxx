@@ -9,6 +9,7 @@
 #include "vtkIrradianceVolumePass.h"
 #include "vtkLightCollection.h"
 #include "vtkMaterialTransferFunction.h"
+#include "vtkMatrix3x3.h"
 #include "vtkMatrix4x4.h"
 #include "vtkMultiMaterialLights.h"
 #include "vtkMultiMaterialParameters.h"
@@ -33,6 +34,7 @@
 #include <chrono>
 #include <cmath>
 #include <set>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -85,8 +87,13 @@ public:
   vtkNew<vtkColorTransferFunction> GrayAsColor;
   vtkMTimeType GrayTime = 0;
 
-  // What the irradiance volume was computed from; a different key recomputes.
-  std::vector<double> IrradianceKey;
+  // What the irradiance volume was computed from: the volume (data, opacity,
+  // scattering, grid), and each light; the pass recomputes only the lights
+  // that differ, everything when the volume does.
+  std::vector<double> VolumeKey;
+  std::vector<int> VolumeGrid;
+  std::vector<double> LightsKey;
+  std::string ResolutionReason;
   // The pre-filtered data on the irradiance grid, normalised to [0, 1].
   std::vector<double> PrefilterKey;
   std::vector<float> Prefiltered;
@@ -271,6 +278,50 @@ void AppendLightKey(std::vector<double>& key, const mmv::LightSource& s)
                           s.ToLight.z, s.SpotAxis.x, s.SpotAxis.y, s.SpotAxis.z, s.CosCone,
                           s.Radius });
 }
+
+/// Pixels one data voxel step covers on screen at the volume's centre,
+/// the largest over the three index axes; 0 when it cannot be told.
+double ProjectedPixelsPerVoxel(vtkRenderer* ren, vtkVolume* vol, vtkImageData* image)
+{
+  if (!ren || !ren->GetActiveCamera() || !ren->GetRenderWindow())
+  {
+    return 0.0;
+  }
+  const int* size = ren->GetSize();
+  if (!size || size[0] < 1 || size[1] < 1)
+  {
+    return 0.0;
+  }
+  double center[3];
+  image->GetCenter(center);
+  vtkMatrix4x4* m = vol->GetMatrix();
+  auto toDisplay = [&](const double p[3], double out[2]) {
+    double world[4] = { p[0], p[1], p[2], 1.0 };
+    m->MultiplyPoint(world, world);
+    ren->SetWorldPoint(world[0] / world[3], world[1] / world[3], world[2] / world[3], 1.0);
+    ren->WorldToDisplay();
+    const double* d = ren->GetDisplayPoint();
+    out[0] = d[0];
+    out[1] = d[1];
+  };
+  double c[2];
+  toDisplay(center, c);
+  double largest = 0.0;
+  vtkMatrix3x3* direction = image->GetDirectionMatrix();
+  for (int a = 0; a < 3; ++a)
+  {
+    double p[3];
+    for (int i = 0; i < 3; ++i)
+    {
+      p[i] = center[i] + direction->GetElement(i, a) * image->GetSpacing()[a];
+    }
+    double q[2];
+    toDisplay(p, q);
+    const double pixels = std::hypot(q[0] - c[0], q[1] - c[1]);
+    largest = std::isfinite(pixels) ? std::max(largest, pixels) : largest;
+  }
+  return largest;
+}
 }
 
 bool vtkMultiMaterialVolumeMapper::ReadIrradiance(
@@ -301,7 +352,7 @@ void vtkMultiMaterialVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
 {
   this->Internals->Textures->ReleaseGraphicsResources(window);
   this->Internals->Irradiance->ReleaseGraphicsResources(window);
-  this->Internals->IrradianceKey.clear();
+  this->Internals->VolumeKey.clear();
   this->Superclass::ReleaseGraphicsResources(window);
 }
 
@@ -501,7 +552,8 @@ bool vtkMultiMaterialVolumeMapper::PrepareMultiMaterial(vtkRenderer* ren, vtkVol
   this->NumberOfShadedLights = static_cast<int>(in.Lights.size());
 
   // 3. The irradiance volume: only when lights, opacity, materials or data change.
-  if (!in.Lights.empty() && !this->UpdateIrradiance(context, image, scalars, property, range))
+  this->LastRenderInteractive = vol->GetAllocatedRenderTime() < 1.0;
+  if (!in.Lights.empty() && !this->UpdateIrradiance(ren, vol, image, scalars, range))
   {
     return false;
   }
@@ -563,18 +615,22 @@ bool vtkMultiMaterialVolumeMapper::PrepareMultiMaterial(vtkRenderer* ren, vtkVol
   return true;
 }
 
-bool vtkMultiMaterialVolumeMapper::UpdateIrradiance(vtkOpenGLRenderWindow* context,
-  vtkImageData* image, vtkDataArray* scalars, vtkVolumeProperty* property, const double range[2])
+bool vtkMultiMaterialVolumeMapper::UpdateIrradiance(vtkRenderer* ren, vtkVolume* vol,
+  vtkImageData* image, vtkDataArray* scalars, const double range[2])
 {
   vtkInternals& in = *this->Internals;
+  vtkVolumeProperty* property = vol->GetProperty();
+  auto* context = vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow());
   vtkPiecewiseFunction* opacity = property->GetScalarOpacity(0);
   const double unitDistance = property->GetScalarOpacityUnitDistance(0);
+  this->NumberOfUpdatedLights = 0;
 
   int dataDims[3];
   image->GetDimensions(dataDims);
-  int dims[3];
-  mmv::ComputeIrradianceDimensions(dataDims, static_cast<int>(in.Lights.size()),
-    this->IrradianceMemoryMB, this->IrradianceScale, dims);
+  const mmv::IrradianceResolution resolution =
+    mmv::ChooseIrradianceResolution(dataDims, static_cast<int>(in.Lights.size()),
+      this->IrradianceMemoryMB, this->IrradianceScale, ProjectedPixelsPerVoxel(ren, vol, image));
+  const int* dims = resolution.Dimensions;
 
   const int n = this->PreIntegrationTableSize;
   const std::vector<double> materialKey = { double(in.Materials ? in.Materials->GetMTime() : 0),
@@ -599,15 +655,26 @@ bool vtkMultiMaterialVolumeMapper::UpdateIrradiance(vtkOpenGLRenderWindow* conte
   }
 
   const vtkMTimeType dataTime = std::max(image->GetMTime(), scalars->GetMTime());
-  std::vector<double> key = { double(dims[0]), double(dims[1]), double(dims[2]), double(dataTime),
-    double(opacity->GetMTime()), double(in.MaterialVersion), unitDistance,
-    range[0], range[1], double(this->MultipleScattering), double(this->PreIntegrationTableSize) };
+  const std::vector<double> volumeKey = { double(dataTime), double(opacity->GetMTime()),
+    double(in.MaterialVersion), unitDistance, range[0], range[1], double(this->MultipleScattering),
+    double(this->PreIntegrationTableSize), double(in.Lights.size()) };
+  const std::vector<int> grid(dims, dims + 3);
+  std::vector<double> lightsKey;
   for (const auto& light : in.Lights)
   {
-    AppendLightKey(key, light.Source);
+    AppendLightKey(lightsKey, light.Source);
   }
-  if (key == in.IrradianceKey && in.Irradiance->GetNumberOfIrradianceTextures() > 0)
+  const bool computed = in.Irradiance->GetNumberOfIrradianceTextures() > 0;
+  if (computed && volumeKey == in.VolumeKey && grid == in.VolumeGrid && lightsKey == in.LightsKey)
   {
+    return true;
+  }
+  // Interactive frames keep the last irradiance while only the lights or the
+  // screen-chosen grid moved; the still frame after them updates it.
+  if (computed && this->LastRenderInteractive &&
+    this->InteractiveIrradiance == ReuseWhileInteracting && volumeKey == in.VolumeKey)
+  {
+    ++this->DeferredIrradianceCount;
     return true;
   }
 
@@ -674,19 +741,44 @@ bool vtkMultiMaterialVolumeMapper::UpdateIrradiance(vtkOpenGLRenderWindow* conte
   if (!pass->Render(context))
   {
     vtkErrorMacro("the irradiance volume could not be computed on the GPU");
+    in.VolumeKey.clear();
     return false;
   }
-  in.IrradianceKey = key;
+  in.VolumeKey = volumeKey;
+  in.VolumeGrid = grid;
+  in.LightsKey = lightsKey;
   for (int a = 0; a < 3; ++a)
   {
     this->IrradianceDimensions[a] = dims[a];
   }
-  ++this->IrradianceUpdateCount;
-  this->DiffusionPassCount += pass->GetDiffusionPasses();
-  this->LastIrradianceSeconds = pass->GetLastRenderSeconds();
-  vtkDebugMacro(<< "irradiance volume " << dims[0] << "x" << dims[1] << "x" << dims[2] << " for "
-                << in.Lights.size() << " lights");
+  this->NumberOfUpdatedLights = pass->GetNumberOfUpdatedLights();
+  if (this->NumberOfUpdatedLights > 0)
+  {
+    ++this->IrradianceUpdateCount;
+    this->DiffusionPassCount += pass->GetDiffusionPasses();
+    this->LastIrradianceSeconds = pass->GetLastRenderSeconds();
+  }
+  int coarse[3];
+  pass->GetDiffusionGridDimensions(coarse);
+  std::ostringstream reason;
+  reason << dims[0] << "x" << dims[1] << "x" << dims[2] << " (" << resolution.Reason << ")";
+  if (pass->GetDiffusionLength() > 0.0 && this->MultipleScattering)
+  {
+    reason << "; diffusion on " << coarse[0] << "x" << coarse[1] << "x" << coarse[2]
+           << " (diffusion length " << pass->GetDiffusionLength() << " data voxels, "
+           << pass->GetDiffusionSubSteps() << " sub-steps x " << pass->GetDiffusionSweepsPerStep()
+           << " sweeps)";
+  }
+  in.ResolutionReason = reason.str();
+  vtkDebugMacro(<< "irradiance " << in.ResolutionReason << ", " << this->NumberOfUpdatedLights
+                << " of " << in.Lights.size() << " lights updated in "
+                << this->LastIrradianceSeconds << " s");
   return true;
+}
+
+const char* vtkMultiMaterialVolumeMapper::GetIrradianceResolutionReason()
+{
+  return this->Internals->ResolutionReason.c_str();
 }
 
 void vtkMultiMaterialVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
@@ -698,6 +790,12 @@ void vtkMultiMaterialVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "PreIntegration: " << this->PreIntegration << "\n";
   os << indent << "PointLightRadius: " << this->PointLightRadius << "\n";
   os << indent << "PreIntegrationTableSize: " << this->PreIntegrationTableSize << "\n";
+  os << indent << "InteractiveIrradiance: "
+     << (this->InteractiveIrradiance == ReuseWhileInteracting ? "ReuseWhileInteracting"
+                                                              : "UpdateAlways")
+     << "\n";
+  os << indent << "IrradianceResolution: " << this->Internals->ResolutionReason << "\n";
+  os << indent << "DeferredIrradianceCount: " << this->DeferredIrradianceCount << "\n";
   os << indent << "IrradianceDimensions: " << this->IrradianceDimensions[0] << " "
      << this->IrradianceDimensions[1] << " " << this->IrradianceDimensions[2] << "\n";
   os << indent << "Counts (pre-integration, irradiance, ray cast): " << this->PreIntegrationCount

@@ -13,10 +13,16 @@
  * other blend modes) is left to the base class.
  *
  * Only what changed is recomputed (the paper's Algorithm 1): segment tables
- * when the colour/opacity functions or the step change; the irradiance volume
- * when lights (relative to the volume), opacity, material function or data
- * change; a camera move costs one ray cast. Counters and stage timers expose
- * this.
+ * when the colour/opacity functions or the step change; the irradiance of a
+ * light when that light moves relative to the volume, of every light when
+ * opacity, scattering materials, data or the irradiance grid change; a
+ * camera move with scene lights costs one ray cast. Camera-attached lights
+ * (ParaView's default light kit) move with the camera: interactive renders
+ * keep their last irradiance (InteractiveIrradiance) and the still render
+ * after the interaction updates it. The irradiance resolution follows the
+ * screen and the memory budget (mmv::ChooseIrradianceResolution), and the
+ * diffusion runs on a grid coarsened to the diffusion length. Counters and
+ * stage timers expose this.
  *
  * Shading semantics: with ka = 1, kd = ks = r = 0 and one white light of
  * intensity 1, a segment emits c * mu * I_k (I_k the light's transmittance to
@@ -81,6 +87,25 @@ public:
   vtkSetClampMacro(PreIntegrationTableSize, int, 16, 1024);
   vtkGetMacro(PreIntegrationTableSize, int);
 
+  /**
+   * What interactive renders (VTK's signal: the volume's allocated render
+   * time below 1 s, as during a mouse drag in ParaView or a
+   * vtkRenderWindowInteractor) do when only the lights moved, e.g. the
+   * camera-attached light kit while orbiting:
+   *  - ReuseWhileInteracting (default): keep the last irradiance (shadows lag
+   *    until the interaction ends) and ray cast only; the next still render
+   *    brings it up to date, so the image at rest equals a fresh render;
+   *  - UpdateAlways: every frame recomputes what changed.
+   * A change of data, opacity or scattering materials updates either way.
+   */
+  enum InteractiveIrradianceModes
+  {
+    UpdateAlways = 0,
+    ReuseWhileInteracting = 1
+  };
+  vtkSetClampMacro(InteractiveIrradiance, int, UpdateAlways, ReuseWhileInteracting);
+  vtkGetMacro(InteractiveIrradiance, int);
+
   /// Brackets the stages with glFinish to time them (default off: it stalls
   /// the pipeline). Counters are always kept.
   vtkSetMacro(TimeStages, bool);
@@ -98,6 +123,14 @@ public:
   vtkGetMacro(LastRayCastSeconds, double);
   vtkGetVector3Macro(IrradianceDimensions, int);
   vtkGetMacro(NumberOfShadedLights, int);
+  /// Lights whose irradiance the last update recomputed (the others kept theirs).
+  vtkGetMacro(NumberOfUpdatedLights, int);
+  /// Interactive frames that kept a stale irradiance (InteractiveIrradiance).
+  vtkGetMacro(DeferredIrradianceCount, int);
+  /// Whether the last render was interactive (allocated render time < 1 s).
+  vtkGetMacro(LastRenderInteractive, bool);
+  /// The irradiance (and diffusion) resolution in use, and why it was chosen.
+  const char* GetIrradianceResolutionReason();
   /// Whether the last render used multi-material shading (false: base class).
   vtkGetMacro(MultiMaterialActive, bool);
   ///@}
@@ -129,6 +162,7 @@ protected:
   bool MultipleScattering = true;
   bool PreIntegration = true;
   double PointLightRadius = 0.0;
+  int InteractiveIrradiance = ReuseWhileInteracting;
   int PreIntegrationTableSize = 256;
   bool TimeStages = false;
 
@@ -141,6 +175,9 @@ protected:
   double LastRayCastSeconds = 0.0;
   int IrradianceDimensions[3] = { 0, 0, 0 };
   int NumberOfShadedLights = 0;
+  int NumberOfUpdatedLights = 0;
+  int DeferredIrradianceCount = 0;
+  bool LastRenderInteractive = false;
   bool MultiMaterialActive = false;
   bool PartitionsRequested = false;
 
@@ -151,8 +188,8 @@ private:
   // Validates the inputs and refreshes every cache the frame needs; false
   // means "render with the base class".
   bool PrepareMultiMaterial(vtkRenderer* ren, vtkVolume* vol);
-  bool UpdateIrradiance(vtkOpenGLRenderWindow* context, vtkImageData* image,
-    vtkDataArray* scalars, vtkVolumeProperty* property, const double range[2]);
+  bool UpdateIrradiance(vtkRenderer* ren, vtkVolume* vol, vtkImageData* image,
+    vtkDataArray* scalars, const double range[2]);
   void WarnOnce(const std::string& message);
 
   class vtkInternals;

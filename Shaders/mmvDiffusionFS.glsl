@@ -1,12 +1,15 @@
 // Multiple scattering of the irradiance volume (Zhang & Ma eq. 15), one
 // fragment per voxel of z slice `slice`, four lights at once (RGBA).
 //
-// Default: one Jacobi sweep of a backward-Euler step (I + dt*A) x = b, A the
+// Default: one Jacobi sweep, on the diffusion grid (vtkIrradianceDiffusion.h),
+// of a backward-Euler step (I + dt*A) x = b, A the
 // flux-form operator of Filters/vtkIrradianceDiffusion.cxx (face coefficient
 // = harmonic mean of the two voxels' s over h^2, missing neighbours give the
 // zero-flux boundary):
-//   x_new = (b + dt * sum_f c_f x_f) / (1 + dt * sum_f c_f),
-// a convex combination, so no sweep can leave [min b, max b].
+//   J(x) = (C b + dt * sum_f c_f x_f) / (C + dt * sum_f c_f),
+// C the block's capacity (a convex combination, so a plain sweep cannot
+// leave [min b, max b]), accelerated by Chebyshev weights:
+//   x_new = x_previous + omega * (J(x) - x_previous).
 //
 // With MMV_FILL_PASS defined (the final write): empty voxels bordering
 // non-empty ones take the mean of those neighbours, as the CPU filter's
@@ -14,8 +17,9 @@
 
 uniform sampler3D current; // x of the previous sweep (fill pass: the result)
 uniform sampler3D classes; // s per voxel, < 0 where the voxel is empty
+                           // (Jacobi sweeps: the diffusion grid's strength)
 uniform int dims[3];
-uniform int slice;
+flat in int slice; // the layer (mmvLayerGS.glsl)
 in vec2 texCoord; // the quad's, at the centre of voxel (i, j)
 
 #ifdef MMV_FILL_PASS
@@ -52,8 +56,10 @@ void main()
 
 #else
 
-uniform sampler3D rhs; // b: the irradiance at the start of the time step
-uniform vec3 invH2;    // 1 / h^2 per axis, h in data voxels
+uniform sampler3D rhs;      // b: the irradiance at the start of the time step
+uniform sampler3D previous; // the iterate before `current`
+uniform float omega;        // Chebyshev weight of this sweep (1: plain Jacobi)
+uniform vec3 invH2;         // 1 / h^2 per axis, h in data voxels
 uniform float dt;
 
 float mmvStrength(ivec3 voxel)
@@ -71,8 +77,11 @@ void main()
 {
   ivec3 voxel = ivec3(floor(texCoord * vec2(dims[0], dims[1])), slice);
   float s = mmvStrength(voxel);
-  vec4 numerator = texelFetch(rhs, voxel, 0);
-  float denominator = 1.0;
+  // The block's capacity (its fraction of scattering voxels); blocks without
+  // any have s = 0 and keep b.
+  float capacity = s > 0.0 ? texelFetch(classes, voxel, 0).g : 1.0;
+  vec4 numerator = capacity * texelFetch(rhs, voxel, 0);
+  float denominator = capacity;
   if (s > 0.0)
   {
     for (int a = 0; a < 3; ++a)
@@ -90,7 +99,8 @@ void main()
       }
     }
   }
-  gl_FragData[0] = numerator / denominator;
+  vec4 previousValue = texelFetch(previous, voxel, 0);
+  gl_FragData[0] = previousValue + omega * (numerator / denominator - previousValue);
 }
 
 #endif

@@ -10,13 +10,15 @@ uniform sampler3D classes;     // s per voxel, < 0 where the voxel is empty
 uniform sampler2D shadowTable; // I_sigma(t1 along x, t2 along y), bilinear
 uniform float tableSize;
 uniform int dims[3];
-uniform int slice;
+flat in int slice; // the layer (mmvLayerGS.glsl)
 in vec2 texCoord; // the quad's, at the centre of voxel (i, j)
 uniform vec3 origin;
 uniform mat3 indexToWorld;
 uniform mat3 worldToIndex;
 uniform float stepLength;
 uniform int numberOfLights;
+uniform bool computeEmptyVoxels; // off (default): empty voxels cost nothing
+uniform int lightMask; // bit k: light k needs its irradiance (the others keep theirs)
 uniform int lightKind[4];
 uniform vec3 lightPosition[4];
 uniform vec3 lightToLight[4];
@@ -97,13 +99,17 @@ void main()
 {
   ivec3 voxel = ivec3(floor(texCoord * vec2(dims[0], dims[1])), slice);
   vec4 irradiance = vec4(0.0);
-  if (texelFetch(classes, voxel, 0).r >= 0.0)
+  if (computeEmptyVoxels || texelFetch(classes, voxel, 0).r >= 0.0)
   {
     vec3 start = vec3(voxel);
     vec3 x = origin + indexToWorld * start;
     float startValue = texelFetch(scalars, voxel, 0).r;
     for (int light = 0; light < numberOfLights; ++light)
     {
+      if (((lightMask >> light) & 1) == 0)
+      {
+        continue;
+      }
       float geometry = mmvLightGeometryTerm(lightKind[light], lightPosition[light],
         lightSpotAxis[light], lightCosCone[light], lightRadius[light], x);
       if (geometry > 0.0) // outside a spot light's cone: no ray

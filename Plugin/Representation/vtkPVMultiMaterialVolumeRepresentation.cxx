@@ -158,6 +158,7 @@ void vtkPVMultiMaterialVolumeRepresentation::UpdateMapperParameters()
   mapper->SetSampleDistance(static_cast<float>(this->SampleDistance));
   mapper->SetAutoAdjustSampleDistances(this->AutoAdjustSampleDistances);
   mapper->SetLockSampleDistanceToInputSpacing(this->LockSampleDistanceToInputSpacing);
+  mapper->SetInteractiveIrradiance(this->InteractiveIrradiance);
 }
 
 //------------------------------------------------------------------------------
@@ -181,6 +182,7 @@ vtkPVMMVSetter(PointLightRadius, double);
 vtkPVMMVSetter(SampleDistance, double);
 vtkPVMMVSetter(AutoAdjustSampleDistances, bool);
 vtkPVMMVSetter(LockSampleDistanceToInputSpacing, bool);
+vtkPVMMVSetter(InteractiveIrradiance, int);
 #undef vtkPVMMVSetter
 
 //------------------------------------------------------------------------------
@@ -214,6 +216,24 @@ int vtkPVMultiMaterialVolumeRepresentation::GetNumberOfShadedLights()
   return mapper ? mapper->GetNumberOfShadedLights() : 0;
 }
 
+int vtkPVMultiMaterialVolumeRepresentation::GetDeferredIrradianceCount()
+{
+  auto* mapper = this->GetMultiMaterialMapper();
+  return mapper ? mapper->GetDeferredIrradianceCount() : 0;
+}
+
+double vtkPVMultiMaterialVolumeRepresentation::GetLastIrradianceSeconds()
+{
+  auto* mapper = this->GetMultiMaterialMapper();
+  return mapper ? mapper->GetLastIrradianceSeconds() : 0.0;
+}
+
+const char* vtkPVMultiMaterialVolumeRepresentation::GetIrradianceResolutionInfo()
+{
+  auto* mapper = this->GetMultiMaterialMapper();
+  return mapper ? mapper->GetIrradianceResolutionReason() : "";
+}
+
 int vtkPVMultiMaterialVolumeRepresentation::GetMultiMaterialActive()
 {
   auto* mapper = this->GetMultiMaterialMapper();
@@ -235,4 +255,5 @@ void vtkPVMultiMaterialVolumeRepresentation::PrintSelf(ostream& os, vtkIndent in
   os << indent << "AutoAdjustSampleDistances: " << this->AutoAdjustSampleDistances << "\n";
   os << indent << "LockSampleDistanceToInputSpacing: " << this->LockSampleDistanceToInputSpacing
      << "\n";
+  os << indent << "InteractiveIrradiance: " << this->InteractiveIrradiance << "\n";
 }

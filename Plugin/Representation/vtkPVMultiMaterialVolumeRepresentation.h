@@ -81,6 +81,7 @@ public:
   void SetSampleDistance(double distance);
   void SetAutoAdjustSampleDistances(bool enabled);
   void SetLockSampleDistanceToInputSpacing(bool enabled);
+  void SetInteractiveIrradiance(int mode);
   ///@}
 
   ///@{
@@ -91,6 +92,9 @@ public:
   int GetRayCastCount();
   int GetNumberOfShadedLights();
   int GetMultiMaterialActive();
+  int GetDeferredIrradianceCount();
+  double GetLastIrradianceSeconds();
+  const char* GetIrradianceResolutionInfo();
   ///@}
 
   vtkMultiMaterialVolumeMapper* GetMultiMaterialMapper();
@@ -128,6 +132,7 @@ private:
   double SampleDistance = 1.0;
   bool AutoAdjustSampleDistances = true;
   bool LockSampleDistanceToInputSpacing = false;
+  int InteractiveIrradiance = 1; // vtkMultiMaterialVolumeMapper::ReuseWhileInteracting
 };
 
 #endif

@@ -3,6 +3,7 @@
 // slab), the diffusion's maximum principle, the light -> texture layout and
 // releasing/re-creating its resources. Needs an OpenGL 3.2 context (Xvfb +
 // Mesa llvmpipe in CI).
+#include "vtkIrradianceDiffusion.h"
 #include "vtkIrradianceGrid.h"
 #include "vtkIrradianceVolumeFilter.h"
 #include "vtkIrradianceVolumePass.h"
@@ -509,4 +510,117 @@ TEST(IrradianceVolumePass, MovingALightKeepsTheUploadedVolume)
   ASSERT_TRUE(pass->Render(ctx.GL));
   EXPECT_EQ(pass->GetNumberOfVolumeUploads(), 2);
   pass->ReleaseGraphicsResources(ctx.GL);
+}
+
+TEST(IrradianceVolumePass, DiffusionMatchesCPUSolverForEveryStrength)
+{
+  // The GPU's Jacobi sweeps on the diffusion grid against the CPU's conjugate
+  // gradients on the same grid (mmv::DiffuseIrradianceOnDiffusionGrid): the
+  // sweep count comes from the contraction bound, so the agreement must not
+  // degrade as s grows, and the cost must grow far slower than plain
+  // Jacobi's: the diffusion grid keeps s dt / h^2 bounded until it reaches
+  // its minimum size, and the Chebyshev weights need about the square root
+  // of Jacobi's sweeps beyond that.
+  const Context& ctx = SharedContext();
+  ASSERT_NE(ctx.GL, nullptr);
+  const mmv::DiffusionSettings settings;
+  for (double s : { 0.0, 1.0, 8.0, 20.0, 100.0, 1000.0 })
+  {
+    const Scene scene = TwoBlocks(s);
+    vtkNew<vtkIrradianceVolumePass> pass;
+    SetPassInputs(scene, pass);
+    ASSERT_TRUE(pass->Render(ctx.GL));
+    const double diff = CompareWithFilter(ctx, scene, pass, true);
+    int coarse[3];
+    pass->GetDiffusionGridDimensions(coarse);
+    std::cout << "s " << s << ": diffusion grid " << coarse[0] << "x" << coarse[1] << "x"
+              << coarse[2] << ", " << pass->GetDiffusionSubSteps() << " sub-steps x "
+              << pass->GetDiffusionSweepsPerStep() << " sweeps, GPU vs CPU max |difference| "
+              << diff << std::endl;
+    EXPECT_LE(diff, 0.01) << "s " << s;
+    if (s == 0.0)
+    {
+      EXPECT_EQ(pass->GetDiffusionPasses(), 0);
+    }
+    else
+    {
+      EXPECT_GT(pass->GetDiffusionPasses(), 0) << "s " << s;
+    }
+    EXPECT_LE(pass->GetDiffusionSubSteps(), settings.MaxSubSteps);
+    if (s >= 100.0)
+    {
+      // What plain Jacobi would need on the same grid and sub-step.
+      const double h = 24.0 / coarse[0];
+      const double stiffness = 12.0 * s / (h * h) / pass->GetDiffusionSubSteps();
+      EXPECT_LT(3 * pass->GetDiffusionSweepsPerStep(), mmv::JacobiSweeps(stiffness, settings))
+        << "s " << s;
+    }
+    if (s >= 20.0)
+    {
+      EXPECT_LT(coarse[0], 24) << "strong scattering runs on a coarser grid";
+    }
+    pass->ReleaseGraphicsResources(ctx.GL);
+  }
+}
+
+TEST(IrradianceVolumePass, OnlyMovedLightsAreRecomputed)
+{
+  const Context& ctx = SharedContext();
+  ASSERT_NE(ctx.GL, nullptr);
+  Scene scene = TwoBlocks(8.0);
+  vtkNew<vtkIrradianceVolumePass> pass;
+  SetPassInputs(scene, pass);
+  ASSERT_TRUE(pass->Render(ctx.GL));
+  EXPECT_EQ(pass->GetNumberOfUpdatedLights(), 3);
+  const int sweeps = pass->GetDiffusionPasses();
+  EXPECT_GT(sweeps, 0);
+
+  // Nothing moved: nothing is computed.
+  SetPassInputs(scene, pass);
+  ASSERT_TRUE(pass->Render(ctx.GL));
+  EXPECT_EQ(pass->GetNumberOfUpdatedLights(), 0);
+  EXPECT_EQ(pass->GetDiffusionPasses(), 0);
+
+  // One light moved: only its channel is recomputed, and every light still
+  // matches the CPU filter run on the new scene from scratch.
+  scene.Lights[1]->SetPosition(6.0, 12.2, 2.0);
+  scene.Lights[1]->SetFocalPoint(6.0, 12.2, 0.0);
+  SetPassInputs(scene, pass);
+  ASSERT_TRUE(pass->Render(ctx.GL));
+  EXPECT_EQ(pass->GetNumberOfUpdatedLights(), 1);
+  EXPECT_EQ(pass->GetNumberOfVolumeUploads(), 1);
+  CompareWithFilter(ctx, scene, pass, true);
+
+  // A volume change recomputes every light.
+  scene.Opacity->AddPoint(1.0, 0.2);
+  SetPassInputs(scene, pass);
+  ASSERT_TRUE(pass->Render(ctx.GL));
+  EXPECT_EQ(pass->GetNumberOfUpdatedLights(), 3);
+  CompareWithFilter(ctx, scene, pass, true);
+  pass->ReleaseGraphicsResources(ctx.GL);
+}
+
+TEST(IrradianceVolumePass, LayeredAndPerSliceDrawsAgree)
+{
+  const Context& ctx = SharedContext();
+  ASSERT_NE(ctx.GL, nullptr);
+  const Scene scene = TwoBlocks(20.0);
+  std::vector<std::vector<float>> results;
+  for (bool layered : { true, false })
+  {
+    vtkNew<vtkIrradianceVolumePass> pass;
+    pass->SetLayeredRendering(layered);
+    SetPassInputs(scene, pass);
+    ASSERT_TRUE(pass->Render(ctx.GL));
+    for (int l = 0; l < 3; ++l)
+    {
+      results.emplace_back();
+      ASSERT_TRUE(pass->ReadBack(ctx.GL, l, results.back()));
+    }
+    pass->ReleaseGraphicsResources(ctx.GL);
+  }
+  for (int l = 0; l < 3; ++l)
+  {
+    EXPECT_EQ(results[l], results[l + 3]) << "light " << l;
+  }
 }

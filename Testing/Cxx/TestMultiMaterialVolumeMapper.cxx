@@ -3,10 +3,14 @@
 // Xvfb with Mesa llvmpipe in CI.
 #include "mmvTestScenes.h"
 
+#include "vtkIrradianceGrid.h"
 #include "vtkIrradianceVolumeFilter.h"
 #include "vtkMaterialTransferFunction.h"
 #include "vtkMultiMaterialVolumeMapper.h"
 #include "vtkOpenGLGPUVolumeRayCastMapper.h"
+#include "vtkCamera.h"
+#include "vtkLightKit.h"
+#include "vtkRenderer.h"
 #include "vtk_glew.h"
 
 #include <gtest/gtest.h>
@@ -344,4 +348,116 @@ TEST(MultiMaterialVolumeMapper, GpuIrradianceMatchesCpuFilter)
     }
     EXPECT_LE(worst, 0.01) << "light " << light;
   }
+}
+
+TEST(MultiMaterialVolumeMapper, InteractiveFramesKeepTheIrradianceAndTheStillFrameIsExact)
+{
+  // ParaView's default lighting: the light kit, attached to the camera, so
+  // every camera move moves the lights.
+  auto addKit = [](mmvtest::Scene& scene) {
+    vtkNew<vtkLightKit> kit;
+    kit->AddLightsToRenderer(scene.Renderer);
+  };
+  CubeScene scene(1.0);
+  addKit(scene);
+  scene.Window->SetDesiredUpdateRate(0.0001); // a still render
+  scene.Window->Render();
+  ASSERT_EQ(scene.Mapper->GetIrradianceUpdateCount(), 1);
+  EXPECT_FALSE(scene.Mapper->GetLastRenderInteractive());
+  EXPECT_EQ(scene.Mapper->GetNumberOfUpdatedLights(), scene.Mapper->GetNumberOfShadedLights());
+
+  // A drag: interactive frames (allocated render time < 1 s) keep it.
+  scene.Window->SetDesiredUpdateRate(30.0);
+  for (int i = 0; i < 3; ++i)
+  {
+    scene.Renderer->GetActiveCamera()->Azimuth(15.0);
+    scene.Renderer->GetActiveCamera()->Elevation(5.0);
+    scene.Renderer->GetActiveCamera()->OrthogonalizeViewUp();
+    scene.Window->Render();
+    EXPECT_TRUE(scene.Mapper->GetLastRenderInteractive());
+  }
+  EXPECT_EQ(scene.Mapper->GetIrradianceUpdateCount(), 1);
+  EXPECT_EQ(scene.Mapper->GetDeferredIrradianceCount(), 3);
+  const std::vector<unsigned char> stale = scene.Pixels();
+
+  // The still frame after the drag updates it and equals a fresh render.
+  scene.Window->SetDesiredUpdateRate(0.0001);
+  scene.Window->Render();
+  EXPECT_EQ(scene.Mapper->GetIrradianceUpdateCount(), 2);
+  const std::vector<unsigned char> rest = scene.Pixels();
+
+  CubeScene fresh(1.0);
+  addKit(fresh);
+  fresh.Renderer->GetActiveCamera()->DeepCopy(scene.Renderer->GetActiveCamera());
+  fresh.Renderer->ResetCameraClippingRange(fresh.Image->GetBounds());
+  fresh.Window->SetDesiredUpdateRate(0.0001);
+  fresh.Window->Render();
+  const std::vector<unsigned char> reference = fresh.Pixels();
+  ASSERT_EQ(rest.size(), reference.size());
+  auto psnr = [&](const std::vector<unsigned char>& a) {
+    double sum = 0.0;
+    for (size_t i = 0; i < a.size(); ++i)
+    {
+      const double d = static_cast<double>(a[i]) - reference[i];
+      sum += d * d;
+    }
+    const double mse = sum / a.size();
+    return mse > 0.0 ? 10.0 * std::log10(255.0 * 255.0 / mse) : 999.0;
+  };
+  std::cout << "PSNR at rest vs fresh: " << psnr(rest) << " dB; stale interactive frame vs fresh: "
+            << psnr(stale) << " dB" << std::endl;
+  EXPECT_GE(psnr(rest), 40.0);
+  EXPECT_LT(psnr(stale), psnr(rest)) << "the interactive frames did not show stale lighting";
+
+  // UpdateAlways: interactive frames update too.
+  scene.Mapper->SetInteractiveIrradiance(vtkMultiMaterialVolumeMapper::UpdateAlways);
+  scene.Window->SetDesiredUpdateRate(30.0);
+  scene.Renderer->GetActiveCamera()->Azimuth(15.0);
+  scene.Window->Render();
+  EXPECT_EQ(scene.Mapper->GetIrradianceUpdateCount(), 3);
+  EXPECT_EQ(scene.Mapper->GetDeferredIrradianceCount(), 3);
+}
+
+TEST(MultiMaterialVolumeMapper, SceneLightsThatDidNotMoveKeepTheirIrradiance)
+{
+  CubeScene scene(1.0);
+  const double from1[3] = { 16.0, 16.0, 1000.0 };
+  const double from2[3] = { 1000.0, 16.0, 16.0 };
+  scene.AddDirectionalLight(from1, CubeCenter);
+  vtkLight* moving = scene.AddDirectionalLight(from2, CubeCenter);
+  scene.Window->Render();
+  EXPECT_EQ(scene.Mapper->GetNumberOfUpdatedLights(), 2);
+  moving->SetPosition(1000.0, 1000.0, 16.0);
+  scene.Window->Render();
+  EXPECT_EQ(scene.Mapper->GetIrradianceUpdateCount(), 2);
+  EXPECT_EQ(scene.Mapper->GetNumberOfUpdatedLights(), 1);
+}
+
+TEST(MultiMaterialVolumeMapper, ReportsTheChosenIrradianceResolution)
+{
+  CubeScene scene(1.0);
+  const double from[3] = { 16.0, 16.0, 1000.0 };
+  scene.AddDirectionalLight(from, CubeCenter);
+  scene.Window->Render();
+  EXPECT_NE(std::string(scene.Mapper->GetIrradianceResolutionReason()).find("set by the user"),
+    std::string::npos)
+    << scene.Mapper->GetIrradianceResolutionReason();
+  // Automatic, zoomed out: the 64-pixel view spans 128 units (0.5 pixel
+  // per data voxel), so the screen rule picks 0.5 / PixelsPerIrradianceVoxel.
+  scene.Mapper->SetIrradianceScale(0.0);
+  scene.Renderer->GetActiveCamera()->SetParallelScale(64.0);
+  scene.Window->Render();
+  const std::string reason = scene.Mapper->GetIrradianceResolutionReason();
+  EXPECT_NE(reason.find("screen"), std::string::npos) << reason;
+  const mmv::IrradianceResolution expected =
+    mmv::ChooseIrradianceResolution(scene.Image->GetDimensions(), 1, 64.0, 0.0, 0.5);
+  int dims[3];
+  scene.Mapper->GetIrradianceDimensions(dims);
+  EXPECT_EQ(dims[0], expected.Dimensions[0]) << reason;
+  EXPECT_LT(dims[0], Dims) << reason;
+  // Zoomed back in: the full grid again.
+  scene.Renderer->GetActiveCamera()->SetParallelScale(16.0);
+  scene.Window->Render();
+  scene.Mapper->GetIrradianceDimensions(dims);
+  EXPECT_EQ(dims[0], Dims) << scene.Mapper->GetIrradianceResolutionReason();
 }
