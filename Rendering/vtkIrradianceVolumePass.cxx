@@ -213,6 +213,7 @@ public:
   int SubSteps = 0;
   int SweepsPerStep = 0;
   double SpectralRadius = 0.0; // of the Jacobi iteration, for the Chebyshev weights
+  int ScatteringBox[6] = { 0, 0, 0, 0, 0, 0 }; // diffusion-grid blocks with s > 0
 
   // GPU resources.
   vtkSmartPointer<vtkTextureObject> ScalarTexture;
@@ -240,7 +241,7 @@ public:
   vtkShaderProgram* Ready(vtkOpenGLRenderWindow* context, std::unique_ptr<vtkOpenGLQuadHelper>& quad,
     const char* body, const std::string& defines, bool lightModel);
   void DrawLayers(vtkOpenGLRenderWindow* context, vtkOpenGLQuadHelper& quad,
-    vtkTextureObject* target, bool layered);
+    vtkTextureObject* target, bool layered, const int* box = nullptr);
   void SetTransferUniforms(vtkShaderProgram* program) const;
 
   bool ShadowPass(vtkOpenGLRenderWindow* context, int group, int mask, bool skipEmpty, bool layered);
@@ -288,12 +289,30 @@ void vtkIrradianceVolumePass::vtkInternals::PlanDiffusion(double time)
   this->CoarseMaxRate = time > 0.0 ? mmv::MaxDiffusionRate(this->Coarse.Dimensions,
                                        this->Coarse.Spacing, coarseStrength.data(), capacity.data())
                                    : 0.0;
-  // One RG texel per block: strength, capacity.
+  // One RG texel per block: strength, capacity; and the box of the blocks
+  // that scatter, the only ones the sweeps change.
   this->CoarseStrength.resize(2 * coarseStrength.size());
+  const int* cd = this->Coarse.Dimensions;
+  int* box = this->ScatteringBox;
+  for (int a = 0; a < 3; ++a)
+  {
+    box[2 * a] = cd[a] - 1;
+    box[2 * a + 1] = 0;
+  }
   for (size_t c = 0; c < coarseStrength.size(); ++c)
   {
     this->CoarseStrength[2 * c] = coarseStrength[c];
     this->CoarseStrength[2 * c + 1] = capacity[c];
+    if (coarseStrength[c] > 0.0f)
+    {
+      const int index[3] = { static_cast<int>(c % cd[0]), static_cast<int>((c / cd[0]) % cd[1]),
+        static_cast<int>(c / (static_cast<size_t>(cd[0]) * cd[1])) };
+      for (int a = 0; a < 3; ++a)
+      {
+        box[2 * a] = std::min(box[2 * a], index[a]);
+        box[2 * a + 1] = std::max(box[2 * a + 1], index[a]);
+      }
+    }
   }
   this->SubSteps = mmv::DiffusionSubSteps(this->CoarseMaxRate, this->Diffusion);
   const double stiffness = this->CoarseMaxRate * time / this->SubSteps;
@@ -381,23 +400,31 @@ vtkShaderProgram* vtkIrradianceVolumePass::vtkInternals::Ready(vtkOpenGLRenderWi
 // Every slice of `target` in one instanced draw into the whole 3D texture
 // (layered rendering), or, with `layered` off, one draw per slice.
 void vtkIrradianceVolumePass::vtkInternals::DrawLayers(vtkOpenGLRenderWindow* context,
-  vtkOpenGLQuadHelper& quad, vtkTextureObject* target, bool layered)
+  vtkOpenGLQuadHelper& quad, vtkTextureObject* target, bool layered, const int* box)
 {
-  const int depth = target->GetDepth();
-  context->GetState()->vtkglViewport(0, 0, target->GetWidth(), target->GetHeight());
+  // `box` (i0, i1, j0, j1, k0, k1, inclusive) limits the draw to the voxels
+  // that can change: a scissor in x and y, a range of layers in z.
+  vtkOpenGLState* state = context->GetState();
+  const int first = box ? box[4] : 0;
+  const int last = box ? box[5] : static_cast<int>(target->GetDepth()) - 1;
+  state->vtkglViewport(0, 0, target->GetWidth(), target->GetHeight());
+  if (box)
+  {
+    state->vtkglEnable(GL_SCISSOR_TEST);
+    state->vtkglScissor(box[0], box[2], box[1] - box[0] + 1, box[3] - box[2] + 1);
+  }
   this->Framebuffer->Bind();
   if (layered)
   {
     glFramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, target->GetHandle(), 0);
     this->Framebuffer->ActivateDrawBuffers(1);
-    quad.Program->SetUniformi("firstLayer", 0);
+    quad.Program->SetUniformi("firstLayer", first);
     quad.VAO->Bind();
-    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, depth);
+    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, last - first + 1);
     quad.VAO->Release();
     glFramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, 0, 0);
-    return;
   }
-  for (int z = 0; z < depth; ++z)
+  for (int z = first; !layered && z <= last; ++z)
   {
     // Removed first: re-adding the same texture keeps the old slice.
     this->Framebuffer->RemoveColorAttachment(0);
@@ -406,7 +433,14 @@ void vtkIrradianceVolumePass::vtkInternals::DrawLayers(vtkOpenGLRenderWindow* co
     quad.Program->SetUniformi("firstLayer", z);
     quad.Render();
   }
-  this->Framebuffer->RemoveColorAttachment(0);
+  if (!layered)
+  {
+    this->Framebuffer->RemoveColorAttachment(0);
+  }
+  if (box)
+  {
+    state->vtkglDisable(GL_SCISSOR_TEST);
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -500,7 +534,8 @@ int vtkIrradianceVolumePass::vtkInternals::Diffuse(vtkOpenGLRenderWindow* contex
       sweep->SetUniformi("previous", coarse[previous]->GetTextureUnit());
       sweep->SetUniformf(
         "omega", static_cast<float>(mmv::ChebyshevWeight(k, this->SpectralRadius)));
-      this->DrawLayers(context, *this->SweepQuad, coarse[next], layered);
+      // Blocks outside ScatteringBox never change and are never read.
+      this->DrawLayers(context, *this->SweepQuad, coarse[next], layered, this->ScatteringBox);
       previous = current;
       current = next;
     }

@@ -21,8 +21,8 @@
  *     to the diffusion grid (coarsened to the diffusion length), backward-
  *     Euler sub-steps solved by Chebyshev-accelerated Jacobi sweeps (as
  *     many as the error bound needs for mmv::DiffusionSettings::
- *     SweepTolerance), and the diffused field prolonged trilinearly to the
- *     irradiance grid;
+ *     SweepTolerance, drawn only over the box of blocks that scatter), and
+ *     the change prolonged trilinearly to the irradiance grid;
  *  3. empty voxels bordering non-empty ones take the mean of those neighbours.
  *
  * Each light keeps its own channel: Render() recomputes only the lights that

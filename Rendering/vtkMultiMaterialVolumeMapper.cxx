@@ -337,6 +337,11 @@ bool vtkMultiMaterialVolumeMapper::ReadIrradiance(
   return this->Internals->Irradiance->ReadBack(context, light, values);
 }
 
+vtkIrradianceVolumePass* vtkMultiMaterialVolumeMapper::GetIrradianceVolumePass()
+{
+  return this->Internals->Irradiance;
+}
+
 std::string vtkMultiMaterialVolumeMapper::GetLastFragmentShaderSource()
 {
   return this->Internals->Pass->GetLastFragmentSource();

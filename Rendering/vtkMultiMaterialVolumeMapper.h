@@ -43,6 +43,7 @@
 
 class vtkDataArray;
 class vtkImageData;
+class vtkIrradianceVolumePass;
 class vtkMaterialTransferFunction;
 class vtkOpenGLRenderWindow;
 class vtkVolumeProperty;
@@ -141,6 +142,10 @@ public:
   /// Test hook: the irradiance of shaded light k (in the order of the
   /// renderer's active lights), x fastest. Needs the render window.
   bool ReadIrradiance(vtkRenderWindow* window, int light, std::vector<float>& values);
+
+  /// Benchmark hook: the pass that estimates the irradiance (its
+  /// LayeredRendering and SkipEmptyVoxels switches, its diffusion grid).
+  vtkIrradianceVolumePass* GetIrradianceVolumePass();
 
   /// Test hook: the fragment shader of the last shader build.
   std::string GetLastFragmentShaderSource();

@@ -93,8 +93,11 @@ void main()
         if (neighbor[a] >= 0 && neighbor[a] < dims[a])
         {
           float c = dt * mmvHarmonicMean(s, mmvStrength(neighbor)) * invH2[a];
-          numerator += c * texelFetch(current, neighbor, 0);
-          denominator += c;
+          if (c > 0.0) // blocks that do not scatter are never drawn: never read them
+          {
+            numerator += c * texelFetch(current, neighbor, 0);
+            denominator += c;
+          }
         }
       }
     }

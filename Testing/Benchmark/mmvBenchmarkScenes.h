@@ -7,6 +7,8 @@
  *    and a glossy plastic slab.
  *  - "headsq": Testing/Data/headsq.vti (64 x 64 x 93 MR head), skin
  *    (scattering 8) and bone, the transfer functions of the demo program.
+ *  - "ct": the head resampled to 256 x 256 x 128, a CT-sized volume for the
+ *    irradiance-update benchmark (mmvIrradianceBenchmark).
  *  - "orbital": 64^3 samples of the hydrogen 3d_z2 orbital density
  *    |psi_320|^2 (fourth root, normalised), three materials by density:
  *    a scattering haze, a diffuse shell and a glossy core.
@@ -20,6 +22,7 @@
 #include "vtkDataArray.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
+#include "vtkImageResample.h"
 #include "vtkMaterialTransferFunction.h"
 #include "vtkNew.h"
 #include "vtkPiecewiseFunction.h"
@@ -138,6 +141,35 @@ inline SceneSpec MakeHead(const std::string& path)
   s.ViewDirection[0] = 0.3;
   s.ViewDirection[1] = -1.0;
   s.ViewDirection[2] = 0.25;
+  return s;
+}
+
+/**
+ * "ct": a CT-sized volume, the MR head resampled (trilinear) to 256 x 256 x
+ * 128 points over the same bounds, with the head scene's transfer functions
+ * and materials (skin s = 8).
+ */
+inline SceneSpec MakeCTSized(const std::string& headPath)
+{
+  SceneSpec s = MakeHead(headPath);
+  if (!s.Image)
+  {
+    return s;
+  }
+  s.Name = "ct";
+  int dims[3];
+  s.Image->GetDimensions(dims);
+  const int target[3] = { 256, 256, 128 };
+  vtkNew<vtkImageResample> resample;
+  resample->SetInputData(s.Image);
+  resample->SetInterpolationModeToLinear();
+  for (int a = 0; a < 3; ++a)
+  {
+    resample->SetAxisMagnificationFactor(a, (target[a] - 1.0) / (dims[a] - 1.0));
+  }
+  resample->Update();
+  s.Image = resample->GetOutput();
+  s.UnitDistance = s.Image->GetSpacing()[0];
   return s;
 }
 

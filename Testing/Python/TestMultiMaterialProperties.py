@@ -158,6 +158,48 @@ render()
 checker.check(counters()["NumberOfShadedLights"] == lightsBefore["NumberOfShadedLights"],
               "removing the light is seen by the mapper")
 
+# A mouse drag with the light kit: interactive renders keep the irradiance
+# (InteractiveIrradiance = Reuse While Interacting, the default), the still
+# render after it updates it and equals a fresh render of that camera.
+checker.check(rep.InteractiveIrradiance == "Reuse While Interacting",
+              "InteractiveIrradiance defaults to Reuse While Interacting (%r)" % rep.InteractiveIrradiance)
+render()
+before = counters()
+deferred = mmv.info(rep, "DeferredIrradianceCount")
+for _ in range(3):
+    camera.Azimuth(10)
+    view.SMProxy.InteractiveRender()
+checker.check(counters()["IrradianceUpdateCount"] == before["IrradianceUpdateCount"] and
+              mmv.info(rep, "DeferredIrradianceCount") == deferred + 3,
+              "interactive renders keep the irradiance (%s, deferred %d -> %d)"
+              % (counters(), deferred, mmv.info(rep, "DeferredIrradianceCount")))
+atRest = render()
+checker.check(counters()["IrradianceUpdateCount"] == before["IrradianceUpdateCount"] + 1,
+              "the still render after the drag updates the irradiance once")
+info = mmv.info(rep, "IrradianceResolutionInfo")
+checker.check(isinstance(info, str) and "x" in info and "(" in info,
+              "IrradianceResolutionInfo says the grid and why: %r" % info)
+saved = (list(view.CameraPosition), list(view.CameraFocalPoint), list(view.CameraViewUp))
+fresh = mmv.show_volume(mmv.make_volume(), view, preset="bone")
+view.CameraPosition, view.CameraFocalPoint, view.CameraViewUp = saved
+rep.Visibility = 0
+freshImage = render()
+checker.check(mmv.mean_difference(atRest, freshImage) < 0.01,
+              "the image at rest equals a fresh render (mean |difference| %.4f)"
+              % mmv.mean_difference(atRest, freshImage))
+fresh.Visibility = 0
+rep.Visibility = 1
+
+# Update Always: interactive renders update too.
+rep.InteractiveIrradiance = "Update Always"
+render()
+before = counters()
+camera.Azimuth(10)
+view.SMProxy.InteractiveRender()
+checker.check(counters()["IrradianceUpdateCount"] == before["IrradianceUpdateCount"] + 1,
+              "Update Always: an interactive render updates the irradiance")
+rep.InteractiveIrradiance = "Reuse While Interacting"
+
 log = errors.take_errors()
 checker.check(log == "", "no VTK errors: %r" % log[:500])
 checker.finish()

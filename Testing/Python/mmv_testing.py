@@ -139,6 +139,8 @@ def info(rep, name):
     n = helper.GetNumberOfElements()
     if isinstance(values, servermanager.vtkSMDoubleVectorProperty):
         return [helper.GetAsDouble(i) for i in range(n)]
+    if isinstance(values, servermanager.vtkSMStringVectorProperty):
+        return helper.GetAsString(0) if n == 1 else [helper.GetAsString(i) for i in range(n)]
     if n == 1:
         return helper.GetAsInt(0)
     return [helper.GetAsInt(i) for i in range(n)]

@@ -1,0 +1,321 @@
+// How long one irradiance update takes on the CT-sized scene (the head
+// resampled to 256 x 256 x 128), against the number of lights, the
+// scattering strength s and the irradiance resolution, and what layered
+// draws and empty-voxel skipping save; beside it, one ray-cast frame of ours
+// and of VTK's Phong with the same lights, measured in the same run.
+//
+//   mmvIrradianceBenchmark --out DIR [--size N] [--reps N] [--head FILE.vti] [--quick]
+//
+// Each configuration moves every light a little (so every light is
+// recomputed), renders, and reads the mapper's irradiance time (glFinish
+// before and after); medians over --reps updates. Writes
+// DIR/irradiance_updates.csv. Not a test: it asserts nothing about timings.
+#include "mmvBenchmarkScenes.h"
+
+#include "vtkCamera.h"
+#include "vtkIrradianceVolumePass.h"
+#include "vtkLight.h"
+#include "vtkMultiMaterialParameters.h"
+#include "vtkMultiMaterialVolumeMapper.h"
+#include "vtkNew.h"
+#include "vtkOpenGLGPUVolumeRayCastMapper.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
+#include "vtkVolume.h"
+#include "vtkVolumeProperty.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <sys/stat.h>
+#include <vector>
+
+namespace
+{
+double Median(std::vector<double> v)
+{
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return n == 0 ? std::nan("") : (n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]));
+}
+
+/// Directions toward the lights: the first five roughly where ParaView's
+/// light kit puts its key, fill, back and head lights around a front view.
+const double LightDirections[8][3] = { { 0.3, -0.8, 0.9 }, { -0.6, -0.9, -0.3 },
+  { 0.9, 0.8, 0.2 }, { -0.9, 0.8, 0.2 }, { 0.0, -1.0, 0.1 }, { 0.5, 0.2, -0.9 },
+  { -0.4, 0.3, 0.9 }, { 0.8, -0.3, -0.4 } };
+
+/// One window rendering the CT-sized scene with N scene lights.
+struct Bench
+{
+  vtkNew<vtkRenderWindow> Window;
+  vtkNew<vtkRenderer> Renderer;
+  vtkNew<vtkVolume> Volume;
+  vtkNew<vtkVolumeProperty> Property;
+  vtkNew<vtkMaterialTransferFunction> Materials;
+  vtkSmartPointer<vtkOpenGLGPUVolumeRayCastMapper> Mapper;
+  vtkMultiMaterialVolumeMapper* Ours = nullptr;
+  std::vector<vtkSmartPointer<vtkLight>> Lights;
+  double Center[3] = { 0.0, 0.0, 0.0 };
+  double Turn = 0.0;
+
+  Bench(const mmvbench::SceneSpec& scene, int size, bool ours)
+  {
+    this->Window->SetOffScreenRendering(1);
+    this->Window->SetSize(size, size);
+    this->Window->SetMultiSamples(0);
+    this->Window->AddRenderer(this->Renderer);
+    this->Renderer->AutomaticLightCreationOff();
+    this->Renderer->SetBackground(0.1, 0.1, 0.12);
+    this->Property->SetColor(scene.Color);
+    this->Property->SetScalarOpacity(scene.Opacity);
+    this->Property->SetScalarOpacityUnitDistance(scene.UnitDistance);
+    this->Property->SetInterpolationTypeToLinear();
+    this->Materials->DeepCopy(scene.Materials);
+    if (ours)
+    {
+      vtkNew<vtkMultiMaterialVolumeMapper> mapper;
+      mapper->SetMaterialTransferFunction(this->Materials);
+      mapper->TimeStagesOn();
+      this->Ours = mapper;
+      this->Mapper = mapper;
+    }
+    else
+    {
+      this->Mapper = vtkSmartPointer<vtkOpenGLGPUVolumeRayCastMapper>::New();
+      this->Property->ShadeOn();
+    }
+    this->Mapper->SetInputData(scene.Image);
+    this->Volume->SetMapper(this->Mapper);
+    this->Volume->SetProperty(this->Property);
+    this->Renderer->AddVolume(this->Volume);
+    scene.Image->GetCenter(this->Center);
+    this->Renderer->ResetCamera();
+    this->Renderer->GetActiveCamera()->Elevation(-80.0);
+    this->Renderer->GetActiveCamera()->OrthogonalizeViewUp();
+    this->Renderer->ResetCamera();
+    this->Renderer->GetActiveCamera()->Zoom(1.3);
+  }
+
+  void SetLightCount(int count)
+  {
+    this->Renderer->RemoveAllLights();
+    this->Lights.clear();
+    for (int l = 0; l < count; ++l)
+    {
+      vtkNew<vtkLight> light;
+      light->SetLightTypeToSceneLight();
+      light->PositionalOff();
+      light->SetIntensity(l == 0 ? 1.0 : 0.4);
+      this->Renderer->AddLight(light);
+      this->Lights.push_back(light.Get());
+    }
+    this->PlaceLights();
+  }
+
+  /// Turns every light by a small, new angle, so all of them need updating.
+  void PlaceLights()
+  {
+    this->Turn += 0.02;
+    for (size_t l = 0; l < this->Lights.size(); ++l)
+    {
+      const double* d = LightDirections[l];
+      const double c = std::cos(this->Turn);
+      const double s = std::sin(this->Turn);
+      const double x = c * d[0] - s * d[1];
+      const double y = s * d[0] + c * d[1];
+      this->Lights[l]->SetFocalPoint(this->Center);
+      this->Lights[l]->SetPosition(this->Center[0] + x, this->Center[1] + y, this->Center[2] + d[2]);
+    }
+  }
+
+  void SetScattering(double strength)
+  {
+    // Every node's scattering becomes `strength`; the rest stays.
+    vtkNew<vtkMaterialTransferFunction> copy;
+    copy->DeepCopy(this->Materials);
+    this->Materials->RemoveAllNodes();
+    for (int i = 0; i < copy->GetSize(); ++i)
+    {
+      double node[mmv::MaterialParameterCount + 1];
+      copy->GetNode(i, node);
+      node[1 + mmv::Scattering] = strength;
+      this->Materials->AddNode(node[0], node[1 + mmv::Ambient], node[1 + mmv::Diffuse],
+        node[1 + mmv::Specular], node[1 + mmv::Shininess], node[1 + mmv::Attenuation],
+        node[1 + mmv::Scattering], node[1 + mmv::Reflection]);
+    }
+  }
+
+  /// Median seconds of `reps` frames, each after `change` (timed around
+  /// Render with glFinish inside the mapper when it is ours).
+  template <typename Change>
+  double Frames(int reps, Change&& change, std::vector<double>* irradiance = nullptr)
+  {
+    std::vector<double> frames;
+    for (int r = 0; r < reps; ++r)
+    {
+      change();
+      const auto start = std::chrono::steady_clock::now();
+      this->Window->Render();
+      frames.push_back(
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+      if (irradiance && this->Ours)
+      {
+        irradiance->push_back(this->Ours->GetLastIrradianceSeconds());
+      }
+    }
+    return Median(frames);
+  }
+};
+
+struct Config
+{
+  std::string Sweep;
+  int Lights = 5;
+  double S = 8.0;
+  double Scale = 0.5;
+  bool Layered = true;
+  bool SkipEmpty = true;
+};
+
+std::string Join(const int v[3])
+{
+  std::ostringstream s;
+  s << v[0] << "x" << v[1] << "x" << v[2];
+  return s.str();
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  std::string out = "irradiance_benchmark";
+  std::string head = MMV_HEADSQ_PATH;
+  int size = 400;
+  int reps = 3;
+  bool quick = false;
+  for (int i = 1; i < argc; ++i)
+  {
+    const std::string arg = argv[i];
+    auto next = [&]() { return i + 1 < argc ? std::string(argv[++i]) : std::string(); };
+    if (arg == "--out")
+    {
+      out = next();
+    }
+    else if (arg == "--size")
+    {
+      size = std::max(16, std::atoi(next().c_str()));
+    }
+    else if (arg == "--reps")
+    {
+      reps = std::max(1, std::atoi(next().c_str()));
+    }
+    else if (arg == "--head")
+    {
+      head = next();
+    }
+    else if (arg == "--quick")
+    {
+      quick = true;
+    }
+    else
+    {
+      std::cerr << "unknown argument " << arg << "\n";
+      return 2;
+    }
+  }
+  mkdir(out.c_str(), 0755);
+  mmvbench::SceneSpec scene = mmvbench::MakeCTSized(head);
+  if (!scene.Image)
+  {
+    std::cerr << "cannot read " << head << "\n";
+    return 1;
+  }
+  int dims[3];
+  scene.Image->GetDimensions(dims);
+  std::cout << "== CT-sized scene " << Join(dims) << ", " << size << "^2 pixels, " << reps
+            << " updates per configuration" << std::endl;
+
+  std::vector<Config> configs;
+  const std::vector<int> lightCounts = quick ? std::vector<int>{ 1, 5 } : std::vector<int>{ 1, 2, 5, 8 };
+  const std::vector<double> strengths = quick ? std::vector<double>{ 0, 8 } : std::vector<double>{ 0, 8, 20, 100 };
+  const std::vector<double> scales = quick ? std::vector<double>{ 0.25, 0.5 } : std::vector<double>{ 0.25, 0.35, 0.5, 0.75, 1.0 };
+  for (int lights : lightCounts)
+  {
+    configs.push_back({ "lights", lights, 8.0, 0.5 });
+  }
+  for (double s : strengths)
+  {
+    configs.push_back({ "scattering", 5, s, 0.5 });
+  }
+  for (double s : { 0.0, 8.0 })
+  {
+    for (double scale : scales)
+    {
+      configs.push_back({ "resolution", 5, s, scale });
+    }
+  }
+  for (double s : { 0.0, 8.0 })
+  {
+    configs.push_back({ "draws", 5, s, 0.5, false, true });
+    configs.push_back({ "empty-space", 5, s, 0.5, true, false });
+  }
+
+  Bench ours(scene, size, true);
+  Bench phong(scene, size, false);
+  std::ofstream csv(out + "/irradiance_updates.csv");
+  csv << "sweep,lights,scattering,irradiance_scale,layered_draws,skip_empty_voxels,"
+         "irradiance_dims,diffusion_dims,sub_steps,sweeps_per_step,computed_voxels,"
+         "update_s,ours_raycast_frame_s,phong_frame_s,update_over_phong\n";
+  std::cout << "sweep        lights    s  scale layered skip  irradiance   diffusion    update s  "
+               "ray cast s  phong s  update/phong"
+            << std::endl;
+  for (const Config& c : configs)
+  {
+    ours.SetLightCount(c.Lights);
+    phong.SetLightCount(c.Lights);
+    ours.SetScattering(c.S);
+    ours.Ours->SetIrradianceScale(c.Scale);
+    vtkIrradianceVolumePass* pass = ours.Ours->GetIrradianceVolumePass();
+    pass->SetLayeredRendering(c.Layered);
+    pass->SetSkipEmptyVoxels(c.SkipEmpty);
+    // Warm-up: shaders, tables, uploads for this configuration.
+    ours.Window->Render();
+    phong.Window->Render();
+    // Interleaved: an update of ours, a camera-only frame of ours, a Phong
+    // frame, per repetition.
+    std::vector<double> updates;
+    std::vector<double> casts;
+    std::vector<double> phongFrames;
+    for (int r = 0; r < reps; ++r)
+    {
+      ours.Frames(1, [&]() { ours.PlaceLights(); }, &updates);
+      casts.push_back(ours.Frames(1, [&]() { ours.Renderer->GetActiveCamera()->Azimuth(0.5); }));
+      phongFrames.push_back(phong.Frames(1, [&]() { phong.PlaceLights(); }));
+    }
+    int irradiance[3];
+    ours.Ours->GetIrradianceDimensions(irradiance);
+    int diffusion[3];
+    pass->GetDiffusionGridDimensions(diffusion);
+    const bool diffuses = c.S > 0.0;
+    const double update = Median(updates);
+    const double phongFrame = Median(phongFrames);
+    csv << c.Sweep << "," << c.Lights << "," << c.S << "," << c.Scale << "," << c.Layered << ","
+        << c.SkipEmpty << "," << Join(irradiance) << "," << (diffuses ? Join(diffusion) : "-")
+        << "," << (diffuses ? pass->GetDiffusionSubSteps() : 0) << ","
+        << (diffuses ? pass->GetDiffusionSweepsPerStep() : 0) << ","
+        << pass->GetNumberOfComputedVoxels() << "," << update << "," << Median(casts) << ","
+        << phongFrame << "," << update / phongFrame << "\n";
+    csv.flush();
+    std::printf("%-12s %6d %4g %6.2f %7d %5d  %-11s  %-11s %8.3f  %9.3f  %7.3f  %8.2f\n",
+      c.Sweep.c_str(), c.Lights, c.S, c.Scale, int(c.Layered), int(c.SkipEmpty),
+      Join(irradiance).c_str(), diffuses ? Join(diffusion).c_str() : "-", update, Median(casts),
+      phongFrame, update / phongFrame);
+    std::fflush(stdout);
+  }
+  std::cout << "== wrote " << out << "/irradiance_updates.csv" << std::endl;
+  return 0;
+}
