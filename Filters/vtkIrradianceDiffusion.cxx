@@ -534,7 +534,7 @@ DiffusionReport DiffuseIrradianceOnDiffusionGrid(const int dims[3], const double
   {
     return report;
   }
-  // Where the fine grid scatters, the diffused field interpolated trilinearly.
+  // Where the fine grid scatters, add the change, interpolated trilinearly.
   const int* cd = coarse.Dimensions;
   vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
     for (vtkIdType v = begin; v < end; ++v)

@@ -485,7 +485,7 @@ bool vtkIrradianceVolumePass::vtkInternals::ShadowPass(
 // Multiple scattering of FineScratch[0] into FineScratch[1]: restriction to
 // the diffusion grid, backward-Euler sub-steps each solved by Chebyshev-
 // accelerated Jacobi sweeps (their number from the error bound,
-// mmv::ChebyshevSweeps), then the prolongation of the diffused field. Returns the
+// mmv::ChebyshevSweeps), then the prolongation of the change. Returns the
 // sweeps drawn, or -1 on failure.
 int vtkIrradianceVolumePass::vtkInternals::Diffuse(vtkOpenGLRenderWindow* context, bool layered)
 {

@@ -5,9 +5,10 @@
 //
 // MMV_RESTRICT (target: diffusion grid): the mean of the irradiance over the
 // block's voxels with s > 0 (0 when none).
-// Otherwise (prolongation, target: irradiance grid): voxels with s > 0 take
-// the diffused field, interpolated trilinearly at their coarse coordinate
-// (i - (f - 1) / 2) / f over the corner blocks that scatter, clamped at 0.
+// Otherwise (prolongation, target: irradiance grid): voxels with s > 0 add
+// the change the diffusion made, interpolated trilinearly at their coarse
+// coordinate (i - (f - 1) / 2) / f over the corner blocks that scatter, and
+// are clamped at 0.
 
 uniform sampler3D fine;    // irradiance before the diffusion (irradiance grid)
 uniform sampler3D classes; // s per voxel, < 0 where the voxel is empty
@@ -46,7 +47,7 @@ void main()
 #else
 
 uniform sampler3D after;          // the diffused irradiance (diffusion grid)
-uniform sampler3D before;
+uniform sampler3D before;         // the restricted irradiance (diffusion grid)
 uniform sampler3D coarseStrength; // s per block, 0 where no voxel scatters
 
 void main()
