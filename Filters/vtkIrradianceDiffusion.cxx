@@ -397,7 +397,10 @@ DiffusionGrid PlanDiffusionGrid(const int dims[3], const double spacing[3], doub
   {
     const double h = spacing[a] > 0.0 ? spacing[a] : 1.0;
     const int largest = std::max(1, dims[a] / std::max(1, settings.MinimumVoxelsPerAxis));
-    grid.Factor[a] = std::min(largest, std::max(1, static_cast<int>(std::floor(target / h))));
+    // The nearest whole factor: an irradiance grid of 1.07 data voxels (the
+    // budget's scale on a CT) would otherwise stay uncoarsened (floor(1.87)),
+    // at four times the diffusion grid of factor 2.
+    grid.Factor[a] = std::min(largest, std::max(1, static_cast<int>(std::lround(target / h))));
     grid.Dimensions[a] = (dims[a] + grid.Factor[a] - 1) / grid.Factor[a];
     grid.Spacing[a] = h * grid.Factor[a];
   }

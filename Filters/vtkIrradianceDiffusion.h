@@ -32,8 +32,8 @@ struct DiffusionSettings
   int MaxIterations = 2000;    // per CG solve
   /// Diffusion-grid voxels per diffusion length L = sqrt(2 s_max T): the
   /// scattered light is no sharper than L, so the change the diffusion makes
-  /// is computed on the irradiance grid coarsened by whole factors until its
-  /// spacing reaches L / VoxelsPerDiffusionLength (never finer than the
+  /// is computed on the irradiance grid coarsened by the whole factor nearest
+  /// to a spacing of L / VoxelsPerDiffusionLength (never finer than the
   /// irradiance grid). This bounds the stiffness s dt / h^2 of the coarse
   /// system, so the solve costs the same for every s. 0 disables coarsening.
   /// Measured (docs/benchmark.md): 2 keeps the three benchmark scenes within

@@ -743,6 +743,9 @@ bool vtkIrradianceVolumePass::Render(vtkOpenGLRenderWindow* context)
     vtkOpenGLState::ScopedglEnableDisable depth(state, GL_DEPTH_TEST);
     vtkOpenGLState::ScopedglEnableDisable scissor(state, GL_SCISSOR_TEST);
     vtkOpenGLState::ScopedglColorMask colorMask(state);
+    // The diffusion sweeps scissor to their blocks: the renderer's own
+    // scissor box must come back for the ray cast.
+    vtkOpenGLState::ScopedglScissor scissorBox(state);
     state->vtkglDisable(GL_BLEND); // blending would garble the float outputs
     state->vtkglDisable(GL_DEPTH_TEST);
     state->vtkglDisable(GL_SCISSOR_TEST);

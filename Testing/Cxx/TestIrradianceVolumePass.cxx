@@ -16,6 +16,7 @@
 #include "vtkMaterialTransferFunction.h"
 #include "vtkNew.h"
 #include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLState.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
 #include "vtkPreIntegrationTable.h"
@@ -623,4 +624,31 @@ TEST(IrradianceVolumePass, LayeredAndPerSliceDrawsAgree)
   {
     EXPECT_EQ(results[l], results[l + 3]) << "light " << l;
   }
+}
+
+TEST(IrradianceVolumePass, LeavesTheRenderersStateAsItFoundIt)
+{
+  // The diffusion sweeps scissor to the blocks that scatter; the renderer's
+  // scissor box and viewport must come back (a lost box clipped the ray cast
+  // that follows to those blocks).
+  const Context& ctx = SharedContext();
+  ASSERT_NE(ctx.GL, nullptr);
+  vtkOpenGLState* state = ctx.GL->GetState();
+  state->vtkglEnable(GL_SCISSOR_TEST);
+  state->vtkglScissor(3, 5, 41, 37);
+  state->vtkglViewport(1, 2, 50, 60);
+  const Scene scene = TwoBlocks(8.0);
+  vtkNew<vtkIrradianceVolumePass> pass;
+  SetPassInputs(scene, pass);
+  ASSERT_TRUE(pass->Render(ctx.GL));
+  ASSERT_GT(pass->GetDiffusionPasses(), 0);
+  GLint box[4];
+  GLint viewport[4];
+  glGetIntegerv(GL_SCISSOR_BOX, box);
+  glGetIntegerv(GL_VIEWPORT, viewport);
+  EXPECT_TRUE(glIsEnabled(GL_SCISSOR_TEST));
+  EXPECT_EQ(std::vector<GLint>(box, box + 4), std::vector<GLint>({ 3, 5, 41, 37 }));
+  EXPECT_EQ(std::vector<GLint>(viewport, viewport + 4), std::vector<GLint>({ 1, 2, 50, 60 }));
+  state->vtkglDisable(GL_SCISSOR_TEST);
+  pass->ReleaseGraphicsResources(ctx.GL);
 }
