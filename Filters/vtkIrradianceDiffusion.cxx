@@ -397,10 +397,16 @@ DiffusionGrid PlanDiffusionGrid(const int dims[3], const double spacing[3], doub
   {
     const double h = spacing[a] > 0.0 ? spacing[a] : 1.0;
     const int largest = std::max(1, dims[a] / std::max(1, settings.MinimumVoxelsPerAxis));
-    // The nearest whole factor: an irradiance grid of 1.07 data voxels (the
-    // budget's scale on a CT) would otherwise stay uncoarsened (floor(1.87)),
-    // at four times the diffusion grid of factor 2.
-    grid.Factor[a] = std::min(largest, std::max(1, static_cast<int>(std::lround(target / h))));
+    // The whole factor nearest in ratio (f or f + 1, split at sqrt(f (f + 1))):
+    // an irradiance grid of 1.34 data voxels (scale 0.75) with L / 2 = 2
+    // wants 1.5, and factor 1 would triple the diffusion grid of factor 2.
+    const double wanted = target / h;
+    int factor = std::max(1, static_cast<int>(std::floor(wanted)));
+    if (wanted > std::sqrt(static_cast<double>(factor) * (factor + 1)))
+    {
+      ++factor;
+    }
+    grid.Factor[a] = std::min(largest, factor);
     grid.Dimensions[a] = (dims[a] + grid.Factor[a] - 1) / grid.Factor[a];
     grid.Spacing[a] = h * grid.Factor[a];
   }

@@ -33,8 +33,8 @@ struct DiffusionSettings
   /// Diffusion-grid voxels per diffusion length L = sqrt(2 s_max T): the
   /// scattered light is no sharper than L, so the change the diffusion makes
   /// is computed on the irradiance grid coarsened by the whole factor nearest
-  /// to a spacing of L / VoxelsPerDiffusionLength (never finer than the
-  /// irradiance grid). This bounds the stiffness s dt / h^2 of the coarse
+  /// (in ratio) to a spacing of L / VoxelsPerDiffusionLength (never finer
+  /// than the irradiance grid). This bounds the stiffness s dt / h^2 of the coarse
   /// system, so the solve costs the same for every s. 0 disables coarsening.
   /// Measured (docs/benchmark.md): 2 keeps the three benchmark scenes within
   /// 1 dB of the full-resolution diffusion (1 lost 5 dB on the head's thin

@@ -321,6 +321,12 @@ TEST(DiffusionGrid, CoarsensToTheDiffusionLength)
   // An irradiance grid of 2 data voxels per voxel needs half the factor.
   const double two[3] = { 2.0, 2.0, 2.0 };
   EXPECT_EQ(mmv::PlanDiffusionGrid(dims, two, 32.0).Factor[0], 2);
+  // The factor nearest in ratio: 2 / 1.335 = 1.498 > sqrt(2) rounds up, 2 / 1.45
+  // = 1.38 down (s = 8: L / 2 = 2 data voxels).
+  const double scale75[3] = { 1.335, 1.335, 1.335 };
+  EXPECT_EQ(mmv::PlanDiffusionGrid(dims, scale75, 8.0).Factor[0], 2);
+  const double coarser[3] = { 1.45, 1.45, 1.45 };
+  EXPECT_EQ(mmv::PlanDiffusionGrid(dims, coarser, 8.0).Factor[0], 1);
   // Weak scattering (L / 2 < 1 voxel) and no scattering keep the grid.
   EXPECT_TRUE(mmv::PlanDiffusionGrid(dims, unit, 1.0).IsIdentity());
   EXPECT_TRUE(mmv::PlanDiffusionGrid(dims, unit, 0.0).IsIdentity());
