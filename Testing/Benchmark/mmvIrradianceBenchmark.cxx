@@ -9,10 +9,16 @@
 // Each configuration moves every light a little (so every light is
 // recomputed), renders, and reads the mapper's irradiance time (glFinish
 // before and after); medians over --reps updates. Writes
-// DIR/irradiance_updates.csv. Not a test: it asserts nothing about timings.
+// DIR/irradiance_updates.csv, and DIR/ct_resolution.csv: the still frame
+// after a light move (update + ray cast) against a VTK Phong frame, and the
+// image's PSNR against the full-resolution irradiance, per irradiance scale.
+// Not a test: it asserts nothing about timings.
 #include "mmvBenchmarkScenes.h"
 
 #include "vtkCamera.h"
+#include "vtkImageData.h"
+#include "vtkImageErrorMetrics.h"
+#include "vtkWindowToImageFilter.h"
 #include "vtkIrradianceVolumePass.h"
 #include "vtkLight.h"
 #include "vtkMultiMaterialParameters.h"
@@ -28,6 +34,7 @@
 #include <chrono>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <iostream>
 #include <sstream>
 #include <string>
@@ -117,10 +124,11 @@ struct Bench
     this->PlaceLights();
   }
 
-  /// Turns every light by a small, new angle, so all of them need updating.
-  void PlaceLights()
+  /// Turns every light by a small, new angle, so all of them need updating
+  /// (or to `turn`, when given).
+  void PlaceLights(double turn = -1.0)
   {
-    this->Turn += 0.02;
+    this->Turn = turn >= 0.0 ? turn : this->Turn + 0.02;
     for (size_t l = 0; l < this->Lights.size(); ++l)
     {
       const double* d = LightDirections[l];
@@ -317,5 +325,70 @@ int main(int argc, char* argv[])
     std::fflush(stdout);
   }
   std::cout << "== wrote " << out << "/irradiance_updates.csv" << std::endl;
+
+  // Accuracy against speed: the still frame after a light move at each
+  // irradiance scale, and its image against the full-resolution one (the
+  // lights at the same place for every image).
+  std::ofstream acc(out + "/ct_resolution.csv");
+  acc << "scattering,irradiance_scale,irradiance_dims,still_frame_s,phong_frame_s,"
+         "still_over_phong,psnr_vs_full_db\n";
+  std::cout << "s  scale  irradiance    still s  phong s  still/phong  PSNR vs full (dB)" << std::endl;
+  auto capture = [](vtkRenderWindow* window) {
+    vtkNew<vtkWindowToImageFilter> grab;
+    grab->SetInput(window);
+    grab->ReadFrontBufferOff();
+    grab->Update();
+    auto image = vtkSmartPointer<vtkImageData>::New();
+    image->DeepCopy(grab->GetOutput());
+    return image;
+  };
+  ours.SetLightCount(5);
+  phong.SetLightCount(5);
+  ours.Ours->GetIrradianceVolumePass()->SetLayeredRendering(true);
+  ours.Ours->GetIrradianceVolumePass()->SetSkipEmptyVoxels(true);
+  const std::vector<double> accuracyScales =
+    quick ? std::vector<double>{ 1.0, 0.5 } : std::vector<double>{ 1.0, 0.75, 0.5, 0.35, 0.25 };
+  for (double s : { 0.0, 8.0 })
+  {
+    ours.SetScattering(s);
+    vtkSmartPointer<vtkImageData> full;
+    for (double scale : accuracyScales)
+    {
+      ours.Ours->SetIrradianceScale(scale);
+      ours.Window->Render();
+      std::vector<double> still;
+      std::vector<double> phongFrames;
+      for (int r = 0; r < reps; ++r)
+      {
+        still.push_back(ours.Frames(1, [&]() { ours.PlaceLights(); }));
+        phongFrames.push_back(phong.Frames(1, [&]() { phong.PlaceLights(); }));
+      }
+      ours.PlaceLights(0.5);
+      ours.Window->Render();
+      vtkSmartPointer<vtkImageData> image = capture(ours.Window);
+      double psnr = std::numeric_limits<double>::infinity();
+      if (!full)
+      {
+        full = image;
+      }
+      else
+      {
+        vtkNew<vtkImageErrorMetrics> metrics;
+        metrics->Compute(image, full);
+        psnr = metrics->GetPSNR();
+      }
+      int irradiance[3];
+      ours.Ours->GetIrradianceDimensions(irradiance);
+      const double stillFrame = Median(still);
+      const double phongFrame = Median(phongFrames);
+      acc << s << "," << scale << "," << Join(irradiance) << "," << stillFrame << ","
+          << phongFrame << "," << stillFrame / phongFrame << "," << psnr << "\n";
+      acc.flush();
+      std::printf("%-3g %5.2f  %-12s %7.3f  %7.3f  %11.2f  %8.1f\n", s, scale,
+        Join(irradiance).c_str(), stillFrame, phongFrame, stillFrame / phongFrame, psnr);
+      std::fflush(stdout);
+    }
+  }
+  std::cout << "== wrote " << out << "/ct_resolution.csv" << std::endl;
   return 0;
 }
