@@ -64,7 +64,9 @@ def plot(csv_path, png_path):
         for bar, v in zip(bars, values):
             text = "n/a" if math.isnan(v) else "%.2fx" % v
             ax.annotate(text, (bar.get_x() + bar.get_width() / 2, 0 if math.isnan(v) else v),
-                        xytext=(0, 2), textcoords="offset points", ha="center", fontsize=8)
+                        xytext=(0, 2), textcoords="offset points", ha="center", fontsize=8,
+                        zorder=5, bbox=dict(boxstyle="square,pad=0.1", fc="white", ec="none",
+                                            alpha=0.85))
         tcolor, ttext = (("darkred", "still target") if target_key == "still_target"
                          else ("navy", "interactive target"))
         for x, r in zip(xs, rows):

@@ -20,7 +20,14 @@ rotates every step because the machine is shared):
 Per orbit step and method: K interactive frames (Azimuth 10/K degrees, then
 view.SMProxy.InteractiveRender(), timed), then one timed StillRender(). After
 the orbit: a screenshot at rest against a fresh view and representation with
-the same camera (PSNR), and the representation's counters.
+the same camera (PSNR), and the representation's counters. Before the orbit,
+one untimed still render of every view once all exist (see settle_renders).
+
+The first interactive frames after a still frame are slower for every method
+(VTK and ParaView adapt the image sampling to the interactive budget over a
+few frames), so with K=3 the interactive median is a frame of that transient;
+interactive_settled_median_s is the median of the last 3 interactive frames of
+each step, the fair interactive number with a long drag (--interactive-frames 8).
 
 Writes OUT/lightkit_orbit.csv, OUT/lightkit_orbit.png (plot_lightkit_orbit.py),
 OUT/frames.csv (every timed frame) and the screenshots.
