@@ -20,6 +20,20 @@ def _float(text):
         return float("nan")
 
 
+def load_results(csv_path):
+    """The rows of a benchmark CSV and the machine.txt beside it (key value
+    per line), shared with pv_ct_resolution.py."""
+    with open(csv_path) as f:
+        rows = list(csv.DictReader(f))
+    machine = {}
+    machine_path = os.path.join(os.path.dirname(csv_path), "machine.txt")
+    if os.path.exists(machine_path):
+        for line in open(machine_path):
+            key, _, value = line.strip().partition(" ")
+            machine[key] = value
+    return rows, machine
+
+
 def plot(csv_path, png_path):
     import math
 
@@ -29,14 +43,7 @@ def plot(csv_path, png_path):
     import matplotlib.pyplot as plt
     import matplotlib.ticker  # noqa: F401 - used through matplotlib.ticker
 
-    with open(csv_path) as f:
-        rows = list(csv.DictReader(f))
-    machine = {}
-    machine_path = os.path.join(os.path.dirname(csv_path), "machine.txt")
-    if os.path.exists(machine_path):
-        for line in open(machine_path):
-            key, _, value = line.strip().partition(" ")
-            machine[key] = value
+    rows, machine = load_results(csv_path)
 
     names = [r["method"] for r in rows]
     # Bars: interactive (all frames), interactive settled (the last frames of

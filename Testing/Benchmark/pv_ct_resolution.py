@@ -212,14 +212,9 @@ def plot(csv_path, png_path):
     import matplotlib.pyplot as plt
     import matplotlib.ticker  # noqa: F401 - used through matplotlib.ticker
 
-    with open(csv_path) as f:
-        rows = list(csv.DictReader(f))
-    machine = {}
-    machine_path = os.path.join(os.path.dirname(csv_path), "machine.txt")
-    if os.path.exists(machine_path):
-        for line in open(machine_path):
-            key, _, value = line.strip().partition(" ")
-            machine[key] = value
+    from plot_lightkit_orbit import load_results
+
+    rows, machine = load_results(csv_path)
 
     def value(text):
         try:
