@@ -47,10 +47,11 @@ struct DiffusionSettings
   /// FailureCases.DiffusionStaysBoundedAndMonotone's 17-voxel slab at
   /// s = 1000).
   int MinimumVoxelsPerAxis = 12;
-  /// The GPU's sweeps per sub-step: as many as the error bound of the
-  /// Chebyshev-accelerated Jacobi iteration needs to bring the error below
-  /// this fraction of the largest irradiance (per sub-step; errors of
-  /// sub-steps add up, so the total is at most MaxSubSteps times this).
+  /// The GPU's error per sub-step, as a fraction of the largest irradiance
+  /// (errors of sub-steps add up, so the total is at most MaxSubSteps times
+  /// this): a sub-step stops once every Jacobi correction |J(x) - x| is below
+  /// (1 - rho) times it, and after the sweeps the Chebyshev error bound
+  /// needs at the latest.
   double SweepTolerance = 1.0e-3;
 };
 

@@ -36,6 +36,10 @@ namespace
 
 constexpr int LightsPerTexture = 4;
 
+/// Sweeps between two residual checks of a diffusion sub-step: each check
+/// costs about a sweep and waits for the GPU.
+constexpr int ResidualCheckInterval = 3;
+
 /// Linear interpolation of an n-entry table over the normalised range, as a
 /// bilinear texture lookup at (x + 0.5) / n would do it.
 float LookupTable(const std::vector<float>& table, float t)
@@ -214,6 +218,8 @@ public:
   int SweepsPerStep = 0;
   double SpectralRadius = 0.0; // of the Jacobi iteration, for the Chebyshev weights
   int ScatteringBox[6] = { 0, 0, 0, 0, 0, 0 }; // diffusion-grid blocks with s > 0
+  unsigned int ResidualQuery = 0; // occlusion query counting unconverged blocks
+  int ResidualChecks = 0;
 
   // GPU resources.
   vtkSmartPointer<vtkTextureObject> ScalarTexture;
@@ -498,6 +504,10 @@ int vtkIrradianceVolumePass::vtkInternals::Diffuse(vtkOpenGLRenderWindow* contex
     return -1;
   }
   auto& coarse = this->CoarseScratch;
+  if (!this->ResidualQuery)
+  {
+    glGenQueries(1, &this->ResidualQuery);
+  }
   {
     context->GetShaderCache()->ReadyShaderProgram(restriction);
     ScopedTextures bound{ this->FineScratch[0], this->ClassTexture };
@@ -516,8 +526,14 @@ int vtkIrradianceVolumePass::vtkInternals::Diffuse(vtkOpenGLRenderWindow* contex
   sweep->SetUniform1iv("dims", 3, this->Coarse.Dimensions);
   sweep->SetUniform3f("invH2", glm::value_ptr(invH2));
   sweep->SetUniformf("dt", static_cast<float>(this->Diffusion.Time / this->SubSteps));
+  // Stop on the residual: |J(x) - x| <= (1 - rho) tol everywhere bounds the
+  // error by tol; checked every few sweeps, the error bound's count at most.
+  const float threshold =
+    static_cast<float>((1.0 - this->SpectralRadius) * this->Diffusion.SweepTolerance);
+  sweep->SetUniformf("residualThreshold", 0.0f);
   int rhs = 0;
   int current = 0;
+  int sweeps = 0;
   for (int step = 0; step < this->SubSteps; ++step)
   {
     int previous = current;
@@ -536,8 +552,31 @@ int vtkIrradianceVolumePass::vtkInternals::Diffuse(vtkOpenGLRenderWindow* contex
         "omega", static_cast<float>(mmv::ChebyshevWeight(k, this->SpectralRadius)));
       // Blocks outside ScatteringBox never change and are never read.
       this->DrawLayers(context, *this->SweepQuad, coarse[next], layered, this->ScatteringBox);
+      ++sweeps;
       previous = current;
       current = next;
+      if (k % ResidualCheckInterval == 0 && k < this->SweepsPerStep)
+      {
+        // The check draws into a texture no iterate lives in.
+        int scratch = 1;
+        while (scratch == rhs || scratch == current || scratch == previous)
+        {
+          ++scratch;
+        }
+        sweep->SetUniformi("current", coarse[current]->GetTextureUnit());
+        sweep->SetUniformf("residualThreshold", threshold);
+        glBeginQuery(GL_SAMPLES_PASSED, this->ResidualQuery);
+        this->DrawLayers(context, *this->SweepQuad, coarse[scratch], layered, this->ScatteringBox);
+        glEndQuery(GL_SAMPLES_PASSED);
+        sweep->SetUniformf("residualThreshold", 0.0f);
+        GLuint unconverged = 1;
+        glGetQueryObjectuiv(this->ResidualQuery, GL_QUERY_RESULT, &unconverged);
+        ++this->ResidualChecks;
+        if (unconverged == 0)
+        {
+          break;
+        }
+      }
     }
     rhs = current;
   }
@@ -553,7 +592,7 @@ int vtkIrradianceVolumePass::vtkInternals::Diffuse(vtkOpenGLRenderWindow* contex
   prolong->SetUniformi("after", coarse[current]->GetTextureUnit());
   this->SetTransferUniforms(prolong);
   this->DrawLayers(context, *this->ProlongQuad, this->FineScratch[1], layered);
-  return this->SubSteps * this->SweepsPerStep;
+  return sweeps;
 }
 
 //------------------------------------------------------------------------------
@@ -617,6 +656,11 @@ void vtkIrradianceVolumePass::vtkInternals::Release(vtkWindow* window)
   }
   this->Irradiance.clear();
   this->ComputedLights.clear();
+  if (this->ResidualQuery)
+  {
+    glDeleteQueries(1, &this->ResidualQuery);
+    this->ResidualQuery = 0;
+  }
   if (this->Framebuffer)
   {
     this->Framebuffer->ReleaseGraphicsResources(window);

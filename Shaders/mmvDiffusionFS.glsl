@@ -10,6 +10,8 @@
 // C the block's capacity (a convex combination, so a plain sweep cannot
 // leave [min b, max b]), accelerated by Chebyshev weights:
 //   x_new = x_previous + omega * (J(x) - x_previous).
+// A sub-step stops once every |J(x) - x| <= (1 - rho) tol, which bounds the
+// error |x - x*| by tol (J contracts by rho).
 //
 // With MMV_FILL_PASS defined (the final write): empty voxels bordering
 // non-empty ones take the mean of those neighbours, as the CPU filter's
@@ -59,6 +61,10 @@ void main()
 uniform sampler3D rhs;      // b: the irradiance at the start of the time step
 uniform sampler3D previous; // the iterate before `current`
 uniform float omega;        // Chebyshev weight of this sweep (1: plain Jacobi)
+// > 0: the residual check instead of a sweep. A voxel whose Jacobi correction
+// |J(x) - x| (every channel) is at most this is discarded; the others pass,
+// and an occlusion query counts them.
+uniform float residualThreshold;
 uniform vec3 invH2;         // 1 / h^2 per axis, h in data voxels
 uniform float dt;
 
@@ -101,6 +107,16 @@ void main()
         }
       }
     }
+  }
+  if (residualThreshold > 0.0)
+  {
+    vec4 correction = abs(numerator / denominator - texelFetch(current, voxel, 0));
+    if (max(max(correction.x, correction.y), max(correction.z, correction.w)) <= residualThreshold)
+    {
+      discard;
+    }
+    gl_FragData[0] = vec4(1.0);
+    return;
   }
   vec4 previousValue = texelFetch(previous, voxel, 0);
   gl_FragData[0] = previousValue + omega * (numerator / denominator - previousValue);
