@@ -88,10 +88,10 @@ public:
   vtkMTimeType GrayTime = 0;
 
   // What the irradiance volume was computed from: the volume (data, opacity,
-  // scattering, grid), and each light; the pass recomputes only the lights
-  // that differ, everything when the volume does.
+  // scattering; the grid is the mapper's IrradianceDimensions), and each
+  // light; the pass recomputes only the lights that differ, everything when
+  // the volume does.
   std::vector<double> VolumeKey;
-  std::vector<int> VolumeGrid;
   std::vector<double> LightsKey;
   std::string ResolutionReason;
   // The pre-filtered data on the irradiance grid, normalised to [0, 1].
@@ -632,9 +632,12 @@ bool vtkMultiMaterialVolumeMapper::UpdateIrradiance(vtkRenderer* ren, vtkVolume*
 
   int dataDims[3];
   image->GetDimensions(dataDims);
-  const mmv::IrradianceResolution resolution =
-    mmv::ChooseIrradianceResolution(dataDims, static_cast<int>(in.Lights.size()),
-      this->IrradianceMemoryMB, this->IrradianceScale, ProjectedPixelsPerVoxel(ren, vol, image));
+  // The screen only matters when the resolution is automatic.
+  const double pixelsPerVoxel =
+    this->IrradianceScale > 0.0 ? 0.0 : ProjectedPixelsPerVoxel(ren, vol, image);
+  const mmv::IrradianceResolution resolution = mmv::ChooseIrradianceResolution(dataDims,
+    static_cast<int>(in.Lights.size()), this->IrradianceMemoryMB, this->IrradianceScale,
+    pixelsPerVoxel);
   const int* dims = resolution.Dimensions;
 
   const int n = this->PreIntegrationTableSize;
@@ -663,14 +666,14 @@ bool vtkMultiMaterialVolumeMapper::UpdateIrradiance(vtkRenderer* ren, vtkVolume*
   const std::vector<double> volumeKey = { double(dataTime), double(opacity->GetMTime()),
     double(in.MaterialVersion), unitDistance, range[0], range[1], double(this->MultipleScattering),
     double(this->PreIntegrationTableSize), double(in.Lights.size()) };
-  const std::vector<int> grid(dims, dims + 3);
   std::vector<double> lightsKey;
   for (const auto& light : in.Lights)
   {
     AppendLightKey(lightsKey, light.Source);
   }
   const bool computed = in.Irradiance->GetNumberOfIrradianceTextures() > 0;
-  if (computed && volumeKey == in.VolumeKey && grid == in.VolumeGrid && lightsKey == in.LightsKey)
+  const bool sameGrid = std::equal(dims, dims + 3, this->IrradianceDimensions);
+  if (computed && volumeKey == in.VolumeKey && sameGrid && lightsKey == in.LightsKey)
   {
     return true;
   }
@@ -750,7 +753,6 @@ bool vtkMultiMaterialVolumeMapper::UpdateIrradiance(vtkRenderer* ren, vtkVolume*
     return false;
   }
   in.VolumeKey = volumeKey;
-  in.VolumeGrid = grid;
   in.LightsKey = lightsKey;
   for (int a = 0; a < 3; ++a)
   {
