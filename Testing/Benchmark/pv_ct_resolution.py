@@ -177,10 +177,7 @@ def run(orbit):
         row["psnr_db_vs_scale_1"] = orbit.fmt(value, "%.2f")
 
     csv_path = os.path.join(args.out, "ct_resolution.csv")
-    with open(csv_path, "w", newline="") as f:
-        writer = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
-        writer.writeheader()
-        writer.writerows(rows)
+    orbit.write_csv(csv_path, rows)
     with open(os.path.join(args.out, "machine.txt"), "w") as f:
         f.write("paraview %s\nresample %s\nview %d\nmoves %d\nmove_degrees %g\ncores %d\n"
                 % (version, "x".join(map(str, args.dims)), args.view_size, args.moves,

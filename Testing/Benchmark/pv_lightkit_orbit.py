@@ -333,6 +333,28 @@ def timed(fn):
     return time.perf_counter() - t0
 
 
+def timed_frame(method, step, kind, k, frames_writer):
+    """One timed render of `kind` ("interactive" or "still"), logged to
+    frames.csv: (seconds, render signal, irradiance updates it made)."""
+    render = (method.view.SMProxy.InteractiveRender if kind == "interactive"
+              else method.view.SMProxy.StillRender)
+    before = count_updates(method)
+    dt = timed(render)
+    signal = render_signal(method.view)
+    updates = count_updates(method) - before
+    frames_writer.writerow([method.name, step, kind, k, "%.6f" % dt, signal[0],
+                            "%.6g" % signal[1], signal[2], updates])
+    return dt, signal, updates
+
+
+def write_csv(path, rows):
+    """Rows of dicts, the first row's keys as the header."""
+    with open(path, "w", newline="") as f:
+        writer = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
+        writer.writeheader()
+        writer.writerows(rows)
+
+
 def orbit_step(method, args, frames_writer, step):
     """K interactive frames while the camera moves, then the still frame."""
     if method.stopped:
@@ -344,30 +366,20 @@ def orbit_step(method, args, frames_writer, step):
     for k in range(args.interactive_frames):
         cam.Azimuth(azimuth)
         cam.OrthogonalizeViewUp()
-        before = count_updates(method)
-        dt = timed(method.view.SMProxy.InteractiveRender)
-        signal = render_signal(method.view)
-        updates = count_updates(method) - before
+        dt, signal, updates = timed_frame(method, step, "interactive", k, frames_writer)
         method.updates_interactive += updates
         method.interactive.append(dt)
         this_step.append(dt)
         method.signal_interactive.append(signal)
-        frames_writer.writerow([method.name, step, "interactive", k, "%.6f" % dt, signal[0],
-                                "%.6g" % signal[1], signal[2], updates])
         if dt > args.max_frame_seconds:
             method.stopped = True
             method.notes.append("stopped at step %d: interactive frame %.1f s > %.0f s"
                                 % (step, dt, args.max_frame_seconds))
             return
-    before = count_updates(method)
-    dt = timed(method.view.SMProxy.StillRender)
-    signal = render_signal(method.view)
-    updates = count_updates(method) - before
+    dt, signal, updates = timed_frame(method, step, "still", 0, frames_writer)
     method.updates_still += updates
     method.still.append(dt)
     method.signal_still.append(signal)
-    frames_writer.writerow([method.name, step, "still", 0, "%.6f" % dt, signal[0],
-                            "%.6g" % signal[1], signal[2], updates])
     if dt > args.max_frame_seconds:
         method.stopped = True
         method.notes.append("stopped at step %d: still frame %.1f s > %.0f s"
@@ -550,10 +562,7 @@ def main():
         })
 
     csv_path = os.path.join(args.out, "lightkit_orbit.csv")
-    with open(csv_path, "w", newline="") as f:
-        writer = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
-        writer.writeheader()
-        writer.writerows(rows)
+    write_csv(csv_path, rows)
     with open(os.path.join(args.out, "machine.txt"), "w") as f:
         f.write("paraview %s\n" % version)
         f.write("resample %s\n" % "x".join(map(str, args.dims)))
