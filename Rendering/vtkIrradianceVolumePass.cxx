@@ -219,7 +219,6 @@ public:
   double SpectralRadius = 0.0; // of the Jacobi iteration, for the Chebyshev weights
   int ScatteringBox[6] = { 0, 0, 0, 0, 0, 0 }; // diffusion-grid blocks with s > 0
   unsigned int ResidualQuery = 0; // occlusion query counting unconverged blocks
-  int ResidualChecks = 0;
 
   // GPU resources.
   vtkSmartPointer<vtkTextureObject> ScalarTexture;
@@ -571,7 +570,6 @@ int vtkIrradianceVolumePass::vtkInternals::Diffuse(vtkOpenGLRenderWindow* contex
         sweep->SetUniformf("residualThreshold", 0.0f);
         GLuint unconverged = 1;
         glGetQueryObjectuiv(this->ResidualQuery, GL_QUERY_RESULT, &unconverged);
-        ++this->ResidualChecks;
         if (unconverged == 0)
         {
           break;
