@@ -543,14 +543,16 @@ int vtkIrradianceVolumePass::vtkInternals::Diffuse(vtkOpenGLRenderWindow* contex
       {
         ++next;
       }
-      ScopedTextures bound{ coarse[rhs], coarse[current], coarse[previous] };
-      sweep->SetUniformi("rhs", coarse[rhs]->GetTextureUnit());
-      sweep->SetUniformi("current", coarse[current]->GetTextureUnit());
-      sweep->SetUniformi("previous", coarse[previous]->GetTextureUnit());
-      sweep->SetUniformf(
-        "omega", static_cast<float>(mmv::ChebyshevWeight(k, this->SpectralRadius)));
-      // Blocks outside ScatteringBox never change and are never read.
-      this->DrawLayers(context, *this->SweepQuad, coarse[next], layered, this->ScatteringBox);
+      {
+        ScopedTextures bound{ coarse[rhs], coarse[current], coarse[previous] };
+        sweep->SetUniformi("rhs", coarse[rhs]->GetTextureUnit());
+        sweep->SetUniformi("current", coarse[current]->GetTextureUnit());
+        sweep->SetUniformi("previous", coarse[previous]->GetTextureUnit());
+        sweep->SetUniformf(
+          "omega", static_cast<float>(mmv::ChebyshevWeight(k, this->SpectralRadius)));
+        // Blocks outside ScatteringBox never change and are never read.
+        this->DrawLayers(context, *this->SweepQuad, coarse[next], layered, this->ScatteringBox);
+      }
       ++sweeps;
       previous = current;
       current = next;
@@ -562,7 +564,11 @@ int vtkIrradianceVolumePass::vtkInternals::Diffuse(vtkOpenGLRenderWindow* contex
         {
           ++scratch;
         }
+        // The iterate just drawn, against the same right-hand side.
+        ScopedTextures bound{ coarse[rhs], coarse[current] };
+        sweep->SetUniformi("rhs", coarse[rhs]->GetTextureUnit());
         sweep->SetUniformi("current", coarse[current]->GetTextureUnit());
+        sweep->SetUniformi("previous", coarse[current]->GetTextureUnit());
         sweep->SetUniformf("residualThreshold", threshold);
         glBeginQuery(GL_SAMPLES_PASSED, this->ResidualQuery);
         this->DrawLayers(context, *this->SweepQuad, coarse[scratch], layered, this->ScatteringBox);

@@ -3,6 +3,7 @@
 // slab), the diffusion's maximum principle, the light -> texture layout and
 // releasing/re-creating its resources. Needs an OpenGL 3.2 context (Xvfb +
 // Mesa llvmpipe in CI).
+#include "mmvTestUtilities.h"
 #include "vtkIrradianceDiffusion.h"
 #include "vtkIrradianceGrid.h"
 #include "vtkIrradianceVolumeFilter.h"
@@ -17,6 +18,7 @@
 #include "vtkNew.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLState.h"
+#include "vtkOutputWindow.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
 #include "vtkPreIntegrationTable.h"
@@ -643,8 +645,12 @@ TEST(IrradianceVolumePass, LeavesTheRenderersStateAsItFoundIt)
   const Scene scene = TwoBlocks(8.0);
   vtkNew<vtkIrradianceVolumePass> pass;
   SetPassInputs(scene, pass);
+  // No OpenGL error on the way (VTK reports them through the output
+  // window): a residual check once bound an inactive texture's unit -1.
+  mmvTest::ErrorCounter errors(vtkOutputWindow::GetInstance());
   ASSERT_TRUE(pass->Render(ctx.GL));
   ASSERT_GT(pass->GetDiffusionPasses(), 0);
+  EXPECT_EQ(errors.Errors() + errors.Warnings(), 0) << errors.LastMessage();
   GLint box[4];
   GLint viewport[4];
   glGetIntegerv(GL_SCISSOR_BOX, box);
