@@ -36,9 +36,12 @@ namespace
 
 constexpr int LightsPerTexture = 4;
 
-/// Sweeps between two residual checks of a diffusion sub-step: each check
-/// costs about a sweep and waits for the GPU.
-constexpr int ResidualCheckInterval = 3;
+/// Residual checks of a diffusion sub-step: each costs about a sweep and
+/// waits for the GPU, so only sub-steps whose error bound asks for at least
+/// this many sweeps are checked, four times at most. (Checking the CT's
+/// `skin` sub-steps of 9 sweeps every 3 saved 17 % of the sweeps but made
+/// the update 20 % slower on llvmpipe.)
+constexpr int ResidualCheckMinimumSweeps = 12;
 
 /// Linear interpolation of an n-entry table over the normalised range, as a
 /// bilinear texture lookup at (x + 0.5) / n would do it.
@@ -529,6 +532,9 @@ int vtkIrradianceVolumePass::vtkInternals::Diffuse(vtkOpenGLRenderWindow* contex
   // error by tol; checked every few sweeps, the error bound's count at most.
   const float threshold =
     static_cast<float>((1.0 - this->SpectralRadius) * this->Diffusion.SweepTolerance);
+  const int checkInterval = this->SweepsPerStep >= ResidualCheckMinimumSweeps
+    ? this->SweepsPerStep / 4
+    : this->SweepsPerStep;
   sweep->SetUniformf("residualThreshold", 0.0f);
   int rhs = 0;
   int current = 0;
@@ -556,7 +562,7 @@ int vtkIrradianceVolumePass::vtkInternals::Diffuse(vtkOpenGLRenderWindow* contex
       ++sweeps;
       previous = current;
       current = next;
-      if (k % ResidualCheckInterval == 0 && k < this->SweepsPerStep)
+      if (k % checkInterval == 0 && k < this->SweepsPerStep)
       {
         // The check draws into a texture no iterate lives in.
         int scratch = 1;

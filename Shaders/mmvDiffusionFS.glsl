@@ -11,7 +11,8 @@
 // leave [min b, max b]), accelerated by Chebyshev weights:
 //   x_new = x_previous + omega * (J(x) - x_previous).
 // A sub-step stops once every |J(x) - x| <= (1 - rho) tol, which bounds the
-// error |x - x*| by tol (J contracts by rho).
+// error |x - x*| by tol (J contracts by rho); checked only in sub-steps whose
+// error bound asks for many sweeps (vtkIrradianceVolumePass.cxx).
 //
 // With MMV_FILL_PASS defined (the final write): empty voxels bordering
 // non-empty ones take the mean of those neighbours, as the CPU filter's

@@ -642,7 +642,8 @@ TEST(IrradianceVolumePass, LeavesTheRenderersStateAsItFoundIt)
   state->vtkglEnable(GL_SCISSOR_TEST);
   state->vtkglScissor(3, 5, 41, 37);
   state->vtkglViewport(1, 2, 50, 60);
-  const Scene scene = TwoBlocks(8.0);
+  // s = 100: sub-steps long enough to be checked on their residual.
+  const Scene scene = TwoBlocks(100.0);
   vtkNew<vtkIrradianceVolumePass> pass;
   SetPassInputs(scene, pass);
   // No OpenGL error on the way (VTK reports them through the output
