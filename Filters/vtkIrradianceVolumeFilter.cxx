@@ -18,6 +18,7 @@
 #include "vtkPointData.h"
 #include "vtkPreIntegrationTable.h"
 #include "vtkSMPTools.h"
+#include "vtkShadowSweep.h"
 #include "vtkSmartPointer.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 
@@ -152,10 +153,43 @@ struct RayContext
 };
 
 /**
- * Transmittance from irradiance voxel `v` toward the light (eqs. 9-10), by
- * pre-integrated segments of length Step and one shorter final segment that
- * ends exactly on the volume boundary (or at the light).
+ * Transmittance over [0, end] (world units) of the ray from index `start`
+ * along index-space direction `indexDir` (eqs. 9-10), by pre-integrated
+ * segments of length Step and one shorter final segment that ends exactly at
+ * `end`, starting from `transmittance` (what lies beyond `end`) so that early
+ * termination sees the whole product.
  */
+double MarchTransmittance(const RayContext& ctx, const glm::dvec3& start,
+  const glm::dvec3& indexDir, double end, double startValue, double transmittance)
+{
+  const mmv::IrradianceGrid& grid = *ctx.Irradiance;
+  const double h = ctx.Step;
+  const vtkIdType steps = static_cast<vtkIdType>(std::floor(end / h + mmv::ShadowStepTolerance));
+  double previous = startValue;
+  for (vtkIdType n = 1; n <= steps; ++n)
+  {
+    if (transmittance < mmv::MinShadowTransmittance)
+    {
+      return transmittance;
+    }
+    const double next =
+      mmv::SampleTrilinear(grid, ctx.Prefiltered, start + (static_cast<double>(n) * h) * indexDir);
+    transmittance *= 1.0 - ctx.Table->LookupShadowOpacity(previous, next);
+    previous = next;
+  }
+  const double rest = end - static_cast<double>(steps) * h;
+  if (rest > mmv::ShadowRestTolerance * h && transmittance >= mmv::MinShadowTransmittance)
+  {
+    const double next = mmv::SampleTrilinear(grid, ctx.Prefiltered, start + end * indexDir);
+    const double alpha = ctx.Table->LookupShadowOpacity(previous, next);
+    // Optical depth is linear in the segment length for a linear value ramp.
+    transmittance *= std::pow(std::max(0.0, 1.0 - alpha), rest / h);
+  }
+  return transmittance;
+}
+
+/// Transmittance from irradiance voxel `v` toward the light: a full shadow
+/// ray, to the volume boundary (or the light).
 double ShadowTransmittance(const RayContext& ctx, const mmv::LightSource& light, vtkIdType v)
 {
   const mmv::IrradianceGrid& grid = *ctx.Irradiance;
@@ -169,30 +203,93 @@ double ShadowTransmittance(const RayContext& ctx, const mmv::LightSource& light,
   {
     end = std::min(end, lightDistance);
   }
-  const double h = ctx.Step;
-  const vtkIdType steps = static_cast<vtkIdType>(std::floor(end / h + mmv::ShadowStepTolerance));
-  double previous = ctx.Prefiltered[v];
-  double transmittance = 1.0;
-  for (vtkIdType n = 1; n <= steps; ++n)
+  return MarchTransmittance(ctx, start, indexDir, end, ctx.Prefiltered[v], 1.0);
+}
+
+/// Bilinear value of `values` in slice `plane` of axis `axis` at the in-slice
+/// coordinates of index `q` (clamped to the slice).
+double SampleSlice(const int dims[3], const float* values, int axis, int plane, const glm::dvec3& q)
+{
+  const int b = (axis + 1) % 3;
+  const int c = (axis + 2) % 3;
+  int i0[3];
+  double f[3];
+  for (const int a : { b, c })
   {
-    const double next =
-      mmv::SampleTrilinear(grid, ctx.Prefiltered, start + (static_cast<double>(n) * h) * indexDir);
-    transmittance *= 1.0 - ctx.Table->LookupShadowOpacity(previous, next);
-    if (transmittance < mmv::MinShadowTransmittance)
+    const double x = std::min(std::max(q[a], 0.0), static_cast<double>(dims[a] - 1));
+    i0[a] = std::min(static_cast<int>(x), std::max(dims[a] - 2, 0));
+    f[a] = dims[a] > 1 ? x - i0[a] : 0.0;
+  }
+  const vtkIdType stride[3] = { 1, dims[0], static_cast<vtkIdType>(dims[0]) * dims[1] };
+  const vtkIdType base = plane * stride[axis] + i0[b] * stride[b] + i0[c] * stride[c];
+  const vtkIdType db = dims[b] > 1 ? stride[b] : 0;
+  const vtkIdType dc = dims[c] > 1 ? stride[c] : 0;
+  return (1.0 - f[c]) * ((1.0 - f[b]) * values[base] + f[b] * values[base + db]) +
+    f[c] * ((1.0 - f[b]) * values[base + dc] + f[b] * values[base + db + dc]);
+}
+
+/**
+ * Piecewise shadow rays of directional light `light` (vtkShadowSweep.h) into
+ * `transmittance`, one value per voxel of the grid: the non-empty ones, and
+ * the empty ones on the slices a later chunk reads (the rest stay 0).
+ * Progress and AbortExecute are handled between chunks; returns false when
+ * aborted. Adds the rays cast to `rays`.
+ */
+bool SweepPiecewiseShadowRays(vtkAlgorithm* self, const RayContext& ctx,
+  const mmv::LightSource& light, int slicesPerChunk, const std::vector<unsigned char>& nonEmpty,
+  double progress, double progressSpan, std::vector<float>& transmittance, vtkIdType& rays)
+{
+  const mmv::IrradianceGrid& grid = *ctx.Irradiance;
+  const int* dims = grid.Dimensions;
+  const glm::dvec3 indexDir = ctx.PhysicalToIndex * light.ToLight;
+  const mmv::ShadowSweep sweep = mmv::PlanShadowSweep(dims, indexDir, slicesPerChunk);
+  transmittance.assign(grid.GetNumberOfVoxels(), 0.0f);
+  const int a = sweep.Axis;
+  const int b = (a + 1) % 3;
+  const int c = (a + 2) % 3;
+  const vtkIdType stride[3] = { 1, dims[0], static_cast<vtkIdType>(dims[0]) * dims[1] };
+  std::atomic<vtkIdType> cast{ 0 };
+  const int chunks = sweep.GetNumberOfChunks();
+  for (int chunk = 0; chunk < chunks; ++chunk)
+  {
+    int first, last, plane;
+    sweep.GetChunk(chunk, first, last, plane);
+    const int read = sweep.GetReadSlice(chunk);
+    const vtkIdType sliceSize = static_cast<vtkIdType>(dims[b]) * dims[c];
+    vtkSMPTools::For(0, sliceSize * (last - first + 1), [&](vtkIdType begin, vtkIdType end) {
+      vtkIdType local = 0;
+      for (vtkIdType n = begin; n < end; ++n)
+      {
+        const int slice = first + static_cast<int>(n / sliceSize);
+        const vtkIdType v = slice * stride[a] + (n % dims[b]) * stride[b] +
+          ((n % sliceSize) / dims[b]) * stride[c];
+        if (!nonEmpty[v] && slice != read)
+        {
+          continue;
+        }
+        ++local;
+        const glm::dvec3 start = grid.IndexOfVoxel(v);
+        double exit = ExitDistance(grid, start, indexDir);
+        double far = 1.0;
+        double distance = 0.0;
+        if (mmv::ReachesSweepPlane(start[a], indexDir[a], plane, exit, distance))
+        {
+          exit = distance;
+          far = SampleSlice(dims, transmittance.data(), a, plane, start + distance * indexDir);
+        }
+        transmittance[v] =
+          static_cast<float>(MarchTransmittance(ctx, start, indexDir, exit, ctx.Prefiltered[v], far));
+      }
+      cast += local;
+    });
+    rays += cast.exchange(0);
+    self->UpdateProgress(progress + progressSpan * (chunk + 1) / chunks);
+    if (self->GetAbortExecute())
     {
-      return transmittance;
+      return false;
     }
-    previous = next;
   }
-  const double rest = end - static_cast<double>(steps) * h;
-  if (rest > mmv::ShadowRestTolerance * h)
-  {
-    const double next = mmv::SampleTrilinear(grid, ctx.Prefiltered, start + end * indexDir);
-    const double alpha = ctx.Table->LookupShadowOpacity(previous, next);
-    // Optical depth is linear in the segment length for a linear value ramp.
-    transmittance *= std::pow(std::max(0.0, 1.0 - alpha), rest / h);
-  }
-  return transmittance;
+  return true;
 }
 
 /// Empty voxels next to computed ones take the mean of those neighbours.
@@ -583,11 +680,33 @@ int vtkIrradianceVolumeFilter::RequestData(
   MakeLightTasks(this->Internals->Lights, radius, grid.GetNumberOfVoxels(), tasks, arrays);
   const RayContext ctx{ &grid, prefiltered.data(), this->Internals->Table, step,
     grid.PhysicalToIndexMatrix() };
+  std::vector<float> transmittance;
   for (size_t l = 0; l < tasks.size(); ++l)
   {
-    if (tasks[l].Active &&
-      !CastShadowRays(this, ctx, tasks[l].Source, computed, arrays[l]->GetPointer(0),
-        0.1 + 0.8 * l / tasks.size(), 0.8 / tasks.size(), this->NumberOfShadowRays))
+    if (!tasks[l].Active)
+    {
+      continue;
+    }
+    const double progress = 0.1 + 0.8 * l / tasks.size();
+    const double span = 0.8 / tasks.size();
+    bool finished = true;
+    if (this->ShadowEstimation == mmv::PiecewiseShadowRays &&
+      tasks[l].Source.Kind == mmv::DirectionalLight)
+    {
+      finished = SweepPiecewiseShadowRays(this, ctx, tasks[l].Source, this->PiecewiseShadowSlices,
+        nonEmpty, progress, span, transmittance, this->NumberOfShadowRays);
+      float* irradiance = arrays[l]->GetPointer(0);
+      for (const vtkIdType v : computed)
+      {
+        irradiance[v] = transmittance[v];
+      }
+    }
+    else
+    {
+      finished = CastShadowRays(this, ctx, tasks[l].Source, computed, arrays[l]->GetPointer(0),
+        progress, span, this->NumberOfShadowRays);
+    }
+    if (!finished)
     {
       output->Initialize();
       return 1;
@@ -624,6 +743,8 @@ void vtkIrradianceVolumeFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "IrradianceMemoryMB: " << this->IrradianceMemoryMB << "\n";
   os << indent << "PointLightRadius: " << this->PointLightRadius << "\n";
   os << indent << "ShadowStepScale: " << this->ShadowStepScale << "\n";
+  os << indent << "ShadowEstimation: " << this->ShadowEstimation << "\n";
+  os << indent << "PiecewiseShadowSlices: " << this->PiecewiseShadowSlices << "\n";
   os << indent << "MultipleScattering: " << this->MultipleScattering << "\n";
   os << indent << "FillEmptyNeighbors: " << this->FillEmptyNeighbors << "\n";
   os << indent << "NumberOfComputedVoxels: " << this->NumberOfComputedVoxels << "\n";

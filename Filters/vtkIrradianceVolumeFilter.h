@@ -18,7 +18,10 @@
  *     voxel's footprint). Grid and pre-filter are vtkIrradianceGrid.h's, which
  *     the GPU path uses too.
  *  3. For every voxel whose pre-filtered value has opacity > 0 (sparse; the
- *     count is NumberOfComputedVoxels), cast one shadow ray per light with the
+ *     count is NumberOfComputedVoxels), the transmittance toward each light:
+ *     directional lights by piecewise shadow rays (vtkShadowSweep.h; every
+ *     voxel, swept along the light) unless ShadowEstimation says full rays;
+ *     otherwise cast one shadow ray per light with the
  *     pre-integrated shadow opacity (sigma = attenuation * mu), steps of
  *     ShadowStepScale irradiance voxels, early termination at transmittance
  *     mmv::MinShadowTransmittance (1e-4). Directional lights: ray to the
@@ -41,6 +44,7 @@
 #define vtkIrradianceVolumeFilter_h
 
 #include "vtkImageAlgorithm.h"
+#include "vtkMultiMaterialParameters.h" // ShadowEstimation
 #include "vtkMultiMaterialVolumeModule.h" // export macro
 
 class vtkLight;
@@ -93,6 +97,20 @@ public:
   vtkSetClampMacro(ShadowStepScale, double, 0.05, 16.0);
   vtkGetMacro(ShadowStepScale, double);
 
+  /**
+   * How directional lights are estimated (mmv::ShadowEstimation,
+   * vtkShadowSweep.h): 1, piecewise shadow rays swept along the light
+   * (default; O(n^3 K) for an n^3 grid), or 0, full shadow rays (exact,
+   * O(n^4)). Point and spot lights always take full rays.
+   */
+  vtkSetClampMacro(ShadowEstimation, int, 0, 1);
+  vtkGetMacro(ShadowEstimation, int);
+
+  /// Slices K a piecewise shadow ray spans at most (default
+  /// mmv::DefaultPiecewiseShadowSlices).
+  vtkSetClampMacro(PiecewiseShadowSlices, int, 1, 4096);
+  vtkGetMacro(PiecewiseShadowSlices, int);
+
   /// Diffusion for multiple scattering (default on).
   vtkSetMacro(MultipleScattering, bool);
   vtkGetMacro(MultipleScattering, bool);
@@ -138,6 +156,8 @@ protected:
   double IrradianceMemoryMB = 64.0;
   double PointLightRadius = 0.0;
   double ShadowStepScale = 1.0;
+  int ShadowEstimation = mmv::PiecewiseShadowRays;
+  int PiecewiseShadowSlices = mmv::DefaultPiecewiseShadowSlices;
   bool MultipleScattering = true;
   bool FillEmptyNeighbors = true;
 

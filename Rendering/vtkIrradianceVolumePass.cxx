@@ -10,6 +10,7 @@
 #include "vtkOpenGLState.h"
 #include "vtkOpenGLVertexArrayObject.h"
 #include "vtkShaderProgram.h"
+#include "vtkShadowSweep.h"
 #include "vtkSmartPointer.h"
 #include "vtkTextureObject.h"
 #include "vtk_glew.h"
@@ -20,6 +21,8 @@
 #include "mmvLayerGS.h"
 #include "mmvLayerVS.h"
 #include "mmvLightModel.h"
+#include "mmvPiecewiseShadowFS.h"
+#include "mmvShadowRay.h"
 
 #include <glm/gtc/type_ptr.hpp>
 
@@ -56,7 +59,7 @@ float LookupTable(const std::vector<float>& table, float t)
 
 /// The fragment shader: system declarations, `defines`, optionally the light
 /// model, then `body`.
-std::string ComposeShader(const char* body, const std::string& defines, bool lightModel)
+std::string ComposeShader(const std::string& body, const std::string& defines, bool lightModel)
 {
   std::string source = "//VTK::System::Dec\n";
   source += mmv::MaterialGLSLPrelude();
@@ -207,6 +210,9 @@ public:
   std::vector<mmv::LightSource> ComputedLights;
   bool VolumeChanged = true;
   bool MultipleScatteringUsed = true;
+  bool WarnedNoBarrier = false;
+  int ShadowEstimationUsed = -1; // with PiecewiseSlicesUsed: how the held lights were estimated
+  int PiecewiseSlicesUsed = 0;
 
   // Derived on the CPU: s per voxel (-1 where empty), and the diffusion
   // grid (vtkIrradianceDiffusion.h) with its strength and capacity per block
@@ -236,6 +242,7 @@ public:
   std::array<vtkSmartPointer<vtkTextureObject>, 5> CoarseScratch;
   vtkSmartPointer<vtkOpenGLFramebufferObject> Framebuffer;
   std::unique_ptr<vtkOpenGLQuadHelper> ShadowQuad;
+  std::unique_ptr<vtkOpenGLQuadHelper> PiecewiseQuad;
   std::unique_ptr<vtkOpenGLQuadHelper> RestrictQuad;
   std::unique_ptr<vtkOpenGLQuadHelper> SweepQuad;
   std::unique_ptr<vtkOpenGLQuadHelper> ProlongQuad;
@@ -247,12 +254,13 @@ public:
   bool Upload(vtkOpenGLRenderWindow* context);
   bool AllocateTargets(vtkOpenGLRenderWindow* context, bool diffusion, bool& reallocated);
   vtkShaderProgram* Ready(vtkOpenGLRenderWindow* context, std::unique_ptr<vtkOpenGLQuadHelper>& quad,
-    const char* body, const std::string& defines, bool lightModel);
+    const std::string& body, const std::string& defines, bool lightModel);
   void DrawLayers(vtkOpenGLRenderWindow* context, vtkOpenGLQuadHelper& quad,
     vtkTextureObject* target, bool layered, const int* box = nullptr);
   void SetTransferUniforms(vtkShaderProgram* program) const;
 
   bool ShadowPass(vtkOpenGLRenderWindow* context, int group, int mask, bool skipEmpty, bool layered);
+  bool PiecewiseShadowPass(vtkOpenGLRenderWindow* context, int light, int slicesPerChunk, bool layered);
   int Diffuse(vtkOpenGLRenderWindow* context, bool layered);
   bool FillPass(vtkOpenGLRenderWindow* context, vtkTextureObject* source, int group, int mask,
     bool layered);
@@ -389,7 +397,7 @@ bool vtkIrradianceVolumePass::vtkInternals::AllocateTargets(
 
 //------------------------------------------------------------------------------
 vtkShaderProgram* vtkIrradianceVolumePass::vtkInternals::Ready(vtkOpenGLRenderWindow* context,
-  std::unique_ptr<vtkOpenGLQuadHelper>& quad, const char* body, const std::string& defines,
+  std::unique_ptr<vtkOpenGLQuadHelper>& quad, const std::string& body, const std::string& defines,
   bool lightModel)
 {
   if (!quad)
@@ -464,8 +472,8 @@ void vtkIrradianceVolumePass::vtkInternals::SetTransferUniforms(vtkShaderProgram
 bool vtkIrradianceVolumePass::vtkInternals::ShadowPass(
   vtkOpenGLRenderWindow* context, int group, int mask, bool skipEmpty, bool layered)
 {
-  vtkShaderProgram* program =
-    this->Ready(context, this->ShadowQuad, mmvIrradianceFS, mmv::ShadowRayGLSLPrelude(), true);
+  vtkShaderProgram* program = this->Ready(context, this->ShadowQuad,
+    std::string(mmvShadowRay) + mmvIrradianceFS, mmv::ShadowRayGLSLPrelude(), true);
   if (!program)
   {
     return false;
@@ -486,6 +494,58 @@ bool vtkIrradianceVolumePass::vtkInternals::ShadowPass(
   program->SetUniformi("computeEmptyVoxels", skipEmpty ? 0 : 1);
   SetLightUniforms(program, this->Lights, group * LightsPerTexture, mask);
   this->DrawLayers(context, *this->ShadowQuad, this->FineScratch[0], layered);
+  return true;
+}
+
+//------------------------------------------------------------------------------
+// Piecewise shadow rays of directional light `light` into its channel of
+// FineScratch[0] (vtkShadowSweep.h): one draw per chunk of slices, nearest
+// the light first; a texture barrier lets each chunk read what the earlier
+// ones wrote into the same texture.
+bool vtkIrradianceVolumePass::vtkInternals::PiecewiseShadowPass(
+  vtkOpenGLRenderWindow* context, int light, int slicesPerChunk, bool layered)
+{
+  vtkShaderProgram* program = this->Ready(context, this->PiecewiseQuad,
+    std::string(mmvShadowRay) + mmvPiecewiseShadowFS, mmv::ShadowRayGLSLPrelude(), false);
+  if (!program)
+  {
+    return false;
+  }
+  const glm::dmat3 toIndex = this->Grid.PhysicalToIndexMatrix();
+  const mmv::LightSource& source = this->Lights[light];
+  const int* d = this->Grid.Dimensions;
+  const mmv::ShadowSweep sweep = mmv::PlanShadowSweep(d, toIndex * source.ToLight, slicesPerChunk);
+  glm::mat3 toIndexF(toIndex);
+  glm::vec3 toLight(source.ToLight);
+  const int channel = light % LightsPerTexture;
+  vtkTextureObject* target = this->FineScratch[0];
+  ScopedTextures bound{ this->ScalarTexture, this->ClassTexture, this->TableTexture, target };
+  program->SetUniformi("scalars", this->ScalarTexture->GetTextureUnit());
+  program->SetUniformi("classes", this->ClassTexture->GetTextureUnit());
+  program->SetUniformi("shadowTable", this->TableTexture->GetTextureUnit());
+  program->SetUniformi("transmittance", target->GetTextureUnit());
+  program->SetUniformf("tableSize", static_cast<float>(this->TableSize));
+  program->SetUniform1iv("dims", 3, d);
+  program->SetUniformMatrix3x3("worldToIndex", glm::value_ptr(toIndexF));
+  program->SetUniform3f("toLight", glm::value_ptr(toLight));
+  program->SetUniformf("stepLength", static_cast<float>(this->StepLength));
+  program->SetUniformi("channel", channel);
+  program->SetUniformi("sweepAxis", sweep.Axis);
+  context->GetState()->vtkglColorMask(channel == 0, channel == 1, channel == 2, channel == 3);
+  for (int chunk = 0; chunk < sweep.GetNumberOfChunks(); ++chunk)
+  {
+    int first, last, plane;
+    sweep.GetChunk(chunk, first, last, plane);
+    int box[6] = { 0, d[0] - 1, 0, d[1] - 1, 0, d[2] - 1 };
+    box[2 * sweep.Axis] = first;
+    box[2 * sweep.Axis + 1] = last;
+    program->SetUniformi("sweepPlane", plane);
+    program->SetUniformi("readSlice", sweep.GetReadSlice(chunk));
+    // The earlier chunks' writes become visible to this draw's fetches.
+    glTextureBarrier();
+    this->DrawLayers(context, *this->PiecewiseQuad, target, layered, box);
+  }
+  context->GetState()->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   return true;
 }
 
@@ -677,7 +737,7 @@ void vtkIrradianceVolumePass::vtkInternals::Release(vtkWindow* window)
     this->Framebuffer = nullptr;
   }
   for (auto* quad :
-    { &this->ShadowQuad, &this->RestrictQuad, &this->SweepQuad, &this->ProlongQuad, &this->FillQuad })
+    { &this->ShadowQuad, &this->PiecewiseQuad, &this->RestrictQuad, &this->SweepQuad, &this->ProlongQuad, &this->FillQuad })
   {
     if (*quad)
     {
@@ -779,6 +839,23 @@ bool vtkIrradianceVolumePass::Render(vtkOpenGLRenderWindow* context)
     internals.Uploaded = false;
     internals.VolumeChanged = true;
   }
+  // glTextureBarrier (OpenGL 4.5 or ARB_texture_barrier) lets a chunk of
+  // piecewise rays read the earlier chunks' results from the same texture.
+  const bool barrier = glTextureBarrier != nullptr;
+  const int estimation = barrier ? this->ShadowEstimation : mmv::FullShadowRays;
+  if (estimation != this->ShadowEstimation && !internals.WarnedNoBarrier)
+  {
+    internals.WarnedNoBarrier = true;
+    vtkWarningMacro("Piecewise shadow rays need glTextureBarrier (OpenGL 4.5 or "
+                    "ARB_texture_barrier): this context takes full shadow rays.");
+  }
+  if (internals.ShadowEstimationUsed != estimation ||
+    internals.PiecewiseSlicesUsed != this->PiecewiseShadowSlices)
+  {
+    internals.ShadowEstimationUsed = estimation;
+    internals.PiecewiseSlicesUsed = this->PiecewiseShadowSlices;
+    internals.VolumeChanged = true;
+  }
   if (internals.MultipleScatteringUsed != this->MultipleScattering)
   {
     internals.MultipleScatteringUsed = this->MultipleScattering;
@@ -827,7 +904,35 @@ bool vtkIrradianceVolumePass::Render(vtkOpenGLRenderWindow* context)
       {
         continue;
       }
-      ok = internals.ShadowPass(context, group, mask, this->SkipEmptyVoxels, this->LayeredRendering);
+      // Directional lights by piecewise rays (unless full rays are asked
+      // for), the others by full rays, each light into its own channel.
+      int fullMask = 0;
+      std::vector<int> swept;
+      for (int l = 0; l < LightsPerTexture; ++l)
+      {
+        const int k = group * LightsPerTexture + l;
+        if ((mask & (1 << l)) != 0)
+        {
+          if (estimation == mmv::PiecewiseShadowRays &&
+            internals.Lights[k].Kind == mmv::DirectionalLight)
+          {
+            swept.push_back(k);
+          }
+          else
+          {
+            fullMask |= 1 << l;
+          }
+        }
+      }
+      ok = fullMask == 0 ||
+        internals.ShadowPass(
+          context, group, fullMask, this->SkipEmptyVoxels, this->LayeredRendering);
+      for (const int k : swept)
+      {
+        ok = ok &&
+          internals.PiecewiseShadowPass(
+            context, k, this->PiecewiseShadowSlices, this->LayeredRendering);
+      }
       vtkTextureObject* result = internals.FineScratch[0];
       if (ok && diffusion)
       {
@@ -963,6 +1068,8 @@ void vtkIrradianceVolumePass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "DiffusionTime: " << this->DiffusionTime << "\n";
   os << indent << "LayeredRendering: " << this->LayeredRendering << "\n";
   os << indent << "SkipEmptyVoxels: " << this->SkipEmptyVoxels << "\n";
+  os << indent << "ShadowEstimation: " << this->ShadowEstimation << "\n";
+  os << indent << "PiecewiseShadowSlices: " << this->PiecewiseShadowSlices << "\n";
   os << indent << "DiffusionGrid: " << internals.Coarse.Dimensions[0] << " "
      << internals.Coarse.Dimensions[1] << " " << internals.Coarse.Dimensions[2] << " ("
      << internals.SubSteps << " sub-steps x " << internals.SweepsPerStep << " sweeps)\n";

@@ -13,9 +13,13 @@
  *
  * Passes (fragment shaders; each fills a whole 3D texture in one instanced
  * draw, layered rendering):
- *  1. shadow rays for every non-empty voxel (opacity > 0; empty voxels are
- *     skipped and written as 0), steps of the shadow table's length, exact
- *     exit distance and partial last step, early termination;
+ *  1. the transmittance toward each light: directional lights by piecewise
+ *     shadow rays (vtkShadowSweep.h: one draw per chunk of slices, swept
+ *     along the light, every voxel) unless ShadowEstimation asks for full
+ *     rays; other lights by full shadow rays for every non-empty voxel
+ *     (opacity > 0; empty voxels are skipped and written as 0). Both march
+ *     with steps of the shadow table's length, exact exit distance and
+ *     partial last step, early termination;
  *  2. multiple scattering (only when some s > 0 and enabled), as
  *     mmv::DiffuseIrradianceOnDiffusionGrid does it on the CPU: restriction
  *     to the diffusion grid (coarsened to the diffusion length), backward-
@@ -45,6 +49,7 @@
 #include "vtkIrradianceGrid.h"         // IrradianceGrid
 #include "vtkMultiMaterialLightModel.h" // LightSource
 #endif
+#include "vtkMultiMaterialParameters.h"   // ShadowEstimation
 #include "vtkMultiMaterialVolumeModule.h" // export macro
 #include "vtkObject.h"
 
@@ -94,6 +99,21 @@ public:
   vtkSetMacro(SkipEmptyVoxels, bool);
   vtkGetMacro(SkipEmptyVoxels, bool);
 
+  /**
+   * How directional lights are estimated (mmv::ShadowEstimation): 1,
+   * piecewise shadow rays swept along the light (default; vtkShadowSweep.h),
+   * or 0, full shadow rays. Point and spot lights always take full rays.
+   * Piecewise rays need glTextureBarrier (OpenGL 4.5); without it the pass
+   * warns once and takes full rays.
+   */
+  vtkSetClampMacro(ShadowEstimation, int, 0, 1);
+  vtkGetMacro(ShadowEstimation, int);
+
+  /// Slices a piecewise shadow ray spans at most (default
+  /// mmv::DefaultPiecewiseShadowSlices).
+  vtkSetClampMacro(PiecewiseShadowSlices, int, 1, 4096);
+  vtkGetMacro(PiecewiseShadowSlices, int);
+
   /// Runs the passes. Needs the context current. False (with an error) if
   /// inputs are missing or the context lacks what the passes need.
   bool Render(vtkOpenGLRenderWindow* context);
@@ -138,6 +158,8 @@ protected:
   double DiffusionTime = 1.0;
   bool LayeredRendering = true;
   bool SkipEmptyVoxels = true;
+  int ShadowEstimation = mmv::PiecewiseShadowRays;
+  int PiecewiseShadowSlices = mmv::DefaultPiecewiseShadowSlices;
   vtkIdType NumberOfComputedVoxels = 0;
   int DiffusionPasses = 0;
   int NumberOfUpdatedLights = 0;

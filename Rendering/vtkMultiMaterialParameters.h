@@ -85,6 +85,21 @@ constexpr double FullShadingGradientPerVoxel = 0.005;
 /// default.
 constexpr double PixelsPerIrradianceVoxel = 1.0;
 
+/// How the irradiance of a light is estimated (vtkShadowSweep.h).
+enum ShadowEstimation : int
+{
+  /// One ray per voxel to the volume boundary (Zhang & Ma §5.1): exact,
+  /// O(n^4) for an n^3 grid.
+  FullShadowRays = 0,
+  /// Piecewise shadow rays swept along the light, for directional lights;
+  /// point and spot lights keep full rays. O(n^3 K).
+  PiecewiseShadowRays = 1
+};
+
+/// Slices K a piecewise shadow ray spans at most, by default: measured
+/// against full shadow rays in docs/benchmark.md (error and time).
+constexpr int DefaultPiecewiseShadowSlices = 8;
+
 /// Default irradiance memory budget in MB (the paper's recommendation).
 constexpr double DefaultIrradianceBudgetMB = 64.0;
 
@@ -102,6 +117,14 @@ constexpr double ShadowStepToleranceFloat = 1.0e-5;
 /// A last partial segment shorter than this fraction of a step is dropped, so
 /// that rounding adds no zero-length segment (GLSL: MMV_REST_TOLERANCE).
 constexpr double ShadowRestTolerance = 1.0e-9;
+
+/// A piecewise shadow ray ends on its sweep plane (mmv::ReachesSweepPlane)
+/// if the plane is no farther than its exit distance times (1 + relative)
+/// plus absolute: a ray grazing the plane's edge then reads the edge
+/// (clamped) instead of flipping between plane and boundary with rounding,
+/// so float and double agree (GLSL: MMV_SWEEP_PLANE_*_TOLERANCE).
+constexpr double SweepPlaneRelativeTolerance = 1.0e-4;
+constexpr double SweepPlaneAbsoluteTolerance = 1.0e-6;
 
 /// Opacity is clamped below 1 before taking the log: alpha = 1 would mean
 /// infinite extinction. 1 - 1e-6 gives mu = 13.8 / u, opaque for any use.
@@ -188,7 +211,9 @@ inline std::string ShadowRayGLSLPrelude()
   };
   return "#define MMV_MIN_TRANSMITTANCE " + literal(MinShadowTransmittance) + "\n" +
     "#define MMV_STEP_TOLERANCE " + literal(ShadowStepToleranceFloat) + "\n" +
-    "#define MMV_REST_TOLERANCE " + literal(ShadowRestTolerance) + "\n";
+    "#define MMV_REST_TOLERANCE " + literal(ShadowRestTolerance) + "\n" +
+    "#define MMV_SWEEP_PLANE_RELATIVE_TOLERANCE " + literal(SweepPlaneRelativeTolerance) + "\n" +
+    "#define MMV_SWEEP_PLANE_ABSOLUTE_TOLERANCE " + literal(SweepPlaneAbsoluteTolerance) + "\n";
 }
 
 } // namespace mmv

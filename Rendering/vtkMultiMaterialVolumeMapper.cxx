@@ -665,7 +665,8 @@ bool vtkMultiMaterialVolumeMapper::UpdateIrradiance(vtkRenderer* ren, vtkVolume*
   const vtkMTimeType dataTime = std::max(image->GetMTime(), scalars->GetMTime());
   const std::vector<double> volumeKey = { double(dataTime), double(opacity->GetMTime()),
     double(in.MaterialVersion), unitDistance, range[0], range[1], double(this->MultipleScattering),
-    double(this->PreIntegrationTableSize), double(in.Lights.size()) };
+    double(this->PreIntegrationTableSize), double(in.Lights.size()), double(this->ShadowEstimation),
+    double(this->PiecewiseShadowSlices) };
   std::vector<double> lightsKey;
   for (const auto& light : in.Lights)
   {
@@ -744,6 +745,8 @@ bool vtkMultiMaterialVolumeMapper::UpdateIrradiance(vtkRenderer* ren, vtkVolume*
 
   vtkIrradianceVolumePass* pass = in.Irradiance;
   pass->SetMultipleScattering(this->MultipleScattering);
+  pass->SetShadowEstimation(this->ShadowEstimation);
+  pass->SetPiecewiseShadowSlices(this->PiecewiseShadowSlices);
   pass->SetInputs(in.Grid, in.Prefiltered, n, shadow->GetShadowOpacityTable(), shadowStep,
     opacityTable.data(), scatteringTable.data(), sources);
   if (!pass->Render(context))
@@ -794,6 +797,8 @@ void vtkMultiMaterialVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "IrradianceMemoryMB: " << this->IrradianceMemoryMB << "\n";
   os << indent << "IrradianceScale: " << this->IrradianceScale << "\n";
   os << indent << "MultipleScattering: " << this->MultipleScattering << "\n";
+  os << indent << "ShadowEstimation: " << this->ShadowEstimation << "\n";
+  os << indent << "PiecewiseShadowSlices: " << this->PiecewiseShadowSlices << "\n";
   os << indent << "PreIntegration: " << this->PreIntegration << "\n";
   os << indent << "PointLightRadius: " << this->PointLightRadius << "\n";
   os << indent << "PreIntegrationTableSize: " << this->PreIntegrationTableSize << "\n";

@@ -35,6 +35,7 @@
 #ifndef vtkMultiMaterialVolumeMapper_h
 #define vtkMultiMaterialVolumeMapper_h
 
+#include "vtkMultiMaterialParameters.h"   // ShadowEstimation
 #include "vtkMultiMaterialVolumeModule.h" // export macro
 #include "vtkOpenGLGPUVolumeRayCastMapper.h"
 
@@ -73,6 +74,23 @@ public:
   vtkSetMacro(MultipleScattering, bool);
   vtkGetMacro(MultipleScattering, bool);
   vtkBooleanMacro(MultipleScattering, bool);
+
+  /**
+   * How directional lights (ParaView's light kit, VTK's default light) are
+   * estimated: mmv::PiecewiseShadowRays (1, default), shadow rays swept
+   * along the light that end on the transmittance of a slice computed
+   * before (vtkShadowSweep.h; O(n^3 K) for an n^3 grid), or
+   * mmv::FullShadowRays (0), one ray per voxel to the boundary (exact,
+   * O(n^4)). Point and spot lights always take full rays. Accuracy and
+   * speed of both: docs/benchmark.md.
+   */
+  vtkSetClampMacro(ShadowEstimation, int, 0, 1);
+  vtkGetMacro(ShadowEstimation, int);
+
+  /// Slices a piecewise shadow ray spans at most (default
+  /// mmv::DefaultPiecewiseShadowSlices): fewer blur shadow edges more.
+  vtkSetClampMacro(PiecewiseShadowSlices, int, 1, 4096);
+  vtkGetMacro(PiecewiseShadowSlices, int);
 
   /// Pre-integrated segments (default on); off: post-classified samples.
   vtkSetMacro(PreIntegration, bool);
@@ -165,6 +183,8 @@ protected:
   double IrradianceMemoryMB = 64.0;
   double IrradianceScale = 0.0;
   bool MultipleScattering = true;
+  int ShadowEstimation = mmv::PiecewiseShadowRays;
+  int PiecewiseShadowSlices = mmv::DefaultPiecewiseShadowSlices;
   bool PreIntegration = true;
   double PointLightRadius = 0.0;
   int InteractiveIrradiance = ReuseWhileInteracting;

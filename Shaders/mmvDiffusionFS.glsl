@@ -33,6 +33,9 @@ void main()
   vec4 value = texelFetch(current, voxel, 0);
   if (texelFetch(classes, voxel, 0).r < 0.0)
   {
+    // Empty voxels hold 0 unless they border non-empty ones (piecewise
+    // shadow rays computed them too: later chunks read them).
+    value = vec4(0.0);
     vec4 sum = vec4(0.0);
     int count = 0;
     for (int a = 0; a < 3; ++a)

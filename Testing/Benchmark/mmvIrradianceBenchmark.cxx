@@ -5,13 +5,16 @@
 // and of VTK's Phong with the same lights, measured in the same run.
 //
 //   mmvIrradianceBenchmark --out DIR [--size N] [--reps N] [--head FILE.vti] [--quick]
+//                          [--only updates|resolution|estimation]
 //
 // Each configuration moves every light a little (so every light is
 // recomputed), renders, and reads the mapper's irradiance time (glFinish
 // before and after); medians over --reps updates. Writes
-// DIR/irradiance_updates.csv, and DIR/ct_resolution.csv: the still frame
+// DIR/irradiance_updates.csv, DIR/ct_resolution.csv: the still frame
 // after a light move (update + ray cast) against a VTK Phong frame, and the
-// image's PSNR against the full-resolution irradiance, per irradiance scale.
+// image's PSNR against the full-resolution irradiance, per irradiance scale;
+// and DIR/shadow_estimation.csv: piecewise against full shadow rays, the
+// update and the image's PSNR against the full rays', per chunk length K.
 // Not a test: it asserts nothing about timings.
 #include "mmvBenchmarkScenes.h"
 
@@ -205,6 +208,7 @@ int main(int argc, char* argv[])
   int size = 400;
   int reps = 3;
   bool quick = false;
+  std::string only; // one section: updates, resolution or estimation
   for (int i = 1; i < argc; ++i)
   {
     const std::string arg = argv[i];
@@ -228,6 +232,10 @@ int main(int argc, char* argv[])
     else if (arg == "--quick")
     {
       quick = true;
+    }
+    else if (arg == "--only")
+    {
+      only = next();
     }
     else
     {
@@ -283,6 +291,10 @@ int main(int argc, char* argv[])
             << std::endl;
   for (const Config& c : configs)
   {
+    if (!only.empty() && only != "updates")
+    {
+      break;
+    }
     ours.SetLightCount(c.Lights);
     phong.SetLightCount(c.Lights);
     ours.SetScattering(c.S);
@@ -350,6 +362,10 @@ int main(int argc, char* argv[])
     quick ? std::vector<double>{ 1.0, 0.5 } : std::vector<double>{ 1.0, 0.75, 0.5, 0.35, 0.25 };
   for (double s : { 0.0, 8.0 })
   {
+    if (!only.empty() && only != "resolution")
+    {
+      break;
+    }
     ours.SetScattering(s);
     vtkSmartPointer<vtkImageData> full;
     for (double scale : accuracyScales)
@@ -390,5 +406,72 @@ int main(int argc, char* argv[])
     }
   }
   std::cout << "== wrote " << out << "/ct_resolution.csv" << std::endl;
+
+  // Piecewise against full shadow rays: the light update and the image
+  // against the full rays' image of the same lights, per chunk length K.
+  std::ofstream est(out + "/shadow_estimation.csv");
+  est << "scattering,irradiance_scale,irradiance_dims,estimation,slices,update_s,phong_frame_s,"
+         "update_over_phong,psnr_vs_full_rays_db\n";
+  std::cout << "s  scale  irradiance    estimation  K   update s  phong s  update/phong  PSNR vs "
+               "full rays (dB)"
+            << std::endl;
+  const std::vector<double> estimationScales =
+    quick ? std::vector<double>{ 0.0 } : std::vector<double>{ 0.5, 0.0 };
+  const std::vector<int> chunkLengths =
+    quick ? std::vector<int>{ 0, 2, 8, 32, 128 } : std::vector<int>{ 0, 2, 4, 8, 16, 32 };
+  for (double s : { 0.0, 8.0 })
+  {
+    if (!only.empty() && only != "estimation")
+    {
+      break;
+    }
+    ours.SetScattering(s);
+    for (double scale : estimationScales)
+    {
+      ours.Ours->SetIrradianceScale(scale);
+      vtkSmartPointer<vtkImageData> full;
+      for (int k : chunkLengths) // 0: full rays, first, as the reference
+      {
+        ours.Ours->SetShadowEstimation(k == 0 ? mmv::FullShadowRays : mmv::PiecewiseShadowRays);
+        ours.Ours->SetPiecewiseShadowSlices(std::max(1, k));
+        ours.Window->Render();
+        std::vector<double> updates;
+        std::vector<double> phongFrames;
+        for (int r = 0; r < reps; ++r)
+        {
+          ours.Frames(1, [&]() { ours.PlaceLights(); }, &updates);
+          phongFrames.push_back(phong.Frames(1, [&]() { phong.PlaceLights(); }));
+        }
+        ours.PlaceLights(0.5);
+        ours.Window->Render();
+        vtkSmartPointer<vtkImageData> image = capture(ours.Window);
+        double psnr = std::numeric_limits<double>::infinity();
+        if (!full)
+        {
+          full = image;
+        }
+        else
+        {
+          vtkNew<vtkImageErrorMetrics> metrics;
+          metrics->Compute(image, full);
+          psnr = metrics->GetPSNR();
+        }
+        int irradiance[3];
+        ours.Ours->GetIrradianceDimensions(irradiance);
+        const double update = Median(updates);
+        const double phongFrame = Median(phongFrames);
+        const char* name = k == 0 ? "full" : "piecewise";
+        est << s << "," << scale << "," << Join(irradiance) << "," << name << "," << k << ","
+            << update << "," << phongFrame << "," << update / phongFrame << "," << psnr << "\n";
+        est.flush();
+        std::printf("%-3g %5.2f  %-12s %-10s %3d %8.3f  %7.3f  %11.2f  %8.1f\n", s, scale,
+          Join(irradiance).c_str(), name, k, update, phongFrame, update / phongFrame, psnr);
+        std::fflush(stdout);
+      }
+    }
+  }
+  ours.Ours->SetShadowEstimation(mmv::PiecewiseShadowRays);
+  ours.Ours->SetPiecewiseShadowSlices(mmv::DefaultPiecewiseShadowSlices);
+  std::cout << "== wrote " << out << "/shadow_estimation.csv" << std::endl;
   return 0;
 }

@@ -1,0 +1,107 @@
+/**
+ * @file   vtkShadowSweep.h
+ * @brief  The order in which piecewise shadow rays fill the irradiance grid
+ *         for one directional light; the CPU filter and the GPU pass share it.
+ *
+ * A full shadow ray crosses the whole grid, so estimating a directional
+ * light costs O(n^4) for an n^3 grid. Piecewise shadow rays (as in Hernell,
+ * Ljung and Ynnerman's local piecewise integration) cost O(n^3 K): the grid
+ * is swept slice by slice along the light's dominant index axis, nearest
+ * slices first, in chunks of K slices. A voxel's ray runs toward the light
+ * only up to the last slice of the previous chunk (at most K slices away),
+ * where it takes the transmittance already computed there, interpolated
+ * bilinearly in that slice. Every voxel of a chunk reads only earlier chunks,
+ * so a chunk is one parallel pass (one draw on the GPU). Empty voxels cost
+ * nothing unless they lie on a slice the next chunk reads.
+ *
+ * The price is the in-slice interpolation: once per chunk along a ray, so a
+ * shadow edge blurs by at most about sqrt(n / K) / 2 voxels (measured against
+ * full rays in docs/benchmark.md).
+ */
+#ifndef vtkShadowSweep_h
+#define vtkShadowSweep_h
+
+#include "vtkMultiMaterialParameters.h" // ShadowEstimation
+
+#include <glm/glm.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace mmv
+{
+
+struct ShadowSweep
+{
+  int Axis = 2;              // the dominant index axis of the direction toward the light
+  bool TowardPositive = true; // the light lies toward +Axis: the sweep starts at the last slice
+  int Slices = 1;            // grid dimension along Axis
+  int SlicesPerChunk = 1;    // K
+
+  int GetNumberOfChunks() const { return (this->Slices + this->SlicesPerChunk - 1) / this->SlicesPerChunk; }
+
+  /// The slice at `depth` slices from the light's side.
+  int SliceAtDepth(int depth) const { return this->TowardPositive ? this->Slices - 1 - depth : depth; }
+
+  /**
+   * Chunk `c`: its slices [first, last] (index order) and the slice whose
+   * transmittance its rays end on, or -1 for the first chunk, whose rays run
+   * to the boundary.
+   */
+  void GetChunk(int c, int& first, int& last, int& plane) const
+  {
+    const int nearest = c * this->SlicesPerChunk;
+    const int farthest = std::min(this->Slices, nearest + this->SlicesPerChunk) - 1;
+    first = std::min(this->SliceAtDepth(nearest), this->SliceAtDepth(farthest));
+    last = std::max(this->SliceAtDepth(nearest), this->SliceAtDepth(farthest));
+    plane = c == 0 ? -1 : this->SliceAtDepth(nearest - 1);
+  }
+
+  /// The slice of chunk `c` that the next chunk reads (-1 for the last):
+  /// its empty voxels are computed too, the chunk's other empty voxels not.
+  int GetReadSlice(int c) const
+  {
+    return c + 1 < this->GetNumberOfChunks() ? this->SliceAtDepth((c + 1) * this->SlicesPerChunk - 1)
+                                             : -1;
+  }
+};
+
+/// The sweep for index-space direction `toLight` (need not be unit length).
+inline ShadowSweep PlanShadowSweep(const int dims[3], const glm::dvec3& toLight, int slicesPerChunk)
+{
+  ShadowSweep sweep;
+  for (int a = 0; a < 3; ++a)
+  {
+    if (std::abs(toLight[a]) > std::abs(toLight[sweep.Axis]))
+    {
+      sweep.Axis = a;
+    }
+  }
+  sweep.TowardPositive = toLight[sweep.Axis] > 0.0;
+  sweep.Slices = dims[sweep.Axis];
+  sweep.SlicesPerChunk = std::max(1, slicesPerChunk);
+  return sweep;
+}
+
+/**
+ * A ray from index coordinate `start` (along the sweep axis) with
+ * `direction` index units per world unit reaches slice `plane` at
+ * `distance` (world units); it ends there if that is no farther than its
+ * exit distance `exit`, within the tolerances of vtkMultiMaterialParameters.h.
+ * GLSL: mmvReachesSweepPlane (Shaders/mmvPiecewiseShadowFS.glsl).
+ */
+inline bool ReachesSweepPlane(double start, double direction, int plane, double exit, double& distance)
+{
+  distance = 0.0;
+  if (plane < 0 || direction == 0.0)
+  {
+    return false;
+  }
+  distance = (static_cast<double>(plane) - start) / direction;
+  return distance >= 0.0 &&
+    distance <= exit * (1.0 + SweepPlaneRelativeTolerance) + SweepPlaneAbsoluteTolerance;
+}
+
+} // namespace mmv
+
+#endif

@@ -1,0 +1,87 @@
+// Piecewise shadow rays of one directional light (Rendering/vtkShadowSweep.h),
+// one fragment per voxel of the chunk being drawn: the ray runs toward the
+// light up to slice `sweepPlane` of axis `sweepAxis`, where it takes the
+// transmittance an earlier chunk wrote into this same texture (a texture
+// barrier separates the chunks' draws, and a chunk never reads its own
+// slices). Mirrors SweepPiecewiseShadowRays() of
+// Filters/vtkIrradianceVolumeFilter.cxx. Prepended by the pass: the material
+// prelude, mmv::ShadowRayGLSLPrelude() and mmvShadowRay.glsl.
+
+uniform sampler3D transmittance; // the target itself: earlier chunks' results
+uniform int channel;             // the light's channel in it
+uniform mat3 worldToIndex;
+uniform vec3 toLight;            // unit, world space
+uniform int sweepAxis;
+uniform int sweepPlane;          // -1: the first chunk, rays run to the boundary
+uniform int readSlice;           // the slice the next chunk reads (-1: none)
+uniform sampler3D classes;       // s per voxel, < 0 where the voxel is empty
+flat in int slice; // the layer (mmvLayerGS.glsl)
+in vec2 texCoord; // the quad's, at the centre of voxel (i, j)
+
+// mmv::ReachesSweepPlane: does the ray reach the plane before leaving the box?
+bool mmvReachesSweepPlane(float start, float direction, int plane, float exitDistance,
+  out float distance)
+{
+  distance = 0.0;
+  if (plane < 0 || direction == 0.0)
+  {
+    return false;
+  }
+  distance = (float(plane) - start) / direction;
+  return distance >= 0.0 &&
+    distance <= exitDistance * (1.0 + MMV_SWEEP_PLANE_RELATIVE_TOLERANCE) +
+      MMV_SWEEP_PLANE_ABSOLUTE_TOLERANCE;
+}
+
+// Bilinear transmittance in slice `plane` at the in-slice coordinates of q,
+// clamped to the slice (texelFetch: no filtering reaches another slice).
+float mmvSampleSlice(int axis, int plane, vec3 q)
+{
+  int b = (axis + 1) % 3;
+  int c = (axis + 2) % 3;
+  ivec3 i0 = ivec3(0);
+  i0[axis] = plane;
+  vec3 f = vec3(0.0);
+  ivec3 db = ivec3(0);
+  ivec3 dc = ivec3(0);
+  for (int k = 0; k < 2; ++k)
+  {
+    int a = k == 0 ? b : c;
+    float x = clamp(q[a], 0.0, float(dims[a] - 1));
+    i0[a] = min(int(x), max(dims[a] - 2, 0));
+    f[a] = dims[a] > 1 ? x - float(i0[a]) : 0.0;
+  }
+  db[b] = dims[b] > 1 ? 1 : 0;
+  dc[c] = dims[c] > 1 ? 1 : 0;
+  float v00 = texelFetch(transmittance, i0, 0)[channel];
+  float v10 = texelFetch(transmittance, i0 + db, 0)[channel];
+  float v01 = texelFetch(transmittance, i0 + dc, 0)[channel];
+  float v11 = texelFetch(transmittance, i0 + db + dc, 0)[channel];
+  return (1.0 - f[c]) * ((1.0 - f[b]) * v00 + f[b] * v10) +
+    f[c] * ((1.0 - f[b]) * v01 + f[b] * v11);
+}
+
+void main()
+{
+  ivec3 voxel = ivec3(floor(texCoord * vec2(dims[0], dims[1])), slice);
+  if (voxel[sweepAxis] != readSlice && texelFetch(classes, voxel, 0).r < 0.0)
+  {
+    // Empty, and no later chunk reads it: the fill pass decides its value.
+    gl_FragData[0] = vec4(0.0);
+    return;
+  }
+  vec3 start = vec3(voxel);
+  vec3 indexDir = worldToIndex * toLight;
+  float exitDistance = mmvExitDistance(start, indexDir);
+  float far = 1.0;
+  float distance;
+  if (mmvReachesSweepPlane(start[sweepAxis], indexDir[sweepAxis], sweepPlane, exitDistance,
+        distance))
+  {
+    exitDistance = distance;
+    far = mmvSampleSlice(sweepAxis, sweepPlane, start + distance * indexDir);
+  }
+  // The colour mask keeps the other lights' channels.
+  gl_FragData[0] = vec4(mmvMarchTransmittance(start, indexDir, exitDistance,
+    texelFetch(scalars, voxel, 0).r, far));
+}

@@ -1,0 +1,72 @@
+// Shadow-ray marching through the pre-filtered volume (Zhang & Ma §5.1),
+// shared by the full (mmvIrradianceFS.glsl) and piecewise
+// (mmvPiecewiseShadowFS.glsl) shadow rays. Mirrors MarchTransmittance() of
+// Filters/vtkIrradianceVolumeFilter.cxx line for line. Needs the shadow-ray
+// constants of mmv::ShadowRayGLSLPrelude() (MMV_MIN_TRANSMITTANCE,
+// MMV_STEP_TOLERANCE, MMV_REST_TOLERANCE).
+
+uniform sampler3D scalars;     // normalised pre-filtered values, linear
+uniform sampler2D shadowTable; // I_sigma(t1 along x, t2 along y), bilinear
+uniform float tableSize;
+uniform int dims[3];
+uniform float stepLength;
+
+// Trilinear value at a continuous index, as the CPU interpolates it.
+float mmvSampleScalar(vec3 index)
+{
+  return texture(scalars, (index + 0.5) / vec3(dims[0], dims[1], dims[2])).r;
+}
+
+float mmvShadowOpacity(float t1, float t2)
+{
+  vec2 x = clamp(vec2(t1, t2), 0.0, 1.0) * (tableSize - 1.0);
+  return texture(shadowTable, (x + 0.5) / tableSize).r;
+}
+
+// Distance along index-space direction d from p (inside) to the grid's box.
+float mmvExitDistance(vec3 p, vec3 d)
+{
+  float t = 3.0e38;
+  for (int a = 0; a < 3; ++a)
+  {
+    if (d[a] > 0.0)
+    {
+      t = min(t, (float(dims[a] - 1) - p[a]) / d[a]);
+    }
+    else if (d[a] < 0.0)
+    {
+      t = min(t, -p[a] / d[a]);
+    }
+  }
+  return max(t, 0.0);
+}
+
+// Transmittance over [0, end] of the ray from index `start` along indexDir:
+// pre-integrated segments of stepLength, then one shorter segment ending
+// exactly at `end`, starting from `transmittance` (what lies beyond `end`).
+float mmvMarchTransmittance(vec3 start, vec3 indexDir, float end, float startValue,
+  float transmittance)
+{
+  float h = stepLength;
+  int steps = int(floor(end / h + MMV_STEP_TOLERANCE));
+  float previous = startValue;
+  for (int n = 1; n <= steps; ++n)
+  {
+    if (transmittance < MMV_MIN_TRANSMITTANCE)
+    {
+      return transmittance;
+    }
+    float next = mmvSampleScalar(start + (float(n) * h) * indexDir);
+    transmittance *= 1.0 - mmvShadowOpacity(previous, next);
+    previous = next;
+  }
+  float rest = end - float(steps) * h;
+  if (rest > MMV_REST_TOLERANCE * h && transmittance >= MMV_MIN_TRANSMITTANCE)
+  {
+    float next = mmvSampleScalar(start + end * indexDir);
+    float alpha = mmvShadowOpacity(previous, next);
+    // Optical depth is linear in the segment length for a linear value ramp.
+    transmittance *= pow(max(0.0, 1.0 - alpha), rest / h);
+  }
+  return transmittance;
+}
