@@ -1,12 +1,16 @@
 #include "vtkMultiMaterialTextures.h"
 
+#include "vtkDataArray.h"
 #include "vtkMaterialTransferFunction.h"
 #include "vtkMultiMaterialParameters.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkPreIntegrationTable.h"
 #include "vtkTextureObject.h"
+#include "vtkValueGradient.h"
+#include "vtk_glew.h"
 
+#include <algorithm>
 #include <vector>
 
 vtkStandardNewMacro(vtkMultiMaterialTextures);
@@ -103,11 +107,42 @@ void vtkMultiMaterialTextures::UpdateMaterialTable(vtkOpenGLRenderWindow* contex
   ++this->MaterialUploads;
 }
 
+void vtkMultiMaterialTextures::UpdateGradientTexture(vtkOpenGLRenderWindow* context,
+  vtkDataArray* scalars, const int dims[3], const double range[2])
+{
+  const vtkMTimeType time = scalars->GetMTime();
+  const bool current = this->Gradient->GetHandle() != 0 && scalars == this->UploadedScalars &&
+    time == this->UploadedScalarsTime && range[0] == this->UploadedGradientRange[0] &&
+    range[1] == this->UploadedGradientRange[1] && std::equal(dims, dims + 3, this->GradientDimensions);
+  if (current)
+  {
+    return;
+  }
+  std::vector<float> gradients;
+  mmv::ComputeValueGradients(scalars, 0, dims, range, gradients);
+  this->Gradient->SetContext(context);
+  // Half floats: 6 bytes a voxel, and 11 bits of mantissa keep the faint
+  // gradients of soft tissue that 8-bit normals would flatten.
+  this->Gradient->SetInternalFormat(GL_RGB16F);
+  this->Gradient->SetFormat(GL_RGB);
+  this->Gradient->SetDataType(GL_FLOAT);
+  this->Gradient->Create3DFromRaw(dims[0], dims[1], dims[2], 3, VTK_FLOAT, gradients.data());
+  UseLinearClamped(this->Gradient);
+  this->Gradient->SetWrapR(vtkTextureObject::ClampToEdge);
+  this->UploadedScalars = scalars;
+  this->UploadedScalarsTime = time;
+  this->UploadedGradientRange[0] = range[0];
+  this->UploadedGradientRange[1] = range[1];
+  std::copy(dims, dims + 3, this->GradientDimensions);
+  ++this->GradientUploads;
+}
+
 void vtkMultiMaterialTextures::Activate()
 {
   this->SegmentColor->Activate();
   this->SegmentPosition->Activate();
   this->Material->Activate();
+  this->Gradient->Activate();
 }
 
 void vtkMultiMaterialTextures::Deactivate()
@@ -115,12 +150,16 @@ void vtkMultiMaterialTextures::Deactivate()
   this->SegmentColor->Deactivate();
   this->SegmentPosition->Deactivate();
   this->Material->Deactivate();
+  this->Gradient->Deactivate();
 }
 
 vtkIdType vtkMultiMaterialTextures::GetMemoryBytes() const
 {
   const vtkIdType n = this->TableSize;
-  return n * n * (4 + 1) * 4 + static_cast<vtkIdType>(this->UploadedMaterialSize) * 2 * 4 * 4;
+  const vtkIdType gradientBytes = static_cast<vtkIdType>(this->GradientDimensions[0]) *
+    this->GradientDimensions[1] * this->GradientDimensions[2] * 3 * 2;
+  return n * n * (4 + 1) * 4 + static_cast<vtkIdType>(this->UploadedMaterialSize) * 2 * 4 * 4 +
+    gradientBytes;
 }
 
 void vtkMultiMaterialTextures::ReleaseGraphicsResources(vtkWindow* window)
@@ -128,9 +167,11 @@ void vtkMultiMaterialTextures::ReleaseGraphicsResources(vtkWindow* window)
   this->SegmentColor->ReleaseGraphicsResources(window);
   this->SegmentPosition->ReleaseGraphicsResources(window);
   this->Material->ReleaseGraphicsResources(window);
+  this->Gradient->ReleaseGraphicsResources(window);
   this->UploadedTable = nullptr;
   this->UploadedMaterials = nullptr;
   this->UploadedTableBuild = -1;
+  this->UploadedScalars = nullptr;
 }
 
 void vtkMultiMaterialTextures::PrintSelf(ostream& os, vtkIndent indent)
@@ -138,4 +179,5 @@ void vtkMultiMaterialTextures::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "SegmentUploads: " << this->SegmentUploads << "\n";
   os << indent << "MaterialUploads: " << this->MaterialUploads << "\n";
+  os << indent << "GradientUploads: " << this->GradientUploads << "\n";
 }

@@ -7,7 +7,9 @@
  * from vtkPreIntegrationTable. Material table: RGBA32F n x 2, row 0 =
  * (ka, kd, ks, ke), row 1 = (r, c_t, s, 0), sampled over the scalar range
  * (the layout of mmv::MaterialParameterTable; the shader reads it at v = 0.25
- * and v = 0.75).
+ * and v = 0.75). Gradient volume: RGB16F at the data's resolution, the
+ * normalised-value gradient per voxel (vtkValueGradient.h), uploaded when the
+ * data or its range changed.
  */
 #ifndef vtkMultiMaterialTextures_h
 #define vtkMultiMaterialTextures_h
@@ -16,6 +18,7 @@
 #include "vtkNew.h"                       // members
 #include "vtkObject.h"
 
+class vtkDataArray;
 class vtkMaterialTransferFunction;
 class vtkOpenGLRenderWindow;
 class vtkPreIntegrationTable;
@@ -37,7 +40,13 @@ public:
   void UpdateMaterialTable(vtkOpenGLRenderWindow* context, vtkMaterialTransferFunction* materials,
     const double range[2], int n);
 
+  /// Uploads the gradient volume of component 0 of `scalars` (point data of
+  /// a `dims` grid) normalised over `range`, if any of them changed.
+  void UpdateGradientTexture(vtkOpenGLRenderWindow* context, vtkDataArray* scalars,
+    const int dims[3], const double range[2]);
+
   vtkTextureObject* GetSegmentColorTexture() { return this->SegmentColor; }
+  vtkTextureObject* GetGradientTexture() { return this->Gradient; }
   vtkTextureObject* GetSegmentPositionTexture() { return this->SegmentPosition; }
   vtkTextureObject* GetMaterialTexture() { return this->Material; }
 
@@ -47,6 +56,7 @@ public:
   /// Number of uploads done (segment tables, material table).
   vtkGetMacro(SegmentUploads, int);
   vtkGetMacro(MaterialUploads, int);
+  vtkGetMacro(GradientUploads, int);
 
   /// GPU memory held, in bytes.
   vtkIdType GetMemoryBytes() const;
@@ -64,6 +74,12 @@ private:
   vtkNew<vtkTextureObject> SegmentColor;
   vtkNew<vtkTextureObject> SegmentPosition;
   vtkNew<vtkTextureObject> Material;
+  vtkNew<vtkTextureObject> Gradient;
+  int GradientUploads = 0;
+  vtkDataArray* UploadedScalars = nullptr;
+  vtkMTimeType UploadedScalarsTime = 0;
+  double UploadedGradientRange[2] = { 0.0, 0.0 };
+  int GradientDimensions[3] = { 0, 0, 0 };
   int SegmentUploads = 0;
   int MaterialUploads = 0;
   int UploadedTableBuild = -1;

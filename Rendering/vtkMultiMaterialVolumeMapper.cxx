@@ -112,6 +112,7 @@ public:
   float IrradianceScale[3] = { 1.0f, 1.0f, 1.0f };
   float IrradianceBias[3] = { 0.0f, 0.0f, 0.0f };
   float GradientFade = 1.0f;
+  float GradientScale[3] = { 1.0f, 1.0f, 1.0f };
   float TableStep = 1.0f;
   float EnvironmentUp[3] = { 0.0f, 1.0f, 0.0f };
   float EnvironmentBottom[3] = { 0.0f, 0.0f, 0.0f };
@@ -160,6 +161,8 @@ void vtkMultiMaterialVolumeMapper::vtkInternals::SetUniforms(vtkShaderProgram* p
   program->SetUniformf("mmv_tableSize", static_cast<float>(this->SegmentTable->GetTableSize()));
   program->SetUniformf("mmv_tableStep", this->TableStep);
   program->SetUniformf("mmv_gradientFade", this->GradientFade);
+  program->SetUniformi("mmv_gradient", this->Textures->GetGradientTexture()->GetTextureUnit());
+  program->SetUniform3f("mmv_gradientScale", this->GradientScale);
   program->SetUniform3f("mmv_irradianceScale", this->IrradianceScale);
   program->SetUniform3f("mmv_irradianceBias", this->IrradianceBias);
 
@@ -534,6 +537,11 @@ bool vtkMultiMaterialVolumeMapper::PrepareMultiMaterial(vtkRenderer* ren, vtkVol
   in.TableStep = static_cast<float>(step);
   in.Textures->UpdateSegmentTables(context, table);
   in.Textures->UpdateMaterialTable(context, in.Materials, range, this->PreIntegrationTableSize);
+  in.Textures->UpdateGradientTexture(context, scalars, dataDims, range);
+  for (int a = 0; a < 3; ++a)
+  {
+    in.GradientScale[a] = static_cast<float>(dataDims[a]);
+  }
 
   // 2. Lights, in the volume's object space.
   vtkNew<vtkMatrix4x4> worldToObject;

@@ -12,6 +12,8 @@ uniform sampler2D mmv_material;     // (t, 0.25) -> ka kd ks ke; (t, 0.75) -> r 
 uniform float mmv_tableSize;        // entries per table axis
 uniform float mmv_tableStep;        // segment length the tables were built for (object units)
 uniform float mmv_gradientFade;     // |gradient| (normalised value per object unit) of full surface shading
+uniform sampler3D mmv_gradient;     // per voxel: normalised-value gradient per index unit (vtkValueGradient.h)
+uniform vec3 mmv_gradientScale;     // index units per texture-coordinate unit (the data's dimensions)
 uniform vec3 mmv_irradianceScale;   // data texture coordinate -> irradiance texture coordinate
 uniform vec3 mmv_irradianceBias;
 #if MMV_NUMBER_OF_LIGHTS > 0
@@ -44,13 +46,11 @@ float mmvTableCoord(float t)
   return (clamp(t, 0.0, 1.0) * (mmv_tableSize - 1.0) + 0.5) / mmv_tableSize;
 }
 
-// Gradient of the normalised value in object space, by central differences.
+// Gradient of the normalised value in object space: the voxels' central
+// differences, interpolated (one fetch instead of six).
 vec3 mmvGradient(vec3 texPos)
 {
-  vec3 d = in_cellStep[0];
-  vec3 g = vec3(mmvValue(texPos + vec3(d.x, 0.0, 0.0)) - mmvValue(texPos - vec3(d.x, 0.0, 0.0)),
-    mmvValue(texPos + vec3(0.0, d.y, 0.0)) - mmvValue(texPos - vec3(0.0, d.y, 0.0)),
-    mmvValue(texPos + vec3(0.0, 0.0, d.z)) - mmvValue(texPos - vec3(0.0, 0.0, d.z))) / (2.0 * d);
+  vec3 g = texture(mmv_gradient, texPos).xyz * mmv_gradientScale;
   // A gradient is a covector: it maps with the inverse transpose.
   return transpose(mat3(in_inverseTextureDatasetMatrix[0])) * g;
 }

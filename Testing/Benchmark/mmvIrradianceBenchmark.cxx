@@ -5,7 +5,7 @@
 // and of VTK's Phong with the same lights, measured in the same run.
 //
 //   mmvIrradianceBenchmark --out DIR [--size N] [--reps N] [--head FILE.vti] [--quick]
-//                          [--only updates|resolution|estimation]
+//                          [--only updates|resolution|estimation|raycast]
 //
 // Each configuration moves every light a little (so every light is
 // recomputed), renders, and reads the mapper's irradiance time (glFinish
@@ -282,6 +282,28 @@ int main(int argc, char* argv[])
 
   Bench ours(scene, size, true);
   Bench phong(scene, size, false);
+  if (only == "raycast")
+  {
+    // Camera-only frames (the irradiance cached): ours against Phong with
+    // the same 5 lights, interleaved, 5x the repetitions of the others.
+    ours.SetLightCount(5);
+    phong.SetLightCount(5);
+    ours.Window->Render();
+    phong.Window->Render();
+    std::vector<double> casts;
+    std::vector<double> phongFrames;
+    std::vector<double> ratios;
+    for (int r = 0; r < 5 * reps; ++r)
+    {
+      casts.push_back(ours.Frames(1, [&]() { ours.Renderer->GetActiveCamera()->Azimuth(0.5); }));
+      phongFrames.push_back(
+        phong.Frames(1, [&]() { phong.Renderer->GetActiveCamera()->Azimuth(0.5); }));
+      ratios.push_back(casts.back() / phongFrames.back());
+    }
+    std::printf("ray cast %.3f s, Phong %.3f s, median ratio %.2f\n", Median(casts),
+      Median(phongFrames), Median(ratios));
+    return 0;
+  }
   std::ofstream csv(out + "/irradiance_updates.csv");
   csv << "sweep,lights,scattering,irradiance_scale,layered_draws,skip_empty_voxels,"
          "irradiance_dims,diffusion_dims,sub_steps,sweeps_per_step,computed_voxels,"

@@ -1,0 +1,44 @@
+/**
+ * @file   vtkValueGradient.h
+ * @brief  The gradient the ray caster shades with, precomputed per voxel.
+ *
+ * Computing the gradient at every shaded sample by central differences costs
+ * six fetches of the data texture, half of a sample's twelve, and made our
+ * ray cast 1.35-1.5x VTK's Phong on llvmpipe (docs/benchmark.md). The
+ * gradient is a property of the data alone, so it is computed once per data
+ * change here and the shader reads it with one trilinear fetch
+ * (Shaders/mmvRayCastDec.glsl, mmvGradient).
+ *
+ * What is stored: for voxel i, the central difference of the normalised
+ * value (value - range[0]) / (range[1] - range[0]) per index unit,
+ * (v[i+1] - v[i-1]) / 2 along each axis, with the neighbours clamped to the
+ * volume (one-sided halves at the faces, as a clamped texture gives them).
+ * Interpolating these trilinearly differs from the central difference of the
+ * trilinear field at the sample (what the reference renderer keeps): the
+ * cost in image error is measured in docs/benchmark.md.
+ */
+#ifndef vtkValueGradient_h
+#define vtkValueGradient_h
+
+#include "vtkMultiMaterialVolumeModule.h" // export macro
+#include "vtkType.h"
+
+#include <vector>
+
+class vtkDataArray;
+
+namespace mmv
+{
+
+/**
+ * Fills `gradients` with 3 floats per point of a `dims` grid (x fastest) from
+ * component `component` of `scalars`. Non-finite values and their neighbours'
+ * differences give 0 along that axis: NaN must not reach the shading.
+ * Multithreaded (vtkSMPTools).
+ */
+VTKMULTIMATERIALVOLUME_EXPORT void ComputeValueGradients(vtkDataArray* scalars, int component,
+  const int dims[3], const double range[2], std::vector<float>& gradients);
+
+} // namespace mmv
+
+#endif
