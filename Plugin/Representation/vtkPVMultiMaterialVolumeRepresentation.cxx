@@ -159,6 +159,8 @@ void vtkPVMultiMaterialVolumeRepresentation::UpdateMapperParameters()
   mapper->SetAutoAdjustSampleDistances(this->AutoAdjustSampleDistances);
   mapper->SetLockSampleDistanceToInputSpacing(this->LockSampleDistanceToInputSpacing);
   mapper->SetInteractiveIrradiance(this->InteractiveIrradiance);
+  mapper->SetShadowEstimation(this->ShadowEstimation);
+  mapper->SetPiecewiseShadowSlices(this->PiecewiseShadowSlices);
 }
 
 //------------------------------------------------------------------------------
@@ -183,6 +185,8 @@ vtkPVMMVSetter(SampleDistance, double);
 vtkPVMMVSetter(AutoAdjustSampleDistances, bool);
 vtkPVMMVSetter(LockSampleDistanceToInputSpacing, bool);
 vtkPVMMVSetter(InteractiveIrradiance, int);
+vtkPVMMVSetter(ShadowEstimation, int);
+vtkPVMMVSetter(PiecewiseShadowSlices, int);
 #undef vtkPVMMVSetter
 
 //------------------------------------------------------------------------------
@@ -256,4 +260,6 @@ void vtkPVMultiMaterialVolumeRepresentation::PrintSelf(ostream& os, vtkIndent in
   os << indent << "LockSampleDistanceToInputSpacing: " << this->LockSampleDistanceToInputSpacing
      << "\n";
   os << indent << "InteractiveIrradiance: " << this->InteractiveIrradiance << "\n";
+  os << indent << "ShadowEstimation: " << this->ShadowEstimation << "\n";
+  os << indent << "PiecewiseShadowSlices: " << this->PiecewiseShadowSlices << "\n";
 }

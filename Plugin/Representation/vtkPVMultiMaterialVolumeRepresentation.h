@@ -82,6 +82,8 @@ public:
   void SetAutoAdjustSampleDistances(bool enabled);
   void SetLockSampleDistanceToInputSpacing(bool enabled);
   void SetInteractiveIrradiance(int mode);
+  void SetShadowEstimation(int estimation);
+  void SetPiecewiseShadowSlices(int slices);
   ///@}
 
   ///@{
@@ -133,6 +135,8 @@ private:
   bool AutoAdjustSampleDistances = true;
   bool LockSampleDistanceToInputSpacing = false;
   int InteractiveIrradiance = 1; // vtkMultiMaterialVolumeMapper::ReuseWhileInteracting
+  int ShadowEstimation = 1;      // mmv::PiecewiseShadowRays
+  int PiecewiseShadowSlices = 8; // mmv::DefaultPiecewiseShadowSlices
 };
 
 #endif

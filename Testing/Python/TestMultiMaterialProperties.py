@@ -200,6 +200,26 @@ checker.check(counters()["IrradianceUpdateCount"] == before["IrradianceUpdateCou
               "Update Always: an interactive render updates the irradiance")
 rep.InteractiveIrradiance = "Reuse While Interacting"
 
+# ShadowEstimation: the light kit's directional lights by piecewise (default)
+# or full shadow rays; switching recomputes the irradiance, and the two
+# images differ, but only a little (shadow edges blur by about a voxel).
+checker.check(rep.ShadowEstimation == "Piecewise Shadow Rays",
+              "ShadowEstimation defaults to Piecewise Shadow Rays (%r)" % rep.ShadowEstimation)
+piecewise = render()
+before = counters()
+rep.ShadowEstimation = "Full Shadow Rays"
+full = render()
+checker.check(counters()["IrradianceUpdateCount"] == before["IrradianceUpdateCount"] + 1,
+              "switching to full shadow rays recomputes the irradiance")
+d = mmv.mean_difference(piecewise, full)
+checker.check(0.0 < d < 1.0, "piecewise and full shadow rays differ a little (mean |difference| %.3f)" % d)
+rep.PiecewiseShadowSlices = 2
+rep.ShadowEstimation = "Piecewise Shadow Rays"
+short = render()
+checker.check(counters()["IrradianceUpdateCount"] == before["IrradianceUpdateCount"] + 2,
+              "PiecewiseShadowSlices reaches the mapper")
+rep.PiecewiseShadowSlices = 8
+
 log = errors.take_errors()
 checker.check(log == "", "no VTK errors: %r" % log[:500])
 checker.finish()
