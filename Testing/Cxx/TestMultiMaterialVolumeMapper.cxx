@@ -527,7 +527,8 @@ TEST(MultiMaterialVolumeMapper, MappersVolumesAndPassesAreFreed)
   // VTK 9.2's RenderPasses key Append() registers twice and only Remove()
   // gives both back: LeakSanitizer found one pass leaked per mapper. Each
   // round builds a lit scene, renders it (which installs the pass) and drops
-  // it in one of three orders; every watched object must then be gone.
+  // it in one of three orders; every watched object must then be gone (the
+  // live count back to zero).
   DeletionWatch watch;
   auto image = mmvtest::MakeVolume(9, [](int i, int, int) { return static_cast<float>(i); });
   for (int round = 0; round < 6; ++round)
@@ -535,9 +536,6 @@ TEST(MultiMaterialVolumeMapper, MappersVolumesAndPassesAreFreed)
     const int order = round % 3; // 0: volume dies first, 1: mapper first, 2: pass removed first
     vtkNew<ForeignRenderPass> foreign;
     watch.Watch(foreign);
-    vtkNew<vtkInformation> keys; // the volume's; dies at the end of the round
-    watch.Watch(keys);
-    vtkOpenGLRenderPass::RenderPasses()->Append(keys, foreign);
     {
       auto mapper = vtkSmartPointer<vtkMultiMaterialVolumeMapper>::New();
       vtkNew<vtkMaterialTransferFunction> materials;
@@ -549,7 +547,13 @@ TEST(MultiMaterialVolumeMapper, MappersVolumesAndPassesAreFreed)
       scene.Opacity->AddPoint(0.0, 0.1);
       scene.Opacity->AddPoint(8.0, 0.5);
       scene.Volume->SetMapper(mapper);
-      scene.Volume->SetPropertyKeys(keys);
+      {
+        vtkNew<vtkInformation> newKeys; // the volume's only: they die with it
+        scene.Volume->SetPropertyKeys(newKeys);
+      }
+      vtkInformation* keys = scene.Volume->GetPropertyKeys();
+      watch.Watch(keys);
+      vtkOpenGLRenderPass::RenderPasses()->Append(keys, foreign);
       scene.FrameBounds(image->GetBounds());
       const double from[3] = { 4.0, 4.0, 100.0 };
       const double to[3] = { 4.0, 4.0, 4.0 };
@@ -581,7 +585,8 @@ TEST(MultiMaterialVolumeMapper, MappersVolumesAndPassesAreFreed)
         mapper = nullptr;
       }
       scene.Window->Finalize();
-      // order 0: the scene (with the volume and its keys) goes before `mapper`.
+      // Order 0: the scene, with the volume and its keys, goes before `mapper`;
+      // order 1: the volume and its keys outlive the mapper.
     }
   }
   std::printf("deletion watch: %d objects watched, %d deleted\n", watch.Watched, watch.Deleted);
