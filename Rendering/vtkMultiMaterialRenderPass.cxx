@@ -6,6 +6,7 @@
 #include "vtkShaderProgram.h"
 #include "vtkSmartPointer.h"
 
+#include <algorithm>
 #include <vector>
 
 vtkStandardNewMacro(vtkMultiMaterialRenderPass);
@@ -29,38 +30,68 @@ void vtkMultiMaterialRenderPass::SetFragmentReplacements(const Replacements& rep
   }
 }
 
-void vtkMultiMaterialRenderPass::InstallInto(vtkInformation* keys)
+namespace
+{
+// VTK 9.2's vtkInformationObjectBaseVectorKey::Append() registers its value
+// twice (an explicit Register() besides the smart pointer of its vector) and
+// only Remove(info, value) gives both back: Clear(), Resize() and the death of
+// the information give back one. So a pass appended to a volume's keys and
+// still there when the volume died leaked, once per mapper, and so did every
+// other pass that a Clear() took out and Append() put back. Set() and
+// Resize() touch only the smart pointers; rewriting the list with them keeps
+// every object's count as its owner left it, whoever empties the list later.
+using PassList = std::vector<vtkSmartPointer<vtkObjectBase>>;
+
+PassList GetPasses(vtkInformation* keys)
 {
   vtkInformationObjectBaseVectorKey* key = vtkOpenGLRenderPass::RenderPasses();
-  const int count = key->Length(keys);
-  std::vector<vtkSmartPointer<vtkObjectBase>> others;
+  PassList passes;
+  const int count = keys->Has(key) ? key->Length(keys) : 0;
   for (int i = 0; i < count; ++i)
   {
-    vtkObjectBase* pass = key->Get(keys, i);
-    if (pass == this)
-    {
-      return;
-    }
-    others.emplace_back(pass);
+    passes.emplace_back(key->Get(keys, i));
   }
-  key->Clear(keys);
-  key->Append(keys, this);
-  for (auto& pass : others)
+  return passes;
+}
+
+void SetPasses(vtkInformation* keys, const PassList& passes)
+{
+  vtkInformationObjectBaseVectorKey* key = vtkOpenGLRenderPass::RenderPasses();
+  if (passes.empty())
   {
-    key->Append(keys, pass);
+    keys->Remove(key);
+    return;
+  }
+  key->Resize(keys, static_cast<int>(passes.size()));
+  for (size_t i = 0; i < passes.size(); ++i)
+  {
+    key->Set(keys, passes[i], static_cast<int>(i));
+  }
+}
+}
+
+void vtkMultiMaterialRenderPass::InstallInto(vtkInformation* keys)
+{
+  PassList passes = GetPasses(keys);
+  if (std::find(passes.begin(), passes.end(), this) == passes.end())
+  {
+    passes.insert(passes.begin(), this);
+    SetPasses(keys, passes);
   }
 }
 
 void vtkMultiMaterialRenderPass::RemoveFrom(vtkInformation* keys)
 {
-  vtkInformationObjectBaseVectorKey* key = vtkOpenGLRenderPass::RenderPasses();
-  if (keys && keys->Has(key))
+  if (!keys)
   {
-    key->Remove(keys, this);
-    if (key->Length(keys) == 0)
-    {
-      keys->Remove(key);
-    }
+    return;
+  }
+  PassList passes = GetPasses(keys);
+  const auto end = std::remove(passes.begin(), passes.end(), this);
+  if (end != passes.end())
+  {
+    passes.erase(end, passes.end());
+    SetPasses(keys, passes);
   }
 }
 

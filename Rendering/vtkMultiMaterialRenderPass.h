@@ -58,6 +58,9 @@ public:
   /// (dual depth peeling must stay last).
   void InstallInto(vtkInformation* keys);
   /// Takes this pass out of `keys`' RenderPasses() list.
+  /// Both leave every reference count as balanced as they found it, unlike
+  /// VTK 9.2's key Append()/Clear() (see the .cxx), so the pass dies with the
+  /// volume or the mapper, whichever goes last.
   void RemoveFrom(vtkInformation* keys);
 
   bool PreReplaceShaderValues(std::string& vertexShader, std::string& geometryShader,

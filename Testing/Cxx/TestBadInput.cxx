@@ -17,7 +17,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 
 namespace
@@ -101,6 +103,76 @@ vtkSmartPointer<vtkImageData> SphereVolume()
 {
   return mmvtest::MakeVolume(33, Sphere);
 }
+
+// Render()'s scene in closed form: colour C, opacity ramp 0 -> 0.5 over
+// 0..120 per unit length, ka = 0.3, parallel camera on +z framing 48 units.
+const double Ka = 0.3;
+const double SceneColor[3] = { 1.0, 0.8, 0.6 };
+
+double OpacityOf(double v)
+{
+  return std::min(std::max(v, 0.0), 120.0) / 240.0;
+}
+
+// World x (or y) of the centre of pixel p in a size-pixel window.
+double PixelCentre(int p, int size)
+{
+  return 16.0 + (p + 0.5 - 0.5 * size) * 48.0 / size;
+}
+
+// Transmittance T = exp(integral of ln(1 - alpha(v)) dz) along the ray at
+// (x, y) through a 33 x 33 x depth volume of voxel values voxel(i, j, k),
+// trilinearly interpolated as the GPU texture is.
+double Transmittance(const std::function<float(int, int, int)>& voxel, int depth, double x, double y)
+{
+  if (x < 0.0 || y < 0.0 || x > 32.0 || y > 32.0)
+  {
+    return 1.0;
+  }
+  const int i = std::min(static_cast<int>(x), 31), j = std::min(static_cast<int>(y), 31);
+  const double fx = x - i, fy = y - j;
+  auto plane = [&](int k) {
+    return (1 - fy) * ((1 - fx) * voxel(i, j, k) + fx * voxel(i + 1, j, k)) +
+      fy * ((1 - fx) * voxel(i, j + 1, k) + fx * voxel(i + 1, j + 1, k));
+  };
+  const int steps = 64; // per unit: the integrand is smooth between planes
+  double opticalDepth = 0.0;
+  for (int k = 0; k + 1 < depth; ++k)
+  {
+    const double a = plane(k), b = plane(k + 1);
+    for (int s = 0; s < steps; ++s)
+    {
+      const double t = (s + 0.5) / steps;
+      opticalDepth += std::log(1.0 - OpacityOf((1 - t) * a + t * b)) / steps;
+    }
+  }
+  return std::exp(opticalDepth);
+}
+
+// Ambient-only closed form. Without lights the shader emits ka * I_c per
+// segment (mmvShadeSegment), and with a constant colour the pre-integrated
+// I_c = C * I_alpha, so front-to-back compositing telescopes to
+//   pixel = ka * C * (1 - T).
+// Returns the largest |rendered - expected| over all pixels and channels.
+double AmbientClosedFormError(const Result& r, const std::function<float(int, int, int)>& voxel,
+  int depth, int size)
+{
+  double worst = 0.0;
+  for (int py = 0; py < size; ++py)
+  {
+    for (int px = 0; px < size; ++px)
+    {
+      const double opacity =
+        1.0 - Transmittance(voxel, depth, PixelCentre(px, size), PixelCentre(py, size));
+      for (int c = 0; c < 3; ++c)
+      {
+        const double rendered = r.Pixels[3 * (py * size + px) + c] / 255.0;
+        worst = std::max(worst, std::abs(rendered - Ka * SceneColor[c] * opacity));
+      }
+    }
+  }
+  return worst;
+}
 }
 
 //------------------------------------------------------------------------------
@@ -162,11 +234,56 @@ TEST(BadInput, NonFiniteVoxels)
 
 TEST(BadInput, ConstantVolume)
 {
-  auto image = mmvtest::MakeVolume(33, [](int, int, int) { return 60.0f; });
-  const Result r = Render(image);
-  EXPECT_TRUE(r.Active);
-  EXPECT_EQ(r.Errors, 0) << r.Message;
-  EXPECT_GT(r.CenterLuminance, 0.05) << "a constant, opaque volume is visible";
+  // Every voxel 60: a zero scalar range, alpha 0.25 per unit, no gradient.
+  const auto constant = [](int, int, int) { return 60.0f; };
+  auto image = mmvtest::MakeVolume(33, constant);
+  const Result ambient = Render(image, nullptr, /*light*/ false);
+  EXPECT_TRUE(ambient.Active);
+  EXPECT_EQ(ambient.Errors, 0) << ambient.Message;
+  // Measured: 0.49/255, the 8-bit rounding; 1.5/255 fails on a 3% error in ka.
+  const double ambientError = AmbientClosedFormError(ambient, constant, 33, 64);
+  std::printf("constant volume, unlit: max |pixel - ka C (1 - T)| = %.2f/255\n", 255 * ambientError);
+  EXPECT_LE(ambientError, 1.5 / 255);
+
+  // Lit: without a gradient only the light's ambient term is left, scaled by
+  // the irradiance E(d) = exp(-sigma d / l_z) at depth d below the front face
+  // z = 32, through which the light enters near the centre (sigma = -ln 0.75
+  // per unit, attenuation 1; the CPU filter gives exactly this). Each segment
+  // of length h is shaded at its front (pre-integrated I_beta = 0 where the
+  // opacity starts at once, eq. 7), so with a = 1 - 0.75^h and
+  // q = exp(-sigma h / l_z) the 32 / h segments composite to
+  //   pixel = ka C a (1 - ((1 - a) q)^(32 / h)) / (1 - (1 - a) q).
+  // (The continuous integral, ka C sigma / (sigma + sigma / l_z), is its limit
+  // for h -> 0: measured 6/255 below the render at h = 1, 1/255 at h = 0.1.)
+  const double h = 1.0;
+  const Result lit = Render(image, [h](mmvtest::Scene&, vtkMultiMaterialVolumeMapper* m) {
+    m->AutoAdjustSampleDistancesOff();
+    m->SetSampleDistance(h);
+  });
+  EXPECT_TRUE(lit.Active);
+  EXPECT_EQ(lit.Warnings + lit.Errors, 0) << lit.Message;
+  const double toLight[3] = { 50.0 - Center[0], 80.0 - Center[1], 100.0 - Center[2] };
+  const double lz = toLight[2] /
+    std::sqrt(toLight[0] * toLight[0] + toLight[1] * toLight[1] + toLight[2] * toLight[2]);
+  const double a = 1.0 - std::pow(0.75, h);
+  const double kept = (1.0 - a) * std::exp(std::log(0.75) * h / lz);
+  const double fraction = a * (1.0 - std::pow(kept, 32.0 / h)) / (1.0 - kept);
+  double worst = 0.0;
+  for (int y = 28; y < 36; ++y) // the light's path leaves through z = 32 here
+  {
+    for (int x = 28; x < 36; ++x)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        const double expected = Ka * SceneColor[c] * fraction;
+        worst = std::max(worst, std::abs(lit.Pixels[3 * (y * 64 + x) + c] / 255.0 - expected));
+      }
+    }
+  }
+  // Measured: 0.44/255, the 8-bit rounding.
+  std::printf("constant volume, lit: pixel = %.4f C, max |difference| %.2f/255\n", Ka * fraction,
+    255 * worst);
+  EXPECT_LE(worst, 1.5 / 255);
 }
 
 TEST(BadInput, EmptyVolume)
@@ -207,9 +324,8 @@ void SliceCase(int depth)
     image->GetPointData()->SetScalars(values);
     // A 16x16 window: face-on, the zero-thickness slice makes llvmpipe spend
     // ~0.25 ms per pixel in the ray cast (16 s at 64x64).
-    const Result r = Render(image, [](mmvtest::Scene& s, vtkMultiMaterialVolumeMapper*) {
-      s.Window->SetSize(16, 16);
-    });
+    const auto small = [](mmvtest::Scene& s, vtkMultiMaterialVolumeMapper*) { s.Window->SetSize(16, 16); };
+    const Result r = Render(image, small);
     std::printf("depth %d: active %d, warnings %d, errors %d, centre %.3f (%s)\n", depth, r.Active,
       r.Warnings, r.Errors, r.CenterLuminance, r.Message.c_str());
     if (depth == 1)
@@ -217,15 +333,20 @@ void SliceCase(int depth)
       // Zero thickness seen face-on: black, so it must say so.
       EXPECT_EQ(r.Warnings, 1) << "a single slice must be reported";
       EXPECT_NE(r.Message.find("single slice"), std::string::npos) << r.Message;
+      return;
     }
-    else if (r.Active)
-    {
-      EXPECT_GT(r.CenterLuminance, 0.05) << "depth " << depth;
-    }
-    else
-    {
-      EXPECT_GT(r.Warnings + r.Errors, 0) << "fallback without a message, depth " << depth;
-    }
+    // Two or more slices are a volume: multi-material, silently.
+    EXPECT_TRUE(r.Active) << "depth " << depth;
+    EXPECT_EQ(r.Warnings + r.Errors, 0) << r.Message;
+    EXPECT_GT(r.CenterLuminance, 0.05) << "depth " << depth;
+    // Unlit, the slab has the ambient closed form (depth - 1 units thick).
+    const Result ambient = Render(image, small, /*light*/ false);
+    EXPECT_TRUE(ambient.Active);
+    const double error = AmbientClosedFormError(
+      ambient, [](int i, int j, int) { return Sphere(i, j, 16); }, depth, 16);
+    // Measured: 0.49/255 at depth 2, the 8-bit rounding.
+    std::printf("depth %d, unlit: max |pixel - ka C (1 - T)| = %.2f/255\n", depth, 255 * error);
+    EXPECT_LE(error, 1.5 / 255) << "depth " << depth;
   }
 }
 
@@ -256,16 +377,14 @@ TEST(BadInput, NonUniformSpacingAndOrientation)
   rotated->SetDirectionMatrix(0, -1, 0, 1, 0, 0, 0, 0, 1);
   rotated->SetOrigin(32.0, 0.0, 0.0);
   r = Render(rotated);
+  const int difference = MaxDifference(r.Pixels, reference.Pixels);
   std::printf("oriented: active %d, warnings %d, max pixel difference %d (%s)\n", r.Active,
-    r.Warnings, MaxDifference(r.Pixels, reference.Pixels), r.Message.c_str());
-  if (r.Active)
-  {
-    EXPECT_NEAR(r.CenterLuminance, reference.CenterLuminance, 3.0 / 255);
-  }
-  else
-  {
-    EXPECT_GT(r.Warnings, 0);
-  }
+    r.Warnings, difference, r.Message.c_str());
+  // Oriented images are supported: multi-material, and the grid is exactly
+  // symmetric, so measured 0; 1 allows for rounding.
+  EXPECT_TRUE(r.Active);
+  EXPECT_EQ(r.Warnings + r.Errors, 0) << r.Message;
+  EXPECT_LE(difference, 1);
 }
 
 TEST(BadInput, CellDataFallsBackWithAWarning)
@@ -300,17 +419,21 @@ TEST(BadInput, EveryScalarType)
     image->GetPointData()->SetScalars(typed);
     const Result r = Render(image);
     const int diff = MaxDifference(r.Pixels, reference.Pixels);
-    std::printf("%-20s active %d warnings %d errors %d max pixel difference %d\n",
-      typed->GetClassName(), r.Active, r.Warnings, r.Errors, diff);
-    if (r.Active)
+    std::printf("%-20s active %d warnings %d errors %d max pixel difference %d (%s)\n",
+      typed->GetClassName(), r.Active, r.Warnings, r.Errors, diff, r.Message.c_str());
+    if (type == VTK_CHAR)
     {
-      // Integer types round the 0..120 ramp: a few grey levels at most.
-      EXPECT_LE(diff, 12) << typed->GetClassName();
+      // VTK's volume texture has no format for plain char (its signedness is
+      // the platform's): VTK itself reports it, nothing is drawn in its place.
+      EXPECT_FALSE(r.Active);
+      EXPECT_EQ(r.Errors, 1);
+      continue;
     }
-    else
-    {
-      EXPECT_GT(r.Warnings + r.Errors, 0) << "silent fallback for " << typed->GetClassName();
-    }
+    EXPECT_TRUE(r.Active) << typed->GetClassName();
+    EXPECT_EQ(r.Warnings + r.Errors, 0) << typed->GetClassName() << ": " << r.Message;
+    // Integer types round the 0..120 ramp (measured: at most 5 levels, for
+    // unsigned char); floating-point types are uploaded as float (measured 0).
+    EXPECT_LE(diff, type == VTK_FLOAT || type == VTK_DOUBLE ? 1 : 6) << typed->GetClassName();
   }
 }
 
@@ -345,7 +468,12 @@ TEST(BadInput, NoLightsRendersAmbientWithAWarning)
   EXPECT_TRUE(r.Active);
   EXPECT_EQ(r.Warnings, 1);
   EXPECT_NE(r.Message.find("no active light"), std::string::npos) << r.Message;
-  EXPECT_GT(r.CenterLuminance, 0.02) << "ambient shading keeps the volume visible";
+  // Ambient shading keeps the volume visible: the closed form at every pixel,
+  // from the saturated centre (T ~ 6e-4) to the faint rim. Measured:
+  // 0.50/255, the 8-bit rounding.
+  const double error = AmbientClosedFormError(r, Sphere, 33, 64);
+  std::printf("no lights: max |pixel - ka C (1 - T)| = %.2f/255\n", 255 * error);
+  EXPECT_LE(error, 1.5 / 255);
 }
 
 TEST(BadInput, PartitionedVolume)

@@ -8,14 +8,22 @@
 #include "vtkMaterialTransferFunction.h"
 #include "vtkMultiMaterialVolumeMapper.h"
 #include "vtkOpenGLGPUVolumeRayCastMapper.h"
+#include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
+#include "vtkInformation.h"
+#include "vtkInformationObjectBaseVectorKey.h"
 #include "vtkLightKit.h"
+#include "vtkMultiMaterialRenderPass.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLRenderPass.h"
 #include "vtkRenderer.h"
 #include "vtk_glew.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <initializer_list>
 
 namespace
 {
@@ -460,4 +468,127 @@ TEST(MultiMaterialVolumeMapper, ReportsTheChosenIrradianceResolution)
   scene.Window->Render();
   scene.Mapper->GetIrradianceDimensions(dims);
   EXPECT_EQ(dims[0], Dims) << scene.Mapper->GetIrradianceResolutionReason();
+}
+
+namespace
+{
+// Counts the deaths of the objects it watches (VTK here is built without
+// vtkDebugLeaks, so DeleteEvent is the live-object count we have).
+struct DeletionWatch
+{
+  int Watched = 0;
+  int Deleted = 0;
+  vtkNew<vtkCallbackCommand> Callback;
+
+  DeletionWatch()
+  {
+    this->Callback->SetClientData(this);
+    this->Callback->SetCallback(
+      [](vtkObject*, unsigned long, void* watch, void*) { ++static_cast<DeletionWatch*>(watch)->Deleted; });
+  }
+  void Watch(vtkObject* object)
+  {
+    object->AddObserver(vtkCommand::DeleteEvent, this->Callback);
+    ++this->Watched;
+  }
+  int Alive() const { return this->Watched - this->Deleted; }
+};
+
+// Someone else's pass in the volume's keys, as dual depth peeling puts itself
+// there: its owner appends and removes it, and our pass must not unbalance it.
+class ForeignRenderPass : public vtkOpenGLRenderPass
+{
+public:
+  static ForeignRenderPass* New();
+  vtkTypeMacro(ForeignRenderPass, vtkOpenGLRenderPass);
+  void Render(const vtkRenderState*) override {}
+
+protected:
+  ForeignRenderPass() { this->SetActiveDrawBuffers(1); }
+};
+vtkStandardNewMacro(ForeignRenderPass);
+
+vtkMultiMaterialRenderPass* FindPass(vtkInformation* keys)
+{
+  vtkInformationObjectBaseVectorKey* key = vtkOpenGLRenderPass::RenderPasses();
+  for (int i = 0; keys && keys->Has(key) && i < key->Length(keys); ++i)
+  {
+    if (auto* pass = vtkMultiMaterialRenderPass::SafeDownCast(key->Get(keys, i)))
+    {
+      return pass;
+    }
+  }
+  return nullptr;
+}
+}
+
+TEST(MultiMaterialVolumeMapper, MappersVolumesAndPassesAreFreed)
+{
+  // VTK 9.2's RenderPasses key Append() registers twice and only Remove()
+  // gives both back: LeakSanitizer found one pass leaked per mapper. Each
+  // round builds a lit scene, renders it (which installs the pass) and drops
+  // it in one of three orders; every watched object must then be gone (the
+  // live count back to zero).
+  DeletionWatch watch;
+  auto image = mmvtest::MakeVolume(9, [](int i, int, int) { return static_cast<float>(i); });
+  for (int round = 0; round < 6; ++round)
+  {
+    const int order = round % 3; // 0: volume dies first, 1: mapper first, 2: pass removed first
+    vtkNew<ForeignRenderPass> foreign;
+    watch.Watch(foreign);
+    {
+      auto mapper = vtkSmartPointer<vtkMultiMaterialVolumeMapper>::New();
+      vtkNew<vtkMaterialTransferFunction> materials;
+      materials->AddNode(4.0, 0.3, 0.7, 0.3, 20.0, 1.0, 0.0, 0.0);
+      mapper->SetInputData(image);
+      mapper->SetMaterialTransferFunction(materials);
+      mmvtest::Scene scene(16);
+      scene.Color->AddRGBPoint(0.0, 1.0, 1.0, 1.0);
+      scene.Opacity->AddPoint(0.0, 0.1);
+      scene.Opacity->AddPoint(8.0, 0.5);
+      scene.Volume->SetMapper(mapper);
+      {
+        vtkNew<vtkInformation> newKeys; // the volume's only: they die with it
+        scene.Volume->SetPropertyKeys(newKeys);
+      }
+      vtkInformation* keys = scene.Volume->GetPropertyKeys();
+      watch.Watch(keys);
+      vtkOpenGLRenderPass::RenderPasses()->Append(keys, foreign);
+      scene.FrameBounds(image->GetBounds());
+      const double from[3] = { 4.0, 4.0, 100.0 };
+      const double to[3] = { 4.0, 4.0, 4.0 };
+      scene.AddDirectionalLight(from, to);
+      scene.Window->Render();
+      ASSERT_TRUE(mapper->GetMultiMaterialActive());
+      vtkMultiMaterialRenderPass* pass = FindPass(keys);
+      ASSERT_NE(pass, nullptr) << "the render installs the pass in the volume's keys";
+      EXPECT_EQ(vtkOpenGLRenderPass::RenderPasses()->Length(keys), 2);
+      EXPECT_EQ(vtkOpenGLRenderPass::RenderPasses()->Get(keys, 1), foreign.Get());
+      for (vtkObject* object : std::initializer_list<vtkObject*>{ pass, mapper.Get(),
+             scene.Volume.Get(), scene.Renderer.Get(), scene.Window.Get(), materials.Get() })
+      {
+        watch.Watch(object);
+      }
+      if (order == 2)
+      {
+        // A fallback render takes the pass out of the keys.
+        mapper->SetBlendModeToMaximumIntensity();
+        scene.Window->Render();
+        ASSERT_FALSE(mapper->GetMultiMaterialActive());
+        EXPECT_EQ(FindPass(keys), nullptr);
+      }
+      // The foreign pass's owner takes it out, as vtkOpenGLRenderPass does.
+      vtkOpenGLRenderPass::RenderPasses()->Remove(keys, foreign);
+      if (order == 1)
+      {
+        scene.Volume->SetMapper(nullptr);
+        mapper = nullptr;
+      }
+      scene.Window->Finalize();
+      // Order 0: the scene, with the volume and its keys, goes before `mapper`;
+      // order 1: the volume and its keys outlive the mapper.
+    }
+  }
+  std::printf("deletion watch: %d objects watched, %d deleted\n", watch.Watched, watch.Deleted);
+  EXPECT_EQ(watch.Alive(), 0) << "objects still alive out of " << watch.Watched;
 }
