@@ -819,6 +819,8 @@ bool vtkIrradianceVolumePass::Render(vtkOpenGLRenderWindow* context)
   this->NumberOfComputedVoxels = 0;
   this->DiffusionPasses = 0;
   this->NumberOfUpdatedLights = 0;
+  this->LastEstimationSeconds = 0.0;
+  this->LastDiffusionSeconds = 0.0;
   if (!context || !internals.HasInputs)
   {
     vtkErrorMacro("Render() needs a context and valid inputs (SetInputs).");
@@ -924,6 +926,14 @@ bool vtkIrradianceVolumePass::Render(vtkOpenGLRenderWindow* context)
           }
         }
       }
+      auto stage = std::chrono::steady_clock::now();
+      auto elapsed = [&stage]() {
+        glFinish();
+        const auto now = std::chrono::steady_clock::now();
+        const double seconds = std::chrono::duration<double>(now - stage).count();
+        stage = now;
+        return seconds;
+      };
       ok = fullMask == 0 ||
         internals.ShadowPass(
           context, group, fullMask, this->SkipEmptyVoxels, this->LayeredRendering);
@@ -933,6 +943,7 @@ bool vtkIrradianceVolumePass::Render(vtkOpenGLRenderWindow* context)
           internals.PiecewiseShadowPass(
             context, k, this->PiecewiseShadowSlices, this->LayeredRendering);
       }
+      this->LastEstimationSeconds += elapsed();
       vtkTextureObject* result = internals.FineScratch[0];
       if (ok && diffusion)
       {
@@ -940,6 +951,7 @@ bool vtkIrradianceVolumePass::Render(vtkOpenGLRenderWindow* context)
         ok = sweeps >= 0;
         this->DiffusionPasses += std::max(0, sweeps);
         result = internals.FineScratch[1];
+        this->LastDiffusionSeconds += elapsed();
       }
       ok = ok && internals.FillPass(context, result, group, mask, this->LayeredRendering);
     }
@@ -1077,5 +1089,7 @@ void vtkIrradianceVolumePass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfComputedVoxels: " << this->NumberOfComputedVoxels << "\n";
   os << indent << "DiffusionPasses: " << this->DiffusionPasses << "\n";
   os << indent << "LastRenderSeconds: " << this->LastRenderSeconds << "\n";
+  os << indent << "LastEstimationSeconds: " << this->LastEstimationSeconds << "\n";
+  os << indent << "LastDiffusionSeconds: " << this->LastDiffusionSeconds << "\n";
   os << indent << "TextureMemoryBytes: " << this->GetTextureMemoryBytes() << "\n";
 }

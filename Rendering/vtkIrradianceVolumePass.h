@@ -131,6 +131,10 @@ public:
   vtkGetMacro(DiffusionPasses, int); // Jacobi sweeps drawn
   vtkGetMacro(NumberOfUpdatedLights, int);
   vtkGetMacro(LastRenderSeconds, double);
+  /// Its shadow rays and its diffusion (glFinish after each; the rest of
+  /// LastRenderSeconds is the final write).
+  vtkGetMacro(LastEstimationSeconds, double);
+  vtkGetMacro(LastDiffusionSeconds, double);
   ///@}
 
   ///@{
@@ -164,6 +168,8 @@ protected:
   int DiffusionPasses = 0;
   int NumberOfUpdatedLights = 0;
   double LastRenderSeconds = 0.0;
+  double LastEstimationSeconds = 0.0;
+  double LastDiffusionSeconds = 0.0;
 
 private:
   vtkIrradianceVolumePass(const vtkIrradianceVolumePass&) = delete;

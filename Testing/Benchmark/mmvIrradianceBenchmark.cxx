@@ -376,6 +376,21 @@ int main(int argc, char* argv[])
     image->DeepCopy(grab->GetOutput());
     return image;
   };
+  // The image with the lights at a fixed place: the first becomes `full`,
+  // the reference; later ones return their PSNR against it.
+  auto scoreAtRest = [&](vtkSmartPointer<vtkImageData>& full) {
+    ours.PlaceLights(0.5);
+    ours.Window->Render();
+    vtkSmartPointer<vtkImageData> image = capture(ours.Window);
+    if (!full)
+    {
+      full = image;
+      return std::numeric_limits<double>::infinity();
+    }
+    vtkNew<vtkImageErrorMetrics> metrics;
+    metrics->Compute(image, full);
+    return metrics->GetPSNR();
+  };
   ours.SetLightCount(5);
   phong.SetLightCount(5);
   ours.Ours->GetIrradianceVolumePass()->SetLayeredRendering(true);
@@ -401,20 +416,7 @@ int main(int argc, char* argv[])
         still.push_back(ours.Frames(1, [&]() { ours.PlaceLights(); }));
         phongFrames.push_back(phong.Frames(1, [&]() { phong.PlaceLights(); }));
       }
-      ours.PlaceLights(0.5);
-      ours.Window->Render();
-      vtkSmartPointer<vtkImageData> image = capture(ours.Window);
-      double psnr = std::numeric_limits<double>::infinity();
-      if (!full)
-      {
-        full = image;
-      }
-      else
-      {
-        vtkNew<vtkImageErrorMetrics> metrics;
-        metrics->Compute(image, full);
-        psnr = metrics->GetPSNR();
-      }
+      const double psnr = scoreAtRest(full);
       int irradiance[3];
       ours.Ours->GetIrradianceDimensions(irradiance);
       const double stillFrame = Median(still);
@@ -432,8 +434,8 @@ int main(int argc, char* argv[])
   // Piecewise against full shadow rays: the light update and the image
   // against the full rays' image of the same lights, per chunk length K.
   std::ofstream est(out + "/shadow_estimation.csv");
-  est << "scattering,irradiance_scale,irradiance_dims,estimation,slices,update_s,phong_frame_s,"
-         "update_over_phong,psnr_vs_full_rays_db\n";
+  est << "scattering,irradiance_scale,irradiance_dims,estimation,slices,update_s,"
+         "shadow_rays_s,diffusion_s,phong_frame_s,update_over_phong,psnr_vs_full_rays_db\n";
   std::cout << "s  scale  irradiance    estimation  K   update s  phong s  update/phong  PSNR vs "
                "full rays (dB)"
             << std::endl;
@@ -458,36 +460,31 @@ int main(int argc, char* argv[])
         ours.Ours->SetPiecewiseShadowSlices(std::max(1, k));
         ours.Window->Render();
         std::vector<double> updates;
+        std::vector<double> shadowRays;
+        std::vector<double> diffusions;
         std::vector<double> phongFrames;
+        vtkIrradianceVolumePass* pass = ours.Ours->GetIrradianceVolumePass();
         for (int r = 0; r < reps; ++r)
         {
           ours.Frames(1, [&]() { ours.PlaceLights(); }, &updates);
+          shadowRays.push_back(pass->GetLastEstimationSeconds());
+          diffusions.push_back(pass->GetLastDiffusionSeconds());
           phongFrames.push_back(phong.Frames(1, [&]() { phong.PlaceLights(); }));
         }
-        ours.PlaceLights(0.5);
-        ours.Window->Render();
-        vtkSmartPointer<vtkImageData> image = capture(ours.Window);
-        double psnr = std::numeric_limits<double>::infinity();
-        if (!full)
-        {
-          full = image;
-        }
-        else
-        {
-          vtkNew<vtkImageErrorMetrics> metrics;
-          metrics->Compute(image, full);
-          psnr = metrics->GetPSNR();
-        }
+        const double psnr = scoreAtRest(full);
         int irradiance[3];
         ours.Ours->GetIrradianceDimensions(irradiance);
         const double update = Median(updates);
         const double phongFrame = Median(phongFrames);
         const char* name = k == 0 ? "full" : "piecewise";
         est << s << "," << scale << "," << Join(irradiance) << "," << name << "," << k << ","
-            << update << "," << phongFrame << "," << update / phongFrame << "," << psnr << "\n";
+            << update << "," << Median(shadowRays) << "," << Median(diffusions) << ","
+            << phongFrame << "," << update / phongFrame << "," << psnr << "\n";
         est.flush();
-        std::printf("%-3g %5.2f  %-12s %-10s %3d %8.3f  %7.3f  %11.2f  %8.1f\n", s, scale,
-          Join(irradiance).c_str(), name, k, update, phongFrame, update / phongFrame, psnr);
+        std::printf("%-3g %5.2f  %-12s %-10s %3d %8.3f (rays %6.3f, diffusion %6.3f)  %7.3f  "
+                    "%11.2f  %8.1f\n",
+          s, scale, Join(irradiance).c_str(), name, k, update, Median(shadowRays),
+          Median(diffusions), phongFrame, update / phongFrame, psnr);
         std::fflush(stdout);
       }
     }
