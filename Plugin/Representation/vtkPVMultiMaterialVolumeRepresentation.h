@@ -136,7 +136,7 @@ private:
   bool LockSampleDistanceToInputSpacing = false;
   int InteractiveIrradiance = 1; // vtkMultiMaterialVolumeMapper::ReuseWhileInteracting
   int ShadowEstimation = 1;      // mmv::PiecewiseShadowRays
-  int PiecewiseShadowSlices = 8; // mmv::DefaultPiecewiseShadowSlices
+  int PiecewiseShadowSlices = 16; // mmv::DefaultPiecewiseShadowSlices
 };
 
 #endif

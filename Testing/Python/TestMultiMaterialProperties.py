@@ -218,7 +218,7 @@ rep.ShadowEstimation = "Piecewise Shadow Rays"
 short = render()
 checker.check(counters()["IrradianceUpdateCount"] == before["IrradianceUpdateCount"] + 2,
               "PiecewiseShadowSlices reaches the mapper")
-rep.PiecewiseShadowSlices = 8
+rep.PiecewiseShadowSlices = 16
 
 log = errors.take_errors()
 checker.check(log == "", "no VTK errors: %r" % log[:500])
