@@ -55,7 +55,7 @@ Result Render(vtkImageData* image, const std::function<void(mmvtest::Scene&, vtk
   vtkNew<vtkMaterialTransferFunction> materials;
   materials->AddNode(60.0, 0.3, 0.6, 0.3, 20.0, 1.0, 0.0, 0.0);
   vtkNew<vtkMultiMaterialVolumeMapper> mapper;
-  mmvTest::ErrorCounter counter(mapper);
+  mmvtest::ErrorCounter counter(mapper);
   mapper->SetInputData(image);
   mapper->SetMaterialTransferFunction(materials);
   scene.Volume->SetMapper(mapper);
@@ -206,7 +206,7 @@ TEST(BadInput, NonFiniteVoxels)
   for (double scale : { 1.0, 0.5 })
   {
     vtkNew<vtkIrradianceVolumeFilter> filter;
-    mmvTest::ErrorCounter counter(filter);
+    mmvtest::ErrorCounter counter(filter);
     vtkNew<vtkPiecewiseFunction> opacity;
     opacity->AddPoint(0.0, 0.0);
     opacity->AddPoint(120.0, 0.5);
@@ -298,7 +298,7 @@ TEST(BadInput, EmptyVolume)
 
   // The filter reports empty input and produces an empty output.
   vtkNew<vtkIrradianceVolumeFilter> filter;
-  mmvTest::ErrorCounter counter(filter);
+  mmvtest::ErrorCounter counter(filter);
   counter.Watch(filter->GetExecutive());
   vtkNew<vtkPiecewiseFunction> opacity;
   opacity->AddPoint(0.0, 0.5);
@@ -493,7 +493,7 @@ TEST(BadInput, PartitionedVolume)
 TEST(BadInput, MalformedMaterialNodes)
 {
   vtkNew<vtkMaterialTransferFunction> materials;
-  mmvTest::ErrorCounter counter(materials);
+  mmvtest::ErrorCounter counter(materials);
   const double good[8] = { 0.0, 0.2, 0.7, 0.3, 20.0, 1.0, 0.0, 0.0 };
   ASSERT_TRUE(materials->SetNodes(8, good));
   const vtkMTimeType time = materials->GetMTime();
@@ -536,7 +536,7 @@ TEST(BadInput, UnknownPresetAndMalformedJSON)
 {
   vtkNew<vtkMaterialTransferFunction> materials;
   vtkNew<vtkMaterialLibrary> library;
-  mmvTest::ErrorCounter counter(materials);
+  mmvtest::ErrorCounter counter(materials);
   counter.Watch(library);
   materials->AddNode(1.0, 0.2, 0.7, 0.3, 20.0, 1.0, 0.0, 0.0);
   const int presets = library->GetNumberOfPresets();

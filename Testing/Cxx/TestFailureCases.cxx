@@ -137,7 +137,7 @@ TEST(FailureCases, PreIntegrationBoundsSpikeError)
   vtkNew<vtkMaterialTransferFunction> materials;
   materials->AddNode(0.0, 1.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0);
   vtkNew<vtkMultiMaterialVolumeMapper> mapper;
-  mmvTest::ErrorCounter quiet(mapper); // "no active light" is expected here
+  mmvtest::ErrorCounter quiet(mapper); // "no active light" is expected here
   mapper->SetInputData(image);
   mapper->SetMaterialTransferFunction(materials);
   mapper->AutoAdjustSampleDistancesOff();

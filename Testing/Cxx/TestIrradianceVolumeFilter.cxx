@@ -622,7 +622,7 @@ TEST(IrradianceVolumeFilter, ErrorsFailWithoutCrashing)
   const double toLight[3] = { 0.0, 0.0, 1.0 };
   {
     vtkNew<vtkIrradianceVolumeFilter> filter; // no opacity function
-    mmvTest::ErrorCounter events(filter);
+    mmvtest::ErrorCounter events(filter);
     events.Watch(filter->GetExecutive());
     filter->SetInputData(image);
     filter->AddLight(DirectionalLight(toLight));
@@ -632,7 +632,7 @@ TEST(IrradianceVolumeFilter, ErrorsFailWithoutCrashing)
   }
   {
     vtkNew<vtkIrradianceVolumeFilter> filter;
-    mmvTest::ErrorCounter events(filter);
+    mmvtest::ErrorCounter events(filter);
     events.Watch(filter->GetExecutive());
     filter->SetInputData(image);
     filter->SetScalarOpacity(ConstantOpacity(0.5));
@@ -645,7 +645,7 @@ TEST(IrradianceVolumeFilter, ErrorsFailWithoutCrashing)
     vtkNew<vtkImageData> bare; // no scalars
     bare->SetDimensions(4, 4, 4);
     vtkNew<vtkIrradianceVolumeFilter> filter;
-    mmvTest::ErrorCounter events(filter);
+    mmvtest::ErrorCounter events(filter);
     events.Watch(filter->GetExecutive());
     filter->SetInputData(bare);
     filter->SetScalarOpacity(ConstantOpacity(0.5));
@@ -655,7 +655,7 @@ TEST(IrradianceVolumeFilter, ErrorsFailWithoutCrashing)
   }
   {
     vtkNew<vtkIrradianceVolumeFilter> filter; // no lights: a warning only
-    mmvTest::ErrorCounter events(filter);
+    mmvtest::ErrorCounter events(filter);
     events.Watch(filter->GetExecutive());
     filter->SetInputData(image);
     filter->SetScalarOpacity(ConstantOpacity(0.5));

@@ -694,7 +694,7 @@ TEST(IrradianceVolumePass, LeavesTheRenderersStateAsItFoundIt)
   SetPassInputs(scene, pass);
   // No OpenGL error on the way (VTK reports them through the output
   // window): a residual check once bound an inactive texture's unit -1.
-  mmvTest::ErrorCounter errors(vtkOutputWindow::GetInstance());
+  mmvtest::ErrorCounter errors(vtkOutputWindow::GetInstance());
   ASSERT_TRUE(pass->Render(ctx.GL));
   ASSERT_GT(pass->GetDiffusionPasses(), 0);
   EXPECT_EQ(errors.Errors() + errors.Warnings(), 0) << errors.LastMessage();

@@ -164,7 +164,7 @@ TEST(MaterialLibrary, BuiltinSpotValues)
 TEST(MaterialLibrary, EveryBuiltinIsValidAndLoadsWithoutErrors)
 {
   vtkNew<vtkMaterialLibrary> library;
-  mmvTest::ErrorCounter errors(library);
+  mmvtest::ErrorCounter errors(library);
   library->ResetToBuiltins(); // reloads with the observer in place
   EXPECT_EQ(errors.Errors(), 0) << errors.LastMessage();
   ASSERT_EQ(library->GetNumberOfPresets(), 7);
@@ -198,7 +198,7 @@ TEST(MaterialLibrary, PresetNamesAndUnknownLookups)
   EXPECT_EQ(library->GetPresetName(-1), nullptr);
   EXPECT_EQ(library->GetPresetName(7), nullptr);
 
-  mmvTest::ErrorCounter errors(library);
+  mmvtest::ErrorCounter errors(library);
   double parameters[P] = { -5 };
   double rgb[3] = { -5 };
   EXPECT_FALSE(library->GetPreset("unobtainium", parameters));
@@ -212,7 +212,7 @@ TEST(MaterialLibrary, PresetNamesAndUnknownLookups)
 TEST(MaterialLibrary, AddReplaceRemove)
 {
   vtkNew<vtkMaterialLibrary> library;
-  mmvTest::ErrorCounter errors(library);
+  mmvtest::ErrorCounter errors(library);
   const double chrome[P] = { 0.05, 0.1, 1.0, 300.0, 1.0, 0.0, 0.9 };
   const double chromeColor[3] = { 0.9, 0.9, 0.95 };
   ASSERT_TRUE(library->AddPreset("chrome", chrome, chromeColor));
@@ -248,7 +248,7 @@ TEST(MaterialLibrary, AddReplaceRemove)
 TEST(MaterialLibrary, MTimeChangesOnEditsOnly)
 {
   vtkNew<vtkMaterialLibrary> library;
-  mmvTest::ErrorCounter errors(library);
+  mmvtest::ErrorCounter errors(library);
   const double parameters[P] = { 0.1, 0.2, 0.3, 4.0, 0.5, 0.6, 0.7 };
   vtkMTimeType mtime = library->GetMTime();
   ASSERT_TRUE(library->AddPreset("new", parameters));
@@ -310,7 +310,7 @@ TEST(MaterialLibrary, AddPresetRejectsInvalidInput)
     vtkNew<vtkMaterialLibrary> library;
     const std::string before = library->ToJSON();
     const vtkMTimeType mtime = library->GetMTime();
-    mmvTest::ErrorCounter errors(library);
+    mmvtest::ErrorCounter errors(library);
     EXPECT_FALSE(library->AddPreset(
       c.Name.c_str(), c.Parameters.data(), c.Color.empty() ? nullptr : c.Color.data()));
     EXPECT_EQ(errors.Errors(), 1);
@@ -318,7 +318,7 @@ TEST(MaterialLibrary, AddPresetRejectsInvalidInput)
     EXPECT_EQ(library->GetMTime(), mtime);
   }
   vtkNew<vtkMaterialLibrary> library;
-  mmvTest::ErrorCounter errors(library);
+  mmvtest::ErrorCounter errors(library);
   EXPECT_FALSE(library->AddPreset(nullptr, good));
   EXPECT_FALSE(library->AddPreset("x", nullptr));
   EXPECT_EQ(errors.Errors(), 2);
@@ -338,7 +338,7 @@ TEST(MaterialLibrary, JSONRoundTrip)
 
   vtkNew<vtkMaterialLibrary> back;
   RemoveAll(back);
-  mmvTest::ErrorCounter errors(back);
+  mmvtest::ErrorCounter errors(back);
   ASSERT_TRUE(back->AddPresetsFromJSON(json)) << json;
   EXPECT_EQ(errors.Errors(), 0);
   EXPECT_EQ(NamesOf(back), NamesOf(library));
@@ -364,7 +364,7 @@ TEST(MaterialLibrary, FileRoundTrip)
 
   vtkNew<vtkMaterialLibrary> back;
   RemoveAll(back);
-  mmvTest::ErrorCounter errors(back);
+  mmvtest::ErrorCounter errors(back);
   ASSERT_TRUE(back->ReadJSONFile(path.c_str()));
   EXPECT_EQ(errors.Errors(), 0);
   EXPECT_EQ(back->ToJSON(), library->ToJSON());
@@ -390,7 +390,7 @@ TEST(MaterialLibrary, FileErrors)
 {
   vtkNew<vtkMaterialLibrary> library;
   const std::string before = library->ToJSON();
-  mmvTest::ErrorCounter errors(library);
+  mmvtest::ErrorCounter errors(library);
   EXPECT_FALSE(library->ReadJSONFile(TempPath("no_such_library.json").c_str()));
   EXPECT_EQ(errors.Errors(), 1);
   EXPECT_NE(errors.LastMessage().find("no_such_library.json"), std::string::npos) << errors.LastMessage();
@@ -414,7 +414,7 @@ TEST(MaterialLibrary, ArrayIsAllOrNothing)
   vtkNew<vtkMaterialLibrary> library;
   const std::string before = library->ToJSON();
   const vtkMTimeType mtime = library->GetMTime();
-  mmvTest::ErrorCounter errors(library);
+  mmvtest::ErrorCounter errors(library);
   // The first element is valid and the last replaces a built-in: neither may
   // be applied because the middle one is bad.
   EXPECT_FALSE(library->AddPresetsFromJSON(R"([
@@ -472,7 +472,7 @@ TEST(MaterialLibrary, MalformedJSONIsRejected)
     SCOPED_TRACE(c.first);
     vtkNew<vtkMaterialLibrary> library;
     const std::string before = library->ToJSON();
-    mmvTest::ErrorCounter errors(library);
+    mmvtest::ErrorCounter errors(library);
     EXPECT_FALSE(library->AddPresetsFromJSON(c.second));
     EXPECT_EQ(errors.Errors(), 1);
     EXPECT_EQ(library->ToJSON(), before);
@@ -482,7 +482,7 @@ TEST(MaterialLibrary, MalformedJSONIsRejected)
 TEST(MaterialLibrary, ColourBoundsAreInclusive)
 {
   vtkNew<vtkMaterialLibrary> library;
-  mmvTest::ErrorCounter errors(library);
+  mmvtest::ErrorCounter errors(library);
   ASSERT_TRUE(library->AddPresetsFromJSON(R"({"name": "x", "color": [0, 1, 0.5]})"));
   EXPECT_EQ(ColorOf(library, "x"), (std::vector<double>{ 0.0, 1.0, 0.5 }));
   EXPECT_EQ(errors.Errors(), 0);

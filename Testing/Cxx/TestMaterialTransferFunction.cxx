@@ -189,7 +189,7 @@ TEST(MaterialTransferFunction, RemoveNode)
   tf->AddNode(1.0, 0.1, 0, 0, 0, 0, 0, 0);
   tf->AddNode(2.0, 0.2, 0, 0, 0, 0, 0, 0);
   tf->AddNode(3.0, 0.3, 0, 0, 0, 0, 0, 0);
-  mmvTest::ErrorCounter errors(tf);
+  mmvtest::ErrorCounter errors(tf);
   EXPECT_EQ(tf->RemoveNode(2.0), 1);
   EXPECT_EQ(tf->GetSize(), 2);
   EXPECT_EQ(tf->RemoveNode(2.0), -1);
@@ -277,7 +277,7 @@ TEST(MaterialTransferFunction, SetNodesRejectsInvalidInput)
     AddTwoNodes(tf);
     const std::vector<double> before = AllNodes(tf);
     const vtkMTimeType mtime = tf->GetMTime();
-    mmvTest::ErrorCounter errors(tf);
+    mmvtest::ErrorCounter errors(tf);
     EXPECT_FALSE(tf->SetNodes(static_cast<int>(c.second.size()), c.second.data()));
     EXPECT_EQ(AllNodes(tf), before);
     EXPECT_EQ(errors.Errors(), 1);
@@ -288,7 +288,7 @@ TEST(MaterialTransferFunction, SetNodesRejectsInvalidInput)
 TEST(MaterialTransferFunction, HardMaxItselfIsAccepted)
 {
   vtkNew<vtkMaterialTransferFunction> tf;
-  mmvTest::ErrorCounter errors(tf);
+  mmvtest::ErrorCounter errors(tf);
   std::vector<double> node = { 0.0 };
   for (int p = 0; p < P; ++p)
   {
@@ -315,7 +315,7 @@ TEST(MaterialTransferFunction, AddNodeRejectsInvalidInput)
     AddTwoNodes(tf);
     const std::vector<double> before = AllNodes(tf);
     const vtkMTimeType mtime = tf->GetMTime();
-    mmvTest::ErrorCounter errors(tf);
+    mmvtest::ErrorCounter errors(tf);
     const std::vector<double>& n = c.second;
     EXPECT_EQ(tf->AddNode(n[0], n[1], n[2], n[3], n[4], n[5], n[6], n[7]), -1);
     EXPECT_EQ(tf->AddNode(n[0], n.data() + 1), -1);
@@ -328,7 +328,7 @@ TEST(MaterialTransferFunction, AddNodeRejectsInvalidInput)
 TEST(MaterialTransferFunction, ErrorMessageNamesTheParameter)
 {
   vtkNew<vtkMaterialTransferFunction> tf;
-  mmvTest::ErrorCounter errors(tf);
+  mmvtest::ErrorCounter errors(tf);
   EXPECT_EQ(tf->AddNode(0.0, 0.1, 0.1, 0.1, 1.0, 0.1, -3.0, 0.1), -1);
   ASSERT_EQ(errors.Errors(), 1);
   EXPECT_NE(errors.LastMessage().find("scattering"), std::string::npos) << errors.LastMessage();
@@ -380,7 +380,7 @@ TEST(MaterialTransferFunction, MTimeUnchangedByRejectedEditsAndQueries)
 {
   vtkNew<vtkMaterialTransferFunction> tf;
   AddTwoNodes(tf);
-  mmvTest::ErrorCounter errors(tf);
+  mmvtest::ErrorCounter errors(tf);
   const vtkMTimeType mtime = tf->GetMTime();
   const double bad[Stride] = { 2.0, -0.1, 0.2, 0.3, 4.0, 0.5, 0.6, 0.7 };
   EXPECT_EQ(tf->AddNode(NaN, 0.1, 0.2, 0.3, 4.0, 0.5, 0.6, 0.7), -1);
@@ -435,7 +435,7 @@ TEST(MaterialTransferFunction, GetTableMatchesEvaluate)
 TEST(MaterialTransferFunction, GetTableRejectsBadArguments)
 {
   vtkNew<vtkMaterialTransferFunction> tf;
-  mmvTest::ErrorCounter errors(tf);
+  mmvtest::ErrorCounter errors(tf);
   float table[P] = { -7.0f };
   tf->GetTable(0.0, 1.0, 0, table);
   tf->GetTable(0.0, 1.0, -3, table);
@@ -465,7 +465,7 @@ TEST(MaterialTransferFunction, GetMaximum)
   tf->ApplyPreset("metal", 0.0, 1.0);
   EXPECT_EQ(tf->GetMaximum(mmv::Scattering), 0.0);
 
-  mmvTest::ErrorCounter errors(tf);
+  mmvtest::ErrorCounter errors(tf);
   EXPECT_EQ(tf->GetMaximum(-1), 0.0);
   EXPECT_EQ(tf->GetMaximum(P), 0.0);
   EXPECT_EQ(errors.Errors(), 2);
@@ -485,7 +485,7 @@ TEST(MaterialTransferFunction, JSONRoundTripIsExact)
       std::string::npos);
   }
   vtkNew<vtkMaterialTransferFunction> back;
-  mmvTest::ErrorCounter errors(back);
+  mmvtest::ErrorCounter errors(back);
   ASSERT_TRUE(back->FromJSON(json)) << json;
   EXPECT_EQ(errors.Errors(), 0);
   EXPECT_EQ(AllNodes(back), AllNodes(tf)); // bitwise equal doubles
@@ -549,7 +549,7 @@ TEST(MaterialTransferFunction, MalformedJSONIsRejectedAndChangesNothing)
     AddTwoNodes(tf);
     const std::vector<double> before = AllNodes(tf);
     const vtkMTimeType mtime = tf->GetMTime();
-    mmvTest::ErrorCounter errors(tf);
+    mmvtest::ErrorCounter errors(tf);
     EXPECT_FALSE(tf->FromJSON(c.second));
     EXPECT_EQ(AllNodes(tf), before);
     EXPECT_EQ(errors.Errors(), 1);
@@ -565,7 +565,7 @@ TEST(MaterialTransferFunction, FileRoundTrip)
   const std::string path = TempPath("tf_round_trip.json");
   ASSERT_TRUE(tf->WriteJSONFile(path.c_str()));
   vtkNew<vtkMaterialTransferFunction> back;
-  mmvTest::ErrorCounter errors(back);
+  mmvtest::ErrorCounter errors(back);
   ASSERT_TRUE(back->ReadJSONFile(path.c_str()));
   EXPECT_EQ(AllNodes(back), AllNodes(tf));
   EXPECT_EQ(errors.Errors(), 0);
@@ -577,7 +577,7 @@ TEST(MaterialTransferFunction, FileErrors)
   vtkNew<vtkMaterialTransferFunction> tf;
   AddTwoNodes(tf);
   const std::vector<double> before = AllNodes(tf);
-  mmvTest::ErrorCounter errors(tf);
+  mmvtest::ErrorCounter errors(tf);
 
   EXPECT_FALSE(tf->ReadJSONFile(TempPath("no_such_file.json").c_str()));
   EXPECT_EQ(errors.Errors(), 1);
@@ -612,7 +612,7 @@ TEST(MaterialTransferFunction, ApplyPresetMatchesLibrary)
     std::vector<double> preset(P);
     ASSERT_TRUE(library->GetPreset(name, preset.data()));
     vtkNew<vtkMaterialTransferFunction> tf;
-    mmvTest::ErrorCounter errors(tf);
+    mmvtest::ErrorCounter errors(tf);
     ASSERT_TRUE(tf->ApplyPreset(name, 10.0, 20.0));
     EXPECT_EQ(tf->GetSize(), 2);
     double range[2];
@@ -650,7 +650,7 @@ TEST(MaterialTransferFunction, ApplyPresetRejectsUnknownNamesAndBadRanges)
   AddTwoNodes(tf);
   const std::vector<double> before = AllNodes(tf);
   const vtkMTimeType mtime = tf->GetMTime();
-  mmvTest::ErrorCounter errors(tf);
+  mmvtest::ErrorCounter errors(tf);
   EXPECT_FALSE(tf->ApplyPreset("unobtainium", 0.0, 1.0));
   EXPECT_EQ(errors.Errors(), 1);
   EXPECT_NE(errors.LastMessage().find("unobtainium"), std::string::npos) << errors.LastMessage();

@@ -440,7 +440,7 @@ TEST(PreIntegrationTable, InvalidSettingsKeepPreviousTable)
   otf->AddPoint(0.0, 0.1);
   otf->AddPoint(1.0, 0.7);
   vtkNew<vtkPreIntegrationTable> table;
-  mmvTest::ErrorCounter errors(table);
+  mmvtest::ErrorCounter errors(table);
 
   // Nothing built yet: lookups give 0.
   EXPECT_FALSE(table->Update());
@@ -538,7 +538,7 @@ TEST(PreIntegrationTable, TableRangeIsTheRangeActuallyUsed)
   EXPECT_EQ(range[1], 5.0);
 
   // A failed build keeps the previous tables, and so their range.
-  mmvTest::ErrorCounter errors(table);
+  mmvtest::ErrorCounter errors(table);
   table->SetScalarRange(7.0, 9.0);
   table->SetStepLength(0.0);
   EXPECT_FALSE(table->Update());

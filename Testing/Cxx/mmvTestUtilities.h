@@ -14,7 +14,7 @@
 #include <utility>
 #include <vector>
 
-namespace mmvTest
+namespace mmvtest
 {
 
 /**
@@ -24,7 +24,7 @@ namespace mmvTest
  * The observers are removed when the counter goes out of scope (objects that
  * died first are skipped).
  *
- *   mmvTest::ErrorCounter errors(filter);
+ *   mmvtest::ErrorCounter errors(filter);
  *   errors.Watch(filter->GetExecutive()); // pipeline errors too
  *   EXPECT_EQ(errors.Errors(), 1) << errors.LastMessage();
  */
@@ -91,6 +91,6 @@ private:
   std::vector<std::pair<vtkWeakPointer<vtkObject>, std::vector<unsigned long>>> Watched;
 };
 
-} // namespace mmvTest
+} // namespace mmvtest
 
 #endif
