@@ -6,7 +6,8 @@
 //
 //   mmvIrradianceBenchmark --out DIR [--size N] [--reps N] [--head FILE.vti] [--quick]
 //                          [--only updates|resolution|estimation|raycast]
-//                          [--image-sample-distance D]  (raycast: both mappers, no auto-adjust)
+//                          [--image-sample-distance D] [--lights N]  (raycast: both
+//                          mappers, no auto-adjust, N scene lights, default 5)
 //
 // Each configuration moves every light a little (so every light is
 // recomputed), renders, and reads the mapper's irradiance time (glFinish
@@ -211,6 +212,7 @@ int main(int argc, char* argv[])
   bool quick = false;
   std::string only; // one section: updates, resolution or estimation
   double imageSampleDistance = 1.0; // raycast: > 1 as in ParaView's interactive frames
+  int raycastLights = 5;            // raycast: scene lights
   for (int i = 1; i < argc; ++i)
   {
     const std::string arg = argv[i];
@@ -238,6 +240,10 @@ int main(int argc, char* argv[])
     else if (arg == "--only")
     {
       only = next();
+    }
+    else if (arg == "--lights")
+    {
+      raycastLights = std::max(0, std::min(8, std::atoi(next().c_str())));
     }
     else if (arg == "--image-sample-distance")
     {
@@ -291,9 +297,9 @@ int main(int argc, char* argv[])
   if (only == "raycast")
   {
     // Camera-only frames (the irradiance cached): ours against Phong with
-    // the same 5 lights, interleaved, 5x the repetitions of the others.
-    ours.SetLightCount(5);
-    phong.SetLightCount(5);
+    // the same lights, interleaved, 5x the repetitions of the others.
+    ours.SetLightCount(raycastLights);
+    phong.SetLightCount(raycastLights);
     for (Bench* bench : { &ours, &phong })
     {
       bench->Mapper->SetAutoAdjustSampleDistances(0);
