@@ -258,6 +258,7 @@ public:
   void DrawLayers(vtkOpenGLRenderWindow* context, vtkOpenGLQuadHelper& quad,
     vtkTextureObject* target, bool layered, const int* box = nullptr);
   void SetTransferUniforms(vtkShaderProgram* program) const;
+  void SetShadowRayUniforms(vtkShaderProgram* program) const;
 
   bool ShadowPass(vtkOpenGLRenderWindow* context, int group, int mask, bool skipEmpty, bool layered);
   bool PiecewiseShadowPass(vtkOpenGLRenderWindow* context, int light, int slicesPerChunk, bool layered);
@@ -469,6 +470,21 @@ void vtkIrradianceVolumePass::vtkInternals::SetTransferUniforms(vtkShaderProgram
 }
 
 //------------------------------------------------------------------------------
+// The uniforms of Shaders/mmvShadowRay.glsl (and the class texture), shared by
+// the full and the piecewise shadow rays; their textures must be active.
+void vtkIrradianceVolumePass::vtkInternals::SetShadowRayUniforms(vtkShaderProgram* program) const
+{
+  glm::mat3 toIndex(this->Grid.PhysicalToIndexMatrix());
+  program->SetUniformi("scalars", this->ScalarTexture->GetTextureUnit());
+  program->SetUniformi("classes", this->ClassTexture->GetTextureUnit());
+  program->SetUniformi("shadowTable", this->TableTexture->GetTextureUnit());
+  program->SetUniformf("tableSize", static_cast<float>(this->TableSize));
+  program->SetUniform1iv("dims", 3, this->Grid.Dimensions);
+  program->SetUniformMatrix3x3("worldToIndex", glm::value_ptr(toIndex));
+  program->SetUniformf("stepLength", static_cast<float>(this->StepLength));
+}
+
+//------------------------------------------------------------------------------
 bool vtkIrradianceVolumePass::vtkInternals::ShadowPass(
   vtkOpenGLRenderWindow* context, int group, int mask, bool skipEmpty, bool layered)
 {
@@ -479,18 +495,11 @@ bool vtkIrradianceVolumePass::vtkInternals::ShadowPass(
     return false;
   }
   glm::mat3 toWorld(this->Grid.IndexToPhysicalMatrix());
-  glm::mat3 toIndex(this->Grid.PhysicalToIndexMatrix());
   const glm::vec3 origin(this->Grid.Origin);
   ScopedTextures bound{ this->ScalarTexture, this->ClassTexture, this->TableTexture };
-  program->SetUniformi("scalars", this->ScalarTexture->GetTextureUnit());
-  program->SetUniformi("classes", this->ClassTexture->GetTextureUnit());
-  program->SetUniformi("shadowTable", this->TableTexture->GetTextureUnit());
-  program->SetUniformf("tableSize", static_cast<float>(this->TableSize));
-  program->SetUniform1iv("dims", 3, this->Grid.Dimensions);
+  this->SetShadowRayUniforms(program);
   program->SetUniform3f("origin", glm::value_ptr(origin));
   program->SetUniformMatrix3x3("indexToWorld", glm::value_ptr(toWorld));
-  program->SetUniformMatrix3x3("worldToIndex", glm::value_ptr(toIndex));
-  program->SetUniformf("stepLength", static_cast<float>(this->StepLength));
   program->SetUniformi("computeEmptyVoxels", skipEmpty ? 0 : 1);
   SetLightUniforms(program, this->Lights, group * LightsPerTexture, mask);
   this->DrawLayers(context, *this->ShadowQuad, this->FineScratch[0], layered);
@@ -511,24 +520,17 @@ bool vtkIrradianceVolumePass::vtkInternals::PiecewiseShadowPass(
   {
     return false;
   }
-  const glm::dmat3 toIndex = this->Grid.PhysicalToIndexMatrix();
   const mmv::LightSource& source = this->Lights[light];
   const int* d = this->Grid.Dimensions;
-  const mmv::ShadowSweep sweep = mmv::PlanShadowSweep(d, toIndex * source.ToLight, slicesPerChunk);
-  glm::mat3 toIndexF(toIndex);
+  const mmv::ShadowSweep sweep =
+    mmv::PlanShadowSweep(d, this->Grid.PhysicalToIndexMatrix() * source.ToLight, slicesPerChunk);
   glm::vec3 toLight(source.ToLight);
   const int channel = light % LightsPerTexture;
   vtkTextureObject* target = this->FineScratch[0];
   ScopedTextures bound{ this->ScalarTexture, this->ClassTexture, this->TableTexture, target };
-  program->SetUniformi("scalars", this->ScalarTexture->GetTextureUnit());
-  program->SetUniformi("classes", this->ClassTexture->GetTextureUnit());
-  program->SetUniformi("shadowTable", this->TableTexture->GetTextureUnit());
+  this->SetShadowRayUniforms(program);
   program->SetUniformi("transmittance", target->GetTextureUnit());
-  program->SetUniformf("tableSize", static_cast<float>(this->TableSize));
-  program->SetUniform1iv("dims", 3, d);
-  program->SetUniformMatrix3x3("worldToIndex", glm::value_ptr(toIndexF));
   program->SetUniform3f("toLight", glm::value_ptr(toLight));
-  program->SetUniformf("stepLength", static_cast<float>(this->StepLength));
   program->SetUniformi("channel", channel);
   program->SetUniformi("sweepAxis", sweep.Axis);
   context->GetState()->vtkglColorMask(channel == 0, channel == 1, channel == 2, channel == 3);
