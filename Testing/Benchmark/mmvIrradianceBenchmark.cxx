@@ -5,7 +5,8 @@
 // and of VTK's Phong with the same lights, measured in the same run.
 //
 //   mmvIrradianceBenchmark --out DIR [--size N] [--reps N] [--head FILE.vti] [--quick]
-//                          [--only updates|resolution|estimation|raycast]
+//                          [--only SECTION[,SECTION...]]  (updates, resolution,
+//                          estimation, raycast; all but raycast by default)
 //                          [--image-sample-distance D] [--lights N]  (raycast: both
 //                          mappers, no auto-adjust, N scene lights, default 5)
 //
@@ -195,6 +196,26 @@ struct Config
   bool SkipEmpty = true;
 };
 
+/// Whether section `name` runs: all of them without --only, else those named
+/// in its comma-separated list.
+bool Wanted(const std::string& only, const std::string& name)
+{
+  if (only.empty())
+  {
+    return name != "raycast";
+  }
+  std::stringstream list(only);
+  std::string item;
+  while (std::getline(list, item, ','))
+  {
+    if (item == name)
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
 std::string Join(const int v[3])
 {
   std::ostringstream s;
@@ -294,7 +315,7 @@ int main(int argc, char* argv[])
 
   Bench ours(scene, size, true);
   Bench phong(scene, size, false);
-  if (only == "raycast")
+  if (Wanted(only, "raycast")) // alone: it changes the mappers' sampling
   {
     // Camera-only frames (the irradiance cached): ours against Phong with
     // the same lights, interleaved, 5x the repetitions of the others.
@@ -334,7 +355,7 @@ int main(int argc, char* argv[])
             << std::endl;
   for (const Config& c : configs)
   {
-    if (!only.empty() && only != "updates")
+    if (!Wanted(only, "updates"))
     {
       break;
     }
@@ -420,7 +441,7 @@ int main(int argc, char* argv[])
     quick ? std::vector<double>{ 1.0, 0.5 } : std::vector<double>{ 1.0, 0.75, 0.5, 0.35, 0.25 };
   for (double s : { 0.0, 8.0 })
   {
-    if (!only.empty() && only != "resolution")
+    if (!Wanted(only, "resolution"))
     {
       break;
     }
@@ -466,7 +487,7 @@ int main(int argc, char* argv[])
     quick ? std::vector<int>{ 0, 2, 8, 32, 128 } : std::vector<int>{ 0, 2, 4, 8, 16, 32 };
   for (double s : { 0.0, 8.0 })
   {
-    if (!only.empty() && only != "estimation")
+    if (!Wanted(only, "estimation"))
     {
       break;
     }
