@@ -261,7 +261,8 @@ public:
   void SetShadowRayUniforms(vtkShaderProgram* program) const;
 
   bool ShadowPass(vtkOpenGLRenderWindow* context, int group, int mask, bool skipEmpty, bool layered);
-  bool PiecewiseShadowPass(vtkOpenGLRenderWindow* context, int light, int slicesPerChunk, bool layered);
+  bool PiecewiseShadowPass(vtkOpenGLRenderWindow* context, int light, int slicesPerChunk,
+    bool skipEmpty, bool layered);
   int Diffuse(vtkOpenGLRenderWindow* context, bool layered);
   bool FillPass(vtkOpenGLRenderWindow* context, vtkTextureObject* source, int group, int mask,
     bool layered);
@@ -511,8 +512,8 @@ bool vtkIrradianceVolumePass::vtkInternals::ShadowPass(
 // FineScratch[0] (vtkShadowSweep.h): one draw per chunk of slices, nearest
 // the light first; a texture barrier lets each chunk read what the earlier
 // ones wrote into the same texture.
-bool vtkIrradianceVolumePass::vtkInternals::PiecewiseShadowPass(
-  vtkOpenGLRenderWindow* context, int light, int slicesPerChunk, bool layered)
+bool vtkIrradianceVolumePass::vtkInternals::PiecewiseShadowPass(vtkOpenGLRenderWindow* context,
+  int light, int slicesPerChunk, bool skipEmpty, bool layered)
 {
   vtkShaderProgram* program = this->Ready(context, this->PiecewiseQuad,
     std::string(mmvShadowRay) + mmvPiecewiseShadowFS, mmv::ShadowRayGLSLPrelude(), false);
@@ -532,6 +533,7 @@ bool vtkIrradianceVolumePass::vtkInternals::PiecewiseShadowPass(
   program->SetUniformi("transmittance", target->GetTextureUnit());
   program->SetUniform3f("toLight", glm::value_ptr(toLight));
   program->SetUniformi("channel", channel);
+  program->SetUniformi("computeEmptyVoxels", skipEmpty ? 0 : 1);
   program->SetUniformi("sweepAxis", sweep.Axis);
   context->GetState()->vtkglColorMask(channel == 0, channel == 1, channel == 2, channel == 3);
   for (int chunk = 0; chunk < sweep.GetNumberOfChunks(); ++chunk)
@@ -942,8 +944,8 @@ bool vtkIrradianceVolumePass::Render(vtkOpenGLRenderWindow* context)
       for (const int k : swept)
       {
         ok = ok &&
-          internals.PiecewiseShadowPass(
-            context, k, this->PiecewiseShadowSlices, this->LayeredRendering);
+          internals.PiecewiseShadowPass(context, k, this->PiecewiseShadowSlices,
+            this->SkipEmptyVoxels, this->LayeredRendering);
       }
       this->LastEstimationSeconds += elapsed();
       vtkTextureObject* result = internals.FineScratch[0];

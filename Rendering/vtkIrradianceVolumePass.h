@@ -94,8 +94,9 @@ public:
   vtkSetMacro(LayeredRendering, bool);
   vtkGetMacro(LayeredRendering, bool);
 
-  /// Empty voxels cost nothing (default on); off computes their shadow rays
-  /// too, to measure what the skipping saves.
+  /// Empty voxels cost nothing (default on; piecewise rays still compute the
+  /// empty voxels of the slices a later chunk reads); off computes every
+  /// voxel's shadow rays, to measure what the skipping saves.
   vtkSetMacro(SkipEmptyVoxels, bool);
   vtkGetMacro(SkipEmptyVoxels, bool);
 

@@ -107,7 +107,7 @@ void vtkMultiMaterialTextures::UpdateMaterialTable(vtkOpenGLRenderWindow* contex
   ++this->MaterialUploads;
 }
 
-void vtkMultiMaterialTextures::UpdateGradientTexture(vtkOpenGLRenderWindow* context,
+bool vtkMultiMaterialTextures::UpdateGradientTexture(vtkOpenGLRenderWindow* context,
   vtkDataArray* scalars, const int dims[3], const double range[2])
 {
   const vtkMTimeType time = scalars->GetMTime();
@@ -116,7 +116,7 @@ void vtkMultiMaterialTextures::UpdateGradientTexture(vtkOpenGLRenderWindow* cont
     range[1] == this->UploadedGradientRange[1] && std::equal(dims, dims + 3, this->GradientDimensions);
   if (current)
   {
-    return;
+    return true;
   }
   std::vector<float> gradients;
   mmv::ComputeValueGradients(scalars, 0, dims, range, gradients);
@@ -126,7 +126,11 @@ void vtkMultiMaterialTextures::UpdateGradientTexture(vtkOpenGLRenderWindow* cont
   this->Gradient->SetInternalFormat(GL_RGB16F);
   this->Gradient->SetFormat(GL_RGB);
   this->Gradient->SetDataType(GL_FLOAT);
-  this->Gradient->Create3DFromRaw(dims[0], dims[1], dims[2], 3, VTK_FLOAT, gradients.data());
+  if (!this->Gradient->Create3DFromRaw(dims[0], dims[1], dims[2], 3, VTK_FLOAT, gradients.data()))
+  {
+    this->UploadedScalars = nullptr;
+    return false;
+  }
   UseLinearClamped(this->Gradient);
   this->Gradient->SetWrapR(vtkTextureObject::ClampToEdge);
   this->UploadedScalars = scalars;
@@ -135,6 +139,7 @@ void vtkMultiMaterialTextures::UpdateGradientTexture(vtkOpenGLRenderWindow* cont
   this->UploadedGradientRange[1] = range[1];
   std::copy(dims, dims + 3, this->GradientDimensions);
   ++this->GradientUploads;
+  return true;
 }
 
 void vtkMultiMaterialTextures::Activate()

@@ -41,8 +41,9 @@ public:
     const double range[2], int n);
 
   /// Uploads the gradient volume of component 0 of `scalars` (point data of
-  /// a `dims` grid) normalised over `range`, if any of them changed.
-  void UpdateGradientTexture(vtkOpenGLRenderWindow* context, vtkDataArray* scalars,
+  /// a `dims` grid) normalised over `range`, if any of them changed. False
+  /// when the texture could not be created (too large for the context).
+  bool UpdateGradientTexture(vtkOpenGLRenderWindow* context, vtkDataArray* scalars,
     const int dims[3], const double range[2]);
 
   vtkTextureObject* GetSegmentColorTexture() { return this->SegmentColor; }

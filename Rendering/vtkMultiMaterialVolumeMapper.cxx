@@ -537,7 +537,12 @@ bool vtkMultiMaterialVolumeMapper::PrepareMultiMaterial(vtkRenderer* ren, vtkVol
   in.TableStep = static_cast<float>(step);
   in.Textures->UpdateSegmentTables(context, table);
   in.Textures->UpdateMaterialTable(context, in.Materials, range, this->PreIntegrationTableSize);
-  in.Textures->UpdateGradientTexture(context, scalars, dataDims, range);
+  if (!in.Textures->UpdateGradientTexture(context, scalars, dataDims, range))
+  {
+    this->WarnOnce("the gradient volume could not be created (too large for this OpenGL "
+                   "context?); using VTK's shading");
+    return false;
+  }
   for (int a = 0; a < 3; ++a)
   {
     in.GradientScale[a] = static_cast<float>(dataDims[a]);

@@ -15,6 +15,7 @@ uniform int sweepAxis;
 uniform int sweepPlane;          // -1: the first chunk, rays run to the boundary
 uniform int readSlice;           // the slice the next chunk reads (-1: none)
 uniform sampler3D classes;       // s per voxel, < 0 where the voxel is empty
+uniform bool computeEmptyVoxels; // on: every voxel (to measure what skipping saves)
 flat in int slice; // the layer (mmvLayerGS.glsl)
 in vec2 texCoord; // the quad's, at the centre of voxel (i, j)
 
@@ -64,7 +65,8 @@ float mmvSampleSlice(int axis, int plane, vec3 q)
 void main()
 {
   ivec3 voxel = ivec3(floor(texCoord * vec2(dims[0], dims[1])), slice);
-  if (voxel[sweepAxis] != readSlice && texelFetch(classes, voxel, 0).r < 0.0)
+  if (!computeEmptyVoxels && voxel[sweepAxis] != readSlice &&
+    texelFetch(classes, voxel, 0).r < 0.0)
   {
     // Empty, and no later chunk reads it: the fill pass decides its value.
     gl_FragData[0] = vec4(0.0);
