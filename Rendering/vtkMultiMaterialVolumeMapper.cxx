@@ -350,6 +350,11 @@ std::string vtkMultiMaterialVolumeMapper::GetLastFragmentShaderSource()
   return this->Internals->Pass->GetLastFragmentSource();
 }
 
+int vtkMultiMaterialVolumeMapper::GetGradientUploadCount()
+{
+  return this->Internals->Textures->GetGradientUploads();
+}
+
 vtkIdType vtkMultiMaterialVolumeMapper::GetMultiMaterialMemoryBytes()
 {
   return this->Internals->Irradiance->GetTextureMemoryBytes() +

@@ -152,6 +152,8 @@ public:
   const char* GetIrradianceResolutionReason();
   /// Whether the last render used multi-material shading (false: base class).
   vtkGetMacro(MultiMaterialActive, bool);
+  /// Uploads of the gradient volume so far: one per data change.
+  int GetGradientUploadCount();
   ///@}
 
   /// GPU memory held by our textures (irradiance + tables), in bytes.

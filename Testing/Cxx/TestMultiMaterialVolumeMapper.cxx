@@ -157,6 +157,13 @@ TEST(MultiMaterialVolumeMapper, CameraMovesDoNotRecomputeIrradiance)
   scene.Window->Render();
   EXPECT_EQ(scene.Mapper->GetIrradianceUpdateCount(), 3);
   EXPECT_EQ(scene.Mapper->GetPreIntegrationCount(), tables + 1);
+
+  // The gradient volume depends on the data alone: uploaded once so far,
+  // and again only when the scalars change.
+  EXPECT_EQ(scene.Mapper->GetGradientUploadCount(), 1);
+  scene.Image->GetPointData()->GetScalars()->Modified();
+  scene.Window->Render();
+  EXPECT_EQ(scene.Mapper->GetGradientUploadCount(), 2);
 }
 
 TEST(MultiMaterialVolumeMapper, ColourOnlyMaterialEditsKeepTheIrradiance)
