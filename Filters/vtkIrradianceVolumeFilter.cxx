@@ -207,7 +207,9 @@ double ShadowTransmittance(const RayContext& ctx, const mmv::LightSource& light,
 }
 
 /// Bilinear value of `values` in slice `plane` of axis `axis` at the in-slice
-/// coordinates of index `q` (clamped to the slice).
+/// coordinates of index `q` (clamped to the slice). Not mmv::SampleTrilinear:
+/// that also reads the next slice (with weight 0), which this chunk's
+/// threads may be writing.
 double SampleSlice(const int dims[3], const float* values, int axis, int plane, const glm::dvec3& q)
 {
   const int b = (axis + 1) % 3;
@@ -690,8 +692,7 @@ int vtkIrradianceVolumeFilter::RequestData(
     const double progress = 0.1 + 0.8 * l / tasks.size();
     const double span = 0.8 / tasks.size();
     bool finished = true;
-    if (this->ShadowEstimation == mmv::PiecewiseShadowRays &&
-      tasks[l].Source.Kind == mmv::DirectionalLight)
+    if (mmv::UsesPiecewiseShadowRays(this->ShadowEstimation, tasks[l].Source))
     {
       finished = SweepPiecewiseShadowRays(this, ctx, tasks[l].Source, this->PiecewiseShadowSlices,
         nonEmpty, progress, span, transmittance, this->NumberOfShadowRays);

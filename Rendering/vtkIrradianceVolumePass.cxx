@@ -919,8 +919,7 @@ bool vtkIrradianceVolumePass::Render(vtkOpenGLRenderWindow* context)
         const int k = group * LightsPerTexture + l;
         if ((mask & (1 << l)) != 0)
         {
-          if (estimation == mmv::PiecewiseShadowRays &&
-            internals.Lights[k].Kind == mmv::DirectionalLight)
+          if (mmv::UsesPiecewiseShadowRays(estimation, internals.Lights[k]))
           {
             swept.push_back(k);
           }

@@ -21,6 +21,7 @@
 #ifndef vtkShadowSweep_h
 #define vtkShadowSweep_h
 
+#include "vtkMultiMaterialLightModel.h" // LightSource
 #include "vtkMultiMaterialParameters.h" // ShadowEstimation
 
 #include <glm/glm.hpp>
@@ -30,6 +31,13 @@
 
 namespace mmv
 {
+
+/// Whether `light` is estimated by piecewise rays under `estimation`:
+/// directional lights only (point and spot lights take full rays).
+inline bool UsesPiecewiseShadowRays(int estimation, const LightSource& light)
+{
+  return estimation == PiecewiseShadowRays && light.Kind == DirectionalLight;
+}
 
 struct ShadowSweep
 {

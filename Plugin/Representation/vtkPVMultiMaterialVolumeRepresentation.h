@@ -29,6 +29,7 @@
 #include "vtkDoubleArray.h" // for vtkNew ivar
 #include "vtkImageVolumeRepresentation.h"
 #include "vtkMaterialTransferFunction.h"          // for vtkNew ivar
+#include "vtkMultiMaterialParameters.h"            // ShadowEstimation defaults
 #include "vtkMultiMaterialVolumeParaViewModule.h" // export macro
 #include "vtkNew.h"                               // for vtkNew
 #include "vtkPVMaterialNodeBuffer.h"              // for ivar
@@ -135,8 +136,8 @@ private:
   bool AutoAdjustSampleDistances = true;
   bool LockSampleDistanceToInputSpacing = false;
   int InteractiveIrradiance = 1; // vtkMultiMaterialVolumeMapper::ReuseWhileInteracting
-  int ShadowEstimation = 1;      // mmv::PiecewiseShadowRays
-  int PiecewiseShadowSlices = 16; // mmv::DefaultPiecewiseShadowSlices
+  int ShadowEstimation = mmv::PiecewiseShadowRays;
+  int PiecewiseShadowSlices = mmv::DefaultPiecewiseShadowSlices;
 };
 
 #endif
