@@ -1,5 +1,6 @@
 #include "vtkIrradianceVolumePass.h"
 
+#include "vtkIrradianceComputeProgram.h"
 #include "vtkIrradianceDiffusion.h"
 #include "vtkMultiMaterialParameters.h"
 #include "vtkObjectFactory.h"
@@ -23,6 +24,8 @@
 #include "mmvLightModel.h"
 #include "mmvPiecewiseShadowFS.h"
 #include "mmvShadowRay.h"
+#include "mmvVoxelPassDec.h"
+#include "mmvVoxelPassMain.h"
 
 #include <glm/gtc/type_ptr.hpp>
 
@@ -57,11 +60,13 @@ float LookupTable(const std::vector<float>& table, float t)
   return (1.0f - f) * table[i0] + f * table[i0 + 1];
 }
 
-/// The fragment shader: system declarations, `defines`, optionally the light
-/// model, then `body`.
-std::string ComposeShader(const std::string& body, const std::string& defines, bool lightModel)
+/// A voxel pass: system declarations, `defines`, optionally the light
+/// model, the voxel-pass declarations, `body`, then main(); as a fragment
+/// shader (VTK's tags) or as a compute shader.
+std::string ComposeShader(
+  const std::string& body, const std::string& defines, bool lightModel, bool compute)
 {
-  std::string source = "//VTK::System::Dec\n";
+  std::string source = compute ? "#version 430 core\n#define MMV_COMPUTE\n" : "//VTK::System::Dec\n";
   source += mmv::MaterialGLSLPrelude();
   source += defines;
   if (lightModel)
@@ -69,8 +74,13 @@ std::string ComposeShader(const std::string& body, const std::string& defines, b
     source += mmvLightModel;
     source += "\n";
   }
-  source += "//VTK::Output::Dec\n";
+  if (!compute)
+  {
+    source += "//VTK::Output::Dec\n";
+  }
+  source += mmvVoxelPassDec;
   source += body;
+  source += mmvVoxelPassMain;
   return source;
 }
 
@@ -188,6 +198,14 @@ private:
   std::vector<vtkTextureObject*> Textures;
 };
 
+/// One voxel pass's programs: the layered fragment draw (built on first use)
+/// and the compute dispatch (where OpenGL 4.3 is there and asked for).
+struct VoxelPass
+{
+  std::unique_ptr<vtkOpenGLQuadHelper> Quad;
+  vtkSmartPointer<vtkIrradianceComputeProgram> Compute;
+};
+
 } // namespace
 
 class vtkIrradianceVolumePass::vtkInternals
@@ -241,22 +259,30 @@ public:
   std::array<vtkSmartPointer<vtkTextureObject>, 2> FineScratch;
   std::array<vtkSmartPointer<vtkTextureObject>, 5> CoarseScratch;
   vtkSmartPointer<vtkOpenGLFramebufferObject> Framebuffer;
-  std::unique_ptr<vtkOpenGLQuadHelper> ShadowQuad;
-  std::unique_ptr<vtkOpenGLQuadHelper> PiecewiseQuad;
-  std::unique_ptr<vtkOpenGLQuadHelper> RestrictQuad;
-  std::unique_ptr<vtkOpenGLQuadHelper> SweepQuad;
-  std::unique_ptr<vtkOpenGLQuadHelper> ProlongQuad;
-  std::unique_ptr<vtkOpenGLQuadHelper> FillQuad;
+  VoxelPass ShadowQuad;
+  VoxelPass PiecewiseQuad;
+  VoxelPass RestrictQuad;
+  VoxelPass SweepQuad;
+  VoxelPass ProlongQuad;
+  VoxelPass FillQuad;
+  // Compute dispatches instead of fragment draws (this update), and the
+  // atomic counter that stands in for the occlusion query there.
+  bool Compute = false;
+  unsigned int WriteCounter = 0;
 
   void Classify(const std::vector<float>& opacity, const std::vector<float>& scattering);
   void PlanDiffusion(double time);
 
   bool Upload(vtkOpenGLRenderWindow* context);
   bool AllocateTargets(vtkOpenGLRenderWindow* context, bool diffusion, bool& reallocated);
-  vtkShaderProgram* Ready(vtkOpenGLRenderWindow* context, std::unique_ptr<vtkOpenGLQuadHelper>& quad,
+  vtkShaderProgram* Ready(vtkOpenGLRenderWindow* context, VoxelPass& pass,
     const std::string& body, const std::string& defines, bool lightModel);
-  void DrawLayers(vtkOpenGLRenderWindow* context, vtkOpenGLQuadHelper& quad,
-    vtkTextureObject* target, bool layered, const int* box = nullptr);
+  void DrawLayers(vtkOpenGLRenderWindow* context, VoxelPass& pass, vtkTextureObject* target,
+    bool layered, const int* box = nullptr, int writeMask = 0xF);
+  void Dispatch(vtkOpenGLRenderWindow* context, VoxelPass& pass, vtkTextureObject* target,
+    const int* box, int writeMask, bool countWrites);
+  unsigned int CountWrites(vtkOpenGLRenderWindow* context, VoxelPass& pass,
+    vtkTextureObject* target, bool layered, const int* box);
   void SetTransferUniforms(vtkShaderProgram* program) const;
   void SetShadowRayUniforms(vtkShaderProgram* program) const;
 
@@ -399,12 +425,26 @@ bool vtkIrradianceVolumePass::vtkInternals::AllocateTargets(
 
 //------------------------------------------------------------------------------
 vtkShaderProgram* vtkIrradianceVolumePass::vtkInternals::Ready(vtkOpenGLRenderWindow* context,
-  std::unique_ptr<vtkOpenGLQuadHelper>& quad, const std::string& body, const std::string& defines,
-  bool lightModel)
+  VoxelPass& pass, const std::string& body, const std::string& defines, bool lightModel)
 {
+  if (this->Compute)
+  {
+    if (!pass.Compute)
+    {
+      auto program = vtkSmartPointer<vtkIrradianceComputeProgram>::New();
+      if (!program->Build(ComposeShader(body, defines, lightModel, true)))
+      {
+        vtkGenericWarningMacro("Irradiance pass: " << program->GetError());
+        return nullptr;
+      }
+      pass.Compute = program;
+    }
+    return context->GetShaderCache()->ReadyShaderProgram(pass.Compute);
+  }
+  std::unique_ptr<vtkOpenGLQuadHelper>& quad = pass.Quad;
   if (!quad)
   {
-    const std::string source = ComposeShader(body, defines, lightModel);
+    const std::string source = ComposeShader(body, defines, lightModel, false);
     quad = std::make_unique<vtkOpenGLQuadHelper>(context, mmvLayerVS, source.c_str(), mmvLayerGS);
   }
   if (!quad->Program || !context->GetShaderCache()->ReadyShaderProgram(quad->Program))
@@ -418,11 +458,19 @@ vtkShaderProgram* vtkIrradianceVolumePass::vtkInternals::Ready(vtkOpenGLRenderWi
 // Every slice of `target` in one instanced draw into the whole 3D texture
 // (layered rendering), or, with `layered` off, one draw per slice.
 void vtkIrradianceVolumePass::vtkInternals::DrawLayers(vtkOpenGLRenderWindow* context,
-  vtkOpenGLQuadHelper& quad, vtkTextureObject* target, bool layered, const int* box)
+  VoxelPass& pass, vtkTextureObject* target, bool layered, const int* box, int writeMask)
 {
+  if (this->Compute)
+  {
+    this->Dispatch(context, pass, target, box, writeMask, false);
+    return;
+  }
+  vtkOpenGLQuadHelper& quad = *pass.Quad;
   // `box` (i0, i1, j0, j1, k0, k1, inclusive) limits the draw to the voxels
   // that can change: a scissor in x and y, a range of layers in z.
   vtkOpenGLState* state = context->GetState();
+  state->vtkglColorMask((writeMask & 1) != 0, (writeMask & 2) != 0, (writeMask & 4) != 0,
+    (writeMask & 8) != 0);
   const int first = box ? box[4] : 0;
   const int last = box ? box[5] : static_cast<int>(target->GetDepth()) - 1;
   state->vtkglViewport(0, 0, target->GetWidth(), target->GetHeight());
@@ -459,6 +507,94 @@ void vtkIrradianceVolumePass::vtkInternals::DrawLayers(vtkOpenGLRenderWindow* co
   {
     state->vtkglDisable(GL_SCISSOR_TEST);
   }
+  state->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+}
+
+//------------------------------------------------------------------------------
+// The compute form of DrawLayers: one invocation per voxel of `box` (all of
+// `target` without one) stores into `target` as an image; the channels off
+// in `writeMask` keep what `target` held. With `countWrites`, the atomic
+// counter counts the voxels written. The stores are made visible to the
+// texture fetches, image accesses and draws that follow.
+void vtkIrradianceVolumePass::vtkInternals::Dispatch(vtkOpenGLRenderWindow* context,
+  VoxelPass& pass, vtkTextureObject* target, const int* box, int writeMask, bool countWrites)
+{
+  vtkShaderProgram* program = pass.Compute;
+  context->GetShaderCache()->ReadyShaderProgram(program);
+  const int whole[6] = { 0, static_cast<int>(target->GetWidth()) - 1, 0,
+    static_cast<int>(target->GetHeight()) - 1, 0, static_cast<int>(target->GetDepth()) - 1 };
+  const int* b = box ? box : whole;
+  const int boxMin[3] = { b[0], b[2], b[4] };
+  const int boxMax[3] = { b[1], b[3], b[5] };
+  const int size[2] = { whole[1] + 1, whole[3] + 1 };
+  const int mask[4] = { (writeMask & 1) != 0, (writeMask & 2) != 0, (writeMask & 4) != 0,
+    (writeMask & 8) != 0 };
+  // (vtkShaderProgram has no ivec3/bvec4 setters.)
+  glUniform3iv(program->FindUniform("mmvBoxMin"), 1, boxMin);
+  glUniform3iv(program->FindUniform("mmvBoxMax"), 1, boxMax);
+  glUniform2iv(program->FindUniform("mmvTargetSize"), 1, size);
+  glUniform4iv(program->FindUniform("mmvWriteMask"), 1, mask);
+  program->SetUniformi("mmvCountWrites", countWrites ? 1 : 0);
+  if (!this->WriteCounter)
+  {
+    glGenBuffers(1, &this->WriteCounter);
+    glBindBuffer(GL_ATOMIC_COUNTER_BUFFER, this->WriteCounter);
+    glBufferData(GL_ATOMIC_COUNTER_BUFFER, sizeof(GLuint), nullptr, GL_DYNAMIC_READ);
+  }
+  const GLuint zero = 0;
+  glBindBufferBase(GL_ATOMIC_COUNTER_BUFFER, 0, this->WriteCounter);
+  if (countWrites)
+  {
+    glBufferSubData(GL_ATOMIC_COUNTER_BUFFER, 0, sizeof(GLuint), &zero);
+  }
+  // The masked channels are read back from the target itself (already bound
+  // where the pass samples its own target, as the piecewise rays do).
+  const bool wasActive = target->GetTextureUnit() >= 0;
+  if (!wasActive)
+  {
+    target->Activate();
+  }
+  program->SetUniformi("mmvTargetBefore", target->GetTextureUnit());
+  glBindImageTexture(0, target->GetHandle(), 0, GL_TRUE, 0, GL_READ_WRITE,
+    static_cast<GLenum>(target->GetInternalFormat(VTK_FLOAT, 4, false)));
+  program->SetUniformi("mmvTarget", 0);
+  // 8 x 8 x 4 invocations per group (mmvVoxelPassMain.glsl).
+  glDispatchCompute(static_cast<GLuint>((boxMax[0] - boxMin[0] + 8) / 8),
+    static_cast<GLuint>((boxMax[1] - boxMin[1] + 8) / 8),
+    static_cast<GLuint>((boxMax[2] - boxMin[2] + 4) / 4));
+  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
+    GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT | GL_ATOMIC_COUNTER_BARRIER_BIT);
+  glBindImageTexture(0, 0, 0, GL_TRUE, 0, GL_READ_WRITE, GL_RGBA32F);
+  if (!wasActive)
+  {
+    target->Deactivate();
+  }
+}
+
+//------------------------------------------------------------------------------
+// DrawLayers that returns the number of voxels written (the others returned
+// without writing: discarded fragments): an occlusion query, or the atomic
+// counter of a compute dispatch. Waits for the GPU.
+unsigned int vtkIrradianceVolumePass::vtkInternals::CountWrites(vtkOpenGLRenderWindow* context,
+  VoxelPass& pass, vtkTextureObject* target, bool layered, const int* box)
+{
+  GLuint written = 0;
+  if (this->Compute)
+  {
+    this->Dispatch(context, pass, target, box, 0xF, true);
+    glBindBuffer(GL_ATOMIC_COUNTER_BUFFER, this->WriteCounter);
+    glGetBufferSubData(GL_ATOMIC_COUNTER_BUFFER, 0, sizeof(GLuint), &written);
+    return written;
+  }
+  if (!this->ResidualQuery)
+  {
+    glGenQueries(1, &this->ResidualQuery);
+  }
+  glBeginQuery(GL_SAMPLES_PASSED, this->ResidualQuery);
+  this->DrawLayers(context, pass, target, layered, box);
+  glEndQuery(GL_SAMPLES_PASSED);
+  glGetQueryObjectuiv(this->ResidualQuery, GL_QUERY_RESULT, &written);
+  return written;
 }
 
 //------------------------------------------------------------------------------
@@ -503,7 +639,7 @@ bool vtkIrradianceVolumePass::vtkInternals::ShadowPass(
   program->SetUniformMatrix3x3("indexToWorld", glm::value_ptr(toWorld));
   program->SetUniformi("computeEmptyVoxels", skipEmpty ? 0 : 1);
   SetLightUniforms(program, this->Lights, group * LightsPerTexture, mask);
-  this->DrawLayers(context, *this->ShadowQuad, this->FineScratch[0], layered);
+  this->DrawLayers(context, this->ShadowQuad, this->FineScratch[0], layered);
   return true;
 }
 
@@ -535,7 +671,6 @@ bool vtkIrradianceVolumePass::vtkInternals::PiecewiseShadowPass(vtkOpenGLRenderW
   program->SetUniformi("channel", channel);
   program->SetUniformi("computeEmptyVoxels", skipEmpty ? 0 : 1);
   program->SetUniformi("sweepAxis", sweep.Axis);
-  context->GetState()->vtkglColorMask(channel == 0, channel == 1, channel == 2, channel == 3);
   for (int chunk = 0; chunk < sweep.GetNumberOfChunks(); ++chunk)
   {
     int first, last, plane;
@@ -546,10 +681,14 @@ bool vtkIrradianceVolumePass::vtkInternals::PiecewiseShadowPass(vtkOpenGLRenderW
     program->SetUniformi("sweepPlane", plane);
     program->SetUniformi("readSlice", sweep.GetReadSlice(chunk));
     // The earlier chunks' writes become visible to this draw's fetches.
-    glTextureBarrier();
-    this->DrawLayers(context, *this->PiecewiseQuad, target, layered, box);
+    // (A compute dispatch ends with a memory barrier instead.)
+    if (!this->Compute)
+    {
+      glTextureBarrier();
+    }
+    // The write mask keeps the other lights' channels.
+    this->DrawLayers(context, this->PiecewiseQuad, target, layered, box, 1 << channel);
   }
-  context->GetState()->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   return true;
 }
 
@@ -570,17 +709,13 @@ int vtkIrradianceVolumePass::vtkInternals::Diffuse(vtkOpenGLRenderWindow* contex
     return -1;
   }
   auto& coarse = this->CoarseScratch;
-  if (!this->ResidualQuery)
-  {
-    glGenQueries(1, &this->ResidualQuery);
-  }
   {
     context->GetShaderCache()->ReadyShaderProgram(restriction);
     ScopedTextures bound{ this->FineScratch[0], this->ClassTexture };
     restriction->SetUniformi("fine", this->FineScratch[0]->GetTextureUnit());
     restriction->SetUniformi("classes", this->ClassTexture->GetTextureUnit());
     this->SetTransferUniforms(restriction);
-    this->DrawLayers(context, *this->RestrictQuad, coarse[0], layered);
+    this->DrawLayers(context, this->RestrictQuad, coarse[0], layered);
   }
 
   context->GetShaderCache()->ReadyShaderProgram(sweep);
@@ -621,7 +756,7 @@ int vtkIrradianceVolumePass::vtkInternals::Diffuse(vtkOpenGLRenderWindow* contex
         sweep->SetUniformf(
           "omega", static_cast<float>(mmv::ChebyshevWeight(k, this->SpectralRadius)));
         // Blocks outside ScatteringBox never change and are never read.
-        this->DrawLayers(context, *this->SweepQuad, coarse[next], layered, this->ScatteringBox);
+        this->DrawLayers(context, this->SweepQuad, coarse[next], layered, this->ScatteringBox);
       }
       ++sweeps;
       previous = current;
@@ -640,12 +775,10 @@ int vtkIrradianceVolumePass::vtkInternals::Diffuse(vtkOpenGLRenderWindow* contex
         sweep->SetUniformi("current", coarse[current]->GetTextureUnit());
         sweep->SetUniformi("previous", coarse[current]->GetTextureUnit());
         sweep->SetUniformf("residualThreshold", threshold);
-        glBeginQuery(GL_SAMPLES_PASSED, this->ResidualQuery);
-        this->DrawLayers(context, *this->SweepQuad, coarse[scratch], layered, this->ScatteringBox);
-        glEndQuery(GL_SAMPLES_PASSED);
+        const unsigned int unconverged =
+          this->CountWrites(context, this->SweepQuad, coarse[scratch], layered, this->ScatteringBox);
+        context->GetShaderCache()->ReadyShaderProgram(sweep);
         sweep->SetUniformf("residualThreshold", 0.0f);
-        GLuint unconverged = 1;
-        glGetQueryObjectuiv(this->ResidualQuery, GL_QUERY_RESULT, &unconverged);
         if (unconverged == 0)
         {
           break;
@@ -665,7 +798,7 @@ int vtkIrradianceVolumePass::vtkInternals::Diffuse(vtkOpenGLRenderWindow* contex
   prolong->SetUniformi("classes", this->ClassTexture->GetTextureUnit());
   prolong->SetUniformi("after", coarse[current]->GetTextureUnit());
   this->SetTransferUniforms(prolong);
-  this->DrawLayers(context, *this->ProlongQuad, this->FineScratch[1], layered);
+  this->DrawLayers(context, this->ProlongQuad, this->FineScratch[1], layered);
   return sweeps;
 }
 
@@ -685,10 +818,7 @@ bool vtkIrradianceVolumePass::vtkInternals::FillPass(vtkOpenGLRenderWindow* cont
   program->SetUniformi("classes", this->ClassTexture->GetTextureUnit());
   program->SetUniformi("current", source->GetTextureUnit());
   program->SetUniform1iv("dims", 3, this->Grid.Dimensions);
-  context->GetState()->vtkglColorMask(
-    (mask & 1) != 0, (mask & 2) != 0, (mask & 4) != 0, (mask & 8) != 0);
-  this->DrawLayers(context, *this->FillQuad, this->Irradiance[group], layered);
-  context->GetState()->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  this->DrawLayers(context, this->FillQuad, this->Irradiance[group], layered, nullptr, mask);
   return true;
 }
 
@@ -740,13 +870,23 @@ void vtkIrradianceVolumePass::vtkInternals::Release(vtkWindow* window)
     this->Framebuffer->ReleaseGraphicsResources(window);
     this->Framebuffer = nullptr;
   }
-  for (auto* quad :
-    { &this->ShadowQuad, &this->PiecewiseQuad, &this->RestrictQuad, &this->SweepQuad, &this->ProlongQuad, &this->FillQuad })
+  if (this->WriteCounter)
   {
-    if (*quad)
+    glDeleteBuffers(1, &this->WriteCounter);
+    this->WriteCounter = 0;
+  }
+  for (VoxelPass* pass : { &this->ShadowQuad, &this->PiecewiseQuad, &this->RestrictQuad,
+         &this->SweepQuad, &this->ProlongQuad, &this->FillQuad })
+  {
+    if (pass->Quad)
     {
-      (*quad)->ReleaseGraphicsResources(window);
-      quad->reset();
+      pass->Quad->ReleaseGraphicsResources(window);
+      pass->Quad.reset();
+    }
+    if (pass->Compute)
+    {
+      pass->Compute->ReleaseGraphicsResources(window);
+      pass->Compute = nullptr;
     }
   }
   this->Uploaded = false;
@@ -887,6 +1027,8 @@ bool vtkIrradianceVolumePass::Render(vtkOpenGLRenderWindow* context)
     state->vtkglDisable(GL_DEPTH_TEST);
     state->vtkglDisable(GL_SCISSOR_TEST);
     state->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    internals.Compute = this->UseComputeShaders && vtkIrradianceComputeProgram::IsSupported();
+    this->ComputeShadersUsed = internals.Compute;
     bool reallocated = false;
     ok = internals.Upload(context) && internals.AllocateTargets(context, diffusion, reallocated);
     // Only the lights that moved (or all, when the volume changed) are
@@ -1082,6 +1224,8 @@ void vtkIrradianceVolumePass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MultipleScattering: " << this->MultipleScattering << "\n";
   os << indent << "DiffusionTime: " << this->DiffusionTime << "\n";
   os << indent << "LayeredRendering: " << this->LayeredRendering << "\n";
+  os << indent << "UseComputeShaders: " << this->UseComputeShaders
+     << " (last update: " << (this->ComputeShadersUsed ? "compute" : "fragment") << ")\n";
   os << indent << "SkipEmptyVoxels: " << this->SkipEmptyVoxels << "\n";
   os << indent << "ShadowEstimation: " << this->ShadowEstimation << "\n";
   os << indent << "PiecewiseShadowSlices: " << this->PiecewiseShadowSlices << "\n";

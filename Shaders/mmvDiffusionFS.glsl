@@ -22,12 +22,10 @@ uniform sampler3D current; // x of the previous sweep (fill pass: the result)
 uniform sampler3D classes; // s per voxel, < 0 where the voxel is empty
                            // (Jacobi sweeps: the diffusion grid's strength)
 uniform int dims[3];
-flat in int slice; // the layer (mmvLayerGS.glsl)
-in vec2 texCoord; // the quad's, at the centre of voxel (i, j)
 
 #ifdef MMV_FILL_PASS
 
-void main()
+void mmvVoxelMain()
 {
   ivec3 voxel = ivec3(floor(texCoord * vec2(dims[0], dims[1])), slice);
   vec4 value = texelFetch(current, voxel, 0);
@@ -57,7 +55,7 @@ void main()
       value = sum / float(count);
     }
   }
-  gl_FragData[0] = value;
+  mmvWrite(value);
 }
 
 #else
@@ -83,7 +81,7 @@ float mmvHarmonicMean(float a, float b)
   return (a > 0.0 && b > 0.0) ? 2.0 * a * b / (a + b) : 0.0;
 }
 
-void main()
+void mmvVoxelMain()
 {
   ivec3 voxel = ivec3(floor(texCoord * vec2(dims[0], dims[1])), slice);
   float s = mmvStrength(voxel);
@@ -117,13 +115,13 @@ void main()
     vec4 correction = abs(numerator / denominator - texelFetch(current, voxel, 0));
     if (max(max(correction.x, correction.y), max(correction.z, correction.w)) <= residualThreshold)
     {
-      discard;
+      return; // not written: the voxel keeps its value
     }
-    gl_FragData[0] = vec4(1.0);
+    mmvWrite(vec4(1.0));
     return;
   }
   vec4 previousValue = texelFetch(previous, voxel, 0);
-  gl_FragData[0] = previousValue + omega * (numerator / denominator - previousValue);
+  mmvWrite(previousValue + omega * (numerator / denominator - previousValue));
 }
 
 #endif

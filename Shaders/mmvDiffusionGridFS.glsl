@@ -15,12 +15,10 @@ uniform sampler3D classes; // s per voxel, < 0 where the voxel is empty
 uniform int dims[3];       // irradiance grid
 uniform int factor[3];
 uniform int coarseDims[3];
-in vec2 texCoord;
-flat in int slice;
 
 #ifdef MMV_RESTRICT
 
-void main()
+void mmvVoxelMain()
 {
   ivec3 block = ivec3(floor(texCoord * vec2(coarseDims[0], coarseDims[1])), slice);
   ivec3 first = block * ivec3(factor[0], factor[1], factor[2]);
@@ -41,7 +39,7 @@ void main()
       }
     }
   }
-  gl_FragData[0] = count > 0 ? sum / float(count) : vec4(0.0);
+  mmvWrite(count > 0 ? sum / float(count) : vec4(0.0));
 }
 
 #else
@@ -50,7 +48,7 @@ uniform sampler3D after;          // the diffused irradiance (diffusion grid)
 uniform sampler3D before;         // the restricted irradiance (diffusion grid)
 uniform sampler3D coarseStrength; // s per block, 0 where no voxel scatters
 
-void main()
+void mmvVoxelMain()
 {
   ivec3 voxel = ivec3(floor(texCoord * vec2(dims[0], dims[1])), slice);
   vec4 value = texelFetch(fine, voxel, 0);
@@ -82,7 +80,7 @@ void main()
       value = max(value + sum / weights, vec4(0.0));
     }
   }
-  gl_FragData[0] = value;
+  mmvWrite(value);
 }
 
 #endif

@@ -5,8 +5,6 @@
 // of mmv::ShadowRayGLSLPrelude(), mmvLightModel.glsl and mmvShadowRay.glsl.
 
 uniform sampler3D classes;     // s per voxel, < 0 where the voxel is empty
-flat in int slice; // the layer (mmvLayerGS.glsl)
-in vec2 texCoord; // the quad's, at the centre of voxel (i, j)
 uniform vec3 origin;
 uniform mat3 indexToWorld;
 uniform mat3 worldToIndex;
@@ -36,7 +34,7 @@ float mmvShadowTransmittance(int light, vec3 start, vec3 x, float startValue)
   return mmvMarchTransmittance(start, indexDir, end, startValue, 1.0);
 }
 
-void main()
+void mmvVoxelMain()
 {
   ivec3 voxel = ivec3(floor(texCoord * vec2(dims[0], dims[1])), slice);
   vec4 irradiance = vec4(0.0);
@@ -59,5 +57,5 @@ void main()
       }
     }
   }
-  gl_FragData[0] = irradiance;
+  mmvWrite(irradiance);
 }

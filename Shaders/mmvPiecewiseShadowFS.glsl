@@ -16,8 +16,6 @@ uniform int sweepPlane;          // -1: the first chunk, rays run to the boundar
 uniform int readSlice;           // the slice the next chunk reads (-1: none)
 uniform sampler3D classes;       // s per voxel, < 0 where the voxel is empty
 uniform bool computeEmptyVoxels; // on: every voxel (to measure what skipping saves)
-flat in int slice; // the layer (mmvLayerGS.glsl)
-in vec2 texCoord; // the quad's, at the centre of voxel (i, j)
 
 // mmv::ReachesSweepPlane: does the ray reach the plane before leaving the box?
 bool mmvReachesSweepPlane(float start, float direction, int plane, float exitDistance,
@@ -62,14 +60,14 @@ float mmvSampleSlice(int axis, int plane, vec3 q)
     f[c] * ((1.0 - f[b]) * v01 + f[b] * v11);
 }
 
-void main()
+void mmvVoxelMain()
 {
   ivec3 voxel = ivec3(floor(texCoord * vec2(dims[0], dims[1])), slice);
   if (!computeEmptyVoxels && voxel[sweepAxis] != readSlice &&
     texelFetch(classes, voxel, 0).r < 0.0)
   {
     // Empty, and no later chunk reads it: the fill pass decides its value.
-    gl_FragData[0] = vec4(0.0);
+    mmvWrite(vec4(0.0));
     return;
   }
   vec3 start = vec3(voxel);
@@ -84,6 +82,6 @@ void main()
     far = mmvSampleSlice(sweepAxis, sweepPlane, start + distance * indexDir);
   }
   // The colour mask keeps the other lights' channels.
-  gl_FragData[0] = vec4(mmvMarchTransmittance(start, indexDir, exitDistance,
-    texelFetch(scalars, voxel, 0).r, far));
+  mmvWrite(vec4(mmvMarchTransmittance(start, indexDir, exitDistance,
+    texelFetch(scalars, voxel, 0).r, far)));
 }

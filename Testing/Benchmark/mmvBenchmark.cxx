@@ -12,6 +12,7 @@
 // DIR/machine.txt and, in DIR/images, the reference, a few method images and
 // their error heat maps. Not a test: it asserts nothing about timings.
 #include "mmvBenchmarkScenes.h"
+#include "mmvBenchmarkWindow.h"
 
 #include "vtkCamera.h"
 #include "vtkImageErrorMetrics.h"
@@ -168,7 +169,7 @@ std::vector<std::vector<MethodSpec>> MakeMethods(bool quick)
 struct Instance
 {
   std::vector<Result> Results;
-  vtkNew<vtkRenderWindow> Window;
+  vtkSmartPointer<vtkRenderWindow> Window = mmvbench::NewRenderWindow();
   vtkNew<vtkRenderer> Renderer;
   vtkNew<vtkVolume> Volume;
   vtkNew<vtkVolumeProperty> Property;
@@ -381,19 +382,6 @@ void SetUpInstance(Instance& in, const mmvbench::SceneSpec& scene, vtkCamera* ca
   in.Renderer->AddVolume(in.Volume);
 }
 
-std::string RendererString(vtkRenderWindow* window)
-{
-  const std::string caps = window->ReportCapabilities();
-  const std::string key = "OpenGL renderer string:";
-  const size_t at = caps.find(key);
-  if (at == std::string::npos)
-  {
-    return "unknown";
-  }
-  std::string s = caps.substr(at + key.size(), caps.find('\n', at) - at - key.size());
-  s.erase(0, s.find_first_not_of(' '));
-  return s;
-}
 }
 
 int main(int argc, char* argv[])
@@ -521,7 +509,7 @@ int main(int argc, char* argv[])
         r.FirstFrame = in->Render();
         if (!rendererReported)
         {
-          machine << "renderer " << RendererString(in->Window) << "\n";
+          machine << "renderer " << mmvbench::RendererString(in->Window) << "\n";
           rendererReported = true;
         }
         if (in->Ours)

@@ -6,7 +6,9 @@
 //
 //   mmvIrradianceBenchmark --out DIR [--size N] [--reps N] [--head FILE.vti] [--quick]
 //                          [--only SECTION[,SECTION...]]  (updates, resolution,
-//                          estimation, raycast; all but raycast by default)
+//                          estimation, raycast, orbit; all but raycast and
+//                          orbit by default)
+//                          [--orbit-steps N] [--orbit-interactive-frames K]
 //                          [--image-sample-distance D] [--lights N]  (raycast: both
 //                          mappers, no auto-adjust, N scene lights, default 5)
 //
@@ -20,6 +22,7 @@
 // update and the image's PSNR against the full rays', per chunk length K.
 // Not a test: it asserts nothing about timings.
 #include "mmvBenchmarkScenes.h"
+#include "mmvBenchmarkWindow.h"
 
 #include "vtkCamera.h"
 #include "vtkImageData.h"
@@ -27,6 +30,7 @@
 #include "vtkWindowToImageFilter.h"
 #include "vtkIrradianceVolumePass.h"
 #include "vtkLight.h"
+#include "vtkLightKit.h"
 #include "vtkMultiMaterialParameters.h"
 #include "vtkMultiMaterialVolumeMapper.h"
 #include "vtkNew.h"
@@ -41,6 +45,7 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <memory>
 #include <iostream>
 #include <sstream>
 #include <string>
@@ -65,7 +70,7 @@ const double LightDirections[8][3] = { { 0.3, -0.8, 0.9 }, { -0.6, -0.9, -0.3 },
 /// One window rendering the CT-sized scene with N scene lights.
 struct Bench
 {
-  vtkNew<vtkRenderWindow> Window;
+  vtkSmartPointer<vtkRenderWindow> Window = mmvbench::NewRenderWindow();
   vtkNew<vtkRenderer> Renderer;
   vtkNew<vtkVolume> Volume;
   vtkNew<vtkVolumeProperty> Property;
@@ -194,6 +199,7 @@ struct Config
   double Scale = 0.5;
   bool Layered = true;
   bool SkipEmpty = true;
+  bool Compute = true; // compute dispatches where OpenGL 4.3 is there
 };
 
 /// Whether section `name` runs: all of them without --only, else those named
@@ -222,6 +228,125 @@ std::string Join(const int v[3])
   s << v[0] << "x" << v[1] << "x" << v[2];
   return s.str();
 }
+/// ParaView's default lighting in C++: a light kit (key, fill, two back
+/// lights and the head light, all following the camera), a camera orbit of
+/// `steps` steps, each of `interactive` frames with a small allocated render
+/// time (what ParaView's interactive renders and VTK's LOD use) and one still
+/// frame; VTK's Phong, VTK's volumetric scattering, ours by default and with
+/// `skin`, round-robin per step. Then the image at rest against a fresh
+/// window at the same camera. Writes OUT/lightkit_orbit_cxx.csv.
+int RunLightKitOrbit(const mmvbench::SceneSpec& scene, int size, const std::string& out,
+  int steps, int interactive)
+{
+  enum Method
+  {
+    Phong,
+    Scattering,
+    OursDefault,
+    OursSkin
+  };
+  const char* names[] = { "vtk-phong", "vtk-scattering", "mmv-default", "mmv-skin" };
+  double range[2];
+  scene.Image->GetScalarRange(range);
+  auto make = [&](int method) {
+    auto bench = std::make_unique<Bench>(scene, size, method >= OursDefault);
+    bench->Renderer->RemoveAllLights();
+    vtkNew<vtkLightKit> kit;
+    kit->AddLightsToRenderer(bench->Renderer);
+    if (method == Scattering)
+    {
+      bench->Mapper->SetVolumetricScatteringBlending(1.0);
+      bench->Mapper->SetGlobalIlluminationReach(0.5);
+    }
+    if (method == OursSkin)
+    {
+      bench->Materials->ApplyPreset("skin", range[0], range[1]);
+    }
+    if (bench->Ours)
+    {
+      bench->Ours->TimeStagesOff(); // its glFinish calls would stall the frames
+    }
+    bench->Window->SetDesiredUpdateRate(0.0001);
+    bench->Window->Render();
+    return bench;
+  };
+  std::vector<std::unique_ptr<Bench>> benches;
+  for (int m = Phong; m <= OursSkin; ++m)
+  {
+    benches.push_back(make(m));
+  }
+  const std::string renderer = mmvbench::RendererString(benches[0]->Window);
+  std::cout << "== light-kit orbit: " << steps << " steps x " << interactive
+            << " interactive frames + 1 still, renderer " << renderer << std::endl;
+  auto timed = [](vtkRenderWindow* window) {
+    const auto start = std::chrono::steady_clock::now();
+    window->Render();
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
+  std::vector<std::vector<double>> inter(4), settled(4), still(4);
+  for (int step = 0; step < steps; ++step)
+  {
+    for (int i = 0; i < 4; ++i)
+    {
+      const int m = (step + i) % 4; // the order rotates: the machine may be shared
+      Bench& b = *benches[m];
+      b.Window->SetDesiredUpdateRate(5.0); // ParaView's interactive renders
+      for (int f = 0; f < interactive; ++f)
+      {
+        b.Renderer->GetActiveCamera()->Azimuth(10.0 / interactive);
+        const double t = timed(b.Window);
+        inter[m].push_back(t);
+        if (f >= interactive - std::min(3, interactive))
+        {
+          settled[m].push_back(t);
+        }
+      }
+      b.Window->SetDesiredUpdateRate(0.0001); // the still render after the drag
+      still[m].push_back(timed(b.Window));
+    }
+  }
+  std::ofstream csv(out + "/lightkit_orbit_cxx.csv");
+  csv << "method,steps,interactive_frames,interactive_median_s,interactive_settled_median_s,"
+         "still_median_s,interactive_over_phong,settled_over_phong,still_over_phong,"
+         "psnr_rest_vs_fresh_db,renderer\n";
+  std::printf("method          interactive s  settled s  still s   int/phong  settled/phong  "
+              "still/phong  rest vs fresh dB\n");
+  for (int m = Phong; m <= OursSkin; ++m)
+  {
+    double psnr = std::nan("");
+    if (m >= OursDefault)
+    {
+      // A fresh window at the orbit's final camera: the image at rest must equal it.
+      auto fresh = make(m);
+      fresh->Renderer->GetActiveCamera()->DeepCopy(benches[m]->Renderer->GetActiveCamera());
+      fresh->Renderer->ResetCameraClippingRange();
+      benches[m]->Renderer->ResetCameraClippingRange();
+      fresh->Window->Render();
+      benches[m]->Window->Render();
+      auto grab = [](vtkRenderWindow* window) {
+        vtkNew<vtkWindowToImageFilter> filter;
+        filter->SetInput(window);
+        filter->ReadFrontBufferOff();
+        filter->Update();
+        auto image = vtkSmartPointer<vtkImageData>::New();
+        image->DeepCopy(filter->GetOutput());
+        return image;
+      };
+      vtkNew<vtkImageErrorMetrics> metrics;
+      metrics->Compute(grab(benches[m]->Window), grab(fresh->Window));
+      psnr = metrics->GetPSNR();
+    }
+    const double i = Median(inter[m]), st = Median(settled[m]), sl = Median(still[m]);
+    const double pi = Median(inter[Phong]), pst = Median(settled[Phong]), psl = Median(still[Phong]);
+    csv << names[m] << "," << steps << "," << interactive << "," << i << "," << st << "," << sl
+        << "," << i / pi << "," << st / pst << "," << sl / psl << "," << psnr << ",\""
+        << renderer << "\"\n";
+    std::printf("%-15s %12.4f %10.4f %8.4f %10.2f %14.2f %12.2f %16.1f\n", names[m], i, st, sl,
+      i / pi, st / pst, sl / psl, psnr);
+  }
+  std::cout << "== wrote " << out << "/lightkit_orbit_cxx.csv" << std::endl;
+  return 0;
+}
 } // namespace
 
 int main(int argc, char* argv[])
@@ -234,6 +359,8 @@ int main(int argc, char* argv[])
   std::string only; // one section: updates, resolution or estimation
   double imageSampleDistance = 1.0; // raycast: > 1 as in ParaView's interactive frames
   int raycastLights = 5;            // raycast: scene lights
+  int orbitSteps = 6;               // orbit: camera steps of 10 degrees
+  int orbitInteractive = 8;         // orbit: interactive frames per step
   for (int i = 1; i < argc; ++i)
   {
     const std::string arg = argv[i];
@@ -265,6 +392,14 @@ int main(int argc, char* argv[])
     else if (arg == "--lights")
     {
       raycastLights = std::max(0, std::min(8, std::atoi(next().c_str())));
+    }
+    else if (arg == "--orbit-steps")
+    {
+      orbitSteps = std::max(1, std::atoi(next().c_str()));
+    }
+    else if (arg == "--orbit-interactive-frames")
+    {
+      orbitInteractive = std::max(1, std::atoi(next().c_str()));
     }
     else if (arg == "--image-sample-distance")
     {
@@ -311,10 +446,16 @@ int main(int argc, char* argv[])
   {
     configs.push_back({ "draws", 5, s, 0.5, false, true });
     configs.push_back({ "empty-space", 5, s, 0.5, true, false });
+    configs.push_back({ "fragment", 5, s, 0.5, true, true, false });
   }
 
+  if (Wanted(only, "orbit") && !only.empty()) // alone: four windows of its own
+  {
+    return RunLightKitOrbit(scene, size, out, orbitSteps, orbitInteractive);
+  }
   Bench ours(scene, size, true);
   Bench phong(scene, size, false);
+  std::cout << "== renderer " << mmvbench::RendererString(ours.Window) << std::endl;
   if (Wanted(only, "raycast")) // alone: it changes the mappers' sampling
   {
     // Camera-only frames (the irradiance cached): ours against Phong with
@@ -347,10 +488,10 @@ int main(int argc, char* argv[])
     return 0;
   }
   std::ofstream csv(out + "/irradiance_updates.csv");
-  csv << "sweep,lights,scattering,irradiance_scale,layered_draws,skip_empty_voxels,"
+  csv << "sweep,lights,scattering,irradiance_scale,layered_draws,skip_empty_voxels,compute_shaders,"
          "irradiance_dims,diffusion_dims,sub_steps,sweeps_per_step,computed_voxels,"
          "update_s,ours_raycast_frame_s,phong_frame_s,update_over_phong\n";
-  std::cout << "sweep        lights    s  scale layered skip  irradiance   diffusion    update s  "
+  std::cout << "sweep        lights    s  scale layered skip   cs  irradiance   diffusion    update s  "
                "ray cast s  phong s  update/phong"
             << std::endl;
   for (const Config& c : configs)
@@ -366,6 +507,7 @@ int main(int argc, char* argv[])
     vtkIrradianceVolumePass* pass = ours.Ours->GetIrradianceVolumePass();
     pass->SetLayeredRendering(c.Layered);
     pass->SetSkipEmptyVoxels(c.SkipEmpty);
+    pass->SetUseComputeShaders(c.Compute);
     // Warm-up: shaders, tables, uploads for this configuration.
     ours.Window->Render();
     phong.Window->Render();
@@ -388,14 +530,15 @@ int main(int argc, char* argv[])
     const double update = Median(updates);
     const double phongFrame = Median(phongFrames);
     csv << c.Sweep << "," << c.Lights << "," << c.S << "," << c.Scale << "," << c.Layered << ","
-        << c.SkipEmpty << "," << Join(irradiance) << "," << (diffuses ? Join(diffusion) : "-")
+        << c.SkipEmpty << "," << pass->GetComputeShadersUsed() << "," << Join(irradiance) << "," << (diffuses ? Join(diffusion) : "-")
         << "," << (diffuses ? pass->GetDiffusionSubSteps() : 0) << ","
         << (diffuses ? pass->GetDiffusionSweepsPerStep() : 0) << ","
         << pass->GetNumberOfComputedVoxels() << "," << update << "," << Median(casts) << ","
         << phongFrame << "," << update / phongFrame << "\n";
     csv.flush();
-    std::printf("%-12s %6d %4g %6.2f %7d %5d  %-11s  %-11s %8.3f  %9.3f  %7.3f  %8.2f\n",
+    std::printf("%-12s %6d %4g %6.2f %7d %5d %4d  %-11s  %-11s %8.3f  %9.3f  %7.3f  %8.2f\n",
       c.Sweep.c_str(), c.Lights, c.S, c.Scale, int(c.Layered), int(c.SkipEmpty),
+      int(pass->GetComputeShadersUsed()),
       Join(irradiance).c_str(), diffuses ? Join(diffusion).c_str() : "-", update, Median(casts),
       phongFrame, update / phongFrame);
     std::fflush(stdout);
@@ -436,6 +579,7 @@ int main(int argc, char* argv[])
   ours.SetLightCount(5);
   phong.SetLightCount(5);
   ours.Ours->GetIrradianceVolumePass()->SetLayeredRendering(true);
+  ours.Ours->GetIrradianceVolumePass()->SetUseComputeShaders(true);
   ours.Ours->GetIrradianceVolumePass()->SetSkipEmptyVoxels(true);
   const std::vector<double> accuracyScales =
     quick ? std::vector<double>{ 1.0, 0.5 } : std::vector<double>{ 1.0, 0.75, 0.5, 0.35, 0.25 };

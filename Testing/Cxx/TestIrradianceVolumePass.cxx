@@ -677,6 +677,49 @@ TEST(IrradianceVolumePass, LayeredAndPerSliceDrawsAgree)
   }
 }
 
+TEST(IrradianceVolumePass, ComputeAndFragmentPassesAgree)
+{
+  // The same voxel passes as compute dispatches (the default where OpenGL
+  // 4.3 is there, as on llvmpipe) and as layered fragment draws: full and
+  // piecewise rays, diffusion without (s = 20) and with residual checks
+  // (s = 1000), and the fill pass's channel masks.
+  const Context& ctx = SharedContext();
+  ASSERT_NE(ctx.GL, nullptr);
+  for (const double s : { 0.0, 20.0, 1000.0 })
+  {
+    for (const int estimation : { mmv::FullShadowRays, mmv::PiecewiseShadowRays })
+    {
+      Scene scene = TwoBlocks(s);
+      scene.Estimation = estimation;
+      std::vector<std::vector<float>> results;
+      int passes[2] = { 0, 0 };
+      for (const bool compute : { true, false })
+      {
+        vtkNew<vtkIrradianceVolumePass> pass;
+        pass->SetUseComputeShaders(compute);
+        SetPassInputs(scene, pass);
+        ASSERT_TRUE(pass->Render(ctx.GL));
+        EXPECT_EQ(pass->GetComputeShadersUsed(), compute);
+        passes[compute ? 0 : 1] = pass->GetDiffusionPasses();
+        for (int l = 0; l < 3; ++l)
+        {
+          results.emplace_back();
+          ASSERT_TRUE(pass->ReadBack(ctx.GL, l, results.back()));
+        }
+        pass->ReleaseGraphicsResources(ctx.GL);
+      }
+      // The residual checks stop both solves after the same sweep.
+      EXPECT_EQ(passes[0], passes[1]) << "s = " << s;
+      for (int l = 0; l < 3; ++l)
+      {
+        const double diff = MaxDifference(
+          results[l], results[l + 3], std::vector<bool>(results[l].size(), false));
+        EXPECT_LE(diff, 1e-6) << "s = " << s << ", estimation " << estimation << ", light " << l;
+      }
+    }
+  }
+}
+
 TEST(IrradianceVolumePass, LeavesTheRenderersStateAsItFoundIt)
 {
   // The diffusion sweeps scissor to the blocks that scatter; the renderer's
