@@ -4,6 +4,7 @@
 #include "vtk_glew.h"
 
 #include <algorithm>
+#include <string>
 #include <vector>
 
 vtkStandardNewMacro(vtkIrradianceComputeProgram);
@@ -12,6 +13,21 @@ vtkStandardNewMacro(vtkIrradianceComputeProgram);
 bool vtkIrradianceComputeProgram::IsSupported()
 {
   return GLEW_VERSION_4_3 != 0;
+}
+
+//------------------------------------------------------------------------------
+bool vtkIrradianceComputeProgram::IsSoftwareRenderer()
+{
+  const GLubyte* name = glGetString(GL_RENDERER);
+  const std::string renderer = name ? reinterpret_cast<const char*>(name) : "";
+  for (const char* software : { "llvmpipe", "softpipe", "swrast", "Software Rasterizer" })
+  {
+    if (renderer.find(software) != std::string::npos)
+    {
+      return true;
+    }
+  }
+  return false;
 }
 
 namespace

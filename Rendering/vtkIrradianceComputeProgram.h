@@ -31,6 +31,10 @@ public:
   /// (OpenGL 4.3).
   static bool IsSupported();
 
+  /// Whether the current context renders on the CPU (Mesa's llvmpipe,
+  /// softpipe or swrast), where compute dispatches do not pay.
+  static bool IsSoftwareRenderer();
+
 protected:
   vtkIrradianceComputeProgram() = default;
   ~vtkIrradianceComputeProgram() override = default;

@@ -289,7 +289,7 @@ public:
   bool ShadowPass(vtkOpenGLRenderWindow* context, int group, int mask, bool skipEmpty, bool layered);
   bool PiecewiseShadowPass(vtkOpenGLRenderWindow* context, int light, int slicesPerChunk,
     bool skipEmpty, bool layered);
-  int Diffuse(vtkOpenGLRenderWindow* context, bool layered);
+  int Diffuse(vtkOpenGLRenderWindow* context, bool layered, int mask);
   bool FillPass(vtkOpenGLRenderWindow* context, vtkTextureObject* source, int group, int mask,
     bool layered);
   void ReleaseScratch(vtkWindow* window);
@@ -401,9 +401,12 @@ bool vtkIrradianceVolumePass::vtkInternals::AllocateTargets(
   {
     if (!HasSize(texture, d))
     {
-      // 16-bit unsigned normalised: values are fractions in [0, 1].
+      // 16-bit unsigned normalised: values are fractions in [0, 1]. Zeroed:
+      // channels without a light are never written, and an NVIDIA driver
+      // hands out garbage (NaN after the conversion) where llvmpipe zeroes.
       texture = NewTexture(context, GL_RGBA16, GL_RGBA, GL_UNSIGNED_SHORT, true);
-      ok = ok && texture->Allocate3D(d[0], d[1], d[2], 4, VTK_UNSIGNED_SHORT);
+      std::vector<unsigned short> zeros(4 * static_cast<size_t>(d[0]) * d[1] * d[2], 0);
+      ok = ok && texture->Create3DFromRaw(d[0], d[1], d[2], 4, VTK_UNSIGNED_SHORT, zeros.data());
       reallocated = true;
     }
   }
@@ -698,7 +701,8 @@ bool vtkIrradianceVolumePass::vtkInternals::PiecewiseShadowPass(vtkOpenGLRenderW
 // accelerated Jacobi sweeps (their number from the error bound,
 // mmv::ChebyshevSweeps), then the prolongation of the change. Returns the
 // sweeps drawn, or -1 on failure.
-int vtkIrradianceVolumePass::vtkInternals::Diffuse(vtkOpenGLRenderWindow* context, bool layered)
+int vtkIrradianceVolumePass::vtkInternals::Diffuse(
+  vtkOpenGLRenderWindow* context, bool layered, int mask)
 {
   vtkShaderProgram* restriction =
     this->Ready(context, this->RestrictQuad, mmvDiffusionGridFS, "#define MMV_RESTRICT\n", false);
@@ -735,6 +739,11 @@ int vtkIrradianceVolumePass::vtkInternals::Diffuse(vtkOpenGLRenderWindow* contex
     ? this->SweepsPerStep / 4
     : this->SweepsPerStep;
   sweep->SetUniformf("residualThreshold", 0.0f);
+  // Only the lights being updated decide convergence: the scratch's other
+  // channels hold whatever the GPU left there.
+  const int residualChannels[4] = { (mask & 1) != 0, (mask & 2) != 0, (mask & 4) != 0,
+    (mask & 8) != 0 };
+  glUniform4iv(sweep->FindUniform("residualChannels"), 1, residualChannels);
   int rhs = 0;
   int current = 0;
   int sweeps = 0;
@@ -1027,7 +1036,10 @@ bool vtkIrradianceVolumePass::Render(vtkOpenGLRenderWindow* context)
     state->vtkglDisable(GL_DEPTH_TEST);
     state->vtkglDisable(GL_SCISSOR_TEST);
     state->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    internals.Compute = this->UseComputeShaders && vtkIrradianceComputeProgram::IsSupported();
+    internals.Compute = this->ComputeShaders != FragmentDraws &&
+      vtkIrradianceComputeProgram::IsSupported() &&
+      (this->ComputeShaders == ComputeDispatches ||
+        !vtkIrradianceComputeProgram::IsSoftwareRenderer());
     this->ComputeShadersUsed = internals.Compute;
     bool reallocated = false;
     ok = internals.Upload(context) && internals.AllocateTargets(context, diffusion, reallocated);
@@ -1092,7 +1104,7 @@ bool vtkIrradianceVolumePass::Render(vtkOpenGLRenderWindow* context)
       vtkTextureObject* result = internals.FineScratch[0];
       if (ok && diffusion)
       {
-        const int sweeps = internals.Diffuse(context, this->LayeredRendering);
+        const int sweeps = internals.Diffuse(context, this->LayeredRendering, mask);
         ok = sweeps >= 0;
         this->DiffusionPasses += std::max(0, sweeps);
         result = internals.FineScratch[1];
@@ -1224,7 +1236,7 @@ void vtkIrradianceVolumePass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MultipleScattering: " << this->MultipleScattering << "\n";
   os << indent << "DiffusionTime: " << this->DiffusionTime << "\n";
   os << indent << "LayeredRendering: " << this->LayeredRendering << "\n";
-  os << indent << "UseComputeShaders: " << this->UseComputeShaders
+  os << indent << "ComputeShaders: " << this->ComputeShaders
      << " (last update: " << (this->ComputeShadersUsed ? "compute" : "fragment") << ")\n";
   os << indent << "SkipEmptyVoxels: " << this->SkipEmptyVoxels << "\n";
   os << indent << "ShadowEstimation: " << this->ShadowEstimation << "\n";

@@ -95,14 +95,22 @@ public:
   vtkGetMacro(LayeredRendering, bool);
 
   /**
-   * The voxel passes (shadow rays, diffusion, fill) as compute dispatches
-   * (default on) where the context has OpenGL 4.3, else as layered fragment
-   * draws. Both give the same irradiance. On an H100 a diffusion sweep over
-   * a 128x128x64 grid took 0.025 ms as a compute dispatch and 0.48 ms as a
-   * layered draw; on llvmpipe they cost the same (docs/benchmark.md).
+   * How the voxel passes (shadow rays, diffusion, fill) run: 0, layered
+   * fragment draws; 1, compute dispatches (OpenGL 4.3; fragment draws where
+   * the context lacks it); 2, automatic (default): compute dispatches except
+   * on a CPU rasterizer (llvmpipe, softpipe, swrast). Both give the same
+   * irradiance. Measured (docs/benchmark.md): on an H100 compute dispatches
+   * made a 5-light update with s = 8 about 10x faster; on llvmpipe they made
+   * the diffusion slower.
    */
-  vtkSetMacro(UseComputeShaders, bool);
-  vtkGetMacro(UseComputeShaders, bool);
+  enum ComputeShaderUse
+  {
+    FragmentDraws = 0,
+    ComputeDispatches = 1,
+    ComputeUnlessSoftware = 2
+  };
+  vtkSetClampMacro(ComputeShaders, int, FragmentDraws, ComputeUnlessSoftware);
+  vtkGetMacro(ComputeShaders, int);
   /// Whether the last update ran compute dispatches.
   vtkGetMacro(ComputeShadersUsed, bool);
 
@@ -174,7 +182,7 @@ protected:
   bool MultipleScattering = true;
   double DiffusionTime = 1.0;
   bool LayeredRendering = true;
-  bool UseComputeShaders = true;
+  int ComputeShaders = ComputeUnlessSoftware;
   bool ComputeShadersUsed = false;
   bool SkipEmptyVoxels = true;
   int ShadowEstimation = mmv::PiecewiseShadowRays;

@@ -67,6 +67,7 @@ uniform float omega;        // Chebyshev weight of this sweep (1: plain Jacobi)
 // |J(x) - x| (every channel) is at most this is discarded; the others pass,
 // and an occlusion query counts them.
 uniform float residualThreshold;
+uniform bvec4 residualChannels; // the lights being updated (the others: scratch)
 uniform vec3 invH2;         // 1 / h^2 per axis, h in data voxels
 uniform float dt;
 
@@ -113,6 +114,10 @@ void mmvVoxelMain()
   if (residualThreshold > 0.0)
   {
     vec4 correction = abs(numerator / denominator - texelFetch(current, voxel, 0));
+    // Selected, not multiplied: 0 * NaN would still be NaN.
+    correction = vec4(residualChannels.x ? correction.x : 0.0,
+      residualChannels.y ? correction.y : 0.0, residualChannels.z ? correction.z : 0.0,
+      residualChannels.w ? correction.w : 0.0);
     if (max(max(correction.x, correction.y), max(correction.z, correction.w)) <= residualThreshold)
     {
       return; // not written: the voxel keeps its value

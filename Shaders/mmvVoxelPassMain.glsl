@@ -29,7 +29,11 @@ void main()
   vec4 value = mmvResult;
   if (!all(mmvWriteMask))
   {
-    value = mix(texelFetch(mmvTargetBefore, voxel, 0), value, vec4(mmvWriteMask));
+    // Selected per channel, not mixed: 0 * NaN in a scratch channel would
+    // still be NaN.
+    vec4 before = texelFetch(mmvTargetBefore, voxel, 0);
+    value = vec4(mmvWriteMask.x ? value.x : before.x, mmvWriteMask.y ? value.y : before.y,
+      mmvWriteMask.z ? value.z : before.z, mmvWriteMask.w ? value.w : before.w);
   }
   imageStore(mmvTarget, voxel, value);
   if (mmvCountWrites)

@@ -12,7 +12,7 @@
 // DIR/machine.txt and, in DIR/images, the reference, a few method images and
 // their error heat maps. Not a test: it asserts nothing about timings.
 #include "mmvBenchmarkScenes.h"
-#include "mmvBenchmarkWindow.h"
+#include "mmvTestWindow.h"
 
 #include "vtkCamera.h"
 #include "vtkImageErrorMetrics.h"
@@ -169,7 +169,7 @@ std::vector<std::vector<MethodSpec>> MakeMethods(bool quick)
 struct Instance
 {
   std::vector<Result> Results;
-  vtkSmartPointer<vtkRenderWindow> Window = mmvbench::NewRenderWindow();
+  vtkSmartPointer<vtkRenderWindow> Window = mmvtest::NewRenderWindow();
   vtkNew<vtkRenderer> Renderer;
   vtkNew<vtkVolume> Volume;
   vtkNew<vtkVolumeProperty> Property;
@@ -509,7 +509,7 @@ int main(int argc, char* argv[])
         r.FirstFrame = in->Render();
         if (!rendererReported)
         {
-          machine << "renderer " << mmvbench::RendererString(in->Window) << "\n";
+          machine << "renderer " << mmvtest::RendererString(in->Window) << "\n";
           rendererReported = true;
         }
         if (in->Ours)

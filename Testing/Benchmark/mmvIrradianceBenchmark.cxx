@@ -22,7 +22,7 @@
 // update and the image's PSNR against the full rays', per chunk length K.
 // Not a test: it asserts nothing about timings.
 #include "mmvBenchmarkScenes.h"
-#include "mmvBenchmarkWindow.h"
+#include "mmvTestWindow.h"
 
 #include "vtkCamera.h"
 #include "vtkImageData.h"
@@ -70,7 +70,7 @@ const double LightDirections[8][3] = { { 0.3, -0.8, 0.9 }, { -0.6, -0.9, -0.3 },
 /// One window rendering the CT-sized scene with N scene lights.
 struct Bench
 {
-  vtkSmartPointer<vtkRenderWindow> Window = mmvbench::NewRenderWindow();
+  vtkSmartPointer<vtkRenderWindow> Window = mmvtest::NewRenderWindow();
   vtkNew<vtkRenderer> Renderer;
   vtkNew<vtkVolume> Volume;
   vtkNew<vtkVolumeProperty> Property;
@@ -199,7 +199,7 @@ struct Config
   double Scale = 0.5;
   bool Layered = true;
   bool SkipEmpty = true;
-  bool Compute = true; // compute dispatches where OpenGL 4.3 is there
+  bool Compute = true; // compute dispatches (fragment draws without OpenGL 4.3)
 };
 
 /// Whether section `name` runs: all of them without --only, else those named
@@ -275,7 +275,7 @@ int RunLightKitOrbit(const mmvbench::SceneSpec& scene, int size, const std::stri
   {
     benches.push_back(make(m));
   }
-  const std::string renderer = mmvbench::RendererString(benches[0]->Window);
+  const std::string renderer = mmvtest::RendererString(benches[0]->Window);
   std::cout << "== light-kit orbit: " << steps << " steps x " << interactive
             << " interactive frames + 1 still, renderer " << renderer << std::endl;
   auto timed = [](vtkRenderWindow* window) {
@@ -345,6 +345,36 @@ int RunLightKitOrbit(const mmvbench::SceneSpec& scene, int size, const std::stri
       i / pi, st / pst, sl / psl, psnr);
   }
   std::cout << "== wrote " << out << "/lightkit_orbit_cxx.csv" << std::endl;
+
+  // Where a still frame of ours goes: with the mapper's stage timers (each
+  // stage ends with glFinish), after a 10-degree turn of the camera.
+  std::ofstream stages(out + "/lightkit_still_stages.csv");
+  stages << "method,frame_s,irradiance_pass_s,estimation_s,diffusion_s,ray_cast_s,rest_s\n";
+  std::printf("still frame of   frame s  irradiance pass (estimation, diffusion)  ray cast  rest\n");
+  for (int m = OursDefault; m <= OursSkin; ++m)
+  {
+    Bench& b = *benches[m];
+    b.Ours->TimeStagesOn();
+    std::vector<double> frame, pass, estimation, diffusion, cast, rest;
+    for (int r = 0; r < 5; ++r)
+    {
+      b.Renderer->GetActiveCamera()->Azimuth(10.0);
+      frame.push_back(timed(b.Window));
+      vtkIrradianceVolumePass* irradiance = b.Ours->GetIrradianceVolumePass();
+      pass.push_back(b.Ours->GetLastIrradianceSeconds());
+      estimation.push_back(irradiance->GetLastEstimationSeconds());
+      diffusion.push_back(irradiance->GetLastDiffusionSeconds());
+      cast.push_back(b.Ours->GetLastRayCastSeconds());
+      rest.push_back(frame.back() - pass.back() - cast.back());
+    }
+    b.Ours->TimeStagesOff();
+    stages << names[m] << "," << Median(frame) << "," << Median(pass) << "," << Median(estimation)
+           << "," << Median(diffusion) << "," << Median(cast) << "," << Median(rest) << "\n";
+    std::printf("%-15s %8.4f  %8.4f (%8.4f, %8.4f)          %8.4f  %8.4f\n", names[m],
+      Median(frame), Median(pass), Median(estimation), Median(diffusion), Median(cast),
+      Median(rest));
+  }
+  std::cout << "== wrote " << out << "/lightkit_still_stages.csv" << std::endl;
   return 0;
 }
 } // namespace
@@ -455,7 +485,6 @@ int main(int argc, char* argv[])
   }
   Bench ours(scene, size, true);
   Bench phong(scene, size, false);
-  std::cout << "== renderer " << mmvbench::RendererString(ours.Window) << std::endl;
   if (Wanted(only, "raycast")) // alone: it changes the mappers' sampling
   {
     // Camera-only frames (the irradiance cached): ours against Phong with
@@ -507,10 +536,15 @@ int main(int argc, char* argv[])
     vtkIrradianceVolumePass* pass = ours.Ours->GetIrradianceVolumePass();
     pass->SetLayeredRendering(c.Layered);
     pass->SetSkipEmptyVoxels(c.SkipEmpty);
-    pass->SetUseComputeShaders(c.Compute);
+    pass->SetComputeShaders(c.Compute ? vtkIrradianceVolumePass::ComputeDispatches
+                                      : vtkIrradianceVolumePass::FragmentDraws);
     // Warm-up: shaders, tables, uploads for this configuration.
     ours.Window->Render();
     phong.Window->Render();
+    if (&c == &configs.front())
+    {
+      std::cout << "== renderer " << mmvtest::RendererString(ours.Window) << std::endl;
+    }
     // Interleaved: an update of ours, a camera-only frame of ours, a Phong
     // frame, per repetition.
     std::vector<double> updates;
@@ -579,7 +613,8 @@ int main(int argc, char* argv[])
   ours.SetLightCount(5);
   phong.SetLightCount(5);
   ours.Ours->GetIrradianceVolumePass()->SetLayeredRendering(true);
-  ours.Ours->GetIrradianceVolumePass()->SetUseComputeShaders(true);
+  ours.Ours->GetIrradianceVolumePass()->SetComputeShaders(
+    vtkIrradianceVolumePass::ComputeUnlessSoftware);
   ours.Ours->GetIrradianceVolumePass()->SetSkipEmptyVoxels(true);
   const std::vector<double> accuracyScales =
     quick ? std::vector<double>{ 1.0, 0.5 } : std::vector<double>{ 1.0, 0.75, 0.5, 0.35, 0.25 };

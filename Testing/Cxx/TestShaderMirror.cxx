@@ -1,6 +1,7 @@
 // The GLSL in Shaders/ against its C++ mirror: each shader function is run on
 // the GPU (llvmpipe under Xvfb in CI) over a grid of inputs, read back from a
 // float framebuffer and compared with the CPU function of the same name.
+#include "mmvTestWindow.h"
 #include "vtkMultiMaterialLightModel.h"
 #include "vtkMultiMaterialParameters.h"
 #include "mmvLightModel.h"
@@ -86,7 +87,7 @@ public:
     return ok;
   }
 
-  vtkNew<vtkRenderWindow> Window;
+  vtkSmartPointer<vtkRenderWindow> Window = mmvtest::NewRenderWindow();
   vtkOpenGLRenderWindow* GL = nullptr;
 };
 

@@ -1,8 +1,9 @@
-// The benchmarks' render windows: VTK's own (GLX under X) by default, or an
-// EGL pbuffer on the GPU when MMV_BENCHMARK_EGL=1, for headless GPU machines
-// (run with LD_PRELOAD of libmmvGlewEGLShim.so; see mmvGlewEGLShim.c).
-#ifndef mmvBenchmarkWindow_h
-#define mmvBenchmarkWindow_h
+// The render windows of the tests and benchmarks: VTK's own (GLX under X) by
+// default, or an EGL pbuffer on the GPU when MMV_BENCHMARK_EGL=1, for
+// headless GPU machines (run with LD_PRELOAD of libmmvGlewEGLShim.so; see
+// mmvGlewEGLShim.c).
+#ifndef mmvTestWindow_h
+#define mmvTestWindow_h
 
 #include "mmvHeadlessEGLRenderWindow.h"
 
@@ -12,7 +13,7 @@
 #include <cstdlib>
 #include <string>
 
-namespace mmvbench
+namespace mmvtest
 {
 inline vtkSmartPointer<vtkRenderWindow> NewRenderWindow()
 {
@@ -38,6 +39,6 @@ inline std::string RendererString(vtkRenderWindow* window)
   s.erase(0, s.find_first_not_of(' '));
   return s;
 }
-} // namespace mmvbench
+} // namespace mmvtest
 
 #endif

@@ -1,6 +1,6 @@
 // A render window on an EGL pbuffer of the first GPU device, for running the
 // benchmarks on a headless GPU machine without an X server (Debian's VTK 9.2
-// is built for GLX only). Chosen by mmvbench::NewRenderWindow() when the
+// is built for GLX only). Chosen by mmvtest::NewRenderWindow() when the
 // environment sets MMV_BENCHMARK_EGL=1; see mmvGlewEGLShim.c for the one
 // adjustment VTK's GLEW start-up needs under EGL.
 #ifndef mmvHeadlessEGLRenderWindow_h
