@@ -770,20 +770,20 @@ vtkImageData* vtkMultiMaterialPathTracer::Render(vtkRenderer* ren, int width, in
         double length;
         mmv::PixelRay(ndcToObject, x, y, origin, direction, length);
         Random rng(PixelSeed(seed, id), static_cast<std::uint64_t>(id));
-        dvec3 sum(0.0), sumSquares(0.0);
+        // Welford's running mean and squared deviations: pixels whose paths
+        // all agree get exactly zero error (sum-of-squares would round).
+        dvec3 mean(0.0), squares(0.0);
         for (int k = 0; k < samples; ++k)
         {
           const dvec3 l = length > 0.0
             ? medium.Trace(origin, direction, length, background, rng, localEvents)
             : background;
-          sum += l;
-          sumSquares += l * l;
+          const dvec3 delta = l - mean;
+          mean += delta / double(k + 1);
+          squares += delta * (l - mean);
         }
-        const dvec3 mean = sum / double(samples);
         // Unbiased sample variance of one path, over samples for the mean's.
-        const dvec3 variance = samples > 1
-          ? glm::max(sumSquares - double(samples) * mean * mean, dvec3(0.0)) / double(samples - 1)
-          : dvec3(0.0);
+        const dvec3 variance = samples > 1 ? squares / double(samples - 1) : dvec3(0.0);
         for (int c = 0; c < 3; ++c)
         {
           out[3 * id + c] = mean[c];
