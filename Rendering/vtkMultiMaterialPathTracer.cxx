@@ -29,6 +29,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <string>
 #include <vector>
 
 vtkStandardNewMacro(vtkMultiMaterialPathTracer);
@@ -633,40 +634,18 @@ vtkImageData* vtkMultiMaterialPathTracer::Render(vtkRenderer* ren, int width, in
     vtkErrorMacro("the scalar opacity unit distance must be positive (got " << unitDistance << ")");
     return nullptr;
   }
-  vtkDataArray* scalars = image->GetPointData()->GetScalars();
-  if (!scalars)
-  {
-    vtkErrorMacro("the input has no point scalars");
-    return nullptr;
-  }
   Medium medium;
-  image->GetDimensions(medium.Data.Dims);
-  if (medium.Data.Dims[0] < 2 || medium.Data.Dims[1] < 2 || medium.Data.Dims[2] < 2)
-  {
-    vtkErrorMacro("the input needs at least 2 points along every axis");
-    return nullptr;
-  }
-  const vtkIdType count = image->GetNumberOfPoints();
-  std::vector<double> values(count);
-  for (vtkIdType v = 0; v < count; ++v)
-  {
-    values[v] = scalars->GetComponent(v, 0);
-  }
-  medium.Data.Values = values.data();
+  std::vector<double> values;
   double range[2];
-  scalars->GetFiniteRange(range, 0);
-  if (!(range[1] > range[0]))
+  glm::dmat3 indexToObject(1.0);
+  const std::string why =
+    mmv::LoadScalarField(image, values, medium.Data, range, medium.Origin, indexToObject);
+  if (!why.empty())
   {
-    range[1] = range[0] + 1.0; // constant volume, as the mapper does
+    vtkErrorMacro(<< why);
+    return nullptr;
   }
   medium.InverseRange = 1.0 / (range[1] - range[0]);
-
-  glm::dmat3 indexToObject(1.0);
-  if (!mmv::ImageIndexToObject(image, medium.Origin, indexToObject))
-  {
-    vtkErrorMacro("the input's spacing or direction is degenerate");
-    return nullptr;
-  }
   medium.ObjectToIndex = glm::inverse(indexToObject);
   medium.GradientToObject = glm::transpose(medium.ObjectToIndex);
   const double* spacing = image->GetSpacing();
@@ -715,28 +694,15 @@ vtkImageData* vtkMultiMaterialPathTracer::Render(vtkRenderer* ren, int width, in
   const double radius = this->PointLightRadius > 0.0 ? this->PointLightRadius : medium.SmallestSpacing;
   medium.Lights = mmv::CollectLights(ren->GetLights(), worldToObject, radius, INT_MAX);
   vtkCamera* camera = ren->GetActiveCamera();
-  {
-    const double* up = camera->GetViewUp();
-    dvec3 u(0.0);
-    for (int i = 0; i < 3; ++i)
-    {
-      u[i] = worldToObject->GetElement(i, 0) * up[0] + worldToObject->GetElement(i, 1) * up[1] +
-        worldToObject->GetElement(i, 2) * up[2];
-    }
-    medium.EnvironmentUp = glm::length(u) > 0.0 ? glm::normalize(u) : dvec3(0.0, 1.0, 0.0);
-  }
+  medium.EnvironmentUp = mmv::ViewUpInObject(camera, worldToObject);
   const double* bg1 = ren->GetBackground();
   const double* bg2 = ren->GetGradientBackground() ? ren->GetBackground2() : bg1;
   medium.EnvironmentBottom = dvec3(bg1[0], bg1[1], bg1[2]);
   medium.EnvironmentTop = dvec3(bg2[0], bg2[1], bg2[2]);
 
   // Camera: pixel-centre rays from the near to the far plane.
-  vtkNew<vtkMatrix4x4> ndcToWorld;
-  ndcToWorld->DeepCopy(
-    camera->GetCompositeProjectionTransformMatrix(static_cast<double>(width) / height, -1.0, 1.0));
-  ndcToWorld->Invert();
   vtkNew<vtkMatrix4x4> ndcToObject;
-  vtkMatrix4x4::Multiply4x4(worldToObject, ndcToWorld, ndcToObject);
+  mmv::NDCToObject(camera, width, height, worldToObject, ndcToObject);
 
   const vtkIdType pixels = static_cast<vtkIdType>(width) * height;
   auto makeArray = [pixels](const char* name, auto array) {

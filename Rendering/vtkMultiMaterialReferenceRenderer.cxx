@@ -30,6 +30,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <string>
 #include <vector>
 
 vtkStandardNewMacro(vtkMultiMaterialReferenceRenderer);
@@ -380,43 +381,20 @@ vtkImageData* vtkMultiMaterialReferenceRenderer::Render(vtkRenderer* ren, int wi
     vtkErrorMacro("Render needs input data and a volume property with a scalar opacity");
     return nullptr;
   }
-  vtkDataArray* scalars = image->GetPointData()->GetScalars();
-  if (!scalars)
-  {
-    vtkErrorMacro("the input has no point scalars");
-    return nullptr;
-  }
   Scene scene;
-  image->GetDimensions(scene.Data.Dims);
-  if (scene.Data.Dims[0] < 2 || scene.Data.Dims[1] < 2 || scene.Data.Dims[2] < 2)
+  std::vector<double> values;
+  double range[2];
+  const std::string why =
+    mmv::LoadScalarField(image, values, scene.Data, range, scene.Origin, scene.IndexToObject);
+  if (!why.empty())
   {
-    vtkErrorMacro("the input needs at least 2 points along every axis");
+    vtkErrorMacro(<< why);
     return nullptr;
   }
   const vtkIdType count = image->GetNumberOfPoints();
-  std::vector<double> values(count);
-  for (vtkIdType v = 0; v < count; ++v)
-  {
-    values[v] = scalars->GetComponent(v, 0);
-  }
-  scene.Data.Values = values.data();
-
-  double range[2];
-  scalars->GetFiniteRange(range, 0);
-  if (!(range[1] > range[0]))
-  {
-    range[1] = range[0] + 1.0; // constant volume, as the mapper does
-  }
   scene.RangeMin = range[0];
   scene.InverseRange = 1.0 / (range[1] - range[0]);
-
-  // Geometry: index -> object is origin + direction * diag(spacing).
   const double* spacing = image->GetSpacing();
-  if (!mmv::ImageIndexToObject(image, scene.Origin, scene.IndexToObject))
-  {
-    vtkErrorMacro("the input's spacing or direction is degenerate");
-    return nullptr;
-  }
   scene.ObjectToIndex = glm::inverse(scene.IndexToObject);
   scene.GradientToObject = glm::transpose(scene.ObjectToIndex);
   const double smallestSpacing =
@@ -474,14 +452,7 @@ vtkImageData* vtkMultiMaterialReferenceRenderer::Render(vtkRenderer* ren, int wi
   scene.Reflection =
     materials && materials->GetSize() > 0 && materials->GetMaximum(mmv::Reflection) > 0.0;
   {
-    const double* up = camera->GetViewUp();
-    dvec3 u(0.0);
-    for (int i = 0; i < 3; ++i)
-    {
-      u[i] = worldToObject->GetElement(i, 0) * up[0] + worldToObject->GetElement(i, 1) * up[1] +
-        worldToObject->GetElement(i, 2) * up[2];
-    }
-    scene.EnvironmentUp = glm::length(u) > 0.0 ? glm::normalize(u) : dvec3(0.0, 1.0, 0.0);
+    scene.EnvironmentUp = mmv::ViewUpInObject(camera, worldToObject);
     const double* bottom = ren->GetBackground();
     const double* top = ren->GetGradientBackground() ? ren->GetBackground2() : bottom;
     scene.EnvironmentBottom = dvec3(bottom[0], bottom[1], bottom[2]);
@@ -540,12 +511,8 @@ vtkImageData* vtkMultiMaterialReferenceRenderer::Render(vtkRenderer* ren, int wi
   }
 
   // Camera: unproject each pixel centre from the near to the far plane.
-  vtkNew<vtkMatrix4x4> ndcToWorld;
-  ndcToWorld->DeepCopy(
-    camera->GetCompositeProjectionTransformMatrix(static_cast<double>(width) / height, -1.0, 1.0));
-  ndcToWorld->Invert();
   vtkNew<vtkMatrix4x4> ndcToObject;
-  vtkMatrix4x4::Multiply4x4(worldToObject, ndcToWorld, ndcToObject);
+  mmv::NDCToObject(camera, width, height, worldToObject, ndcToObject);
 
   const double* bg1 = ren->GetBackground();
   const double* bg2 = ren->GetGradientBackground() ? ren->GetBackground2() : bg1;

@@ -12,17 +12,22 @@
 #ifndef vtkMultiMaterialVolumeSampling_h
 #define vtkMultiMaterialVolumeSampling_h
 
+#include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
+#include "vtkDataArray.h"
 #include "vtkImageData.h"
 #include "vtkMatrix3x3.h"
 #include "vtkMatrix4x4.h"
+#include "vtkNew.h"
 #include "vtkPiecewiseFunction.h"
+#include "vtkPointData.h"
 #include "vtkVolumeProperty.h"
 
 #include <glm/glm.hpp>
 #include <glm/mat3x3.hpp>
 
 #include <algorithm>
+#include <string>
 #include <vector>
 
 namespace mmv
@@ -80,6 +85,44 @@ inline bool ImageIndexToObject(vtkImageData* image, glm::dvec3& origin, glm::dma
   return glm::determinant(indexToObject) != 0.0;
 }
 
+/**
+ * Reads an image's active point scalars (component 0) into `values` and
+ * `field`, their finite range (a constant volume gets [v, v + 1], as the
+ * mapper does) and the index -> object geometry. Returns "" on success, else
+ * what is wrong with the input.
+ */
+inline std::string LoadScalarField(vtkImageData* image, std::vector<double>& values,
+  ScalarField& field, double range[2], glm::dvec3& origin, glm::dmat3& indexToObject)
+{
+  vtkDataArray* scalars = image->GetPointData()->GetScalars();
+  if (!scalars)
+  {
+    return "the input has no point scalars";
+  }
+  image->GetDimensions(field.Dims);
+  if (field.Dims[0] < 2 || field.Dims[1] < 2 || field.Dims[2] < 2)
+  {
+    return "the input needs at least 2 points along every axis";
+  }
+  const vtkIdType count = image->GetNumberOfPoints();
+  values.resize(count);
+  for (vtkIdType v = 0; v < count; ++v)
+  {
+    values[v] = scalars->GetComponent(v, 0);
+  }
+  field.Values = values.data();
+  scalars->GetFiniteRange(range, 0);
+  if (!(range[1] > range[0]))
+  {
+    range[1] = range[0] + 1.0;
+  }
+  if (!ImageIndexToObject(image, origin, indexToObject))
+  {
+    return "the input's spacing or direction is degenerate";
+  }
+  return "";
+}
+
 /// The property's colour (gray or RGB; white without either) tabulated at
 /// `size` points over `range`, rgb per entry.
 inline void TabulateColor(vtkVolumeProperty* property, const double range[2], int size,
@@ -119,6 +162,31 @@ inline void PixelRay(const vtkMatrix4x4* ndcToSpace, double x, double y, glm::dv
   const glm::dvec3 farPoint = TransformPoint(ndcToSpace, glm::dvec3(x, y, 1.0));
   length = glm::length(farPoint - origin);
   direction = length > 0.0 ? (farPoint - origin) / length : glm::dvec3(0.0, 0.0, -1.0);
+}
+
+/// The camera's view-up in object space (unit; +y if it degenerates): the
+/// axis of the background gradient seen as an environment.
+inline glm::dvec3 ViewUpInObject(vtkCamera* camera, vtkMatrix4x4* worldToObject)
+{
+  const double* up = camera->GetViewUp();
+  glm::dvec3 u(0.0);
+  for (int i = 0; i < 3; ++i)
+  {
+    u[i] = worldToObject->GetElement(i, 0) * up[0] + worldToObject->GetElement(i, 1) * up[1] +
+      worldToObject->GetElement(i, 2) * up[2];
+  }
+  return glm::length(u) > 0.0 ? glm::normalize(u) : glm::dvec3(0.0, 1.0, 0.0);
+}
+
+/// NDC -> object matrix of the camera at width x height, for PixelRay().
+inline void NDCToObject(vtkCamera* camera, int width, int height, vtkMatrix4x4* worldToObject,
+  vtkMatrix4x4* ndcToObject)
+{
+  vtkNew<vtkMatrix4x4> ndcToWorld;
+  ndcToWorld->DeepCopy(
+    camera->GetCompositeProjectionTransformMatrix(static_cast<double>(width) / height, -1.0, 1.0));
+  ndcToWorld->Invert();
+  vtkMatrix4x4::Multiply4x4(worldToObject, ndcToWorld, ndcToObject);
 }
 
 } // namespace mmv

@@ -424,19 +424,7 @@ int main(int argc, char* argv[])
   bool rendererReported = false;
   for (const std::string& name : opt.Scenes)
   {
-    mmvbench::SceneSpec scene;
-    if (name == "synthetic")
-    {
-      scene = mmvbench::MakeSynthetic();
-    }
-    else if (name == "headsq")
-    {
-      scene = mmvbench::MakeHead(opt.Head);
-    }
-    else if (name == "orbital")
-    {
-      scene = mmvbench::MakeOrbital();
-    }
+    mmvbench::SceneSpec scene = mmvbench::MakeScene(name, opt.Head);
     if (!scene.Image)
     {
       std::cerr << "unknown or unreadable scene " << name << "\n";

@@ -227,6 +227,28 @@ inline SceneSpec MakeOrbital()
   return s;
 }
 
+/// A scene by name (synthetic, headsq, orbital, ct); no image if unknown.
+inline SceneSpec MakeScene(const std::string& name, const std::string& headPath)
+{
+  if (name == "synthetic")
+  {
+    return MakeSynthetic();
+  }
+  if (name == "headsq")
+  {
+    return MakeHead(headPath);
+  }
+  if (name == "orbital")
+  {
+    return MakeOrbital();
+  }
+  if (name == "ct")
+  {
+    return MakeCTSized(headPath);
+  }
+  return {};
+}
+
 /**
  * The benchmark's view of a scene: a perspective camera (30 degrees) on
  * ViewDirection framing the data's bounding sphere, with a fixed clipping

@@ -148,26 +148,6 @@ ImageError Measure(vtkImageData* image)
   return e;
 }
 
-mmvbench::SceneSpec MakeScene(const std::string& name, const std::string& head)
-{
-  if (name == "synthetic")
-  {
-    return mmvbench::MakeSynthetic();
-  }
-  if (name == "headsq")
-  {
-    return mmvbench::MakeHead(head);
-  }
-  if (name == "orbital")
-  {
-    return mmvbench::MakeOrbital();
-  }
-  if (name == "ct")
-  {
-    return mmvbench::MakeCTSized(head);
-  }
-  return {};
-}
 }
 
 int main(int argc, char* argv[])
@@ -192,7 +172,7 @@ int main(int argc, char* argv[])
 
   for (const std::string& name : opt.Scenes)
   {
-    mmvbench::SceneSpec scene = MakeScene(name, opt.Head);
+    mmvbench::SceneSpec scene = mmvbench::MakeScene(name, opt.Head);
     if (!scene.Image)
     {
       std::cerr << "unknown or unreadable scene " << name << "\n";
