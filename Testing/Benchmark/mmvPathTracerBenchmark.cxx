@@ -14,7 +14,10 @@
 // and the fixed setup (tables, majorant grid), the two errors confirm the
 // 1/sqrt(N) law; the samples for the target follow from e(4N) (e ~ 1/sqrt N)
 // and their time from the measured cost. --verify then renders at that
-// sample count and reports the error actually reached. Writes DIR/pathtracer.csv
+// sample count and reports the error actually reached. On a shared machine
+// wall time depends on the others' load: the process's CPU time divided by
+// the thread count ("dedicated" seconds) is what the same work takes on that
+// many cores of its own. Writes DIR/pathtracer.csv
 // and DIR/pathtracer_<scene>.png (the 4 N image). vtkSMPTools' STDThread
 // backend runs on every core of the machine (set VTK_SMP_MAX_THREADS to
 // limit it). Not a test: it asserts nothing.
@@ -39,6 +42,7 @@
 #include <iostream>
 #include <sstream>
 #include <string>
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <thread>
 #include <vector>
@@ -103,6 +107,15 @@ bool Parse(int argc, char* argv[], Options& o)
   return o.Size >= 8 && o.Samples >= 2 && o.Target > 0.0 && !o.Out.empty();
 }
 
+// CPU seconds (user + system) this process has used, all threads.
+double CPUSeconds()
+{
+  rusage usage;
+  getrusage(RUSAGE_SELF, &usage);
+  return usage.ru_utime.tv_sec + usage.ru_stime.tv_sec +
+    1e-6 * (usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
+}
+
 // Relative standard error of an image and the fraction of pixels it covers.
 struct ImageError
 {
@@ -164,8 +177,9 @@ int main(int argc, char* argv[])
   mkdir(opt.Out.c_str(), 0755);
   std::ofstream csv(opt.Out + "/pathtracer.csv");
   csv << "scene,size,threads,spp_a,seconds_a,rel_se_a,spp_b,seconds_b,rel_se_b,coverage,"
-         "mean_radiance,setup_s,ms_per_spp,spp_for_target,seconds_for_target,verified_spp,"
-         "verified_seconds,verified_rel_se,paths_per_s,events_per_path\n";
+         "mean_radiance,setup_s,ms_per_spp,spp_for_target,seconds_for_target,"
+         "dedicated_seconds_for_target,verified_spp,verified_seconds,verified_dedicated_seconds,"
+         "verified_rel_se,paths_per_s,events_per_path,cpu_seconds_a,cpu_seconds_b\n";
   const int threads = vtkSMPTools::GetEstimatedNumberOfThreads();
   std::cout << "threads " << threads << " (hardware " << std::thread::hardware_concurrency()
             << "), " << opt.Size << "^2, target " << 100.0 * opt.Target << " %\n";
@@ -198,17 +212,22 @@ int main(int argc, char* argv[])
     tracer->SetVolumeProperty(property);
     tracer->SetMaterialTransferFunction(scene.Materials);
 
+    double cpu = 0.0; // CPU seconds of the last render
     auto render = [&](int spp, ImageError& e) {
       tracer->SetSamplesPerPixel(spp);
+      const double start = CPUSeconds();
       vtkImageData* image = tracer->Render(renderer, opt.Size, opt.Size);
+      cpu = CPUSeconds() - start;
       e = Measure(image);
       return image;
     };
     ImageError a, b;
     render(opt.Samples, a);
     const double secondsA = tracer->GetLastRenderSeconds();
+    const double cpuA = cpu;
     vtkImageData* image = render(4 * opt.Samples, b);
     const double secondsB = tracer->GetLastRenderSeconds();
+    const double cpuB = cpu;
     const double eventsPerPath = double(tracer->GetNumberOfEvents()) / tracer->GetNumberOfPaths();
     vtkImageErrorMetrics::WritePNG((opt.Out + "/pathtracer_" + name + ".png").c_str(), image);
 
@@ -216,8 +235,14 @@ int main(int argc, char* argv[])
     const double setup = std::max(0.0, secondsA - opt.Samples * perSpp);
     const double sppTarget = 4.0 * opt.Samples * (b.Relative / opt.Target) * (b.Relative / opt.Target);
     const double secondsTarget = setup + sppTarget * perSpp;
+    // The same from CPU time: what the target costs on `threads` cores of
+    // their own, whatever else shared them during the run.
+    const double cpuPerSpp = (cpuB - cpuA) / (3.0 * opt.Samples);
+    const double cpuSetup = std::max(0.0, cpuA - opt.Samples * cpuPerSpp);
+    const double dedicatedTarget = (cpuSetup + sppTarget * cpuPerSpp) / threads;
     int verifiedSpp = 0;
     double verifiedSeconds = std::nan("");
+    double verifiedDedicated = std::nan("");
     ImageError verified;
     verified.Relative = std::nan("");
     if (opt.Verify)
@@ -225,23 +250,27 @@ int main(int argc, char* argv[])
       verifiedSpp = static_cast<int>(std::ceil(sppTarget));
       render(verifiedSpp, verified);
       verifiedSeconds = tracer->GetLastRenderSeconds();
+      verifiedDedicated = cpu / threads;
     }
     const double pathsPerSecond = double(opt.Size) * opt.Size / perSpp;
     csv << name << "," << opt.Size << "," << threads << "," << opt.Samples << "," << secondsA << ","
         << a.Relative << "," << 4 * opt.Samples << "," << secondsB << "," << b.Relative << ","
         << b.Coverage << "," << b.MeanRadiance << "," << setup << "," << 1e3 * perSpp << ","
-        << sppTarget << "," << secondsTarget << "," << verifiedSpp << "," << verifiedSeconds << ","
-        << verified.Relative << "," << pathsPerSecond << "," << eventsPerPath << "\n";
+        << sppTarget << "," << secondsTarget << "," << dedicatedTarget << "," << verifiedSpp << ","
+        << verifiedSeconds << "," << verifiedDedicated << "," << verified.Relative << ","
+        << pathsPerSecond << "," << eventsPerPath << "," << cpuA << "," << cpuB << "\n";
     csv.flush();
     std::cout << std::setw(10) << name << ": " << opt.Samples << " spp " << std::setprecision(3)
               << secondsA << " s e " << 100.0 * a.Relative << " %; " << 4 * opt.Samples << " spp "
               << secondsB << " s e " << 100.0 * b.Relative << " % (ratio "
               << a.Relative / b.Relative << ", 1/sqrt N: 2); setup " << setup << " s, "
               << 1e3 * perSpp << " ms/spp, " << eventsPerPath << " events/path -> "
-              << sppTarget << " spp, " << secondsTarget << " s for " << 100.0 * opt.Target << " %";
+              << sppTarget << " spp, " << secondsTarget << " s for " << 100.0 * opt.Target
+              << " % (" << dedicatedTarget << " s on " << threads << " cores of its own)";
     if (opt.Verify)
     {
-      std::cout << "; verified " << verifiedSpp << " spp: " << verifiedSeconds << " s, e "
+      std::cout << "; verified " << verifiedSpp << " spp: " << verifiedSeconds << " s ("
+                << verifiedDedicated << " s on its own cores), e "
                 << 100.0 * verified.Relative << " %";
     }
     std::cout << std::endl;

@@ -11,6 +11,7 @@
 //
 //   mmvPhysicalCalibration --out DIR [--size 128] [--truth-spp 1024] [--frames 3]
 //                          [--scenes synthetic,headsq,orbital,ct] [--head FILE.vti]
+//                          [--s-scales 1,0,0.5,2,4,8,16] [--ct-scales 1,0.5,2,4] [--no-vtk]
 //
 // Same camera, key light and gradient background as mmvBenchmark
 // (mmvbench::FrameScene). Errors are over the 8-bit images, as displayed:
@@ -66,10 +67,24 @@ struct Options
   std::string Out = "calibration-out";
   int Size = 128;
   int TruthSamples = 1024;
-  int Frames = 3;
+  int Frames = 5;
   std::vector<std::string> Scenes = { "synthetic", "headsq", "orbital", "ct" };
   std::string Head = MMV_HEADSQ_PATH;
+  std::vector<double> ScatteringScales = { 1.0, 0.0, 0.5, 2.0, 4.0, 8.0, 16.0 };
+  std::vector<double> AttenuationScales = { 1.0, 0.5, 2.0, 4.0 };
+  bool VTK = true;
 };
+
+std::vector<double> Numbers(const std::string& text)
+{
+  std::vector<double> values;
+  std::stringstream list(text);
+  for (std::string s; std::getline(list, s, ',');)
+  {
+    values.push_back(std::atof(s.c_str()));
+  }
+  return values;
+}
 
 bool Parse(int argc, char* argv[], Options& o)
 {
@@ -106,12 +121,25 @@ bool Parse(int argc, char* argv[], Options& o)
     {
       o.Head = next();
     }
+    else if (a == "--s-scales")
+    {
+      o.ScatteringScales = Numbers(next());
+    }
+    else if (a == "--ct-scales")
+    {
+      o.AttenuationScales = Numbers(next());
+    }
+    else if (a == "--no-vtk")
+    {
+      o.VTK = false;
+    }
     else
     {
       return false;
     }
   }
-  return o.Size >= 16 && o.TruthSamples >= 2 && o.Frames >= 1 && !o.Out.empty();
+  return o.Size >= 16 && o.TruthSamples >= 2 && o.Frames >= 1 && !o.Out.empty() &&
+    !o.ScatteringScales.empty() && !o.AttenuationScales.empty();
 }
 
 
@@ -262,7 +290,8 @@ int main(int argc, char* argv[])
   {
     std::cerr << "usage: " << argv[0]
               << " --out DIR [--size N] [--truth-spp N] [--frames N]"
-                 " [--scenes synthetic,headsq,orbital,ct] [--head FILE.vti]\n";
+                 " [--scenes synthetic,headsq,orbital,ct] [--head FILE.vti]"
+                 " [--s-scales LIST] [--ct-scales LIST] [--no-vtk]\n";
     return 2;
   }
   vtkSMPTools::SetBackend("STDThread");
@@ -345,15 +374,16 @@ int main(int argc, char* argv[])
     };
 
     // Ours: s and c_t scaled; (1, 1) is the default.
-    for (double s : { 1.0, 0.0, 0.5, 2.0, 4.0 })
+    for (double s : opt.ScatteringScales)
     {
-      for (double ct : { 1.0, 0.5, 2.0 })
+      for (double ct : opt.AttenuationScales)
       {
         ScaleMaterials(scene.Materials, s, ct, materials);
         measure(s == 1.0 && ct == 1.0 ? "ours-default" : "ours",
           Setting({ { "s_scale", s }, { "ct_scale", ct } }), oursWindow);
       }
     }
+    if (opt.VTK)
     {
       vtkNew<vtkOpenGLGPUVolumeRayCastMapper> phong;
       Window window(scene, camera, light, opt.Size, phong);
@@ -363,11 +393,11 @@ int main(int argc, char* argv[])
       window.Property->SetSpecular(mmv::MaterialParameterTable[mmv::Specular].Default);
       window.Property->SetSpecularPower(mmv::MaterialParameterTable[mmv::Shininess].Default);
       measure("vtk-phong", "", window);
-      for (double blending : { 0.5, 1.0, 2.0 })
+      for (double blending : { 0.25, 0.5, 1.0, 2.0 })
       {
         for (double reach : { 0.1, 0.5, 1.0 })
         {
-          for (double g : { 0.0, 0.5 })
+          for (double g : { 0.0, 0.5, 0.8 })
           {
             phong->SetVolumetricScatteringBlending(static_cast<float>(blending));
             phong->SetGlobalIlluminationReach(static_cast<float>(reach));
