@@ -45,7 +45,7 @@
 
 namespace
 {
-constexpr int Stride = vtkMaterialTransferFunction::NodeStride; // value + 7 parameters
+constexpr int Stride = vtkMaterialTransferFunction::NodeStride; // value + 8 parameters
 constexpr int ParameterCount = mmv::MaterialParameterCount;
 static_assert(Stride == ParameterCount + 1, "MaterialNodes layout: value + parameters");
 
@@ -498,7 +498,7 @@ pqMaterialNodesPropertyWidget::pqMaterialNodesPropertyWidget(
   row->addWidget(internals.Remove);
   vbox->addLayout(row);
 
-  // The selected node: its value and the 7 parameters, two per row.
+  // The selected node: its value and the parameters, two per row.
   internals.Grid = new QGridLayout();
   internals.Grid->setHorizontalSpacing(pqPropertiesPanel::suggestedHorizontalSpacing());
   internals.Grid->setVerticalSpacing(pqPropertiesPanel::suggestedVerticalSpacing());
@@ -513,7 +513,7 @@ pqMaterialNodesPropertyWidget::pqMaterialNodesPropertyWidget(
     spin->setObjectName(QString::fromLatin1(info.Key));
     // The spin box accepts everything the renderer accepts; the soft range
     // only sets the step, so typical values are a few clicks apart.
-    spin->setRange(0.0, info.HardMax);
+    spin->setRange(info.HardMin, info.HardMax);
     spin->setDecimals(info.SoftMax > 10 ? 1 : 3);
     spin->setSingleStep((info.SoftMax - info.SoftMin) / (info.SoftMax > 10 ? 20.0 : 100.0));
     // Commit on Enter/focus-out/arrows, not on every keystroke: one undo step.
@@ -587,13 +587,23 @@ QList<QVariant> pqMaterialNodesPropertyWidget::materialNodes() const
 void pqMaterialNodesPropertyWidget::setMaterialNodes(const QList<QVariant>& values)
 {
   auto& internals = *this->Internals;
+  std::vector<double> flat;
+  flat.reserve(values.size());
+  for (const QVariant& v : values)
+  {
+    flat.push_back(v.toDouble());
+  }
+  // States written before anisotropy have 8 numbers a node: g = 0.
+  int stride = vtkMaterialTransferFunction::DetectNodeStride(
+    static_cast<int>(flat.size()), flat.data());
+  stride = stride > 0 ? stride : Stride;
   std::vector<Node> nodes;
-  for (int i = 0; i + Stride <= values.size(); i += Stride)
+  for (size_t i = 0; i + stride <= flat.size(); i += stride)
   {
     Node n;
     for (int k = 0; k < Stride; ++k)
     {
-      n[k] = values[i + k].toDouble();
+      n[k] = k < stride ? flat[i + k] : mmv::MaterialParameterTable[k - 1].Default;
     }
     nodes.push_back(n);
   }

@@ -3,7 +3,7 @@
  * @brief  JSON helpers shared by vtkMaterialTransferFunction and vtkMaterialLibrary.
  *
  * Internal header, included only by the module's .cxx files. Both classes read
- * and write the seven material parameters with the same keys and the same
+ * and write the material parameters with the same keys and the same
  * validation, so that code lives here once. Functions report problems through
  * `why` and leave the reporting (vtkErrorMacro) to the calling object.
  */

@@ -194,7 +194,7 @@ bool vtkMaterialLibrary::HasPreset(const char* name) const
   return this->Internals->Find(name) != nullptr;
 }
 
-bool vtkMaterialLibrary::GetPreset(const char* name, double parameters[7]) const
+bool vtkMaterialLibrary::GetPreset(const char* name, double parameters[8]) const
 {
   const Preset* preset = this->Internals->Find(name);
   if (!preset)
@@ -219,7 +219,7 @@ bool vtkMaterialLibrary::GetPresetColor(const char* name, double rgb[3]) const
   return true;
 }
 
-bool vtkMaterialLibrary::AddPreset(const char* name, const double parameters[7], const double rgb[3])
+bool vtkMaterialLibrary::AddPreset(const char* name, const double parameters[8], const double rgb[3])
 {
   if (!name || !*name)
   {

@@ -2,7 +2,7 @@
  * @class   vtkMaterialLibrary
  * @brief   Named material presets (plastic, metal, skin, bone, glass, leaf, matte, ...).
  *
- * A preset is one set of the seven material parameters plus a display colour
+ * A preset is one set of the material parameters plus a display colour
  * for swatches. The built-in presets are the JSON files of
  * Rendering/Materials/, embedded in the library at build time; more can be
  * read from files and written back.
@@ -34,13 +34,14 @@ public:
   const char* GetPresetName(int i) const;
   bool HasPreset(const char* name) const;
 
-  /// The 7 parameters of a preset; false (with an error) for unknown names.
-  bool GetPreset(const char* name, double parameters[7]) const;
+  /// The 8 parameters of a preset (mmv::MaterialParameterCount); false
+  /// (with an error) for unknown names.
+  bool GetPreset(const char* name, double parameters[8]) const;
   /// Display colour (RGB in 0..1) of a preset.
   bool GetPresetColor(const char* name, double rgb[3]) const;
 
   /// Adds or replaces a preset; false (with an error) on invalid values.
-  bool AddPreset(const char* name, const double parameters[7], const double rgb[3] = nullptr);
+  bool AddPreset(const char* name, const double parameters[8], const double rgb[3] = nullptr);
   bool RemovePreset(const char* name);
   /// Drops user changes and reloads the built-in presets.
   void ResetToBuiltins();

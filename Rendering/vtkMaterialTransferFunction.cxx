@@ -14,6 +14,8 @@
 
 static_assert(vtkMaterialTransferFunction::NodeStride == 1 + mmv::MaterialParameterCount,
   "a flat node is its value followed by every material parameter");
+static_assert(vtkMaterialTransferFunction::LegacyNodeStride == 1 + mmv::Anisotropy,
+  "the legacy flat node ends just before anisotropy");
 
 namespace
 {
@@ -36,6 +38,29 @@ bool IsValidNode(const Node& node, std::string& why)
     if (!mmv::IsValidMaterialValue(p, node.Parameters[p], &why))
     {
       why = "node at value " + std::to_string(node.Value) + ": " + why;
+      return false;
+    }
+  }
+  return true;
+}
+
+/// Reads `count` numbers, `stride` per node (NodeStride, or LegacyNodeStride
+/// whose nodes lack the trailing parameters: they take their defaults).
+bool ReadFlatNodes(
+  int count, const double* flat, int stride, std::vector<Node>& nodes, std::string& why)
+{
+  nodes.assign(count / stride, Node());
+  for (std::size_t i = 0; i < nodes.size(); ++i)
+  {
+    const double* node = flat + i * stride;
+    nodes[i].Value = node[0];
+    for (int p = 0; p < mmv::MaterialParameterCount; ++p)
+    {
+      nodes[i].Parameters[p] = p + 1 < stride ? node[p + 1] : mmv::MaterialParameterTable[p].Default;
+    }
+    if (!IsValidNode(nodes[i], why))
+    {
+      why = "node " + std::to_string(i) + ": " + why;
       return false;
     }
   }
@@ -142,12 +167,21 @@ vtkMaterialTransferFunction::~vtkMaterialTransferFunction()
 int vtkMaterialTransferFunction::AddNode(double value, double ambient, double diffuse,
   double specular, double shininess, double attenuation, double scattering, double reflection)
 {
+  return this->AddNode(value, ambient, diffuse, specular, shininess, attenuation, scattering,
+    reflection, mmv::MaterialParameterTable[mmv::Anisotropy].Default);
+}
+
+int vtkMaterialTransferFunction::AddNode(double value, double ambient, double diffuse,
+  double specular, double shininess, double attenuation, double scattering, double reflection,
+  double anisotropy)
+{
   const double parameters[mmv::MaterialParameterCount] = { ambient, diffuse, specular, shininess,
-    attenuation, scattering, reflection };
+    attenuation, scattering, reflection, anisotropy };
   return this->AddNode(value, parameters);
 }
 
-int vtkMaterialTransferFunction::AddNode(double value, const double parameters[7])
+int vtkMaterialTransferFunction::AddNode(
+  double value, const double parameters[NumberOfParameters])
 {
   if (!parameters)
   {
@@ -204,7 +238,7 @@ int vtkMaterialTransferFunction::GetSize() const
   return static_cast<int>(this->Internals->Nodes.size());
 }
 
-bool vtkMaterialTransferFunction::GetNode(int i, double node[8]) const
+bool vtkMaterialTransferFunction::GetNode(int i, double node[NodeStride]) const
 {
   if (i < 0 || i >= this->GetSize() || !node)
   {
@@ -216,13 +250,32 @@ bool vtkMaterialTransferFunction::GetNode(int i, double node[8]) const
   return true;
 }
 
+int vtkMaterialTransferFunction::DetectNodeStride(int count, const double* nodes)
+{
+  const bool current = count >= 0 && count % NodeStride == 0;
+  const bool legacy = count >= 0 && count % LegacyNodeStride == 0;
+  if (!current || !legacy || !nodes)
+  {
+    return current ? NodeStride : (legacy ? LegacyNodeStride : 0);
+  }
+  std::vector<Node> parsed;
+  std::string why;
+  return ReadFlatNodes(count, nodes, NodeStride, parsed, why) &&
+      std::is_sorted(parsed.begin(), parsed.end(),
+        [](const Node& a, const Node& b) { return a.Value < b.Value; })
+    ? NodeStride
+    : LegacyNodeStride;
+}
+
 bool vtkMaterialTransferFunction::SetNodes(int count, const double* nodes)
 {
-  if (count < 0 || count % NodeStride != 0)
+  const int stride = DetectNodeStride(count, nodes);
+  if (stride == 0)
   {
     vtkErrorMacro("SetNodes: " << count << " numbers do not make whole nodes of " << NodeStride
                                << " (value + " << mmv::MaterialParameterCount
-                               << " parameters); the function is unchanged.");
+                               << " parameters) nor of the older " << LegacyNodeStride
+                               << "; the function is unchanged.");
     return false;
   }
   if (count > 0 && !nodes)
@@ -230,18 +283,12 @@ bool vtkMaterialTransferFunction::SetNodes(int count, const double* nodes)
     vtkErrorMacro("SetNodes: no array given for " << count << " numbers.");
     return false;
   }
-  std::vector<Node> parsed(count / NodeStride);
-  for (std::size_t i = 0; i < parsed.size(); ++i)
+  std::vector<Node> parsed;
+  std::string why;
+  if (!ReadFlatNodes(count, nodes, stride, parsed, why))
   {
-    const double* flat = nodes + i * NodeStride;
-    parsed[i].Value = flat[0];
-    std::copy(flat + 1, flat + NodeStride, parsed[i].Parameters.begin());
-    std::string why;
-    if (!IsValidNode(parsed[i], why))
-    {
-      vtkErrorMacro("SetNodes: node " << i << ": " << why << "; the function is unchanged.");
-      return false;
-    }
+    vtkErrorMacro("SetNodes: " << why << "; the function is unchanged.");
+    return false;
   }
   SortAndMerge(parsed);
   this->Internals->Nodes.swap(parsed);
@@ -262,7 +309,8 @@ void vtkMaterialTransferFunction::GetNodes(double* nodes) const
   }
 }
 
-void vtkMaterialTransferFunction::Evaluate(double value, double parameters[7]) const
+void vtkMaterialTransferFunction::Evaluate(
+  double value, double parameters[NumberOfParameters]) const
 {
   const std::vector<Node>& nodes = this->Internals->Nodes;
   if (nodes.empty())

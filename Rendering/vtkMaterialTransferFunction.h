@@ -1,9 +1,11 @@
 /**
  * @class   vtkMaterialTransferFunction
- * @brief   Maps a data value to the seven material parameters of Zhang & Ma eq. 4.
+ * @brief   Maps a data value to the material parameters: the seven of Zhang &
+ *          Ma eq. 4 plus the phase-function anisotropy of the path tracer.
  *
  * Nodes are placed in data units (like vtkColorTransferFunction) and carry
- * (ambient, diffuse, specular, shininess, attenuation, scattering, reflection);
+ * (ambient, diffuse, specular, shininess, attenuation, scattering, reflection,
+ * anisotropy);
  * colour and opacity stay in the usual vtkVolumeProperty. Between nodes the
  * parameters are interpolated linearly; outside the nodes they are clamped to
  * the first/last node. With no nodes, Evaluate() returns the defaults of
@@ -29,43 +31,59 @@ public:
   vtkTypeMacro(vtkMaterialTransferFunction, vtkObject);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-  /// Number of numbers per node in flat arrays: value + 7 parameters.
-  static constexpr int NodeStride = 8;
+  /// Number of numbers per node in flat arrays: value + 8 parameters.
+  static constexpr int NodeStride = 9;
+  /// The flat layout before anisotropy: value + 7 parameters (g = 0).
+  static constexpr int LegacyNodeStride = 8;
+  /// Parameters per node (mmv::MaterialParameterCount): size arrays with it.
+  static constexpr int NumberOfParameters = NodeStride - 1;
 
   /**
    * Adds a node; a node already at `value` is replaced. Returns the node's
    * index in value order, or -1 (with an error) if any argument is invalid.
+   * Without `anisotropy` the node scatters isotropically (g = 0).
    */
   int AddNode(double value, double ambient, double diffuse, double specular, double shininess,
     double attenuation, double scattering, double reflection);
-  int AddNode(double value, const double parameters[7]);
+  int AddNode(double value, double ambient, double diffuse, double specular, double shininess,
+    double attenuation, double scattering, double reflection, double anisotropy);
+  int AddNode(double value, const double parameters[NumberOfParameters]);
 
   /// Removes the node at exactly `value`; returns its former index or -1.
   int RemoveNode(double value);
   void RemoveAllNodes();
   int GetSize() const;
 
-  /// Node i as value + 7 parameters (false if i is out of range).
-  bool GetNode(int i, double node[8]) const;
+  /// Node i as value + 8 parameters (false if i is out of range).
+  bool GetNode(int i, double node[NodeStride]) const;
 
   /**
-   * Replaces all nodes from a flat array of `count` numbers, 8 per node
-   * (value, ka, kd, ks, shininess, attenuation, scattering, reflection), the
-   * layout of ParaView's MaterialNodes property. Rejects the whole array (and
-   * keeps the current nodes) if `count` is not a multiple of 8 or any number
-   * is invalid. Returns success.
+   * Replaces all nodes from a flat array of `count` numbers, 9 per node
+   * (value, ka, kd, ks, shininess, attenuation, scattering, reflection,
+   * anisotropy), the layout of ParaView's MaterialNodes property. The layout
+   * before anisotropy, 8 per node (g = 0), still loads: see
+   * DetectNodeStride(). Rejects the whole array (and keeps the current nodes)
+   * if `count` makes no whole nodes or any number is invalid. Returns success.
    */
   bool SetNodes(int count, const double* nodes);
-  /// Writes GetSize()*8 numbers in the SetNodes() layout.
+  /// Writes GetSize()*9 numbers in the SetNodes() layout.
   void GetNodes(double* nodes) const;
 
-  /// The 7 parameters at `value` (interpolated, clamped outside the nodes).
-  void Evaluate(double value, double parameters[7]) const;
+  /**
+   * The layout of a flat node list: NodeStride, LegacyNodeStride, or 0 when
+   * `count` is a multiple of neither. A count that is a multiple of both
+   * (72, 144, ...) is read as NodeStride only if it makes valid nodes with
+   * non-decreasing values (what GetNodes() writes), else as the legacy layout.
+   */
+  static int DetectNodeStride(int count, const double* nodes);
+
+  /// The 8 parameters at `value` (interpolated, clamped outside the nodes).
+  void Evaluate(double value, double parameters[NumberOfParameters]) const;
   double EvaluateParameter(double value, int parameter) const;
 
   /**
    * Samples `size` values evenly from xStart to xEnd (inclusive) into
-   * `table`, 7 floats per sample: table[i*7 + p]. Used for GPU textures.
+   * `table`, 8 floats per sample: table[i*8 + p]. Used for GPU textures.
    */
   void GetTable(double xStart, double xEnd, int size, float* table) const;
 

@@ -15,12 +15,17 @@
  * | 4     | attenuation   | c_t    | x extinction mu  | 1       | 0 .. 2      |
  * | 5     | scattering    | s      | voxel^2          | 0       | 0 .. 20     |
  * | 6     | reflection    | r      | -                | 0       | 0 .. 1      |
+ * | 7     | anisotropy    | g      | mean cosine      | 0       | -0.9 .. 0.9 |
  *
  * Attenuation: the extinction seen by shadow rays is sigma = c_t * mu, where
  * mu = -ln(1 - alpha) / u is the extinction implied by the scalar opacity
  * alpha and the volume property's scalar-opacity unit distance u.
  * Scattering: the diffusion strength of eq. 15, in (data voxel)^2 per unit time,
  * solved to t = 1 (so it does not change with the irradiance resolution).
+ * Anisotropy: g of the Henyey-Greenstein phase function, the mean cosine of
+ * the scattering angle (0 isotropic, > 0 forward). Only the physically based
+ * path tracer (vtkMultiMaterialPathTracer) reads it; |g| < 1 (HardMin and
+ * HardMax are +-0.99: g = +-1 is a delta, not a phase function).
  */
 #ifndef vtkMultiMaterialParameters_h
 #define vtkMultiMaterialParameters_h
@@ -41,6 +46,7 @@ enum MaterialParameter : int
   Attenuation,
   Scattering,
   Reflection,
+  Anisotropy,
   MaterialParameterCount
 };
 
@@ -52,6 +58,7 @@ struct MaterialParameterInfo
   double SoftMin;       // editor range
   double SoftMax;
   double HardMax;       // larger values are rejected as input errors
+  double HardMin = 0.0; // smaller values are rejected as input errors
 };
 
 constexpr MaterialParameterInfo MaterialParameterTable[MaterialParameterCount] = {
@@ -62,6 +69,7 @@ constexpr MaterialParameterInfo MaterialParameterTable[MaterialParameterCount] =
   { "attenuation", "MMV_ATTENUATION", 1.0, 0.0, 2.0, 1.0e3 },
   { "scattering", "MMV_SCATTERING", 0.0, 0.0, 20.0, 1.0e4 },
   { "reflection", "MMV_REFLECTION", 0.0, 0.0, 1.0, 1.0e3 },
+  { "anisotropy", "MMV_ANISOTROPY", 0.0, -0.9, 0.9, 0.99, -0.99 },
 };
 
 /// Lights the GPU path supports at once (more: the strongest are kept).
@@ -164,11 +172,14 @@ inline bool IsValidMaterialValue(int parameter, double value, std::string* why =
     }
     return false;
   }
-  if (value < 0.0)
+  if (value < info.HardMin)
   {
     if (why)
     {
-      *why = std::string(info.Key) + " is negative (" + std::to_string(value) + ")";
+      *why = info.HardMin == 0.0
+        ? std::string(info.Key) + " is negative (" + std::to_string(value) + ")"
+        : std::string(info.Key) + " = " + std::to_string(value) + " is below the minimum " +
+          std::to_string(info.HardMin);
     }
     return false;
   }

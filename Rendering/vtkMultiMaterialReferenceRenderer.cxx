@@ -15,6 +15,7 @@
 #include "vtkMultiMaterialParameters.h"
 #include "vtkMultiMaterialShading.h"
 #include "vtkMultiMaterialVolumeMapper.h"
+#include "vtkMultiMaterialVolumeSampling.h"
 #include "vtkObjectFactory.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
@@ -29,6 +30,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <string>
 #include <vector>
 
 vtkStandardNewMacro(vtkMultiMaterialReferenceRenderer);
@@ -51,7 +53,7 @@ struct TransferTables
   std::vector<double> Color;    // rgb
   std::vector<double> Mu;       // extinction per object unit
   std::vector<double> Sigma;    // shadow extinction, attenuation * mu
-  std::vector<double> Material; // the 7 parameters
+  std::vector<double> Material; // the material parameters
 
   // Entry index and weight of data value s.
   void Locate(double s, int& i, double& w) const
@@ -66,39 +68,7 @@ struct TransferTables
   }
 };
 
-// The data on its grid: trilinear sampling at continuous index coordinates.
-struct Field
-{
-  int Dims[3] = { 0, 0, 0 };
-  const double* Values = nullptr;
-
-  double Sample(const dvec3& p) const { return SampleArray(this->Values, p); }
-
-  template <typename T>
-  T SampleArray(const T* a, const dvec3& p) const
-  {
-    int i0[3];
-    double f[3];
-    for (int c = 0; c < 3; ++c)
-    {
-      // Clamping mirrors the GPU's clamp-to-edge textures.
-      const double x = std::min(std::max(p[c], 0.0), this->Dims[c] - 1.0);
-      i0[c] = std::min(static_cast<int>(x), this->Dims[c] - 2);
-      f[c] = x - i0[c];
-    }
-    const vtkIdType sx = 1;
-    const vtkIdType sy = this->Dims[0];
-    const vtkIdType sz = static_cast<vtkIdType>(this->Dims[0]) * this->Dims[1];
-    const T* b = a + i0[0] + i0[1] * sy + i0[2] * sz;
-    const double c00 = b[0] + f[0] * (b[sx] - b[0]);
-    const double c10 = b[sy] + f[0] * (b[sy + sx] - b[sy]);
-    const double c01 = b[sz] + f[0] * (b[sz + sx] - b[sz]);
-    const double c11 = b[sz + sy] + f[0] * (b[sz + sy + sx] - b[sz + sy]);
-    const double c0 = c00 + f[1] * (c10 - c00);
-    const double c1 = c01 + f[1] * (c11 - c01);
-    return static_cast<T>(c0 + f[2] * (c1 - c0));
-  }
-};
+using Field = mmv::ScalarField;
 
 // Everything a ray needs, shared read-only by the threads.
 struct Scene
@@ -313,14 +283,6 @@ double Seconds(std::chrono::steady_clock::time_point start)
 {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
-
-dvec3 TransformPoint(const vtkMatrix4x4* m, const dvec3& x)
-{
-  double in[4] = { x.x, x.y, x.z, 1.0 };
-  double out[4];
-  vtkMatrix4x4::MultiplyPoint(m->GetData(), in, out);
-  return dvec3(out[0], out[1], out[2]) / out[3];
-}
 }
 
 vtkMultiMaterialReferenceRenderer::vtkMultiMaterialReferenceRenderer() = default;
@@ -419,53 +381,20 @@ vtkImageData* vtkMultiMaterialReferenceRenderer::Render(vtkRenderer* ren, int wi
     vtkErrorMacro("Render needs input data and a volume property with a scalar opacity");
     return nullptr;
   }
-  vtkDataArray* scalars = image->GetPointData()->GetScalars();
-  if (!scalars)
-  {
-    vtkErrorMacro("the input has no point scalars");
-    return nullptr;
-  }
   Scene scene;
-  image->GetDimensions(scene.Data.Dims);
-  if (scene.Data.Dims[0] < 2 || scene.Data.Dims[1] < 2 || scene.Data.Dims[2] < 2)
+  std::vector<double> values;
+  double range[2];
+  const std::string why =
+    mmv::LoadScalarField(image, values, scene.Data, range, scene.Origin, scene.IndexToObject);
+  if (!why.empty())
   {
-    vtkErrorMacro("the input needs at least 2 points along every axis");
+    vtkErrorMacro(<< why);
     return nullptr;
   }
   const vtkIdType count = image->GetNumberOfPoints();
-  std::vector<double> values(count);
-  for (vtkIdType v = 0; v < count; ++v)
-  {
-    values[v] = scalars->GetComponent(v, 0);
-  }
-  scene.Data.Values = values.data();
-
-  double range[2];
-  scalars->GetFiniteRange(range, 0);
-  if (!(range[1] > range[0]))
-  {
-    range[1] = range[0] + 1.0; // constant volume, as the mapper does
-  }
   scene.RangeMin = range[0];
   scene.InverseRange = 1.0 / (range[1] - range[0]);
-
-  // Geometry: index -> object is origin + direction * diag(spacing).
   const double* spacing = image->GetSpacing();
-  const double* origin = image->GetOrigin();
-  const double* direction = image->GetDirectionMatrix()->GetData();
-  for (int r = 0; r < 3; ++r)
-  {
-    scene.Origin[r] = origin[r];
-    for (int c = 0; c < 3; ++c)
-    {
-      scene.IndexToObject[c][r] = direction[r * 3 + c] * spacing[c]; // glm is column-major
-    }
-  }
-  if (glm::determinant(scene.IndexToObject) == 0.0)
-  {
-    vtkErrorMacro("the input's spacing or direction is degenerate");
-    return nullptr;
-  }
   scene.ObjectToIndex = glm::inverse(scene.IndexToObject);
   scene.GradientToObject = glm::transpose(scene.ObjectToIndex);
   const double smallestSpacing =
@@ -482,24 +411,7 @@ vtkImageData* vtkMultiMaterialReferenceRenderer::Render(vtkRenderer* ren, int wi
   TransferTables& tables = scene.Tables;
   tables.Min = range[0];
   tables.Scale = (TableSize - 1) / (range[1] - range[0]);
-  tables.Color.resize(3 * TableSize);
-  if (property->GetColorChannels(0) == 1 && property->GetGrayTransferFunction(0))
-  {
-    std::vector<double> gray(TableSize);
-    property->GetGrayTransferFunction(0)->GetTable(range[0], range[1], TableSize, gray.data());
-    for (int i = 0; i < TableSize; ++i)
-    {
-      tables.Color[3 * i] = tables.Color[3 * i + 1] = tables.Color[3 * i + 2] = gray[i];
-    }
-  }
-  else if (vtkColorTransferFunction* color = property->GetRGBTransferFunction(0))
-  {
-    color->GetTable(range[0], range[1], TableSize, tables.Color.data());
-  }
-  else
-  {
-    std::fill(tables.Color.begin(), tables.Color.end(), 1.0); // white, as the tables do
-  }
+  mmv::TabulateColor(property, range, TableSize, tables.Color);
   std::vector<double> alpha(TableSize);
   property->GetScalarOpacity(0)->GetTable(range[0], range[1], TableSize, alpha.data());
   const double unitDistance = property->GetScalarOpacityUnitDistance(0);
@@ -540,14 +452,7 @@ vtkImageData* vtkMultiMaterialReferenceRenderer::Render(vtkRenderer* ren, int wi
   scene.Reflection =
     materials && materials->GetSize() > 0 && materials->GetMaximum(mmv::Reflection) > 0.0;
   {
-    const double* up = camera->GetViewUp();
-    dvec3 u(0.0);
-    for (int i = 0; i < 3; ++i)
-    {
-      u[i] = worldToObject->GetElement(i, 0) * up[0] + worldToObject->GetElement(i, 1) * up[1] +
-        worldToObject->GetElement(i, 2) * up[2];
-    }
-    scene.EnvironmentUp = glm::length(u) > 0.0 ? glm::normalize(u) : dvec3(0.0, 1.0, 0.0);
+    scene.EnvironmentUp = mmv::ViewUpInObject(camera, worldToObject);
     const double* bottom = ren->GetBackground();
     const double* top = ren->GetGradientBackground() ? ren->GetBackground2() : bottom;
     scene.EnvironmentBottom = dvec3(bottom[0], bottom[1], bottom[2]);
@@ -606,12 +511,8 @@ vtkImageData* vtkMultiMaterialReferenceRenderer::Render(vtkRenderer* ren, int wi
   }
 
   // Camera: unproject each pixel centre from the near to the far plane.
-  vtkNew<vtkMatrix4x4> ndcToWorld;
-  ndcToWorld->DeepCopy(
-    camera->GetCompositeProjectionTransformMatrix(static_cast<double>(width) / height, -1.0, 1.0));
-  ndcToWorld->Invert();
   vtkNew<vtkMatrix4x4> ndcToObject;
-  vtkMatrix4x4::Multiply4x4(worldToObject, ndcToWorld, ndcToObject);
+  mmv::NDCToObject(camera, width, height, worldToObject, ndcToObject);
 
   const double* bg1 = ren->GetBackground();
   const double* bg2 = ren->GetGradientBackground() ? ren->GetBackground2() : bg1;
@@ -642,14 +543,14 @@ vtkImageData* vtkMultiMaterialReferenceRenderer::Render(vtkRenderer* ren, int wi
       for (int i = 0; i < width; ++i)
       {
         const double x = (i + 0.5) / width * 2.0 - 1.0;
-        const dvec3 nearPoint = TransformPoint(ndcToObject, dvec3(x, y, -1.0));
-        const dvec3 farPoint = TransformPoint(ndcToObject, dvec3(x, y, 1.0));
-        const double length = glm::length(farPoint - nearPoint);
+        dvec3 nearPoint, direction;
+        double length;
+        mmv::PixelRay(ndcToObject, x, y, nearPoint, direction, length);
         dvec4 c(0.0);
         if (length > 0.0)
         {
-          c = scene.Trace(nearPoint, (farPoint - nearPoint) / length, 0.0, length,
-            minTransmittance, localSamples, localShadowRays);
+          c = scene.Trace(
+            nearPoint, direction, 0.0, length, minTransmittance, localSamples, localShadowRays);
         }
         const dvec3 rgb = dvec3(c) + (1.0 - c.w) * background;
         const vtkIdType id = j * width + i;

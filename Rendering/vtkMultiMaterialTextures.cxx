@@ -81,7 +81,8 @@ void vtkMultiMaterialTextures::UpdateMaterialTable(vtkOpenGLRenderWindow* contex
     }
   }
   // Row 0: what every shaded segment reads; row 1: reflection (read only by
-  // the reflection variant) and the irradiance parameters (for inspection).
+  // the reflection variant), the irradiance parameters and the anisotropy
+  // (for inspection).
   std::vector<float> texels(static_cast<size_t>(n) * 2 * 4, 0.0f);
   for (int i = 0; i < n; ++i)
   {
@@ -95,6 +96,7 @@ void vtkMultiMaterialTextures::UpdateMaterialTable(vtkOpenGLRenderWindow* contex
     row1[0] = m[mmv::Reflection];
     row1[1] = m[mmv::Attenuation];
     row1[2] = m[mmv::Scattering];
+    row1[3] = m[mmv::Anisotropy];
   }
   this->Material->SetContext(context);
   this->Material->Create2DFromRaw(n, 2, 4, VTK_FLOAT, texels.data());

@@ -39,7 +39,7 @@ public:
   ///@}
 
   ///@{
-  /// Material nodes, pushed as a count then every value (8 per node); applied
+  /// Material nodes, pushed as a count then every value (9 per node, or the older 8); applied
   /// all or nothing once complete, see vtkPVMaterialNodeBuffer.
   void SetNumberOfMaterialNodeValues(int count);
   void SetMaterialNodeValue(int index, double value);

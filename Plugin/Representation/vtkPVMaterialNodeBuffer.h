@@ -5,7 +5,7 @@
  * ParaView pushes a repeated, indexed DoubleVectorProperty as its count
  * (set_number_command) followed by one call per value. Collecting the values
  * and applying them once the last one arrived lets SetNodes() validate the
- * whole list: a count that is not a multiple of 8 is seen (a per-node command
+ * whole list: a count that makes no whole nodes is seen (a per-node command
  * would silently drop the remainder) and a bad value rejects the list, all or
  * nothing.
  */
@@ -45,13 +45,16 @@ public:
   bool Apply(vtkObject* owner, vtkMaterialTransferFunction* function) const
   {
     const int count = static_cast<int>(this->Values.size());
-    if (count % vtkMaterialTransferFunction::NodeStride != 0)
+    if (vtkMaterialTransferFunction::DetectNodeStride(count, this->Values.data()) == 0)
     {
       vtkErrorWithObjectMacro(owner,
         "MaterialNodes needs " << vtkMaterialTransferFunction::NodeStride
                                << " numbers per node (value, ambient, diffuse, specular, "
-                                  "shininess, attenuation, scattering, reflection); got "
-                               << count << ". Keeping the previous nodes.");
+                                  "shininess, attenuation, scattering, reflection, anisotropy; "
+                                  "or the older "
+                               << vtkMaterialTransferFunction::LegacyNodeStride
+                               << " without anisotropy); got " << count
+                               << ". Keeping the previous nodes.");
       return false;
     }
     // SetNodes reports NaN, negative and too large values itself.

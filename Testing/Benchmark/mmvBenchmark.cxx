@@ -412,19 +412,7 @@ int main(int argc, char* argv[])
   bool rendererReported = false;
   for (const std::string& name : opt.Scenes)
   {
-    mmvbench::SceneSpec scene;
-    if (name == "synthetic")
-    {
-      scene = mmvbench::MakeSynthetic();
-    }
-    else if (name == "headsq")
-    {
-      scene = mmvbench::MakeHead(opt.Head);
-    }
-    else if (name == "orbital")
-    {
-      scene = mmvbench::MakeOrbital();
-    }
+    mmvbench::SceneSpec scene = mmvbench::MakeScene(name, opt.Head);
     if (!scene.Image)
     {
       std::cerr << "unknown or unreadable scene " << name << "\n";
@@ -436,33 +424,14 @@ int main(int argc, char* argv[])
     scene.Image->GetBounds(bounds);
     const double center[3] = { 0.5 * (bounds[0] + bounds[1]), 0.5 * (bounds[2] + bounds[3]),
       0.5 * (bounds[4] + bounds[5]) };
-    const double radius = 0.5 *
-      std::sqrt((bounds[1] - bounds[0]) * (bounds[1] - bounds[0]) +
-        (bounds[3] - bounds[2]) * (bounds[3] - bounds[2]) +
-        (bounds[5] - bounds[4]) * (bounds[5] - bounds[4]));
 
-    // The shared camera (perspective, framing the bounding sphere, fixed
-    // clipping range so every method and the reference cast the same rays)
-    // and the shared key light.
+    // The shared camera and key light (mmvbench::FrameScene).
     vtkNew<vtkCamera> camera;
-    double view[3] = { scene.ViewDirection[0], scene.ViewDirection[1], scene.ViewDirection[2] };
-    Normalize(view);
-    const double distance = 0.95 * radius / std::sin(15.0 * M_PI / 180.0);
-    camera->SetViewAngle(30.0);
-    camera->SetFocalPoint(const_cast<double*>(center));
-    camera->SetPosition(center[0] + distance * view[0], center[1] + distance * view[1],
-      center[2] + distance * view[2]);
-    camera->SetViewUp(const_cast<double*>(scene.ViewUp));
-    camera->OrthogonalizeViewUp();
+    vtkNew<vtkLight> light;
+    double radius = 0.0;
+    const double distance = mmvbench::FrameScene(scene, camera, light, radius);
     double toLight[3] = { scene.ToLight[0], scene.ToLight[1], scene.ToLight[2] };
     Normalize(toLight);
-    vtkNew<vtkLight> light;
-    light->SetLightTypeToSceneLight();
-    light->PositionalOff();
-    light->SetFocalPoint(const_cast<double*>(center));
-    light->SetPosition(center[0] + toLight[0], center[1] + toLight[1], center[2] + toLight[2]);
-    light->SetColor(1.0, 1.0, 1.0);
-    light->SetIntensity(1.0);
 
     std::vector<std::unique_ptr<Instance>> instances;
     for (const std::vector<MethodSpec>& methods : windows)

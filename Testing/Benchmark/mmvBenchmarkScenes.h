@@ -18,11 +18,13 @@
 
 #include "mmvTestScenes.h" // MakeVolume, shared with the tests
 
+#include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
 #include "vtkDataArray.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkImageResample.h"
+#include "vtkLight.h"
 #include "vtkMaterialTransferFunction.h"
 #include "vtkNew.h"
 #include "vtkPiecewiseFunction.h"
@@ -223,6 +225,73 @@ inline SceneSpec MakeOrbital()
   s.ViewDirection[1] = -0.8;
   s.ViewDirection[2] = 0.3;
   return s;
+}
+
+/// A scene by name (synthetic, headsq, orbital, ct); no image if unknown.
+inline SceneSpec MakeScene(const std::string& name, const std::string& headPath)
+{
+  if (name == "synthetic")
+  {
+    return MakeSynthetic();
+  }
+  if (name == "headsq")
+  {
+    return MakeHead(headPath);
+  }
+  if (name == "orbital")
+  {
+    return MakeOrbital();
+  }
+  if (name == "ct")
+  {
+    return MakeCTSized(headPath);
+  }
+  return {};
+}
+
+/**
+ * The benchmark's view of a scene: a perspective camera (30 degrees) on
+ * ViewDirection framing the data's bounding sphere, with a fixed clipping
+ * range so that every method casts the same rays, and a white directional
+ * key light of intensity 1 along ToLight. Returns the camera distance; fills
+ * the sphere's radius.
+ */
+inline double FrameScene(const SceneSpec& scene, vtkCamera* camera, vtkLight* light, double& radius)
+{
+  double bounds[6];
+  scene.Image->GetBounds(bounds);
+  const double center[3] = { 0.5 * (bounds[0] + bounds[1]), 0.5 * (bounds[2] + bounds[3]),
+    0.5 * (bounds[4] + bounds[5]) };
+  radius = 0.5 *
+    std::sqrt((bounds[1] - bounds[0]) * (bounds[1] - bounds[0]) +
+      (bounds[3] - bounds[2]) * (bounds[3] - bounds[2]) +
+      (bounds[5] - bounds[4]) * (bounds[5] - bounds[4]));
+  auto unit = [](const double v[3], double out[3]) {
+    const double n = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    for (int i = 0; i < 3; ++i)
+    {
+      out[i] = v[i] / n;
+    }
+  };
+  double view[3];
+  unit(scene.ViewDirection, view);
+  const double distance = 0.95 * radius / std::sin(15.0 * M_PI / 180.0);
+  camera->SetViewAngle(30.0);
+  camera->SetFocalPoint(const_cast<double*>(center));
+  camera->SetPosition(center[0] + distance * view[0], center[1] + distance * view[1],
+    center[2] + distance * view[2]);
+  camera->SetViewUp(const_cast<double*>(scene.ViewUp));
+  camera->OrthogonalizeViewUp();
+  camera->SetClippingRange(distance - 1.05 * radius, distance + 1.05 * radius);
+  double toLight[3];
+  unit(scene.ToLight, toLight);
+  light->SetLightTypeToSceneLight();
+  light->PositionalOff();
+  light->SetFocalPoint(const_cast<double*>(center));
+  light->SetPosition(center[0] + toLight[0], center[1] + toLight[1], center[2] + toLight[2]);
+  light->SetColor(1.0, 1.0, 1.0);
+  light->SetIntensity(1.0);
+  return distance;
 }
 
 } // namespace mmvbench

@@ -11,7 +11,7 @@
 int main()
 {
   vtkNew<vtkMaterialLibrary> library;
-  double preset[7];
+  double preset[vtkMaterialTransferFunction::NumberOfParameters];
   if (!library->GetPreset("bone", preset))
   {
     std::cerr << "no bone preset\n";
@@ -22,9 +22,9 @@ int main()
   {
     return 1;
   }
-  double value[7];
+  double value[vtkMaterialTransferFunction::NumberOfParameters];
   materials->Evaluate(42.0, value);
-  for (int i = 0; i < 7; ++i)
+  for (int i = 0; i < vtkMaterialTransferFunction::NumberOfParameters; ++i)
   {
     if (std::abs(value[i] - preset[i]) > 1e-12)
     {

@@ -37,19 +37,20 @@ def check_nodes(expected_count, preset_node=None, preset="metal", preset_expecte
     problems = []
     if display.MaterialPreset != material_preset:
         problems.append("MaterialPreset is %r, not %r" % (display.MaterialPreset, material_preset))
-    if len(nodes) != 8 * expected_count:
+    stride = 9  # value + 8 parameters
+    if len(nodes) != stride * expected_count:
         problems.append("expected %d nodes, property holds %d numbers" % (expected_count, len(nodes)))
-    values = nodes[0::8]
+    values = nodes[0::stride]
     if values != sorted(values):
         problems.append("node values not sorted: %s" % values)
-    if preset_node is not None and len(nodes) >= 8 * (preset_node + 1):
+    if preset_node is not None and len(nodes) >= stride * (preset_node + 1):
         import json
         with open(os.path.join(os.environ["MMV_MATERIALS_DIR"], preset + ".json")) as f:
             spec = json.load(f)
         keys = ["ambient", "diffuse", "specular", "shininess", "attenuation", "scattering",
-                "reflection"]
-        params = [float(spec[k]) for k in keys]
-        got = nodes[8 * preset_node + 1: 8 * preset_node + 8]
+                "reflection", "anisotropy"]
+        params = [float(spec.get(k, 0.0)) for k in keys]
+        got = nodes[stride * preset_node + 1: stride * preset_node + stride]
         matches = all(abs(a - b) <= 1e-9 for a, b in zip(got, params))
         if matches != preset_expected:
             problems.append("node %d is %s, %s preset %s %s" % (

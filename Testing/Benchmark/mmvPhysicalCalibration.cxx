@@ -1,0 +1,432 @@
+// Error against the *physical* reference (vtkMultiMaterialPathTracer) and
+// frame time of the real-time methods, with each method's free parameters
+// swept so that its best fit to the Monte Carlo truth is known:
+//
+//  - ours (vtkMultiMaterialVolumeMapper): every node's scattering s and
+//    attenuation c_t scaled by factors (1, 1 = the scene's defaults);
+//  - VTK Phong (vtkOpenGLGPUVolumeRayCastMapper, shading on, mmv default
+//    material);
+//  - VTK volumetric scattering: VolumetricScatteringBlending x
+//    GlobalIlluminationReach x the property's ScatteringAnisotropy.
+//
+//   mmvPhysicalCalibration --out DIR [--size 128] [--truth-spp 1024] [--frames 3]
+//                          [--scenes synthetic,headsq,orbital,ct] [--head FILE.vti]
+//                          [--s-scales 1,0,0.5,2,4,8,16] [--ct-scales 1,0.5,2,4] [--no-vtk]
+//
+// Same camera, key light and gradient background as mmvBenchmark
+// (mmvbench::FrameScene). Errors are over the 8-bit images, as displayed:
+// RMSE (0-255), PSNR and SSIM over the whole image, and over the volume's
+// pixels (where the truth's paths met the medium) the RMSE as is and after the
+// best single brightness factor k (least squares, k = <M, T> / <M, M>), which
+// separates a wrong exposure from a wrong distribution of light. The truth's own noise floor
+// is the RMS of its per-pixel standard error, in the same units. Frame time
+// is the median of --frames renders after one untimed render per setting.
+// Writes DIR/physical_calibration.csv and, per scene, the truth and the
+// best-fitting images of each family. Not a test: it asserts nothing.
+#include "mmvBenchmarkScenes.h"
+#include "mmvTestWindow.h"
+
+#include "vtkCamera.h"
+#include "vtkDataArray.h"
+#include "vtkImageData.h"
+#include "vtkImageErrorMetrics.h"
+#include "vtkLight.h"
+#include "vtkMaterialTransferFunction.h"
+#include "vtkMultiMaterialParameters.h"
+#include "vtkMultiMaterialPathTracer.h"
+#include "vtkMultiMaterialVolumeMapper.h"
+#include "vtkNew.h"
+#include "vtkOpenGLGPUVolumeRayCastMapper.h"
+#include "vtkPointData.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
+#include "vtkSMPTools.h"
+#include "vtkUnsignedCharArray.h"
+#include "vtkVolume.h"
+#include "vtkVolumeProperty.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <functional>
+#include <iomanip>
+#include <iostream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <sys/stat.h>
+#include <vector>
+
+namespace
+{
+using Clock = std::chrono::steady_clock;
+
+struct Options
+{
+  std::string Out = "calibration-out";
+  int Size = 128;
+  int TruthSamples = 1024;
+  int Frames = 5;
+  std::vector<std::string> Scenes = { "synthetic", "headsq", "orbital", "ct" };
+  std::string Head = MMV_HEADSQ_PATH;
+  std::vector<double> ScatteringScales = { 1.0, 0.0, 0.5, 2.0, 4.0, 8.0, 16.0 };
+  std::vector<double> AttenuationScales = { 1.0, 0.5, 2.0, 4.0 };
+  bool VTK = true;
+};
+
+std::vector<double> Numbers(const std::string& text)
+{
+  std::vector<double> values;
+  std::stringstream list(text);
+  for (std::string s; std::getline(list, s, ',');)
+  {
+    values.push_back(std::atof(s.c_str()));
+  }
+  return values;
+}
+
+bool Parse(int argc, char* argv[], Options& o)
+{
+  for (int i = 1; i < argc; ++i)
+  {
+    const std::string a = argv[i];
+    auto next = [&]() -> std::string { return i + 1 < argc ? argv[++i] : ""; };
+    if (a == "--out")
+    {
+      o.Out = next();
+    }
+    else if (a == "--size")
+    {
+      o.Size = std::atoi(next().c_str());
+    }
+    else if (a == "--truth-spp")
+    {
+      o.TruthSamples = std::atoi(next().c_str());
+    }
+    else if (a == "--frames")
+    {
+      o.Frames = std::atoi(next().c_str());
+    }
+    else if (a == "--scenes")
+    {
+      o.Scenes.clear();
+      std::stringstream list(next());
+      for (std::string s; std::getline(list, s, ',');)
+      {
+        o.Scenes.push_back(s);
+      }
+    }
+    else if (a == "--head")
+    {
+      o.Head = next();
+    }
+    else if (a == "--s-scales")
+    {
+      o.ScatteringScales = Numbers(next());
+    }
+    else if (a == "--ct-scales")
+    {
+      o.AttenuationScales = Numbers(next());
+    }
+    else if (a == "--no-vtk")
+    {
+      o.VTK = false;
+    }
+    else
+    {
+      return false;
+    }
+  }
+  return o.Size >= 16 && o.TruthSamples >= 2 && o.Frames >= 1 && !o.Out.empty() &&
+    !o.ScatteringScales.empty() && !o.AttenuationScales.empty();
+}
+
+
+double Median(std::vector<double> v)
+{
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+// The scene's materials with every node's s and c_t scaled.
+void ScaleMaterials(vtkMaterialTransferFunction* source, double scattering, double attenuation,
+  vtkMaterialTransferFunction* target)
+{
+  const int stride = vtkMaterialTransferFunction::NodeStride;
+  std::vector<double> nodes(static_cast<size_t>(source->GetSize()) * stride);
+  source->GetNodes(nodes.data());
+  for (size_t n = 0; n < nodes.size(); n += stride)
+  {
+    nodes[n + 1 + mmv::Scattering] *= scattering;
+    nodes[n + 1 + mmv::Attenuation] *= attenuation;
+  }
+  target->SetNodes(static_cast<int>(nodes.size()), nodes.data());
+}
+
+// One offscreen window rendering the scene with one mapper.
+struct Window
+{
+  vtkSmartPointer<vtkRenderWindow> RenderWindow = mmvtest::NewRenderWindow();
+  vtkNew<vtkRenderer> Renderer;
+  vtkNew<vtkVolume> Volume;
+  vtkNew<vtkVolumeProperty> Property;
+
+  Window(const mmvbench::SceneSpec& scene, vtkCamera* camera, vtkLight* light, int size,
+    vtkOpenGLGPUVolumeRayCastMapper* mapper)
+  {
+    this->RenderWindow->SetOffScreenRendering(1);
+    this->RenderWindow->SetSize(size, size);
+    this->RenderWindow->SetMultiSamples(0);
+    this->RenderWindow->AddRenderer(this->Renderer);
+    this->Renderer->SetBackground(const_cast<double*>(scene.Background));
+    this->Renderer->SetBackground2(const_cast<double*>(scene.Background2));
+    this->Renderer->GradientBackgroundOn();
+    this->Renderer->AutomaticLightCreationOff();
+    this->Renderer->AddLight(light);
+    this->Renderer->SetActiveCamera(camera);
+    this->Property->SetColor(scene.Color);
+    this->Property->SetScalarOpacity(scene.Opacity);
+    this->Property->SetScalarOpacityUnitDistance(scene.UnitDistance);
+    this->Property->SetInterpolationTypeToLinear();
+    const double* spacing = scene.Image->GetSpacing();
+    mapper->SetInputData(scene.Image);
+    mapper->AutoAdjustSampleDistancesOff();
+    mapper->LockSampleDistanceToInputSpacingOff();
+    mapper->SetSampleDistance(static_cast<float>(std::min({ spacing[0], spacing[1], spacing[2] })));
+    this->Volume->SetMapper(mapper);
+    this->Volume->SetProperty(this->Property);
+    this->Renderer->AddVolume(this->Volume);
+  }
+
+  // Median frame time after one untimed frame; the image of the last one.
+  double Frames(int frames, vtkImageData* image)
+  {
+    this->RenderWindow->Render();
+    std::vector<double> times;
+    for (int f = 0; f < frames; ++f)
+    {
+      const auto start = Clock::now();
+      this->RenderWindow->Render();
+      this->RenderWindow->WaitForCompletion();
+      times.push_back(std::chrono::duration<double>(Clock::now() - start).count());
+    }
+    const int* size = this->RenderWindow->GetSize();
+    vtkNew<vtkUnsignedCharArray> rgb;
+    this->RenderWindow->GetPixelData(0, 0, size[0] - 1, size[1] - 1, 0, rgb);
+    image->SetDimensions(size[0], size[1], 1);
+    image->GetPointData()->SetScalars(rgb);
+    return Median(times);
+  }
+};
+
+struct Row
+{
+  std::string Family;
+  std::string Setting;
+  double Seconds = 0.0;
+  double RMSE = 0.0;
+  double PSNR = 0.0;
+  double SSIM = 0.0;
+  double VolumeRMSE = 0.0;
+  double Gain = 1.0;
+  double GainRMSE = 0.0;
+  vtkSmartPointer<vtkImageData> Image;
+};
+
+// Over the volume's pixels (`mask`: the truth's paths met the medium there),
+// the RMSE (0-255) of test against truth as is (`raw`), and after the
+// least-squares brightness factor k (returned).
+double GainCompensated(vtkImageData* test, vtkImageData* truth, const std::vector<bool>& mask,
+  double& k, double& raw)
+{
+  vtkDataArray* a = test->GetPointData()->GetScalars();
+  vtkDataArray* b = truth->GetPointData()->GetScalars();
+  const vtkIdType n = std::min(a->GetNumberOfTuples(), b->GetNumberOfTuples());
+  double ab = 0.0, aa = 0.0, e0 = 0.0;
+  long long count = 0;
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    for (int c = 0; mask[i] && c < 3; ++c)
+    {
+      const double x = a->GetComponent(i, c);
+      const double y = b->GetComponent(i, c);
+      ab += x * y;
+      aa += x * x;
+      e0 += (x - y) * (x - y);
+      ++count;
+    }
+  }
+  k = aa > 0.0 ? ab / aa : 1.0;
+  double e = 0.0;
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    for (int c = 0; mask[i] && c < 3; ++c)
+    {
+      const double d = k * a->GetComponent(i, c) - b->GetComponent(i, c);
+      e += d * d;
+    }
+  }
+  raw = count ? std::sqrt(e0 / count) : 0.0;
+  return count ? std::sqrt(e / count) : 0.0;
+}
+
+std::string Setting(const std::vector<std::pair<std::string, double>>& values)
+{
+  std::ostringstream s;
+  for (size_t i = 0; i < values.size(); ++i)
+  {
+    s << (i ? " " : "") << values[i].first << "=" << values[i].second;
+  }
+  return s.str();
+}
+}
+
+int main(int argc, char* argv[])
+{
+  Options opt;
+  if (!Parse(argc, argv, opt))
+  {
+    std::cerr << "usage: " << argv[0]
+              << " --out DIR [--size N] [--truth-spp N] [--frames N]"
+                 " [--scenes synthetic,headsq,orbital,ct] [--head FILE.vti]"
+                 " [--s-scales LIST] [--ct-scales LIST] [--no-vtk]\n";
+    return 2;
+  }
+  vtkSMPTools::SetBackend("STDThread");
+  mkdir(opt.Out.c_str(), 0755);
+  std::ofstream csv(opt.Out + "/physical_calibration.csv");
+  csv << "scene,family,setting,frame_ms,rmse,psnr,ssim,volume_rmse,gain,volume_gain_rmse,"
+         "truth_rmse_floor,truth_spp,"
+         "truth_s,size\n";
+  vtkNew<vtkImageErrorMetrics> metrics;
+
+  for (const std::string& name : opt.Scenes)
+  {
+    mmvbench::SceneSpec scene = mmvbench::MakeScene(name, opt.Head);
+    if (!scene.Image)
+    {
+      std::cerr << "unknown or unreadable scene " << name << "\n";
+      return 1;
+    }
+    vtkNew<vtkCamera> camera;
+    vtkNew<vtkLight> light;
+    double radius = 0.0;
+    mmvbench::FrameScene(scene, camera, light, radius);
+
+    // The physical truth, through a window's renderer so that camera, light
+    // and background are exactly what the methods see.
+    vtkNew<vtkMultiMaterialVolumeMapper> ours;
+    vtkNew<vtkMaterialTransferFunction> materials;
+    materials->DeepCopy(scene.Materials);
+    ours->SetMaterialTransferFunction(materials);
+    Window oursWindow(scene, camera, light, opt.Size, ours);
+    std::cout << "== " << name << ": truth " << opt.TruthSamples << " spp ..." << std::flush;
+    vtkNew<vtkMultiMaterialPathTracer> tracer;
+    tracer->SetInputData(scene.Image);
+    tracer->SetVolumeProperty(oursWindow.Property);
+    tracer->SetMaterialTransferFunction(scene.Materials);
+    tracer->SetSamplesPerPixel(opt.TruthSamples);
+    vtkSmartPointer<vtkImageData> truthImage = tracer->Render(oursWindow.Renderer, opt.Size, opt.Size);
+    if (!truthImage)
+    {
+      return 1;
+    }
+    vtkNew<vtkImageData> truth;
+    truth->SetDimensions(opt.Size, opt.Size, 1);
+    truth->GetPointData()->SetScalars(truthImage->GetPointData()->GetArray("Colors"));
+    vtkDataArray* se = truthImage->GetPointData()->GetArray("StandardError");
+    double floor2 = 0.0;
+    std::vector<bool> volumePixels(se->GetNumberOfTuples(), false);
+    for (vtkIdType i = 0; i < se->GetNumberOfValues(); ++i)
+    {
+      floor2 += se->GetComponent(i / 3, i % 3) * se->GetComponent(i / 3, i % 3);
+      volumePixels[i / 3] = volumePixels[i / 3] || se->GetComponent(i / 3, i % 3) > 0.0;
+    }
+    const double floorRMSE = 255.0 * std::sqrt(floor2 / se->GetNumberOfValues());
+    const double truthSeconds = tracer->GetLastRenderSeconds();
+    std::cout << " " << truthSeconds << " s, noise floor RMSE " << floorRMSE << "/255\n";
+    vtkImageErrorMetrics::WritePNG((opt.Out + "/" + name + "_truth.png").c_str(), truth);
+
+    std::vector<Row> rows;
+    auto measure = [&](const std::string& family, const std::string& setting, Window& window) {
+      Row r;
+      r.Family = family;
+      r.Setting = setting;
+      r.Image = vtkSmartPointer<vtkImageData>::New();
+      r.Seconds = window.Frames(opt.Frames, r.Image);
+      metrics->Compute(r.Image, truth);
+      r.RMSE = metrics->GetRMSE();
+      r.PSNR = metrics->GetPSNR();
+      r.SSIM = metrics->GetSSIM();
+      r.GainRMSE = GainCompensated(r.Image, truth, volumePixels, r.Gain, r.VolumeRMSE);
+      csv << name << "," << family << "," << setting << "," << 1e3 * r.Seconds << "," << r.RMSE
+          << "," << r.PSNR << "," << r.SSIM << "," << r.VolumeRMSE << ","
+          << r.Gain << "," << r.GainRMSE << ","
+          << floorRMSE << "," << opt.TruthSamples << "," << truthSeconds << "," << opt.Size << "\n";
+      csv.flush();
+      std::cout << "  " << std::setw(15) << family << " " << std::setw(28) << setting << " "
+                << std::setw(7) << std::setprecision(3) << 1e3 * r.Seconds << " ms  RMSE "
+                << std::setw(6) << r.RMSE << "  volume " << r.VolumeRMSE << ", x" << r.Gain
+                << " -> " << r.GainRMSE << std::endl;
+      rows.push_back(r);
+    };
+
+    // Ours: s and c_t scaled; (1, 1) is the default.
+    for (double s : opt.ScatteringScales)
+    {
+      for (double ct : opt.AttenuationScales)
+      {
+        ScaleMaterials(scene.Materials, s, ct, materials);
+        measure(s == 1.0 && ct == 1.0 ? "ours-default" : "ours",
+          Setting({ { "s_scale", s }, { "ct_scale", ct } }), oursWindow);
+      }
+    }
+    if (opt.VTK)
+    {
+      vtkNew<vtkOpenGLGPUVolumeRayCastMapper> phong;
+      Window window(scene, camera, light, opt.Size, phong);
+      window.Property->ShadeOn();
+      window.Property->SetAmbient(mmv::MaterialParameterTable[mmv::Ambient].Default);
+      window.Property->SetDiffuse(mmv::MaterialParameterTable[mmv::Diffuse].Default);
+      window.Property->SetSpecular(mmv::MaterialParameterTable[mmv::Specular].Default);
+      window.Property->SetSpecularPower(mmv::MaterialParameterTable[mmv::Shininess].Default);
+      measure("vtk-phong", "", window);
+      for (double blending : { 0.25, 0.5, 1.0, 2.0 })
+      {
+        for (double reach : { 0.1, 0.5, 1.0 })
+        {
+          for (double g : { 0.0, 0.5, 0.8 })
+          {
+            phong->SetVolumetricScatteringBlending(static_cast<float>(blending));
+            phong->SetGlobalIlluminationReach(static_cast<float>(reach));
+            window.Property->SetScatteringAnisotropy(g);
+            measure("vtk-scattering",
+              Setting({ { "blending", blending }, { "reach", reach }, { "anisotropy", g } }), window);
+          }
+        }
+      }
+    }
+
+    // Best fit per family (lowest RMSE), and its image.
+    std::map<std::string, const Row*> best;
+    for (const Row& r : rows)
+    {
+      const std::string family = r.Family == "ours-default" ? "ours" : r.Family;
+      if (!best.count(family) || r.RMSE < best[family]->RMSE)
+      {
+        best[family] = &r;
+      }
+    }
+    for (const auto& b : best)
+    {
+      std::cout << "  best " << b.first << ": " << b.second->Setting << " RMSE " << b.second->RMSE
+                << " at " << 1e3 * b.second->Seconds << " ms\n";
+      vtkImageErrorMetrics::WritePNG(
+        (opt.Out + "/" + name + "_best_" + b.first + ".png").c_str(), b.second->Image);
+    }
+  }
+  return 0;
+}
