@@ -75,12 +75,15 @@ public:
    *    (object units), which is also the shadow-ray step;
    *  - n-entry classification tables over the same range: opacity (> 0 marks
    *    a voxel non-empty) and scattering strength s (data voxel^2 units);
-   *  - the lights (at most mmv::MaxLights) in object space.
+   *  - the lights (at most mmv::MaxLights) in object space;
+   *  - optionally a version of the scalars (not 0): the same version as
+   *    last time means the same scalars, which are then not compared.
    */
 #ifndef __VTK_WRAP__
   void SetInputs(const mmv::IrradianceGrid& grid, const std::vector<float>& normalizedScalars,
     int tableSize, const float* shadowTable, double stepLength, const float* opacityTable,
-    const float* scatteringTable, const std::vector<mmv::LightSource>& lights);
+    const float* scatteringTable, const std::vector<mmv::LightSource>& lights,
+    unsigned long scalarsVersion = 0);
 #endif
 
   /// Diffusion for multiple scattering (default on); time T of eq. 15.

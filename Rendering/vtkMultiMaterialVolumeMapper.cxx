@@ -97,6 +97,7 @@ public:
   // The pre-filtered data on the irradiance grid, normalised to [0, 1].
   std::vector<double> PrefilterKey;
   std::vector<float> Prefiltered;
+  unsigned long PrefilteredVersion = 0; // counts the pre-filterings
   mmv::IrradianceGrid Grid;
   // The material parameters the irradiance depends on (attenuation and
   // scattering), sampled over the range, and a version bumped only when they
@@ -712,6 +713,7 @@ bool vtkMultiMaterialVolumeMapper::UpdateIrradiance(vtkRenderer* ren, vtkVolume*
   {
     in.Grid = mmv::MakeIrradianceGrid(image, dims);
     mmv::PrefilterScalars(image, scalars, 0, in.Grid, in.Prefiltered);
+    ++in.PrefilteredVersion;
     const double scale = 1.0 / (range[1] - range[0]);
     bool nonFinite = false;
     for (float& v : in.Prefiltered)
@@ -766,7 +768,7 @@ bool vtkMultiMaterialVolumeMapper::UpdateIrradiance(vtkRenderer* ren, vtkVolume*
   pass->SetShadowEstimation(this->ShadowEstimation);
   pass->SetPiecewiseShadowSlices(this->PiecewiseShadowSlices);
   pass->SetInputs(in.Grid, in.Prefiltered, n, shadow->GetShadowOpacityTable(), shadowStep,
-    opacityTable.data(), scatteringTable.data(), sources);
+    opacityTable.data(), scatteringTable.data(), sources, in.PrefilteredVersion);
   if (!pass->Render(context))
   {
     vtkErrorMacro("the irradiance volume could not be computed on the GPU");

@@ -6,8 +6,8 @@
 //
 //   mmvIrradianceBenchmark --out DIR [--size N] [--reps N] [--head FILE.vti] [--quick]
 //                          [--only SECTION[,SECTION...]]  (updates, resolution,
-//                          estimation, raycast, orbit; all but raycast and
-//                          orbit by default)
+//                          estimation, raycast, orbit, compute; all but
+//                          raycast, orbit and compute by default)
 //                          [--orbit-steps N] [--orbit-interactive-frames K]
 //                          [--image-sample-distance D] [--lights N]  (raycast: both
 //                          mappers, no auto-adjust, N scene lights, default 5)
@@ -485,6 +485,46 @@ int main(int argc, char* argv[])
   }
   Bench ours(scene, size, true);
   Bench phong(scene, size, false);
+  if (Wanted(only, "compute") && !only.empty())
+  {
+    // Compute dispatches against layered fragment draws, alternating update
+    // by update (the machine may be shared): 5 lights, scale 0.5.
+    ours.SetLightCount(5);
+    ours.Ours->SetIrradianceScale(0.5);
+    vtkIrradianceVolumePass* pass = ours.Ours->GetIrradianceVolumePass();
+    std::ofstream csv(out + "/compute_vs_fragment.csv");
+    csv << "scattering,compute_update_s,fragment_update_s,fragment_over_compute,renderer\n";
+    std::string renderer;
+    for (double s : { 0.0, 8.0 })
+    {
+      ours.SetScattering(s);
+      std::vector<double> compute, fragment, ratios;
+      for (int r = 0; r <= reps; ++r) // the first round warms both up
+      {
+        std::vector<double> pair;
+        for (int kind :
+          { vtkIrradianceVolumePass::ComputeDispatches, vtkIrradianceVolumePass::FragmentDraws })
+        {
+          pass->SetComputeShaders(kind);
+          std::vector<double> update;
+          ours.Frames(1, [&]() { ours.PlaceLights(); }, &update);
+          pair.push_back(update.back());
+        }
+        if (r > 0)
+        {
+          compute.push_back(pair[0]);
+          fragment.push_back(pair[1]);
+          ratios.push_back(pair[1] / pair[0]);
+        }
+      }
+      renderer = mmvtest::RendererString(ours.Window);
+      csv << s << "," << Median(compute) << "," << Median(fragment) << "," << Median(ratios)
+          << ",\"" << renderer << "\"\n";
+      std::printf("s = %g: compute %.4f s, fragment %.4f s, fragment / compute %.2f (%s)\n", s,
+        Median(compute), Median(fragment), Median(ratios), renderer.c_str());
+    }
+    return 0;
+  }
   if (Wanted(only, "raycast")) // alone: it changes the mappers' sampling
   {
     // Camera-only frames (the irradiance cached): ours against Phong with
