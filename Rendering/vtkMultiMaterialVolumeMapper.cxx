@@ -3,6 +3,7 @@
 #include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
 #include "vtkDataArray.h"
+#include "vtkGlobalPrefilteredVolume.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkIrradianceGrid.h"
@@ -25,6 +26,7 @@
 #include "vtkSmartPointer.h"
 #include "vtkTextureObject.h"
 #include "vtkVolume.h"
+#include "vtkVolumeBricking.h"
 #include "vtkVolumeInputHelper.h"
 #include "vtkVolumeTexture.h"
 #include "vtkVolumeProperty.h"
@@ -79,6 +81,12 @@ class vtkMultiMaterialVolumeMapper::vtkInternals
 {
 public:
   vtkSmartPointer<vtkMaterialTransferFunction> Materials;
+  // The whole volume when the input is one piece of it (global shadows).
+  vtkSmartPointer<vtkGlobalPrefilteredVolume> Global;
+  vtkGlobalPrefilteredVolume* ActiveGlobal() const
+  {
+    return this->Global && this->Global->GetValid() ? this->Global.Get() : nullptr;
+  }
   vtkNew<vtkPreIntegrationTable> SegmentTable;
   vtkNew<vtkPreIntegrationTable> ShadowTable;
   vtkNew<vtkMultiMaterialTextures> Textures;
@@ -237,9 +245,27 @@ vtkMaterialTransferFunction* vtkMultiMaterialVolumeMapper::GetMaterialTransferFu
   return this->Internals->Materials;
 }
 
+void vtkMultiMaterialVolumeMapper::SetGlobalPrefilteredVolume(vtkGlobalPrefilteredVolume* volume)
+{
+  if (this->Internals->Global != volume)
+  {
+    this->Internals->Global = volume;
+    this->Modified();
+  }
+}
+
+vtkGlobalPrefilteredVolume* vtkMultiMaterialVolumeMapper::GetGlobalPrefilteredVolume()
+{
+  return this->Internals->Global;
+}
+
 vtkMTimeType vtkMultiMaterialVolumeMapper::GetMTime()
 {
   vtkMTimeType t = this->Superclass::GetMTime();
+  if (this->Internals->Global)
+  {
+    t = std::max(t, this->Internals->Global->GetMTime());
+  }
   if (this->Internals->Materials)
   {
     t = std::max(t, this->Internals->Materials->GetMTime());
@@ -373,13 +399,60 @@ void vtkMultiMaterialVolumeMapper::SetPartitions(
   unsigned short x, unsigned short y, unsigned short z)
 {
   this->PartitionsRequested = static_cast<int>(x) * y * z > 1;
+  this->RequestedPartitions[0] = x;
+  this->RequestedPartitions[1] = y;
+  this->RequestedPartitions[2] = z;
   this->Superclass::SetPartitions(x, y, z);
+  std::copy(this->RequestedPartitions, this->RequestedPartitions + 3, this->BrickPartitions);
+}
+
+bool vtkMultiMaterialVolumeMapper::FitBricksToTextureLimit(vtkRenderer* ren)
+{
+  auto* image = vtkImageData::SafeDownCast(this->GetInput());
+  auto* context = vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow());
+  if (!image || !context)
+  {
+    return true; // the base class reports what it cannot render
+  }
+  int dims[3];
+  image->GetDimensions(dims);
+  const int maxSize = vtkTextureObject::GetMaximumTextureSize3D(context);
+  int parts[3];
+  if (maxSize <= 0 || !mmv::ChooseBrickPartitions(dims, maxSize, this->RequestedPartitions, parts))
+  {
+    vtkErrorMacro("the volume (" << dims[0] << " x " << dims[1] << " x " << dims[2]
+                                 << " points) cannot be cut into bricks that fit the largest 3D "
+                                    "texture of this OpenGL context ("
+                                 << maxSize << "); not rendering it");
+    return false;
+  }
+  if (!std::equal(parts, parts + 3, this->BrickPartitions))
+  {
+    // VTK partitions the texture when it next uploads the data.
+    this->Superclass::SetPartitions(static_cast<unsigned short>(parts[0]),
+      static_cast<unsigned short>(parts[1]), static_cast<unsigned short>(parts[2]));
+    std::copy(parts, parts + 3, this->BrickPartitions);
+  }
+  if (!std::equal(parts, parts + 3, this->RequestedPartitions))
+  {
+    std::ostringstream message;
+    message << "the volume (" << dims[0] << " x " << dims[1] << " x " << dims[2]
+            << " points) is larger than the largest 3D texture of this OpenGL context ("
+            << maxSize << "): rendered in " << parts[0] << " x " << parts[1] << " x " << parts[2]
+            << " bricks";
+    this->WarnOnce(message.str());
+  }
+  return true;
 }
 
 //------------------------------------------------------------------------------
 void vtkMultiMaterialVolumeMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
 {
   vtkInternals& in = *this->Internals;
+  if (!this->FitBricksToTextureLimit(ren))
+  {
+    return; // VTK would abort in vtkTextureObject::Bind
+  }
   vtkInformation* keys = vol->GetPropertyKeys();
   if (!keys)
   {
@@ -435,7 +508,9 @@ bool vtkMultiMaterialVolumeMapper::PrepareMultiMaterial(vtkRenderer* ren, vtkVol
   {
     return false; // other blend modes are the base class's business
   }
-  if (this->PartitionsRequested || HasPartitions(this->AssembledInputs))
+  if (this->PartitionsRequested ||
+    this->BrickPartitions[0] * this->BrickPartitions[1] * this->BrickPartitions[2] > 1 ||
+    HasPartitions(this->AssembledInputs))
   {
     this->WarnOnce(PartitionWarning);
     return false;
@@ -542,7 +617,11 @@ bool vtkMultiMaterialVolumeMapper::PrepareMultiMaterial(vtkRenderer* ren, vtkVol
   in.TableStep = static_cast<float>(step);
   in.Textures->UpdateSegmentTables(context, table);
   in.Textures->UpdateMaterialTable(context, in.Materials, range, this->PreIntegrationTableSize);
-  if (!in.Textures->UpdateGradientTexture(context, scalars, dataDims, range))
+  // Pieces of one volume share the gradient's normalisation (and so its
+  // shading fade) when they share a global range.
+  vtkGlobalPrefilteredVolume* global = in.ActiveGlobal();
+  const double* gradientRange = global ? global->GetScalarRange() : range;
+  if (!in.Textures->UpdateGradientTexture(context, scalars, dataDims, gradientRange))
   {
     this->WarnOnce("the gradient volume could not be created (too large for this OpenGL "
                    "context?); using VTK's shading");
@@ -595,7 +674,11 @@ bool vtkMultiMaterialVolumeMapper::PrepareMultiMaterial(vtkRenderer* ren, vtkVol
 
   int dims[3];
   image->GetDimensions(dims);
-  for (int a = 0; a < 3; ++a)
+  if (global)
+  {
+    this->MapPieceToGlobalIrradiance(image);
+  }
+  for (int a = 0; a < 3 && !global; ++a)
   {
     // Data point i sits at texture coordinate (i + 0.5) / N, irradiance voxel
     // j at (j + 0.5) / M, and both grids span the same points.
@@ -638,10 +721,43 @@ bool vtkMultiMaterialVolumeMapper::PrepareMultiMaterial(vtkRenderer* ren, vtkVol
   return true;
 }
 
-bool vtkMultiMaterialVolumeMapper::UpdateIrradiance(vtkRenderer* ren, vtkVolume* vol,
-  vtkImageData* image, vtkDataArray* scalars, const double range[2])
+void vtkMultiMaterialVolumeMapper::MapPieceToGlobalIrradiance(vtkImageData* piece)
 {
   vtkInternals& in = *this->Internals;
+  vtkGlobalPrefilteredVolume* global = in.ActiveGlobal();
+  const mmv::IrradianceGrid& grid = global->GetGrid();
+  const glm::dvec3 offset = global->PieceOffset(piece);
+  int dims[3];
+  piece->GetDimensions(dims);
+  for (int a = 0; a < 3; ++a)
+  {
+    // Piece point i (texture coordinate t = (i + 0.5) / n) is point o + i of
+    // the whole volume, at irradiance index (o + i) / r (r data points per
+    // irradiance voxel), texture coordinate ((o + i) / r + 0.5) / m.
+    const double n = dims[a];
+    const double m = grid.Dimensions[a];
+    const double r = grid.DataVoxelsPerVoxel[a];
+    if (m > 1 && r > 0.0)
+    {
+      in.IrradianceScale[a] = static_cast<float>(n / (r * m));
+      in.IrradianceBias[a] = static_cast<float>(((offset[a] - 0.5) / r + 0.5) / m);
+    }
+    else
+    {
+      in.IrradianceScale[a] = 0.0f;
+      in.IrradianceBias[a] = 0.5f;
+    }
+  }
+}
+
+bool vtkMultiMaterialVolumeMapper::UpdateIrradiance(vtkRenderer* ren, vtkVolume* vol,
+  vtkImageData* image, vtkDataArray* scalars, const double pieceRange[2])
+{
+  vtkInternals& in = *this->Internals;
+  // A piece of a larger volume is lit from the whole volume's pre-filtered
+  // data, on its grid and over its range.
+  vtkGlobalPrefilteredVolume* global = in.ActiveGlobal();
+  const double* range = global ? global->GetScalarRange() : pieceRange;
   vtkVolumeProperty* property = vol->GetProperty();
   auto* context = vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow());
   vtkPiecewiseFunction* opacity = property->GetScalarOpacity(0);
@@ -653,9 +769,17 @@ bool vtkMultiMaterialVolumeMapper::UpdateIrradiance(vtkRenderer* ren, vtkVolume*
   // The screen only matters when the resolution is automatic.
   const double pixelsPerVoxel =
     this->IrradianceScale > 0.0 ? 0.0 : ProjectedPixelsPerVoxel(ren, vol, image);
-  const mmv::IrradianceResolution resolution = mmv::ChooseIrradianceResolution(dataDims,
-    static_cast<int>(in.Lights.size()), this->IrradianceMemoryMB, this->IrradianceScale,
-    pixelsPerVoxel);
+  mmv::IrradianceResolution resolution;
+  if (global)
+  {
+    global->GetIrradianceDimensions(resolution.Dimensions);
+    resolution.Reason = "the global grid of a volume in pieces";
+  }
+  else
+  {
+    resolution = mmv::ChooseIrradianceResolution(dataDims, static_cast<int>(in.Lights.size()),
+      this->IrradianceMemoryMB, this->IrradianceScale, pixelsPerVoxel);
+  }
   const int* dims = resolution.Dimensions;
 
   const int n = this->PreIntegrationTableSize;
@@ -680,7 +804,8 @@ bool vtkMultiMaterialVolumeMapper::UpdateIrradiance(vtkRenderer* ren, vtkVolume*
     in.MaterialSampleKey = materialKey;
   }
 
-  const vtkMTimeType dataTime = std::max(image->GetMTime(), scalars->GetMTime());
+  const vtkMTimeType dataTime =
+    global ? global->GetMTime() : std::max(image->GetMTime(), scalars->GetMTime());
   const std::vector<double> volumeKey = { double(dataTime), double(opacity->GetMTime()),
     double(in.MaterialVersion), unitDistance, range[0], range[1], double(this->MultipleScattering),
     double(this->PreIntegrationTableSize), double(in.Lights.size()), double(this->ShadowEstimation),
@@ -710,8 +835,16 @@ bool vtkMultiMaterialVolumeMapper::UpdateIrradiance(vtkRenderer* ren, vtkVolume*
     double(dataTime), range[0], range[1] };
   if (prefilterKey != in.PrefilterKey)
   {
-    in.Grid = mmv::MakeIrradianceGrid(image, dims);
-    mmv::PrefilterScalars(image, scalars, 0, in.Grid, in.Prefiltered);
+    if (global)
+    {
+      in.Grid = global->GetGrid();
+      in.Prefiltered = global->GetValues();
+    }
+    else
+    {
+      in.Grid = mmv::MakeIrradianceGrid(image, dims);
+      mmv::PrefilterScalars(image, scalars, 0, in.Grid, in.Prefiltered);
+    }
     const double scale = 1.0 / (range[1] - range[0]);
     bool nonFinite = false;
     for (float& v : in.Prefiltered)

@@ -43,6 +43,7 @@
 #include <vector> // ReadIrradiance
 
 class vtkDataArray;
+class vtkGlobalPrefilteredVolume;
 class vtkImageData;
 class vtkIrradianceVolumePass;
 class vtkMaterialTransferFunction;
@@ -174,6 +175,24 @@ public:
   /// multi-material shading maps one texture over the whole volume.
   void SetPartitions(unsigned short x, unsigned short y, unsigned short z);
 
+  /**
+   * Global shadows for a volume split into pieces (MPI ranks): the
+   * pre-filtered whole volume (vtkGlobalPrefilteredVolume, combined by the
+   * caller). While it is set and valid, the irradiance is estimated on its
+   * grid (its resolution, not the screen's) from its data and scalar range,
+   * the gradient is normalised by that range, and this mapper's input (one
+   * piece) maps its texture coordinates into the global irradiance. Null
+   * (default) or invalid: the input alone.
+   */
+  void SetGlobalPrefilteredVolume(vtkGlobalPrefilteredVolume* volume);
+  vtkGlobalPrefilteredVolume* GetGlobalPrefilteredVolume();
+
+  /// The partitions (bricks) of the last render: those of SetPartitions, or
+  /// more where a brick would exceed the largest 3D texture of the context
+  /// (mmv::ChooseBrickPartitions), so that long volumes render instead of
+  /// aborting in VTK's texture upload.
+  vtkGetVector3Macro(BrickPartitions, int);
+
   void GPURender(vtkRenderer* ren, vtkVolume* vol) override;
   void ReleaseGraphicsResources(vtkWindow* window) override;
   vtkMTimeType GetMTime() override;
@@ -207,6 +226,8 @@ protected:
   bool LastRenderInteractive = false;
   bool MultiMaterialActive = false;
   bool PartitionsRequested = false;
+  int RequestedPartitions[3] = { 1, 1, 1 };
+  int BrickPartitions[3] = { 1, 1, 1 };
 
 private:
   vtkMultiMaterialVolumeMapper(const vtkMultiMaterialVolumeMapper&) = delete;
@@ -216,8 +237,14 @@ private:
   // means "render with the base class".
   bool PrepareMultiMaterial(vtkRenderer* ren, vtkVolume* vol);
   bool UpdateIrradiance(vtkRenderer* ren, vtkVolume* vol, vtkImageData* image,
-    vtkDataArray* scalars, const double range[2]);
+    vtkDataArray* scalars, const double pieceRange[2]);
+  // The irradiance texture coordinates of the input, a piece of the global
+  // pre-filtered volume.
+  void MapPieceToGlobalIrradiance(vtkImageData* piece);
   void WarnOnce(const std::string& message);
+  // Partitions the texture so that every brick fits the context's largest
+  // 3D texture; false (with an error) when nothing fits.
+  bool FitBricksToTextureLimit(vtkRenderer* ren);
 
   class vtkInternals;
   vtkInternals* Internals;
