@@ -120,13 +120,26 @@ bool vtkMultiMaterialTextures::UpdateGradientTexture(vtkOpenGLRenderWindow* cont
   }
   std::vector<float> gradients;
   mmv::ComputeValueGradients(scalars, 0, dims, range, gradients);
+  // A volume longer than the largest 3D texture (rendered in bricks) keeps
+  // its gradient volume in one texture, resampled along the long axes.
+  const int largest = vtkTextureObject::GetMaximumTextureSize3D(context);
+  int textureDims[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    textureDims[a] = largest > 1 ? std::min(dims[a], largest) : dims[a];
+  }
+  if (!std::equal(dims, dims + 3, textureDims))
+  {
+    gradients = mmv::ResampleVectors(gradients, 3, dims, textureDims);
+  }
   this->Gradient->SetContext(context);
   // Half floats: 6 bytes a voxel, and 11 bits of mantissa keep the faint
   // gradients of soft tissue that 8-bit normals would flatten.
   this->Gradient->SetInternalFormat(GL_RGB16F);
   this->Gradient->SetFormat(GL_RGB);
   this->Gradient->SetDataType(GL_FLOAT);
-  if (!this->Gradient->Create3DFromRaw(dims[0], dims[1], dims[2], 3, VTK_FLOAT, gradients.data()))
+  if (!this->Gradient->Create3DFromRaw(
+        textureDims[0], textureDims[1], textureDims[2], 3, VTK_FLOAT, gradients.data()))
   {
     this->UploadedScalars = nullptr;
     return false;
@@ -138,6 +151,7 @@ bool vtkMultiMaterialTextures::UpdateGradientTexture(vtkOpenGLRenderWindow* cont
   this->UploadedGradientRange[0] = range[0];
   this->UploadedGradientRange[1] = range[1];
   std::copy(dims, dims + 3, this->GradientDimensions);
+  std::copy(textureDims, textureDims + 3, this->GradientTextureDimensions);
   ++this->GradientUploads;
   return true;
 }

@@ -48,6 +48,9 @@ public:
 
   vtkTextureObject* GetSegmentColorTexture() { return this->SegmentColor; }
   vtkTextureObject* GetGradientTexture() { return this->Gradient; }
+  /// Texels of the gradient texture: the data's dimensions, or fewer along
+  /// axes longer than the largest 3D texture (spanning the same points).
+  const int* GetGradientTextureDimensions() const { return this->GradientTextureDimensions; }
   vtkTextureObject* GetSegmentPositionTexture() { return this->SegmentPosition; }
   vtkTextureObject* GetMaterialTexture() { return this->Material; }
 
@@ -81,6 +84,7 @@ private:
   vtkMTimeType UploadedScalarsTime = 0;
   double UploadedGradientRange[2] = { 0.0, 0.0 };
   int GradientDimensions[3] = { 0, 0, 0 };
+  int GradientTextureDimensions[3] = { 0, 0, 0 };
   int SegmentUploads = 0;
   int MaterialUploads = 0;
   int UploadedTableBuild = -1;

@@ -51,28 +51,58 @@ double Seconds(Clock::time_point start)
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-const char* const PartitionWarning = "multi-material shading does not support partitioned "
-                                     "volumes (SetPartitions); using VTK's shading";
-
-// Partitioned textures (SetPartitions) render blocks whose texture
-// coordinates our shading does not map (TestBadInput.PartitionedVolume gave a
-// wrong image). VTK only partitions the texture during the first render, so
-// GPURender checks again afterwards: that first frame is wrong but warned.
-bool HasPartitions(vtkOpenGLGPUVolumeRayCastMapper::VolumeInputMap& inputs)
+/// Scale and bias that map texture coordinates of `n` points to those of `m`
+/// texels spanning the same points (point i at (i + 0.5) / n, texel j at
+/// (j + 0.5) / m); an axis of one texel maps to its centre.
+void SamePointsMap(double n, double m, float& scale, float& bias)
 {
-  for (auto& input : inputs)
+  if (n > 1 && m > 1)
   {
-    vtkVolumeTexture* texture = input.second.Texture;
-    if (texture)
-    {
-      const auto& parts = texture->GetPartitions();
-      if (parts[0] * parts[1] * parts[2] > 1)
-      {
-        return true;
-      }
-    }
+    scale = static_cast<float>(n * (m - 1) / ((n - 1) * m));
+    bias = static_cast<float>(0.5 / m - 0.5 * (m - 1) / ((n - 1) * m));
   }
-  return false;
+  else
+  {
+    scale = 0.0f;
+    bias = 0.5f;
+  }
+}
+
+// The maps from a brick's texture coordinates to the whole volume's, which
+// the gradient and irradiance textures cover (Shaders/mmvRayCastDec.glsl,
+// mmvWholeTexCoord): object space -> the whole volume's point index
+// (column-major 4x4), and the texture-coordinate gradient -> object space as
+// VTK's whole-volume inverse texture matrix gives it (column-major 3x3).
+void WholeVolumeMaps(vtkImageData* image, float physicalToIndex[16], float gradientToObject[9],
+  float dimensions[3], float spacing[3])
+{
+  int dims[3];
+  image->GetDimensions(dims);
+  const int* e = image->GetExtent();
+  double first[3];
+  image->TransformContinuousIndexToPhysicalPoint(e[0], e[2], e[4], first);
+  vtkNew<vtkMatrix3x3> inverse;
+  vtkMatrix3x3::Invert(image->GetDirectionMatrix(), inverse);
+  const double* s = image->GetSpacing();
+  std::fill(physicalToIndex, physicalToIndex + 16, 0.0f);
+  physicalToIndex[15] = 1.0f;
+  for (int r = 0; r < 3; ++r)
+  {
+    const double sr = std::abs(s[r]) > 0.0 ? s[r] : 1.0;
+    double translation = 0.0;
+    for (int c = 0; c < 3; ++c)
+    {
+      const double p = inverse->GetElement(r, c) / sr;
+      physicalToIndex[4 * c + r] = static_cast<float>(p);
+      translation -= p * first[c];
+      // GLSL gets transpose(A), A = diag(1 / ((n - 1) s)) D^-1.
+      const double a = inverse->GetElement(r, c) / (dims[r] > 1 ? (dims[r] - 1) * sr : sr);
+      gradientToObject[3 * r + c] = static_cast<float>(a);
+    }
+    physicalToIndex[12 + r] = static_cast<float>(translation);
+    dimensions[r] = static_cast<float>(dims[r]);
+    spacing[r] = static_cast<float>(std::abs(sr));
+  }
 }
 
 }
@@ -119,8 +149,14 @@ public:
   std::vector<mmv::ShadingLight> Lights;
   float IrradianceScale[3] = { 1.0f, 1.0f, 1.0f };
   float IrradianceBias[3] = { 0.0f, 0.0f, 0.0f };
+  float PhysicalToWholeIndex[16] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 };
+  float GradientToObject[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
+  float WholeDimensions[3] = { 1.0f, 1.0f, 1.0f };
+  float DataSpacing[3] = { 1.0f, 1.0f, 1.0f };
   float GradientFade = 1.0f;
   float GradientScale[3] = { 1.0f, 1.0f, 1.0f };
+  float GradientTexScale[3] = { 1.0f, 1.0f, 1.0f };
+  float GradientTexBias[3] = { 0.0f, 0.0f, 0.0f };
   float TableStep = 1.0f;
   float EnvironmentUp[3] = { 0.0f, 1.0f, 0.0f };
   float EnvironmentBottom[3] = { 0.0f, 0.0f, 0.0f };
@@ -171,8 +207,14 @@ void vtkMultiMaterialVolumeMapper::vtkInternals::SetUniforms(vtkShaderProgram* p
   program->SetUniformf("mmv_gradientFade", this->GradientFade);
   program->SetUniformi("mmv_gradient", this->Textures->GetGradientTexture()->GetTextureUnit());
   program->SetUniform3f("mmv_gradientScale", this->GradientScale);
+  program->SetUniform3f("mmv_gradientTexScale", this->GradientTexScale);
+  program->SetUniform3f("mmv_gradientTexBias", this->GradientTexBias);
   program->SetUniform3f("mmv_irradianceScale", this->IrradianceScale);
   program->SetUniform3f("mmv_irradianceBias", this->IrradianceBias);
+  program->SetUniformMatrix4x4("mmv_physicalToWholeIndex", this->PhysicalToWholeIndex);
+  program->SetUniformMatrix3x3("mmv_gradientToObject", this->GradientToObject);
+  program->SetUniform3f("mmv_wholeDimensions", this->WholeDimensions);
+  program->SetUniform3f("mmv_dataSpacing", this->DataSpacing);
 
   const int count = this->Variant.NumberOfLights;
   if (count > 0)
@@ -486,10 +528,6 @@ void vtkMultiMaterialVolumeMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
   }
   in.ActivateTextures(false);
   ++this->RayCastCount;
-  if (HasPartitions(this->AssembledInputs))
-  {
-    this->WarnOnce(PartitionWarning); // later frames use the base class
-  }
 }
 
 //------------------------------------------------------------------------------
@@ -507,13 +545,6 @@ bool vtkMultiMaterialVolumeMapper::PrepareMultiMaterial(vtkRenderer* ren, vtkVol
   if (this->BlendMode != vtkVolumeMapper::COMPOSITE_BLEND)
   {
     return false; // other blend modes are the base class's business
-  }
-  if (this->PartitionsRequested ||
-    this->BrickPartitions[0] * this->BrickPartitions[1] * this->BrickPartitions[2] > 1 ||
-    HasPartitions(this->AssembledInputs))
-  {
-    this->WarnOnce(PartitionWarning);
-    return false;
   }
   auto* image = vtkImageData::SafeDownCast(this->GetInput());
   vtkVolumeProperty* property = vol->GetProperty();
@@ -627,9 +658,11 @@ bool vtkMultiMaterialVolumeMapper::PrepareMultiMaterial(vtkRenderer* ren, vtkVol
                    "context?); using VTK's shading");
     return false;
   }
+  const int* gradientTexels = in.Textures->GetGradientTextureDimensions();
   for (int a = 0; a < 3; ++a)
   {
     in.GradientScale[a] = static_cast<float>(dataDims[a]);
+    SamePointsMap(dataDims[a], gradientTexels[a], in.GradientTexScale[a], in.GradientTexBias[a]);
   }
 
   // 2. Lights, in the volume's object space.
@@ -674,6 +707,8 @@ bool vtkMultiMaterialVolumeMapper::PrepareMultiMaterial(vtkRenderer* ren, vtkVol
 
   int dims[3];
   image->GetDimensions(dims);
+  WholeVolumeMaps(
+    image, in.PhysicalToWholeIndex, in.GradientToObject, in.WholeDimensions, in.DataSpacing);
   if (global)
   {
     this->MapPieceToGlobalIrradiance(image);
@@ -682,18 +717,8 @@ bool vtkMultiMaterialVolumeMapper::PrepareMultiMaterial(vtkRenderer* ren, vtkVol
   {
     // Data point i sits at texture coordinate (i + 0.5) / N, irradiance voxel
     // j at (j + 0.5) / M, and both grids span the same points.
-    const double n = dims[a];
-    const double m = this->IrradianceDimensions[a] > 0 ? this->IrradianceDimensions[a] : 1;
-    if (n > 1 && m > 1)
-    {
-      in.IrradianceScale[a] = static_cast<float>(n * (m - 1) / ((n - 1) * m));
-      in.IrradianceBias[a] = static_cast<float>(0.5 / m - 0.5 * (m - 1) / ((n - 1) * m));
-    }
-    else
-    {
-      in.IrradianceScale[a] = 0.0f;
-      in.IrradianceBias[a] = 0.5f;
-    }
+    SamePointsMap(dims[a], this->IrradianceDimensions[a] > 0 ? this->IrradianceDimensions[a] : 1,
+      in.IrradianceScale[a], in.IrradianceBias[a]);
   }
   const double smallestSpacing =
     std::min({ std::abs(spacing[0]), std::abs(spacing[1]), std::abs(spacing[2]) });
@@ -779,6 +804,13 @@ bool vtkMultiMaterialVolumeMapper::UpdateIrradiance(vtkRenderer* ren, vtkVolume*
   {
     resolution = mmv::ChooseIrradianceResolution(dataDims, static_cast<int>(in.Lights.size()),
       this->IrradianceMemoryMB, this->IrradianceScale, pixelsPerVoxel);
+  }
+  // The irradiance is one 3D texture: no axis longer than the largest one
+  // (a long volume is drawn in bricks, its irradiance spans it whole).
+  const int largest = vtkTextureObject::GetMaximumTextureSize3D(context);
+  for (int a = 0; a < 3 && largest > 1 && !global; ++a)
+  {
+    resolution.Dimensions[a] = std::min(resolution.Dimensions[a], largest);
   }
   const int* dims = resolution.Dimensions;
 

@@ -30,7 +30,8 @@
  * transmittance exp(-int mu).
  *
  * Falls back to the base class (warning once) for what it does not model:
- * several components, cell scalars, blend modes other than composite.
+ * several components, cell scalars, blend modes other than composite, and
+ * volumes longer than the largest 3D texture (rendered in bricks).
  */
 #ifndef vtkMultiMaterialVolumeMapper_h
 #define vtkMultiMaterialVolumeMapper_h
@@ -171,8 +172,12 @@ public:
   /// Test hook: the fragment shader of the last shader build.
   std::string GetLastFragmentShaderSource();
 
-  /// Partitioned volumes render with VTK's shading (with a warning): the
-  /// multi-material shading maps one texture over the whole volume.
+  /// Bricks (VTK's partitioned textures): each block is shaded with
+  /// materials through the whole volume's gradient and irradiance textures
+  /// (Shaders/mmvRayCastDec.glsl, mmvWholeTexCoord), so shadows and
+  /// gradients are continuous across block faces. A volume larger than the
+  /// largest 3D texture is bricked by itself but, since its gradient volume
+  /// does not fit one texture, shaded by VTK (with a warning).
   void SetPartitions(unsigned short x, unsigned short y, unsigned short z);
 
   /**

@@ -5,14 +5,15 @@
 #include "mmvTestScenes.h"
 #include "mmvTestUtilities.h"
 
+#include "vtkMaterialTransferFunction.h"
 #include "vtkMultiMaterialVolumeMapper.h"
-#include "vtkOpenGLGPUVolumeRayCastMapper.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkTextureObject.h"
 #include "vtkVolumeBricking.h"
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 
 namespace
@@ -61,7 +62,7 @@ struct Frame
 };
 
 // Renders `image` framed from +z in a 256 x 64 window with `mapper`.
-Frame Render(vtkImageData* image, vtkOpenGLGPUVolumeRayCastMapper* mapper, double length)
+Frame Render(vtkImageData* image, vtkMultiMaterialVolumeMapper* mapper, double length)
 {
   mmvtest::Scene scene(64);
   scene.Window->SetSize(256, 64);
@@ -84,10 +85,7 @@ Frame Render(vtkImageData* image, vtkOpenGLGPUVolumeRayCastMapper* mapper, doubl
   frame.Warnings = counter.Warnings();
   frame.Errors = counter.Errors();
   frame.Message = counter.LastMessage();
-  if (auto* ours = vtkMultiMaterialVolumeMapper::SafeDownCast(mapper))
-  {
-    ours->GetBrickPartitions(frame.Bricks);
-  }
+  mapper->GetBrickPartitions(frame.Bricks);
   return frame;
 }
 
@@ -178,31 +176,27 @@ TEST(VolumeBricking, LongerThanLargestTextureRendersInBricks)
   EXPECT_EQ(bricked.Errors, 0) << bricked.Message;
   EXPECT_EQ(bricked.Bricks[0], 2);
   EXPECT_EQ(bricked.Bricks[1] * bricked.Bricks[2], 1);
-  EXPECT_GE(bricked.Warnings, 1);
-  EXPECT_FALSE(ours->GetMultiMaterialActive()) << "bricks are shaded by VTK's shading for now";
-  EXPECT_GT(MeanLevel(bricked.Pixels), 10.0) << "the volume is drawn";
-
-  // VTK's own mapper, told to partition the same way, draws the same image.
-  vtkNew<vtkOpenGLGPUVolumeRayCastMapper> vtk;
-  vtk->SetPartitions(2, 1, 1);
-  const Frame vtkBricks = Render(LongVolume(points, length), vtk, length);
-  const double same = PSNR(bricked.Pixels, vtkBricks.Pixels);
-  std::cout << "bricked vs VTK's mapper with SetPartitions(2, 1, 1): PSNR " << same << " dB"
-            << std::endl;
-  EXPECT_GE(same, 40.0);
+  EXPECT_EQ(bricked.Warnings, 1) << "the bricking notice, once";
+  EXPECT_NE(bricked.Message.find("2 x 1 x 1 bricks"), std::string::npos) << bricked.Message;
+  EXPECT_TRUE(ours->GetMultiMaterialActive()) << "bricks are shaded with materials";
+  int irradiance[3];
+  ours->GetIrradianceDimensions(irradiance);
+  EXPECT_LE(irradiance[0], limit) << "the irradiance texture fits too";
+  EXPECT_GT(MeanLevel(bricked.Pixels), 5.0) << "the volume is drawn (9.6 measured)";
 
   // The same profile sampled half as densely fits one texture: the bricks
-  // show the whole volume, seams included, as that unbricked render does.
+  // (gradient volume resampled to the limit, irradiance over the whole
+  // volume) show what that unbricked render shows.
   vtkNew<vtkMultiMaterialVolumeMapper> reference;
   const int half = (points + 1) / 2;
   const Frame whole = Render(LongVolume(half, length), reference, length);
   EXPECT_EQ(whole.Bricks[0] * whole.Bricks[1] * whole.Bricks[2], 1);
-  vtkNew<vtkOpenGLGPUVolumeRayCastMapper> vtkWhole;
-  const Frame vtkHalf = Render(LongVolume(half, length), vtkWhole, length);
-  const double close = PSNR(bricked.Pixels, vtkHalf.Pixels);
-  std::cout << "bricked (" << points << " points) vs unbricked VTK render of " << half
+  EXPECT_TRUE(reference->GetMultiMaterialActive());
+  const double close = PSNR(bricked.Pixels, whole.Pixels);
+  std::cout << "bricked (" << points << " points) vs unbricked render of " << half
             << " points: PSNR " << close << " dB" << std::endl;
-  EXPECT_GE(close, 35.0);
+  // Measured 40.8 dB on llvmpipe: what differs is the sampling density.
+  EXPECT_GE(close, 40.0);
 }
 
 //------------------------------------------------------------------------------
@@ -213,4 +207,79 @@ TEST(VolumeBricking, VolumeThatFitsKeepsOneTexture)
   EXPECT_EQ(frame.Errors, 0) << frame.Message;
   EXPECT_EQ(frame.Bricks[0] * frame.Bricks[1] * frame.Bricks[2], 1);
   EXPECT_TRUE(mapper->GetMultiMaterialActive());
+}
+
+//------------------------------------------------------------------------------
+namespace
+{
+// The scene: a plate (y 22..25, x and z 8..24) above a floor (y 2..6)
+// in a 33^3 volume, lit from above: the plate's shadow falls on the floor.
+float PlateAndFloor(int i, int j, int k)
+{
+  const bool plate = j >= 22 && j <= 25 && i >= 8 && i <= 24 && k >= 8 && k <= 24;
+  const bool floor = j >= 2 && j <= 6;
+  return plate || floor ? 100.0f : 0.0f;
+}
+
+struct Shaded
+{
+  std::vector<unsigned char> Pixels;
+  bool Active = false;
+  int Warnings = 0;
+  int Errors = 0;
+};
+
+Shaded RenderPlateAndFloor(int px, int py, int pz)
+{
+  mmvtest::Scene scene(96);
+  scene.Color->AddRGBPoint(0.0, 0.9, 0.85, 0.8);
+  scene.Color->AddRGBPoint(100.0, 0.9, 0.85, 0.8);
+  scene.Opacity->AddPoint(0.0, 0.0);
+  scene.Opacity->AddPoint(100.0, 0.8);
+  vtkNew<vtkMaterialTransferFunction> materials;
+  materials->AddNode(50.0, 0.2, 0.7, 0.3, 20.0, 1.0, 0.3, 0.0);
+  vtkNew<vtkMultiMaterialVolumeMapper> mapper;
+  mmvtest::ErrorCounter counter(mapper);
+  mapper->SetInputData(mmvtest::MakeVolume(33, PlateAndFloor));
+  mapper->SetMaterialTransferFunction(materials);
+  if (px * py * pz > 1)
+  {
+    mapper->SetPartitions(px, py, pz);
+  }
+  scene.Volume->SetMapper(mapper);
+  const double bounds[6] = { 0, 32, 0, 32, 0, 32 };
+  scene.FrameBounds(bounds);
+  // Seen from the front and a little above, so the floor shows.
+  vtkCamera* camera = scene.Renderer->GetActiveCamera();
+  camera->SetPosition(16.0, 60.0, 200.0);
+  scene.Renderer->ResetCameraClippingRange(const_cast<double*>(bounds));
+  const double from[3] = { 20.0, 100.0, 16.0 };
+  const double centre[3] = { 16.0, 16.0, 16.0 };
+  scene.AddDirectionalLight(from, centre);
+  scene.Window->Render();
+  scene.Window->Render(); // VTK partitions the texture during the first frame
+  Shaded result;
+  result.Pixels = scene.Pixels();
+  result.Active = mapper->GetMultiMaterialActive();
+  result.Warnings = counter.Warnings();
+  result.Errors = counter.Errors();
+  return result;
+}
+} // namespace
+
+TEST(VolumeBricking, PartitionsShadeLikeTheWholeVolume)
+{
+  const Shaded whole = RenderPlateAndFloor(1, 1, 1);
+  ASSERT_TRUE(whole.Active);
+  EXPECT_GT(MeanLevel(whole.Pixels), 10.0);
+  for (const auto& p : std::vector<std::array<int, 3>>{ { 2, 2, 2 }, { 3, 1, 2 }, { 1, 4, 1 } })
+  {
+    const Shaded bricks = RenderPlateAndFloor(p[0], p[1], p[2]);
+    const double value = PSNR(whole.Pixels, bricks.Pixels);
+    std::cout << "SetPartitions(" << p[0] << ", " << p[1] << ", " << p[2]
+              << ") vs one texture: PSNR " << value << " dB" << std::endl;
+    EXPECT_TRUE(bricks.Active) << "multi-material shading of the bricks";
+    EXPECT_EQ(bricks.Warnings + bricks.Errors, 0);
+    EXPECT_GE(value, 40.0);
+  }
 }

@@ -2,7 +2,7 @@
 allows 2048): VTK 9.2 does not partition it by itself and aborts the process
 in vtkTextureObject::Bind (ParaView's own Volume representation still does).
 The Multi-Material Volume must survive, say why, and draw the whole volume
-(in bricks, with VTK's shading)."""
+in bricks, shaded with materials."""
 
 import os
 
@@ -24,7 +24,7 @@ rep = mmv.show_volume(wavelet, view, preset="bone")
 # Far from its centre the Wavelet falls below show_volume's opacity ramp:
 # make the whole range visible, so that every brick shows.
 low, high = wavelet.PointData["RTData"].GetRange()
-simple.GetOpacityTransferFunction("RTData").Points = [low, 0.3, 0.5, 0.0, high, 1.0, 0.5, 0.0]
+simple.GetOpacityTransferFunction("RTData").Points = [low, 0.05, 0.5, 0.0, high, 0.3, 0.5, 0.0]
 simple.GetColorTransferFunction("RTData").RescaleTransferFunction(low, high)
 # 2100 x 500 x 500 units on screen, seen from the side.
 rep.Scale = [1.0, 100.0, 100.0]
@@ -46,6 +46,7 @@ span = (shown[-1] - shown[0] + 1) / float(image.shape[1]) if len(shown) else 0.0
 # width; one missing brick would leave about half.
 print("the volume spans %.1f%% of the width" % (100 * span))
 checker.check(span > 0.85, "both bricks are drawn (%.2f of the width > 0.85)" % span)
+checker.check(mmv.info(rep, "MultiMaterialActive") == 1, "the bricks are shaded with materials")
 reported = errors.take_errors()
 checker.check(reported == "", "no VTK error (%r)" % reported)
 warnings = errors.take()
