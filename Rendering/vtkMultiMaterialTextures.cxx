@@ -11,6 +11,7 @@
 #include "vtk_glew.h"
 
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 vtkStandardNewMacro(vtkMultiMaterialTextures);
@@ -108,7 +109,7 @@ void vtkMultiMaterialTextures::UpdateMaterialTable(vtkOpenGLRenderWindow* contex
 }
 
 bool vtkMultiMaterialTextures::UpdateGradientTexture(vtkOpenGLRenderWindow* context,
-  vtkDataArray* scalars, const int dims[3], const double range[2])
+  vtkDataArray* scalars, const int dims[3], const double range[2], double maxTextureBytes)
 {
   const vtkMTimeType time = scalars->GetMTime();
   const bool current = this->Gradient->GetHandle() != 0 && scalars == this->UploadedScalars &&
@@ -124,9 +125,15 @@ bool vtkMultiMaterialTextures::UpdateGradientTexture(vtkOpenGLRenderWindow* cont
   // its gradient volume in one texture, resampled along the long axes.
   const int largest = vtkTextureObject::GetMaximumTextureSize3D(context);
   int textureDims[3];
+  // Likewise a gradient volume over maxTextureBytes (6 B a texel) shrinks on
+  // every axis.
+  const double bytes = 6.0 * dims[0] * dims[1] * dims[2];
+  const double shrink =
+    maxTextureBytes > 0.0 && bytes > maxTextureBytes ? std::cbrt(maxTextureBytes / bytes) : 1.0;
   for (int a = 0; a < 3; ++a)
   {
-    textureDims[a] = largest > 1 ? std::min(dims[a], largest) : dims[a];
+    const int fit = std::max(std::min(dims[a], 2), static_cast<int>(dims[a] * shrink));
+    textureDims[a] = largest > 1 ? std::min(fit, largest) : fit;
   }
   if (!std::equal(dims, dims + 3, textureDims))
   {

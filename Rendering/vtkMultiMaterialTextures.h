@@ -44,7 +44,7 @@ public:
   /// a `dims` grid) normalised over `range`, if any of them changed. False
   /// when the texture could not be created (too large for the context).
   bool UpdateGradientTexture(vtkOpenGLRenderWindow* context, vtkDataArray* scalars,
-    const int dims[3], const double range[2]);
+    const int dims[3], const double range[2], double maxTextureBytes = 0.0);
 
   vtkTextureObject* GetSegmentColorTexture() { return this->SegmentColor; }
   vtkTextureObject* GetGradientTexture() { return this->Gradient; }

@@ -460,12 +460,18 @@ bool vtkMultiMaterialVolumeMapper::FitBricksToTextureLimit(vtkRenderer* ren)
   image->GetDimensions(dims);
   const int maxSize = vtkTextureObject::GetMaximumTextureSize3D(context);
   int parts[3];
-  if (maxSize <= 0 || !mmv::ChooseBrickPartitions(dims, maxSize, this->RequestedPartitions, parts))
+  int cellFlag = 0;
+  vtkDataArray* scalars = vtkAbstractMapper::GetScalars(image, this->ScalarMode,
+    this->ArrayAccessMode, this->ArrayId, this->ArrayName, cellFlag);
+  const double bytesPerPoint =
+    scalars ? scalars->GetDataTypeSize() * scalars->GetNumberOfComponents() : 4.0;
+  if (maxSize <= 0 || !mmv::ChooseBrickPartitions(dims, maxSize, this->RequestedPartitions, parts) ||
+    !mmv::LimitBrickBytes(dims, bytesPerPoint, this->MaxBrickMB * 1024.0 * 1024.0, parts))
   {
     vtkErrorMacro("the volume (" << dims[0] << " x " << dims[1] << " x " << dims[2]
                                  << " points) cannot be cut into bricks that fit the largest 3D "
                                     "texture of this OpenGL context ("
-                                 << maxSize << "); not rendering it");
+                                 << maxSize << ") and MaxBrickMB; not rendering it");
     return false;
   }
   if (!std::equal(parts, parts + 3, this->BrickPartitions))
@@ -480,7 +486,7 @@ bool vtkMultiMaterialVolumeMapper::FitBricksToTextureLimit(vtkRenderer* ren)
     std::ostringstream message;
     message << "the volume (" << dims[0] << " x " << dims[1] << " x " << dims[2]
             << " points) is larger than the largest 3D texture of this OpenGL context ("
-            << maxSize << "): rendered in " << parts[0] << " x " << parts[1] << " x " << parts[2]
+            << maxSize << ") or MaxBrickMB (" << this->MaxBrickMB << "): rendered in " << parts[0] << " x " << parts[1] << " x " << parts[2]
             << " bricks";
     this->WarnOnce(message.str());
   }
@@ -652,7 +658,8 @@ bool vtkMultiMaterialVolumeMapper::PrepareMultiMaterial(vtkRenderer* ren, vtkVol
   // shading fade) when they share a global range.
   vtkGlobalPrefilteredVolume* global = in.ActiveGlobal();
   const double* gradientRange = global ? global->GetScalarRange() : range;
-  if (!in.Textures->UpdateGradientTexture(context, scalars, dataDims, gradientRange))
+  if (!in.Textures->UpdateGradientTexture(
+        context, scalars, dataDims, gradientRange, this->MaxBrickMB * 1024.0 * 1024.0))
   {
     this->WarnOnce("the gradient volume could not be created (too large for this OpenGL "
                    "context?); using VTK's shading");
@@ -978,6 +985,7 @@ void vtkMultiMaterialVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "IrradianceMemoryMB: " << this->IrradianceMemoryMB << "\n";
+  os << indent << "MaxBrickMB: " << this->MaxBrickMB << "\n";
   os << indent << "IrradianceScale: " << this->IrradianceScale << "\n";
   os << indent << "MultipleScattering: " << this->MultipleScattering << "\n";
   os << indent << "ShadowEstimation: " << this->ShadowEstimation << "\n";

@@ -198,6 +198,12 @@ public:
   /// aborting in VTK's texture upload.
   vtkGetVector3Macro(BrickPartitions, int);
 
+  /// The most megabytes one brick's texture may take (default 512): larger
+  /// volumes are cut into more bricks, since a texture allocation the OpenGL
+  /// implementation refuses (llvmpipe: over 1 GiB) aborts in VTK.
+  vtkSetClampMacro(MaxBrickMB, double, 1.0, 1.0e6);
+  vtkGetMacro(MaxBrickMB, double);
+
   void GPURender(vtkRenderer* ren, vtkVolume* vol) override;
   void ReleaseGraphicsResources(vtkWindow* window) override;
   vtkMTimeType GetMTime() override;
@@ -233,6 +239,7 @@ protected:
   bool PartitionsRequested = false;
   int RequestedPartitions[3] = { 1, 1, 1 };
   int BrickPartitions[3] = { 1, 1, 1 };
+  double MaxBrickMB = 512.0;
 
 private:
   vtkMultiMaterialVolumeMapper(const vtkMultiMaterialVolumeMapper&) = delete;

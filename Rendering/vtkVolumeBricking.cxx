@@ -53,4 +53,36 @@ bool ChooseBrickPartitions(
   return true;
 }
 
+bool LimitBrickBytes(
+  const int pointDims[3], double bytesPerPoint, double maxBrickBytes, int partitions[3])
+{
+  auto brickBytes = [&]() {
+    double bytes = bytesPerPoint;
+    for (int a = 0; a < 3; ++a)
+    {
+      bytes *= LargestBrickPoints(std::max(pointDims[a], 1), partitions[a]);
+    }
+    return bytes;
+  };
+  while (brickBytes() > maxBrickBytes)
+  {
+    int longest = -1;
+    for (int a = 0; a < 3; ++a)
+    {
+      const int points = LargestBrickPoints(std::max(pointDims[a], 1), partitions[a]);
+      if (points > 2 && partitions[a] < 65535 &&
+        (longest < 0 || points > LargestBrickPoints(pointDims[longest], partitions[longest])))
+      {
+        longest = a;
+      }
+    }
+    if (longest < 0)
+    {
+      return false;
+    }
+    ++partitions[longest];
+  }
+  return true;
+}
+
 } // namespace mmv

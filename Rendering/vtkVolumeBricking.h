@@ -32,6 +32,16 @@ VTKMULTIMATERIALVOLUME_EXPORT int LargestBrickPoints(int points, int parts);
 VTKMULTIMATERIALVOLUME_EXPORT bool ChooseBrickPartitions(
   const int pointDims[3], int maxTextureSize, const int requested[3], int partitions[3]);
 
+/**
+ * Raises `partitions` (from ChooseBrickPartitions) until no brick holds more
+ * than `maxBrickBytes` at `bytesPerPoint`: a texture allocation that fails
+ * (llvmpipe refuses 3D textures over 1 GiB; GPUs have their own limits)
+ * also ends in VTK's assertion. Each step cuts the axis whose bricks are
+ * longest. False when even bricks of 2 points per axis are too large.
+ */
+VTKMULTIMATERIALVOLUME_EXPORT bool LimitBrickBytes(
+  const int pointDims[3], double bytesPerPoint, double maxBrickBytes, int partitions[3]);
+
 } // namespace mmv
 
 #endif

@@ -5,6 +5,7 @@
 #include "mmvTestScenes.h"
 #include "mmvTestUtilities.h"
 
+#include "vtkDoubleArray.h"
 #include "vtkMaterialTransferFunction.h"
 #include "vtkMultiMaterialVolumeMapper.h"
 #include "vtkOpenGLRenderWindow.h"
@@ -13,6 +14,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 
@@ -144,6 +146,27 @@ TEST(VolumeBricking, PartitionsInClosedForm)
   EXPECT_EQ(parts[2], 2);
   // No texture of 2 texels holds a brick (a brick has 2 points at least).
   EXPECT_FALSE(mmv::ChooseBrickPartitions(longX, 2, none, parts));
+  // A brick budget cuts the longest bricks until each fits: 640^3 floats
+  // (1000 MiB) in bricks of at most 512 MiB take 2 parts along one axis.
+  const int cube[3] = { 640, 640, 640 };
+  ASSERT_TRUE(mmv::ChooseBrickPartitions(cube, 2048, none, parts));
+  ASSERT_TRUE(mmv::LimitBrickBytes(cube, 4.0, 512.0 * 1024 * 1024, parts));
+  EXPECT_EQ(parts[0] * parts[1] * parts[2], 2);
+  double brick = 4.0;
+  for (int a = 0; a < 3; ++a)
+  {
+    brick *= mmv::LargestBrickPoints(640, parts[a]);
+  }
+  EXPECT_LE(brick, 512.0 * 1024 * 1024);
+  // 64 MiB bricks: 1000 MiB / 64 = 15.6, so at least 16 bricks, spread over the axes.
+  ASSERT_TRUE(mmv::ChooseBrickPartitions(cube, 2048, none, parts));
+  ASSERT_TRUE(mmv::LimitBrickBytes(cube, 4.0, 64.0 * 1024 * 1024, parts));
+  EXPECT_GE(parts[0] * parts[1] * parts[2], 16);
+  EXPECT_LE(parts[0] * parts[1] * parts[2], 32);
+  EXPECT_LE(std::max({ parts[0], parts[1], parts[2] }) - std::min({ parts[0], parts[1], parts[2] }), 1);
+  // Nothing fits a budget below one 2 x 2 x 2 brick.
+  ASSERT_TRUE(mmv::ChooseBrickPartitions(cube, 2048, none, parts));
+  EXPECT_FALSE(mmv::LimitBrickBytes(cube, 4.0, 16.0, parts));
   // For every length up to 3 limits: the bricks fit and one brick fewer
   // would not (the fewest bricks).
   for (int limit : { 16, 17, 64 })
@@ -227,9 +250,10 @@ struct Shaded
   bool Active = false;
   int Warnings = 0;
   int Errors = 0;
+  int Bricks[3] = { 0, 0, 0 };
 };
 
-Shaded RenderPlateAndFloor(int px, int py, int pz)
+Shaded RenderPlateAndFloor(int px, int py, int pz, vtkImageData* input = nullptr, double maxBrickMB = 0.0)
 {
   mmvtest::Scene scene(96);
   scene.Color->AddRGBPoint(0.0, 0.9, 0.85, 0.8);
@@ -240,7 +264,11 @@ Shaded RenderPlateAndFloor(int px, int py, int pz)
   materials->AddNode(50.0, 0.2, 0.7, 0.3, 20.0, 1.0, 0.3, 0.0);
   vtkNew<vtkMultiMaterialVolumeMapper> mapper;
   mmvtest::ErrorCounter counter(mapper);
-  mapper->SetInputData(mmvtest::MakeVolume(33, PlateAndFloor));
+  mapper->SetInputData(input ? input : mmvtest::MakeVolume(33, PlateAndFloor).Get());
+  if (maxBrickMB > 0.0)
+  {
+    mapper->SetMaxBrickMB(maxBrickMB);
+  }
   mapper->SetMaterialTransferFunction(materials);
   if (px * py * pz > 1)
   {
@@ -259,6 +287,7 @@ Shaded RenderPlateAndFloor(int px, int py, int pz)
   scene.Window->Render();
   scene.Window->Render(); // VTK partitions the texture during the first frame
   Shaded result;
+  mapper->GetBrickPartitions(result.Bricks);
   result.Pixels = scene.Pixels();
   result.Active = mapper->GetMultiMaterialActive();
   result.Warnings = counter.Warnings();
@@ -282,4 +311,32 @@ TEST(VolumeBricking, PartitionsShadeLikeTheWholeVolume)
     EXPECT_EQ(bricks.Warnings + bricks.Errors, 0);
     EXPECT_GE(value, 40.0);
   }
+}
+
+TEST(VolumeBricking, BrickBudgetBricksLargeTextures)
+{
+  // The plate and floor at 65^3 in doubles: 2.2 MB of data, 1.6 MB of
+  // gradient volume. MaxBrickMB 2 bricks the data texture by itself (a
+  // refused allocation would abort in VTK) and keeps the gradient whole.
+  auto volume = vtkSmartPointer<vtkImageData>::New();
+  volume->SetDimensions(65, 65, 65);
+  volume->SetSpacing(0.5, 0.5, 0.5);
+  vtkNew<vtkDoubleArray> values;
+  values->SetNumberOfTuples(65 * 65 * 65);
+  for (vtkIdType id = 0; id < values->GetNumberOfTuples(); ++id)
+  {
+    values->SetValue(id, PlateAndFloor(int(id % 65) / 2, int((id / 65) % 65) / 2, int(id / 4225) / 2));
+  }
+  volume->GetPointData()->SetScalars(values);
+  const Shaded whole = RenderPlateAndFloor(1, 1, 1, volume);
+  const Shaded budget = RenderPlateAndFloor(1, 1, 1, volume, 2.0);
+  const double value = PSNR(whole.Pixels, budget.Pixels);
+  std::cout << "MaxBrickMB 2: " << budget.Bricks[0] << " x " << budget.Bricks[1] << " x "
+            << budget.Bricks[2] << " bricks, PSNR " << value << " dB vs one texture" << std::endl;
+  EXPECT_EQ(whole.Bricks[0] * whole.Bricks[1] * whole.Bricks[2], 1);
+  EXPECT_GE(budget.Bricks[0] * budget.Bricks[1] * budget.Bricks[2], 2);
+  EXPECT_TRUE(budget.Active);
+  EXPECT_EQ(budget.Errors, 0);
+  EXPECT_EQ(budget.Warnings, 1) << "the bricking notice";
+  EXPECT_GE(value, 40.0);
 }
