@@ -182,8 +182,9 @@ void vtkMultiMaterialTextures::Deactivate()
 vtkIdType vtkMultiMaterialTextures::GetMemoryBytes() const
 {
   const vtkIdType n = this->TableSize;
-  const vtkIdType gradientBytes = static_cast<vtkIdType>(this->GradientDimensions[0]) *
-    this->GradientDimensions[1] * this->GradientDimensions[2] * 3 * 2;
+  // The texture's texels, fewer than the data's points when resampled to fit.
+  const vtkIdType gradientBytes = static_cast<vtkIdType>(this->GradientTextureDimensions[0]) *
+    this->GradientTextureDimensions[1] * this->GradientTextureDimensions[2] * 3 * 2;
   return n * n * (4 + 1) * 4 + static_cast<vtkIdType>(this->UploadedMaterialSize) * 2 * 4 * 4 +
     gradientBytes;
 }
