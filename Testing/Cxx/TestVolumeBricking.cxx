@@ -6,6 +6,7 @@
 #include "mmvTestUtilities.h"
 
 #include "vtkDoubleArray.h"
+#include "vtkGlobalPrefilteredVolume.h"
 #include "vtkMaterialTransferFunction.h"
 #include "vtkMultiMaterialVolumeMapper.h"
 #include "vtkOpenGLRenderWindow.h"
@@ -339,4 +340,101 @@ TEST(VolumeBricking, BrickBudgetBricksLargeTextures)
   EXPECT_EQ(budget.Errors, 0);
   EXPECT_EQ(budget.Warnings, 1) << "the bricking notice";
   EXPECT_GE(value, 40.0);
+}
+
+//------------------------------------------------------------------------------
+TEST(VolumeBricking, PieceLitFromTheGlobalVolumeShowsTheOtherPiecesShadow)
+{
+  // The plate and floor split as two MPI ranks would split them (y 0..14 and
+  // 14..32, sharing y = 14), combined by hand as mmv::ExchangeGlobalPrefilter
+  // combines them. The floor's piece alone, lit from the global volume, must
+  // show the plate's shadow as the whole volume cropped to that piece does.
+  auto whole = mmvtest::MakeVolume(33, PlateAndFloor);
+  auto piece = [&](int y0, int y1) {
+    auto p = vtkSmartPointer<vtkImageData>::New();
+    p->SetExtent(0, 32, y0, y1, 0, 32);
+    vtkNew<vtkFloatArray> values;
+    values->SetNumberOfTuples(p->GetNumberOfPoints());
+    vtkIdType id = 0;
+    for (int k = 0; k <= 32; ++k)
+    {
+      for (int j = y0; j <= y1; ++j)
+      {
+        for (int i = 0; i <= 32; ++i)
+        {
+          values->SetValue(id++, PlateAndFloor(i, j, k));
+        }
+      }
+    }
+    p->GetPointData()->SetScalars(values);
+    return p;
+  };
+  auto floorPiece = piece(0, 14);
+  auto platePiece = piece(14, 32);
+  vtkNew<vtkGlobalPrefilteredVolume> global;
+  std::vector<double> reduced(vtkGlobalPrefilteredVolume::SummarySize, 1e300);
+  for (vtkImageData* p : { floorPiece.Get(), platePiece.Get() })
+  {
+    double summary[vtkGlobalPrefilteredVolume::SummarySize];
+    vtkGlobalPrefilteredVolume::SummarizePiece(p, p->GetPointData()->GetScalars(), summary);
+    for (int i = 0; i < vtkGlobalPrefilteredVolume::SummarySize; ++i)
+    {
+      reduced[i] = std::min(reduced[i], summary[i]);
+    }
+  }
+  ASSERT_TRUE(global->SetGeometry(reduced.data(), 64.0, 1, 1.0, 128 * 128 * 128));
+  std::vector<float> total(2 * global->GetNumberOfVoxels(), 0.0f);
+  for (vtkImageData* p : { floorPiece.Get(), platePiece.Get() })
+  {
+    std::vector<float> sums;
+    global->AccumulatePiece(p, p->GetPointData()->GetScalars(), sums);
+    for (size_t i = 0; i < sums.size(); ++i)
+    {
+      total[i] += sums[i];
+    }
+  }
+  global->SetReducedSums(total);
+  ASSERT_TRUE(global->GetValid());
+
+  auto render = [&](vtkImageData* input, vtkGlobalPrefilteredVolume* g, bool crop) {
+    mmvtest::Scene scene(96);
+    scene.Color->AddRGBPoint(0.0, 0.9, 0.85, 0.8);
+    scene.Color->AddRGBPoint(100.0, 0.9, 0.85, 0.8);
+    scene.Opacity->AddPoint(0.0, 0.0);
+    scene.Opacity->AddPoint(100.0, 0.8);
+    vtkNew<vtkMaterialTransferFunction> materials;
+    materials->AddNode(50.0, 0.2, 0.7, 0.3, 20.0, 1.0, 0.0, 0.0);
+    vtkNew<vtkMultiMaterialVolumeMapper> mapper;
+    mapper->SetInputData(input);
+    mapper->SetMaterialTransferFunction(materials);
+    mapper->SetIrradianceScale(1.0);
+    mapper->SetGlobalPrefilteredVolume(g);
+    if (crop)
+    {
+      mapper->SetCropping(true);
+      mapper->SetCroppingRegionPlanes(-1.0, 33.0, -1.0, 14.0, -1.0, 33.0);
+      mapper->SetCroppingRegionFlagsToSubVolume();
+    }
+    scene.Volume->SetMapper(mapper);
+    const double bounds[6] = { 0, 32, 0, 32, 0, 32 };
+    scene.FrameBounds(bounds);
+    scene.Renderer->GetActiveCamera()->SetPosition(16.0, 60.0, 200.0);
+    scene.Renderer->ResetCameraClippingRange(const_cast<double*>(bounds));
+    const double from[3] = { 20.0, 100.0, 16.0 };
+    const double centre[3] = { 16.0, 16.0, 16.0 };
+    scene.AddDirectionalLight(from, centre);
+    scene.Window->Render();
+    EXPECT_TRUE(mapper->GetMultiMaterialActive());
+    return scene.Pixels();
+  };
+  const auto cropped = render(whole, nullptr, true);
+  const auto withGlobal = render(floorPiece, global, false);
+  const auto alone = render(floorPiece, nullptr, false);
+  const double lit = PSNR(cropped, withGlobal);
+  const double unlit = PSNR(cropped, alone);
+  std::cout << "floor piece vs the whole volume cropped to it: PSNR " << lit
+            << " dB lit from the global volume, " << unlit << " dB lit alone" << std::endl;
+  EXPECT_GE(lit, 40.0);
+  EXPECT_LT(unlit, 35.0) << "without the global volume the plate's shadow is missing";
+  EXPECT_LT(MeanLevel(withGlobal), MeanLevel(alone)) << "the shadow darkens the floor";
 }
