@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 
 namespace
 {
@@ -254,7 +255,10 @@ struct Shaded
   int Bricks[3] = { 0, 0, 0 };
 };
 
-Shaded RenderPlateAndFloor(int px, int py, int pz, vtkImageData* input = nullptr, double maxBrickMB = 0.0)
+// Renders `input` (the plate and floor) lit from above, after `setup` had the
+// mapper.
+Shaded RenderPlateAndFloorWith(
+  vtkImageData* input, const std::function<void(vtkMultiMaterialVolumeMapper*)>& setup)
 {
   mmvtest::Scene scene(96);
   scene.Color->AddRGBPoint(0.0, 0.9, 0.85, 0.8);
@@ -265,16 +269,9 @@ Shaded RenderPlateAndFloor(int px, int py, int pz, vtkImageData* input = nullptr
   materials->AddNode(50.0, 0.2, 0.7, 0.3, 20.0, 1.0, 0.3, 0.0);
   vtkNew<vtkMultiMaterialVolumeMapper> mapper;
   mmvtest::ErrorCounter counter(mapper);
-  mapper->SetInputData(input ? input : mmvtest::MakeVolume(33, PlateAndFloor).Get());
-  if (maxBrickMB > 0.0)
-  {
-    mapper->SetMaxBrickMB(maxBrickMB);
-  }
+  mapper->SetInputData(input);
   mapper->SetMaterialTransferFunction(materials);
-  if (px * py * pz > 1)
-  {
-    mapper->SetPartitions(px, py, pz);
-  }
+  setup(mapper);
   scene.Volume->SetMapper(mapper);
   const double bounds[6] = { 0, 32, 0, 32, 0, 32 };
   scene.FrameBounds(bounds);
@@ -294,6 +291,22 @@ Shaded RenderPlateAndFloor(int px, int py, int pz, vtkImageData* input = nullptr
   result.Warnings = counter.Warnings();
   result.Errors = counter.Errors();
   return result;
+}
+
+Shaded RenderPlateAndFloor(
+  int px, int py, int pz, vtkImageData* input = nullptr, double maxBrickMB = 0.0)
+{
+  auto volume = mmvtest::MakeVolume(33, PlateAndFloor);
+  return RenderPlateAndFloorWith(input ? input : volume.Get(), [&](vtkMultiMaterialVolumeMapper* m) {
+    if (maxBrickMB > 0.0)
+    {
+      m->SetMaxBrickMB(maxBrickMB);
+    }
+    if (px * py * pz > 1)
+    {
+      m->SetPartitions(px, py, pz);
+    }
+  });
 }
 } // namespace
 
@@ -397,35 +410,18 @@ TEST(VolumeBricking, PieceLitFromTheGlobalVolumeShowsTheOtherPiecesShadow)
   ASSERT_TRUE(global->GetValid());
 
   auto render = [&](vtkImageData* input, vtkGlobalPrefilteredVolume* g, bool crop) {
-    mmvtest::Scene scene(96);
-    scene.Color->AddRGBPoint(0.0, 0.9, 0.85, 0.8);
-    scene.Color->AddRGBPoint(100.0, 0.9, 0.85, 0.8);
-    scene.Opacity->AddPoint(0.0, 0.0);
-    scene.Opacity->AddPoint(100.0, 0.8);
-    vtkNew<vtkMaterialTransferFunction> materials;
-    materials->AddNode(50.0, 0.2, 0.7, 0.3, 20.0, 1.0, 0.0, 0.0);
-    vtkNew<vtkMultiMaterialVolumeMapper> mapper;
-    mapper->SetInputData(input);
-    mapper->SetMaterialTransferFunction(materials);
-    mapper->SetIrradianceScale(1.0);
-    mapper->SetGlobalPrefilteredVolume(g);
-    if (crop)
-    {
-      mapper->SetCropping(true);
-      mapper->SetCroppingRegionPlanes(-1.0, 33.0, -1.0, 14.0, -1.0, 33.0);
-      mapper->SetCroppingRegionFlagsToSubVolume();
-    }
-    scene.Volume->SetMapper(mapper);
-    const double bounds[6] = { 0, 32, 0, 32, 0, 32 };
-    scene.FrameBounds(bounds);
-    scene.Renderer->GetActiveCamera()->SetPosition(16.0, 60.0, 200.0);
-    scene.Renderer->ResetCameraClippingRange(const_cast<double*>(bounds));
-    const double from[3] = { 20.0, 100.0, 16.0 };
-    const double centre[3] = { 16.0, 16.0, 16.0 };
-    scene.AddDirectionalLight(from, centre);
-    scene.Window->Render();
-    EXPECT_TRUE(mapper->GetMultiMaterialActive());
-    return scene.Pixels();
+    const Shaded shaded = RenderPlateAndFloorWith(input, [&](vtkMultiMaterialVolumeMapper* m) {
+      m->SetIrradianceScale(1.0);
+      m->SetGlobalPrefilteredVolume(g);
+      if (crop)
+      {
+        m->SetCropping(true);
+        m->SetCroppingRegionPlanes(-1.0, 33.0, -1.0, 14.0, -1.0, 33.0);
+        m->SetCroppingRegionFlagsToSubVolume();
+      }
+    });
+    EXPECT_TRUE(shaded.Active);
+    return shaded.Pixels;
   };
   const auto cropped = render(whole, nullptr, true);
   const auto withGlobal = render(floorPiece, global, false);
