@@ -42,7 +42,11 @@ double Interpolate(const int dims[3], const float* values, const glm::dvec3& ind
   return c0 * (1 - w[2]) + c1 * w[2];
 }
 
-/// One component of the scalars as floats (one virtual call per value, once).
+} // namespace
+
+namespace mmv
+{
+
 std::vector<float> CopyComponent(vtkDataArray* scalars, int component)
 {
   std::vector<float> values(scalars->GetNumberOfTuples());
@@ -54,11 +58,6 @@ std::vector<float> CopyComponent(vtkDataArray* scalars, int component)
   });
   return values;
 }
-
-} // namespace
-
-namespace mmv
-{
 
 void ComputeIrradianceDimensions(const int dataDims[3], int numberOfLights, double budgetMB,
   double scale, int irradianceDims[3])
@@ -191,28 +190,48 @@ double SampleTrilinear(const IrradianceGrid& grid, const float* values, const gl
   return Interpolate(grid.Dimensions, values, index);
 }
 
+FootprintLayout MakeFootprintLayout(const int dataDims[3], const int gridDims[3])
+{
+  FootprintLayout layout;
+  for (int a = 0; a < 3; ++a)
+  {
+    layout.Ratio[a] = gridDims[a] > 1 ? (dataDims[a] - 1.0) / (gridDims[a] - 1.0) : 0.0;
+    // Axes at full resolution take the data value itself (an exact copy).
+    layout.Samples[a] = gridDims[a] == dataDims[a]
+      ? 1
+      : std::min(MaxFootprintSamples, std::max(2, static_cast<int>(std::ceil(layout.Ratio[a]))));
+  }
+  return layout;
+}
+
+glm::dvec3 FootprintSample(const FootprintLayout& layout, const glm::dvec3& voxel, const int q[3])
+{
+  glm::dvec3 p = voxel * glm::dvec3(layout.Ratio[0], layout.Ratio[1], layout.Ratio[2]);
+  for (int a = 0; a < 3; ++a)
+  {
+    if (layout.Samples[a] > 1)
+    {
+      // Midpoint rule over the footprint, one irradiance spacing wide.
+      p[a] += layout.Ratio[a] * ((q[a] + 0.5) / layout.Samples[a] - 0.5);
+    }
+  }
+  return p;
+}
+
 void PrefilterScalars(vtkImageData* image, vtkDataArray* scalars, int component,
   const IrradianceGrid& grid, std::vector<float>& prefiltered)
 {
   const int* extent = image->GetExtent();
   const int dataDims[3] = { extent[1] - extent[0] + 1, extent[3] - extent[2] + 1,
     extent[5] - extent[4] + 1 };
-  double ratio[3];
-  int samples[3];
-  for (int a = 0; a < 3; ++a)
-  {
-    ratio[a] = grid.Dimensions[a] > 1 ? (dataDims[a] - 1.0) / (grid.Dimensions[a] - 1.0) : 0.0;
-    // Axes at full resolution take the data value itself (an exact copy).
-    samples[a] = grid.Dimensions[a] == dataDims[a]
-      ? 1
-      : std::min(MaxFootprintSamples, std::max(2, static_cast<int>(std::ceil(ratio[a]))));
-  }
+  const FootprintLayout layout = MakeFootprintLayout(dataDims, grid.Dimensions);
+  const int* samples = layout.Samples;
   const std::vector<float> values = CopyComponent(scalars, component);
   prefiltered.resize(grid.GetNumberOfVoxels());
   vtkSMPTools::For(0, grid.GetNumberOfVoxels(), [&](vtkIdType begin, vtkIdType end) {
     for (vtkIdType v = begin; v < end; ++v)
     {
-      const glm::dvec3 centre = grid.IndexOfVoxel(v) * glm::dvec3(ratio[0], ratio[1], ratio[2]);
+      const glm::dvec3 voxel = grid.IndexOfVoxel(v);
       double sum = 0.0;
       for (int k = 0; k < samples[2]; ++k)
       {
@@ -220,17 +239,8 @@ void PrefilterScalars(vtkImageData* image, vtkDataArray* scalars, int component,
         {
           for (int i = 0; i < samples[0]; ++i)
           {
-            // Midpoint rule over the footprint, one irradiance spacing wide.
             const int q[3] = { i, j, k };
-            glm::dvec3 p = centre;
-            for (int a = 0; a < 3; ++a)
-            {
-              if (samples[a] > 1)
-              {
-                p[a] += ratio[a] * ((q[a] + 0.5) / samples[a] - 0.5);
-              }
-            }
-            sum += Interpolate(dataDims, values.data(), p);
+            sum += Interpolate(dataDims, values.data(), FootprintSample(layout, voxel, q));
           }
         }
       }

@@ -121,6 +121,27 @@ VTKMULTIMATERIALVOLUME_EXPORT IrradianceGrid MakeIrradianceGrid(const int extent
 VTKMULTIMATERIALVOLUME_EXPORT double SampleTrilinear(
   const IrradianceGrid& grid, const float* values, const glm::dvec3& index);
 
+/// One component of the scalars as floats (one virtual call per value, once).
+VTKMULTIMATERIALVOLUME_EXPORT std::vector<float> CopyComponent(vtkDataArray* scalars, int component);
+
+/**
+ * Where PrefilterScalars samples the data: voxel j's footprint is centred on
+ * the data's continuous index j * Ratio and holds Samples points per axis
+ * (midpoint rule over one irradiance spacing; one sample, the data point
+ * itself, where the grid equals the data grid).
+ */
+struct FootprintLayout
+{
+  double Ratio[3] = { 0.0, 0.0, 0.0 }; // data points per irradiance voxel
+  int Samples[3] = { 1, 1, 1 };
+};
+VTKMULTIMATERIALVOLUME_EXPORT FootprintLayout MakeFootprintLayout(
+  const int dataDims[3], const int gridDims[3]);
+/// Sample q (0 <= q[a] < Samples[a]) of the footprint of the voxel at
+/// integer index `voxel`, as a continuous data index (not clamped).
+VTKMULTIMATERIALVOLUME_EXPORT glm::dvec3 FootprintSample(
+  const FootprintLayout& layout, const glm::dvec3& voxel, const int q[3]);
+
 /**
  * Box-filters component `component` of `scalars` (point data of `image`) over
  * each grid voxel's footprint (trilinear samples on a regular sub-grid,

@@ -11,6 +11,7 @@
 #include "vtk_glew.h"
 
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 vtkStandardNewMacro(vtkMultiMaterialTextures);
@@ -110,7 +111,7 @@ void vtkMultiMaterialTextures::UpdateMaterialTable(vtkOpenGLRenderWindow* contex
 }
 
 bool vtkMultiMaterialTextures::UpdateGradientTexture(vtkOpenGLRenderWindow* context,
-  vtkDataArray* scalars, const int dims[3], const double range[2])
+  vtkDataArray* scalars, const int dims[3], const double range[2], double maxTextureBytes)
 {
   const vtkMTimeType time = scalars->GetMTime();
   const bool current = this->Gradient->GetHandle() != 0 && scalars == this->UploadedScalars &&
@@ -122,13 +123,32 @@ bool vtkMultiMaterialTextures::UpdateGradientTexture(vtkOpenGLRenderWindow* cont
   }
   std::vector<float> gradients;
   mmv::ComputeValueGradients(scalars, 0, dims, range, gradients);
+  // A volume longer than the largest 3D texture (rendered in bricks) keeps
+  // its gradient volume in one texture, resampled along the long axes.
+  const int largest = vtkTextureObject::GetMaximumTextureSize3D(context);
+  int textureDims[3];
+  // Likewise a gradient volume over maxTextureBytes (6 B a texel) shrinks on
+  // every axis.
+  const double bytes = 6.0 * dims[0] * dims[1] * dims[2];
+  const double shrink =
+    maxTextureBytes > 0.0 && bytes > maxTextureBytes ? std::cbrt(maxTextureBytes / bytes) : 1.0;
+  for (int a = 0; a < 3; ++a)
+  {
+    const int fit = std::max(std::min(dims[a], 2), static_cast<int>(dims[a] * shrink));
+    textureDims[a] = largest > 1 ? std::min(fit, largest) : fit;
+  }
+  if (!std::equal(dims, dims + 3, textureDims))
+  {
+    gradients = mmv::ResampleVectors(gradients, 3, dims, textureDims);
+  }
   this->Gradient->SetContext(context);
   // Half floats: 6 bytes a voxel, and 11 bits of mantissa keep the faint
   // gradients of soft tissue that 8-bit normals would flatten.
   this->Gradient->SetInternalFormat(GL_RGB16F);
   this->Gradient->SetFormat(GL_RGB);
   this->Gradient->SetDataType(GL_FLOAT);
-  if (!this->Gradient->Create3DFromRaw(dims[0], dims[1], dims[2], 3, VTK_FLOAT, gradients.data()))
+  if (!this->Gradient->Create3DFromRaw(
+        textureDims[0], textureDims[1], textureDims[2], 3, VTK_FLOAT, gradients.data()))
   {
     this->UploadedScalars = nullptr;
     return false;
@@ -140,6 +160,7 @@ bool vtkMultiMaterialTextures::UpdateGradientTexture(vtkOpenGLRenderWindow* cont
   this->UploadedGradientRange[0] = range[0];
   this->UploadedGradientRange[1] = range[1];
   std::copy(dims, dims + 3, this->GradientDimensions);
+  std::copy(textureDims, textureDims + 3, this->GradientTextureDimensions);
   ++this->GradientUploads;
   return true;
 }
@@ -163,8 +184,9 @@ void vtkMultiMaterialTextures::Deactivate()
 vtkIdType vtkMultiMaterialTextures::GetMemoryBytes() const
 {
   const vtkIdType n = this->TableSize;
-  const vtkIdType gradientBytes = static_cast<vtkIdType>(this->GradientDimensions[0]) *
-    this->GradientDimensions[1] * this->GradientDimensions[2] * 3 * 2;
+  // The texture's texels, fewer than the data's points when resampled to fit.
+  const vtkIdType gradientBytes = static_cast<vtkIdType>(this->GradientTextureDimensions[0]) *
+    this->GradientTextureDimensions[1] * this->GradientTextureDimensions[2] * 3 * 2;
   return n * n * (4 + 1) * 4 + static_cast<vtkIdType>(this->UploadedMaterialSize) * 2 * 4 * 4 +
     gradientBytes;
 }

@@ -44,10 +44,13 @@ public:
   /// a `dims` grid) normalised over `range`, if any of them changed. False
   /// when the texture could not be created (too large for the context).
   bool UpdateGradientTexture(vtkOpenGLRenderWindow* context, vtkDataArray* scalars,
-    const int dims[3], const double range[2]);
+    const int dims[3], const double range[2], double maxTextureBytes = 0.0);
 
   vtkTextureObject* GetSegmentColorTexture() { return this->SegmentColor; }
   vtkTextureObject* GetGradientTexture() { return this->Gradient; }
+  /// Texels of the gradient texture: the data's dimensions, or fewer along
+  /// axes longer than the largest 3D texture (spanning the same points).
+  const int* GetGradientTextureDimensions() const { return this->GradientTextureDimensions; }
   vtkTextureObject* GetSegmentPositionTexture() { return this->SegmentPosition; }
   vtkTextureObject* GetMaterialTexture() { return this->Material; }
 
@@ -81,6 +84,7 @@ private:
   vtkMTimeType UploadedScalarsTime = 0;
   double UploadedGradientRange[2] = { 0.0, 0.0 };
   int GradientDimensions[3] = { 0, 0, 0 };
+  int GradientTextureDimensions[3] = { 0, 0, 0 };
   int SegmentUploads = 0;
   int MaterialUploads = 0;
   int UploadedTableBuild = -1;

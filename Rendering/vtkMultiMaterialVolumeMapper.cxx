@@ -3,6 +3,7 @@
 #include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
 #include "vtkDataArray.h"
+#include "vtkGlobalPrefilteredVolume.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkIrradianceGrid.h"
@@ -25,6 +26,7 @@
 #include "vtkSmartPointer.h"
 #include "vtkTextureObject.h"
 #include "vtkVolume.h"
+#include "vtkVolumeBricking.h"
 #include "vtkVolumeInputHelper.h"
 #include "vtkVolumeTexture.h"
 #include "vtkVolumeProperty.h"
@@ -49,28 +51,58 @@ double Seconds(Clock::time_point start)
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-const char* const PartitionWarning = "multi-material shading does not support partitioned "
-                                     "volumes (SetPartitions); using VTK's shading";
-
-// Partitioned textures (SetPartitions) render blocks whose texture
-// coordinates our shading does not map (TestBadInput.PartitionedVolume gave a
-// wrong image). VTK only partitions the texture during the first render, so
-// GPURender checks again afterwards: that first frame is wrong but warned.
-bool HasPartitions(vtkOpenGLGPUVolumeRayCastMapper::VolumeInputMap& inputs)
+/// Scale and bias that map texture coordinates of `n` points to those of `m`
+/// texels spanning the same points (point i at (i + 0.5) / n, texel j at
+/// (j + 0.5) / m); an axis of one texel maps to its centre.
+void SamePointsMap(double n, double m, float& scale, float& bias)
 {
-  for (auto& input : inputs)
+  if (n > 1 && m > 1)
   {
-    vtkVolumeTexture* texture = input.second.Texture;
-    if (texture)
-    {
-      const auto& parts = texture->GetPartitions();
-      if (parts[0] * parts[1] * parts[2] > 1)
-      {
-        return true;
-      }
-    }
+    scale = static_cast<float>(n * (m - 1) / ((n - 1) * m));
+    bias = static_cast<float>(0.5 / m - 0.5 * (m - 1) / ((n - 1) * m));
   }
-  return false;
+  else
+  {
+    scale = 0.0f;
+    bias = 0.5f;
+  }
+}
+
+// The maps from a brick's texture coordinates to the whole volume's, which
+// the gradient and irradiance textures cover (Shaders/mmvRayCastDec.glsl,
+// mmvWholeTexCoord): object space -> the whole volume's point index
+// (column-major 4x4), and the texture-coordinate gradient -> object space as
+// VTK's whole-volume inverse texture matrix gives it (column-major 3x3).
+void WholeVolumeMaps(vtkImageData* image, float physicalToIndex[16], float gradientToObject[9],
+  float dimensions[3], float spacing[3])
+{
+  int dims[3];
+  image->GetDimensions(dims);
+  const int* e = image->GetExtent();
+  double first[3];
+  image->TransformContinuousIndexToPhysicalPoint(e[0], e[2], e[4], first);
+  vtkNew<vtkMatrix3x3> inverse;
+  vtkMatrix3x3::Invert(image->GetDirectionMatrix(), inverse);
+  const double* s = image->GetSpacing();
+  std::fill(physicalToIndex, physicalToIndex + 16, 0.0f);
+  physicalToIndex[15] = 1.0f;
+  for (int r = 0; r < 3; ++r)
+  {
+    const double sr = std::abs(s[r]) > 0.0 ? s[r] : 1.0;
+    double translation = 0.0;
+    for (int c = 0; c < 3; ++c)
+    {
+      const double p = inverse->GetElement(r, c) / sr;
+      physicalToIndex[4 * c + r] = static_cast<float>(p);
+      translation -= p * first[c];
+      // GLSL gets transpose(A), A = diag(1 / ((n - 1) s)) D^-1.
+      const double a = inverse->GetElement(r, c) / (dims[r] > 1 ? (dims[r] - 1) * sr : sr);
+      gradientToObject[3 * r + c] = static_cast<float>(a);
+    }
+    physicalToIndex[12 + r] = static_cast<float>(translation);
+    dimensions[r] = static_cast<float>(dims[r]);
+    spacing[r] = static_cast<float>(std::abs(sr));
+  }
 }
 
 }
@@ -79,6 +111,12 @@ class vtkMultiMaterialVolumeMapper::vtkInternals
 {
 public:
   vtkSmartPointer<vtkMaterialTransferFunction> Materials;
+  // The whole volume when the input is one piece of it (global shadows).
+  vtkSmartPointer<vtkGlobalPrefilteredVolume> Global;
+  vtkGlobalPrefilteredVolume* ActiveGlobal() const
+  {
+    return this->Global && this->Global->GetValid() ? this->Global.Get() : nullptr;
+  }
   vtkNew<vtkPreIntegrationTable> SegmentTable;
   vtkNew<vtkPreIntegrationTable> ShadowTable;
   vtkNew<vtkMultiMaterialTextures> Textures;
@@ -112,8 +150,14 @@ public:
   std::vector<mmv::ShadingLight> Lights;
   float IrradianceScale[3] = { 1.0f, 1.0f, 1.0f };
   float IrradianceBias[3] = { 0.0f, 0.0f, 0.0f };
+  float PhysicalToWholeIndex[16] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 };
+  float GradientToObject[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
+  float WholeDimensions[3] = { 1.0f, 1.0f, 1.0f };
+  float DataSpacing[3] = { 1.0f, 1.0f, 1.0f };
   float GradientFade = 1.0f;
   float GradientScale[3] = { 1.0f, 1.0f, 1.0f };
+  float GradientTexScale[3] = { 1.0f, 1.0f, 1.0f };
+  float GradientTexBias[3] = { 0.0f, 0.0f, 0.0f };
   float TableStep = 1.0f;
   float EnvironmentUp[3] = { 0.0f, 1.0f, 0.0f };
   float EnvironmentBottom[3] = { 0.0f, 0.0f, 0.0f };
@@ -164,8 +208,14 @@ void vtkMultiMaterialVolumeMapper::vtkInternals::SetUniforms(vtkShaderProgram* p
   program->SetUniformf("mmv_gradientFade", this->GradientFade);
   program->SetUniformi("mmv_gradient", this->Textures->GetGradientTexture()->GetTextureUnit());
   program->SetUniform3f("mmv_gradientScale", this->GradientScale);
+  program->SetUniform3f("mmv_gradientTexScale", this->GradientTexScale);
+  program->SetUniform3f("mmv_gradientTexBias", this->GradientTexBias);
   program->SetUniform3f("mmv_irradianceScale", this->IrradianceScale);
   program->SetUniform3f("mmv_irradianceBias", this->IrradianceBias);
+  program->SetUniformMatrix4x4("mmv_physicalToWholeIndex", this->PhysicalToWholeIndex);
+  program->SetUniformMatrix3x3("mmv_gradientToObject", this->GradientToObject);
+  program->SetUniform3f("mmv_wholeDimensions", this->WholeDimensions);
+  program->SetUniform3f("mmv_dataSpacing", this->DataSpacing);
 
   const int count = this->Variant.NumberOfLights;
   if (count > 0)
@@ -238,9 +288,27 @@ vtkMaterialTransferFunction* vtkMultiMaterialVolumeMapper::GetMaterialTransferFu
   return this->Internals->Materials;
 }
 
+void vtkMultiMaterialVolumeMapper::SetGlobalPrefilteredVolume(vtkGlobalPrefilteredVolume* volume)
+{
+  if (this->Internals->Global != volume)
+  {
+    this->Internals->Global = volume;
+    this->Modified();
+  }
+}
+
+vtkGlobalPrefilteredVolume* vtkMultiMaterialVolumeMapper::GetGlobalPrefilteredVolume()
+{
+  return this->Internals->Global;
+}
+
 vtkMTimeType vtkMultiMaterialVolumeMapper::GetMTime()
 {
   vtkMTimeType t = this->Superclass::GetMTime();
+  if (this->Internals->Global)
+  {
+    t = std::max(t, this->Internals->Global->GetMTime());
+  }
   if (this->Internals->Materials)
   {
     t = std::max(t, this->Internals->Materials->GetMTime());
@@ -374,13 +442,66 @@ void vtkMultiMaterialVolumeMapper::SetPartitions(
   unsigned short x, unsigned short y, unsigned short z)
 {
   this->PartitionsRequested = static_cast<int>(x) * y * z > 1;
+  this->RequestedPartitions[0] = x;
+  this->RequestedPartitions[1] = y;
+  this->RequestedPartitions[2] = z;
   this->Superclass::SetPartitions(x, y, z);
+  std::copy(this->RequestedPartitions, this->RequestedPartitions + 3, this->BrickPartitions);
+}
+
+bool vtkMultiMaterialVolumeMapper::FitBricksToTextureLimit(vtkRenderer* ren)
+{
+  auto* image = vtkImageData::SafeDownCast(this->GetInput());
+  auto* context = vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow());
+  if (!image || !context)
+  {
+    return true; // the base class reports what it cannot render
+  }
+  int dims[3];
+  image->GetDimensions(dims);
+  const int maxSize = vtkTextureObject::GetMaximumTextureSize3D(context);
+  int parts[3];
+  int cellFlag = 0;
+  vtkDataArray* scalars = vtkAbstractMapper::GetScalars(image, this->ScalarMode,
+    this->ArrayAccessMode, this->ArrayId, this->ArrayName, cellFlag);
+  const double bytesPerPoint =
+    scalars ? scalars->GetDataTypeSize() * scalars->GetNumberOfComponents() : 4.0;
+  if (maxSize <= 0 || !mmv::ChooseBrickPartitions(dims, maxSize, this->RequestedPartitions, parts) ||
+    !mmv::LimitBrickBytes(dims, bytesPerPoint, this->MaxBrickMB * 1024.0 * 1024.0, parts))
+  {
+    vtkErrorMacro("the volume (" << dims[0] << " x " << dims[1] << " x " << dims[2]
+                                 << " points) cannot be cut into bricks that fit the largest 3D "
+                                    "texture of this OpenGL context ("
+                                 << maxSize << ") and MaxBrickMB; not rendering it");
+    return false;
+  }
+  if (!std::equal(parts, parts + 3, this->BrickPartitions))
+  {
+    // VTK partitions the texture when it next uploads the data.
+    this->Superclass::SetPartitions(static_cast<unsigned short>(parts[0]),
+      static_cast<unsigned short>(parts[1]), static_cast<unsigned short>(parts[2]));
+    std::copy(parts, parts + 3, this->BrickPartitions);
+  }
+  if (!std::equal(parts, parts + 3, this->RequestedPartitions))
+  {
+    std::ostringstream message;
+    message << "the volume (" << dims[0] << " x " << dims[1] << " x " << dims[2]
+            << " points) is larger than the largest 3D texture of this OpenGL context ("
+            << maxSize << ") or MaxBrickMB (" << this->MaxBrickMB << "): rendered in " << parts[0] << " x " << parts[1] << " x " << parts[2]
+            << " bricks";
+    this->WarnOnce(message.str());
+  }
+  return true;
 }
 
 //------------------------------------------------------------------------------
 void vtkMultiMaterialVolumeMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
 {
   vtkInternals& in = *this->Internals;
+  if (!this->FitBricksToTextureLimit(ren))
+  {
+    return; // VTK would abort in vtkTextureObject::Bind
+  }
   vtkInformation* keys = vol->GetPropertyKeys();
   if (!keys)
   {
@@ -414,10 +535,6 @@ void vtkMultiMaterialVolumeMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
   }
   in.ActivateTextures(false);
   ++this->RayCastCount;
-  if (HasPartitions(this->AssembledInputs))
-  {
-    this->WarnOnce(PartitionWarning); // later frames use the base class
-  }
 }
 
 //------------------------------------------------------------------------------
@@ -435,11 +552,6 @@ bool vtkMultiMaterialVolumeMapper::PrepareMultiMaterial(vtkRenderer* ren, vtkVol
   if (this->BlendMode != vtkVolumeMapper::COMPOSITE_BLEND)
   {
     return false; // other blend modes are the base class's business
-  }
-  if (this->PartitionsRequested || HasPartitions(this->AssembledInputs))
-  {
-    this->WarnOnce(PartitionWarning);
-    return false;
   }
   auto* image = vtkImageData::SafeDownCast(this->GetInput());
   vtkVolumeProperty* property = vol->GetProperty();
@@ -543,15 +655,22 @@ bool vtkMultiMaterialVolumeMapper::PrepareMultiMaterial(vtkRenderer* ren, vtkVol
   in.TableStep = static_cast<float>(step);
   in.Textures->UpdateSegmentTables(context, table);
   in.Textures->UpdateMaterialTable(context, in.Materials, range, this->PreIntegrationTableSize);
-  if (!in.Textures->UpdateGradientTexture(context, scalars, dataDims, range))
+  // Pieces of one volume share the gradient's normalisation (and so its
+  // shading fade) when they share a global range.
+  vtkGlobalPrefilteredVolume* global = in.ActiveGlobal();
+  const double* gradientRange = global ? global->GetScalarRange() : range;
+  if (!in.Textures->UpdateGradientTexture(
+        context, scalars, dataDims, gradientRange, this->MaxBrickMB * 1024.0 * 1024.0))
   {
     this->WarnOnce("the gradient volume could not be created (too large for this OpenGL "
                    "context?); using VTK's shading");
     return false;
   }
+  const int* gradientTexels = in.Textures->GetGradientTextureDimensions();
   for (int a = 0; a < 3; ++a)
   {
     in.GradientScale[a] = static_cast<float>(dataDims[a]);
+    SamePointsMap(dataDims[a], gradientTexels[a], in.GradientTexScale[a], in.GradientTexBias[a]);
   }
 
   // 2. Lights, in the volume's object space.
@@ -596,22 +715,18 @@ bool vtkMultiMaterialVolumeMapper::PrepareMultiMaterial(vtkRenderer* ren, vtkVol
 
   int dims[3];
   image->GetDimensions(dims);
-  for (int a = 0; a < 3; ++a)
+  WholeVolumeMaps(
+    image, in.PhysicalToWholeIndex, in.GradientToObject, in.WholeDimensions, in.DataSpacing);
+  if (global)
+  {
+    this->MapPieceToGlobalIrradiance(image);
+  }
+  for (int a = 0; a < 3 && !global; ++a)
   {
     // Data point i sits at texture coordinate (i + 0.5) / N, irradiance voxel
     // j at (j + 0.5) / M, and both grids span the same points.
-    const double n = dims[a];
-    const double m = this->IrradianceDimensions[a] > 0 ? this->IrradianceDimensions[a] : 1;
-    if (n > 1 && m > 1)
-    {
-      in.IrradianceScale[a] = static_cast<float>(n * (m - 1) / ((n - 1) * m));
-      in.IrradianceBias[a] = static_cast<float>(0.5 / m - 0.5 * (m - 1) / ((n - 1) * m));
-    }
-    else
-    {
-      in.IrradianceScale[a] = 0.0f;
-      in.IrradianceBias[a] = 0.5f;
-    }
+    SamePointsMap(dims[a], this->IrradianceDimensions[a] > 0 ? this->IrradianceDimensions[a] : 1,
+      in.IrradianceScale[a], in.IrradianceBias[a]);
   }
   const double smallestSpacing =
     std::min({ std::abs(spacing[0]), std::abs(spacing[1]), std::abs(spacing[2]) });
@@ -639,10 +754,43 @@ bool vtkMultiMaterialVolumeMapper::PrepareMultiMaterial(vtkRenderer* ren, vtkVol
   return true;
 }
 
-bool vtkMultiMaterialVolumeMapper::UpdateIrradiance(vtkRenderer* ren, vtkVolume* vol,
-  vtkImageData* image, vtkDataArray* scalars, const double range[2])
+void vtkMultiMaterialVolumeMapper::MapPieceToGlobalIrradiance(vtkImageData* piece)
 {
   vtkInternals& in = *this->Internals;
+  vtkGlobalPrefilteredVolume* global = in.ActiveGlobal();
+  const mmv::IrradianceGrid& grid = global->GetGrid();
+  const glm::dvec3 offset = global->PieceOffset(piece);
+  int dims[3];
+  piece->GetDimensions(dims);
+  for (int a = 0; a < 3; ++a)
+  {
+    // Piece point i (texture coordinate t = (i + 0.5) / n) is point o + i of
+    // the whole volume, at irradiance index (o + i) / r (r data points per
+    // irradiance voxel), texture coordinate ((o + i) / r + 0.5) / m.
+    const double n = dims[a];
+    const double m = grid.Dimensions[a];
+    const double r = grid.DataVoxelsPerVoxel[a];
+    if (m > 1 && r > 0.0)
+    {
+      in.IrradianceScale[a] = static_cast<float>(n / (r * m));
+      in.IrradianceBias[a] = static_cast<float>(((offset[a] - 0.5) / r + 0.5) / m);
+    }
+    else
+    {
+      in.IrradianceScale[a] = 0.0f;
+      in.IrradianceBias[a] = 0.5f;
+    }
+  }
+}
+
+bool vtkMultiMaterialVolumeMapper::UpdateIrradiance(vtkRenderer* ren, vtkVolume* vol,
+  vtkImageData* image, vtkDataArray* scalars, const double pieceRange[2])
+{
+  vtkInternals& in = *this->Internals;
+  // A piece of a larger volume is lit from the whole volume's pre-filtered
+  // data, on its grid and over its range.
+  vtkGlobalPrefilteredVolume* global = in.ActiveGlobal();
+  const double* range = global ? global->GetScalarRange() : pieceRange;
   vtkVolumeProperty* property = vol->GetProperty();
   auto* context = vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow());
   vtkPiecewiseFunction* opacity = property->GetScalarOpacity(0);
@@ -654,9 +802,24 @@ bool vtkMultiMaterialVolumeMapper::UpdateIrradiance(vtkRenderer* ren, vtkVolume*
   // The screen only matters when the resolution is automatic.
   const double pixelsPerVoxel =
     this->IrradianceScale > 0.0 ? 0.0 : ProjectedPixelsPerVoxel(ren, vol, image);
-  const mmv::IrradianceResolution resolution = mmv::ChooseIrradianceResolution(dataDims,
-    static_cast<int>(in.Lights.size()), this->IrradianceMemoryMB, this->IrradianceScale,
-    pixelsPerVoxel);
+  mmv::IrradianceResolution resolution;
+  if (global)
+  {
+    global->GetIrradianceDimensions(resolution.Dimensions);
+    resolution.Reason = "the global grid of a volume in pieces";
+  }
+  else
+  {
+    resolution = mmv::ChooseIrradianceResolution(dataDims, static_cast<int>(in.Lights.size()),
+      this->IrradianceMemoryMB, this->IrradianceScale, pixelsPerVoxel);
+  }
+  // The irradiance is one 3D texture: no axis longer than the largest one
+  // (a long volume is drawn in bricks, its irradiance spans it whole).
+  const int largest = vtkTextureObject::GetMaximumTextureSize3D(context);
+  for (int a = 0; a < 3 && largest > 1 && !global; ++a)
+  {
+    resolution.Dimensions[a] = std::min(resolution.Dimensions[a], largest);
+  }
   const int* dims = resolution.Dimensions;
 
   const int n = this->PreIntegrationTableSize;
@@ -681,7 +844,8 @@ bool vtkMultiMaterialVolumeMapper::UpdateIrradiance(vtkRenderer* ren, vtkVolume*
     in.MaterialSampleKey = materialKey;
   }
 
-  const vtkMTimeType dataTime = std::max(image->GetMTime(), scalars->GetMTime());
+  const vtkMTimeType dataTime =
+    global ? global->GetMTime() : std::max(image->GetMTime(), scalars->GetMTime());
   const std::vector<double> volumeKey = { double(dataTime), double(opacity->GetMTime()),
     double(in.MaterialVersion), unitDistance, range[0], range[1], double(this->MultipleScattering),
     double(this->PreIntegrationTableSize), double(in.Lights.size()), double(this->ShadowEstimation),
@@ -711,8 +875,16 @@ bool vtkMultiMaterialVolumeMapper::UpdateIrradiance(vtkRenderer* ren, vtkVolume*
     double(dataTime), range[0], range[1] };
   if (prefilterKey != in.PrefilterKey)
   {
-    in.Grid = mmv::MakeIrradianceGrid(image, dims);
-    mmv::PrefilterScalars(image, scalars, 0, in.Grid, in.Prefiltered);
+    if (global)
+    {
+      in.Grid = global->GetGrid();
+      in.Prefiltered = global->GetValues();
+    }
+    else
+    {
+      in.Grid = mmv::MakeIrradianceGrid(image, dims);
+      mmv::PrefilterScalars(image, scalars, 0, in.Grid, in.Prefiltered);
+    }
     ++in.PrefilteredVersion;
     const double scale = 1.0 / (range[1] - range[0]);
     bool nonFinite = false;
@@ -815,6 +987,7 @@ void vtkMultiMaterialVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "IrradianceMemoryMB: " << this->IrradianceMemoryMB << "\n";
+  os << indent << "MaxBrickMB: " << this->MaxBrickMB << "\n";
   os << indent << "IrradianceScale: " << this->IrradianceScale << "\n";
   os << indent << "MultipleScattering: " << this->MultipleScattering << "\n";
   os << indent << "ShadowEstimation: " << this->ShadowEstimation << "\n";

@@ -30,7 +30,8 @@
  * transmittance exp(-int mu).
  *
  * Falls back to the base class (warning once) for what it does not model:
- * several components, cell scalars, blend modes other than composite.
+ * several components, cell scalars, blend modes other than composite, and
+ * volumes longer than the largest 3D texture (rendered in bricks).
  */
 #ifndef vtkMultiMaterialVolumeMapper_h
 #define vtkMultiMaterialVolumeMapper_h
@@ -43,6 +44,7 @@
 #include <vector> // ReadIrradiance
 
 class vtkDataArray;
+class vtkGlobalPrefilteredVolume;
 class vtkImageData;
 class vtkIrradianceVolumePass;
 class vtkMaterialTransferFunction;
@@ -170,9 +172,37 @@ public:
   /// Test hook: the fragment shader of the last shader build.
   std::string GetLastFragmentShaderSource();
 
-  /// Partitioned volumes render with VTK's shading (with a warning): the
-  /// multi-material shading maps one texture over the whole volume.
+  /// Bricks (VTK's partitioned textures): each block is shaded with
+  /// materials through the whole volume's gradient and irradiance textures
+  /// (Shaders/mmvRayCastDec.glsl, mmvWholeTexCoord), so shadows and
+  /// gradients are continuous across block faces. A volume larger than the
+  /// largest 3D texture is bricked by itself but, since its gradient volume
+  /// does not fit one texture, shaded by VTK (with a warning).
   void SetPartitions(unsigned short x, unsigned short y, unsigned short z);
+
+  /**
+   * Global shadows for a volume split into pieces (MPI ranks): the
+   * pre-filtered whole volume (vtkGlobalPrefilteredVolume, combined by the
+   * caller). While it is set and valid, the irradiance is estimated on its
+   * grid (its resolution, not the screen's) from its data and scalar range,
+   * the gradient is normalised by that range, and this mapper's input (one
+   * piece) maps its texture coordinates into the global irradiance. Null
+   * (default) or invalid: the input alone.
+   */
+  void SetGlobalPrefilteredVolume(vtkGlobalPrefilteredVolume* volume);
+  vtkGlobalPrefilteredVolume* GetGlobalPrefilteredVolume();
+
+  /// The partitions (bricks) of the last render: those of SetPartitions, or
+  /// more where a brick would exceed the largest 3D texture of the context
+  /// (mmv::ChooseBrickPartitions), so that long volumes render instead of
+  /// aborting in VTK's texture upload.
+  vtkGetVector3Macro(BrickPartitions, int);
+
+  /// The most megabytes one brick's texture may take (default 512): larger
+  /// volumes are cut into more bricks, since a texture allocation the OpenGL
+  /// implementation refuses (llvmpipe: over 1 GiB) aborts in VTK.
+  vtkSetClampMacro(MaxBrickMB, double, 1.0, 1.0e6);
+  vtkGetMacro(MaxBrickMB, double);
 
   void GPURender(vtkRenderer* ren, vtkVolume* vol) override;
   void ReleaseGraphicsResources(vtkWindow* window) override;
@@ -207,6 +237,9 @@ protected:
   bool LastRenderInteractive = false;
   bool MultiMaterialActive = false;
   bool PartitionsRequested = false;
+  int RequestedPartitions[3] = { 1, 1, 1 };
+  int BrickPartitions[3] = { 1, 1, 1 };
+  double MaxBrickMB = 512.0;
 
 private:
   vtkMultiMaterialVolumeMapper(const vtkMultiMaterialVolumeMapper&) = delete;
@@ -216,8 +249,14 @@ private:
   // means "render with the base class".
   bool PrepareMultiMaterial(vtkRenderer* ren, vtkVolume* vol);
   bool UpdateIrradiance(vtkRenderer* ren, vtkVolume* vol, vtkImageData* image,
-    vtkDataArray* scalars, const double range[2]);
+    vtkDataArray* scalars, const double pieceRange[2]);
+  // The irradiance texture coordinates of the input, a piece of the global
+  // pre-filtered volume.
+  void MapPieceToGlobalIrradiance(vtkImageData* piece);
   void WarnOnce(const std::string& message);
+  // Partitions the texture so that every brick fits the context's largest
+  // 3D texture; false (with an error) when nothing fits.
+  bool FitBricksToTextureLimit(vtkRenderer* ren);
 
   class vtkInternals;
   vtkInternals* Internals;

@@ -39,4 +39,56 @@ void ComputeValueGradients(vtkDataArray* scalars, int component, const int dims[
   });
 }
 
+std::vector<float> ResampleVectors(
+  const std::vector<float>& values, int components, const int dims[3], const int newDims[3])
+{
+  std::vector<float> out(
+    static_cast<size_t>(components) * newDims[0] * newDims[1] * newDims[2]);
+  double ratio[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    ratio[a] = newDims[a] > 1 ? (dims[a] - 1.0) / (newDims[a] - 1.0) : 0.0;
+  }
+  const vtkIdType sy = dims[0];
+  const vtkIdType sz = static_cast<vtkIdType>(dims[0]) * dims[1];
+  vtkSMPTools::For(0, newDims[2], [&](vtkIdType k0, vtkIdType k1) {
+    for (vtkIdType k = k0; k < k1; ++k)
+    {
+      for (int j = 0; j < newDims[1]; ++j)
+      {
+        for (int i = 0; i < newDims[0]; ++i)
+        {
+          const double p[3] = { i * ratio[0], j * ratio[1], k * ratio[2] };
+          int lo[3];
+          int hi[3];
+          double w[3];
+          for (int a = 0; a < 3; ++a)
+          {
+            lo[a] = std::min(static_cast<int>(p[a]), dims[a] - 1);
+            hi[a] = std::min(lo[a] + 1, dims[a] - 1);
+            w[a] = p[a] - lo[a];
+          }
+          const size_t target =
+            components * (i + static_cast<size_t>(newDims[0]) * (j + static_cast<size_t>(newDims[1]) * k));
+          for (int c = 0; c < components; ++c)
+          {
+            double sum = 0.0;
+            for (int corner = 0; corner < 8; ++corner)
+            {
+              const int x = corner & 1 ? hi[0] : lo[0];
+              const int y = corner & 2 ? hi[1] : lo[1];
+              const int z = corner & 4 ? hi[2] : lo[2];
+              const double weight = (corner & 1 ? w[0] : 1 - w[0]) *
+                (corner & 2 ? w[1] : 1 - w[1]) * (corner & 4 ? w[2] : 1 - w[2]);
+              sum += weight * values[components * (x + y * sy + z * sz) + c];
+            }
+            out[target + c] = static_cast<float>(sum);
+          }
+        }
+      }
+    }
+  });
+  return out;
+}
+
 } // namespace mmv

@@ -39,6 +39,14 @@ namespace mmv
 VTKMULTIMATERIALVOLUME_EXPORT void ComputeValueGradients(vtkDataArray* scalars, int component,
   const int dims[3], const double range[2], std::vector<float>& gradients);
 
+/**
+ * `values` (`components` floats per point of a `dims` grid, x fastest)
+ * resampled trilinearly to a `newDims` grid spanning the same points (point j
+ * of an axis at old point j (dims - 1) / (newDims - 1)).
+ */
+VTKMULTIMATERIALVOLUME_EXPORT std::vector<float> ResampleVectors(const std::vector<float>& values,
+  int components, const int dims[3], const int newDims[3]);
+
 } // namespace mmv
 
 #endif

@@ -14,8 +14,17 @@ uniform float mmv_tableStep;        // segment length the tables were built for 
 uniform float mmv_gradientFade;     // |gradient| (normalised value per object unit) of full surface shading
 uniform sampler3D mmv_gradient;     // per voxel: normalised-value gradient per index unit (vtkValueGradient.h)
 uniform vec3 mmv_gradientScale;     // index units per texture-coordinate unit (the data's dimensions)
+uniform vec3 mmv_gradientTexScale;  // data texture coordinate -> gradient texture coordinate
+uniform vec3 mmv_gradientTexBias;   // (identity unless the gradient volume was resampled to fit)
 uniform vec3 mmv_irradianceScale;   // data texture coordinate -> irradiance texture coordinate
 uniform vec3 mmv_irradianceBias;
+// Bricks (VTK's partitions): each block has its own texture; these map a
+// block's texture coordinate to the whole volume's, which the gradient and
+// irradiance textures use (identity for one block).
+uniform mat4 mmv_physicalToWholeIndex; // object space -> the whole volume's point index
+uniform vec3 mmv_wholeDimensions;      // points of the whole volume
+uniform vec3 mmv_dataSpacing;          // |spacing| along the index axes
+uniform mat3 mmv_gradientToObject;     // texture-coordinate gradient -> object-space gradient
 #if MMV_NUMBER_OF_LIGHTS > 0
 uniform sampler3D mmv_irradiance0;  // lights 0-3, one per channel
 #if MMV_IRRADIANCE_TEXTURES > 1
@@ -36,9 +45,41 @@ vec3 mmv_previousPos;
 float mmv_previousValue;
 bool mmv_hasPrevious;
 
+// The current block (brick): its points per axis and the whole volume's
+// index of its first point, from its texture-to-dataset matrix, which spans
+// the block's points. Set by mmvBeginBlock() (ray set-up).
+vec3 mmv_blockPoints;
+vec3 mmv_blockFirstIndex;
+
+void mmvBeginBlock()
+{
+  mat4 blockToObject = in_textureDatasetMatrix[0];
+  mmv_blockPoints = vec3(length(blockToObject[0].xyz), length(blockToObject[1].xyz),
+    length(blockToObject[2].xyz)) / mmv_dataSpacing + 1.0;
+  mmv_blockFirstIndex = (mmv_physicalToWholeIndex * vec4(blockToObject[3].xyz, 1.0)).xyz;
+}
+
+// The block's point index at texPos. VTK 9.2 maps every block with the whole
+// volume's cell-to-point matrix (texPos = 0.5 / N + u (N - 1) / N, u in [0, 1]
+// over the block's points), not the block's own, so this undoes that one.
+vec3 mmvBlockIndex(vec3 texPos)
+{
+  vec3 n = mmv_wholeDimensions;
+  return (texPos - 0.5 / n) * n / max(n - 1.0, vec3(1.0)) * (mmv_blockPoints - 1.0);
+}
+
 float mmvValue(vec3 texPos)
 {
-  return texture3D(in_volume[0], texPos).r * in_volume_scale[0].r + in_volume_bias[0].r;
+  // Fetch the point the geometry means (identical to texPos for one block).
+  vec3 fetch = (mmvBlockIndex(texPos) + 0.5) / mmv_blockPoints;
+  return texture3D(in_volume[0], fetch).r * in_volume_scale[0].r + in_volume_bias[0].r;
+}
+
+// The whole volume's texture coordinate of the block's texPos (texPos
+// itself for one block).
+vec3 mmvWholeTexCoord(vec3 texPos)
+{
+  return (mmv_blockFirstIndex + mmvBlockIndex(texPos) + 0.5) / mmv_wholeDimensions;
 }
 
 float mmvTableCoord(float t)
@@ -50,9 +91,10 @@ float mmvTableCoord(float t)
 // differences, interpolated (one fetch instead of six).
 vec3 mmvGradient(vec3 texPos)
 {
-  vec3 g = texture(mmv_gradient, texPos).xyz * mmv_gradientScale;
+  vec3 gradientCoord = mmvWholeTexCoord(texPos) * mmv_gradientTexScale + mmv_gradientTexBias;
+  vec3 g = texture(mmv_gradient, gradientCoord).xyz * mmv_gradientScale;
   // A gradient is a covector: it maps with the inverse transpose.
-  return transpose(mat3(in_inverseTextureDatasetMatrix[0])) * g;
+  return mmv_gradientToObject * g;
 }
 
 // eqs. 16-17 at shading position texPos with value t for one segment.
@@ -71,7 +113,7 @@ vec3 mmvShadeSegment(vec3 texPos, float t, vec4 segment)
 
   vec3 radiance = vec3(0.0);
 #if MMV_NUMBER_OF_LIGHTS > 0
-  vec3 irradianceCoord = texPos * mmv_irradianceScale + mmv_irradianceBias;
+  vec3 irradianceCoord = mmvWholeTexCoord(texPos) * mmv_irradianceScale + mmv_irradianceBias;
   vec4 irradiance0 = texture(mmv_irradiance0, irradianceCoord);
 #if MMV_IRRADIANCE_TEXTURES > 1
   vec4 irradiance1 = texture(mmv_irradiance1, irradianceCoord);

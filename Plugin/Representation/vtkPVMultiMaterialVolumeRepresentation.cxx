@@ -1,10 +1,18 @@
 #include "vtkPVMultiMaterialVolumeRepresentation.h"
 
 #include "vtkColorTransferFunction.h"
+#include "vtkDataObject.h"
+#include "vtkGlobalPrefilterExchange.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkMultiProcessController.h"
+#include "vtkPVView.h"
 #include "vtkMaterialLibrary.h"
 #include "vtkMultiMaterialVolumeMapper.h"
 #include "vtkObjectFactory.h"
 #include "vtkVolumeProperty.h"
+
+#include <sstream>
 
 vtkStandardNewMacro(vtkPVMultiMaterialVolumeRepresentation);
 
@@ -242,6 +250,92 @@ int vtkPVMultiMaterialVolumeRepresentation::GetMultiMaterialActive()
 {
   auto* mapper = this->GetMultiMaterialMapper();
   return mapper && mapper->GetMultiMaterialActive() ? 1 : 0;
+}
+
+//------------------------------------------------------------------------------
+int vtkPVMultiMaterialVolumeRepresentation::RequestData(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  ++this->DataGeneration;
+  return this->Superclass::RequestData(request, inputVector, outputVector);
+}
+
+//------------------------------------------------------------------------------
+int vtkPVMultiMaterialVolumeRepresentation::ProcessViewRequest(
+  vtkInformationRequestKey* request_type, vtkInformation* inInfo, vtkInformation* outInfo)
+{
+  if (!this->Superclass::ProcessViewRequest(request_type, inInfo, outInfo))
+  {
+    return 0;
+  }
+  if (request_type == vtkPVView::REQUEST_UPDATE())
+  {
+    this->UpdateGlobalVolume();
+  }
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkPVMultiMaterialVolumeRepresentation::UpdateGlobalVolume()
+{
+  vtkMultiMaterialVolumeMapper* mapper = this->GetMultiMaterialMapper();
+  vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
+  if (!mapper || !controller || controller->GetNumberOfProcesses() < 2)
+  {
+    return; // one process: the mapper lights its input, as without MPI
+  }
+  // Everything in the key is the same on every rank (proxy properties and the
+  // count of RequestData), so every rank decides alike.
+  std::string array;
+  vtkInformation* info = this->GetInputArrayInformation(0);
+  if (info && info->Has(vtkDataObject::FIELD_NAME()) &&
+    info->Get(vtkDataObject::FIELD_ASSOCIATION()) == vtkDataObject::FIELD_ASSOCIATION_POINTS)
+  {
+    array = info->Get(vtkDataObject::FIELD_NAME());
+  }
+  const std::vector<double> key = { double(this->DataGeneration), this->IrradianceMemoryMB,
+    this->IrradianceScale };
+  if (key == this->GlobalKey && array == this->GlobalArray)
+  {
+    return;
+  }
+  this->GlobalKey = key;
+  this->GlobalArray = array;
+
+  mmv::GlobalPrefilterSettings settings;
+  settings.BudgetMB = this->IrradianceMemoryMB;
+  settings.Scale = this->IrradianceScale;
+  std::string error;
+  auto* piece = vtkImageData::SafeDownCast(this->Cache);
+  const bool valid = mmv::ExchangeGlobalPrefilter(controller, piece,
+    array.empty() ? nullptr : array.c_str(), settings, this->GlobalVolume, error);
+  mapper->SetGlobalPrefilteredVolume(valid ? this->GlobalVolume.Get() : nullptr);
+  std::ostringstream text;
+  if (valid)
+  {
+    int dims[3];
+    this->GlobalVolume->GetIrradianceDimensions(dims);
+    text << dims[0] << "x" << dims[1] << "x" << dims[2] << " global grid over "
+         << controller->GetNumberOfProcesses() << " ranks; "
+         << this->GlobalVolume->GetBytesExchanged() << " bytes sent per rank; "
+         << this->GlobalVolume->GetExchangeSeconds() << " s";
+  }
+  else if (!array.empty() && error != "no piece has data")
+  {
+    text << "no global shadows: " << error;
+    // Every rank knows; one message is enough.
+    if (controller->GetLocalProcessId() == 0)
+    {
+      vtkErrorMacro("the pieces cannot be lit together (" << error
+                                                          << "); each rank lights its own piece");
+    }
+  }
+  this->GlobalInfo = text.str();
+}
+
+const char* vtkPVMultiMaterialVolumeRepresentation::GetGlobalIrradianceInfo()
+{
+  return this->GlobalInfo.c_str();
 }
 
 //------------------------------------------------------------------------------

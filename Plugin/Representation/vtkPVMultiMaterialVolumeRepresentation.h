@@ -20,13 +20,18 @@
  * Lights are the view's renderer lights (light kit, headlight, lights added
  * with the Light Inspector or AddLight()); the mapper reads them every frame.
  *
- * Under MPI every rank renders its own piece and computes irradiance from it
- * alone: shadows and scattered light do not cross piece boundaries.
+ * Under MPI every rank renders its own piece, lit from one global coarse
+ * copy of the whole volume that every rank holds (vtkGlobalPrefilteredVolume,
+ * combined by mmv::ExchangeGlobalPrefilter at each view update after the
+ * data or the irradiance settings changed), so shadows and scattered light
+ * cross piece boundaries. The global grid follows the memory budget and
+ * IrradianceScale, not the screen, and holds at most 128^3 voxels.
  */
 #ifndef vtkPVMultiMaterialVolumeRepresentation_h
 #define vtkPVMultiMaterialVolumeRepresentation_h
 
 #include "vtkDoubleArray.h" // for vtkNew ivar
+#include "vtkGlobalPrefilteredVolume.h"           // for vtkNew ivar
 #include "vtkImageVolumeRepresentation.h"
 #include "vtkMaterialTransferFunction.h"          // for vtkNew ivar
 #include "vtkMultiMaterialParameters.h"            // ShadowEstimation defaults
@@ -36,6 +41,7 @@
 #include "vtkStringArray.h"                       // for vtkNew ivar
 
 #include <string> // for the preset name
+#include <vector> // for the exchange key
 
 class vtkMultiMaterialVolumeMapper;
 
@@ -98,21 +104,33 @@ public:
   int GetDeferredIrradianceCount();
   double GetLastIrradianceSeconds();
   const char* GetIrradianceResolutionInfo();
+  /// Under MPI: the global grid, the bytes this rank contributed to its
+  /// exchange and the seconds the exchange took ("" when not in use).
+  const char* GetGlobalIrradianceInfo();
   ///@}
 
   vtkMultiMaterialVolumeMapper* GetMultiMaterialMapper();
+
+  /// REQUEST_UPDATE (on every rank at once) also combines the pieces for
+  /// global shadows.
+  int ProcessViewRequest(vtkInformationRequestKey* request_type, vtkInformation* inInfo,
+    vtkInformation* outInfo) override;
 
 protected:
   vtkPVMultiMaterialVolumeRepresentation();
   ~vtkPVMultiMaterialVolumeRepresentation() override;
 
   void UpdateMapperParameters() override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
 private:
   vtkPVMultiMaterialVolumeRepresentation(const vtkPVMultiMaterialVolumeRepresentation&) = delete;
   void operator=(const vtkPVMultiMaterialVolumeRepresentation&) = delete;
 
   bool UsesPreset() const;
+  // Collective (every rank, same order): combines the pieces into
+  // GlobalVolume when the data or the settings it depends on changed.
+  void UpdateGlobalVolume();
 
   // Nodes from MaterialNodes; kept apart from the mapper's function so that
   // switching a preset off brings them back.
@@ -138,6 +156,14 @@ private:
   int InteractiveIrradiance = 1; // vtkMultiMaterialVolumeMapper::ReuseWhileInteracting
   int ShadowEstimation = mmv::PiecewiseShadowRays;
   int PiecewiseShadowSlices = mmv::DefaultPiecewiseShadowSlices;
+
+  vtkNew<vtkGlobalPrefilteredVolume> GlobalVolume;
+  // RequestData runs on every rank together, so counting it gives every rank
+  // the same key for deciding when to exchange (no rank may skip it alone).
+  int DataGeneration = 0;
+  std::vector<double> GlobalKey;
+  std::string GlobalArray;
+  std::string GlobalInfo;
 };
 
 #endif
