@@ -1,0 +1,55 @@
+"""`import multimaterialvolume` gives the project's classes, from this build,
+as VTK objects of the right types."""
+
+import os
+import unittest
+
+import multimaterialvolume as m
+from vtkmodules.vtkCommonExecutionModel import vtkImageAlgorithm
+from vtkmodules.vtkRenderingVolume import vtkGPUVolumeRayCastMapper
+
+import mmv_python_testing as mmv
+
+CLASSES = [
+    "vtkMaterialTransferFunction",
+    "vtkMaterialLibrary",
+    "vtkMultiMaterialReferenceRenderer",
+    "vtkMultiMaterialPathTracer",
+    "vtkImageErrorMetrics",
+    "vtkIrradianceVolumeFilter",
+    "vtkMultiMaterialVolumeMapper",
+]
+
+
+class PackageTest(unittest.TestCase):
+    def test_package_comes_from_this_build(self):
+        expected = mmv.expected_package_dir()
+        self.assertIsNotNone(expected, "MMV_PYTHON_PACKAGE_DIR is not set")
+        self.assertEqual(os.path.realpath(os.path.dirname(os.path.dirname(m.__file__))),
+                         os.path.realpath(expected))
+
+    def test_every_class_constructs(self):
+        for name in CLASSES:
+            with self.subTest(name=name):
+                cls = getattr(m, name)
+                obj = cls()
+                self.assertEqual(obj.GetClassName(), name)
+                self.assertTrue(obj.IsA("vtkObject"))
+                self.assertEqual(obj.GetReferenceCount(), 1)
+
+    def test_classes_keep_their_vtk_bases(self):
+        self.assertIsInstance(m.vtkIrradianceVolumeFilter(), vtkImageAlgorithm)
+        self.assertIsInstance(m.vtkMultiMaterialVolumeMapper(), vtkGPUVolumeRayCastMapper)
+
+    def test_objects_pass_between_classes(self):
+        materials = m.vtkMaterialTransferFunction()
+        mapper = m.vtkMultiMaterialVolumeMapper()
+        mapper.SetMaterialTransferFunction(materials)
+        self.assertIs(mapper.GetMaterialTransferFunction(), materials)
+        irradiance = m.vtkIrradianceVolumeFilter()
+        irradiance.SetMaterialTransferFunction(materials)
+        self.assertIs(irradiance.GetMaterialTransferFunction(), materials)
+
+
+if __name__ == "__main__":
+    unittest.main()
