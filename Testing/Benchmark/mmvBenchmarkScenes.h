@@ -35,10 +35,24 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <sstream>
 #include <string>
+#include <vector>
 
 namespace mmvbench
 {
+/// The items of a comma-separated command-line list ("synthetic,headsq").
+inline std::vector<std::string> SplitList(const std::string& text)
+{
+  std::vector<std::string> items;
+  std::stringstream list(text);
+  for (std::string item; std::getline(list, item, ',');)
+  {
+    items.push_back(item);
+  }
+  return items;
+}
+
 
 struct SceneSpec
 {

@@ -84,12 +84,7 @@ bool Parse(int argc, char* argv[], Options& o)
     }
     else if (a == "--scenes")
     {
-      o.Scenes.clear();
-      std::stringstream list(next());
-      for (std::string s; std::getline(list, s, ',');)
-      {
-        o.Scenes.push_back(s);
-      }
+      o.Scenes = mmvbench::SplitList(next());
     }
     else if (a == "--head")
     {

@@ -79,10 +79,9 @@ struct Options
 std::vector<double> Numbers(const std::string& text)
 {
   std::vector<double> values;
-  std::stringstream list(text);
-  for (std::string s; std::getline(list, s, ',');)
+  for (const std::string& item : mmvbench::SplitList(text))
   {
-    values.push_back(std::atof(s.c_str()));
+    values.push_back(std::atof(item.c_str()));
   }
   return values;
 }
@@ -111,12 +110,7 @@ bool Parse(int argc, char* argv[], Options& o)
     }
     else if (a == "--scenes")
     {
-      o.Scenes.clear();
-      std::stringstream list(next());
-      for (std::string s; std::getline(list, s, ',');)
-      {
-        o.Scenes.push_back(s);
-      }
+      o.Scenes = mmvbench::SplitList(next());
     }
     else if (a == "--head")
     {
