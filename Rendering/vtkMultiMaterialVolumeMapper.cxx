@@ -510,7 +510,11 @@ void vtkMultiMaterialVolumeMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
     keys = newKeys;
   }
 
+  const auto prepareStart = Clock::now();
+  const int updatesBefore = this->IrradianceUpdateCount;
   this->MultiMaterialActive = this->PrepareMultiMaterial(ren, vol);
+  this->LastPrepareSeconds = Seconds(prepareStart) -
+    (this->IrradianceUpdateCount != updatesBefore ? this->LastIrradianceSeconds : 0.0);
   if (!this->MultiMaterialActive)
   {
     // Exactly the base class: no pass in the volume's keys.

@@ -142,6 +142,9 @@ public:
   vtkGetMacro(LastPreIntegrationSeconds, double);
   vtkGetMacro(LastIrradianceSeconds, double);
   vtkGetMacro(LastRayCastSeconds, double);
+  /// CPU time of the last frame's preparation (inputs checked, keys, tables,
+  /// uniforms), the irradiance pass excluded; kept without TimeStages.
+  vtkGetMacro(LastPrepareSeconds, double);
   vtkGetVector3Macro(IrradianceDimensions, int);
   vtkGetMacro(NumberOfShadedLights, int);
   /// Lights whose irradiance the last update recomputed (the others kept theirs).
@@ -230,6 +233,7 @@ protected:
   double LastPreIntegrationSeconds = 0.0;
   double LastIrradianceSeconds = 0.0;
   double LastRayCastSeconds = 0.0;
+  double LastPrepareSeconds = 0.0;
   int IrradianceDimensions[3] = { 0, 0, 0 };
   int NumberOfShadedLights = 0;
   int NumberOfUpdatedLights = 0;
