@@ -99,11 +99,11 @@ struct LightTask
 };
 
 /// Shared with the GPU mapper, so both see the same lights.
-LightTask MakeLightTask(vtkLight* light, double radius)
+LightTask MakeLightTask(vtkLight* light, double radius, std::vector<std::string>& problems)
 {
   LightTask task;
   task.Active = mmv::IsLightActive(light);
-  task.Source = mmv::MakeLightSource(light, nullptr, radius);
+  task.Source = mmv::MakeLightSource(light, nullptr, radius, task.Active ? &problems : nullptr);
   return task;
 }
 
@@ -127,13 +127,14 @@ std::vector<vtkIdType> FindComputedVoxels(vtkPiecewiseFunction* otf,
 
 /// One task and one zeroed "Irradiance_<k>" array per light, in order.
 void MakeLightTasks(vtkLightCollection* lights, double radius, vtkIdType size,
-  std::vector<LightTask>& tasks, std::vector<vtkSmartPointer<vtkFloatArray>>& arrays)
+  std::vector<LightTask>& tasks, std::vector<vtkSmartPointer<vtkFloatArray>>& arrays,
+  std::vector<std::string>& problems)
 {
   vtkCollectionSimpleIterator it;
   lights->InitTraversal(it);
   while (vtkLight* light = lights->GetNextLight(it))
   {
-    tasks.push_back(MakeLightTask(light, radius));
+    tasks.push_back(MakeLightTask(light, radius, problems));
     vtkNew<vtkFloatArray> array;
     array->SetName(("Irradiance_" + std::to_string(arrays.size())).c_str());
     array->SetNumberOfTuples(size);
@@ -568,7 +569,7 @@ int vtkIrradianceVolumeFilter::RequestInformation(
     extent[5] - extent[4] + 1 };
   int dims[3];
   ComputeIrradianceDimensions(dataDims, this->Internals->Lights->GetNumberOfItems(),
-    this->IrradianceMemoryMB, this->IrradianceScale, dims);
+    this->IrradianceMemoryMB, mmv::ValidIrradianceScale(this->IrradianceScale, nullptr), dims);
   const mmv::IrradianceGrid grid =
     mmv::MakeIrradianceGrid(extent, origin, spacing, direction, dims);
   const int outExtent[6] = { 0, dims[0] - 1, 0, dims[1] - 1, 0, dims[2] - 1 };
@@ -626,8 +627,14 @@ int vtkIrradianceVolumeFilter::RequestData(
   const int dataDims[3] = { inExtent[1] - inExtent[0] + 1, inExtent[3] - inExtent[2] + 1,
     inExtent[5] - inExtent[4] + 1 };
   const int numberOfLights = this->Internals->Lights->GetNumberOfItems();
-  ComputeIrradianceDimensions(dataDims, numberOfLights, this->IrradianceMemoryMB,
-    this->IrradianceScale, this->IrradianceDimensions);
+  std::string scaleProblem;
+  const double scale = mmv::ValidIrradianceScale(this->IrradianceScale, &scaleProblem);
+  if (!scaleProblem.empty())
+  {
+    vtkWarningMacro(<< scaleProblem);
+  }
+  ComputeIrradianceDimensions(
+    dataDims, numberOfLights, this->IrradianceMemoryMB, scale, this->IrradianceDimensions);
   const mmv::IrradianceGrid grid = mmv::MakeIrradianceGrid(input, this->IrradianceDimensions);
   output->SetExtent(0, grid.Dimensions[0] - 1, 0, grid.Dimensions[1] - 1, 0, grid.Dimensions[2] - 1);
   SetGridGeometry(grid, output);
@@ -674,12 +681,21 @@ int vtkIrradianceVolumeFilter::RequestData(
     vtkErrorMacro("Could not build the shadow pre-integration table.");
     return 0;
   }
-  const double radius = this->PointLightRadius > 0.0
-    ? this->PointLightRadius
-    : std::min({ input->GetSpacing()[0], input->GetSpacing()[1], input->GetSpacing()[2] });
+  std::string radiusProblem;
+  const double radius = mmv::ValidPointLightRadius(this->PointLightRadius, &radiusProblem);
+  if (!radiusProblem.empty())
+  {
+    vtkWarningMacro(<< radiusProblem);
+  }
   std::vector<LightTask> tasks;
   std::vector<vtkSmartPointer<vtkFloatArray>> arrays;
-  MakeLightTasks(this->Internals->Lights, radius, grid.GetNumberOfVoxels(), tasks, arrays);
+  std::vector<std::string> problems;
+  MakeLightTasks(
+    this->Internals->Lights, radius, grid.GetNumberOfVoxels(), tasks, arrays, problems);
+  for (const std::string& problem : problems)
+  {
+    vtkWarningMacro(<< problem);
+  }
   const RayContext ctx{ &grid, prefiltered.data(), this->Internals->Table, step,
     grid.PhysicalToIndexMatrix() };
   std::vector<float> transmittance;

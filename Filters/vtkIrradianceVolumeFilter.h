@@ -80,17 +80,21 @@ public:
   ///@}
 
   /// Irradiance resolution as a fraction of the data's (0 < x <= 1); 0 (default)
-  /// chooses it from IrradianceMemoryMB.
-  vtkSetClampMacro(IrradianceScale, double, 0.0, 1.0);
+  /// chooses it from IrradianceMemoryMB. Values above 1 are reported
+  /// (warning) and used as 1; negative or NaN ones as 0.
+  vtkSetMacro(IrradianceScale, double);
   vtkGetMacro(IrradianceScale, double);
 
   /// Memory budget in MB for the irradiance volume (16 bits per light per voxel).
   vtkSetClampMacro(IrradianceMemoryMB, double, 0.001, 1.0e6);
   vtkGetMacro(IrradianceMemoryMB, double);
 
-  /// Radius epsilon of point and spot lights in world units; 0 (default)
-  /// means the smallest data spacing.
-  vtkSetClampMacro(PointLightRadius, double, 0.0, VTK_DOUBLE_MAX);
+  /// Falloff of point and spot lights. 0 (default): VTK's, by each light's
+  /// AttenuationValues (constant, linear, quadratic; the default (1, 0, 0)
+  /// means none). > 0: the paper's eq. 12 with this radius epsilon (object
+  /// units), (epsilon / distance)^2 beyond it. A negative or non-finite
+  /// value is reported (warning) and treated as 0.
+  vtkSetMacro(PointLightRadius, double);
   vtkGetMacro(PointLightRadius, double);
 
   /// Shadow-ray step in irradiance voxels (default 1).

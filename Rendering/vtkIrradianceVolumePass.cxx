@@ -122,7 +122,9 @@ void SetLightUniforms(
   float toLight[LightsPerTexture][3] = {};
   float spotAxis[LightsPerTexture][3] = {};
   float cosCone[LightsPerTexture] = { -1.0f, -1.0f, -1.0f, -1.0f };
-  float radius[LightsPerTexture] = { 1.0f, 1.0f, 1.0f, 1.0f };
+  float spotExponent[LightsPerTexture] = {};
+  float attenuation[LightsPerTexture][3] = {};
+  float radius[LightsPerTexture] = {};
   for (int l = 0; l < count; ++l)
   {
     const mmv::LightSource& light = lights[first + l];
@@ -132,8 +134,10 @@ void SetLightUniforms(
       position[l][a] = static_cast<float>(light.Position[a]);
       toLight[l][a] = static_cast<float>(light.ToLight[a]);
       spotAxis[l][a] = static_cast<float>(light.SpotAxis[a]);
+      attenuation[l][a] = static_cast<float>(light.Attenuation[a]);
     }
     cosCone[l] = static_cast<float>(light.CosCone);
+    spotExponent[l] = static_cast<float>(light.SpotExponent);
     radius[l] = static_cast<float>(light.Radius);
   }
   program->SetUniformi("numberOfLights", count);
@@ -143,6 +147,8 @@ void SetLightUniforms(
   program->SetUniform3fv("lightToLight", LightsPerTexture, toLight);
   program->SetUniform3fv("lightSpotAxis", LightsPerTexture, spotAxis);
   program->SetUniform1fv("lightCosCone", LightsPerTexture, cosCone);
+  program->SetUniform1fv("lightSpotExponent", LightsPerTexture, spotExponent);
+  program->SetUniform3fv("lightAttenuation", LightsPerTexture, attenuation);
   program->SetUniform1fv("lightRadius", LightsPerTexture, radius);
 }
 
@@ -154,8 +160,7 @@ bool SameGrid(const mmv::IrradianceGrid& a, const mmv::IrradianceGrid& b)
 
 bool SameLight(const mmv::LightSource& a, const mmv::LightSource& b)
 {
-  return a.Kind == b.Kind && a.Position == b.Position && a.ToLight == b.ToLight &&
-    a.SpotAxis == b.SpotAxis && a.CosCone == b.CosCone && a.Radius == b.Radius;
+  return a == b;
 }
 
 /// Activates textures for one draw and deactivates them when it ends.

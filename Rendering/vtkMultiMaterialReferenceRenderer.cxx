@@ -534,8 +534,19 @@ vtkImageData* vtkMultiMaterialReferenceRenderer::Render(vtkRenderer* ren, int wi
   }
   vtkNew<vtkMatrix4x4> worldToObject;
   vtkMatrix4x4::Invert(objectToWorld, worldToObject);
-  const double radius = this->PointLightRadius > 0.0 ? this->PointLightRadius : smallestSpacing;
-  scene.Lights = mmv::CollectLights(ren->GetLights(), worldToObject, radius, mmv::MaxLights);
+  std::string radiusProblem;
+  const double radius = mmv::ValidPointLightRadius(this->PointLightRadius, &radiusProblem);
+  if (!radiusProblem.empty())
+  {
+    vtkWarningMacro(<< radiusProblem);
+  }
+  std::vector<std::string> problems;
+  scene.Lights = mmv::CollectLights(
+    ren->GetLights(), worldToObject, radius, mmv::MaxLights, nullptr, &problems);
+  for (const std::string& problem : problems)
+  {
+    vtkWarningMacro(<< problem);
+  }
   vtkCamera* camera = ren->GetActiveCamera();
   scene.Reflection =
     materials && materials->GetSize() > 0 && materials->GetMaximum(mmv::Reflection) > 0.0;

@@ -93,8 +93,12 @@ public:
   vtkSetClampMacro(ShadowSampleDistance, double, 0.0, VTK_DOUBLE_MAX);
   vtkGetMacro(ShadowSampleDistance, double);
 
-  /// Radius epsilon of point and spot lights; 0 (default): smallest spacing.
-  vtkSetClampMacro(PointLightRadius, double, 0.0, VTK_DOUBLE_MAX);
+  /// Falloff of point and spot lights. 0 (default): VTK's, by each light's
+  /// AttenuationValues (constant, linear, quadratic; the default (1, 0, 0)
+  /// means none). > 0: the paper's eq. 12 with this radius epsilon (object
+  /// units), (epsilon / distance)^2 beyond it. A negative or non-finite
+  /// value is reported (warning) and treated as 0.
+  vtkSetMacro(PointLightRadius, double);
   vtkGetMacro(PointLightRadius, double);
 
   /// Multiple scattering by diffusion (default on; skipped when every s = 0).

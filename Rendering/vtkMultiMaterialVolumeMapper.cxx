@@ -279,6 +279,7 @@ void AppendLightKey(std::vector<double>& key, const mmv::LightSource& s)
   key.push_back(s.Kind);
   key.insert(key.end(), { s.Position.x, s.Position.y, s.Position.z, s.ToLight.x, s.ToLight.y,
                           s.ToLight.z, s.SpotAxis.x, s.SpotAxis.y, s.SpotAxis.z, s.CosCone,
+                          s.SpotExponent, s.Attenuation.x, s.Attenuation.y, s.Attenuation.z,
                           s.Radius });
 }
 
@@ -556,13 +557,20 @@ bool vtkMultiMaterialVolumeMapper::PrepareMultiMaterial(vtkRenderer* ren, vtkVol
   // 2. Lights, in the volume's object space.
   vtkNew<vtkMatrix4x4> worldToObject;
   vtkMatrix4x4::Invert(vol->GetMatrix(), worldToObject);
-  const double* spacing = image->GetSpacing();
-  const double radius = this->PointLightRadius > 0.0
-    ? this->PointLightRadius
-    : std::min({ std::abs(spacing[0]), std::abs(spacing[1]), std::abs(spacing[2]) });
   int dropped = 0;
-  in.Lights =
-    mmv::CollectLights(ren->GetLights(), worldToObject, radius, mmv::MaxLights, &dropped);
+  std::vector<std::string> problems;
+  std::string radiusProblem;
+  const double radius = mmv::ValidPointLightRadius(this->PointLightRadius, &radiusProblem);
+  if (!radiusProblem.empty())
+  {
+    problems.push_back(radiusProblem);
+  }
+  in.Lights = mmv::CollectLights(
+    ren->GetLights(), worldToObject, radius, mmv::MaxLights, &dropped, &problems);
+  for (const std::string& problem : problems)
+  {
+    this->WarnOnce(problem);
+  }
   if (dropped > 0)
   {
     this->WarnOnce("more than " + std::to_string(mmv::MaxLights) +
@@ -612,6 +620,7 @@ bool vtkMultiMaterialVolumeMapper::PrepareMultiMaterial(vtkRenderer* ren, vtkVol
       in.IrradianceBias[a] = 0.5f;
     }
   }
+  const double* spacing = image->GetSpacing();
   const double smallestSpacing =
     std::min({ std::abs(spacing[0]), std::abs(spacing[1]), std::abs(spacing[2]) });
   in.GradientFade = static_cast<float>(mmv::FullShadingGradientPerVoxel / smallestSpacing);
@@ -651,11 +660,15 @@ bool vtkMultiMaterialVolumeMapper::UpdateIrradiance(vtkRenderer* ren, vtkVolume*
   int dataDims[3];
   image->GetDimensions(dataDims);
   // The screen only matters when the resolution is automatic.
-  const double pixelsPerVoxel =
-    this->IrradianceScale > 0.0 ? 0.0 : ProjectedPixelsPerVoxel(ren, vol, image);
+  std::string scaleProblem;
+  const double scale = mmv::ValidIrradianceScale(this->IrradianceScale, &scaleProblem);
+  if (!scaleProblem.empty())
+  {
+    this->WarnOnce(scaleProblem);
+  }
+  const double pixelsPerVoxel = scale > 0.0 ? 0.0 : ProjectedPixelsPerVoxel(ren, vol, image);
   const mmv::IrradianceResolution resolution = mmv::ChooseIrradianceResolution(dataDims,
-    static_cast<int>(in.Lights.size()), this->IrradianceMemoryMB, this->IrradianceScale,
-    pixelsPerVoxel);
+    static_cast<int>(in.Lights.size()), this->IrradianceMemoryMB, scale, pixelsPerVoxel);
   const int* dims = resolution.Dimensions;
 
   const int n = this->PreIntegrationTableSize;
