@@ -11,6 +11,10 @@
 #include "vtkLightCollection.h"
 #include "vtkMaterialTransferFunction.h"
 #include "vtkMultiMaterialLightModel.h"
+#include "vtkMultiMaterialCutaway.h"
+#include "vtkPlane.h"
+#include "vtkPlaneCollection.h"
+#include "vtkVolumeMapper.h"
 #include "vtkMultiMaterialLights.h"
 #include "vtkMultiMaterialParameters.h"
 #include "vtkObjectFactory.h"
@@ -151,6 +155,7 @@ struct RayContext
   const vtkPreIntegrationTable* Table;
   double Step;
   glm::dmat3 PhysicalToIndex; // of *Irradiance, inverted once
+  mmv::IndexCutaway Cut;      // removed by cropping and clipping: empty
 };
 
 /**
@@ -175,14 +180,21 @@ double MarchTransmittance(const RayContext& ctx, const glm::dvec3& start,
     }
     const double next =
       mmv::SampleTrilinear(grid, ctx.Prefiltered, start + (static_cast<double>(n) * h) * indexDir);
-    transmittance *= 1.0 - ctx.Table->LookupShadowOpacity(previous, next);
+    const double alpha =
+      mmv::mmvIsCut(ctx.Cut, start + ((static_cast<double>(n) - 0.5) * h) * indexDir)
+      ? 0.0
+      : ctx.Table->LookupShadowOpacity(previous, next);
+    transmittance *= 1.0 - alpha;
     previous = next;
   }
   const double rest = end - static_cast<double>(steps) * h;
   if (rest > mmv::ShadowRestTolerance * h && transmittance >= mmv::MinShadowTransmittance)
   {
     const double next = mmv::SampleTrilinear(grid, ctx.Prefiltered, start + end * indexDir);
-    const double alpha = ctx.Table->LookupShadowOpacity(previous, next);
+    const double alpha =
+      mmv::mmvIsCut(ctx.Cut, start + (0.5 * (static_cast<double>(steps) * h + end)) * indexDir)
+      ? 0.0
+      : ctx.Table->LookupShadowOpacity(previous, next);
     // Optical depth is linear in the segment length for a linear value ramp.
     transmittance *= std::pow(std::max(0.0, 1.0 - alpha), rest / h);
   }
@@ -442,6 +454,7 @@ public:
   vtkSmartPointer<vtkMaterialTransferFunction> Material;
   vtkSmartPointer<vtkLightCollection> Lights = vtkSmartPointer<vtkLightCollection>::New();
   vtkNew<vtkPreIntegrationTable> Table;
+  vtkSmartPointer<vtkPlaneCollection> ClippingPlanes;
 };
 
 vtkStandardNewMacro(vtkIrradianceVolumeFilter);
@@ -522,6 +535,45 @@ vtkLightCollection* vtkIrradianceVolumeFilter::GetLights()
   return this->Internals->Lights;
 }
 
+void vtkIrradianceVolumeFilter::SetClippingPlanes(vtkPlaneCollection* planes)
+{
+  if (this->Internals->ClippingPlanes != planes)
+  {
+    this->Internals->ClippingPlanes = planes;
+    this->Modified();
+  }
+}
+
+vtkPlaneCollection* vtkIrradianceVolumeFilter::GetClippingPlanes()
+{
+  return this->Internals->ClippingPlanes;
+}
+
+void vtkIrradianceVolumeFilter::CopyCutaway(vtkVolumeMapper* mapper)
+{
+  if (!mapper)
+  {
+    return;
+  }
+  this->SetCropping(mapper->GetCropping() != 0);
+  this->SetCroppingRegionPlanes(mapper->GetCroppingRegionPlanes());
+  this->SetCroppingRegionFlags(mapper->GetCroppingRegionFlags());
+  this->SetClippingPlanes(mapper->GetClippingPlanes());
+}
+
+mmv::Cutaway vtkIrradianceVolumeFilter::MakeCutaway()
+{
+  int dropped = 0;
+  const mmv::Cutaway cut = mmv::MakeCutaway(this->Cropping, this->CroppingRegionPlanes,
+    this->CroppingRegionFlags, this->Internals->ClippingPlanes, nullptr, &dropped);
+  if (dropped > 0)
+  {
+    vtkWarningMacro("more than " << mmv::MaxCutPlanes << " clipping planes: " << dropped
+                                 << " ignored by the shadow rays");
+  }
+  return cut;
+}
+
 vtkMTimeType vtkIrradianceVolumeFilter::GetMTime()
 {
   vtkMTimeType mtime = this->Superclass::GetMTime();
@@ -534,6 +586,14 @@ vtkMTimeType vtkIrradianceVolumeFilter::GetMTime()
     mtime = std::max(mtime, this->Internals->Material->GetMTime());
   }
   mtime = std::max(mtime, this->Internals->Lights->GetMTime());
+  if (vtkPlaneCollection* planes = this->Internals->ClippingPlanes)
+  {
+    mtime = std::max(mtime, planes->GetMTime());
+    for (int i = 0; i < planes->GetNumberOfItems(); ++i)
+    {
+      mtime = std::max(mtime, planes->GetItem(i)->GetMTime());
+    }
+  }
   vtkCollectionSimpleIterator it;
   this->Internals->Lights->InitTraversal(it);
   while (vtkLight* light = this->Internals->Lights->GetNextLight(it))
@@ -697,7 +757,7 @@ int vtkIrradianceVolumeFilter::RequestData(
     vtkWarningMacro(<< problem);
   }
   const RayContext ctx{ &grid, prefiltered.data(), this->Internals->Table, step,
-    grid.PhysicalToIndexMatrix() };
+    grid.PhysicalToIndexMatrix(), mmv::ToIndexSpace(this->MakeCutaway(), grid) };
   std::vector<float> transmittance;
   for (size_t l = 0; l < tasks.size(); ++l)
   {

@@ -44,12 +44,15 @@
 #define vtkIrradianceVolumeFilter_h
 
 #include "vtkImageAlgorithm.h"
+#include "vtkMultiMaterialCutaway.h"    // mmv::Cutaway
 #include "vtkMultiMaterialParameters.h" // ShadowEstimation
 #include "vtkMultiMaterialVolumeModule.h" // export macro
 
 class vtkLight;
 class vtkLightCollection;
 class vtkMaterialTransferFunction;
+class vtkPlaneCollection;
+class vtkVolumeMapper;
 class vtkPiecewiseFunction;
 
 class VTKMULTIMATERIALVOLUME_EXPORT vtkIrradianceVolumeFilter : public vtkImageAlgorithm
@@ -73,6 +76,24 @@ public:
 
   ///@{
   /// The lights, in world coordinates.
+  ///@{
+  /**
+   * Cutaways, as vtkVolumeMapper defines them: what the cropping region
+   * (data coordinates, VTK's region flags) and the clipping planes (world
+   * coordinates; a plane keeps the side its normal points to) remove is
+   * empty for the shadow rays. Copy a mapper's with CopyCutaway().
+   */
+  vtkSetMacro(Cropping, bool);
+  vtkGetMacro(Cropping, bool);
+  vtkSetVector6Macro(CroppingRegionPlanes, double);
+  vtkGetVector6Macro(CroppingRegionPlanes, double);
+  vtkSetMacro(CroppingRegionFlags, int);
+  vtkGetMacro(CroppingRegionFlags, int);
+  void SetClippingPlanes(vtkPlaneCollection* planes);
+  vtkPlaneCollection* GetClippingPlanes();
+  void CopyCutaway(vtkVolumeMapper* mapper);
+  ///@}
+
   void AddLight(vtkLight* light);
   void RemoveAllLights();
   void SetLights(vtkLightCollection* lights);
@@ -149,6 +170,13 @@ public:
   vtkMTimeType GetMTime() override;
 
 protected:
+#ifndef __VTK_WRAP__
+  mmv::Cutaway MakeCutaway();
+#endif
+  bool Cropping = false;
+  double CroppingRegionPlanes[6] = { 0.0, 1.0, 0.0, 1.0, 0.0, 1.0 };
+  int CroppingRegionFlags = 0x0002000; // VTK_CROP_SUBVOLUME
+
   vtkIrradianceVolumeFilter();
   ~vtkIrradianceVolumeFilter() override;
 

@@ -20,6 +20,7 @@
 #include "mmvIrradianceFS.h"
 #include "mmvLayerGS.h"
 #include "mmvLayerVS.h"
+#include "mmvCutaway.h"
 #include "mmvLightModel.h"
 #include "mmvPiecewiseShadowFS.h"
 #include "mmvShadowRay.h"
@@ -63,7 +64,10 @@ std::string ComposeShader(const std::string& body, const std::string& defines, b
 {
   std::string source = "//VTK::System::Dec\n";
   source += mmv::MaterialGLSLPrelude();
+  source += mmv::CutawayGLSLPrelude();
   source += defines;
+  source += mmvCutaway;
+  source += "\n";
   if (lightModel)
   {
     source += mmvLightModel;
@@ -152,6 +156,36 @@ void SetLightUniforms(
   program->SetUniform1fv("lightRadius", LightsPerTexture, radius);
 }
 
+/// The uniforms of Shaders/mmvCutaway.glsl.
+void SetCutawayUniforms(vtkShaderProgram* program, const mmv::IndexCutaway& cut)
+{
+  float planes[mmv::MaxCutPlanes][4] = {};
+  for (int p = 0; p < cut.NumberOfPlanes; ++p)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      planes[p][c] = static_cast<float>(cut.Planes[p][c]);
+    }
+  }
+  float axes[3][4] = {};
+  float bounds[6] = {};
+  for (int a = 0; a < 3; ++a)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      axes[a][c] = static_cast<float>(cut.CropAxes[a][c]);
+    }
+    bounds[2 * a] = static_cast<float>(cut.CropBounds[2 * a]);
+    bounds[2 * a + 1] = static_cast<float>(cut.CropBounds[2 * a + 1]);
+  }
+  program->SetUniformi("cutPlaneCount", cut.NumberOfPlanes);
+  program->SetUniform4fv("cutPlanes", mmv::MaxCutPlanes, planes);
+  program->SetUniformi("cropping", cut.Cropping ? 1 : 0);
+  program->SetUniform4fv("cropAxes", 3, axes);
+  program->SetUniform1fv("cropBounds", 6, bounds);
+  program->SetUniformi("cropFlags", cut.CropFlags);
+}
+
 bool SameGrid(const mmv::IrradianceGrid& a, const mmv::IrradianceGrid& b)
 {
   return std::equal(a.Dimensions, a.Dimensions + 3, b.Dimensions) && a.Origin == b.Origin &&
@@ -207,6 +241,7 @@ public:
   std::vector<float> OpacityTable;
   std::vector<float> ScatteringTable;
   std::vector<mmv::LightSource> Lights;
+  mmv::Cutaway Cut;
   bool HasInputs = false;
   bool Uploaded = false;
   vtkIdType VolumeUploads = 0;
@@ -488,6 +523,7 @@ void vtkIrradianceVolumePass::vtkInternals::SetShadowRayUniforms(vtkShaderProgra
   program->SetUniform1iv("dims", 3, this->Grid.Dimensions);
   program->SetUniformMatrix3x3("worldToIndex", glm::value_ptr(toIndex));
   program->SetUniformf("stepLength", static_cast<float>(this->StepLength));
+  SetCutawayUniforms(program, mmv::ToIndexSpace(this->Cut, this->Grid));
 }
 
 //------------------------------------------------------------------------------
@@ -819,6 +855,18 @@ void vtkIrradianceVolumePass::SetInputs(const mmv::IrradianceGrid& grid,
     internals.VolumeChanged = true;
   }
   internals.HasInputs = true;
+}
+
+//------------------------------------------------------------------------------
+void vtkIrradianceVolumePass::SetCutaway(const mmv::Cutaway& cutaway)
+{
+  vtkInternals& internals = *this->Internals;
+  if (cutaway.Key() != internals.Cut.Key())
+  {
+    internals.Cut = cutaway;
+    internals.VolumeChanged = true;
+    this->Modified();
+  }
 }
 
 //------------------------------------------------------------------------------

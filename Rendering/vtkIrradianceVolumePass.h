@@ -47,6 +47,7 @@
 // could call it anyway.
 #ifndef __VTK_WRAP__
 #include "vtkIrradianceGrid.h"         // IrradianceGrid
+#include "vtkMultiMaterialCutaway.h"    // Cutaway
 #include "vtkMultiMaterialLightModel.h" // LightSource
 #endif
 #include "vtkMultiMaterialParameters.h"   // ShadowEstimation
@@ -81,6 +82,12 @@ public:
   void SetInputs(const mmv::IrradianceGrid& grid, const std::vector<float>& normalizedScalars,
     int tableSize, const float* shadowTable, double stepLength, const float* opacityTable,
     const float* scatteringTable, const std::vector<mmv::LightSource>& lights);
+#endif
+
+#ifndef __VTK_WRAP__
+  /// What the shadow rays treat as empty (object space); a change recomputes
+  /// every light.
+  void SetCutaway(const mmv::Cutaway& cutaway);
 #endif
 
   /// Diffusion for multiple scattering (default on); time T of eq. 15.

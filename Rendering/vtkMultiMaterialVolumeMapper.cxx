@@ -11,6 +11,7 @@
 #include "vtkMaterialTransferFunction.h"
 #include "vtkMatrix3x3.h"
 #include "vtkMatrix4x4.h"
+#include "vtkMultiMaterialCutaway.h"
 #include "vtkMultiMaterialLights.h"
 #include "vtkMultiMaterialParameters.h"
 #include "vtkMultiMaterialRenderPass.h"
@@ -694,10 +695,23 @@ bool vtkMultiMaterialVolumeMapper::UpdateIrradiance(vtkRenderer* ren, vtkVolume*
   }
 
   const vtkMTimeType dataTime = std::max(image->GetMTime(), scalars->GetMTime());
-  const std::vector<double> volumeKey = { double(dataTime), double(opacity->GetMTime()),
+  std::vector<double> volumeKey = { double(dataTime), double(opacity->GetMTime()),
     double(in.MaterialVersion), unitDistance, range[0], range[1], double(this->MultipleScattering),
     double(this->PreIntegrationTableSize), double(in.Lights.size()), double(this->ShadowEstimation),
     double(this->PiecewiseShadowSlices) };
+  // What cropping and clipping remove casts no shadow: part of the key, so a
+  // moved crop box or plane updates the irradiance.
+  vtkNew<vtkMatrix4x4> worldToObject;
+  vtkMatrix4x4::Invert(vol->GetMatrix(), worldToObject);
+  int droppedPlanes = 0;
+  const mmv::Cutaway cutaway = mmv::MakeCutaway(this, worldToObject, &droppedPlanes);
+  if (droppedPlanes > 0)
+  {
+    this->WarnOnce("more than " + std::to_string(mmv::MaxCutPlanes) +
+      " clipping planes: the shadow rays ignore the others");
+  }
+  const std::vector<double> cutKey = cutaway.Key();
+  volumeKey.insert(volumeKey.end(), cutKey.begin(), cutKey.end());
   std::vector<double> lightsKey;
   for (const auto& light : in.Lights)
   {
@@ -778,6 +792,7 @@ bool vtkMultiMaterialVolumeMapper::UpdateIrradiance(vtkRenderer* ren, vtkVolume*
   pass->SetMultipleScattering(this->MultipleScattering);
   pass->SetShadowEstimation(this->ShadowEstimation);
   pass->SetPiecewiseShadowSlices(this->PiecewiseShadowSlices);
+  pass->SetCutaway(cutaway);
   pass->SetInputs(in.Grid, in.Prefiltered, n, shadow->GetShadowOpacityTable(), shadowStep,
     opacityTable.data(), scatteringTable.data(), sources);
   if (!pass->Render(context))
