@@ -819,6 +819,15 @@ void vtkIrradianceVolumeFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "IrradianceScale: " << this->IrradianceScale << "\n";
   os << indent << "IrradianceMemoryMB: " << this->IrradianceMemoryMB << "\n";
   os << indent << "PointLightRadius: " << this->PointLightRadius << "\n";
+  os << indent << "Cropping: " << this->Cropping << "\n";
+  os << indent << "CroppingRegionPlanes: " << this->CroppingRegionPlanes[0] << " "
+     << this->CroppingRegionPlanes[1] << " " << this->CroppingRegionPlanes[2] << " "
+     << this->CroppingRegionPlanes[3] << " " << this->CroppingRegionPlanes[4] << " "
+     << this->CroppingRegionPlanes[5] << "\n";
+  os << indent << "CroppingRegionFlags: " << this->CroppingRegionFlags << "\n";
+  os << indent << "ClippingPlanes: "
+     << (this->Internals->ClippingPlanes ? this->Internals->ClippingPlanes->GetNumberOfItems() : 0)
+     << "\n";
   os << indent << "ShadowStepScale: " << this->ShadowStepScale << "\n";
   os << indent << "ShadowEstimation: " << this->ShadowEstimation << "\n";
   os << indent << "PiecewiseShadowSlices: " << this->PiecewiseShadowSlices << "\n";
