@@ -60,6 +60,7 @@
 class vtkImageData;
 class vtkMaterialTransferFunction;
 class vtkMatrix4x4;
+class vtkVolumeMapper;
 class vtkRenderer;
 class vtkVolume;
 class vtkVolumeProperty;
@@ -83,6 +84,13 @@ public:
   vtkMaterialTransferFunction* GetMaterialTransferFunction();
   void SetVolumeMatrix(vtkMatrix4x4* matrix);
   vtkMatrix4x4* GetVolumeMatrix();
+
+  /// The mapper whose cropping region and clipping planes remove parts of
+  /// the volume, as VTK's ray caster does, for the primary rays and the
+  /// shadow rays (what is cut away casts no shadow). RenderToImage() sets it
+  /// to the volume's mapper; null: nothing is cut.
+  void SetCutawayMapper(vtkVolumeMapper* mapper);
+  vtkVolumeMapper* GetCutawayMapper();
   ///@}
 
   /// Primary-ray step in object units; 0 (default) means smallest spacing / 8.
@@ -159,6 +167,7 @@ private:
   vtkSmartPointer<vtkVolumeProperty> Property;
   vtkSmartPointer<vtkMaterialTransferFunction> Materials;
   vtkSmartPointer<vtkMatrix4x4> Matrix;
+  vtkSmartPointer<vtkVolumeMapper> CutawayMapper;
   vtkSmartPointer<vtkImageData> Output;
 };
 

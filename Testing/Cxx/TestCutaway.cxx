@@ -9,6 +9,7 @@
 #include "vtkFloatArray.h"
 #include "vtkIrradianceVolumeFilter.h"
 #include "vtkMaterialTransferFunction.h"
+#include "vtkMultiMaterialReferenceRenderer.h"
 #include "vtkMultiMaterialVolumeMapper.h"
 #include "vtkPlane.h"
 
@@ -229,4 +230,41 @@ TEST(Cutaway, CpuFilterMatchesGpuPassWithCroppingAndClipping)
                             ->GetValue(voxel);
   std::printf("the same voxel without the cutaway: %.3f\n", shadowed);
   EXPECT_LT(shadowed, 0.2 * floorUnderPlate);
+}
+
+TEST(Cutaway, ReferenceRendererCutsAsTheMapper)
+{
+  // The reference renderer (the ground truth): the cropped plate scene
+  // against the reference of the scene without the plate.
+  auto reference = [](PlateScene& scene) {
+    scene.Window->Render();
+    vtkNew<vtkMultiMaterialReferenceRenderer> ref;
+    vtkImageData* image = ref->RenderToImage(scene.Renderer, scene.Volume);
+    EXPECT_NE(image, nullptr);
+    auto* rgb = image ? image->GetPointData()->GetScalars() : nullptr;
+    std::vector<unsigned char> bytes;
+    for (vtkIdType i = 0; rgb && i < rgb->GetNumberOfTuples(); ++i)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        bytes.push_back(static_cast<unsigned char>(rgb->GetComponent(i, c)));
+      }
+    }
+    return bytes;
+  };
+  PlateScene withoutPlate(false);
+  PlateScene cropped(true);
+  cropped.Mapper->CroppingOn();
+  cropped.Mapper->SetCroppingRegionPlanes(0.0, 32.0, 0.0, 32.0, 0.0, 16.0);
+  cropped.Mapper->SetCroppingRegionFlagsToSubVolume();
+  PlateScene clipped(true);
+  clipped.Mapper->AddClippingPlane(Plane(16.0, -1.0));
+  const auto expected = reference(withoutPlate);
+  const double crop = PSNR(reference(cropped), expected);
+  const double clip = PSNR(reference(clipped), expected);
+  std::printf("reference renderer: cropping %.1f dB, clipping %.1f dB against the scene without "
+              "the plate\n",
+    crop, clip);
+  EXPECT_GE(crop, Target);
+  EXPECT_GE(clip, Target);
 }
