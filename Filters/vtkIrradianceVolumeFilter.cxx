@@ -11,6 +11,10 @@
 #include "vtkLightCollection.h"
 #include "vtkMaterialTransferFunction.h"
 #include "vtkMultiMaterialLightModel.h"
+#include "vtkMultiMaterialCutaway.h"
+#include "vtkPlane.h"
+#include "vtkPlaneCollection.h"
+#include "vtkVolumeMapper.h"
 #include "vtkMultiMaterialLights.h"
 #include "vtkMultiMaterialParameters.h"
 #include "vtkObjectFactory.h"
@@ -99,11 +103,11 @@ struct LightTask
 };
 
 /// Shared with the GPU mapper, so both see the same lights.
-LightTask MakeLightTask(vtkLight* light, double radius)
+LightTask MakeLightTask(vtkLight* light, double radius, std::vector<std::string>& problems)
 {
   LightTask task;
   task.Active = mmv::IsLightActive(light);
-  task.Source = mmv::MakeLightSource(light, nullptr, radius);
+  task.Source = mmv::MakeLightSource(light, nullptr, radius, task.Active ? &problems : nullptr);
   return task;
 }
 
@@ -127,13 +131,14 @@ std::vector<vtkIdType> FindComputedVoxels(vtkPiecewiseFunction* otf,
 
 /// One task and one zeroed "Irradiance_<k>" array per light, in order.
 void MakeLightTasks(vtkLightCollection* lights, double radius, vtkIdType size,
-  std::vector<LightTask>& tasks, std::vector<vtkSmartPointer<vtkFloatArray>>& arrays)
+  std::vector<LightTask>& tasks, std::vector<vtkSmartPointer<vtkFloatArray>>& arrays,
+  std::vector<std::string>& problems)
 {
   vtkCollectionSimpleIterator it;
   lights->InitTraversal(it);
   while (vtkLight* light = lights->GetNextLight(it))
   {
-    tasks.push_back(MakeLightTask(light, radius));
+    tasks.push_back(MakeLightTask(light, radius, problems));
     vtkNew<vtkFloatArray> array;
     array->SetName(("Irradiance_" + std::to_string(arrays.size())).c_str());
     array->SetNumberOfTuples(size);
@@ -150,6 +155,7 @@ struct RayContext
   const vtkPreIntegrationTable* Table;
   double Step;
   glm::dmat3 PhysicalToIndex; // of *Irradiance, inverted once
+  mmv::IndexCutaway Cut;      // removed by cropping and clipping: empty
 };
 
 /**
@@ -174,14 +180,21 @@ double MarchTransmittance(const RayContext& ctx, const glm::dvec3& start,
     }
     const double next =
       mmv::SampleTrilinear(grid, ctx.Prefiltered, start + (static_cast<double>(n) * h) * indexDir);
-    transmittance *= 1.0 - ctx.Table->LookupShadowOpacity(previous, next);
+    const double alpha =
+      mmv::mmvIsCut(ctx.Cut, start + ((static_cast<double>(n) - 0.5) * h) * indexDir)
+      ? 0.0
+      : ctx.Table->LookupShadowOpacity(previous, next);
+    transmittance *= 1.0 - alpha;
     previous = next;
   }
   const double rest = end - static_cast<double>(steps) * h;
   if (rest > mmv::ShadowRestTolerance * h && transmittance >= mmv::MinShadowTransmittance)
   {
     const double next = mmv::SampleTrilinear(grid, ctx.Prefiltered, start + end * indexDir);
-    const double alpha = ctx.Table->LookupShadowOpacity(previous, next);
+    const double alpha =
+      mmv::mmvIsCut(ctx.Cut, start + (0.5 * (static_cast<double>(steps) * h + end)) * indexDir)
+      ? 0.0
+      : ctx.Table->LookupShadowOpacity(previous, next);
     // Optical depth is linear in the segment length for a linear value ramp.
     transmittance *= std::pow(std::max(0.0, 1.0 - alpha), rest / h);
   }
@@ -441,6 +454,7 @@ public:
   vtkSmartPointer<vtkMaterialTransferFunction> Material;
   vtkSmartPointer<vtkLightCollection> Lights = vtkSmartPointer<vtkLightCollection>::New();
   vtkNew<vtkPreIntegrationTable> Table;
+  vtkSmartPointer<vtkPlaneCollection> ClippingPlanes;
 };
 
 vtkStandardNewMacro(vtkIrradianceVolumeFilter);
@@ -521,6 +535,45 @@ vtkLightCollection* vtkIrradianceVolumeFilter::GetLights()
   return this->Internals->Lights;
 }
 
+void vtkIrradianceVolumeFilter::SetClippingPlanes(vtkPlaneCollection* planes)
+{
+  if (this->Internals->ClippingPlanes != planes)
+  {
+    this->Internals->ClippingPlanes = planes;
+    this->Modified();
+  }
+}
+
+vtkPlaneCollection* vtkIrradianceVolumeFilter::GetClippingPlanes()
+{
+  return this->Internals->ClippingPlanes;
+}
+
+void vtkIrradianceVolumeFilter::CopyCutaway(vtkVolumeMapper* mapper)
+{
+  if (!mapper)
+  {
+    return;
+  }
+  this->SetCropping(mapper->GetCropping() != 0);
+  this->SetCroppingRegionPlanes(mapper->GetCroppingRegionPlanes());
+  this->SetCroppingRegionFlags(mapper->GetCroppingRegionFlags());
+  this->SetClippingPlanes(mapper->GetClippingPlanes());
+}
+
+mmv::Cutaway vtkIrradianceVolumeFilter::MakeCutaway()
+{
+  int dropped = 0;
+  const mmv::Cutaway cut = mmv::MakeCutaway(this->Cropping, this->CroppingRegionPlanes,
+    this->CroppingRegionFlags, this->Internals->ClippingPlanes, nullptr, &dropped);
+  if (dropped > 0)
+  {
+    vtkWarningMacro("more than " << mmv::MaxCutPlanes << " clipping planes: " << dropped
+                                 << " ignored by the shadow rays");
+  }
+  return cut;
+}
+
 vtkMTimeType vtkIrradianceVolumeFilter::GetMTime()
 {
   vtkMTimeType mtime = this->Superclass::GetMTime();
@@ -533,6 +586,14 @@ vtkMTimeType vtkIrradianceVolumeFilter::GetMTime()
     mtime = std::max(mtime, this->Internals->Material->GetMTime());
   }
   mtime = std::max(mtime, this->Internals->Lights->GetMTime());
+  if (vtkPlaneCollection* planes = this->Internals->ClippingPlanes)
+  {
+    mtime = std::max(mtime, planes->GetMTime());
+    for (int i = 0; i < planes->GetNumberOfItems(); ++i)
+    {
+      mtime = std::max(mtime, planes->GetItem(i)->GetMTime());
+    }
+  }
   vtkCollectionSimpleIterator it;
   this->Internals->Lights->InitTraversal(it);
   while (vtkLight* light = this->Internals->Lights->GetNextLight(it))
@@ -568,7 +629,7 @@ int vtkIrradianceVolumeFilter::RequestInformation(
     extent[5] - extent[4] + 1 };
   int dims[3];
   ComputeIrradianceDimensions(dataDims, this->Internals->Lights->GetNumberOfItems(),
-    this->IrradianceMemoryMB, this->IrradianceScale, dims);
+    this->IrradianceMemoryMB, mmv::ValidIrradianceScale(this->IrradianceScale, nullptr), dims);
   const mmv::IrradianceGrid grid =
     mmv::MakeIrradianceGrid(extent, origin, spacing, direction, dims);
   const int outExtent[6] = { 0, dims[0] - 1, 0, dims[1] - 1, 0, dims[2] - 1 };
@@ -626,8 +687,14 @@ int vtkIrradianceVolumeFilter::RequestData(
   const int dataDims[3] = { inExtent[1] - inExtent[0] + 1, inExtent[3] - inExtent[2] + 1,
     inExtent[5] - inExtent[4] + 1 };
   const int numberOfLights = this->Internals->Lights->GetNumberOfItems();
-  ComputeIrradianceDimensions(dataDims, numberOfLights, this->IrradianceMemoryMB,
-    this->IrradianceScale, this->IrradianceDimensions);
+  std::string scaleProblem;
+  const double scale = mmv::ValidIrradianceScale(this->IrradianceScale, &scaleProblem);
+  if (!scaleProblem.empty())
+  {
+    vtkWarningMacro(<< scaleProblem);
+  }
+  ComputeIrradianceDimensions(
+    dataDims, numberOfLights, this->IrradianceMemoryMB, scale, this->IrradianceDimensions);
   const mmv::IrradianceGrid grid = mmv::MakeIrradianceGrid(input, this->IrradianceDimensions);
   output->SetExtent(0, grid.Dimensions[0] - 1, 0, grid.Dimensions[1] - 1, 0, grid.Dimensions[2] - 1);
   SetGridGeometry(grid, output);
@@ -674,14 +741,23 @@ int vtkIrradianceVolumeFilter::RequestData(
     vtkErrorMacro("Could not build the shadow pre-integration table.");
     return 0;
   }
-  const double radius = this->PointLightRadius > 0.0
-    ? this->PointLightRadius
-    : std::min({ input->GetSpacing()[0], input->GetSpacing()[1], input->GetSpacing()[2] });
+  std::string radiusProblem;
+  const double radius = mmv::ValidPointLightRadius(this->PointLightRadius, &radiusProblem);
+  if (!radiusProblem.empty())
+  {
+    vtkWarningMacro(<< radiusProblem);
+  }
   std::vector<LightTask> tasks;
   std::vector<vtkSmartPointer<vtkFloatArray>> arrays;
-  MakeLightTasks(this->Internals->Lights, radius, grid.GetNumberOfVoxels(), tasks, arrays);
+  std::vector<std::string> problems;
+  MakeLightTasks(
+    this->Internals->Lights, radius, grid.GetNumberOfVoxels(), tasks, arrays, problems);
+  for (const std::string& problem : problems)
+  {
+    vtkWarningMacro(<< problem);
+  }
   const RayContext ctx{ &grid, prefiltered.data(), this->Internals->Table, step,
-    grid.PhysicalToIndexMatrix() };
+    grid.PhysicalToIndexMatrix(), mmv::ToIndexSpace(this->MakeCutaway(), grid) };
   std::vector<float> transmittance;
   for (size_t l = 0; l < tasks.size(); ++l)
   {
@@ -743,6 +819,15 @@ void vtkIrradianceVolumeFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "IrradianceScale: " << this->IrradianceScale << "\n";
   os << indent << "IrradianceMemoryMB: " << this->IrradianceMemoryMB << "\n";
   os << indent << "PointLightRadius: " << this->PointLightRadius << "\n";
+  os << indent << "Cropping: " << this->Cropping << "\n";
+  os << indent << "CroppingRegionPlanes: " << this->CroppingRegionPlanes[0] << " "
+     << this->CroppingRegionPlanes[1] << " " << this->CroppingRegionPlanes[2] << " "
+     << this->CroppingRegionPlanes[3] << " " << this->CroppingRegionPlanes[4] << " "
+     << this->CroppingRegionPlanes[5] << "\n";
+  os << indent << "CroppingRegionFlags: " << this->CroppingRegionFlags << "\n";
+  os << indent << "ClippingPlanes: "
+     << (this->Internals->ClippingPlanes ? this->Internals->ClippingPlanes->GetNumberOfItems() : 0)
+     << "\n";
   os << indent << "ShadowStepScale: " << this->ShadowStepScale << "\n";
   os << indent << "ShadowEstimation: " << this->ShadowEstimation << "\n";
   os << indent << "PiecewiseShadowSlices: " << this->PiecewiseShadowSlices << "\n";

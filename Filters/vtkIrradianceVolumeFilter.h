@@ -44,12 +44,15 @@
 #define vtkIrradianceVolumeFilter_h
 
 #include "vtkImageAlgorithm.h"
+#include "vtkMultiMaterialCutaway.h"    // mmv::Cutaway
 #include "vtkMultiMaterialParameters.h" // ShadowEstimation
 #include "vtkMultiMaterialVolumeModule.h" // export macro
 
 class vtkLight;
 class vtkLightCollection;
 class vtkMaterialTransferFunction;
+class vtkPlaneCollection;
+class vtkVolumeMapper;
 class vtkPiecewiseFunction;
 
 class VTKMULTIMATERIALVOLUME_EXPORT vtkIrradianceVolumeFilter : public vtkImageAlgorithm
@@ -73,6 +76,24 @@ public:
 
   ///@{
   /// The lights, in world coordinates.
+  ///@{
+  /**
+   * Cutaways, as vtkVolumeMapper defines them: what the cropping region
+   * (data coordinates, VTK's region flags) and the clipping planes (world
+   * coordinates; a plane keeps the side its normal points to) remove is
+   * empty for the shadow rays. Copy a mapper's with CopyCutaway().
+   */
+  vtkSetMacro(Cropping, bool);
+  vtkGetMacro(Cropping, bool);
+  vtkSetVector6Macro(CroppingRegionPlanes, double);
+  vtkGetVector6Macro(CroppingRegionPlanes, double);
+  vtkSetMacro(CroppingRegionFlags, int);
+  vtkGetMacro(CroppingRegionFlags, int);
+  void SetClippingPlanes(vtkPlaneCollection* planes);
+  vtkPlaneCollection* GetClippingPlanes();
+  void CopyCutaway(vtkVolumeMapper* mapper);
+  ///@}
+
   void AddLight(vtkLight* light);
   void RemoveAllLights();
   void SetLights(vtkLightCollection* lights);
@@ -80,17 +101,21 @@ public:
   ///@}
 
   /// Irradiance resolution as a fraction of the data's (0 < x <= 1); 0 (default)
-  /// chooses it from IrradianceMemoryMB.
-  vtkSetClampMacro(IrradianceScale, double, 0.0, 1.0);
+  /// chooses it from IrradianceMemoryMB. Values above 1 are reported
+  /// (warning) and used as 1; negative or NaN ones as 0.
+  vtkSetMacro(IrradianceScale, double);
   vtkGetMacro(IrradianceScale, double);
 
   /// Memory budget in MB for the irradiance volume (16 bits per light per voxel).
   vtkSetClampMacro(IrradianceMemoryMB, double, 0.001, 1.0e6);
   vtkGetMacro(IrradianceMemoryMB, double);
 
-  /// Radius epsilon of point and spot lights in world units; 0 (default)
-  /// means the smallest data spacing.
-  vtkSetClampMacro(PointLightRadius, double, 0.0, VTK_DOUBLE_MAX);
+  /// Falloff of point and spot lights. 0 (default): VTK's, by each light's
+  /// AttenuationValues (constant, linear, quadratic; the default (1, 0, 0)
+  /// means none). > 0: the paper's eq. 12 with this radius epsilon (object
+  /// units), (epsilon / distance)^2 beyond it. A negative or non-finite
+  /// value is reported (warning) and treated as 0.
+  vtkSetMacro(PointLightRadius, double);
   vtkGetMacro(PointLightRadius, double);
 
   /// Shadow-ray step in irradiance voxels (default 1).
@@ -145,6 +170,13 @@ public:
   vtkMTimeType GetMTime() override;
 
 protected:
+#ifndef __VTK_WRAP__
+  mmv::Cutaway MakeCutaway();
+#endif
+  bool Cropping = false;
+  double CroppingRegionPlanes[6] = { 0.0, 1.0, 0.0, 1.0, 0.0, 1.0 };
+  int CroppingRegionFlags = 0x0002000; // VTK_CROP_SUBVOLUME
+
   vtkIrradianceVolumeFilter();
   ~vtkIrradianceVolumeFilter() override;
 

@@ -249,4 +249,20 @@ void PrefilterScalars(vtkImageData* image, vtkDataArray* scalars, int component,
   });
 }
 
+double ValidIrradianceScale(double scale, std::string* why)
+{
+  if (scale >= 0.0 && scale <= 1.0)
+  {
+    return scale;
+  }
+  const bool above = scale > 1.0;
+  if (why)
+  {
+    *why = "IrradianceScale " + std::to_string(scale) +
+      (above ? " is above 1 (the data's resolution); using 1"
+             : " must be in [0, 1]; using 0 (automatic)");
+  }
+  return above ? 1.0 : 0.0;
+}
+
 } // namespace mmv

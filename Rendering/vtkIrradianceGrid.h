@@ -76,6 +76,11 @@ struct IrradianceGrid
 VTKMULTIMATERIALVOLUME_EXPORT void ComputeIrradianceDimensions(const int dataDims[3],
   int numberOfLights, double budgetMB, double scale, int irradianceDims[3]);
 
+/// Checks an IrradianceScale (0: automatic; (0, 1]: that fraction of the
+/// data's resolution): above 1 returns 1, negative or NaN returns 0, and
+/// `why` (if given) says so; valid values come back unchanged.
+VTKMULTIMATERIALVOLUME_EXPORT double ValidIrradianceScale(double scale, std::string* why);
+
 /// The irradiance resolution a frame uses, and why (for logs and the UI).
 struct IrradianceResolution
 {

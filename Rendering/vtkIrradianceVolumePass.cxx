@@ -21,6 +21,7 @@
 #include "mmvIrradianceFS.h"
 #include "mmvLayerGS.h"
 #include "mmvLayerVS.h"
+#include "mmvCutaway.h"
 #include "mmvLightModel.h"
 #include "mmvPiecewiseShadowFS.h"
 #include "mmvShadowRay.h"
@@ -68,7 +69,10 @@ std::string ComposeShader(
 {
   std::string source = compute ? "#version 430 core\n#define MMV_COMPUTE\n" : "//VTK::System::Dec\n";
   source += mmv::MaterialGLSLPrelude();
+  source += mmv::CutawayGLSLPrelude();
   source += defines;
+  source += mmvCutaway;
+  source += "\n";
   if (lightModel)
   {
     source += mmvLightModel;
@@ -132,7 +136,9 @@ void SetLightUniforms(
   float toLight[LightsPerTexture][3] = {};
   float spotAxis[LightsPerTexture][3] = {};
   float cosCone[LightsPerTexture] = { -1.0f, -1.0f, -1.0f, -1.0f };
-  float radius[LightsPerTexture] = { 1.0f, 1.0f, 1.0f, 1.0f };
+  float spotExponent[LightsPerTexture] = {};
+  float attenuation[LightsPerTexture][3] = {};
+  float radius[LightsPerTexture] = {};
   for (int l = 0; l < count; ++l)
   {
     const mmv::LightSource& light = lights[first + l];
@@ -142,8 +148,10 @@ void SetLightUniforms(
       position[l][a] = static_cast<float>(light.Position[a]);
       toLight[l][a] = static_cast<float>(light.ToLight[a]);
       spotAxis[l][a] = static_cast<float>(light.SpotAxis[a]);
+      attenuation[l][a] = static_cast<float>(light.Attenuation[a]);
     }
     cosCone[l] = static_cast<float>(light.CosCone);
+    spotExponent[l] = static_cast<float>(light.SpotExponent);
     radius[l] = static_cast<float>(light.Radius);
   }
   program->SetUniformi("numberOfLights", count);
@@ -153,7 +161,39 @@ void SetLightUniforms(
   program->SetUniform3fv("lightToLight", LightsPerTexture, toLight);
   program->SetUniform3fv("lightSpotAxis", LightsPerTexture, spotAxis);
   program->SetUniform1fv("lightCosCone", LightsPerTexture, cosCone);
+  program->SetUniform1fv("lightSpotExponent", LightsPerTexture, spotExponent);
+  program->SetUniform3fv("lightAttenuation", LightsPerTexture, attenuation);
   program->SetUniform1fv("lightRadius", LightsPerTexture, radius);
+}
+
+/// The uniforms of Shaders/mmvCutaway.glsl.
+void SetCutawayUniforms(vtkShaderProgram* program, const mmv::IndexCutaway& cut)
+{
+  float planes[mmv::MaxCutPlanes][4] = {};
+  for (int p = 0; p < cut.NumberOfPlanes; ++p)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      planes[p][c] = static_cast<float>(cut.Planes[p][c]);
+    }
+  }
+  float axes[3][4] = {};
+  float bounds[6] = {};
+  for (int a = 0; a < 3; ++a)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      axes[a][c] = static_cast<float>(cut.CropAxes[a][c]);
+    }
+    bounds[2 * a] = static_cast<float>(cut.CropBounds[2 * a]);
+    bounds[2 * a + 1] = static_cast<float>(cut.CropBounds[2 * a + 1]);
+  }
+  program->SetUniformi("cutPlaneCount", cut.NumberOfPlanes);
+  program->SetUniform4fv("cutPlanes", mmv::MaxCutPlanes, planes);
+  program->SetUniformi("cropping", cut.Cropping ? 1 : 0);
+  program->SetUniform4fv("cropAxes", 3, axes);
+  program->SetUniform1fv("cropBounds", 6, bounds);
+  program->SetUniformi("cropFlags", cut.CropFlags);
 }
 
 bool SameGrid(const mmv::IrradianceGrid& a, const mmv::IrradianceGrid& b)
@@ -164,8 +204,7 @@ bool SameGrid(const mmv::IrradianceGrid& a, const mmv::IrradianceGrid& b)
 
 bool SameLight(const mmv::LightSource& a, const mmv::LightSource& b)
 {
-  return a.Kind == b.Kind && a.Position == b.Position && a.ToLight == b.ToLight &&
-    a.SpotAxis == b.SpotAxis && a.CosCone == b.CosCone && a.Radius == b.Radius;
+  return a == b;
 }
 
 /// Activates textures for one draw and deactivates them when it ends.
@@ -221,6 +260,7 @@ public:
   std::vector<float> OpacityTable;
   std::vector<float> ScatteringTable;
   std::vector<mmv::LightSource> Lights;
+  mmv::Cutaway Cut;
   bool HasInputs = false;
   bool Uploaded = false;
   vtkIdType VolumeUploads = 0;
@@ -623,6 +663,7 @@ void vtkIrradianceVolumePass::vtkInternals::SetShadowRayUniforms(vtkShaderProgra
   program->SetUniform1iv("dims", 3, this->Grid.Dimensions);
   program->SetUniformMatrix3x3("worldToIndex", glm::value_ptr(toIndex));
   program->SetUniformf("stepLength", static_cast<float>(this->StepLength));
+  SetCutawayUniforms(program, mmv::ToIndexSpace(this->Cut, this->Grid));
 }
 
 //------------------------------------------------------------------------------
@@ -972,6 +1013,18 @@ void vtkIrradianceVolumePass::SetInputs(const mmv::IrradianceGrid& grid,
   }
   internals.HasInputs = true;
   internals.ScalarsVersion = scalarsVersion;
+}
+
+//------------------------------------------------------------------------------
+void vtkIrradianceVolumePass::SetCutaway(const mmv::Cutaway& cutaway)
+{
+  vtkInternals& internals = *this->Internals;
+  if (cutaway.Key() != internals.Cut.Key())
+  {
+    internals.Cut = cutaway;
+    internals.VolumeChanged = true;
+    this->Modified();
+  }
 }
 
 //------------------------------------------------------------------------------

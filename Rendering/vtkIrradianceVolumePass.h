@@ -47,6 +47,7 @@
 // could call it anyway.
 #ifndef __VTK_WRAP__
 #include "vtkIrradianceGrid.h"         // IrradianceGrid
+#include "vtkMultiMaterialCutaway.h"    // Cutaway
 #include "vtkMultiMaterialLightModel.h" // LightSource
 #endif
 #include "vtkMultiMaterialParameters.h"   // ShadowEstimation
@@ -84,6 +85,12 @@ public:
     int tableSize, const float* shadowTable, double stepLength, const float* opacityTable,
     const float* scatteringTable, const std::vector<mmv::LightSource>& lights,
     unsigned long scalarsVersion = 0);
+#endif
+
+#ifndef __VTK_WRAP__
+  /// What the shadow rays treat as empty (object space); a change recomputes
+  /// every light.
+  void SetCutaway(const mmv::Cutaway& cutaway);
 #endif
 
   /// Diffusion for multiple scattering (default on); time T of eq. 15.

@@ -1,20 +1,36 @@
 /**
  * @file   vtkMultiMaterialLightModel.h
- * @brief  Light-source terms of Zhang & Ma eqs. 11-14, on the CPU.
+ * @brief  Light-source terms (the unshadowed part of I_k(x), Zhang & Ma eqs.
+ *         11-14, with VTK's light conventions), on the CPU.
  *
  * Each function mirrors the GLSL function of the same name in
- * Shaders/mmvLightModel.glsl line for line; the tests run both.
+ * Shaders/mmvLightModel.glsl line for line; TestShaderMirror runs both.
+ * The irradiance pass, the CPU irradiance filter and the reference renderer
+ * all evaluate lights only through these functions.
  *
- * Light kinds follow vtkLight: a non-positional light is directional
- * (rays toward the light run along position - focalPoint); a positional light
- * with ConeAngle >= 90 degrees is a point light; below 90 it is a spot light
- * whose ConeAngle is the half-angle of the cone (VTK's meaning; the paper's
- * phi is the full angle, so cos(phi/2) there is cos(ConeAngle) here).
+ * Light kinds follow vtkLight and VTK 9.2's Phong (vtkVolumeShaderComposer,
+ * lighting complexity 3): a non-positional light is directional (rays toward
+ * the light run along position - focalPoint); a positional light with
+ * ConeAngle > 90 degrees is a point light; up to 90 it is a spot light whose
+ * ConeAngle is the half-angle of the cone (the paper's phi is the full angle,
+ * so cos(phi/2) there is cos(ConeAngle) here).
+ *
+ * Distance falloff of point and spot lights:
+ *  - Radius == 0 (default): VTK's AttenuationValues (c0, c1, c2):
+ *    1 / (c0 + c1 d + c2 d^2); the vtkLight default (1, 0, 0) means none.
+ *  - Radius > 0: the paper's eq. 12, epsilon^2 / max(epsilon^2, d^2).
+ * Spot cone: 1 / 0 inside / outside the cone (VTK: inside includes the edge),
+ * times VTK's angular falloff cos(angle to the axis)^Exponent inside; an
+ * Exponent of 0 is the hard cone of eq. 14.
  */
 #ifndef vtkMultiMaterialLightModel_h
 #define vtkMultiMaterialLightModel_h
 
+#include "vtkMultiMaterialParameters.h" // MinAttenuationDenominator
+
 #include <glm/glm.hpp>
+
+#include <cmath>
 
 namespace mmv
 {
@@ -26,7 +42,7 @@ enum LightKind : int
   SpotLight = 2
 };
 
-/// A light in world coordinates, as the irradiance estimation sees it.
+/// A light in object coordinates, as the irradiance estimation sees it.
 /// Colour and intensity are not here: irradiance is stored without them.
 struct LightSource
 {
@@ -35,30 +51,70 @@ struct LightSource
   glm::dvec3 ToLight{ 0.0, 0.0, 1.0 }; // directional: unit vector toward the light
   glm::dvec3 SpotAxis{ 0.0, 0.0, -1.0 }; // spot: unit axis of the cone
   double CosCone = -1.0;           // spot: cos of the cone half-angle
-  double Radius = 1.0;             // point/spot: epsilon of eq. 12
+  double SpotExponent = 0.0;       // spot: vtkLight::Exponent (0: hard cone)
+  /// point/spot: vtkLight::AttenuationValues (constant, linear, quadratic),
+  /// with distances in object units; used when Radius == 0.
+  glm::dvec3 Attenuation{ 1.0, 0.0, 0.0 };
+  double Radius = 0.0;             // point/spot: epsilon of eq. 12; 0: Attenuation
+
+  bool operator==(const LightSource& o) const
+  {
+    return Kind == o.Kind && Position == o.Position && ToLight == o.ToLight &&
+      SpotAxis == o.SpotAxis && CosCone == o.CosCone && SpotExponent == o.SpotExponent &&
+      Attenuation == o.Attenuation && Radius == o.Radius;
+  }
+  bool operator!=(const LightSource& o) const { return !(*this == o); }
 };
 
 /// eq. 12: epsilon^2 / max(epsilon^2, d^2), i.e. 1 within the radius and
 /// epsilon^2 / d^2 beyond it; the clamp keeps a light sitting on a voxel
-/// centre finite. Radius 0 is the limit of eq. 12 (1 at the light's own
-/// position, 0 elsewhere) rather than 0/0: the formula is normalised at
-/// d = epsilon, so an unnormalised 1/d^2 would not be its limit. Written as a
-/// branch so that no 0/0 can occur; for radius > 0 it equals the formula.
+/// centre finite. Written as a branch so that no 0/0 can occur.
 inline double mmvPointFalloff(double radius, double distance2)
 {
   const double e2 = radius * radius;
   return distance2 <= e2 ? 1.0 : e2 / distance2;
 }
 
-/// eq. 14: 1 inside the open cone, 0 outside (and on its edge).
-inline double mmvSpotVisibility(const glm::dvec3& lightToPoint, const glm::dvec3& axis, double cosCone)
+/// VTK's Phong: 1 / (c0 + c1 d + c2 d^2), the polynomial clamped below at
+/// MinAttenuationDenominator (coefficients are >= 0, see MakeLightSource).
+inline double mmvAttenuationFalloff(const glm::dvec3& attenuation, double distance2)
+{
+  const double d = std::sqrt(distance2);
+  const double p = attenuation.x + attenuation.y * d + attenuation.z * distance2;
+  return 1.0 / (p > MinAttenuationDenominator ? p : MinAttenuationDenominator);
+}
+
+/// The distance falloff of a point or spot light: eq. 12 when radius > 0,
+/// else VTK's attenuation.
+inline double mmvDistanceFalloff(double radius, const glm::dvec3& attenuation, double distance2)
+{
+  return radius > 0.0 ? mmvPointFalloff(radius, distance2)
+                      : mmvAttenuationFalloff(attenuation, distance2);
+}
+
+/// Spot cone as VTK's Phong: cos^exponent of the angle to the axis inside the
+/// cone (edge included), 0 outside; exponent 0 is the hard cone of eq. 14.
+inline double mmvSpotFactor(
+  const glm::dvec3& lightToPoint, const glm::dvec3& axis, double cosCone, double exponent)
 {
   const double len = glm::length(lightToPoint);
   if (len <= 0.0)
   {
     return 1.0; // at the apex: treat as lit, the falloff handles the rest
   }
-  return glm::dot(lightToPoint / len, axis) > cosCone ? 1.0 : 0.0;
+  const double c = glm::dot(lightToPoint / len, axis);
+  if (!(c >= cosCone))
+  {
+    return 0.0;
+  }
+  // pow(0, 0) is undefined in GLSL: exponent 0 is the hard cone.
+  return exponent > 0.0 ? std::pow(c > 0.0 ? c : 0.0, exponent) : 1.0;
+}
+
+/// eq. 14: the hard cone, 1 inside (edge included, as VTK) and 0 outside.
+inline double mmvSpotVisibility(const glm::dvec3& lightToPoint, const glm::dvec3& axis, double cosCone)
+{
+  return mmvSpotFactor(lightToPoint, axis, cosCone, 0.0);
 }
 
 /// Unit direction and distance from point x toward the light. Directional
@@ -82,7 +138,7 @@ inline glm::dvec3 mmvDirectionToLight(const LightSource& light, const glm::dvec3
   return mmvDirectionToLight(light.Kind, light.Position, light.ToLight, x, distance);
 }
 
-/// Unshadowed part of I_k(x) (eqs. 11-13 without the transmittance).
+/// Unshadowed part of I_k(x) (eqs. 11-14 without the transmittance).
 inline double mmvLightGeometryTerm(const LightSource& light, const glm::dvec3& x)
 {
   if (light.Kind == DirectionalLight)
@@ -90,10 +146,11 @@ inline double mmvLightGeometryTerm(const LightSource& light, const glm::dvec3& x
     return 1.0;
   }
   const glm::dvec3 lightToPoint = x - light.Position;
-  double term = mmvPointFalloff(light.Radius, glm::dot(lightToPoint, lightToPoint));
+  double term =
+    mmvDistanceFalloff(light.Radius, light.Attenuation, glm::dot(lightToPoint, lightToPoint));
   if (light.Kind == SpotLight)
   {
-    term *= mmvSpotVisibility(lightToPoint, light.SpotAxis, light.CosCone);
+    term *= mmvSpotFactor(lightToPoint, light.SpotAxis, light.CosCone, light.SpotExponent);
   }
   return term;
 }

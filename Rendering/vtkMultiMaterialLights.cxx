@@ -30,6 +30,60 @@ glm::dvec3 SafeNormalize(const glm::dvec3& v, const glm::dvec3& fallback)
   return len > 0.0 && std::isfinite(len) ? v / len : fallback;
 }
 
+/// Mean linear scale of a matrix's 3x3 part (cube root of |det|), 1 when
+/// there is no matrix or it is degenerate.
+double MeanScale(const vtkMatrix4x4* m)
+{
+  if (!m)
+  {
+    return 1.0;
+  }
+  double a[3][3];
+  for (int i = 0; i < 3; ++i)
+  {
+    for (int j = 0; j < 3; ++j)
+    {
+      a[i][j] = m->GetElement(i, j);
+    }
+  }
+  const double det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
+    a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
+    a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
+  const double s = std::cbrt(std::abs(det));
+  return s > 0.0 && std::isfinite(s) ? s : 1.0;
+}
+
+std::string Describe(vtkLight* light, int index)
+{
+  return "light " + std::to_string(index) + " (" + light->GetClassName() + ")";
+}
+
+void Report(std::vector<std::string>* problems, const std::string& what)
+{
+  if (problems)
+  {
+    problems->push_back(what);
+  }
+}
+
+/// vtkLight::AttenuationValues, or (1, 0, 0) when VTK's Phong would divide
+/// by a negative, NaN or zero polynomial.
+glm::dvec3 ValidAttenuation(vtkLight* light, int index, std::vector<std::string>* problems)
+{
+  const double* a = light->GetAttenuationValues();
+  const glm::dvec3 att(a[0], a[1], a[2]);
+  const bool finite = std::isfinite(att.x) && std::isfinite(att.y) && std::isfinite(att.z);
+  if (!finite || att.x < 0.0 || att.y < 0.0 || att.z < 0.0 || (att.x + att.y + att.z) <= 0.0)
+  {
+    Report(problems,
+      Describe(light, index) + ": AttenuationValues (" + std::to_string(att.x) + ", " +
+        std::to_string(att.y) + ", " + std::to_string(att.z) +
+        ") must be finite, >= 0 and not all 0; using (1, 0, 0), no falloff");
+    return glm::dvec3(1.0, 0.0, 0.0);
+  }
+  return att;
+}
+
 double Strength(vtkLight* light)
 {
   const double* c = light->GetDiffuseColor();
@@ -42,7 +96,11 @@ bool IsLightActive(vtkLight* light)
   return light && light->GetSwitch() && light->GetIntensity() > 0.0 && Strength(light) > 0.0;
 }
 
-LightSource MakeLightSource(vtkLight* light, const vtkMatrix4x4* worldToObject, double radius)
+namespace
+{
+/// MakeLightSource for the light at `index` of its collection (for messages).
+LightSource MakeIndexedLightSource(vtkLight* light, const vtkMatrix4x4* worldToObject,
+  double radius, int index, std::vector<std::string>* problems)
 {
   double position[3];
   double focal[3];
@@ -62,20 +120,64 @@ LightSource MakeLightSource(vtkLight* light, const vtkMatrix4x4* worldToObject, 
     return source;
   }
   source.Position = p;
-  // VTK: a cone angle of 90 degrees or more means no spot effect.
-  if (light->GetConeAngle() >= 90.0)
+  // VTK measures attenuation distances in eye space, a rigid image of world
+  // space; object distances are world distances times the mean scale.
+  const double s = MeanScale(worldToObject);
+  const glm::dvec3 att = ValidAttenuation(light, index, problems);
+  source.Attenuation = glm::dvec3(att.x, att.y / s, att.z / (s * s));
+  const double cone = light->GetConeAngle();
+  if (!(cone > 0.0 && cone < 180.0))
+  {
+    Report(problems,
+      Describe(light, index) + ": ConeAngle " + std::to_string(cone) +
+        " is not in (0, 180) degrees; it shines as a point light (no cone)");
+    source.Kind = PointLight;
+    return source;
+  }
+  // VTK's Phong: a cone (half-)angle above 90 degrees means no spot effect.
+  if (cone > 90.0)
   {
     source.Kind = PointLight;
     return source;
   }
   source.Kind = SpotLight;
   source.SpotAxis = SafeNormalize(f - p, glm::dvec3(0.0, 0.0, -1.0));
-  source.CosCone = std::cos(light->GetConeAngle() * M_PI / 180.0);
+  source.CosCone = std::cos(cone * M_PI / 180.0);
+  source.SpotExponent = light->GetExponent();
+  if (!(source.SpotExponent >= 0.0) || !std::isfinite(source.SpotExponent))
+  {
+    Report(problems,
+      Describe(light, index) + ": Exponent " + std::to_string(source.SpotExponent) +
+        " must be finite and >= 0; using 1");
+    source.SpotExponent = 1.0;
+  }
   return source;
+}
+}
+
+LightSource MakeLightSource(vtkLight* light, const vtkMatrix4x4* worldToObject, double radius,
+  std::vector<std::string>* problems)
+{
+  return MakeIndexedLightSource(light, worldToObject, radius, 0, problems);
+}
+
+double ValidPointLightRadius(double radius, std::string* why)
+{
+  if (std::isfinite(radius) && radius >= 0.0)
+  {
+    return radius;
+  }
+  if (why)
+  {
+    *why = "PointLightRadius " + std::to_string(radius) +
+      " must be finite and >= 0; using 0 (the lights' AttenuationValues)";
+  }
+  return 0.0;
 }
 
 std::vector<ShadingLight> CollectLights(vtkLightCollection* lights,
-  const vtkMatrix4x4* worldToObject, double radius, int maxLights, int* dropped)
+  const vtkMatrix4x4* worldToObject, double radius, int maxLights, int* dropped,
+  std::vector<std::string>* problems)
 {
   std::vector<ShadingLight> result;
   std::vector<double> strength;
@@ -89,7 +191,7 @@ std::vector<ShadingLight> CollectLights(vtkLightCollection* lights,
       if (IsLightActive(light))
       {
         ShadingLight sl;
-        sl.Source = MakeLightSource(light, worldToObject, radius);
+        sl.Source = MakeIndexedLightSource(light, worldToObject, radius, index, problems);
         const double* c = light->GetDiffuseColor();
         sl.Radiance = glm::dvec3(c[0], c[1], c[2]) * light->GetIntensity();
         sl.Index = index;

@@ -13,6 +13,7 @@
 #include "vtkMultiMaterialLightModel.h"
 #include "vtkMultiMaterialVolumeModule.h" // export macro
 
+#include <string>
 #include <vector>
 
 class vtkLight;
@@ -34,9 +35,20 @@ struct ShadingLight
 /// non-black colour). Such lights cost nothing anywhere.
 VTKMULTIMATERIALVOLUME_EXPORT bool IsLightActive(vtkLight* light);
 
-/// The light's geometry in object space. `radius` is epsilon of eq. 12.
-VTKMULTIMATERIALVOLUME_EXPORT LightSource MakeLightSource(
-  vtkLight* light, const vtkMatrix4x4* worldToObject, double radius);
+/**
+ * The light's geometry in object space. `radius` is epsilon of eq. 12 (0:
+ * the light's AttenuationValues). Attenuation distances are world distances,
+ * as in VTK: a scaling worldToObject rescales the coefficients (by its mean
+ * scale, the cube root of its determinant).
+ *
+ * Values VTK's Phong would turn into NaN, infinite or black light are
+ * replaced, and each replacement is described in `problems` (if given):
+ * negative, NaN or all-zero attenuation -> (1, 0, 0); a cone angle that is
+ * NaN, <= 0 or >= 180 -> a point light (VTK: > 90 means no cone); a negative
+ * or NaN Exponent -> 1 (vtkLight's default).
+ */
+VTKMULTIMATERIALVOLUME_EXPORT LightSource MakeLightSource(vtkLight* light,
+  const vtkMatrix4x4* worldToObject, double radius, std::vector<std::string>* problems = nullptr);
 
 /**
  * The active lights of a collection, in collection order. With more than
@@ -44,7 +56,12 @@ VTKMULTIMATERIALVOLUME_EXPORT LightSource MakeLightSource(
  * channel) are kept and `dropped` (if given) receives how many were left out.
  */
 VTKMULTIMATERIALVOLUME_EXPORT std::vector<ShadingLight> CollectLights(vtkLightCollection* lights,
-  const vtkMatrix4x4* worldToObject, double radius, int maxLights, int* dropped = nullptr);
+  const vtkMatrix4x4* worldToObject, double radius, int maxLights, int* dropped = nullptr,
+  std::vector<std::string>* problems = nullptr);
+
+/// Checks a PointLightRadius (eq. 12's epsilon; 0 selects VTK's attenuation):
+/// a negative or non-finite radius returns 0 and describes why in `why`.
+VTKMULTIMATERIALVOLUME_EXPORT double ValidPointLightRadius(double radius, std::string* why);
 
 } // namespace mmv
 

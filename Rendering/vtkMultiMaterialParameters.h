@@ -75,6 +75,11 @@ constexpr MaterialParameterInfo MaterialParameterTable[MaterialParameterCount] =
 /// Lights the GPU path supports at once (more: the strongest are kept).
 constexpr int MaxLights = 8;
 
+/// A VTK light attenuation polynomial c0 + c1 d + c2 d^2 below this is
+/// clamped to it, so the falloff stays finite (at most 1e4) at the light
+/// itself, e.g. for (0, 0, 1) (GLSL: MMV_MIN_ATTENUATION_DENOMINATOR).
+constexpr double MinAttenuationDenominator = 1.0e-4;
+
 /// Bytes one light costs per irradiance voxel on the GPU (16-bit storage).
 /// The CPU filter uses the same figure so both pick the same resolution.
 constexpr double IrradianceBytesPerVoxelPerLight = 2.0;
@@ -209,6 +214,9 @@ inline std::string MaterialGLSLPrelude()
   }
   s += "#define MMV_MATERIAL_PARAMETER_COUNT " + std::to_string(MaterialParameterCount) + "\n";
   s += "#define MMV_MAX_LIGHTS " + std::to_string(MaxLights) + "\n";
+  char denominator[32];
+  std::snprintf(denominator, sizeof(denominator), "%.9e", MinAttenuationDenominator);
+  s += std::string("#define MMV_MIN_ATTENUATION_DENOMINATOR ") + denominator + "\n";
   return s;
 }
 

@@ -11,6 +11,8 @@
 #include "vtkMaterialTransferFunction.h"
 #include "vtkMatrix3x3.h"
 #include "vtkMatrix4x4.h"
+#include "vtkMultiMaterialCutaway.h"
+#include "vtkVolumeMapper.h"
 #include "vtkMultiMaterialLights.h"
 #include "vtkMultiMaterialParameters.h"
 #include "vtkMultiMaterialShading.h"
@@ -86,6 +88,7 @@ struct Scene
   double MaxOpticalDepth = 13.8;
   double GradientFade = 1.0;
   std::vector<mmv::ShadingLight> Lights;
+  mmv::IndexCutaway Cut; // in data index space: removed, as VTK's ray caster does
   // Per light: diffused minus direct irradiance at the voxels (empty: none).
   std::vector<std::vector<float>> ScatteringDelta;
   bool Reflection = false;
@@ -158,7 +161,12 @@ struct Scene
     double depth = 0.0;
     for (int m = 0; m < n && depth < this->MaxOpticalDepth; ++m)
     {
-      const double s = this->Data.Sample(p0 + (t0 + (m + 0.5) * h) * q);
+      const dvec3 pm = p0 + (t0 + (m + 0.5) * h) * q;
+      if (mmv::mmvIsCut(this->Cut, pm))
+      {
+        continue; // cut away: casts no shadow
+      }
+      const double s = this->Data.Sample(pm);
       int i;
       double w;
       this->Tables.Locate(s, i, w);
@@ -257,6 +265,10 @@ struct Scene
     {
       const dvec3 xm = x + (t0 + (m + 0.5) * h) * d;
       const dvec3 p = this->ToIndex(xm);
+      if (mmv::mmvIsCut(this->Cut, p))
+      {
+        continue;
+      }
       const double s = this->Data.Sample(p);
       ++samples;
       int i;
@@ -345,6 +357,20 @@ vtkMatrix4x4* vtkMultiMaterialReferenceRenderer::GetVolumeMatrix()
   return this->Matrix;
 }
 
+void vtkMultiMaterialReferenceRenderer::SetCutawayMapper(vtkVolumeMapper* mapper)
+{
+  if (this->CutawayMapper != mapper)
+  {
+    this->CutawayMapper = mapper;
+    this->Modified();
+  }
+}
+
+vtkVolumeMapper* vtkMultiMaterialReferenceRenderer::GetCutawayMapper()
+{
+  return this->CutawayMapper;
+}
+
 vtkImageData* vtkMultiMaterialReferenceRenderer::RenderToImage(vtkRenderer* ren, vtkVolume* volume)
 {
   if (!ren || !volume || !volume->GetMapper())
@@ -356,6 +382,7 @@ vtkImageData* vtkMultiMaterialReferenceRenderer::RenderToImage(vtkRenderer* ren,
   this->SetInputData(vtkImageData::SafeDownCast(mapper->GetDataSetInput()));
   this->SetVolumeProperty(volume->GetProperty());
   this->SetVolumeMatrix(volume->GetMatrix());
+  this->SetCutawayMapper(vtkVolumeMapper::SafeDownCast(mapper));
   if (auto* mmvMapper = vtkMultiMaterialVolumeMapper::SafeDownCast(mapper))
   {
     this->SetMaterialTransferFunction(mmvMapper->GetMaterialTransferFunction());
@@ -446,8 +473,25 @@ vtkImageData* vtkMultiMaterialReferenceRenderer::Render(vtkRenderer* ren, int wi
   }
   vtkNew<vtkMatrix4x4> worldToObject;
   vtkMatrix4x4::Invert(objectToWorld, worldToObject);
-  const double radius = this->PointLightRadius > 0.0 ? this->PointLightRadius : smallestSpacing;
-  scene.Lights = mmv::CollectLights(ren->GetLights(), worldToObject, radius, mmv::MaxLights);
+  std::string radiusProblem;
+  const double radius = mmv::ValidPointLightRadius(this->PointLightRadius, &radiusProblem);
+  if (!radiusProblem.empty())
+  {
+    vtkWarningMacro(<< radiusProblem);
+  }
+  {
+    int dims[3];
+    image->GetDimensions(dims);
+    scene.Cut = mmv::ToIndexSpace(
+      mmv::MakeCutaway(this->CutawayMapper, worldToObject), mmv::MakeIrradianceGrid(image, dims));
+  }
+  std::vector<std::string> problems;
+  scene.Lights = mmv::CollectLights(
+    ren->GetLights(), worldToObject, radius, mmv::MaxLights, nullptr, &problems);
+  for (const std::string& problem : problems)
+  {
+    vtkWarningMacro(<< problem);
+  }
   vtkCamera* camera = ren->GetActiveCamera();
   scene.Reflection =
     materials && materials->GetSize() > 0 && materials->GetMaximum(mmv::Reflection) > 0.0;

@@ -60,6 +60,7 @@
 class vtkImageData;
 class vtkMaterialTransferFunction;
 class vtkMatrix4x4;
+class vtkVolumeMapper;
 class vtkRenderer;
 class vtkVolume;
 class vtkVolumeProperty;
@@ -83,6 +84,13 @@ public:
   vtkMaterialTransferFunction* GetMaterialTransferFunction();
   void SetVolumeMatrix(vtkMatrix4x4* matrix);
   vtkMatrix4x4* GetVolumeMatrix();
+
+  /// The mapper whose cropping region and clipping planes remove parts of
+  /// the volume, as VTK's ray caster does, for the primary rays and the
+  /// shadow rays (what is cut away casts no shadow). RenderToImage() sets it
+  /// to the volume's mapper; null: nothing is cut.
+  void SetCutawayMapper(vtkVolumeMapper* mapper);
+  vtkVolumeMapper* GetCutawayMapper();
   ///@}
 
   /// Primary-ray step in object units; 0 (default) means smallest spacing / 8.
@@ -93,8 +101,12 @@ public:
   vtkSetClampMacro(ShadowSampleDistance, double, 0.0, VTK_DOUBLE_MAX);
   vtkGetMacro(ShadowSampleDistance, double);
 
-  /// Radius epsilon of point and spot lights; 0 (default): smallest spacing.
-  vtkSetClampMacro(PointLightRadius, double, 0.0, VTK_DOUBLE_MAX);
+  /// Falloff of point and spot lights. 0 (default): VTK's, by each light's
+  /// AttenuationValues (constant, linear, quadratic; the default (1, 0, 0)
+  /// means none). > 0: the paper's eq. 12 with this radius epsilon (object
+  /// units), (epsilon / distance)^2 beyond it. A negative or non-finite
+  /// value is reported (warning) and treated as 0.
+  vtkSetMacro(PointLightRadius, double);
   vtkGetMacro(PointLightRadius, double);
 
   /// Multiple scattering by diffusion (default on; skipped when every s = 0).
@@ -155,6 +167,7 @@ private:
   vtkSmartPointer<vtkVolumeProperty> Property;
   vtkSmartPointer<vtkMaterialTransferFunction> Materials;
   vtkSmartPointer<vtkMatrix4x4> Matrix;
+  vtkSmartPointer<vtkVolumeMapper> CutawayMapper;
   vtkSmartPointer<vtkImageData> Output;
 };
 

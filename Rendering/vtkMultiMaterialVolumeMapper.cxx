@@ -12,6 +12,7 @@
 #include "vtkMaterialTransferFunction.h"
 #include "vtkMatrix3x3.h"
 #include "vtkMatrix4x4.h"
+#include "vtkMultiMaterialCutaway.h"
 #include "vtkMultiMaterialLights.h"
 #include "vtkMultiMaterialParameters.h"
 #include "vtkMultiMaterialRenderPass.h"
@@ -348,6 +349,7 @@ void AppendLightKey(std::vector<double>& key, const mmv::LightSource& s)
   key.push_back(s.Kind);
   key.insert(key.end(), { s.Position.x, s.Position.y, s.Position.z, s.ToLight.x, s.ToLight.y,
                           s.ToLight.z, s.SpotAxis.x, s.SpotAxis.y, s.SpotAxis.z, s.CosCone,
+                          s.SpotExponent, s.Attenuation.x, s.Attenuation.y, s.Attenuation.z,
                           s.Radius });
 }
 
@@ -680,13 +682,20 @@ bool vtkMultiMaterialVolumeMapper::PrepareMultiMaterial(vtkRenderer* ren, vtkVol
   // 2. Lights, in the volume's object space.
   vtkNew<vtkMatrix4x4> worldToObject;
   vtkMatrix4x4::Invert(vol->GetMatrix(), worldToObject);
-  const double* spacing = image->GetSpacing();
-  const double radius = this->PointLightRadius > 0.0
-    ? this->PointLightRadius
-    : std::min({ std::abs(spacing[0]), std::abs(spacing[1]), std::abs(spacing[2]) });
   int dropped = 0;
-  in.Lights =
-    mmv::CollectLights(ren->GetLights(), worldToObject, radius, mmv::MaxLights, &dropped);
+  std::vector<std::string> problems;
+  std::string radiusProblem;
+  const double radius = mmv::ValidPointLightRadius(this->PointLightRadius, &radiusProblem);
+  if (!radiusProblem.empty())
+  {
+    problems.push_back(radiusProblem);
+  }
+  in.Lights = mmv::CollectLights(
+    ren->GetLights(), worldToObject, radius, mmv::MaxLights, &dropped, &problems);
+  for (const std::string& problem : problems)
+  {
+    this->WarnOnce(problem);
+  }
   if (dropped > 0)
   {
     this->WarnOnce("more than " + std::to_string(mmv::MaxLights) +
@@ -732,6 +741,7 @@ bool vtkMultiMaterialVolumeMapper::PrepareMultiMaterial(vtkRenderer* ren, vtkVol
     SamePointsMap(dims[a], this->IrradianceDimensions[a] > 0 ? this->IrradianceDimensions[a] : 1,
       in.IrradianceScale[a], in.IrradianceBias[a]);
   }
+  const double* spacing = image->GetSpacing();
   const double smallestSpacing =
     std::min({ std::abs(spacing[0]), std::abs(spacing[1]), std::abs(spacing[2]) });
   in.GradientFade = static_cast<float>(mmv::FullShadingGradientPerVoxel / smallestSpacing);
@@ -804,8 +814,13 @@ bool vtkMultiMaterialVolumeMapper::UpdateIrradiance(vtkRenderer* ren, vtkVolume*
   int dataDims[3];
   image->GetDimensions(dataDims);
   // The screen only matters when the resolution is automatic.
-  const double pixelsPerVoxel =
-    this->IrradianceScale > 0.0 ? 0.0 : ProjectedPixelsPerVoxel(ren, vol, image);
+  std::string scaleProblem;
+  const double scale = mmv::ValidIrradianceScale(this->IrradianceScale, &scaleProblem);
+  if (!scaleProblem.empty())
+  {
+    this->WarnOnce(scaleProblem);
+  }
+  const double pixelsPerVoxel = scale > 0.0 ? 0.0 : ProjectedPixelsPerVoxel(ren, vol, image);
   mmv::IrradianceResolution resolution;
   if (global)
   {
@@ -815,7 +830,7 @@ bool vtkMultiMaterialVolumeMapper::UpdateIrradiance(vtkRenderer* ren, vtkVolume*
   else
   {
     resolution = mmv::ChooseIrradianceResolution(dataDims, static_cast<int>(in.Lights.size()),
-      this->IrradianceMemoryMB, this->IrradianceScale, pixelsPerVoxel);
+      this->IrradianceMemoryMB, scale, pixelsPerVoxel);
   }
   // The irradiance is one 3D texture: no axis longer than the largest one
   // (a long volume is drawn in bricks, its irradiance spans it whole).
@@ -850,10 +865,23 @@ bool vtkMultiMaterialVolumeMapper::UpdateIrradiance(vtkRenderer* ren, vtkVolume*
 
   const vtkMTimeType dataTime =
     global ? global->GetMTime() : std::max(image->GetMTime(), scalars->GetMTime());
-  const std::vector<double> volumeKey = { double(dataTime), double(opacity->GetMTime()),
+  std::vector<double> volumeKey = { double(dataTime), double(opacity->GetMTime()),
     double(in.MaterialVersion), unitDistance, range[0], range[1], double(this->MultipleScattering),
     double(this->PreIntegrationTableSize), double(in.Lights.size()), double(this->ShadowEstimation),
     double(this->PiecewiseShadowSlices) };
+  // What cropping and clipping remove casts no shadow: part of the key, so a
+  // moved crop box or plane updates the irradiance.
+  vtkNew<vtkMatrix4x4> worldToObject;
+  vtkMatrix4x4::Invert(vol->GetMatrix(), worldToObject);
+  int droppedPlanes = 0;
+  const mmv::Cutaway cutaway = mmv::MakeCutaway(this, worldToObject, &droppedPlanes);
+  if (droppedPlanes > 0)
+  {
+    this->WarnOnce("more than " + std::to_string(mmv::MaxCutPlanes) +
+      " clipping planes: the shadow rays ignore the others");
+  }
+  const std::vector<double> cutKey = cutaway.Key();
+  volumeKey.insert(volumeKey.end(), cutKey.begin(), cutKey.end());
   std::vector<double> lightsKey;
   for (const auto& light : in.Lights)
   {
@@ -943,6 +971,7 @@ bool vtkMultiMaterialVolumeMapper::UpdateIrradiance(vtkRenderer* ren, vtkVolume*
   pass->SetMultipleScattering(this->MultipleScattering);
   pass->SetShadowEstimation(this->ShadowEstimation);
   pass->SetPiecewiseShadowSlices(this->PiecewiseShadowSlices);
+  pass->SetCutaway(cutaway);
   pass->SetInputs(in.Grid, in.Prefiltered, n, shadow->GetShadowOpacityTable(), shadowStep,
     opacityTable.data(), scatteringTable.data(), sources, in.PrefilteredVersion);
   if (!pass->Render(context))

@@ -69,7 +69,9 @@ public:
 
   /// Irradiance resolution as a fraction of the data's (0 < x <= 1); 0 (the
   /// default) chooses it from the memory budget.
-  vtkSetClampMacro(IrradianceScale, double, 0.0, 1.0);
+  /// Values above 1 are reported (warning) and used as 1; negative or NaN
+  /// ones as 0.
+  vtkSetMacro(IrradianceScale, double);
   vtkGetMacro(IrradianceScale, double);
 
   /// Diffusion for multiple scattering (default on; skipped when every s = 0).
@@ -99,9 +101,12 @@ public:
   vtkGetMacro(PreIntegration, bool);
   vtkBooleanMacro(PreIntegration, bool);
 
-  /// Radius epsilon of point and spot lights (object units); 0 (default)
-  /// means the smallest data spacing.
-  vtkSetClampMacro(PointLightRadius, double, 0.0, VTK_DOUBLE_MAX);
+  /// Falloff of point and spot lights. 0 (default): VTK's, by each light's
+  /// AttenuationValues (constant, linear, quadratic; the default (1, 0, 0)
+  /// means none). > 0: the paper's eq. 12 with this radius epsilon (object
+  /// units), (epsilon / distance)^2 beyond it. A negative or non-finite
+  /// value is reported (warning) and treated as 0.
+  vtkSetMacro(PointLightRadius, double);
   vtkGetMacro(PointLightRadius, double);
 
   /// Pre-integration table size n (n x n). Default 256.

@@ -16,6 +16,8 @@ uniform vec3 lightPosition[4];
 uniform vec3 lightToLight[4];
 uniform vec3 lightSpotAxis[4];
 uniform float lightCosCone[4];
+uniform float lightSpotExponent[4];
+uniform vec3 lightAttenuation[4];
 uniform float lightRadius[4];
 
 // Transmittance from voxel `start` toward the light: a full shadow ray, to the
@@ -50,7 +52,8 @@ void mmvVoxelMain()
         continue;
       }
       float geometry = mmvLightGeometryTerm(lightKind[light], lightPosition[light],
-        lightSpotAxis[light], lightCosCone[light], lightRadius[light], x);
+        lightSpotAxis[light], lightCosCone[light], lightSpotExponent[light],
+        lightAttenuation[light], lightRadius[light], x);
       if (geometry > 0.0) // outside a spot light's cone: no ray
       {
         irradiance[light] = geometry * mmvShadowTransmittance(light, start, x, startValue);

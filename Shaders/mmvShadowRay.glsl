@@ -3,7 +3,8 @@
 // (mmvPiecewiseShadowFS.glsl) shadow rays. Mirrors MarchTransmittance() of
 // Filters/vtkIrradianceVolumeFilter.cxx line for line. Needs the shadow-ray
 // constants of mmv::ShadowRayGLSLPrelude() (MMV_MIN_TRANSMITTANCE,
-// MMV_STEP_TOLERANCE, MMV_REST_TOLERANCE).
+// MMV_STEP_TOLERANCE, MMV_REST_TOLERANCE) and mmvCutaway.glsl: a segment
+// whose midpoint the cropping region or a clipping plane removes is empty.
 
 uniform sampler3D scalars;     // normalised pre-filtered values, linear
 uniform sampler2D shadowTable; // I_sigma(t1 along x, t2 along y), bilinear
@@ -57,14 +58,17 @@ float mmvMarchTransmittance(vec3 start, vec3 indexDir, float end, float startVal
       return transmittance;
     }
     float next = mmvSampleScalar(start + (float(n) * h) * indexDir);
-    transmittance *= 1.0 - mmvShadowOpacity(previous, next);
+    float alpha = mmvIsCut(start + ((float(n) - 0.5) * h) * indexDir)
+      ? 0.0 : mmvShadowOpacity(previous, next);
+    transmittance *= 1.0 - alpha;
     previous = next;
   }
   float rest = end - float(steps) * h;
   if (rest > MMV_REST_TOLERANCE * h && transmittance >= MMV_MIN_TRANSMITTANCE)
   {
     float next = mmvSampleScalar(start + end * indexDir);
-    float alpha = mmvShadowOpacity(previous, next);
+    float alpha = mmvIsCut(start + (0.5 * (float(steps) * h + end)) * indexDir)
+      ? 0.0 : mmvShadowOpacity(previous, next);
     // Optical depth is linear in the segment length for a linear value ramp.
     transmittance *= pow(max(0.0, 1.0 - alpha), rest / h);
   }

@@ -261,7 +261,7 @@ TEST(FailureCases, DegenerateLightPlacements)
   // Point light exactly on the voxel centre (8, 8, 8), inside the volume.
   vtkNew<vtkLight> inside;
   inside->PositionalOn();
-  inside->SetConeAngle(180.0);
+  inside->SetConeAngle(120.0);
   inside->SetPosition(8.0, 8.0, 8.0);
   inside->SetFocalPoint(8.0, 8.0, 0.0);
   // Directional light parallel to the x axis.

@@ -77,7 +77,7 @@ struct Scene
   vtkSmartPointer<vtkPiecewiseFunction> Opacity;
   vtkSmartPointer<vtkMaterialTransferFunction> Material;
   std::vector<vtkSmartPointer<vtkLight>> Lights;
-  double Radius = 1.0; // the filter's default: the smallest data spacing
+  double Radius = 0.0; // PointLightRadius: 0 (default), the lights' AttenuationValues
   double Scale = 1.0;  // irradiance resolution / data resolution
   int Estimation = mmv::PiecewiseShadowRays; // of directional lights, both paths
   int Slices = mmv::DefaultPiecewiseShadowSlices;
@@ -153,8 +153,12 @@ Scene TwoBlocks(double scattering)
   scene.Material->AddNode(1.0, 0.2, 0.7, 0.2, 20.0, 1.0, scattering, 0.0);
   scene.Material->AddNode(2.0, 0.2, 0.7, 0.2, 20.0, 2.0, scattering, 0.0);
   scene.Lights.push_back(Directional(1.0, 0.6, 0.8));
-  scene.Lights.push_back(Positional({ 11.3, 12.2, 2.0 }, { 11.3, 12.2, 0.0 }, 180.0));
+  scene.Lights.push_back(Positional({ 11.3, 12.2, 2.0 }, { 11.3, 12.2, 0.0 }, 120.0));
   scene.Lights.push_back(Positional({ 14.0, 34.0, 13.0 }, { 12.0, 12.0, 12.0 }, 35.0));
+  // Non-default VTK falloffs, so that both paths must agree on them.
+  scene.Lights[1]->SetAttenuationValues(1.0, 0.05, 0.01);
+  scene.Lights[2]->SetAttenuationValues(1.0, 0.02, 0.001); // <= 1: the 0.01 bound stays 1 %
+  scene.Lights[2]->SetExponent(4.0);
   return scene;
 }
 
@@ -221,6 +225,7 @@ std::vector<std::vector<float>> RunFilter(const Scene& scene, bool multipleScatt
   filter->SetScalarOpacity(scene.Opacity);
   filter->SetMaterialTransferFunction(scene.Material);
   filter->SetIrradianceScale(scene.Scale);
+  filter->SetPointLightRadius(scene.Radius);
   filter->SetMultipleScattering(multipleScattering);
   filter->SetShadowEstimation(scene.Estimation);
   filter->SetPiecewiseShadowSlices(scene.Slices);
@@ -302,7 +307,19 @@ TEST(IrradianceVolumePass, MatchesCPUFilter)
 {
   const Context& ctx = SharedContext();
   ASSERT_NE(ctx.GL, nullptr);
-  const Scene scene = TwoBlocks(0.0);
+  Scene scene = TwoBlocks(0.0);
+  // Eq. 12's radius first, then VTK's attenuation (the scene's lights have
+  // non-default AttenuationValues and Exponent).
+  scene.Radius = 1.5;
+  {
+    vtkNew<vtkIrradianceVolumePass> eq12;
+    SetPassInputs(scene, eq12);
+    ASSERT_TRUE(eq12->Render(ctx.GL));
+    std::cout << "GPU vs CPU max |difference| (eq. 12, radius 1.5): "
+              << CompareWithFilter(ctx, scene, eq12, false) << std::endl;
+    eq12->ReleaseGraphicsResources(ctx.GL);
+  }
+  scene.Radius = 0.0;
   vtkNew<vtkIrradianceVolumePass> pass;
   SetPassInputs(scene, pass);
   ASSERT_TRUE(pass->Render(ctx.GL));
@@ -311,7 +328,7 @@ TEST(IrradianceVolumePass, MatchesCPUFilter)
   EXPECT_EQ(pass->GetDiffusionPasses(), 0);
   EXPECT_EQ(pass->GetTextureMemoryBytes(), 24 * 24 * 24 * 8);
   const double diff = CompareWithFilter(ctx, scene, pass, false);
-  std::cout << "GPU vs CPU max |difference| (no diffusion): " << diff << std::endl;
+  std::cout << "GPU vs CPU max |difference| (VTK attenuation): " << diff << std::endl;
 
   // The comparison must see light and shadow: the blocks shade each other.
   std::vector<float> directional;

@@ -44,33 +44,63 @@ TEST(LightModel, PointFalloffIsFiniteAtTheLight)
   EXPECT_DOUBLE_EQ(f, 1.0);
 }
 
-TEST(LightModel, ZeroRadiusIsTheLimitOfEquation12)
+TEST(LightModel, ZeroRadiusSelectsVTKAttenuation)
 {
-  // Radius 0: 1 at the light itself (not 0/0), 0 everywhere else, which is
-  // where eq. 12 goes as the radius shrinks.
-  EXPECT_EQ(mmv::mmvPointFalloff(0.0, 0.0), 1.0);
-  EXPECT_EQ(mmv::mmvPointFalloff(0.0, 1.0e-12), 0.0);
-  EXPECT_EQ(mmv::mmvPointFalloff(0.0, 4.0), 0.0);
-  EXPECT_LT(mmv::mmvPointFalloff(1.0e-3, 4.0), 1.0e-6);
+  // Radius 0: VTK's 1 / (c0 + c1 d + c2 d^2); the vtkLight default (1, 0, 0)
+  // means no falloff at any distance.
   mmv::LightSource light;
   light.Kind = mmv::PointLight;
   light.Position = { 1.0, 2.0, 3.0 };
   light.Radius = 0.0;
   EXPECT_EQ(mmv::mmvLightGeometryTerm(light, light.Position), 1.0);
-  EXPECT_EQ(mmv::mmvLightGeometryTerm(light, glm::dvec3(0.0)), 0.0);
+  EXPECT_EQ(mmv::mmvLightGeometryTerm(light, glm::dvec3(601.0, 2.0, 3.0)), 1.0);
+  // (0.5, 0.25, 0.125) at distance 4 (a 0-0-4 offset): 1 / (0.5 + 1 + 2).
+  light.Attenuation = { 0.5, 0.25, 0.125 };
+  EXPECT_DOUBLE_EQ(mmv::mmvLightGeometryTerm(light, glm::dvec3(1.0, 2.0, 7.0)), 1.0 / 3.5);
+  // Distance 5 along a 3-4-5 triangle.
+  EXPECT_DOUBLE_EQ(
+    mmv::mmvLightGeometryTerm(light, glm::dvec3(4.0, 6.0, 3.0)), 1.0 / (0.5 + 1.25 + 3.125));
+  // A radius > 0 selects eq. 12 whatever the attenuation.
+  light.Radius = 2.0;
+  EXPECT_DOUBLE_EQ(mmv::mmvLightGeometryTerm(light, glm::dvec3(4.0, 6.0, 3.0)), 4.0 / 25.0);
+}
+
+TEST(LightModel, AttenuationWithoutConstantTermStaysFiniteAtTheLight)
+{
+  // (0, 0, 1) is the physical inverse square law: 1/d^2, clamped at the light.
+  const glm::dvec3 inverseSquare(0.0, 0.0, 1.0);
+  EXPECT_DOUBLE_EQ(mmv::mmvAttenuationFalloff(inverseSquare, 16.0), 1.0 / 16.0);
+  EXPECT_DOUBLE_EQ(mmv::mmvAttenuationFalloff(inverseSquare, 0.0), 1.0 / mmv::MinAttenuationDenominator);
+  EXPECT_DOUBLE_EQ(mmv::mmvAttenuationFalloff(glm::dvec3(0.0, 1.0, 0.0), 1.0e-12),
+    1.0 / mmv::MinAttenuationDenominator);
+}
+
+TEST(LightModel, SpotExponentIsVTKsAngularFalloff)
+{
+  const glm::dvec3 axis(0.0, 0.0, -1.0);
+  // (3, 0, -4)/5: cos 0.8 to the axis, inside a cone of cos 0.6.
+  EXPECT_DOUBLE_EQ(mmv::mmvSpotFactor(glm::dvec3(3.0, 0.0, -4.0), axis, 0.6, 1.0), 0.8);
+  EXPECT_DOUBLE_EQ(mmv::mmvSpotFactor(glm::dvec3(3.0, 0.0, -4.0), axis, 0.6, 2.5), std::pow(0.8, 2.5));
+  // Exponent 0: the hard cone of eq. 14.
+  EXPECT_EQ(mmv::mmvSpotFactor(glm::dvec3(3.0, 0.0, -4.0), axis, 0.6, 0.0), 1.0);
+  // Outside stays 0 whatever the exponent.
+  EXPECT_EQ(mmv::mmvSpotFactor(glm::dvec3(4.1, 0.0, -3.0), axis, 0.6, 2.5), 0.0);
+  // A 90-degree half-angle (cos 0) with exponent > 0: 0 on the edge, no NaN.
+  EXPECT_EQ(mmv::mmvSpotFactor(glm::dvec3(1.0, 0.0, 0.0), axis, 0.0, 3.0), 0.0);
 }
 
 TEST(LightModel, SpotVisibilityInsideOutsideAndOnTheEdge)
 {
   const glm::dvec3 axis(0.0, 0.0, -1.0);
   // (4, 0, -3)/5 makes an exact cosine of 0.6 with the axis.
-  EXPECT_EQ(mmv::mmvSpotVisibility(glm::dvec3(4.0, 0.0, -3.0), axis, 0.6), 0.0);
+  // On the edge: lit, as VTK's Phong (coneDot >= cos).
+  EXPECT_EQ(mmv::mmvSpotVisibility(glm::dvec3(4.0, 0.0, -3.0), axis, 0.6), 1.0);
   EXPECT_EQ(mmv::mmvSpotVisibility(glm::dvec3(3.9, 0.0, -3.0), axis, 0.6), 1.0);
   EXPECT_EQ(mmv::mmvSpotVisibility(glm::dvec3(4.1, 0.0, -3.0), axis, 0.6), 0.0);
   EXPECT_EQ(mmv::mmvSpotVisibility(glm::dvec3(0.0, 0.0, -7.0), axis, 0.6), 1.0);
   EXPECT_EQ(mmv::mmvSpotVisibility(glm::dvec3(0.0, 0.0, 7.0), axis, 0.6), 0.0); // behind
   // A 90-degree half-angle: perpendicular points lie exactly on the edge.
-  EXPECT_EQ(mmv::mmvSpotVisibility(glm::dvec3(1.0, 0.0, 0.0), axis, 0.0), 0.0);
+  EXPECT_EQ(mmv::mmvSpotVisibility(glm::dvec3(1.0, 0.0, 0.0), axis, 0.0), 1.0);
   // The length of the vector does not matter.
   EXPECT_EQ(mmv::mmvSpotVisibility(glm::dvec3(3.9e-3, 0.0, -3.0e-3), axis, 0.6), 1.0);
 }
@@ -126,7 +156,7 @@ TEST(LightModel, SpotGeometryTermIsPointTermInsideTheConeAndZeroOutside)
   const glm::dvec3 outside(20.0, 0.0, 0.0);
   EXPECT_DOUBLE_EQ(mmv::mmvLightGeometryTerm(spot, inside), mmv::mmvLightGeometryTerm(point, inside));
   EXPECT_DOUBLE_EQ(mmv::mmvLightGeometryTerm(spot, inside), 1.0 / 109.0);
-  EXPECT_EQ(mmv::mmvLightGeometryTerm(spot, edge), 0.0);
+  EXPECT_DOUBLE_EQ(mmv::mmvLightGeometryTerm(spot, edge), 1.0 / 25.0); // edge: lit, as VTK
   EXPECT_EQ(mmv::mmvLightGeometryTerm(spot, outside), 0.0);
   EXPECT_GT(mmv::mmvLightGeometryTerm(point, outside), 0.0);
   const double atApex = mmv::mmvLightGeometryTerm(spot, position);

@@ -324,7 +324,8 @@ TEST(MultiMaterialVolumeMapper, GpuIrradianceMatchesCpuFilter)
   vtkNew<vtkLight> lamp;
   lamp->SetLightTypeToSceneLight();
   lamp->PositionalOn();
-  lamp->SetConeAngle(180.0);
+  lamp->SetConeAngle(120.0);
+  lamp->SetAttenuationValues(1.0, 0.02, 0.0005); // VTK's falloff, non-default
   lamp->SetPosition(40.0, 10.0, 20.0);
   lamp->SetFocalPoint(16.0, 16.0, 16.0);
   scene.Renderer->AddLight(lamp);
@@ -337,7 +338,6 @@ TEST(MultiMaterialVolumeMapper, GpuIrradianceMatchesCpuFilter)
   cpu->SetScalarOpacityUnitDistance(scene.Property->GetScalarOpacityUnitDistance());
   cpu->SetMaterialTransferFunction(materials);
   cpu->SetIrradianceScale(0.5);
-  cpu->SetPointLightRadius(1.0); // the mapper's default: the smallest spacing
   cpu->AddLight(sun);
   cpu->AddLight(lamp);
   cpu->MultipleScatteringOff();

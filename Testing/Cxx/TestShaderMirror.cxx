@@ -100,8 +100,10 @@ glm::dvec3 PixelPoint(int i, int j)
 }
 
 // The light of the tests below: above the grid's plane, its spot cone
-// cutting through the grid.
-mmv::LightSource TestLight(int kind)
+// cutting through the grid. Falloff variant 0: eq. 12 (radius 0.5); 1: VTK
+// attenuation (1, 0.5, 2) with exponent 7.5; 2: VTK attenuation (0, 0, 1),
+// exponent 0 (hard cone); 3: the vtkLight defaults, (1, 0, 0) and exponent 1.
+mmv::LightSource TestLight(int kind, int falloff = 0)
 {
   mmv::LightSource light;
   light.Kind = static_cast<mmv::LightKind>(kind);
@@ -109,7 +111,12 @@ mmv::LightSource TestLight(int kind)
   light.ToLight = glm::normalize(glm::dvec3(-0.4, 0.5, 1.0));
   light.SpotAxis = glm::normalize(glm::dvec3(0.2, 0.1, -1.0));
   light.CosCone = std::cos(30.0 * M_PI / 180.0);
-  light.Radius = 0.5;
+  light.Radius = falloff == 0 ? 0.5 : 0.0;
+  const glm::dvec3 attenuation[4] = { { 1.0, 0.0, 0.0 }, { 1.0, 0.5, 2.0 }, { 0.0, 0.0, 1.0 },
+    { 1.0, 0.0, 0.0 } };
+  const double exponent[4] = { 0.0, 7.5, 0.0, 1.0 };
+  light.Attenuation = attenuation[falloff];
+  light.SpotExponent = exponent[falloff];
   return light;
 }
 
@@ -118,12 +125,15 @@ uniform int kind;
 uniform vec3 lightPosition;
 uniform vec3 spotAxis;
 uniform float cosCone;
+uniform float spotExponent;
+uniform vec3 attenuation;
 uniform float radius;
 void main()
 {
   vec3 x = vec3(-2.0 + 4.0 * texCoord, 0.0);
-  gl_FragData[0] = vec4(mmvLightGeometryTerm(kind, lightPosition, spotAxis, cosCone, radius, x),
-    mmvSpotVisibility(x - lightPosition, spotAxis, cosCone), float(MMV_SCATTERING),
+  gl_FragData[0] = vec4(mmvLightGeometryTerm(kind, lightPosition, spotAxis, cosCone,
+    spotExponent, attenuation, radius, x),
+    mmvSpotFactor(x - lightPosition, spotAxis, cosCone, spotExponent), float(MMV_SCATTERING),
     float(MMV_MATERIAL_PARAMETER_COUNT));
 }
 )";
@@ -134,9 +144,10 @@ TEST(ShaderMirror, LightGeometryTermMatchesCPU)
   ShaderRunner runner;
   ASSERT_NE(runner.GL, nullptr);
 
+  for (int falloff = 0; falloff < 4; ++falloff)
   for (int kind : { mmv::DirectionalLight, mmv::PointLight, mmv::SpotLight })
   {
-    const mmv::LightSource light = TestLight(kind);
+    const mmv::LightSource light = TestLight(kind, falloff);
 
     std::vector<float> pixels;
     ASSERT_TRUE(runner.Run(LightGeometryBody,
@@ -145,9 +156,12 @@ TEST(ShaderMirror, LightGeometryTermMatchesCPU)
         const float pos[3] = { 0.3f, -0.2f, 1.0f };
         const float axis[3] = { float(light.SpotAxis.x), float(light.SpotAxis.y),
           float(light.SpotAxis.z) };
+        const glm::vec3 attenuation(light.Attenuation);
         p->SetUniform3f("lightPosition", pos);
         p->SetUniform3f("spotAxis", axis);
         p->SetUniformf("cosCone", float(light.CosCone));
+        p->SetUniformf("spotExponent", float(light.SpotExponent));
+        p->SetUniform3f("attenuation", &attenuation.x);
         p->SetUniformf("radius", float(light.Radius));
       },
       pixels));
@@ -166,8 +180,10 @@ TEST(ShaderMirror, LightGeometryTermMatchesCPU)
           continue;
         }
         const double cpu = mmv::mmvLightGeometryTerm(light, x);
-        ASSERT_NEAR(px[0], cpu, 1e-5 * std::max(1.0, cpu)) << "kind " << kind << " pixel " << i << "," << j;
-        ASSERT_EQ(px[1], mmv::mmvSpotVisibility(toPoint, light.SpotAxis, light.CosCone));
+        ASSERT_NEAR(px[0], cpu, 1e-5 * std::max(1.0, cpu))
+          << "kind " << kind << " falloff " << falloff << " pixel " << i << "," << j;
+        ASSERT_NEAR(px[1],
+          mmv::mmvSpotFactor(toPoint, light.SpotAxis, light.CosCone, light.SpotExponent), 1e-5);
         ASSERT_EQ(px[2], float(mmv::Scattering));
         ASSERT_EQ(px[3], float(mmv::MaterialParameterCount));
         ++compared;
@@ -272,6 +288,47 @@ TEST(ShaderMirror, PointFalloffMatchesCPUIncludingZeroRadius)
       const double cpu = mmv::mmvPointFalloff(radius, distance2);
       ASSERT_FALSE(std::isnan(px[0])) << i << "," << j;
       ASSERT_NEAR(px[0], cpu, 1e-6) << "radius " << radius << " d2 " << distance2;
+    }
+  }
+}
+
+namespace
+{
+// Column block -> attenuation (1, 0, 0), (1, 0.5, 2), (0, 1, 0), (0, 0, 1);
+// row j -> squared distance 0.02 j (row 0: the light's own position, where
+// the polynomials without a constant term vanish and the clamp holds).
+const char* AttenuationFalloffBody = R"(
+void main()
+{
+  int block = int(floor(texCoord.x * 4.0));
+  vec3 attenuation = block == 0 ? vec3(1.0, 0.0, 0.0) : block == 1 ? vec3(1.0, 0.5, 2.0)
+    : block == 2 ? vec3(0.0, 1.0, 0.0) : vec3(0.0, 0.0, 1.0);
+  float distance2 = floor(texCoord.y * float(SIZE)) * 0.02;
+  gl_FragData[0] = vec4(mmvDistanceFalloff(0.0, attenuation, distance2), float(block),
+    distance2, 0.0);
+}
+)";
+}
+
+TEST(ShaderMirror, AttenuationFalloffMatchesCPUIncludingTheLightItself)
+{
+  ShaderRunner runner;
+  ASSERT_NE(runner.GL, nullptr);
+  std::vector<float> pixels;
+  const std::string body = "#define SIZE " + std::to_string(Size) + "\n" + AttenuationFalloffBody;
+  ASSERT_TRUE(runner.Run(body, [](vtkShaderProgram*) {}, pixels));
+  const glm::dvec3 attenuation[4] = { { 1.0, 0.0, 0.0 }, { 1.0, 0.5, 2.0 }, { 0.0, 1.0, 0.0 },
+    { 0.0, 0.0, 1.0 } };
+  for (int j = 0; j < Size; ++j)
+  {
+    for (int i = 0; i < Size; ++i)
+    {
+      const float* px = &pixels[4 * (j * Size + i)];
+      const int block = static_cast<int>(std::floor((i + 0.5) / Size * 4.0));
+      ASSERT_EQ(px[1], float(block));
+      const double cpu = mmv::mmvDistanceFalloff(0.0, attenuation[block], j * 0.02);
+      ASSERT_TRUE(std::isfinite(px[0])) << i << "," << j;
+      ASSERT_NEAR(px[0], cpu, 1e-5 * std::max(1.0, cpu)) << "block " << block << " row " << j;
     }
   }
 }

@@ -1,5 +1,7 @@
 """Bad MaterialNodes and an unknown preset are reported (VTK errors, which
-pvpython prints) and ignored: the previous materials stay and rendering goes on."""
+pvpython prints) and ignored: the previous materials stay and rendering goes on.
+A negative PointLightRadius and an IrradianceScale above 1 are reported
+(warnings) and replaced by 0 and 1."""
 
 import math
 import os
@@ -64,4 +66,31 @@ rep.MaterialNodes = GOOD[:8] + GOOD[9:17]
 mmv.render_image(view, os.path.join(args.temp_dir, "bad_legacy.png"))
 checker.check(mmv.info(rep, "AppliedMaterialNodes") == GOOD, "8-number nodes load with g = 0")
 checker.check(errors.take_errors() == "", "no further errors")
+
+# Out-of-range light and resolution values typed into the panel (issue 12):
+# one warning, then exactly what the fallback value renders, not black.
+rep.MaterialNodes = GOOD
+
+
+def expect_replaced(prop, bad, fallback, message_part):
+    setattr(rep, prop, fallback)
+    expected = mmv.render_image(view, os.path.join(args.temp_dir, "fallback_%s.png" % prop))
+    errors.take()
+    setattr(rep, prop, bad)
+    image = mmv.render_image(view, os.path.join(args.temp_dir, "bad_%s.png" % prop))
+    log = errors.take()
+    checker.check(message_part in log, "%s = %r is reported: %r" % (prop, bad, log.strip()[-200:]))
+    difference = mmv.mean_difference(image, expected)
+    checker.check(difference == 0.0, "%s = %r renders as %r (mean |difference| %.3f)"
+                  % (prop, bad, fallback, difference))
+    checker.check(mmv.check_not_blank(image, "%s = %r" % (prop, bad)), "%s = %r is not blank"
+                  % (prop, bad))
+    mmv.render_image(view, os.path.join(args.temp_dir, "bad_%s_again.png" % prop))
+    checker.check(errors.take() == "", "%s = %r is reported once" % (prop, bad))
+    setattr(rep, prop, fallback)
+
+
+expect_replaced("PointLightRadius", -5.0, 0.0, "PointLightRadius -5")
+expect_replaced("IrradianceScale", 5.0, 1.0, "IrradianceScale 5")
+rep.IrradianceScale = 0.0
 checker.finish()

@@ -111,8 +111,8 @@ checker.check(counters()["PreIntegrationCount"] > before, "SampleDistance rebuil
 changed(base, coarse, "SampleDistance 3", minimum=0.05)
 rep.AutoAdjustSampleDistances = 1
 rep.SampleDistance = 1.0
-# Point and spot lights fall off as (radius / distance)^2 beyond PointLightRadius;
-# the default (one voxel) makes a light 40 voxels away invisible.
+# PointLightRadius > 0 selects eq. 12, (radius / distance)^2 beyond it; the
+# default 0 is VTK's falloff by the light's AttenuationValues (none here).
 rep.PointLightRadius = 30.0
 base = render()
 
@@ -135,7 +135,7 @@ checker.check(lightsAfter["IrradianceUpdateCount"] > lightsBefore["IrradianceUpd
               "the spot light recomputes the irradiance")
 changed(base, spot, "AddLight (spot)")
 
-# PointLightRadius matters for the spot light.
+# PointLightRadius matters for the spot light (back to VTK's attenuation).
 rep.PointLightRadius = 0.0
 changed(spot, render(), "PointLightRadius", minimum=0.05)
 rep.PointLightRadius = 30.0
