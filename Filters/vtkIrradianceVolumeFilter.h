@@ -44,7 +44,9 @@
 #define vtkIrradianceVolumeFilter_h
 
 #include "vtkImageAlgorithm.h"
+#ifndef __VTK_WRAP__ // GLM: the wrappers take minutes to parse it
 #include "vtkMultiMaterialCutaway.h"    // mmv::Cutaway
+#endif
 #include "vtkMultiMaterialParameters.h" // ShadowEstimation
 #include "vtkMultiMaterialVolumeModule.h" // export macro
 

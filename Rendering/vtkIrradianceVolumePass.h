@@ -47,7 +47,9 @@
 // could call it anyway.
 #ifndef __VTK_WRAP__
 #include "vtkIrradianceGrid.h"         // IrradianceGrid
+#ifndef __VTK_WRAP__ // GLM: the wrappers take minutes to parse it
 #include "vtkMultiMaterialCutaway.h"    // Cutaway
+#endif
 #include "vtkMultiMaterialLightModel.h" // LightSource
 #endif
 #include "vtkMultiMaterialParameters.h"   // ShadowEstimation
