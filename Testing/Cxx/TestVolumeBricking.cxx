@@ -409,16 +409,10 @@ TEST(VolumeBricking, PieceLitFromTheGlobalVolumeShowsTheOtherPiecesShadow)
   global->SetReducedSums(total);
   ASSERT_TRUE(global->GetValid());
 
-  auto render = [&](vtkImageData* input, vtkGlobalPrefilteredVolume* g, bool crop) {
+  auto render = [&](vtkImageData* input, vtkGlobalPrefilteredVolume* g) {
     const Shaded shaded = RenderPlateAndFloorWith(input, [&](vtkMultiMaterialVolumeMapper* m) {
       m->SetIrradianceScale(1.0);
       m->SetGlobalPrefilteredVolume(g);
-      if (crop)
-      {
-        m->SetCropping(true);
-        m->SetCroppingRegionPlanes(-1.0, 33.0, -1.0, 14.0, -1.0, 33.0);
-        m->SetCroppingRegionFlagsToSubVolume();
-      }
     });
     EXPECT_TRUE(shaded.Active);
     return shaded.Pixels;
@@ -436,9 +430,9 @@ TEST(VolumeBricking, PieceLitFromTheGlobalVolumeShowsTheOtherPiecesShadow)
     single->SetReducedSums(sums);
     ASSERT_TRUE(single->GetValid());
   }
-  const auto cropped = render(floorPiece, single, false);
-  const auto withGlobal = render(floorPiece, global, false);
-  const auto alone = render(floorPiece, nullptr, false);
+  const auto cropped = render(floorPiece, single);
+  const auto withGlobal = render(floorPiece, global);
+  const auto alone = render(floorPiece, nullptr);
   const double lit = PSNR(cropped, withGlobal);
   const double unlit = PSNR(cropped, alone);
   std::cout << "floor piece lit from the pieces' global volume vs from the whole one: PSNR " << lit
