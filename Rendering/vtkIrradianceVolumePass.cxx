@@ -243,6 +243,10 @@ struct VoxelPass
 {
   std::unique_ptr<vtkOpenGLQuadHelper> Quad;
   vtkSmartPointer<vtkIrradianceComputeProgram> Compute;
+  // The sources they were built from: a pass whose defines change (a
+  // cutaway appears) is rebuilt.
+  std::string QuadSource;
+  std::string ComputeSource;
 };
 
 } // namespace
@@ -325,6 +329,7 @@ public:
   unsigned int CountWrites(vtkOpenGLRenderWindow* context, VoxelPass& pass,
     vtkTextureObject* target, bool layered, const int* box);
   void SetTransferUniforms(vtkShaderProgram* program) const;
+  std::string ShadowRayDefines() const;
   void SetShadowRayUniforms(vtkShaderProgram* program) const;
 
   bool ShadowPass(vtkOpenGLRenderWindow* context, int group, int mask, bool skipEmpty, bool layered);
@@ -471,12 +476,19 @@ bool vtkIrradianceVolumePass::vtkInternals::AllocateTargets(
 vtkShaderProgram* vtkIrradianceVolumePass::vtkInternals::Ready(vtkOpenGLRenderWindow* context,
   VoxelPass& pass, const std::string& body, const std::string& defines, bool lightModel)
 {
+  const std::string source = ComposeShader(body, defines, lightModel, this->Compute);
   if (this->Compute)
   {
-    if (!pass.Compute)
+    if (!pass.Compute || pass.ComputeSource != source)
     {
+      if (pass.Compute)
+      {
+        pass.Compute->ReleaseGraphicsResources(context);
+        pass.Compute = nullptr;
+      }
+      pass.ComputeSource = source;
       auto program = vtkSmartPointer<vtkIrradianceComputeProgram>::New();
-      if (!program->Build(ComposeShader(body, defines, lightModel, true)))
+      if (!program->Build(source))
       {
         vtkGenericWarningMacro("Irradiance pass: " << program->GetError());
         return nullptr;
@@ -486,9 +498,13 @@ vtkShaderProgram* vtkIrradianceVolumePass::vtkInternals::Ready(vtkOpenGLRenderWi
     return context->GetShaderCache()->ReadyShaderProgram(pass.Compute);
   }
   std::unique_ptr<vtkOpenGLQuadHelper>& quad = pass.Quad;
-  if (!quad)
+  if (!quad || pass.QuadSource != source)
   {
-    const std::string source = ComposeShader(body, defines, lightModel, false);
+    if (quad)
+    {
+      quad->ReleaseGraphicsResources(context);
+    }
+    pass.QuadSource = source;
     quad = std::make_unique<vtkOpenGLQuadHelper>(context, mmvLayerVS, source.c_str(), mmvLayerGS);
   }
   if (!quad->Program || !context->GetShaderCache()->ReadyShaderProgram(quad->Program))
@@ -651,6 +667,14 @@ void vtkIrradianceVolumePass::vtkInternals::SetTransferUniforms(vtkShaderProgram
 }
 
 //------------------------------------------------------------------------------
+// The shadow rays' constants, and MMV_CUTAWAY while something is cut: without
+// it the cutaway test compiles away (Shaders/mmvCutaway.glsl).
+std::string vtkIrradianceVolumePass::vtkInternals::ShadowRayDefines() const
+{
+  return mmv::ShadowRayGLSLPrelude() + (this->Cut.IsEmpty() ? "" : "#define MMV_CUTAWAY\n");
+}
+
+//------------------------------------------------------------------------------
 // The uniforms of Shaders/mmvShadowRay.glsl (and the class texture), shared by
 // the full and the piecewise shadow rays; their textures must be active.
 void vtkIrradianceVolumePass::vtkInternals::SetShadowRayUniforms(vtkShaderProgram* program) const
@@ -663,7 +687,10 @@ void vtkIrradianceVolumePass::vtkInternals::SetShadowRayUniforms(vtkShaderProgra
   program->SetUniform1iv("dims", 3, this->Grid.Dimensions);
   program->SetUniformMatrix3x3("worldToIndex", glm::value_ptr(toIndex));
   program->SetUniformf("stepLength", static_cast<float>(this->StepLength));
-  SetCutawayUniforms(program, mmv::ToIndexSpace(this->Cut, this->Grid));
+  if (!this->Cut.IsEmpty())
+  {
+    SetCutawayUniforms(program, mmv::ToIndexSpace(this->Cut, this->Grid));
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -671,7 +698,7 @@ bool vtkIrradianceVolumePass::vtkInternals::ShadowPass(
   vtkOpenGLRenderWindow* context, int group, int mask, bool skipEmpty, bool layered)
 {
   vtkShaderProgram* program = this->Ready(context, this->ShadowQuad,
-    std::string(mmvShadowRay) + mmvIrradianceFS, mmv::ShadowRayGLSLPrelude(), true);
+    std::string(mmvShadowRay) + mmvIrradianceFS, this->ShadowRayDefines(), true);
   if (!program)
   {
     return false;
@@ -697,7 +724,7 @@ bool vtkIrradianceVolumePass::vtkInternals::PiecewiseShadowPass(vtkOpenGLRenderW
   int light, int slicesPerChunk, bool skipEmpty, bool layered)
 {
   vtkShaderProgram* program = this->Ready(context, this->PiecewiseQuad,
-    std::string(mmvShadowRay) + mmvPiecewiseShadowFS, mmv::ShadowRayGLSLPrelude(), false);
+    std::string(mmvShadowRay) + mmvPiecewiseShadowFS, this->ShadowRayDefines(), false);
   if (!program)
   {
     return false;

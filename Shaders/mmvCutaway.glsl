@@ -1,7 +1,10 @@
 // What the mapper's cropping region and clipping planes remove, in the
 // irradiance grid's index space: the shadow rays see it as empty. Mirrors
 // mmvIsCut() of Rendering/vtkMultiMaterialCutaway.h line for line. Needs
-// MMV_MAX_CUT_PLANES (mmv::CutawayGLSLPrelude()).
+// MMV_MAX_CUT_PLANES (mmv::CutawayGLSLPrelude()). Without MMV_CUTAWAY (the
+// pass defines it only while something is cut) nothing is cut and the test
+// compiles away: it ran at every shadow-ray step and cost a third of the
+// estimation on llvmpipe.
 
 uniform int cutPlaneCount;                   // 0: no clipping planes
 uniform vec4 cutPlanes[MMV_MAX_CUT_PLANES];  // removed where dot(xyz, index) + w < 0
@@ -12,6 +15,7 @@ uniform int cropFlags;                       // VTK's CroppingRegionFlags
 
 bool mmvIsCut(vec3 index)
 {
+#ifdef MMV_CUTAWAY
   for (int p = 0; p < cutPlaneCount; ++p)
   {
     if (dot(cutPlanes[p].xyz, index) + cutPlanes[p].w < 0.0)
@@ -35,5 +39,6 @@ bool mmvIsCut(vec3 index)
       return true;
     }
   }
+#endif
   return false;
 }
