@@ -111,18 +111,24 @@ void vtkMultiMaterialTextures::UpdateMaterialTable(vtkOpenGLRenderWindow* contex
 }
 
 bool vtkMultiMaterialTextures::UpdateGradientTexture(vtkOpenGLRenderWindow* context,
-  vtkDataArray* scalars, const int dims[3], const double range[2], double maxTextureBytes)
+  vtkDataArray* scalars, const int dims[3], const double range[2], double maxTextureBytes,
+  const double smoothing[3])
 {
+  const double none[3] = { 0.0, 0.0, 0.0 };
+  const double* sigma = smoothing ? smoothing : none;
   const vtkMTimeType time = scalars->GetMTime();
   const bool current = this->Gradient->GetHandle() != 0 && scalars == this->UploadedScalars &&
     time == this->UploadedScalarsTime && range[0] == this->UploadedGradientRange[0] &&
-    range[1] == this->UploadedGradientRange[1] && std::equal(dims, dims + 3, this->GradientDimensions);
+    range[1] == this->UploadedGradientRange[1] &&
+    std::equal(dims, dims + 3, this->GradientDimensions) &&
+    std::equal(sigma, sigma + 3, this->UploadedGradientSmoothing);
   if (current)
   {
     return true;
   }
   std::vector<float> gradients;
   mmv::ComputeValueGradients(scalars, 0, dims, range, gradients);
+  mmv::SmoothVectors(gradients, 3, dims, sigma);
   // A volume longer than the largest 3D texture (rendered in bricks) keeps
   // its gradient volume in one texture, resampled along the long axes.
   const int largest = vtkTextureObject::GetMaximumTextureSize3D(context);
@@ -159,6 +165,7 @@ bool vtkMultiMaterialTextures::UpdateGradientTexture(vtkOpenGLRenderWindow* cont
   this->UploadedScalarsTime = time;
   this->UploadedGradientRange[0] = range[0];
   this->UploadedGradientRange[1] = range[1];
+  std::copy(sigma, sigma + 3, this->UploadedGradientSmoothing);
   std::copy(dims, dims + 3, this->GradientDimensions);
   std::copy(textureDims, textureDims + 3, this->GradientTextureDimensions);
   ++this->GradientUploads;

@@ -43,8 +43,11 @@ public:
   /// Uploads the gradient volume of component 0 of `scalars` (point data of
   /// a `dims` grid) normalised over `range`, if any of them changed. False
   /// when the texture could not be created (too large for the context).
+  /// `smoothing`: the Gaussian's standard deviation in voxels per axis
+  /// (mmv::SmoothVectors); null or zeros: none.
   bool UpdateGradientTexture(vtkOpenGLRenderWindow* context, vtkDataArray* scalars,
-    const int dims[3], const double range[2], double maxTextureBytes = 0.0);
+    const int dims[3], const double range[2], double maxTextureBytes = 0.0,
+    const double smoothing[3] = nullptr);
 
   vtkTextureObject* GetSegmentColorTexture() { return this->SegmentColor; }
   vtkTextureObject* GetGradientTexture() { return this->Gradient; }
@@ -83,6 +86,7 @@ private:
   vtkDataArray* UploadedScalars = nullptr;
   vtkMTimeType UploadedScalarsTime = 0;
   double UploadedGradientRange[2] = { 0.0, 0.0 };
+  double UploadedGradientSmoothing[3] = { 0.0, 0.0, 0.0 };
   int GradientDimensions[3] = { 0, 0, 0 };
   int GradientTextureDimensions[3] = { 0, 0, 0 };
   int SegmentUploads = 0;

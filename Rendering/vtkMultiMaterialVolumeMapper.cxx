@@ -26,6 +26,7 @@
 #include "vtkShaderProgram.h"
 #include "vtkSmartPointer.h"
 #include "vtkTextureObject.h"
+#include "vtkValueGradient.h"
 #include "vtkVolume.h"
 #include "vtkVolumeBricking.h"
 #include "vtkVolumeInputHelper.h"
@@ -665,8 +666,16 @@ bool vtkMultiMaterialVolumeMapper::PrepareMultiMaterial(vtkRenderer* ren, vtkVol
   // shading fade) when they share a global range.
   vtkGlobalPrefilteredVolume* global = in.ActiveGlobal();
   const double* gradientRange = global ? global->GetScalarRange() : range;
-  if (!in.Textures->UpdateGradientTexture(
-        context, scalars, dataDims, gradientRange, this->MaxBrickMB * 1024.0 * 1024.0))
+  std::string smoothingProblem;
+  const double smoothing = mmv::ValidGradientSmoothing(this->GradientSmoothing, &smoothingProblem);
+  if (!smoothingProblem.empty())
+  {
+    this->WarnOnce(smoothingProblem);
+  }
+  double smoothingVoxels[3];
+  mmv::GradientSmoothingVoxels(smoothing, image->GetSpacing(), smoothingVoxels);
+  if (!in.Textures->UpdateGradientTexture(context, scalars, dataDims, gradientRange,
+        this->MaxBrickMB * 1024.0 * 1024.0, smoothingVoxels))
   {
     this->WarnOnce("the gradient volume could not be created (too large for this OpenGL "
                    "context?); using VTK's shading");
@@ -1022,6 +1031,7 @@ void vtkMultiMaterialVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "IrradianceMemoryMB: " << this->IrradianceMemoryMB << "\n";
   os << indent << "MaxBrickMB: " << this->MaxBrickMB << "\n";
   os << indent << "IrradianceScale: " << this->IrradianceScale << "\n";
+  os << indent << "GradientSmoothing: " << this->GradientSmoothing << "\n";
   os << indent << "MultipleScattering: " << this->MultipleScattering << "\n";
   os << indent << "ShadowEstimation: " << this->ShadowEstimation << "\n";
   os << indent << "PiecewiseShadowSlices: " << this->PiecewiseShadowSlices << "\n";

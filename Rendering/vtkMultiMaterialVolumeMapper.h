@@ -74,6 +74,15 @@ public:
   vtkSetMacro(IrradianceScale, double);
   vtkGetMacro(IrradianceScale, double);
 
+  /// Smooths the shading normal: the gradient volume is blurred by a Gaussian
+  /// whose standard deviation is this many times the largest data spacing
+  /// (round in world space). Default 0 (none: the references' model). About
+  /// 1 removes the stripes that thin shells sampled coarsely show at the
+  /// voxel spacing (docs/banding.md). Negative or NaN: reported, used as 0;
+  /// above mmv::MaxGradientSmoothing (4): reported, clamped.
+  vtkSetMacro(GradientSmoothing, double);
+  vtkGetMacro(GradientSmoothing, double);
+
   /// Diffusion for multiple scattering (default on; skipped when every s = 0).
   vtkSetMacro(MultipleScattering, bool);
   vtkGetMacro(MultipleScattering, bool);
@@ -222,6 +231,7 @@ protected:
 
   double IrradianceMemoryMB = 64.0;
   double IrradianceScale = 0.0;
+  double GradientSmoothing = 0.0;
   bool MultipleScattering = true;
   int ShadowEstimation = mmv::PiecewiseShadowRays;
   int PiecewiseShadowSlices = mmv::DefaultPiecewiseShadowSlices;

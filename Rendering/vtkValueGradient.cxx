@@ -39,6 +39,77 @@ void ComputeValueGradients(vtkDataArray* scalars, int component, const int dims[
   });
 }
 
+double ValidGradientSmoothing(double sigma, std::string* why)
+{
+  if (sigma >= 0.0 && sigma <= MaxGradientSmoothing)
+  {
+    return sigma;
+  }
+  const bool above = sigma > MaxGradientSmoothing;
+  if (why)
+  {
+    *why = "GradientSmoothing " + std::to_string(sigma) +
+      (above ? " is above " + std::to_string(MaxGradientSmoothing) + " voxels; using it"
+             : " must be a number >= 0; using 0 (no smoothing)");
+  }
+  return above ? MaxGradientSmoothing : 0.0;
+}
+
+void GradientSmoothingVoxels(double sigma, const double spacing[3], double voxels[3])
+{
+  const double largest = std::max({ std::abs(spacing[0]), std::abs(spacing[1]),
+    std::abs(spacing[2]) });
+  for (int a = 0; a < 3; ++a)
+  {
+    const double h = std::abs(spacing[a]);
+    voxels[a] = sigma > 0.0 && h > 0.0 ? sigma * largest / h : 0.0;
+  }
+}
+
+void SmoothVectors(
+  std::vector<float>& values, int components, const int dims[3], const double sigma[3])
+{
+  const vtkIdType stride[3] = { 1, dims[0], static_cast<vtkIdType>(dims[0]) * dims[1] };
+  const vtkIdType count = stride[2] * dims[2];
+  std::vector<float> source;
+  for (int a = 0; a < 3; ++a)
+  {
+    if (!(sigma[a] > 0.0) || dims[a] < 2)
+    {
+      continue;
+    }
+    const int radius = std::max(1, static_cast<int>(std::ceil(3.0 * sigma[a])));
+    std::vector<double> weights(2 * radius + 1);
+    double total = 0.0;
+    for (int t = -radius; t <= radius; ++t)
+    {
+      weights[t + radius] = std::exp(-0.5 * t * t / (sigma[a] * sigma[a]));
+      total += weights[t + radius];
+    }
+    for (double& w : weights)
+    {
+      w /= total;
+    }
+    source = values;
+    vtkSMPTools::For(0, count, [&](vtkIdType begin, vtkIdType end) {
+      for (vtkIdType v = begin; v < end; ++v)
+      {
+        const int i = static_cast<int>((v / stride[a]) % dims[a]);
+        for (int c = 0; c < components; ++c)
+        {
+          double sum = 0.0;
+          for (int t = -radius; t <= radius; ++t)
+          {
+            const int n = std::min(std::max(i + t, 0), dims[a] - 1);
+            sum += weights[t + radius] * source[components * (v + (n - i) * stride[a]) + c];
+          }
+          values[components * v + c] = static_cast<float>(sum);
+        }
+      }
+    });
+  }
+}
+
 std::vector<float> ResampleVectors(
   const std::vector<float>& values, int components, const int dims[3], const int newDims[3])
 {

@@ -23,6 +23,7 @@
 #include "vtkMultiMaterialVolumeModule.h" // export macro
 #include "vtkType.h"
 
+#include <string>
 #include <vector>
 
 class vtkDataArray;
@@ -38,6 +39,29 @@ namespace mmv
  */
 VTKMULTIMATERIALVOLUME_EXPORT void ComputeValueGradients(vtkDataArray* scalars, int component,
   const int dims[3], const double range[2], std::vector<float>& gradients);
+
+/**
+ * The shading normal's optional smoothing (GradientSmoothing of the mapper):
+ * `sigma`, in units of the largest data spacing, as a standard deviation in
+ * voxels along each axis, so that the Gaussian is round in world space.
+ * Non-finite or negative sigma gives 0 and a reason in `why`; above
+ * MaxGradientSmoothing it is clamped, with a reason.
+ */
+constexpr double MaxGradientSmoothing = 4.0;
+VTKMULTIMATERIALVOLUME_EXPORT double ValidGradientSmoothing(double sigma, std::string* why);
+VTKMULTIMATERIALVOLUME_EXPORT void GradientSmoothingVoxels(
+  double sigma, const double spacing[3], double voxels[3]);
+
+/**
+ * Blurs `values` (`components` floats per point of a `dims` grid, x fastest)
+ * by a separable Gaussian of `sigma[a]` voxels along axis a, truncated at
+ * 3 sigma, the volume's faces repeated outward; axes with sigma 0 are left
+ * alone. The gradient of thin shells sampled coarsely (the MR head's 3.2 mm
+ * in x and y) turns at every voxel face; in the image that shows as stripes
+ * at the voxel spacing (docs/banding.md), which a sigma of one voxel removes.
+ */
+VTKMULTIMATERIALVOLUME_EXPORT void SmoothVectors(
+  std::vector<float>& values, int components, const int dims[3], const double sigma[3]);
 
 /**
  * `values` (`components` floats per point of a `dims` grid, x fastest)

@@ -160,6 +160,7 @@ void vtkPVMultiMaterialVolumeRepresentation::UpdateMapperParameters()
   // these every frame costs nothing.
   mapper->SetIrradianceMemoryMB(this->IrradianceMemoryMB);
   mapper->SetIrradianceScale(this->IrradianceScale);
+  mapper->SetGradientSmoothing(this->GradientSmoothing);
   mapper->SetMultipleScattering(this->MultipleScattering);
   mapper->SetPreIntegration(this->PreIntegration);
   mapper->SetPointLightRadius(this->PointLightRadius);
@@ -186,6 +187,7 @@ void vtkPVMultiMaterialVolumeRepresentation::UpdateMapperParameters()
   }
 vtkPVMMVSetter(IrradianceMemoryMB, double);
 vtkPVMMVSetter(IrradianceScale, double);
+vtkPVMMVSetter(GradientSmoothing, double);
 vtkPVMMVSetter(MultipleScattering, bool);
 vtkPVMMVSetter(PreIntegration, bool);
 vtkPVMMVSetter(PointLightRadius, double);
@@ -346,6 +348,7 @@ void vtkPVMultiMaterialVolumeRepresentation::PrintSelf(ostream& os, vtkIndent in
   os << indent << "MaterialNodes: " << this->CustomMaterials->GetSize() << " nodes\n";
   os << indent << "IrradianceMemoryMB: " << this->IrradianceMemoryMB << "\n";
   os << indent << "IrradianceScale: " << this->IrradianceScale << "\n";
+  os << indent << "GradientSmoothing: " << this->GradientSmoothing << "\n";
   os << indent << "MultipleScattering: " << this->MultipleScattering << "\n";
   os << indent << "PreIntegration: " << this->PreIntegration << "\n";
   os << indent << "PointLightRadius: " << this->PointLightRadius << "\n";

@@ -82,6 +82,7 @@ public:
   /// Forwarded to vtkMultiMaterialVolumeMapper.
   void SetIrradianceMemoryMB(double megabytes);
   void SetIrradianceScale(double scale);
+  void SetGradientSmoothing(double sigma);
   void SetMultipleScattering(bool enabled);
   void SetPreIntegration(bool enabled);
   void SetPointLightRadius(double radius);
@@ -147,6 +148,7 @@ private:
 
   double IrradianceMemoryMB = 64.0;
   double IrradianceScale = 0.0;
+  double GradientSmoothing = 0.0;
   bool MultipleScattering = true;
   bool PreIntegration = true;
   double PointLightRadius = 0.0;

@@ -12,6 +12,7 @@
 
 #include <cmath>
 #include <limits>
+#include <string>
 #include <vector>
 
 namespace
@@ -96,4 +97,90 @@ TEST(ValueGradient, NonFiniteValuesGiveNoGradient)
   EXPECT_EQ(g[3 * Index(dims, 0, 1, 1)], 0.0f);
   EXPECT_EQ(g[3 * Index(dims, 2, 1, 1)], 0.0f);
   EXPECT_NEAR(g[3 * Index(dims, 1, 0, 0)], 1.0 / 3.0, 1e-7);
+}
+
+TEST(ValueGradient, SmoothingKeepsALinearRampsGradientInside)
+{
+  // A Gaussian of a linear field is the same linear field: away from the
+  // faces (3 sigma + 1 voxels) the smoothed gradient is the ramp's exactly.
+  const int dims[3] = { 20, 18, 16 };
+  vtkNew<vtkFloatArray> scalars;
+  scalars->SetNumberOfTuples(dims[0] * dims[1] * dims[2]);
+  for (int k = 0; k < dims[2]; ++k)
+    for (int j = 0; j < dims[1]; ++j)
+      for (int i = 0; i < dims[0]; ++i)
+      {
+        scalars->SetValue(Index(dims, i, j, k), static_cast<float>(2.0 * i - 1.0 * j + 0.5 * k));
+      }
+  const double range[2] = { 0.0, 10.0 };
+  std::vector<float> g;
+  mmv::ComputeValueGradients(scalars, 0, dims, range, g);
+  const double sigma[3] = { 1.0, 1.5, 0.7 };
+  mmv::SmoothVectors(g, 3, dims, sigma);
+  const double expected[3] = { 0.2, -0.1, 0.05 };
+  for (int k = 4; k < dims[2] - 4; ++k)
+    for (int j = 6; j < dims[1] - 6; ++j)
+      for (int i = 4; i < dims[0] - 4; ++i)
+        for (int a = 0; a < 3; ++a)
+        {
+          ASSERT_NEAR(g[3 * Index(dims, i, j, k) + a], expected[a], 1e-6)
+            << i << " " << j << " " << k << " axis " << a;
+        }
+}
+
+TEST(ValueGradient, SmoothingAnImpulseGivesTheGaussiansVariance)
+{
+  // One component, a unit impulse in the middle of a line: the blur keeps
+  // the sum (normalised weights) and its variance is sigma^2 (truncation at
+  // 3 sigma and sampling take 1 % of it at most from sigma = 1 up).
+  const int dims[3] = { 41, 1, 1 };
+  for (const double s : { 1.0, 1.5, 2.5 })
+  {
+    std::vector<float> v(41, 0.0f);
+    v[20] = 1.0f;
+    const double sigma[3] = { s, 0.0, 0.0 };
+    mmv::SmoothVectors(v, 1, dims, sigma);
+    double sum = 0.0;
+    double variance = 0.0;
+    for (int i = 0; i < 41; ++i)
+    {
+      sum += v[i];
+      variance += v[i] * (i - 20.0) * (i - 20.0);
+    }
+    EXPECT_NEAR(sum, 1.0, 1e-6) << "sigma " << s;
+    EXPECT_NEAR(variance, s * s, 0.01 * s * s) << "sigma " << s;
+    EXPECT_EQ(v[20 + static_cast<int>(std::ceil(3.0 * s)) + 1], 0.0f) << "truncated at 3 sigma";
+  }
+}
+
+TEST(ValueGradient, SmoothingIsRoundInWorldSpace)
+{
+  // The MR head's spacing: sigma 1 is 3.2 mm, one voxel in x and y, 2.13 in z.
+  const double spacing[3] = { 3.2, 3.2, 1.5 };
+  double voxels[3];
+  mmv::GradientSmoothingVoxels(1.0, spacing, voxels);
+  EXPECT_DOUBLE_EQ(voxels[0], 1.0);
+  EXPECT_DOUBLE_EQ(voxels[1], 1.0);
+  EXPECT_NEAR(voxels[2], 3.2 / 1.5, 1e-12);
+  mmv::GradientSmoothingVoxels(0.0, spacing, voxels);
+  EXPECT_EQ(voxels[0] + voxels[1] + voxels[2], 0.0);
+}
+
+TEST(ValueGradient, BadSmoothingValuesAreReported)
+{
+  std::string why;
+  EXPECT_EQ(mmv::ValidGradientSmoothing(1.5, &why), 1.5);
+  EXPECT_TRUE(why.empty());
+  EXPECT_EQ(mmv::ValidGradientSmoothing(std::nan(""), &why), 0.0);
+  EXPECT_NE(why.find("GradientSmoothing"), std::string::npos) << why;
+  why.clear();
+  EXPECT_EQ(mmv::ValidGradientSmoothing(-2.0, &why), 0.0);
+  EXPECT_FALSE(why.empty());
+  why.clear();
+  EXPECT_EQ(mmv::ValidGradientSmoothing(100.0, &why), mmv::MaxGradientSmoothing);
+  EXPECT_FALSE(why.empty());
+  why.clear();
+  EXPECT_EQ(mmv::ValidGradientSmoothing(std::numeric_limits<double>::infinity(), &why),
+    mmv::MaxGradientSmoothing);
+  EXPECT_FALSE(why.empty());
 }
