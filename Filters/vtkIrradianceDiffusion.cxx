@@ -1,5 +1,6 @@
 #include "vtkIrradianceDiffusion.h"
 
+#include "vtkMath.h"
 #include "vtkSMPTools.h"
 
 #include <algorithm>
@@ -52,6 +53,9 @@ public:
     this->BuildCoefficients(spacing, strength);
   }
 
+  /// Whether voxel v has a face with a non-zero coefficient.
+  bool Exchanges(vtkIdType v) const { return this->RowSum(v) > 0.0; }
+
   /// The largest row sum of A over the capacity (Gershgorin: bounds the
   /// rates of C^-1 A).
   double GetMaxRowSum() const { return this->MaxRowSum; }
@@ -84,7 +88,7 @@ public:
     double bNorm2 = 0.0;
     // x0 = b: r0 = C b - (C + dt A) b = -dt A b, zero for a uniform field.
     this->ForRows([&](vtkIdType row, double* acc) {
-      this->ApplyRow(row, x.data(), q.data());
+      this->ApplyRow(row, x.data(), q.data(), this->Dt);
       for (vtkIdType i = this->RowStart(row), e = i + this->Dims[0]; i < e; ++i)
       {
         const double rhs = this->CapacityOf(i) * x[i];
@@ -115,7 +119,7 @@ public:
         }
       });
       this->ForRows([&](vtkIdType row, double* acc) {
-        this->ApplyRow(row, p.data(), q.data());
+        this->ApplyRow(row, p.data(), q.data(), this->Dt);
         for (vtkIdType i = this->RowStart(row), e = i + this->Dims[0]; i < e; ++i)
         {
           acc[0] += p[i] * q[i];
@@ -214,8 +218,31 @@ private:
     return (v / this->Stride[axis]) % this->Dims[axis] > 0;
   }
 
-  /// out = (I + dt A) in, for one grid row.
-  void ApplyRow(vtkIdType row, const double* in, double* out) const
+public:
+  /// out = alpha u0 + beta (in - C^-1 A in / R) + gamma prev, over the whole
+  /// grid: a step of the Clenshaw recurrence of the exponential's series
+  /// (mirrored by Shaders/mmvDiffusionFS.glsl with MMV_EXPONENTIAL).
+  void Clenshaw(const std::vector<double>& u0, const std::vector<double>& in,
+    const std::vector<double>& prev, double alpha, double beta, double gamma,
+    std::vector<double>& out) const
+  {
+    const double invRate = 1.0 / this->MaxRowSum;
+    vtkSMPTools::For(0, this->Rows, [&](vtkIdType begin, vtkIdType end) {
+      for (vtkIdType row = begin; row < end; ++row)
+      {
+        this->ApplyRow(row, in.data(), out.data(), 1.0, false); // out = A in
+        for (vtkIdType v = this->RowStart(row), e = v + this->Dims[0]; v < e; ++v)
+        {
+          const double applied = out[v] / this->CapacityOf(v); // C^-1 A in
+          out[v] = alpha * u0[v] + beta * (in[v] - invRate * applied) + gamma * prev[v];
+        }
+      }
+    });
+  }
+
+private:
+  /// out = (C + dt A) in for one grid row, or dt A in without `capacity`.
+  void ApplyRow(vtkIdType row, const double* in, double* out, double dt, bool capacity = true) const
   {
     const vtkIdType start = this->RowStart(row);
     const bool hasY[2] = { row % this->Dims[1] > 0, row % this->Dims[1] + 1 < this->Dims[1] };
@@ -254,7 +281,7 @@ private:
       {
         flux += cz[v - sz] * (c - in[v - sz]);
       }
-      out[v] = this->CapacityOf(v) * c + this->Dt * flux;
+      out[v] = (capacity ? this->CapacityOf(v) * c : 0.0) + dt * flux;
     }
   }
 
@@ -372,6 +399,48 @@ int ChebyshevSweeps(double dtTimesMaxRate, const DiffusionSettings& settings)
   const double tolerance = std::min(std::max(settings.SweepTolerance, 1.0e-12), 0.5);
   // 2 c^k / (1 + c^2k) <= 2 c^k <= tolerance.
   return std::max(1, static_cast<int>(std::ceil(std::log(0.5 * tolerance) / std::log(c))));
+}
+
+std::vector<double> ExponentialChebyshevCoefficients(double a, double tolerance)
+{
+  std::vector<double> c;
+  if (!(a > 0.0) || !std::isfinite(a))
+  {
+    return c;
+  }
+  // c_k of f(y) = exp(-a (1 - y)) by the discrete cosine transform at N
+  // Chebyshev nodes (f <= 1: no overflow for large a, as e^-a I_k(a) had);
+  // the coefficients fall off beyond k ~ sqrt(2 a ln(1/tol)), so N covers
+  // them with room.
+  const double tol = std::min(std::max(tolerance, 1.0e-14), 0.5);
+  const int needed = static_cast<int>(std::ceil(std::sqrt(2.0 * a * std::log(1.0 / tol)))) + 16;
+  const int nodes = 2 * std::max(needed, 32);
+  std::vector<double> f(nodes);
+  for (int j = 0; j < nodes; ++j)
+  {
+    const double theta = vtkMath::Pi() * (j + 0.5) / nodes;
+    f[j] = std::exp(-a * (1.0 - std::cos(theta)));
+  }
+  c.resize(nodes);
+  for (int k = 0; k < nodes; ++k)
+  {
+    double sum = 0.0;
+    for (int j = 0; j < nodes; ++j)
+    {
+      sum += f[j] * std::cos(k * vtkMath::Pi() * (j + 0.5) / nodes);
+    }
+    c[k] = (k == 0 ? 1.0 : 2.0) * sum / nodes;
+  }
+  // Truncate where the tail falls below the tolerance.
+  double tail = 0.0;
+  int degree = nodes - 1;
+  while (degree > 0 && tail + std::abs(c[degree]) < tol)
+  {
+    tail += std::abs(c[degree]);
+    --degree;
+  }
+  c.resize(degree + 1);
+  return c;
 }
 
 double ChebyshevWeight(int k, double rho)
@@ -500,6 +569,32 @@ DiffusionReport DiffuseIrradiance(const int dims[3], const double spacing[3],
     return report;
   }
   report.Skipped = false;
+  if (settings.Exponential)
+  {
+    // Clenshaw: b_k = c_k u0 + 2 B b_k+1 - b_k+2 from k = n down to 1, then
+    // S = c_0 u0 + B b_1 - b_2 (ExponentialChebyshevCoefficients).
+    const std::vector<double> c =
+      ExponentialChebyshevCoefficients(settings.Time * maxRate, settings.Tolerance);
+    std::vector<double> u0(irradiance, irradiance + n);
+    std::vector<double> next(n, 0.0), current(n, 0.0), previous(n, 0.0);
+    for (size_t k = c.size(); k-- > 0;)
+    {
+      const bool last = k == 0;
+      system.Clenshaw(u0, current, previous, c[k], last ? 1.0 : 2.0, -1.0, next);
+      std::swap(previous, current);
+      std::swap(current, next);
+      ++report.Iterations;
+    }
+    report.SubSteps = 1;
+    for (vtkIdType v = 0; v < n; ++v)
+    {
+      // A voxel that exchanges nothing (no face coefficient) keeps its value
+      // exactly, not the truncated series' (1 - tail) of it.
+      irradiance[v] = system.Exchanges(v) ? static_cast<float>(std::max(0.0, current[v]))
+                                           : irradiance[v];
+    }
+    return report;
+  }
   report.SubSteps = DiffusionSubSteps(maxRate, settings);
   const double dt = settings.Time / report.SubSteps;
   system.SetTimeStep(dt);

@@ -53,6 +53,13 @@ struct DiffusionSettings
   /// (1 - rho) times it, and after the sweeps the Chebyshev error bound
   /// needs at the latest.
   double SweepTolerance = 1.0e-3;
+  /// How the diffusion is integrated in time. True (the default): the
+  /// exponential exp(-T C^-1 A) applied as a truncated Chebyshev series
+  /// (ExponentialChebyshevCoefficients): exact in time, and on the GPU
+  /// 12-18 passes where backward Euler took 56-112 sweeps (docs/benchmark.md).
+  /// False: MaxSubSteps backward-Euler steps (CG on the CPU, Chebyshev-
+  /// accelerated Jacobi on the GPU), first order in time.
+  bool Exponential = true;
 };
 
 struct DiffusionReport
@@ -120,6 +127,20 @@ VTKMULTIMATERIALVOLUME_EXPORT int JacobiSweeps(
  */
 VTKMULTIMATERIALVOLUME_EXPORT int ChebyshevSweeps(
   double dtTimesMaxRate, const DiffusionSettings& settings = DiffusionSettings());
+
+/**
+ * The Chebyshev series of the diffusion's exponential: with rate bound R
+ * (MaxDiffusionRate, so the rates of C^-1 A lie in [0, 2R]) and
+ * B = I - C^-1 A / R (spectrum in [-1, 1]),
+ *   exp(-T C^-1 A) = sum_k c_k T_k(B),  c_k the coefficients of
+ *   exp(-a (1 - y)) on [-1, 1], a = T R,
+ * truncated at the first n whose tail sum_{k > n} |c_k| is below
+ * `tolerance` (|T_k| <= 1 there, so that bounds the error relative to the
+ * largest irradiance). The degree grows as sqrt(a), not as a: a = 21 (the
+ * CT's `skin`) needs n = 17 at 1e-3. Empty when a is not > 0.
+ */
+VTKMULTIMATERIALVOLUME_EXPORT std::vector<double> ExponentialChebyshevCoefficients(
+  double a, double tolerance);
 
 /// The weight omega_k (k >= 1) of sweep k of a sub-step.
 VTKMULTIMATERIALVOLUME_EXPORT double ChebyshevWeight(int k, double rho);

@@ -411,12 +411,15 @@ bool CastShadowRays(vtkAlgorithm* self, const RayContext& ctx, const mmv::LightS
  * material's scattering at the pre-filtered value, 0 in empty voxels, and is
  * given in data voxels^2, so the grid spacing is passed in data voxels.
  * The change is computed on the diffusion grid (DiffuseIrradianceOnDiffusionGrid),
- * as the GPU pass does. Returns the CG iterations.
+ * as the GPU pass does. Returns the iterations (series terms or CG).
  */
 int DiffuseLights(const mmv::IrradianceGrid& grid, const std::vector<float>& prefiltered,
   const std::vector<vtkIdType>& computed, vtkMaterialTransferFunction* mtf,
-  const std::vector<LightTask>& tasks, const std::vector<vtkSmartPointer<vtkFloatArray>>& arrays)
+  const std::vector<LightTask>& tasks, const std::vector<vtkSmartPointer<vtkFloatArray>>& arrays,
+  bool exponential)
 {
+  mmv::DiffusionSettings settings;
+  settings.Exponential = exponential;
   std::vector<float> strength(grid.GetNumberOfVoxels(), 0.0f);
   bool any = false;
   for (const vtkIdType v : computed)
@@ -438,7 +441,7 @@ int DiffuseLights(const mmv::IrradianceGrid& grid, const std::vector<float>& pre
     if (tasks[l].Active)
     {
       iterations += mmv::DiffuseIrradianceOnDiffusionGrid(
-        grid.Dimensions, spacing, strength.data(), arrays[l]->GetPointer(0))
+        grid.Dimensions, spacing, strength.data(), arrays[l]->GetPointer(0), settings)
                       .Iterations;
     }
   }
@@ -794,7 +797,8 @@ int vtkIrradianceVolumeFilter::RequestData(
   if (this->MultipleScattering)
   {
     this->DiffusionIterations =
-      DiffuseLights(grid, prefiltered, computed, this->Internals->Material, tasks, arrays);
+      DiffuseLights(grid, prefiltered, computed, this->Internals->Material, tasks, arrays,
+        this->ExponentialDiffusion);
   }
   for (size_t l = 0; l < tasks.size(); ++l)
   {
@@ -832,6 +836,7 @@ void vtkIrradianceVolumeFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ShadowEstimation: " << this->ShadowEstimation << "\n";
   os << indent << "PiecewiseShadowSlices: " << this->PiecewiseShadowSlices << "\n";
   os << indent << "MultipleScattering: " << this->MultipleScattering << "\n";
+  os << indent << "ExponentialDiffusion: " << this->ExponentialDiffusion << "\n";
   os << indent << "FillEmptyNeighbors: " << this->FillEmptyNeighbors << "\n";
   os << indent << "NumberOfComputedVoxels: " << this->NumberOfComputedVoxels << "\n";
   os << indent << "NumberOfShadowRays: " << this->NumberOfShadowRays << "\n";

@@ -143,6 +143,13 @@ public:
   vtkGetMacro(MultipleScattering, bool);
   vtkBooleanMacro(MultipleScattering, bool);
 
+  /// The diffusion's time integration (mmv::DiffusionSettings::Exponential):
+  /// on (default), the exponential's Chebyshev series; off, backward-Euler
+  /// sub-steps solved by conjugate gradients.
+  vtkSetMacro(ExponentialDiffusion, bool);
+  vtkGetMacro(ExponentialDiffusion, bool);
+  vtkBooleanMacro(ExponentialDiffusion, bool);
+
   /// Fills empty voxels bordering computed ones (step 5; default on).
   vtkSetMacro(FillEmptyNeighbors, bool);
   vtkGetMacro(FillEmptyNeighbors, bool);
@@ -193,6 +200,7 @@ protected:
   int ShadowEstimation = mmv::PiecewiseShadowRays;
   int PiecewiseShadowSlices = mmv::DefaultPiecewiseShadowSlices;
   bool MultipleScattering = true;
+  bool ExponentialDiffusion = true;
   bool FillEmptyNeighbors = true;
 
   vtkIdType NumberOfComputedVoxels = 0;

@@ -288,6 +288,7 @@ public:
   double CoarseMaxRate = 0.0;
   int SubSteps = 0;
   int SweepsPerStep = 0;
+  std::vector<double> ExponentialSeries; // c_k of the exponential integrator
   double SpectralRadius = 0.0; // of the Jacobi iteration, for the Chebyshev weights
   int ScatteringBox[6] = { 0, 0, 0, 0, 0, 0 }; // diffusion-grid blocks with s > 0
   unsigned int ResidualQuery = 0; // occlusion query counting unconverged blocks
@@ -308,6 +309,7 @@ public:
   VoxelPass PiecewiseQuad;
   VoxelPass RestrictQuad;
   VoxelPass SweepQuad;
+  VoxelPass ExponentialQuad;
   VoxelPass ProlongQuad;
   VoxelPass FillQuad;
   // Compute dispatches instead of fragment draws (this update), and the
@@ -316,7 +318,7 @@ public:
   unsigned int WriteCounter = 0;
 
   void Classify(const std::vector<float>& opacity, const std::vector<float>& scattering);
-  void PlanDiffusion(double time);
+  void PlanDiffusion(double time, bool exponential);
 
   bool Upload(vtkOpenGLRenderWindow* context);
   bool AllocateTargets(vtkOpenGLRenderWindow* context, bool diffusion, bool& reallocated);
@@ -336,6 +338,10 @@ public:
   bool PiecewiseShadowPass(vtkOpenGLRenderWindow* context, int light, int slicesPerChunk,
     bool skipEmpty, bool layered);
   int Diffuse(vtkOpenGLRenderWindow* context, bool layered, int mask);
+  int BackwardEulerSweeps(
+    vtkOpenGLRenderWindow* context, vtkShaderProgram* sweep, bool layered, int mask, int& current);
+  int ExponentialSweeps(
+    vtkOpenGLRenderWindow* context, vtkShaderProgram* sweep, bool layered, int& current);
   bool FillPass(vtkOpenGLRenderWindow* context, vtkTextureObject* source, int group, int mask,
     bool layered);
   void ReleaseScratch(vtkWindow* window);
@@ -359,8 +365,9 @@ void vtkIrradianceVolumePass::vtkInternals::Classify(
 //------------------------------------------------------------------------------
 // The diffusion grid and how long its solve runs, exactly as the CPU's
 // mmv::DiffuseIrradianceOnDiffusionGrid plans them.
-void vtkIrradianceVolumePass::vtkInternals::PlanDiffusion(double time)
+void vtkIrradianceVolumePass::vtkInternals::PlanDiffusion(double time, bool exponential)
 {
+  this->Diffusion.Exponential = exponential;
   this->Diffusion.Time = time;
   std::vector<float> strength(this->Classes.size());
   float maxStrength = 0.0f;
@@ -404,6 +411,17 @@ void vtkIrradianceVolumePass::vtkInternals::PlanDiffusion(double time)
       }
     }
   }
+  if (this->Diffusion.Exponential)
+  {
+    // One "sub-step" of as many passes as the series has terms.
+    this->ExponentialSeries = mmv::ExponentialChebyshevCoefficients(
+      this->CoarseMaxRate * time, this->Diffusion.SweepTolerance);
+    this->SubSteps = this->ExponentialSeries.empty() ? 0 : 1;
+    this->SweepsPerStep = static_cast<int>(this->ExponentialSeries.size());
+    this->SpectralRadius = 0.0;
+    return;
+  }
+  this->ExponentialSeries.clear();
   this->SubSteps = mmv::DiffusionSubSteps(this->CoarseMaxRate, this->Diffusion);
   const double stiffness = this->CoarseMaxRate * time / this->SubSteps;
   this->SweepsPerStep = mmv::ChebyshevSweeps(stiffness, this->Diffusion);
@@ -766,16 +784,19 @@ bool vtkIrradianceVolumePass::vtkInternals::PiecewiseShadowPass(vtkOpenGLRenderW
 
 //------------------------------------------------------------------------------
 // Multiple scattering of FineScratch[0] into FineScratch[1]: restriction to
-// the diffusion grid, backward-Euler sub-steps each solved by Chebyshev-
-// accelerated Jacobi sweeps (their number from the error bound,
-// mmv::ChebyshevSweeps), then the prolongation of the change. Returns the
-// sweeps drawn, or -1 on failure.
+// the diffusion grid, the exponential's Chebyshev series (the default) or
+// backward-Euler sub-steps each solved by Chebyshev-accelerated Jacobi sweeps
+// (their number from the error bound, mmv::ChebyshevSweeps), then the
+// prolongation of the change. Returns the passes drawn, or -1 on failure.
 int vtkIrradianceVolumePass::vtkInternals::Diffuse(
   vtkOpenGLRenderWindow* context, bool layered, int mask)
 {
+  const bool exponential = !this->ExponentialSeries.empty();
   vtkShaderProgram* restriction =
     this->Ready(context, this->RestrictQuad, mmvDiffusionGridFS, "#define MMV_RESTRICT\n", false);
-  vtkShaderProgram* sweep = this->Ready(context, this->SweepQuad, mmvDiffusionFS, "", false);
+  vtkShaderProgram* sweep = exponential
+    ? this->Ready(context, this->ExponentialQuad, mmvDiffusionFS, "#define MMV_EXPONENTIAL\n", false)
+    : this->Ready(context, this->SweepQuad, mmvDiffusionFS, "", false);
   vtkShaderProgram* prolong = this->Ready(context, this->ProlongQuad, mmvDiffusionGridFS, "", false);
   if (!restriction || !sweep || !prolong)
   {
@@ -791,6 +812,30 @@ int vtkIrradianceVolumePass::vtkInternals::Diffuse(
     this->DrawLayers(context, this->RestrictQuad, coarse[0], layered);
   }
 
+  int current = 0;
+  const int sweeps = exponential ? this->ExponentialSweeps(context, sweep, layered, current)
+                                 : this->BackwardEulerSweeps(context, sweep, layered, mask, current);
+
+  context->GetShaderCache()->ReadyShaderProgram(prolong);
+  ScopedTextures bound{ this->FineScratch[0], this->ClassTexture, coarse[current],
+    this->CoarseStrengthTexture, coarse[0] };
+  prolong->SetUniformi("before", coarse[0]->GetTextureUnit());
+  prolong->SetUniformi("coarseStrength", this->CoarseStrengthTexture->GetTextureUnit());
+  prolong->SetUniformi("fine", this->FineScratch[0]->GetTextureUnit());
+  prolong->SetUniformi("classes", this->ClassTexture->GetTextureUnit());
+  prolong->SetUniformi("after", coarse[current]->GetTextureUnit());
+  this->SetTransferUniforms(prolong);
+  this->DrawLayers(context, this->ProlongQuad, this->FineScratch[1], layered);
+  return sweeps;
+}
+
+//------------------------------------------------------------------------------
+// Backward-Euler sub-steps on the diffusion grid, each solved by Chebyshev-
+// accelerated Jacobi sweeps; `current` receives the texture of the result.
+int vtkIrradianceVolumePass::vtkInternals::BackwardEulerSweeps(vtkOpenGLRenderWindow* context,
+  vtkShaderProgram* sweep, bool layered, int mask, int& current)
+{
+  auto& coarse = this->CoarseScratch;
   context->GetShaderCache()->ReadyShaderProgram(sweep);
   const glm::vec3 invH2(1.0 / (this->Coarse.Spacing[0] * this->Coarse.Spacing[0]),
     1.0 / (this->Coarse.Spacing[1] * this->Coarse.Spacing[1]),
@@ -814,7 +859,7 @@ int vtkIrradianceVolumePass::vtkInternals::Diffuse(
     (mask & 8) != 0 };
   glUniform4iv(sweep->FindUniform("residualChannels"), 1, residualChannels);
   int rhs = 0;
-  int current = 0;
+  current = 0;
   int sweeps = 0;
   for (int step = 0; step < this->SubSteps; ++step)
   {
@@ -866,18 +911,55 @@ int vtkIrradianceVolumePass::vtkInternals::Diffuse(
     rhs = current;
   }
   this->CoarseStrengthTexture->Deactivate();
-
-  context->GetShaderCache()->ReadyShaderProgram(prolong);
-  ScopedTextures bound{ this->FineScratch[0], this->ClassTexture, coarse[current],
-    this->CoarseStrengthTexture, coarse[0] };
-  prolong->SetUniformi("before", coarse[0]->GetTextureUnit());
-  prolong->SetUniformi("coarseStrength", this->CoarseStrengthTexture->GetTextureUnit());
-  prolong->SetUniformi("fine", this->FineScratch[0]->GetTextureUnit());
-  prolong->SetUniformi("classes", this->ClassTexture->GetTextureUnit());
-  prolong->SetUniformi("after", coarse[current]->GetTextureUnit());
-  this->SetTransferUniforms(prolong);
-  this->DrawLayers(context, this->ProlongQuad, this->FineScratch[1], layered);
   return sweeps;
+}
+
+//------------------------------------------------------------------------------
+// The exponential's Chebyshev series on the diffusion grid by the Clenshaw
+// recurrence (Shaders/mmvDiffusionFS.glsl, MMV_EXPONENTIAL): b_k = c_k u0 +
+// 2 B b_k+1 - b_k+2 from k = n down to 1, then c_0 u0 + B b_1 - b_2; u0 is
+// the restricted irradiance (texture 0). `current` receives the result.
+int vtkIrradianceVolumePass::vtkInternals::ExponentialSweeps(vtkOpenGLRenderWindow* context,
+  vtkShaderProgram* sweep, bool layered, int& current)
+{
+  auto& coarse = this->CoarseScratch;
+  context->GetShaderCache()->ReadyShaderProgram(sweep);
+  const glm::vec3 invH2(1.0 / (this->Coarse.Spacing[0] * this->Coarse.Spacing[0]),
+    1.0 / (this->Coarse.Spacing[1] * this->Coarse.Spacing[1]),
+    1.0 / (this->Coarse.Spacing[2] * this->Coarse.Spacing[2]));
+  this->CoarseStrengthTexture->Activate();
+  sweep->SetUniformi("classes", this->CoarseStrengthTexture->GetTextureUnit());
+  sweep->SetUniform1iv("dims", 3, this->Coarse.Dimensions);
+  sweep->SetUniform3f("invH2", glm::value_ptr(invH2));
+  sweep->SetUniformf("invRate", static_cast<float>(1.0 / this->CoarseMaxRate));
+  const std::vector<double>& c = this->ExponentialSeries;
+  const int n = static_cast<int>(c.size()) - 1;
+  // b_n+1 = b_n+2 = 0: their weights are 0 and texture 0 stands in for them.
+  current = 0;
+  int previous = 0;
+  int passes = 0;
+  for (int k = n; k >= 0; --k)
+  {
+    int next = 1;
+    while (next == current || next == previous)
+    {
+      ++next;
+    }
+    ScopedTextures bound{ coarse[0], coarse[current], coarse[previous] };
+    sweep->SetUniformi("initial", coarse[0]->GetTextureUnit());
+    sweep->SetUniformi("current", coarse[current]->GetTextureUnit());
+    sweep->SetUniformi("previous", coarse[previous]->GetTextureUnit());
+    sweep->SetUniformf("alpha", static_cast<float>(c[k]));
+    sweep->SetUniformf("beta", k == n ? 0.0f : (k == 0 ? 1.0f : 2.0f));
+    sweep->SetUniformf("gammaWeight", k >= n - 1 ? 0.0f : -1.0f);
+    // Blocks outside ScatteringBox never change and are never read.
+    this->DrawLayers(context, this->ExponentialQuad, coarse[next], layered, this->ScatteringBox);
+    ++passes;
+    previous = current;
+    current = next;
+  }
+  this->CoarseStrengthTexture->Deactivate();
+  return passes;
 }
 
 //------------------------------------------------------------------------------
@@ -954,7 +1036,7 @@ void vtkIrradianceVolumePass::vtkInternals::Release(vtkWindow* window)
     this->WriteCounter = 0;
   }
   for (VoxelPass* pass : { &this->ShadowQuad, &this->PiecewiseQuad, &this->RestrictQuad,
-         &this->SweepQuad, &this->ProlongQuad, &this->FillQuad })
+         &this->SweepQuad, &this->ExponentialQuad, &this->ProlongQuad, &this->FillQuad })
   {
     if (pass->Quad)
     {
@@ -1034,7 +1116,7 @@ void vtkIrradianceVolumePass::SetInputs(const mmv::IrradianceGrid& grid,
     internals.OpacityTable = opacity;
     internals.ScatteringTable = scattering;
     internals.Classify(opacity, scattering);
-    internals.PlanDiffusion(this->DiffusionTime);
+    internals.PlanDiffusion(this->DiffusionTime, this->ExponentialDiffusion);
     internals.Uploaded = false;
     internals.VolumeChanged = true;
   }
@@ -1077,9 +1159,10 @@ bool vtkIrradianceVolumePass::Render(vtkOpenGLRenderWindow* context)
                                                                              << minor << ".");
     return false;
   }
-  if (internals.Diffusion.Time != this->DiffusionTime)
+  if (internals.Diffusion.Time != this->DiffusionTime ||
+    internals.Diffusion.Exponential != this->ExponentialDiffusion)
   {
-    internals.PlanDiffusion(this->DiffusionTime);
+    internals.PlanDiffusion(this->DiffusionTime, this->ExponentialDiffusion);
     internals.Uploaded = false;
     internals.VolumeChanged = true;
   }

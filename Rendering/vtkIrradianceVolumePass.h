@@ -101,6 +101,13 @@ public:
   vtkSetMacro(DiffusionTime, double);
   vtkGetMacro(DiffusionTime, double);
 
+  /// The diffusion's time integration (mmv::DiffusionSettings::Exponential):
+  /// on (default), the exponential's Chebyshev series, exact in time and
+  /// 4-6x fewer passes; off, backward-Euler sub-steps of Jacobi sweeps.
+  vtkSetMacro(ExponentialDiffusion, bool);
+  vtkGetMacro(ExponentialDiffusion, bool);
+  vtkBooleanMacro(ExponentialDiffusion, bool);
+
   /// One instanced draw per pass into the whole 3D texture (default on), or
   /// one draw per slice; kept switchable to measure the difference.
   vtkSetMacro(LayeredRendering, bool);
@@ -193,6 +200,7 @@ protected:
 
   bool MultipleScattering = true;
   double DiffusionTime = 1.0;
+  bool ExponentialDiffusion = true;
   bool LayeredRendering = true;
   int ComputeShaders = ComputeUnlessSoftware;
   bool ComputeShadersUsed = false;

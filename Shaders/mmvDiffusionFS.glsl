@@ -58,6 +58,81 @@ void mmvVoxelMain()
   mmvWrite(value);
 }
 
+#elif defined(MMV_EXPONENTIAL)
+
+// With MMV_EXPONENTIAL (the default integrator, vtkIrradianceDiffusion.h):
+// one step of the Clenshaw recurrence of exp(-T C^-1 A) = sum_k c_k T_k(B),
+// B = I - C^-1 A / R (R the rate bound), mirroring
+// DiffusionSystem::Clenshaw() of Filters/vtkIrradianceDiffusion.cxx:
+//   out = alpha u0 + beta B(current) + gamma previous.
+// A voxel that exchanges nothing keeps u0 exactly.
+uniform sampler3D initial;  // u0: the restricted irradiance
+uniform sampler3D previous; // b_k+2
+uniform float alpha;
+uniform float beta;
+uniform float gammaWeight;
+uniform float invRate;      // 1 / R
+uniform vec3 invH2;         // 1 / h^2 per axis, h in data voxels
+
+float mmvStrength(ivec3 voxel)
+{
+  return max(texelFetch(classes, voxel, 0).r, 0.0);
+}
+
+// s = 0 on either side blocks the flux (the arithmetic mean would not).
+float mmvHarmonicMean(float a, float b)
+{
+  return (a > 0.0 && b > 0.0) ? 2.0 * a * b / (a + b) : 0.0;
+}
+
+void mmvVoxelMain()
+{
+  ivec3 voxel = ivec3(floor(texCoord * vec2(dims[0], dims[1])), slice);
+  float s = mmvStrength(voxel);
+  vec4 u0 = texelFetch(initial, voxel, 0);
+  vec4 b = texelFetch(current, voxel, 0);
+  vec4 flux = vec4(0.0);
+  bool exchanges = false;
+  if (s > 0.0)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      for (int side = -1; side <= 1; side += 2)
+      {
+        ivec3 neighbor = voxel;
+        neighbor[a] += side;
+        if (neighbor[a] >= 0 && neighbor[a] < dims[a])
+        {
+          float c = mmvHarmonicMean(s, mmvStrength(neighbor)) * invH2[a];
+          if (c > 0.0) // blocks that do not scatter are never drawn: never read them
+          {
+            flux += c * (texelFetch(current, neighbor, 0) - b);
+            exchanges = true;
+          }
+        }
+      }
+    }
+  }
+  if (!exchanges)
+  {
+    mmvWrite(u0);
+    return;
+  }
+  float capacity = texelFetch(classes, voxel, 0).g;
+  vec4 applied = b + invRate * flux / capacity;
+  // Weights of 0 select: the first steps' b_k+1 and b_k+2 are zero.
+  vec4 result = alpha * u0;
+  if (beta != 0.0)
+  {
+    result += beta * applied;
+  }
+  if (gammaWeight != 0.0)
+  {
+    result += gammaWeight * texelFetch(previous, voxel, 0);
+  }
+  mmvWrite(result);
+}
+
 #else
 
 uniform sampler3D rhs;      // b: the irradiance at the start of the time step

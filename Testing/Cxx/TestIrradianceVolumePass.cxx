@@ -218,9 +218,11 @@ void SetPassInputs(const Scene& scene, vtkIrradianceVolumePass* pass)
 }
 
 /// The CPU reference at full resolution: one array per light.
-std::vector<std::vector<float>> RunFilter(const Scene& scene, bool multipleScattering)
+std::vector<std::vector<float>> RunFilter(
+  const Scene& scene, bool multipleScattering, bool exponential = true)
 {
   vtkNew<vtkIrradianceVolumeFilter> filter;
+  filter->SetExponentialDiffusion(exponential);
   filter->SetInputData(scene.Image);
   filter->SetScalarOpacity(scene.Opacity);
   filter->SetMaterialTransferFunction(scene.Material);
@@ -283,9 +285,9 @@ double MaxDifference(const std::vector<float>& a, const std::vector<float>& b,
 /// Compares every light of the pass with the CPU filter; returns the largest
 /// difference.
 double CompareWithFilter(const Context& ctx, const Scene& scene, vtkIrradianceVolumePass* pass,
-  bool multipleScattering)
+  bool multipleScattering, bool exponential = true)
 {
-  const auto cpu = RunFilter(scene, multipleScattering);
+  const auto cpu = RunFilter(scene, multipleScattering, exponential);
   double worst = 0.0;
   for (size_t l = 0; l < scene.Lights.size(); ++l)
   {
@@ -579,57 +581,82 @@ TEST(IrradianceVolumePass, MovingALightKeepsTheUploadedVolume)
 
 TEST(IrradianceVolumePass, DiffusionMatchesCPUSolverForEveryStrength)
 {
-  // The GPU's Jacobi sweeps on the diffusion grid against the CPU's conjugate
-  // gradients on the same grid (mmv::DiffuseIrradianceOnDiffusionGrid): the
-  // sweep count comes from the contraction bound, so the agreement must not
-  // degrade as s grows, and the cost must grow far slower than plain
-  // Jacobi's: the diffusion grid keeps s dt / h^2 bounded until it reaches
-  // its minimum size, and the Chebyshev weights need about the square root
-  // of Jacobi's sweeps beyond that.
+  // The GPU's diffusion on the diffusion grid against the CPU's on the same
+  // grid (mmv::DiffuseIrradianceOnDiffusionGrid), with both integrators:
+  //  - the exponential's Chebyshev series (the default), against the CPU's
+  //    series at its tighter tolerance: the error bound is a priori, so every
+  //    term is drawn, and there are far fewer of them than backward Euler's
+  //    sweeps;
+  //  - backward Euler: Chebyshev-accelerated Jacobi sweeps against conjugate
+  //    gradients; the sweep count comes from the contraction bound, the
+  //    residual check stops strong scattering early, and the cost grows far
+  //    slower than plain Jacobi's.
+  // Either way the agreement must not degrade as s grows.
   const Context& ctx = SharedContext();
   ASSERT_NE(ctx.GL, nullptr);
-  const mmv::DiffusionSettings settings;
   for (double s : { 0.0, 1.0, 8.0, 20.0, 100.0, 1000.0 })
   {
-    const Scene scene = TwoBlocks(s);
-    vtkNew<vtkIrradianceVolumePass> pass;
-    SetPassInputs(scene, pass);
-    ASSERT_TRUE(pass->Render(ctx.GL));
-    const double diff = CompareWithFilter(ctx, scene, pass, true);
-    int coarse[3];
-    pass->GetDiffusionGridDimensions(coarse);
-    std::cout << "s " << s << ": diffusion grid " << coarse[0] << "x" << coarse[1] << "x"
-              << coarse[2] << ", " << pass->GetDiffusionSubSteps() << " sub-steps x "
-              << pass->GetDiffusionSweepsPerStep() << " sweeps at most, "
-              << pass->GetDiffusionPasses() << " drawn, GPU vs CPU max |difference| " << diff
-              << std::endl;
-    EXPECT_LE(diff, 0.01) << "s " << s;
-    if (s == 0.0)
+    int passes[2] = { 0, 0 };
+    for (const bool exponential : { true, false })
     {
-      EXPECT_EQ(pass->GetDiffusionPasses(), 0);
+      mmv::DiffusionSettings settings;
+      settings.Exponential = exponential;
+      const Scene scene = TwoBlocks(s);
+      vtkNew<vtkIrradianceVolumePass> pass;
+      SetPassInputs(scene, pass);
+      pass->SetExponentialDiffusion(exponential);
+      ASSERT_TRUE(pass->Render(ctx.GL));
+      const double diff = CompareWithFilter(ctx, scene, pass, true, exponential);
+      int coarse[3];
+      pass->GetDiffusionGridDimensions(coarse);
+      std::cout << "s " << s << (exponential ? ", exponential" : ", backward Euler")
+                << ": diffusion grid " << coarse[0] << "x" << coarse[1] << "x" << coarse[2]
+                << ", " << pass->GetDiffusionSubSteps() << " sub-steps x "
+                << pass->GetDiffusionSweepsPerStep() << " passes at most, "
+                << pass->GetDiffusionPasses() << " drawn, GPU vs CPU max |difference| " << diff
+                << std::endl;
+      EXPECT_LE(diff, 0.01) << "s " << s;
+      passes[exponential ? 0 : 1] = pass->GetDiffusionPasses();
+      if (s == 0.0)
+      {
+        EXPECT_EQ(pass->GetDiffusionPasses(), 0);
+      }
+      else
+      {
+        EXPECT_GT(pass->GetDiffusionPasses(), 0) << "s " << s;
+      }
+      if (exponential)
+      {
+        EXPECT_EQ(pass->GetDiffusionSubSteps(), s > 0.0 ? 1 : 0);
+        EXPECT_EQ(pass->GetDiffusionPasses(), pass->GetDiffusionSweepsPerStep());
+      }
+      else
+      {
+        EXPECT_LE(pass->GetDiffusionSubSteps(), settings.MaxSubSteps);
+      }
+      if (!exponential && s >= 100.0)
+      {
+        // The residual check stops sub-steps before the error bound's count.
+        EXPECT_LT(pass->GetDiffusionPasses(),
+          pass->GetDiffusionSubSteps() * pass->GetDiffusionSweepsPerStep())
+          << "s " << s;
+        // What plain Jacobi would need on the same grid and sub-step.
+        const double h = 24.0 / coarse[0];
+        const double stiffness = 12.0 * s / (h * h) / pass->GetDiffusionSubSteps();
+        EXPECT_LT(3 * pass->GetDiffusionSweepsPerStep(), mmv::JacobiSweeps(stiffness, settings))
+          << "s " << s;
+      }
+      if (s >= 20.0)
+      {
+        EXPECT_LT(coarse[0], 24) << "strong scattering runs on a coarser grid";
+      }
+      pass->ReleaseGraphicsResources(ctx.GL);
     }
-    else
+    if (s >= 8.0)
     {
-      EXPECT_GT(pass->GetDiffusionPasses(), 0) << "s " << s;
+      EXPECT_LT(2 * passes[0], passes[1]) << "s " << s << ": the series' passes against "
+                                          << "backward Euler's sweeps";
     }
-    EXPECT_LE(pass->GetDiffusionSubSteps(), settings.MaxSubSteps);
-    if (s >= 100.0)
-    {
-      // The residual check stops sub-steps before the error bound's count.
-      EXPECT_LT(pass->GetDiffusionPasses(),
-        pass->GetDiffusionSubSteps() * pass->GetDiffusionSweepsPerStep())
-        << "s " << s;
-      // What plain Jacobi would need on the same grid and sub-step.
-      const double h = 24.0 / coarse[0];
-      const double stiffness = 12.0 * s / (h * h) / pass->GetDiffusionSubSteps();
-      EXPECT_LT(3 * pass->GetDiffusionSweepsPerStep(), mmv::JacobiSweeps(stiffness, settings))
-        << "s " << s;
-    }
-    if (s >= 20.0)
-    {
-      EXPECT_LT(coarse[0], 24) << "strong scattering runs on a coarser grid";
-    }
-    pass->ReleaseGraphicsResources(ctx.GL);
   }
 }
 
