@@ -413,9 +413,12 @@ void vtkIrradianceVolumePass::vtkInternals::PlanDiffusion(double time, bool expo
   }
   if (this->Diffusion.Exponential)
   {
-    // One "sub-step" of as many passes as the series has terms.
+    // One "sub-step" of as many passes as the series has terms. A quarter of
+    // the sweeps' tolerance: the result is stored in 16 bits as well, and the
+    // two errors together stay below the sweeps' (1e-3 of the largest
+    // irradiance) for two or three more terms.
     this->ExponentialSeries = mmv::ExponentialChebyshevCoefficients(
-      this->CoarseMaxRate * time, this->Diffusion.SweepTolerance);
+      this->CoarseMaxRate * time, 0.25 * this->Diffusion.SweepTolerance);
     this->SubSteps = this->ExponentialSeries.empty() ? 0 : 1;
     this->SweepsPerStep = static_cast<int>(this->ExponentialSeries.size());
     this->SpectralRadius = 0.0;

@@ -6,8 +6,8 @@
 //
 //   mmvIrradianceBenchmark --out DIR [--size N] [--reps N] [--head FILE.vti] [--quick]
 //                          [--only SECTION[,SECTION...]]  (updates, resolution,
-//                          estimation, raycast, orbit, compute; all but
-//                          raycast, orbit and compute by default)
+//                          estimation, raycast, orbit, compute, diffusion; all
+//                          but raycast, orbit, compute and diffusion by default)
 //                          [--orbit-steps N] [--orbit-interactive-frames K]
 //                          [--image-sample-distance D] [--lights N]  (raycast: both
 //                          mappers, no auto-adjust, N scene lights, default 5)
@@ -522,6 +522,77 @@ int main(int argc, char* argv[])
           << ",\"" << renderer << "\"\n";
       std::printf("s = %g: compute %.4f s, fragment %.4f s, fragment / compute %.2f (%s)\n", s,
         Median(compute), Median(fragment), Median(ratios), renderer.c_str());
+    }
+    return 0;
+  }
+  if (Wanted(only, "diffusion") && !only.empty())
+  {
+    // The diffusion's two integrators, each in its own window (switching
+    // one pass between them would re-upload the volume), updates alternating
+    // window by window (the machine may be shared): 5 lights, scale 0.5 and
+    // the default scale, several s; the image's PSNR of the series against
+    // backward Euler at the same lights.
+    Bench euler(scene, size, true);
+    Bench* benches[2] = { &ours, &euler };
+    euler.Ours->GetIrradianceVolumePass()->SetExponentialDiffusion(false);
+    std::ofstream csv(out + "/diffusion_integrators.csv");
+    csv << "scattering,irradiance_scale,diffusion_grid,exponential_passes,backward_euler_passes,"
+           "exponential_update_s,backward_euler_update_s,backward_euler_over_exponential,"
+           "psnr_exponential_vs_backward_euler_db,renderer\n";
+    std::string renderer;
+    for (double scale : { 0.5, 0.0 })
+    {
+      for (double s : { 8.0, 20.0, 100.0 })
+      {
+        for (Bench* b : benches)
+        {
+          b->SetLightCount(5);
+          b->Ours->SetIrradianceScale(scale);
+          b->SetScattering(s);
+          b->PlaceLights(0.5);
+          b->Window->Render(); // the volume, tables and textures: not timed
+        }
+        std::vector<double> times[2], ratios;
+        int passes[2] = { 0, 0 };
+        for (int r = 0; r < reps; ++r)
+        {
+          double pair[2];
+          for (int e = 0; e < 2; ++e)
+          {
+            std::vector<double> update;
+            benches[e]->Frames(1, [&]() { benches[e]->PlaceLights(); }, &update);
+            pair[e] = update.back();
+            passes[e] = benches[e]->Ours->GetIrradianceVolumePass()->GetDiffusionPasses();
+          }
+          times[0].push_back(pair[0]);
+          times[1].push_back(pair[1]);
+          ratios.push_back(pair[1] / pair[0]);
+        }
+        vtkSmartPointer<vtkImageData> images[2];
+        for (int e = 0; e < 2; ++e)
+        {
+          benches[e]->PlaceLights(1.0);
+          benches[e]->Window->Render();
+          vtkNew<vtkWindowToImageFilter> grab;
+          grab->SetInput(benches[e]->Window);
+          grab->ReadFrontBufferOff();
+          grab->Update();
+          images[e] = vtkSmartPointer<vtkImageData>::New();
+          images[e]->DeepCopy(grab->GetOutput());
+        }
+        vtkNew<vtkImageErrorMetrics> metrics;
+        metrics->Compute(images[0], images[1]);
+        int dims[3];
+        ours.Ours->GetIrradianceVolumePass()->GetDiffusionGridDimensions(dims);
+        renderer = mmvtest::RendererString(ours.Window);
+        csv << s << "," << scale << "," << Join(dims) << "," << passes[0] << "," << passes[1]
+            << "," << Median(times[0]) << "," << Median(times[1]) << "," << Median(ratios) << ","
+            << metrics->GetPSNR() << ",\"" << renderer << "\"\n";
+        std::printf("s = %g, scale %g, diffusion grid %s: exponential %d passes %.4f s, backward "
+                    "Euler %d passes %.4f s, ratio %.2f, PSNR %.1f dB (%s)\n",
+          s, scale, Join(dims).c_str(), passes[0], Median(times[0]), passes[1], Median(times[1]),
+          Median(ratios), metrics->GetPSNR(), renderer.c_str());
+      }
     }
     return 0;
   }
