@@ -144,8 +144,8 @@ public:
   vtkBooleanMacro(MultipleScattering, bool);
 
   /// The diffusion's time integration (mmv::DiffusionSettings::Exponential):
-  /// on (default), the exponential's Chebyshev series; off, backward-Euler
-  /// sub-steps solved by conjugate gradients.
+  /// off (default), backward-Euler sub-steps solved by conjugate gradients;
+  /// on, the exponential's Chebyshev series.
   vtkSetMacro(ExponentialDiffusion, bool);
   vtkGetMacro(ExponentialDiffusion, bool);
   vtkBooleanMacro(ExponentialDiffusion, bool);
@@ -200,7 +200,7 @@ protected:
   int ShadowEstimation = mmv::PiecewiseShadowRays;
   int PiecewiseShadowSlices = mmv::DefaultPiecewiseShadowSlices;
   bool MultipleScattering = true;
-  bool ExponentialDiffusion = true;
+  bool ExponentialDiffusion = false;
   bool FillEmptyNeighbors = true;
 
   vtkIdType NumberOfComputedVoxels = 0;

@@ -60,7 +60,7 @@ void mmvVoxelMain()
 
 #elif defined(MMV_EXPONENTIAL)
 
-// With MMV_EXPONENTIAL (the default integrator, vtkIrradianceDiffusion.h):
+// With MMV_EXPONENTIAL (ExponentialDiffusion, vtkIrradianceDiffusion.h):
 // one step of the Clenshaw recurrence of exp(-T C^-1 A) = sum_k c_k T_k(B),
 // B = I - C^-1 A / R (R the rate bound), mirroring
 // DiffusionSystem::Clenshaw() of Filters/vtkIrradianceDiffusion.cxx:
