@@ -7,6 +7,7 @@
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkIrradianceGrid.h"
+#include "vtkIrradianceInputCache.h"
 #include "vtkIrradianceVolumePass.h"
 #include "vtkLightCollection.h"
 #include "vtkMaterialTransferFunction.h"
@@ -14,6 +15,7 @@
 #include "vtkMatrix4x4.h"
 #include "vtkMultiMaterialCutaway.h"
 #include "vtkMultiMaterialLights.h"
+#include "vtkMultiMaterialLiveObjects.h"
 #include "vtkMultiMaterialParameters.h"
 #include "vtkMultiMaterialRenderPass.h"
 #include "vtkMultiMaterialShaderAssembly.h"
@@ -126,25 +128,10 @@ public:
   vtkNew<vtkColorTransferFunction> GrayAsColor;
   vtkMTimeType GrayTime = 0;
 
-  // What the irradiance volume was computed from: the volume (data, opacity,
-  // scattering; the grid is the mapper's IrradianceDimensions), and each
-  // light; the pass recomputes only the lights that differ, everything when
-  // the volume does.
-  std::vector<double> VolumeKey;
-  std::vector<double> LightsKey;
+  // What the irradiance volume was computed from, and the pass's inputs
+  // kept between frames (pre-filtered data, material samples).
+  vtkNew<vtkIrradianceInputCache> Cache;
   std::string ResolutionReason;
-  // The pre-filtered data on the irradiance grid, normalised to [0, 1].
-  std::vector<double> PrefilterKey;
-  std::vector<float> Prefiltered;
-  unsigned long PrefilteredVersion = 0; // counts the pre-filterings
-  mmv::IrradianceGrid Grid;
-  // The material parameters the irradiance depends on (attenuation and
-  // scattering), sampled over the range, and a version bumped only when they
-  // change, so editing a colour-only parameter keeps the irradiance.
-  std::vector<double> MaterialSampleKey;
-  std::vector<float> Attenuation;
-  std::vector<float> Scattering;
-  int MaterialVersion = 0;
 
   // Per-frame shading inputs, read by SetUniforms().
   mmv::ShaderVariant Variant;
@@ -260,6 +247,7 @@ void vtkMultiMaterialVolumeMapper::vtkInternals::SetUniforms(vtkShaderProgram* p
 vtkMultiMaterialVolumeMapper::vtkMultiMaterialVolumeMapper()
   : Internals(new vtkInternals)
 {
+  vtkMultiMaterialLiveObjects::Constructed("vtkMultiMaterialVolumeMapper");
   this->Internals->Pass->SetOwner(this);
   vtkInternals* internals = this->Internals;
   this->Internals->Pass->SetParameterCallback(
@@ -273,6 +261,7 @@ vtkMultiMaterialVolumeMapper::~vtkMultiMaterialVolumeMapper()
   this->Internals->Pass->SetParameterCallback(nullptr);
   this->Internals->Pass->SetFragmentReplacements({});
   delete this->Internals;
+  vtkMultiMaterialLiveObjects::Destroyed("vtkMultiMaterialVolumeMapper");
 }
 
 void vtkMultiMaterialVolumeMapper::SetMaterialTransferFunction(vtkMaterialTransferFunction* m)
@@ -342,15 +331,6 @@ double ExpectedSampleDistance(vtkGPUVolumeRayCastMapper* mapper, vtkVolume* vol,
     smallest = std::min(smallest, std::abs(spacing[i] * column));
   }
   return smallest;
-}
-
-void AppendLightKey(std::vector<double>& key, const mmv::LightSource& s)
-{
-  key.push_back(s.Kind);
-  key.insert(key.end(), { s.Position.x, s.Position.y, s.Position.z, s.ToLight.x, s.ToLight.y,
-                          s.ToLight.z, s.SpotAxis.x, s.SpotAxis.y, s.SpotAxis.z, s.CosCone,
-                          s.SpotExponent, s.Attenuation.x, s.Attenuation.y, s.Attenuation.z,
-                          s.Radius });
 }
 
 /// Pixels one data voxel step covers on screen at the volume's centre,
@@ -436,7 +416,7 @@ void vtkMultiMaterialVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
 {
   this->Internals->Textures->ReleaseGraphicsResources(window);
   this->Internals->Irradiance->ReleaseGraphicsResources(window);
-  this->Internals->VolumeKey.clear();
+  this->Internals->Cache->Invalidate();
   this->Superclass::ReleaseGraphicsResources(window);
 }
 
@@ -552,44 +532,61 @@ void vtkMultiMaterialVolumeMapper::WarnOnce(const std::string& message)
   }
 }
 
-bool vtkMultiMaterialVolumeMapper::PrepareMultiMaterial(vtkRenderer* ren, vtkVolume* vol)
+//------------------------------------------------------------------------------
+/// What CheckInputs() found: whether the mapper can shade the inputs with
+/// materials, and what to tell the user about them.
+struct vtkMultiMaterialVolumeMapper::InputCheck
 {
-  vtkInternals& in = *this->Internals;
+  bool Supported = false;
+  /// Why VTK's shading renders instead; empty when the base class reports
+  /// the problem itself (or there is nothing to say, e.g. other blend modes).
+  std::string Reason;
+  /// A caveat about input that is still shaded (a single slice).
+  std::string Caveat;
+  vtkImageData* Image = nullptr;
+  vtkDataArray* Scalars = nullptr;
+  vtkOpenGLRenderWindow* Context = nullptr;
+};
+
+vtkMultiMaterialVolumeMapper::InputCheck vtkMultiMaterialVolumeMapper::CheckInputs(
+  vtkRenderer* ren, vtkVolume* vol)
+{
+  InputCheck check;
   if (this->BlendMode != vtkVolumeMapper::COMPOSITE_BLEND)
   {
-    return false; // other blend modes are the base class's business
+    return check; // other blend modes are the base class's business
   }
   auto* image = vtkImageData::SafeDownCast(this->GetInput());
-  vtkVolumeProperty* property = vol->GetProperty();
   auto* context = vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow());
-  if (!image || !property || !context)
+  if (!image || !vol->GetProperty() || !context)
   {
     if (this->GetInput())
     {
-      this->WarnOnce("multi-material shading needs vtkImageData input; using VTK's shading");
+      check.Reason = "multi-material shading needs vtkImageData input; using VTK's shading";
     }
-    return false;
+    return check;
   }
   int cellFlag = 0;
   vtkDataArray* scalars = vtkAbstractMapper::GetScalars(image, this->ScalarMode,
     this->ArrayAccessMode, this->ArrayId, this->ArrayName, cellFlag);
   if (!scalars)
   {
-    return false; // the base class reports missing scalars
+    return check; // the base class reports missing scalars
   }
   // An empty image (0 points) crashed the irradiance pre-filter
   // (TestBadInput.EmptyVolume); fewer scalars than points would read past them.
   if (image->GetNumberOfPoints() < 1 ||
-    scalars->GetNumberOfTuples() < (cellFlag ? image->GetNumberOfCells() : image->GetNumberOfPoints()))
+    scalars->GetNumberOfTuples() <
+      (cellFlag ? image->GetNumberOfCells() : image->GetNumberOfPoints()))
   {
-    this->WarnOnce("the input has no points or fewer scalars than points; nothing to shade");
-    return false;
+    check.Reason = "the input has no points or fewer scalars than points; nothing to shade";
+    return check;
   }
   if (cellFlag)
   {
-    this->WarnOnce("multi-material shading needs point scalars (cell scalars given); "
-                   "using VTK's shading");
-    return false;
+    check.Reason = "multi-material shading needs point scalars (cell scalars given); "
+                   "using VTK's shading";
+    return check;
   }
   int dataDims[3];
   image->GetDimensions(dataDims);
@@ -597,28 +594,78 @@ bool vtkMultiMaterialVolumeMapper::PrepareMultiMaterial(vtkRenderer* ren, vtkVol
   {
     // Found by TestBadInput.SingleSliceAnd2DImages: a single slice has no
     // thickness, so seen face-on it integrates to nothing (a black image).
-    this->WarnOnce("the input is a single slice (one point along an axis): it has no "
-                   "thickness and may render empty");
+    check.Caveat = "the input is a single slice (one point along an axis): it has no "
+                   "thickness and may render empty";
   }
   if (scalars->GetNumberOfComponents() != 1)
   {
-    this->WarnOnce("multi-material shading needs one-component scalars; using VTK's shading");
-    return false;
+    check.Reason = "multi-material shading needs one-component scalars; using VTK's shading";
+    return check;
   }
-  if (property->GetTransferFunctionMode() != vtkVolumeProperty::TF_1D)
+  if (vol->GetProperty()->GetTransferFunctionMode() != vtkVolumeProperty::TF_1D)
   {
-    this->WarnOnce("multi-material shading needs a 1D transfer function; using VTK's shading");
+    check.Reason = "multi-material shading needs a 1D transfer function; using VTK's shading";
+    return check;
+  }
+  check.Supported = true;
+  check.Image = image;
+  check.Scalars = scalars;
+  check.Context = context;
+  return check;
+}
+
+bool vtkMultiMaterialVolumeMapper::PrepareMultiMaterial(vtkRenderer* ren, vtkVolume* vol)
+{
+  const InputCheck input = this->CheckInputs(ren, vol);
+  if (!input.Caveat.empty())
+  {
+    this->WarnOnce(input.Caveat);
+  }
+  if (!input.Supported)
+  {
+    if (!input.Reason.empty())
+    {
+      this->WarnOnce(input.Reason);
+    }
     return false;
   }
-
   double range[2];
-  scalars->GetFiniteRange(range, 0);
+  input.Scalars->GetFiniteRange(range, 0);
   if (!(range[1] > range[0]))
   {
     range[1] = range[0] + 1.0; // constant volume: any non-empty range will do
   }
 
   // 1. Segment tables (pre-integration): only when the TFs or the step change.
+  if (!this->UpdateSegmentTables(input.Context, vol, input.Image, range) ||
+    !this->UpdateGradient(input.Context, input.Image, input.Scalars, range))
+  {
+    return false;
+  }
+
+  // 2. Lights, in the volume's object space.
+  vtkNew<vtkMatrix4x4> worldToObject;
+  vtkMatrix4x4::Invert(vol->GetMatrix(), worldToObject);
+  this->CollectShadedLights(ren, worldToObject);
+
+  // 3. The irradiance volume: only when lights, opacity, materials or data change.
+  this->LastRenderInteractive = vol->GetAllocatedRenderTime() < 1.0;
+  if (!this->Internals->Lights.empty() &&
+    !this->UpdateIrradiance(ren, vol, input.Image, input.Scalars, range))
+  {
+    return false;
+  }
+
+  // 4. The shader variant and the per-frame uniforms.
+  this->UpdateShading(ren, input.Image, worldToObject);
+  return true;
+}
+
+bool vtkMultiMaterialVolumeMapper::UpdateSegmentTables(
+  vtkOpenGLRenderWindow* context, vtkVolume* vol, vtkImageData* image, const double range[2])
+{
+  vtkInternals& in = *this->Internals;
+  vtkVolumeProperty* property = vol->GetProperty();
   vtkColorTransferFunction* color = property->GetRGBTransferFunction(0);
   if (property->GetColorChannels(0) == 1)
   {
@@ -646,7 +693,7 @@ bool vtkMultiMaterialVolumeMapper::PrepareMultiMaterial(vtkRenderer* ren, vtkVol
   table->SetScalarOpacity(property->GetScalarOpacity(0));
   table->SetScalarOpacityUnitDistance(property->GetScalarOpacityUnitDistance(0));
   table->SetTableSize(this->PreIntegrationTableSize);
-  table->SetScalarRange(range);
+  table->SetScalarRange(const_cast<double*>(range));
   table->SetStepLength(step);
   const int builds = table->GetBuildCount();
   if (!table->Update())
@@ -661,10 +708,19 @@ bool vtkMultiMaterialVolumeMapper::PrepareMultiMaterial(vtkRenderer* ren, vtkVol
   in.TableStep = static_cast<float>(step);
   in.Textures->UpdateSegmentTables(context, table);
   in.Textures->UpdateMaterialTable(context, in.Materials, range, this->PreIntegrationTableSize);
+  return true;
+}
+
+bool vtkMultiMaterialVolumeMapper::UpdateGradient(vtkOpenGLRenderWindow* context,
+  vtkImageData* image, vtkDataArray* scalars, const double range[2])
+{
+  vtkInternals& in = *this->Internals;
   // Pieces of one volume share the gradient's normalisation (and so its
   // shading fade) when they share a global range.
   vtkGlobalPrefilteredVolume* global = in.ActiveGlobal();
   const double* gradientRange = global ? global->GetScalarRange() : range;
+  int dataDims[3];
+  image->GetDimensions(dataDims);
   if (!in.Textures->UpdateGradientTexture(
         context, scalars, dataDims, gradientRange, this->MaxBrickMB * 1024.0 * 1024.0))
   {
@@ -678,10 +734,13 @@ bool vtkMultiMaterialVolumeMapper::PrepareMultiMaterial(vtkRenderer* ren, vtkVol
     in.GradientScale[a] = static_cast<float>(dataDims[a]);
     SamePointsMap(dataDims[a], gradientTexels[a], in.GradientTexScale[a], in.GradientTexBias[a]);
   }
+  return true;
+}
 
-  // 2. Lights, in the volume's object space.
-  vtkNew<vtkMatrix4x4> worldToObject;
-  vtkMatrix4x4::Invert(vol->GetMatrix(), worldToObject);
+void vtkMultiMaterialVolumeMapper::CollectShadedLights(
+  vtkRenderer* ren, vtkMatrix4x4* worldToObject)
+{
+  vtkInternals& in = *this->Internals;
   int dropped = 0;
   std::vector<std::string> problems;
   std::string radiusProblem;
@@ -706,15 +765,12 @@ bool vtkMultiMaterialVolumeMapper::PrepareMultiMaterial(vtkRenderer* ren, vtkVol
     this->WarnOnce("no active light: the volume is shaded with its ambient term only");
   }
   this->NumberOfShadedLights = static_cast<int>(in.Lights.size());
+}
 
-  // 3. The irradiance volume: only when lights, opacity, materials or data change.
-  this->LastRenderInteractive = vol->GetAllocatedRenderTime() < 1.0;
-  if (!in.Lights.empty() && !this->UpdateIrradiance(ren, vol, image, scalars, range))
-  {
-    return false;
-  }
-
-  // 4. The shader variant and the per-frame uniforms.
+void vtkMultiMaterialVolumeMapper::UpdateShading(
+  vtkRenderer* ren, vtkImageData* image, vtkMatrix4x4* worldToObject)
+{
+  vtkInternals& in = *this->Internals;
   mmv::ShaderVariant variant;
   variant.NumberOfLights = this->NumberOfShadedLights;
   variant.Reflection =
@@ -730,16 +786,20 @@ bool vtkMultiMaterialVolumeMapper::PrepareMultiMaterial(vtkRenderer* ren, vtkVol
   image->GetDimensions(dims);
   WholeVolumeMaps(
     image, in.PhysicalToWholeIndex, in.GradientToObject, in.WholeDimensions, in.DataSpacing);
-  if (global)
+  if (in.ActiveGlobal())
   {
     this->MapPieceToGlobalIrradiance(image);
   }
-  for (int a = 0; a < 3 && !global; ++a)
+  else
   {
-    // Data point i sits at texture coordinate (i + 0.5) / N, irradiance voxel
-    // j at (j + 0.5) / M, and both grids span the same points.
-    SamePointsMap(dims[a], this->IrradianceDimensions[a] > 0 ? this->IrradianceDimensions[a] : 1,
-      in.IrradianceScale[a], in.IrradianceBias[a]);
+    for (int a = 0; a < 3; ++a)
+    {
+      // Data point i sits at texture coordinate (i + 0.5) / N, irradiance
+      // voxel j at (j + 0.5) / M, and both grids span the same points.
+      SamePointsMap(dims[a],
+        this->IrradianceDimensions[a] > 0 ? this->IrradianceDimensions[a] : 1,
+        in.IrradianceScale[a], in.IrradianceBias[a]);
+    }
   }
   const double* spacing = image->GetSpacing();
   const double smallestSpacing =
@@ -765,7 +825,6 @@ bool vtkMultiMaterialVolumeMapper::PrepareMultiMaterial(vtkRenderer* ren, vtkVol
       in.EnvironmentTop[i] = static_cast<float>(top[i]);
     }
   }
-  return true;
 }
 
 void vtkMultiMaterialVolumeMapper::MapPieceToGlobalIrradiance(vtkImageData* piece)
@@ -797,20 +856,9 @@ void vtkMultiMaterialVolumeMapper::MapPieceToGlobalIrradiance(vtkImageData* piec
   }
 }
 
-bool vtkMultiMaterialVolumeMapper::UpdateIrradiance(vtkRenderer* ren, vtkVolume* vol,
-  vtkImageData* image, vtkDataArray* scalars, const double pieceRange[2])
+mmv::IrradianceResolution vtkMultiMaterialVolumeMapper::ChooseIrradianceGrid(
+  vtkRenderer* ren, vtkVolume* vol, vtkImageData* image)
 {
-  vtkInternals& in = *this->Internals;
-  // A piece of a larger volume is lit from the whole volume's pre-filtered
-  // data, on its grid and over its range.
-  vtkGlobalPrefilteredVolume* global = in.ActiveGlobal();
-  const double* range = global ? global->GetScalarRange() : pieceRange;
-  vtkVolumeProperty* property = vol->GetProperty();
-  auto* context = vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow());
-  vtkPiecewiseFunction* opacity = property->GetScalarOpacity(0);
-  const double unitDistance = property->GetScalarOpacityUnitDistance(0);
-  this->NumberOfUpdatedLights = 0;
-
   int dataDims[3];
   image->GetDimensions(dataDims);
   // The screen only matters when the resolution is automatic.
@@ -822,53 +870,58 @@ bool vtkMultiMaterialVolumeMapper::UpdateIrradiance(vtkRenderer* ren, vtkVolume*
   }
   const double pixelsPerVoxel = scale > 0.0 ? 0.0 : ProjectedPixelsPerVoxel(ren, vol, image);
   mmv::IrradianceResolution resolution;
-  if (global)
+  if (vtkGlobalPrefilteredVolume* global = this->Internals->ActiveGlobal())
   {
     global->GetIrradianceDimensions(resolution.Dimensions);
     resolution.Reason = "the global grid of a volume in pieces";
+    return resolution;
   }
-  else
-  {
-    resolution = mmv::ChooseIrradianceResolution(dataDims, static_cast<int>(in.Lights.size()),
-      this->IrradianceMemoryMB, scale, pixelsPerVoxel);
-  }
+  resolution = mmv::ChooseIrradianceResolution(dataDims,
+    static_cast<int>(this->Internals->Lights.size()), this->IrradianceMemoryMB, scale,
+    pixelsPerVoxel);
   // The irradiance is one 3D texture: no axis longer than the largest one
   // (a long volume is drawn in bricks, its irradiance spans it whole).
-  const int largest = vtkTextureObject::GetMaximumTextureSize3D(context);
-  for (int a = 0; a < 3 && largest > 1 && !global; ++a)
+  const int largest = vtkTextureObject::GetMaximumTextureSize3D(
+    vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow()));
+  for (int a = 0; a < 3 && largest > 1; ++a)
   {
     resolution.Dimensions[a] = std::min(resolution.Dimensions[a], largest);
   }
-  const int* dims = resolution.Dimensions;
+  return resolution;
+}
 
+bool vtkMultiMaterialVolumeMapper::UpdateIrradiance(vtkRenderer* ren, vtkVolume* vol,
+  vtkImageData* image, vtkDataArray* scalars, const double pieceRange[2])
+{
+  vtkInternals& in = *this->Internals;
+  // A piece of a larger volume is lit from the whole volume's pre-filtered
+  // data, on its grid and over its range.
+  vtkGlobalPrefilteredVolume* global = in.ActiveGlobal();
+  const double* range = global ? global->GetScalarRange() : pieceRange;
+  vtkVolumeProperty* property = vol->GetProperty();
+  vtkPiecewiseFunction* opacity = property->GetScalarOpacity(0);
+  const double unitDistance = property->GetScalarOpacityUnitDistance(0);
+  this->NumberOfUpdatedLights = 0;
+
+  const mmv::IrradianceResolution resolution = this->ChooseIrradianceGrid(ren, vol, image);
+  const int* dims = resolution.Dimensions;
   const int n = this->PreIntegrationTableSize;
-  const std::vector<double> materialKey = { double(in.Materials ? in.Materials->GetMTime() : 0),
-    range[0], range[1], double(n) };
-  if (materialKey != in.MaterialSampleKey)
-  {
-    std::vector<float> attenuation(n, 1.0f);
-    std::vector<float> scattering(n, 0.0f);
-    for (int i = 0; in.Materials && i < n; ++i)
-    {
-      const double t = range[0] + (range[1] - range[0]) * i / (n - 1);
-      attenuation[i] = static_cast<float>(in.Materials->EvaluateParameter(t, mmv::Attenuation));
-      scattering[i] = static_cast<float>(in.Materials->EvaluateParameter(t, mmv::Scattering));
-    }
-    if (attenuation != in.Attenuation || scattering != in.Scattering)
-    {
-      in.Attenuation = attenuation;
-      in.Scattering = scattering;
-      ++in.MaterialVersion;
-    }
-    in.MaterialSampleKey = materialKey;
-  }
+  in.Cache->SampleMaterials(in.Materials, range, n);
 
   const vtkMTimeType dataTime =
     global ? global->GetMTime() : std::max(image->GetMTime(), scalars->GetMTime());
-  std::vector<double> volumeKey = { double(dataTime), double(opacity->GetMTime()),
-    double(in.MaterialVersion), unitDistance, range[0], range[1], double(this->MultipleScattering),
-    double(this->PreIntegrationTableSize), double(in.Lights.size()), double(this->ShadowEstimation),
-    double(this->PiecewiseShadowSlices) };
+  vtkIrradianceInputCache::VolumeKey volumeKey;
+  volumeKey.DataTime = dataTime;
+  volumeKey.OpacityTime = opacity->GetMTime();
+  volumeKey.MaterialVersion = in.Cache->GetMaterialVersion();
+  volumeKey.UnitDistance = unitDistance;
+  volumeKey.Range[0] = range[0];
+  volumeKey.Range[1] = range[1];
+  volumeKey.MultipleScattering = this->MultipleScattering;
+  volumeKey.TableSize = n;
+  volumeKey.NumberOfLights = static_cast<int>(in.Lights.size());
+  volumeKey.ShadowEstimation = this->ShadowEstimation;
+  volumeKey.PiecewiseShadowSlices = this->PiecewiseShadowSlices;
   // What cropping and clipping remove casts no shadow: part of the key, so a
   // moved crop box or plane updates the irradiance.
   vtkNew<vtkMatrix4x4> worldToObject;
@@ -880,73 +933,41 @@ bool vtkMultiMaterialVolumeMapper::UpdateIrradiance(vtkRenderer* ren, vtkVolume*
     this->WarnOnce("more than " + std::to_string(mmv::MaxCutPlanes) +
       " clipping planes: the shadow rays ignore the others");
   }
-  const std::vector<double> cutKey = cutaway.Key();
-  volumeKey.insert(volumeKey.end(), cutKey.begin(), cutKey.end());
-  std::vector<double> lightsKey;
+  volumeKey.Cut = cutaway.Key();
+  std::vector<mmv::LightSource> sources;
   for (const auto& light : in.Lights)
   {
-    AppendLightKey(lightsKey, light.Source);
+    sources.push_back(light.Source);
   }
   const bool computed = in.Irradiance->GetNumberOfIrradianceTextures() > 0;
-  const bool sameGrid = std::equal(dims, dims + 3, this->IrradianceDimensions);
-  if (computed && volumeKey == in.VolumeKey && sameGrid && lightsKey == in.LightsKey)
+  if (computed && in.Cache->IsCurrent(volumeKey, sources, dims))
   {
     return true;
   }
   // Interactive frames keep the last irradiance while only the lights or the
   // screen-chosen grid moved; the still frame after them updates it.
   if (computed && this->LastRenderInteractive &&
-    this->InteractiveIrradiance == ReuseWhileInteracting && volumeKey == in.VolumeKey)
+    this->InteractiveIrradiance == ReuseWhileInteracting && in.Cache->SameVolume(volumeKey))
   {
     ++this->DeferredIrradianceCount;
     return true;
   }
 
   // Pre-filtered data: only when the data or the grid changed.
-  const std::vector<double> prefilterKey = { double(dims[0]), double(dims[1]), double(dims[2]),
-    double(dataTime), range[0], range[1] };
-  if (prefilterKey != in.PrefilterKey)
+  if (in.Cache->UpdatePrefiltered(image, scalars, global, dims, dataTime, range))
   {
-    if (global)
-    {
-      in.Grid = global->GetGrid();
-      in.Prefiltered = global->GetValues();
-    }
-    else
-    {
-      in.Grid = mmv::MakeIrradianceGrid(image, dims);
-      mmv::PrefilterScalars(image, scalars, 0, in.Grid, in.Prefiltered);
-    }
-    ++in.PrefilteredVersion;
-    const double scale = 1.0 / (range[1] - range[0]);
-    bool nonFinite = false;
-    for (float& v : in.Prefiltered)
-    {
-      v = static_cast<float>((v - range[0]) * scale);
-      // NaN/Inf voxels (TestBadInput.NonFiniteVoxels) used to index the
-      // opacity tables out of bounds: NaN counts as empty, +-Inf as the
-      // range's ends.
-      if (!std::isfinite(v))
-      {
-        nonFinite = true;
-        v = std::isnan(v) ? 0.0f : (v > 0.0f ? 1.0f : 0.0f);
-      }
-    }
-    if (nonFinite)
-    {
-      this->WarnOnce("the scalars contain NaN or Inf: lit as empty (NaN) or as the ends of the "
-                     "finite range (Inf)");
-    }
-    in.PrefilterKey = prefilterKey;
+    this->WarnOnce("the scalars contain NaN or Inf: lit as empty (NaN) or as the ends of the "
+                   "finite range (Inf)");
   }
 
   // Shadow rays step one irradiance voxel, with their own pre-integrated table.
-  const double shadowStep = std::min({ in.Grid.Spacing.x, in.Grid.Spacing.y, in.Grid.Spacing.z });
+  const mmv::IrradianceGrid& grid = in.Cache->GetGrid();
+  const double shadowStep = std::min({ grid.Spacing.x, grid.Spacing.y, grid.Spacing.z });
   vtkPreIntegrationTable* shadow = in.ShadowTable;
   shadow->SetScalarOpacity(opacity);
   shadow->SetMaterialTransferFunction(in.Materials);
   shadow->SetScalarOpacityUnitDistance(unitDistance);
-  shadow->SetTableSize(this->PreIntegrationTableSize);
+  shadow->SetTableSize(n);
   shadow->SetScalarRange(const_cast<double*>(range));
   shadow->SetStepLength(shadowStep);
   if (!shadow->Update())
@@ -957,35 +978,37 @@ bool vtkMultiMaterialVolumeMapper::UpdateIrradiance(vtkRenderer* ren, vtkVolume*
   std::vector<float> opacityTable(n);
   for (int i = 0; i < n; ++i)
   {
-    opacityTable[i] = static_cast<float>(opacity->GetValue(range[0] + (range[1] - range[0]) * i / (n - 1)));
+    opacityTable[i] =
+      static_cast<float>(opacity->GetValue(range[0] + (range[1] - range[0]) * i / (n - 1)));
   }
   const std::vector<float> scatteringTable =
-    this->MultipleScattering ? in.Scattering : std::vector<float>(n, 0.0f);
-  std::vector<mmv::LightSource> sources;
-  for (const auto& light : in.Lights)
-  {
-    sources.push_back(light.Source);
-  }
+    this->MultipleScattering ? in.Cache->GetScattering() : std::vector<float>(n, 0.0f);
 
   vtkIrradianceVolumePass* pass = in.Irradiance;
   pass->SetMultipleScattering(this->MultipleScattering);
   pass->SetShadowEstimation(this->ShadowEstimation);
   pass->SetPiecewiseShadowSlices(this->PiecewiseShadowSlices);
   pass->SetCutaway(cutaway);
-  pass->SetInputs(in.Grid, in.Prefiltered, n, shadow->GetShadowOpacityTable(), shadowStep,
-    opacityTable.data(), scatteringTable.data(), sources, in.PrefilteredVersion);
-  if (!pass->Render(context))
+  pass->SetInputs(grid, in.Cache->GetPrefiltered(), n, shadow->GetShadowOpacityTable(), shadowStep,
+    opacityTable.data(), scatteringTable.data(), sources, in.Cache->GetPrefilteredVersion());
+  if (!pass->Render(vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow())))
   {
     vtkErrorMacro("the irradiance volume could not be computed on the GPU");
-    in.VolumeKey.clear();
+    in.Cache->Invalidate();
     return false;
   }
-  in.VolumeKey = volumeKey;
-  in.LightsKey = lightsKey;
-  for (int a = 0; a < 3; ++a)
-  {
-    this->IrradianceDimensions[a] = dims[a];
-  }
+  in.Cache->Store(volumeKey, sources, dims);
+  this->RecordIrradianceUpdate(resolution);
+  return true;
+}
+
+void vtkMultiMaterialVolumeMapper::RecordIrradianceUpdate(
+  const mmv::IrradianceResolution& resolution)
+{
+  vtkInternals& in = *this->Internals;
+  vtkIrradianceVolumePass* pass = in.Irradiance;
+  const int* dims = resolution.Dimensions;
+  std::copy(dims, dims + 3, this->IrradianceDimensions);
   this->NumberOfUpdatedLights = pass->GetNumberOfUpdatedLights();
   if (this->NumberOfUpdatedLights > 0)
   {
@@ -1008,7 +1031,6 @@ bool vtkMultiMaterialVolumeMapper::UpdateIrradiance(vtkRenderer* ren, vtkVolume*
   vtkDebugMacro(<< "irradiance " << in.ResolutionReason << ", " << this->NumberOfUpdatedLights
                 << " of " << in.Lights.size() << " lights updated in "
                 << this->LastIrradianceSeconds << " s");
-  return true;
 }
 
 const char* vtkMultiMaterialVolumeMapper::GetIrradianceResolutionReason()
