@@ -376,6 +376,27 @@ double ProjectedPixelsPerVoxel(vtkRenderer* ren, vtkVolume* vol, vtkImageData* i
   }
   return largest;
 }
+
+/// What the whole irradiance volume depends on besides the lights and the grid.
+vtkIrradianceInputCache::VolumeKey MakeVolumeKey(vtkMultiMaterialVolumeMapper* mapper,
+  vtkVolumeProperty* property, vtkMTimeType dataTime, int materialVersion, int lights,
+  const double range[2], const mmv::Cutaway& cutaway)
+{
+  vtkIrradianceInputCache::VolumeKey key;
+  key.DataTime = dataTime;
+  key.OpacityTime = property->GetScalarOpacity(0)->GetMTime();
+  key.MaterialVersion = materialVersion;
+  key.UnitDistance = property->GetScalarOpacityUnitDistance(0);
+  key.Range[0] = range[0];
+  key.Range[1] = range[1];
+  key.MultipleScattering = mapper->GetMultipleScattering();
+  key.TableSize = mapper->GetPreIntegrationTableSize();
+  key.NumberOfLights = lights;
+  key.ShadowEstimation = mapper->GetShadowEstimation();
+  key.PiecewiseShadowSlices = mapper->GetPiecewiseShadowSlices();
+  key.Cut = cutaway.Key();
+  return key;
+}
 }
 
 bool vtkMultiMaterialVolumeMapper::ReadIrradiance(
@@ -898,30 +919,13 @@ bool vtkMultiMaterialVolumeMapper::UpdateIrradiance(vtkRenderer* ren, vtkVolume*
   // data, on its grid and over its range.
   vtkGlobalPrefilteredVolume* global = in.ActiveGlobal();
   const double* range = global ? global->GetScalarRange() : pieceRange;
-  vtkVolumeProperty* property = vol->GetProperty();
-  vtkPiecewiseFunction* opacity = property->GetScalarOpacity(0);
-  const double unitDistance = property->GetScalarOpacityUnitDistance(0);
   this->NumberOfUpdatedLights = 0;
 
   const mmv::IrradianceResolution resolution = this->ChooseIrradianceGrid(ren, vol, image);
   const int* dims = resolution.Dimensions;
-  const int n = this->PreIntegrationTableSize;
-  in.Cache->SampleMaterials(in.Materials, range, n);
-
+  in.Cache->SampleMaterials(in.Materials, range, this->PreIntegrationTableSize);
   const vtkMTimeType dataTime =
     global ? global->GetMTime() : std::max(image->GetMTime(), scalars->GetMTime());
-  vtkIrradianceInputCache::VolumeKey volumeKey;
-  volumeKey.DataTime = dataTime;
-  volumeKey.OpacityTime = opacity->GetMTime();
-  volumeKey.MaterialVersion = in.Cache->GetMaterialVersion();
-  volumeKey.UnitDistance = unitDistance;
-  volumeKey.Range[0] = range[0];
-  volumeKey.Range[1] = range[1];
-  volumeKey.MultipleScattering = this->MultipleScattering;
-  volumeKey.TableSize = n;
-  volumeKey.NumberOfLights = static_cast<int>(in.Lights.size());
-  volumeKey.ShadowEstimation = this->ShadowEstimation;
-  volumeKey.PiecewiseShadowSlices = this->PiecewiseShadowSlices;
   // What cropping and clipping remove casts no shadow: part of the key, so a
   // moved crop box or plane updates the irradiance.
   vtkNew<vtkMatrix4x4> worldToObject;
@@ -933,7 +937,8 @@ bool vtkMultiMaterialVolumeMapper::UpdateIrradiance(vtkRenderer* ren, vtkVolume*
     this->WarnOnce("more than " + std::to_string(mmv::MaxCutPlanes) +
       " clipping planes: the shadow rays ignore the others");
   }
-  volumeKey.Cut = cutaway.Key();
+  const vtkIrradianceInputCache::VolumeKey volumeKey = MakeVolumeKey(this, vol->GetProperty(),
+    dataTime, in.Cache->GetMaterialVersion(), static_cast<int>(in.Lights.size()), range, cutaway);
   std::vector<mmv::LightSource> sources;
   for (const auto& light : in.Lights)
   {
@@ -959,16 +964,31 @@ bool vtkMultiMaterialVolumeMapper::UpdateIrradiance(vtkRenderer* ren, vtkVolume*
     this->WarnOnce("the scalars contain NaN or Inf: lit as empty (NaN) or as the ends of the "
                    "finite range (Inf)");
   }
+  if (!this->ComputeIrradiance(ren, vol, range, cutaway, sources))
+  {
+    return false;
+  }
+  in.Cache->Store(volumeKey, sources, dims);
+  this->RecordIrradianceUpdate(resolution);
+  return true;
+}
 
+bool vtkMultiMaterialVolumeMapper::ComputeIrradiance(vtkRenderer* ren, vtkVolume* vol,
+  const double range[2], const mmv::Cutaway& cutaway,
+  const std::vector<mmv::LightSource>& sources)
+{
+  vtkInternals& in = *this->Internals;
+  vtkPiecewiseFunction* opacity = vol->GetProperty()->GetScalarOpacity(0);
+  const int n = this->PreIntegrationTableSize;
   // Shadow rays step one irradiance voxel, with their own pre-integrated table.
   const mmv::IrradianceGrid& grid = in.Cache->GetGrid();
   const double shadowStep = std::min({ grid.Spacing.x, grid.Spacing.y, grid.Spacing.z });
   vtkPreIntegrationTable* shadow = in.ShadowTable;
   shadow->SetScalarOpacity(opacity);
   shadow->SetMaterialTransferFunction(in.Materials);
-  shadow->SetScalarOpacityUnitDistance(unitDistance);
+  shadow->SetScalarOpacityUnitDistance(vol->GetProperty()->GetScalarOpacityUnitDistance(0));
   shadow->SetTableSize(n);
-  shadow->SetScalarRange(const_cast<double*>(range));
+  shadow->SetScalarRange(range[0], range[1]);
   shadow->SetStepLength(shadowStep);
   if (!shadow->Update())
   {
@@ -989,16 +1009,15 @@ bool vtkMultiMaterialVolumeMapper::UpdateIrradiance(vtkRenderer* ren, vtkVolume*
   pass->SetShadowEstimation(this->ShadowEstimation);
   pass->SetPiecewiseShadowSlices(this->PiecewiseShadowSlices);
   pass->SetCutaway(cutaway);
-  pass->SetInputs(grid, in.Cache->GetPrefiltered(), n, shadow->GetShadowOpacityTable(), shadowStep,
-    opacityTable.data(), scatteringTable.data(), sources, in.Cache->GetPrefilteredVersion());
+  pass->SetInputs(grid, in.Cache->GetPrefiltered(), n, shadow->GetShadowOpacityTable(),
+    shadowStep, opacityTable.data(), scatteringTable.data(), sources,
+    in.Cache->GetPrefilteredVersion());
   if (!pass->Render(vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow())))
   {
     vtkErrorMacro("the irradiance volume could not be computed on the GPU");
     in.Cache->Invalidate();
     return false;
   }
-  in.Cache->Store(volumeKey, sources, dims);
-  this->RecordIrradianceUpdate(resolution);
   return true;
 }
 

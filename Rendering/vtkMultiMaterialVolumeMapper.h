@@ -53,7 +53,9 @@ class vtkOpenGLRenderWindow;
 class vtkVolumeProperty;
 namespace mmv
 {
+struct Cutaway;
 struct IrradianceResolution;
+struct LightSource;
 }
 
 class VTKMULTIMATERIALVOLUME_EXPORT vtkMultiMaterialVolumeMapper
@@ -272,6 +274,8 @@ private:
   void CollectShadedLights(vtkRenderer* ren, vtkMatrix4x4* worldToObject);
   bool UpdateIrradiance(vtkRenderer* ren, vtkVolume* vol, vtkImageData* image,
     vtkDataArray* scalars, const double pieceRange[2]);
+  bool ComputeIrradiance(vtkRenderer* ren, vtkVolume* vol, const double range[2],
+    const mmv::Cutaway& cutaway, const std::vector<mmv::LightSource>& sources);
   mmv::IrradianceResolution ChooseIrradianceGrid(
     vtkRenderer* ren, vtkVolume* vol, vtkImageData* image);
   void RecordIrradianceUpdate(const mmv::IrradianceResolution& resolution);

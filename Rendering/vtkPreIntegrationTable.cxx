@@ -371,20 +371,76 @@ void SampleNodes(const TransferFunctions& tf, double first, CellData& cells)
   }
 }
 
+// int_a^x1 mu dt over a piece [a, b] without TF nodes inside: closed form
+// where the opacity is linear (the usual case), Gauss where it is curved
+// (midpoint/sharpness nodes).
+struct PieceDepth
+{
+  vtkPiecewiseFunction* Opacity;
+  double UnitDistance;
+  double A, B, AlphaA, AlphaB;
+  bool Linear;
+
+  double operator()(double x1) const
+  {
+    const double a = this->A;
+    if (this->Linear)
+    {
+      const double alpha1 = this->AlphaA + (this->AlphaB - this->AlphaA) * (x1 - a) / (this->B - a);
+      return LinearOpacityDepth(this->AlphaA, alpha1, x1 - a) / this->UnitDistance;
+    }
+    const double h = 0.5 * (x1 - a);
+    double sum = 0.0;
+    for (int g = 0; g < GaussOrder; ++g)
+    {
+      const double alpha = this->Opacity->GetValue(a + h * (1.0 + GaussX[g]));
+      sum += GaussW[g] * h * mmv::ExtinctionFromOpacity(alpha, this->UnitDistance);
+    }
+    return sum;
+  }
+};
+
+// Moments of a piece in the optical depth q: of the extinction (W0, W1) and
+// of the extinction-weighted colour (S0, S1), and the colour's range.
+struct PieceMoments
+{
+  double W0 = 0.0, W1 = 0.0;
+  double S0[3] = { 0.0, 0.0, 0.0 }, S1[3] = { 0.0, 0.0, 0.0 };
+  double Min[3], Max[3];
+};
+
+// Appends a piece of optical depth `depth` (data units) and its colour,
+// the least-squares fit c0 + c1 q over q in [0, 1].
+void AppendPiece(double depth, const PieceMoments& m, CellData& cells)
+{
+  cells.PieceDepth.push_back(depth);
+  for (int c = 0; c < 3; ++c)
+  {
+    // The mean fixes c0 + c1/2, the first moment c1.
+    double mean = 0.0, slope = 0.0;
+    if (m.W0 > 0.0 && depth > 0.0)
+    {
+      mean = m.S0[c] / m.W0;
+      slope = m.S0[c] > 0.0 ? 12.0 * mean * (m.S1[c] / m.S0[c] - m.W1 / m.W0) / depth : 0.0;
+    }
+    cells.PieceColor0.push_back(mean - 0.5 * slope);
+    cells.PieceColor1.push_back(slope);
+    cells.PieceColorMin.push_back(std::min(m.Min[c], mean));
+    cells.PieceColorMax.push_back(std::max(m.Max[c], mean));
+  }
+}
+
 // Integrates the piece [a, b] (no TF node inside): appends its depth and
 // colour fit to `cells`, adds its shadow depth to `cellSigma`, and returns
 // its depth (data units); `nonZero` tells whether any of it is not empty.
 double IntegratePiece(
   const TransferFunctions& tf, double a, double b, CellData& cells, double& cellSigma, bool& nonZero)
 {
-  vtkPiecewiseFunction* otf = tf.Opacity;
-  const double u = tf.UnitDistance;
   const double half = 0.5 * (b - a);
-  const double alphaA = otf->GetValue(a);
-  const double alphaB = otf->GetValue(b);
+  PieceDepth pieceDepth{ tf.Opacity, tf.UnitDistance, a, b, tf.Opacity->GetValue(a),
+    tf.Opacity->GetValue(b), true };
   double x[GaussOrder], mu[GaussOrder], sigma[GaussOrder], rgb[GaussOrder][3];
   double muGauss = 0.0;
-  bool linear = true;
   nonZero = false;
   for (int g = 0; g < GaussOrder; ++g)
   {
@@ -392,45 +448,25 @@ double IntegratePiece(
     x[g] = a + half * (1.0 + GaussX[g]);
     tf.Sample(x[g], alpha, mu[g], sigma[g], rgb[g]);
     muGauss += GaussW[g] * half * mu[g];
-    const double lerp = alphaA + 0.5 * (alphaB - alphaA) * (1.0 + GaussX[g]);
-    linear = linear && std::abs(alpha - lerp) < 1e-9;
+    const double lerp =
+      pieceDepth.AlphaA + 0.5 * (pieceDepth.AlphaB - pieceDepth.AlphaA) * (1.0 + GaussX[g]);
+    pieceDepth.Linear = pieceDepth.Linear && std::abs(alpha - lerp) < 1e-9;
     nonZero = nonZero || alpha > 0.0;
   }
-  // int_a^x1 mu dt: closed form on a linear piece (the usual case),
-  // Gauss on a curved one (midpoint/sharpness nodes).
-  const auto pieceDepth = [&](double x1)
-  {
-    if (linear)
-    {
-      const double alpha1 = alphaA + (alphaB - alphaA) * (x1 - a) / (b - a);
-      return LinearOpacityDepth(alphaA, alpha1, x1 - a) / u;
-    }
-    const double h = 0.5 * (x1 - a);
-    double sum = 0.0;
-    for (int g = 0; g < GaussOrder; ++g)
-    {
-      const double alpha = otf->GetValue(a + h * (1.0 + GaussX[g]));
-      sum += GaussW[g] * h * mmv::ExtinctionFromOpacity(alpha, u);
-    }
-    return sum;
-  };
   const double depth = pieceDepth(b);
   // Rescaling the Gauss weights to the exact integral keeps colour and
   // attenuation weighted means while the extinction itself stays exact.
   const double scale = muGauss > 0.0 ? depth / muGauss : 0.0;
-  // Moments in the optical depth q of the extinction (w0, w1) and of the
-  // extinction-weighted colour (s0, s1).
-  double w0 = 0.0, w1 = 0.0, s0[3] = { 0.0, 0.0, 0.0 }, s1[3] = { 0.0, 0.0, 0.0 };
-  // The colour range over the whole piece, ends included.
-  double cMin[3], cMax[3];
+  PieceMoments m;
   {
+    // The colour range over the whole piece, ends included.
     double alpha, muEnd, sigmaEnd, rgbA[3], rgbB[3];
     tf.Sample(a, alpha, muEnd, sigmaEnd, rgbA);
     tf.Sample(b, alpha, muEnd, sigmaEnd, rgbB);
     for (int c = 0; c < 3; ++c)
     {
-      cMin[c] = std::min(rgbA[c], rgbB[c]);
-      cMax[c] = std::max(rgbA[c], rgbB[c]);
+      m.Min[c] = std::min(rgbA[c], rgbB[c]);
+      m.Max[c] = std::max(rgbA[c], rgbB[c]);
     }
   }
   for (int g = 0; g < GaussOrder; ++g)
@@ -442,32 +478,17 @@ double IntegratePiece(
     const double w = GaussW[g] * half * scale;
     const double q = pieceDepth(x[g]);
     cellSigma += w * sigma[g];
-    w0 += w * mu[g];
-    w1 += w * mu[g] * q;
+    m.W0 += w * mu[g];
+    m.W1 += w * mu[g] * q;
     for (int c = 0; c < 3; ++c)
     {
-      s0[c] += w * mu[g] * rgb[g][c];
-      s1[c] += w * mu[g] * rgb[g][c] * q;
-      cMin[c] = std::min(cMin[c], rgb[g][c]);
-      cMax[c] = std::max(cMax[c], rgb[g][c]);
+      m.S0[c] += w * mu[g] * rgb[g][c];
+      m.S1[c] += w * mu[g] * rgb[g][c] * q;
+      m.Min[c] = std::min(m.Min[c], rgb[g][c]);
+      m.Max[c] = std::max(m.Max[c], rgb[g][c]);
     }
   }
-  cells.PieceDepth.push_back(depth);
-  for (int c = 0; c < 3; ++c)
-  {
-    // Least-squares fit c0 + c1 q over q in [0, 1]: the mean fixes
-    // c0 + c1/2, the first moment c1.
-    double mean = 0.0, slope = 0.0;
-    if (w0 > 0.0 && depth > 0.0)
-    {
-      mean = s0[c] / w0;
-      slope = s0[c] > 0.0 ? 12.0 * mean * (s1[c] / s0[c] - w1 / w0) / depth : 0.0;
-    }
-    cells.PieceColor0.push_back(mean - 0.5 * slope);
-    cells.PieceColor1.push_back(slope);
-    cells.PieceColorMin.push_back(std::min(cMin[c], mean));
-    cells.PieceColorMax.push_back(std::max(cMax[c], mean));
-  }
+  AppendPiece(depth, m, cells);
   return depth;
 }
 

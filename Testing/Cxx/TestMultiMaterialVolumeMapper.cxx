@@ -528,6 +528,32 @@ vtkMultiMaterialRenderPass* FindPass(vtkInformation* keys)
   }
   return nullptr;
 }
+
+// A lit 16x16 scene of `image` shaded by a multi-material mapper, ready to
+// render. Members die in reverse order: the scene (volume, keys, window)
+// before the mapper.
+struct LitMaterialScene
+{
+  vtkSmartPointer<vtkMultiMaterialVolumeMapper> Mapper =
+    vtkSmartPointer<vtkMultiMaterialVolumeMapper>::New();
+  vtkNew<vtkMaterialTransferFunction> Materials;
+  mmvtest::Scene Scene{ 16 };
+
+  explicit LitMaterialScene(vtkImageData* image)
+  {
+    this->Materials->AddNode(4.0, 0.3, 0.7, 0.3, 20.0, 1.0, 0.0, 0.0);
+    this->Mapper->SetInputData(image);
+    this->Mapper->SetMaterialTransferFunction(this->Materials);
+    this->Scene.Color->AddRGBPoint(0.0, 1.0, 1.0, 1.0);
+    this->Scene.Opacity->AddPoint(0.0, 0.1);
+    this->Scene.Opacity->AddPoint(8.0, 0.5);
+    this->Scene.Volume->SetMapper(this->Mapper);
+    this->Scene.FrameBounds(image->GetBounds());
+    const double from[3] = { 4.0, 4.0, 100.0 };
+    const double to[3] = { 4.0, 4.0, 4.0 };
+    this->Scene.AddDirectionalLight(from, to);
+  }
+};
 }
 
 TEST(MultiMaterialVolumeMapper, MappersVolumesAndPassesAreFreed)
@@ -545,16 +571,10 @@ TEST(MultiMaterialVolumeMapper, MappersVolumesAndPassesAreFreed)
     vtkNew<ForeignRenderPass> foreign;
     watch.Watch(foreign);
     {
-      auto mapper = vtkSmartPointer<vtkMultiMaterialVolumeMapper>::New();
-      vtkNew<vtkMaterialTransferFunction> materials;
-      materials->AddNode(4.0, 0.3, 0.7, 0.3, 20.0, 1.0, 0.0, 0.0);
-      mapper->SetInputData(image);
-      mapper->SetMaterialTransferFunction(materials);
-      mmvtest::Scene scene(16);
-      scene.Color->AddRGBPoint(0.0, 1.0, 1.0, 1.0);
-      scene.Opacity->AddPoint(0.0, 0.1);
-      scene.Opacity->AddPoint(8.0, 0.5);
-      scene.Volume->SetMapper(mapper);
+      LitMaterialScene lit(image);
+      vtkSmartPointer<vtkMultiMaterialVolumeMapper>& mapper = lit.Mapper;
+      vtkMaterialTransferFunction* materials = lit.Materials;
+      mmvtest::Scene& scene = lit.Scene;
       {
         vtkNew<vtkInformation> newKeys; // the volume's only: they die with it
         scene.Volume->SetPropertyKeys(newKeys);
@@ -562,10 +582,6 @@ TEST(MultiMaterialVolumeMapper, MappersVolumesAndPassesAreFreed)
       vtkInformation* keys = scene.Volume->GetPropertyKeys();
       watch.Watch(keys);
       vtkOpenGLRenderPass::RenderPasses()->Append(keys, foreign);
-      scene.FrameBounds(image->GetBounds());
-      const double from[3] = { 4.0, 4.0, 100.0 };
-      const double to[3] = { 4.0, 4.0, 4.0 };
-      scene.AddDirectionalLight(from, to);
       scene.Window->Render();
       ASSERT_TRUE(mapper->GetMultiMaterialActive());
       vtkMultiMaterialRenderPass* pass = FindPass(keys);
@@ -573,7 +589,7 @@ TEST(MultiMaterialVolumeMapper, MappersVolumesAndPassesAreFreed)
       EXPECT_EQ(vtkOpenGLRenderPass::RenderPasses()->Length(keys), 2);
       EXPECT_EQ(vtkOpenGLRenderPass::RenderPasses()->Get(keys, 1), foreign.Get());
       for (vtkObject* object : std::initializer_list<vtkObject*>{ pass, mapper.Get(),
-             scene.Volume.Get(), scene.Renderer.Get(), scene.Window.Get(), materials.Get() })
+             scene.Volume.Get(), scene.Renderer.Get(), scene.Window.Get(), materials })
       {
         watch.Watch(object);
       }
@@ -613,26 +629,14 @@ constexpr int ObjectsPerMapper = 5;
 // pass in the volume's keys; returns the mapper (the scene dies here).
 vtkSmartPointer<vtkMultiMaterialVolumeMapper> RenderOnce(vtkImageData* image)
 {
-  auto mapper = vtkSmartPointer<vtkMultiMaterialVolumeMapper>::New();
-  vtkNew<vtkMaterialTransferFunction> materials;
-  materials->AddNode(4.0, 0.3, 0.7, 0.3, 20.0, 1.0, 0.5, 0.0);
-  mapper->SetInputData(image);
-  mapper->SetMaterialTransferFunction(materials);
-  mmvtest::Scene scene(16);
-  scene.Color->AddRGBPoint(0.0, 1.0, 1.0, 1.0);
-  scene.Opacity->AddPoint(0.0, 0.1);
-  scene.Opacity->AddPoint(8.0, 0.5);
-  scene.Volume->SetMapper(mapper);
-  scene.FrameBounds(image->GetBounds());
-  const double from[3] = { 4.0, 4.0, 100.0 };
-  const double to[3] = { 4.0, 4.0, 4.0 };
-  scene.AddDirectionalLight(from, to);
-  scene.Window->Render();
+  LitMaterialScene lit(image);
+  vtkSmartPointer<vtkMultiMaterialVolumeMapper> mapper = lit.Mapper;
+  lit.Scene.Window->Render();
   EXPECT_TRUE(mapper->GetMultiMaterialActive());
   EXPECT_EQ(mapper->GetIrradianceUpdateCount(), 1);
   EXPECT_EQ(vtkMultiMaterialLiveObjects::GetCount("vtkMultiMaterialVolumeMapper"),
     vtkMultiMaterialLiveObjects::GetCount("vtkMultiMaterialRenderPass"));
-  scene.Window->Finalize();
+  lit.Scene.Window->Finalize();
   return mapper;
 }
 }
