@@ -11,7 +11,6 @@
 #include "vtkIrradianceVolumePass.h"
 #include "vtkLightCollection.h"
 #include "vtkMaterialTransferFunction.h"
-#include "vtkMatrix3x3.h"
 #include "vtkMatrix4x4.h"
 #include "vtkMultiMaterialCutaway.h"
 #include "vtkMultiMaterialLights.h"
@@ -20,6 +19,7 @@
 #include "vtkMultiMaterialRenderPass.h"
 #include "vtkMultiMaterialShaderAssembly.h"
 #include "vtkMultiMaterialTextures.h"
+#include "vtkMultiMaterialVolumeGeometry.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkPiecewiseFunction.h"
@@ -53,61 +53,6 @@ double Seconds(Clock::time_point start)
 {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
-
-/// Scale and bias that map texture coordinates of `n` points to those of `m`
-/// texels spanning the same points (point i at (i + 0.5) / n, texel j at
-/// (j + 0.5) / m); an axis of one texel maps to its centre.
-void SamePointsMap(double n, double m, float& scale, float& bias)
-{
-  if (n > 1 && m > 1)
-  {
-    scale = static_cast<float>(n * (m - 1) / ((n - 1) * m));
-    bias = static_cast<float>(0.5 / m - 0.5 * (m - 1) / ((n - 1) * m));
-  }
-  else
-  {
-    scale = 0.0f;
-    bias = 0.5f;
-  }
-}
-
-// The maps from a brick's texture coordinates to the whole volume's, which
-// the gradient and irradiance textures cover (Shaders/mmvRayCastDec.glsl,
-// mmvWholeTexCoord): object space -> the whole volume's point index
-// (column-major 4x4), and the texture-coordinate gradient -> object space as
-// VTK's whole-volume inverse texture matrix gives it (column-major 3x3).
-void WholeVolumeMaps(vtkImageData* image, float physicalToIndex[16], float gradientToObject[9],
-  float dimensions[3], float spacing[3])
-{
-  int dims[3];
-  image->GetDimensions(dims);
-  const int* e = image->GetExtent();
-  double first[3];
-  image->TransformContinuousIndexToPhysicalPoint(e[0], e[2], e[4], first);
-  vtkNew<vtkMatrix3x3> inverse;
-  vtkMatrix3x3::Invert(image->GetDirectionMatrix(), inverse);
-  const double* s = image->GetSpacing();
-  std::fill(physicalToIndex, physicalToIndex + 16, 0.0f);
-  physicalToIndex[15] = 1.0f;
-  for (int r = 0; r < 3; ++r)
-  {
-    const double sr = std::abs(s[r]) > 0.0 ? s[r] : 1.0;
-    double translation = 0.0;
-    for (int c = 0; c < 3; ++c)
-    {
-      const double p = inverse->GetElement(r, c) / sr;
-      physicalToIndex[4 * c + r] = static_cast<float>(p);
-      translation -= p * first[c];
-      // GLSL gets transpose(A), A = diag(1 / ((n - 1) s)) D^-1.
-      const double a = inverse->GetElement(r, c) / (dims[r] > 1 ? (dims[r] - 1) * sr : sr);
-      gradientToObject[3 * r + c] = static_cast<float>(a);
-    }
-    physicalToIndex[12 + r] = static_cast<float>(translation);
-    dimensions[r] = static_cast<float>(dims[r]);
-    spacing[r] = static_cast<float>(std::abs(sr));
-  }
-}
-
 }
 
 class vtkMultiMaterialVolumeMapper::vtkInternals
@@ -309,74 +254,6 @@ vtkMTimeType vtkMultiMaterialVolumeMapper::GetMTime()
 //------------------------------------------------------------------------------
 namespace
 {
-// The sample distance VTK's ray caster will use (object units), as
-// vtkOpenGLGPUVolumeRayCastMapper computes it, so the segment tables match it
-// and the shader's length correction stays near 1.
-double ExpectedSampleDistance(vtkGPUVolumeRayCastMapper* mapper, vtkVolume* vol,
-  vtkImageData* image, double sampleDistance, bool autoAdjust, bool lock,
-  double spacingAdjusted)
-{
-  if (!autoAdjust)
-  {
-    return lock ? spacingAdjusted : sampleDistance;
-  }
-  (void)mapper;
-  vtkMatrix4x4* m = vol->GetMatrix();
-  const double* spacing = image->GetSpacing();
-  double smallest = VTK_DOUBLE_MAX;
-  for (int i = 0; i < 3; ++i)
-  {
-    const double column = std::sqrt(m->GetElement(0, i) * m->GetElement(0, i) +
-      m->GetElement(1, i) * m->GetElement(1, i) + m->GetElement(2, i) * m->GetElement(2, i));
-    smallest = std::min(smallest, std::abs(spacing[i] * column));
-  }
-  return smallest;
-}
-
-/// Pixels one data voxel step covers on screen at the volume's centre,
-/// the largest over the three index axes; 0 when it cannot be told.
-double ProjectedPixelsPerVoxel(vtkRenderer* ren, vtkVolume* vol, vtkImageData* image)
-{
-  if (!ren || !ren->GetActiveCamera() || !ren->GetRenderWindow())
-  {
-    return 0.0;
-  }
-  const int* size = ren->GetSize();
-  if (!size || size[0] < 1 || size[1] < 1)
-  {
-    return 0.0;
-  }
-  double center[3];
-  image->GetCenter(center);
-  vtkMatrix4x4* m = vol->GetMatrix();
-  auto toDisplay = [&](const double p[3], double out[2]) {
-    double world[4] = { p[0], p[1], p[2], 1.0 };
-    m->MultiplyPoint(world, world);
-    ren->SetWorldPoint(world[0] / world[3], world[1] / world[3], world[2] / world[3], 1.0);
-    ren->WorldToDisplay();
-    const double* d = ren->GetDisplayPoint();
-    out[0] = d[0];
-    out[1] = d[1];
-  };
-  double c[2];
-  toDisplay(center, c);
-  double largest = 0.0;
-  vtkMatrix3x3* direction = image->GetDirectionMatrix();
-  for (int a = 0; a < 3; ++a)
-  {
-    double p[3];
-    for (int i = 0; i < 3; ++i)
-    {
-      p[i] = center[i] + direction->GetElement(i, a) * image->GetSpacing()[a];
-    }
-    double q[2];
-    toDisplay(p, q);
-    const double pixels = std::hypot(q[0] - c[0], q[1] - c[1]);
-    largest = std::isfinite(pixels) ? std::max(largest, pixels) : largest;
-  }
-  return largest;
-}
-
 /// What the whole irradiance volume depends on besides the lights and the grid.
 vtkIrradianceInputCache::VolumeKey MakeVolumeKey(vtkMultiMaterialVolumeMapper* mapper,
   vtkVolumeProperty* property, vtkMTimeType dataTime, int materialVersion, int lights,
@@ -706,7 +583,7 @@ bool vtkMultiMaterialVolumeMapper::UpdateSegmentTables(
   }
   int extent[6];
   image->GetExtent(extent);
-  const double step = ExpectedSampleDistance(this, vol, image, this->SampleDistance,
+  const double step = mmv::ExpectedSampleDistance(vol, image, this->SampleDistance,
     this->AutoAdjustSampleDistances != 0, this->LockSampleDistanceToInputSpacing != 0,
     this->SpacingAdjustedSampleDistance(image->GetSpacing(), extent));
   vtkPreIntegrationTable* table = in.SegmentTable;
@@ -753,7 +630,7 @@ bool vtkMultiMaterialVolumeMapper::UpdateGradient(vtkOpenGLRenderWindow* context
   for (int a = 0; a < 3; ++a)
   {
     in.GradientScale[a] = static_cast<float>(dataDims[a]);
-    SamePointsMap(dataDims[a], gradientTexels[a], in.GradientTexScale[a], in.GradientTexBias[a]);
+    mmv::SamePointsMap(dataDims[a], gradientTexels[a], in.GradientTexScale[a], in.GradientTexBias[a]);
   }
   return true;
 }
@@ -805,7 +682,7 @@ void vtkMultiMaterialVolumeMapper::UpdateShading(
 
   int dims[3];
   image->GetDimensions(dims);
-  WholeVolumeMaps(
+  mmv::WholeVolumeMaps(
     image, in.PhysicalToWholeIndex, in.GradientToObject, in.WholeDimensions, in.DataSpacing);
   if (in.ActiveGlobal())
   {
@@ -817,7 +694,7 @@ void vtkMultiMaterialVolumeMapper::UpdateShading(
     {
       // Data point i sits at texture coordinate (i + 0.5) / N, irradiance
       // voxel j at (j + 0.5) / M, and both grids span the same points.
-      SamePointsMap(dims[a],
+      mmv::SamePointsMap(dims[a],
         this->IrradianceDimensions[a] > 0 ? this->IrradianceDimensions[a] : 1,
         in.IrradianceScale[a], in.IrradianceBias[a]);
     }
@@ -852,29 +729,12 @@ void vtkMultiMaterialVolumeMapper::MapPieceToGlobalIrradiance(vtkImageData* piec
 {
   vtkInternals& in = *this->Internals;
   vtkGlobalPrefilteredVolume* global = in.ActiveGlobal();
-  const mmv::IrradianceGrid& grid = global->GetGrid();
   const glm::dvec3 offset = global->PieceOffset(piece);
+  const double o[3] = { offset[0], offset[1], offset[2] };
   int dims[3];
   piece->GetDimensions(dims);
-  for (int a = 0; a < 3; ++a)
-  {
-    // Piece point i (texture coordinate t = (i + 0.5) / n) is point o + i of
-    // the whole volume, at irradiance index (o + i) / r (r data points per
-    // irradiance voxel), texture coordinate ((o + i) / r + 0.5) / m.
-    const double n = dims[a];
-    const double m = grid.Dimensions[a];
-    const double r = grid.DataVoxelsPerVoxel[a];
-    if (m > 1 && r > 0.0)
-    {
-      in.IrradianceScale[a] = static_cast<float>(n / (r * m));
-      in.IrradianceBias[a] = static_cast<float>(((offset[a] - 0.5) / r + 0.5) / m);
-    }
-    else
-    {
-      in.IrradianceScale[a] = 0.0f;
-      in.IrradianceBias[a] = 0.5f;
-    }
-  }
+  mmv::PieceToGlobalIrradianceMap(
+    global->GetGrid(), o, dims, in.IrradianceScale, in.IrradianceBias);
 }
 
 mmv::IrradianceResolution vtkMultiMaterialVolumeMapper::ChooseIrradianceGrid(
@@ -889,7 +749,7 @@ mmv::IrradianceResolution vtkMultiMaterialVolumeMapper::ChooseIrradianceGrid(
   {
     this->WarnOnce(scaleProblem);
   }
-  const double pixelsPerVoxel = scale > 0.0 ? 0.0 : ProjectedPixelsPerVoxel(ren, vol, image);
+  const double pixelsPerVoxel = scale > 0.0 ? 0.0 : mmv::ProjectedPixelsPerVoxel(ren, vol, image);
   mmv::IrradianceResolution resolution;
   if (vtkGlobalPrefilteredVolume* global = this->Internals->ActiveGlobal())
   {
