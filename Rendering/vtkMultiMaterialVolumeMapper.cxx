@@ -13,6 +13,7 @@
 #include "vtkMaterialTransferFunction.h"
 #include "vtkMatrix4x4.h"
 #include "vtkMultiMaterialCutaway.h"
+#include "vtkMultiMaterialInputCheck.h"
 #include "vtkMultiMaterialLights.h"
 #include "vtkMultiMaterialLiveObjects.h"
 #include "vtkMultiMaterialParameters.h"
@@ -431,90 +432,9 @@ void vtkMultiMaterialVolumeMapper::WarnOnce(const std::string& message)
 }
 
 //------------------------------------------------------------------------------
-/// What CheckInputs() found: whether the mapper can shade the inputs with
-/// materials, and what to tell the user about them.
-struct vtkMultiMaterialVolumeMapper::InputCheck
-{
-  bool Supported = false;
-  /// Why VTK's shading renders instead; empty when the base class reports
-  /// the problem itself (or there is nothing to say, e.g. other blend modes).
-  std::string Reason;
-  /// A caveat about input that is still shaded (a single slice).
-  std::string Caveat;
-  vtkImageData* Image = nullptr;
-  vtkDataArray* Scalars = nullptr;
-  vtkOpenGLRenderWindow* Context = nullptr;
-};
-
-vtkMultiMaterialVolumeMapper::InputCheck vtkMultiMaterialVolumeMapper::CheckInputs(
-  vtkRenderer* ren, vtkVolume* vol)
-{
-  InputCheck check;
-  if (this->BlendMode != vtkVolumeMapper::COMPOSITE_BLEND)
-  {
-    return check; // other blend modes are the base class's business
-  }
-  auto* image = vtkImageData::SafeDownCast(this->GetInput());
-  auto* context = vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow());
-  if (!image || !vol->GetProperty() || !context)
-  {
-    if (this->GetInput())
-    {
-      check.Reason = "multi-material shading needs vtkImageData input; using VTK's shading";
-    }
-    return check;
-  }
-  int cellFlag = 0;
-  vtkDataArray* scalars = vtkAbstractMapper::GetScalars(image, this->ScalarMode,
-    this->ArrayAccessMode, this->ArrayId, this->ArrayName, cellFlag);
-  if (!scalars)
-  {
-    return check; // the base class reports missing scalars
-  }
-  // An empty image (0 points) crashed the irradiance pre-filter
-  // (TestBadInput.EmptyVolume); fewer scalars than points would read past them.
-  if (image->GetNumberOfPoints() < 1 ||
-    scalars->GetNumberOfTuples() <
-      (cellFlag ? image->GetNumberOfCells() : image->GetNumberOfPoints()))
-  {
-    check.Reason = "the input has no points or fewer scalars than points; nothing to shade";
-    return check;
-  }
-  if (cellFlag)
-  {
-    check.Reason = "multi-material shading needs point scalars (cell scalars given); "
-                   "using VTK's shading";
-    return check;
-  }
-  int dataDims[3];
-  image->GetDimensions(dataDims);
-  if (dataDims[0] < 2 || dataDims[1] < 2 || dataDims[2] < 2)
-  {
-    // Found by TestBadInput.SingleSliceAnd2DImages: a single slice has no
-    // thickness, so seen face-on it integrates to nothing (a black image).
-    check.Caveat = "the input is a single slice (one point along an axis): it has no "
-                   "thickness and may render empty";
-  }
-  if (scalars->GetNumberOfComponents() != 1)
-  {
-    check.Reason = "multi-material shading needs one-component scalars; using VTK's shading";
-    return check;
-  }
-  if (vol->GetProperty()->GetTransferFunctionMode() != vtkVolumeProperty::TF_1D)
-  {
-    check.Reason = "multi-material shading needs a 1D transfer function; using VTK's shading";
-    return check;
-  }
-  check.Supported = true;
-  check.Image = image;
-  check.Scalars = scalars;
-  check.Context = context;
-  return check;
-}
-
 bool vtkMultiMaterialVolumeMapper::PrepareMultiMaterial(vtkRenderer* ren, vtkVolume* vol)
 {
-  const InputCheck input = this->CheckInputs(ren, vol);
+  const mmv::InputCheck input = mmv::CheckMultiMaterialInputs(this, ren, vol);
   if (!input.Caveat.empty())
   {
     this->WarnOnce(input.Caveat);

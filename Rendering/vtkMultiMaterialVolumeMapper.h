@@ -264,9 +264,6 @@ private:
   // Validates the inputs and refreshes every cache the frame needs; false
   // means "render with the base class". Its steps follow.
   bool PrepareMultiMaterial(vtkRenderer* ren, vtkVolume* vol);
-  // Whether the inputs can be shaded with materials, and if not, why.
-  struct InputCheck;
-  InputCheck CheckInputs(vtkRenderer* ren, vtkVolume* vol);
   bool UpdateSegmentTables(
     vtkOpenGLRenderWindow* context, vtkVolume* vol, vtkImageData* image, const double range[2]);
   bool UpdateGradient(vtkOpenGLRenderWindow* context, vtkImageData* image,
