@@ -47,6 +47,15 @@ vtkSmartPointer<vtkImageData> Ramp(int dims)
   return mmvtest::MakeVolume(dims, [](int i, int, int) { return static_cast<float>(i); });
 }
 
+vtkSmartPointer<vtkFloatArray> Filled(int components, vtkIdType tuples, float value)
+{
+  auto array = vtkSmartPointer<vtkFloatArray>::New();
+  array->SetNumberOfComponents(components);
+  array->SetNumberOfTuples(tuples);
+  array->FillValue(value);
+  return array;
+}
+
 void ExpectFallback(const mmv::InputCheck& check, const std::string& reason)
 {
   EXPECT_FALSE(check.Supported);
@@ -101,19 +110,12 @@ TEST(InputCheck, EmptyShortCellAndMultiComponentScalarsSayWhy)
 
   auto cells = vtkSmartPointer<vtkImageData>::New();
   cells->SetDimensions(4, 4, 4);
-  vtkNew<vtkFloatArray> cellValues;
-  cellValues->SetNumberOfTuples(27);
-  cellValues->FillValue(1.0f);
-  cells->GetCellData()->SetScalars(cellValues);
+  cells->GetCellData()->SetScalars(Filled(1, 27, 1.0f));
   ExpectFallback(scene.Check(cells),
     "multi-material shading needs point scalars (cell scalars given); using VTK's shading");
 
   auto rgb = Ramp(4);
-  vtkNew<vtkFloatArray> colors;
-  colors->SetNumberOfComponents(3);
-  colors->SetNumberOfTuples(64);
-  colors->FillValue(0.5f);
-  rgb->GetPointData()->SetScalars(colors);
+  rgb->GetPointData()->SetScalars(Filled(3, 64, 0.5f));
   const mmv::InputCheck check = scene.Check(rgb);
   ExpectFallback(check, "multi-material shading needs one-component scalars; using VTK's shading");
   EXPECT_EQ(check.Caveat, "");
@@ -124,10 +126,7 @@ TEST(InputCheck, SingleSliceIsShadedWithACaveat)
   CheckScene scene;
   auto slice = vtkSmartPointer<vtkImageData>::New();
   slice->SetDimensions(4, 4, 1);
-  vtkNew<vtkFloatArray> values;
-  values->SetNumberOfTuples(16);
-  values->FillValue(2.0f);
-  slice->GetPointData()->SetScalars(values);
+  slice->GetPointData()->SetScalars(Filled(1, 16, 2.0f));
   const std::string caveat = "the input is a single slice (one point along an axis): it has no "
                              "thickness and may render empty";
   mmv::InputCheck check = scene.Check(slice);
