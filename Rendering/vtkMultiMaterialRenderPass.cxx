@@ -2,6 +2,7 @@
 
 #include "vtkInformation.h"
 #include "vtkInformationObjectBaseVectorKey.h"
+#include "vtkMultiMaterialLiveObjects.h"
 #include "vtkObjectFactory.h"
 #include "vtkShaderProgram.h"
 #include "vtkSmartPointer.h"
@@ -13,12 +14,16 @@ vtkStandardNewMacro(vtkMultiMaterialRenderPass);
 
 vtkMultiMaterialRenderPass::vtkMultiMaterialRenderPass()
 {
+  vtkMultiMaterialLiveObjects::Constructed("vtkMultiMaterialRenderPass");
   // The base mapper sizes its image-sample draw buffers from a pass's count.
   this->SetActiveDrawBuffers(1);
   this->ReplacementTime.Modified();
 }
 
-vtkMultiMaterialRenderPass::~vtkMultiMaterialRenderPass() = default;
+vtkMultiMaterialRenderPass::~vtkMultiMaterialRenderPass()
+{
+  vtkMultiMaterialLiveObjects::Destroyed("vtkMultiMaterialRenderPass");
+}
 
 void vtkMultiMaterialRenderPass::SetFragmentReplacements(const Replacements& replacements)
 {

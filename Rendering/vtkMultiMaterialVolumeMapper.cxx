@@ -7,17 +7,20 @@
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkIrradianceGrid.h"
+#include "vtkIrradianceInputCache.h"
 #include "vtkIrradianceVolumePass.h"
 #include "vtkLightCollection.h"
 #include "vtkMaterialTransferFunction.h"
-#include "vtkMatrix3x3.h"
 #include "vtkMatrix4x4.h"
 #include "vtkMultiMaterialCutaway.h"
+#include "vtkMultiMaterialInputCheck.h"
 #include "vtkMultiMaterialLights.h"
+#include "vtkMultiMaterialLiveObjects.h"
 #include "vtkMultiMaterialParameters.h"
 #include "vtkMultiMaterialRenderPass.h"
 #include "vtkMultiMaterialShaderAssembly.h"
 #include "vtkMultiMaterialTextures.h"
+#include "vtkMultiMaterialVolumeGeometry.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkPiecewiseFunction.h"
@@ -52,61 +55,6 @@ double Seconds(Clock::time_point start)
 {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
-
-/// Scale and bias that map texture coordinates of `n` points to those of `m`
-/// texels spanning the same points (point i at (i + 0.5) / n, texel j at
-/// (j + 0.5) / m); an axis of one texel maps to its centre.
-void SamePointsMap(double n, double m, float& scale, float& bias)
-{
-  if (n > 1 && m > 1)
-  {
-    scale = static_cast<float>(n * (m - 1) / ((n - 1) * m));
-    bias = static_cast<float>(0.5 / m - 0.5 * (m - 1) / ((n - 1) * m));
-  }
-  else
-  {
-    scale = 0.0f;
-    bias = 0.5f;
-  }
-}
-
-// The maps from a brick's texture coordinates to the whole volume's, which
-// the gradient and irradiance textures cover (Shaders/mmvRayCastDec.glsl,
-// mmvWholeTexCoord): object space -> the whole volume's point index
-// (column-major 4x4), and the texture-coordinate gradient -> object space as
-// VTK's whole-volume inverse texture matrix gives it (column-major 3x3).
-void WholeVolumeMaps(vtkImageData* image, float physicalToIndex[16], float gradientToObject[9],
-  float dimensions[3], float spacing[3])
-{
-  int dims[3];
-  image->GetDimensions(dims);
-  const int* e = image->GetExtent();
-  double first[3];
-  image->TransformContinuousIndexToPhysicalPoint(e[0], e[2], e[4], first);
-  vtkNew<vtkMatrix3x3> inverse;
-  vtkMatrix3x3::Invert(image->GetDirectionMatrix(), inverse);
-  const double* s = image->GetSpacing();
-  std::fill(physicalToIndex, physicalToIndex + 16, 0.0f);
-  physicalToIndex[15] = 1.0f;
-  for (int r = 0; r < 3; ++r)
-  {
-    const double sr = std::abs(s[r]) > 0.0 ? s[r] : 1.0;
-    double translation = 0.0;
-    for (int c = 0; c < 3; ++c)
-    {
-      const double p = inverse->GetElement(r, c) / sr;
-      physicalToIndex[4 * c + r] = static_cast<float>(p);
-      translation -= p * first[c];
-      // GLSL gets transpose(A), A = diag(1 / ((n - 1) s)) D^-1.
-      const double a = inverse->GetElement(r, c) / (dims[r] > 1 ? (dims[r] - 1) * sr : sr);
-      gradientToObject[3 * r + c] = static_cast<float>(a);
-    }
-    physicalToIndex[12 + r] = static_cast<float>(translation);
-    dimensions[r] = static_cast<float>(dims[r]);
-    spacing[r] = static_cast<float>(std::abs(sr));
-  }
-}
-
 }
 
 class vtkMultiMaterialVolumeMapper::vtkInternals
@@ -127,25 +75,10 @@ public:
   vtkNew<vtkColorTransferFunction> GrayAsColor;
   vtkMTimeType GrayTime = 0;
 
-  // What the irradiance volume was computed from: the volume (data, opacity,
-  // scattering; the grid is the mapper's IrradianceDimensions), and each
-  // light; the pass recomputes only the lights that differ, everything when
-  // the volume does.
-  std::vector<double> VolumeKey;
-  std::vector<double> LightsKey;
+  // What the irradiance volume was computed from, and the pass's inputs
+  // kept between frames (pre-filtered data, material samples).
+  vtkNew<vtkIrradianceInputCache> Cache;
   std::string ResolutionReason;
-  // The pre-filtered data on the irradiance grid, normalised to [0, 1].
-  std::vector<double> PrefilterKey;
-  std::vector<float> Prefiltered;
-  unsigned long PrefilteredVersion = 0; // counts the pre-filterings
-  mmv::IrradianceGrid Grid;
-  // The material parameters the irradiance depends on (attenuation and
-  // scattering), sampled over the range, and a version bumped only when they
-  // change, so editing a colour-only parameter keeps the irradiance.
-  std::vector<double> MaterialSampleKey;
-  std::vector<float> Attenuation;
-  std::vector<float> Scattering;
-  int MaterialVersion = 0;
 
   // Per-frame shading inputs, read by SetUniforms().
   mmv::ShaderVariant Variant;
@@ -261,6 +194,7 @@ void vtkMultiMaterialVolumeMapper::vtkInternals::SetUniforms(vtkShaderProgram* p
 vtkMultiMaterialVolumeMapper::vtkMultiMaterialVolumeMapper()
   : Internals(new vtkInternals)
 {
+  vtkMultiMaterialLiveObjects::Constructed("vtkMultiMaterialVolumeMapper");
   this->Internals->Pass->SetOwner(this);
   vtkInternals* internals = this->Internals;
   this->Internals->Pass->SetParameterCallback(
@@ -274,6 +208,7 @@ vtkMultiMaterialVolumeMapper::~vtkMultiMaterialVolumeMapper()
   this->Internals->Pass->SetParameterCallback(nullptr);
   this->Internals->Pass->SetFragmentReplacements({});
   delete this->Internals;
+  vtkMultiMaterialLiveObjects::Destroyed("vtkMultiMaterialVolumeMapper");
 }
 
 void vtkMultiMaterialVolumeMapper::SetMaterialTransferFunction(vtkMaterialTransferFunction* m)
@@ -321,81 +256,25 @@ vtkMTimeType vtkMultiMaterialVolumeMapper::GetMTime()
 //------------------------------------------------------------------------------
 namespace
 {
-// The sample distance VTK's ray caster will use (object units), as
-// vtkOpenGLGPUVolumeRayCastMapper computes it, so the segment tables match it
-// and the shader's length correction stays near 1.
-double ExpectedSampleDistance(vtkGPUVolumeRayCastMapper* mapper, vtkVolume* vol,
-  vtkImageData* image, double sampleDistance, bool autoAdjust, bool lock,
-  double spacingAdjusted)
+/// What the whole irradiance volume depends on besides the lights and the grid.
+vtkIrradianceInputCache::VolumeKey MakeVolumeKey(vtkMultiMaterialVolumeMapper* mapper,
+  vtkVolumeProperty* property, vtkMTimeType dataTime, int materialVersion, int lights,
+  const double range[2], const mmv::Cutaway& cutaway)
 {
-  if (!autoAdjust)
-  {
-    return lock ? spacingAdjusted : sampleDistance;
-  }
-  (void)mapper;
-  vtkMatrix4x4* m = vol->GetMatrix();
-  const double* spacing = image->GetSpacing();
-  double smallest = VTK_DOUBLE_MAX;
-  for (int i = 0; i < 3; ++i)
-  {
-    const double column = std::sqrt(m->GetElement(0, i) * m->GetElement(0, i) +
-      m->GetElement(1, i) * m->GetElement(1, i) + m->GetElement(2, i) * m->GetElement(2, i));
-    smallest = std::min(smallest, std::abs(spacing[i] * column));
-  }
-  return smallest;
-}
-
-void AppendLightKey(std::vector<double>& key, const mmv::LightSource& s)
-{
-  key.push_back(s.Kind);
-  key.insert(key.end(), { s.Position.x, s.Position.y, s.Position.z, s.ToLight.x, s.ToLight.y,
-                          s.ToLight.z, s.SpotAxis.x, s.SpotAxis.y, s.SpotAxis.z, s.CosCone,
-                          s.SpotExponent, s.Attenuation.x, s.Attenuation.y, s.Attenuation.z,
-                          s.Radius });
-}
-
-/// Pixels one data voxel step covers on screen at the volume's centre,
-/// the largest over the three index axes; 0 when it cannot be told.
-double ProjectedPixelsPerVoxel(vtkRenderer* ren, vtkVolume* vol, vtkImageData* image)
-{
-  if (!ren || !ren->GetActiveCamera() || !ren->GetRenderWindow())
-  {
-    return 0.0;
-  }
-  const int* size = ren->GetSize();
-  if (!size || size[0] < 1 || size[1] < 1)
-  {
-    return 0.0;
-  }
-  double center[3];
-  image->GetCenter(center);
-  vtkMatrix4x4* m = vol->GetMatrix();
-  auto toDisplay = [&](const double p[3], double out[2]) {
-    double world[4] = { p[0], p[1], p[2], 1.0 };
-    m->MultiplyPoint(world, world);
-    ren->SetWorldPoint(world[0] / world[3], world[1] / world[3], world[2] / world[3], 1.0);
-    ren->WorldToDisplay();
-    const double* d = ren->GetDisplayPoint();
-    out[0] = d[0];
-    out[1] = d[1];
-  };
-  double c[2];
-  toDisplay(center, c);
-  double largest = 0.0;
-  vtkMatrix3x3* direction = image->GetDirectionMatrix();
-  for (int a = 0; a < 3; ++a)
-  {
-    double p[3];
-    for (int i = 0; i < 3; ++i)
-    {
-      p[i] = center[i] + direction->GetElement(i, a) * image->GetSpacing()[a];
-    }
-    double q[2];
-    toDisplay(p, q);
-    const double pixels = std::hypot(q[0] - c[0], q[1] - c[1]);
-    largest = std::isfinite(pixels) ? std::max(largest, pixels) : largest;
-  }
-  return largest;
+  vtkIrradianceInputCache::VolumeKey key;
+  key.DataTime = dataTime;
+  key.OpacityTime = property->GetScalarOpacity(0)->GetMTime();
+  key.MaterialVersion = materialVersion;
+  key.UnitDistance = property->GetScalarOpacityUnitDistance(0);
+  key.Range[0] = range[0];
+  key.Range[1] = range[1];
+  key.MultipleScattering = mapper->GetMultipleScattering();
+  key.TableSize = mapper->GetPreIntegrationTableSize();
+  key.NumberOfLights = lights;
+  key.ShadowEstimation = mapper->GetShadowEstimation();
+  key.PiecewiseShadowSlices = mapper->GetPiecewiseShadowSlices();
+  key.Cut = cutaway.Key();
+  return key;
 }
 }
 
@@ -437,7 +316,7 @@ void vtkMultiMaterialVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
 {
   this->Internals->Textures->ReleaseGraphicsResources(window);
   this->Internals->Irradiance->ReleaseGraphicsResources(window);
-  this->Internals->VolumeKey.clear();
+  this->Internals->Cache->Invalidate();
   this->Superclass::ReleaseGraphicsResources(window);
 }
 
@@ -553,73 +432,59 @@ void vtkMultiMaterialVolumeMapper::WarnOnce(const std::string& message)
   }
 }
 
+//------------------------------------------------------------------------------
 bool vtkMultiMaterialVolumeMapper::PrepareMultiMaterial(vtkRenderer* ren, vtkVolume* vol)
 {
-  vtkInternals& in = *this->Internals;
-  if (this->BlendMode != vtkVolumeMapper::COMPOSITE_BLEND)
+  const mmv::InputCheck input = mmv::CheckMultiMaterialInputs(this, ren, vol);
+  if (!input.Caveat.empty())
   {
-    return false; // other blend modes are the base class's business
+    this->WarnOnce(input.Caveat);
   }
-  auto* image = vtkImageData::SafeDownCast(this->GetInput());
-  vtkVolumeProperty* property = vol->GetProperty();
-  auto* context = vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow());
-  if (!image || !property || !context)
+  if (!input.Supported)
   {
-    if (this->GetInput())
+    if (!input.Reason.empty())
     {
-      this->WarnOnce("multi-material shading needs vtkImageData input; using VTK's shading");
+      this->WarnOnce(input.Reason);
     }
     return false;
   }
-  int cellFlag = 0;
-  vtkDataArray* scalars = vtkAbstractMapper::GetScalars(image, this->ScalarMode,
-    this->ArrayAccessMode, this->ArrayId, this->ArrayName, cellFlag);
-  if (!scalars)
-  {
-    return false; // the base class reports missing scalars
-  }
-  // An empty image (0 points) crashed the irradiance pre-filter
-  // (TestBadInput.EmptyVolume); fewer scalars than points would read past them.
-  if (image->GetNumberOfPoints() < 1 ||
-    scalars->GetNumberOfTuples() < (cellFlag ? image->GetNumberOfCells() : image->GetNumberOfPoints()))
-  {
-    this->WarnOnce("the input has no points or fewer scalars than points; nothing to shade");
-    return false;
-  }
-  if (cellFlag)
-  {
-    this->WarnOnce("multi-material shading needs point scalars (cell scalars given); "
-                   "using VTK's shading");
-    return false;
-  }
-  int dataDims[3];
-  image->GetDimensions(dataDims);
-  if (dataDims[0] < 2 || dataDims[1] < 2 || dataDims[2] < 2)
-  {
-    // Found by TestBadInput.SingleSliceAnd2DImages: a single slice has no
-    // thickness, so seen face-on it integrates to nothing (a black image).
-    this->WarnOnce("the input is a single slice (one point along an axis): it has no "
-                   "thickness and may render empty");
-  }
-  if (scalars->GetNumberOfComponents() != 1)
-  {
-    this->WarnOnce("multi-material shading needs one-component scalars; using VTK's shading");
-    return false;
-  }
-  if (property->GetTransferFunctionMode() != vtkVolumeProperty::TF_1D)
-  {
-    this->WarnOnce("multi-material shading needs a 1D transfer function; using VTK's shading");
-    return false;
-  }
-
   double range[2];
-  scalars->GetFiniteRange(range, 0);
+  input.Scalars->GetFiniteRange(range, 0);
   if (!(range[1] > range[0]))
   {
     range[1] = range[0] + 1.0; // constant volume: any non-empty range will do
   }
 
   // 1. Segment tables (pre-integration): only when the TFs or the step change.
+  if (!this->UpdateSegmentTables(input.Context, vol, input.Image, range) ||
+    !this->UpdateGradient(input.Context, input.Image, input.Scalars, range))
+  {
+    return false;
+  }
+
+  // 2. Lights, in the volume's object space.
+  vtkNew<vtkMatrix4x4> worldToObject;
+  vtkMatrix4x4::Invert(vol->GetMatrix(), worldToObject);
+  this->CollectShadedLights(ren, worldToObject);
+
+  // 3. The irradiance volume: only when lights, opacity, materials or data change.
+  this->LastRenderInteractive = vol->GetAllocatedRenderTime() < 1.0;
+  if (!this->Internals->Lights.empty() &&
+    !this->UpdateIrradiance(ren, vol, input.Image, input.Scalars, range))
+  {
+    return false;
+  }
+
+  // 4. The shader variant and the per-frame uniforms.
+  this->UpdateShading(ren, input.Image, worldToObject);
+  return true;
+}
+
+bool vtkMultiMaterialVolumeMapper::UpdateSegmentTables(
+  vtkOpenGLRenderWindow* context, vtkVolume* vol, vtkImageData* image, const double range[2])
+{
+  vtkInternals& in = *this->Internals;
+  vtkVolumeProperty* property = vol->GetProperty();
   vtkColorTransferFunction* color = property->GetRGBTransferFunction(0);
   if (property->GetColorChannels(0) == 1)
   {
@@ -639,7 +504,7 @@ bool vtkMultiMaterialVolumeMapper::PrepareMultiMaterial(vtkRenderer* ren, vtkVol
   }
   int extent[6];
   image->GetExtent(extent);
-  const double step = ExpectedSampleDistance(this, vol, image, this->SampleDistance,
+  const double step = mmv::ExpectedSampleDistance(vol, image, this->SampleDistance,
     this->AutoAdjustSampleDistances != 0, this->LockSampleDistanceToInputSpacing != 0,
     this->SpacingAdjustedSampleDistance(image->GetSpacing(), extent));
   vtkPreIntegrationTable* table = in.SegmentTable;
@@ -647,7 +512,7 @@ bool vtkMultiMaterialVolumeMapper::PrepareMultiMaterial(vtkRenderer* ren, vtkVol
   table->SetScalarOpacity(property->GetScalarOpacity(0));
   table->SetScalarOpacityUnitDistance(property->GetScalarOpacityUnitDistance(0));
   table->SetTableSize(this->PreIntegrationTableSize);
-  table->SetScalarRange(range);
+  table->SetScalarRange(const_cast<double*>(range));
   table->SetStepLength(step);
   const int builds = table->GetBuildCount();
   if (!table->Update())
@@ -662,10 +527,19 @@ bool vtkMultiMaterialVolumeMapper::PrepareMultiMaterial(vtkRenderer* ren, vtkVol
   in.TableStep = static_cast<float>(step);
   in.Textures->UpdateSegmentTables(context, table);
   in.Textures->UpdateMaterialTable(context, in.Materials, range, this->PreIntegrationTableSize);
+  return true;
+}
+
+bool vtkMultiMaterialVolumeMapper::UpdateGradient(vtkOpenGLRenderWindow* context,
+  vtkImageData* image, vtkDataArray* scalars, const double range[2])
+{
+  vtkInternals& in = *this->Internals;
   // Pieces of one volume share the gradient's normalisation (and so its
   // shading fade) when they share a global range.
   vtkGlobalPrefilteredVolume* global = in.ActiveGlobal();
   const double* gradientRange = global ? global->GetScalarRange() : range;
+  int dataDims[3];
+  image->GetDimensions(dataDims);
   std::string smoothingProblem;
   const double smoothing = mmv::ValidGradientSmoothing(this->GradientSmoothing, &smoothingProblem);
   if (!smoothingProblem.empty())
@@ -685,12 +559,15 @@ bool vtkMultiMaterialVolumeMapper::PrepareMultiMaterial(vtkRenderer* ren, vtkVol
   for (int a = 0; a < 3; ++a)
   {
     in.GradientScale[a] = static_cast<float>(dataDims[a]);
-    SamePointsMap(dataDims[a], gradientTexels[a], in.GradientTexScale[a], in.GradientTexBias[a]);
+    mmv::SamePointsMap(dataDims[a], gradientTexels[a], in.GradientTexScale[a], in.GradientTexBias[a]);
   }
+  return true;
+}
 
-  // 2. Lights, in the volume's object space.
-  vtkNew<vtkMatrix4x4> worldToObject;
-  vtkMatrix4x4::Invert(vol->GetMatrix(), worldToObject);
+void vtkMultiMaterialVolumeMapper::CollectShadedLights(
+  vtkRenderer* ren, vtkMatrix4x4* worldToObject)
+{
+  vtkInternals& in = *this->Internals;
   int dropped = 0;
   std::vector<std::string> problems;
   std::string radiusProblem;
@@ -715,15 +592,12 @@ bool vtkMultiMaterialVolumeMapper::PrepareMultiMaterial(vtkRenderer* ren, vtkVol
     this->WarnOnce("no active light: the volume is shaded with its ambient term only");
   }
   this->NumberOfShadedLights = static_cast<int>(in.Lights.size());
+}
 
-  // 3. The irradiance volume: only when lights, opacity, materials or data change.
-  this->LastRenderInteractive = vol->GetAllocatedRenderTime() < 1.0;
-  if (!in.Lights.empty() && !this->UpdateIrradiance(ren, vol, image, scalars, range))
-  {
-    return false;
-  }
-
-  // 4. The shader variant and the per-frame uniforms.
+void vtkMultiMaterialVolumeMapper::UpdateShading(
+  vtkRenderer* ren, vtkImageData* image, vtkMatrix4x4* worldToObject)
+{
+  vtkInternals& in = *this->Internals;
   mmv::ShaderVariant variant;
   variant.NumberOfLights = this->NumberOfShadedLights;
   variant.Reflection =
@@ -737,18 +611,22 @@ bool vtkMultiMaterialVolumeMapper::PrepareMultiMaterial(vtkRenderer* ren, vtkVol
 
   int dims[3];
   image->GetDimensions(dims);
-  WholeVolumeMaps(
+  mmv::WholeVolumeMaps(
     image, in.PhysicalToWholeIndex, in.GradientToObject, in.WholeDimensions, in.DataSpacing);
-  if (global)
+  if (in.ActiveGlobal())
   {
     this->MapPieceToGlobalIrradiance(image);
   }
-  for (int a = 0; a < 3 && !global; ++a)
+  else
   {
-    // Data point i sits at texture coordinate (i + 0.5) / N, irradiance voxel
-    // j at (j + 0.5) / M, and both grids span the same points.
-    SamePointsMap(dims[a], this->IrradianceDimensions[a] > 0 ? this->IrradianceDimensions[a] : 1,
-      in.IrradianceScale[a], in.IrradianceBias[a]);
+    for (int a = 0; a < 3; ++a)
+    {
+      // Data point i sits at texture coordinate (i + 0.5) / N, irradiance
+      // voxel j at (j + 0.5) / M, and both grids span the same points.
+      mmv::SamePointsMap(dims[a],
+        this->IrradianceDimensions[a] > 0 ? this->IrradianceDimensions[a] : 1,
+        in.IrradianceScale[a], in.IrradianceBias[a]);
+    }
   }
   const double* spacing = image->GetSpacing();
   const double smallestSpacing =
@@ -774,36 +652,52 @@ bool vtkMultiMaterialVolumeMapper::PrepareMultiMaterial(vtkRenderer* ren, vtkVol
       in.EnvironmentTop[i] = static_cast<float>(top[i]);
     }
   }
-  return true;
 }
 
 void vtkMultiMaterialVolumeMapper::MapPieceToGlobalIrradiance(vtkImageData* piece)
 {
   vtkInternals& in = *this->Internals;
   vtkGlobalPrefilteredVolume* global = in.ActiveGlobal();
-  const mmv::IrradianceGrid& grid = global->GetGrid();
   const glm::dvec3 offset = global->PieceOffset(piece);
+  const double o[3] = { offset[0], offset[1], offset[2] };
   int dims[3];
   piece->GetDimensions(dims);
-  for (int a = 0; a < 3; ++a)
+  mmv::PieceToGlobalIrradianceMap(
+    global->GetGrid(), o, dims, in.IrradianceScale, in.IrradianceBias);
+}
+
+mmv::IrradianceResolution vtkMultiMaterialVolumeMapper::ChooseIrradianceGrid(
+  vtkRenderer* ren, vtkVolume* vol, vtkImageData* image)
+{
+  int dataDims[3];
+  image->GetDimensions(dataDims);
+  // The screen only matters when the resolution is automatic.
+  std::string scaleProblem;
+  const double scale = mmv::ValidIrradianceScale(this->IrradianceScale, &scaleProblem);
+  if (!scaleProblem.empty())
   {
-    // Piece point i (texture coordinate t = (i + 0.5) / n) is point o + i of
-    // the whole volume, at irradiance index (o + i) / r (r data points per
-    // irradiance voxel), texture coordinate ((o + i) / r + 0.5) / m.
-    const double n = dims[a];
-    const double m = grid.Dimensions[a];
-    const double r = grid.DataVoxelsPerVoxel[a];
-    if (m > 1 && r > 0.0)
-    {
-      in.IrradianceScale[a] = static_cast<float>(n / (r * m));
-      in.IrradianceBias[a] = static_cast<float>(((offset[a] - 0.5) / r + 0.5) / m);
-    }
-    else
-    {
-      in.IrradianceScale[a] = 0.0f;
-      in.IrradianceBias[a] = 0.5f;
-    }
+    this->WarnOnce(scaleProblem);
   }
+  const double pixelsPerVoxel = scale > 0.0 ? 0.0 : mmv::ProjectedPixelsPerVoxel(ren, vol, image);
+  mmv::IrradianceResolution resolution;
+  if (vtkGlobalPrefilteredVolume* global = this->Internals->ActiveGlobal())
+  {
+    global->GetIrradianceDimensions(resolution.Dimensions);
+    resolution.Reason = "the global grid of a volume in pieces";
+    return resolution;
+  }
+  resolution = mmv::ChooseIrradianceResolution(dataDims,
+    static_cast<int>(this->Internals->Lights.size()), this->IrradianceMemoryMB, scale,
+    pixelsPerVoxel);
+  // The irradiance is one 3D texture: no axis longer than the largest one
+  // (a long volume is drawn in bricks, its irradiance spans it whole).
+  const int largest = vtkTextureObject::GetMaximumTextureSize3D(
+    vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow()));
+  for (int a = 0; a < 3 && largest > 1; ++a)
+  {
+    resolution.Dimensions[a] = std::min(resolution.Dimensions[a], largest);
+  }
+  return resolution;
 }
 
 bool vtkMultiMaterialVolumeMapper::UpdateIrradiance(vtkRenderer* ren, vtkVolume* vol,
@@ -814,70 +708,13 @@ bool vtkMultiMaterialVolumeMapper::UpdateIrradiance(vtkRenderer* ren, vtkVolume*
   // data, on its grid and over its range.
   vtkGlobalPrefilteredVolume* global = in.ActiveGlobal();
   const double* range = global ? global->GetScalarRange() : pieceRange;
-  vtkVolumeProperty* property = vol->GetProperty();
-  auto* context = vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow());
-  vtkPiecewiseFunction* opacity = property->GetScalarOpacity(0);
-  const double unitDistance = property->GetScalarOpacityUnitDistance(0);
   this->NumberOfUpdatedLights = 0;
 
-  int dataDims[3];
-  image->GetDimensions(dataDims);
-  // The screen only matters when the resolution is automatic.
-  std::string scaleProblem;
-  const double scale = mmv::ValidIrradianceScale(this->IrradianceScale, &scaleProblem);
-  if (!scaleProblem.empty())
-  {
-    this->WarnOnce(scaleProblem);
-  }
-  const double pixelsPerVoxel = scale > 0.0 ? 0.0 : ProjectedPixelsPerVoxel(ren, vol, image);
-  mmv::IrradianceResolution resolution;
-  if (global)
-  {
-    global->GetIrradianceDimensions(resolution.Dimensions);
-    resolution.Reason = "the global grid of a volume in pieces";
-  }
-  else
-  {
-    resolution = mmv::ChooseIrradianceResolution(dataDims, static_cast<int>(in.Lights.size()),
-      this->IrradianceMemoryMB, scale, pixelsPerVoxel);
-  }
-  // The irradiance is one 3D texture: no axis longer than the largest one
-  // (a long volume is drawn in bricks, its irradiance spans it whole).
-  const int largest = vtkTextureObject::GetMaximumTextureSize3D(context);
-  for (int a = 0; a < 3 && largest > 1 && !global; ++a)
-  {
-    resolution.Dimensions[a] = std::min(resolution.Dimensions[a], largest);
-  }
+  const mmv::IrradianceResolution resolution = this->ChooseIrradianceGrid(ren, vol, image);
   const int* dims = resolution.Dimensions;
-
-  const int n = this->PreIntegrationTableSize;
-  const std::vector<double> materialKey = { double(in.Materials ? in.Materials->GetMTime() : 0),
-    range[0], range[1], double(n) };
-  if (materialKey != in.MaterialSampleKey)
-  {
-    std::vector<float> attenuation(n, 1.0f);
-    std::vector<float> scattering(n, 0.0f);
-    for (int i = 0; in.Materials && i < n; ++i)
-    {
-      const double t = range[0] + (range[1] - range[0]) * i / (n - 1);
-      attenuation[i] = static_cast<float>(in.Materials->EvaluateParameter(t, mmv::Attenuation));
-      scattering[i] = static_cast<float>(in.Materials->EvaluateParameter(t, mmv::Scattering));
-    }
-    if (attenuation != in.Attenuation || scattering != in.Scattering)
-    {
-      in.Attenuation = attenuation;
-      in.Scattering = scattering;
-      ++in.MaterialVersion;
-    }
-    in.MaterialSampleKey = materialKey;
-  }
-
+  in.Cache->SampleMaterials(in.Materials, range, this->PreIntegrationTableSize);
   const vtkMTimeType dataTime =
     global ? global->GetMTime() : std::max(image->GetMTime(), scalars->GetMTime());
-  std::vector<double> volumeKey = { double(dataTime), double(opacity->GetMTime()),
-    double(in.MaterialVersion), unitDistance, range[0], range[1], double(this->MultipleScattering),
-    double(this->PreIntegrationTableSize), double(in.Lights.size()), double(this->ShadowEstimation),
-    double(this->PiecewiseShadowSlices) };
   // What cropping and clipping remove casts no shadow: part of the key, so a
   // moved crop box or plane updates the irradiance.
   vtkNew<vtkMatrix4x4> worldToObject;
@@ -889,74 +726,58 @@ bool vtkMultiMaterialVolumeMapper::UpdateIrradiance(vtkRenderer* ren, vtkVolume*
     this->WarnOnce("more than " + std::to_string(mmv::MaxCutPlanes) +
       " clipping planes: the shadow rays ignore the others");
   }
-  const std::vector<double> cutKey = cutaway.Key();
-  volumeKey.insert(volumeKey.end(), cutKey.begin(), cutKey.end());
-  std::vector<double> lightsKey;
+  const vtkIrradianceInputCache::VolumeKey volumeKey = MakeVolumeKey(this, vol->GetProperty(),
+    dataTime, in.Cache->GetMaterialVersion(), static_cast<int>(in.Lights.size()), range, cutaway);
+  std::vector<mmv::LightSource> sources;
   for (const auto& light : in.Lights)
   {
-    AppendLightKey(lightsKey, light.Source);
+    sources.push_back(light.Source);
   }
   const bool computed = in.Irradiance->GetNumberOfIrradianceTextures() > 0;
-  const bool sameGrid = std::equal(dims, dims + 3, this->IrradianceDimensions);
-  if (computed && volumeKey == in.VolumeKey && sameGrid && lightsKey == in.LightsKey)
+  if (computed && in.Cache->IsCurrent(volumeKey, sources, dims))
   {
     return true;
   }
   // Interactive frames keep the last irradiance while only the lights or the
   // screen-chosen grid moved; the still frame after them updates it.
   if (computed && this->LastRenderInteractive &&
-    this->InteractiveIrradiance == ReuseWhileInteracting && volumeKey == in.VolumeKey)
+    this->InteractiveIrradiance == ReuseWhileInteracting && in.Cache->SameVolume(volumeKey))
   {
     ++this->DeferredIrradianceCount;
     return true;
   }
 
   // Pre-filtered data: only when the data or the grid changed.
-  const std::vector<double> prefilterKey = { double(dims[0]), double(dims[1]), double(dims[2]),
-    double(dataTime), range[0], range[1] };
-  if (prefilterKey != in.PrefilterKey)
+  if (in.Cache->UpdatePrefiltered(image, scalars, global, dims, dataTime, range))
   {
-    if (global)
-    {
-      in.Grid = global->GetGrid();
-      in.Prefiltered = global->GetValues();
-    }
-    else
-    {
-      in.Grid = mmv::MakeIrradianceGrid(image, dims);
-      mmv::PrefilterScalars(image, scalars, 0, in.Grid, in.Prefiltered);
-    }
-    ++in.PrefilteredVersion;
-    const double scale = 1.0 / (range[1] - range[0]);
-    bool nonFinite = false;
-    for (float& v : in.Prefiltered)
-    {
-      v = static_cast<float>((v - range[0]) * scale);
-      // NaN/Inf voxels (TestBadInput.NonFiniteVoxels) used to index the
-      // opacity tables out of bounds: NaN counts as empty, +-Inf as the
-      // range's ends.
-      if (!std::isfinite(v))
-      {
-        nonFinite = true;
-        v = std::isnan(v) ? 0.0f : (v > 0.0f ? 1.0f : 0.0f);
-      }
-    }
-    if (nonFinite)
-    {
-      this->WarnOnce("the scalars contain NaN or Inf: lit as empty (NaN) or as the ends of the "
-                     "finite range (Inf)");
-    }
-    in.PrefilterKey = prefilterKey;
+    this->WarnOnce("the scalars contain NaN or Inf: lit as empty (NaN) or as the ends of the "
+                   "finite range (Inf)");
   }
+  if (!this->ComputeIrradiance(ren, vol, range, cutaway, sources))
+  {
+    return false;
+  }
+  in.Cache->Store(volumeKey, sources, dims);
+  this->RecordIrradianceUpdate(resolution);
+  return true;
+}
 
+bool vtkMultiMaterialVolumeMapper::ComputeIrradiance(vtkRenderer* ren, vtkVolume* vol,
+  const double range[2], const mmv::Cutaway& cutaway,
+  const std::vector<mmv::LightSource>& sources)
+{
+  vtkInternals& in = *this->Internals;
+  vtkPiecewiseFunction* opacity = vol->GetProperty()->GetScalarOpacity(0);
+  const int n = this->PreIntegrationTableSize;
   // Shadow rays step one irradiance voxel, with their own pre-integrated table.
-  const double shadowStep = std::min({ in.Grid.Spacing.x, in.Grid.Spacing.y, in.Grid.Spacing.z });
+  const mmv::IrradianceGrid& grid = in.Cache->GetGrid();
+  const double shadowStep = std::min({ grid.Spacing.x, grid.Spacing.y, grid.Spacing.z });
   vtkPreIntegrationTable* shadow = in.ShadowTable;
   shadow->SetScalarOpacity(opacity);
   shadow->SetMaterialTransferFunction(in.Materials);
-  shadow->SetScalarOpacityUnitDistance(unitDistance);
-  shadow->SetTableSize(this->PreIntegrationTableSize);
-  shadow->SetScalarRange(const_cast<double*>(range));
+  shadow->SetScalarOpacityUnitDistance(vol->GetProperty()->GetScalarOpacityUnitDistance(0));
+  shadow->SetTableSize(n);
+  shadow->SetScalarRange(range[0], range[1]);
   shadow->SetStepLength(shadowStep);
   if (!shadow->Update())
   {
@@ -966,35 +787,36 @@ bool vtkMultiMaterialVolumeMapper::UpdateIrradiance(vtkRenderer* ren, vtkVolume*
   std::vector<float> opacityTable(n);
   for (int i = 0; i < n; ++i)
   {
-    opacityTable[i] = static_cast<float>(opacity->GetValue(range[0] + (range[1] - range[0]) * i / (n - 1)));
+    opacityTable[i] =
+      static_cast<float>(opacity->GetValue(range[0] + (range[1] - range[0]) * i / (n - 1)));
   }
   const std::vector<float> scatteringTable =
-    this->MultipleScattering ? in.Scattering : std::vector<float>(n, 0.0f);
-  std::vector<mmv::LightSource> sources;
-  for (const auto& light : in.Lights)
-  {
-    sources.push_back(light.Source);
-  }
+    this->MultipleScattering ? in.Cache->GetScattering() : std::vector<float>(n, 0.0f);
 
   vtkIrradianceVolumePass* pass = in.Irradiance;
   pass->SetMultipleScattering(this->MultipleScattering);
   pass->SetShadowEstimation(this->ShadowEstimation);
   pass->SetPiecewiseShadowSlices(this->PiecewiseShadowSlices);
   pass->SetCutaway(cutaway);
-  pass->SetInputs(in.Grid, in.Prefiltered, n, shadow->GetShadowOpacityTable(), shadowStep,
-    opacityTable.data(), scatteringTable.data(), sources, in.PrefilteredVersion);
-  if (!pass->Render(context))
+  pass->SetInputs(grid, in.Cache->GetPrefiltered(), n, shadow->GetShadowOpacityTable(),
+    shadowStep, opacityTable.data(), scatteringTable.data(), sources,
+    in.Cache->GetPrefilteredVersion());
+  if (!pass->Render(vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow())))
   {
     vtkErrorMacro("the irradiance volume could not be computed on the GPU");
-    in.VolumeKey.clear();
+    in.Cache->Invalidate();
     return false;
   }
-  in.VolumeKey = volumeKey;
-  in.LightsKey = lightsKey;
-  for (int a = 0; a < 3; ++a)
-  {
-    this->IrradianceDimensions[a] = dims[a];
-  }
+  return true;
+}
+
+void vtkMultiMaterialVolumeMapper::RecordIrradianceUpdate(
+  const mmv::IrradianceResolution& resolution)
+{
+  vtkInternals& in = *this->Internals;
+  vtkIrradianceVolumePass* pass = in.Irradiance;
+  const int* dims = resolution.Dimensions;
+  std::copy(dims, dims + 3, this->IrradianceDimensions);
   this->NumberOfUpdatedLights = pass->GetNumberOfUpdatedLights();
   if (this->NumberOfUpdatedLights > 0)
   {
@@ -1017,7 +839,6 @@ bool vtkMultiMaterialVolumeMapper::UpdateIrradiance(vtkRenderer* ren, vtkVolume*
   vtkDebugMacro(<< "irradiance " << in.ResolutionReason << ", " << this->NumberOfUpdatedLights
                 << " of " << in.Lights.size() << " lights updated in "
                 << this->LastIrradianceSeconds << " s");
-  return true;
 }
 
 const char* vtkMultiMaterialVolumeMapper::GetIrradianceResolutionReason()

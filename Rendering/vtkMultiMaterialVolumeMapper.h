@@ -48,8 +48,15 @@ class vtkGlobalPrefilteredVolume;
 class vtkImageData;
 class vtkIrradianceVolumePass;
 class vtkMaterialTransferFunction;
+class vtkMatrix4x4;
 class vtkOpenGLRenderWindow;
 class vtkVolumeProperty;
+namespace mmv
+{
+struct Cutaway;
+struct IrradianceResolution;
+struct LightSource;
+}
 
 class VTKMULTIMATERIALVOLUME_EXPORT vtkMultiMaterialVolumeMapper
   : public vtkOpenGLGPUVolumeRayCastMapper
@@ -265,10 +272,21 @@ private:
   void operator=(const vtkMultiMaterialVolumeMapper&) = delete;
 
   // Validates the inputs and refreshes every cache the frame needs; false
-  // means "render with the base class".
+  // means "render with the base class". Its steps follow.
   bool PrepareMultiMaterial(vtkRenderer* ren, vtkVolume* vol);
+  bool UpdateSegmentTables(
+    vtkOpenGLRenderWindow* context, vtkVolume* vol, vtkImageData* image, const double range[2]);
+  bool UpdateGradient(vtkOpenGLRenderWindow* context, vtkImageData* image,
+    vtkDataArray* scalars, const double range[2]);
+  void CollectShadedLights(vtkRenderer* ren, vtkMatrix4x4* worldToObject);
   bool UpdateIrradiance(vtkRenderer* ren, vtkVolume* vol, vtkImageData* image,
     vtkDataArray* scalars, const double pieceRange[2]);
+  bool ComputeIrradiance(vtkRenderer* ren, vtkVolume* vol, const double range[2],
+    const mmv::Cutaway& cutaway, const std::vector<mmv::LightSource>& sources);
+  mmv::IrradianceResolution ChooseIrradianceGrid(
+    vtkRenderer* ren, vtkVolume* vol, vtkImageData* image);
+  void RecordIrradianceUpdate(const mmv::IrradianceResolution& resolution);
+  void UpdateShading(vtkRenderer* ren, vtkImageData* image, vtkMatrix4x4* worldToObject);
   // The irradiance texture coordinates of the input, a piece of the global
   // pre-filtered volume.
   void MapPieceToGlobalIrradiance(vtkImageData* piece);

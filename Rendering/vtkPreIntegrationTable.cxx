@@ -2,6 +2,7 @@
 
 #include "vtkColorTransferFunction.h"
 #include "vtkMaterialTransferFunction.h"
+#include "vtkMultiMaterialLiveObjects.h"
 #include "vtkMultiMaterialParameters.h"
 #include "vtkObjectFactory.h"
 #include "vtkPiecewiseFunction.h"
@@ -301,6 +302,249 @@ struct DiagonalFiller
   }
 };
 
+// The transfer functions a table is built from, sampled at one data value:
+// opacity alpha, extinction mu, shadow extinction sigma = c_t mu, colour.
+struct TransferFunctions
+{
+  vtkPiecewiseFunction* Opacity;
+  vtkColorTransferFunction* Color;       // null: white
+  vtkMaterialTransferFunction* Material; // null: c_t = 1
+  double UnitDistance;
+
+  void Sample(double t, double& alpha, double& mu, double& sigma, double rgb[3]) const
+  {
+    alpha = this->Opacity->GetValue(t);
+    mu = mmv::ExtinctionFromOpacity(alpha, this->UnitDistance);
+    sigma = this->Material ? mu * this->Material->EvaluateParameter(t, mmv::Attenuation) : mu;
+    if (this->Color)
+    {
+      this->Color->GetColor(t, rgb);
+    }
+    else
+    {
+      rgb[0] = rgb[1] = rgb[2] = 1.0;
+    }
+  }
+
+  // Every TF node, sorted: inside the range they split the cells into smooth
+  // pieces, so features narrower than a cell (spikes, steps) are integrated
+  // exactly and the first non-zero opacity is found at the node where it
+  // starts.
+  std::vector<double> Breaks() const
+  {
+    std::vector<double> breaks;
+    double node[8];
+    for (int k = 0; k < this->Opacity->GetSize(); ++k)
+    {
+      this->Opacity->GetNodeValue(k, node);
+      breaks.push_back(node[0]);
+    }
+    for (int k = 0; this->Color && k < this->Color->GetSize(); ++k)
+    {
+      this->Color->GetNodeValue(k, node);
+      breaks.push_back(node[0]);
+    }
+    for (int k = 0; this->Material && k < this->Material->GetSize(); ++k)
+    {
+      this->Material->GetNode(k, node);
+      breaks.push_back(node[0]);
+    }
+    std::sort(breaks.begin(), breaks.end());
+    return breaks;
+  }
+};
+
+// The TFs at every table node t_k = range[0] + k D.
+void SampleNodes(const TransferFunctions& tf, double first, CellData& cells)
+{
+  const int n = cells.N;
+  cells.NodeMu.resize(n);
+  cells.NodeSigma.resize(n);
+  cells.NodeRGB.resize(3 * n);
+  cells.NodeOpaque.resize(n);
+  for (int k = 0; k < n; ++k)
+  {
+    double alpha;
+    tf.Sample(
+      first + k * cells.D, alpha, cells.NodeMu[k], cells.NodeSigma[k], &cells.NodeRGB[3 * k]);
+    cells.NodeOpaque[k] = alpha > 0.0;
+  }
+}
+
+// int_a^x1 mu dt over a piece [a, b] without TF nodes inside: closed form
+// where the opacity is linear (the usual case), Gauss where it is curved
+// (midpoint/sharpness nodes).
+struct PieceDepth
+{
+  vtkPiecewiseFunction* Opacity;
+  double UnitDistance;
+  double A, B, AlphaA, AlphaB;
+  bool Linear;
+
+  double operator()(double x1) const
+  {
+    const double a = this->A;
+    if (this->Linear)
+    {
+      const double alpha1 = this->AlphaA + (this->AlphaB - this->AlphaA) * (x1 - a) / (this->B - a);
+      return LinearOpacityDepth(this->AlphaA, alpha1, x1 - a) / this->UnitDistance;
+    }
+    const double h = 0.5 * (x1 - a);
+    double sum = 0.0;
+    for (int g = 0; g < GaussOrder; ++g)
+    {
+      const double alpha = this->Opacity->GetValue(a + h * (1.0 + GaussX[g]));
+      sum += GaussW[g] * h * mmv::ExtinctionFromOpacity(alpha, this->UnitDistance);
+    }
+    return sum;
+  }
+};
+
+// Moments of a piece in the optical depth q: of the extinction (W0, W1) and
+// of the extinction-weighted colour (S0, S1), and the colour's range.
+struct PieceMoments
+{
+  double W0 = 0.0, W1 = 0.0;
+  double S0[3] = { 0.0, 0.0, 0.0 }, S1[3] = { 0.0, 0.0, 0.0 };
+  double Min[3], Max[3];
+};
+
+// Appends a piece of optical depth `depth` (data units) and its colour,
+// the least-squares fit c0 + c1 q over q in [0, 1].
+void AppendPiece(double depth, const PieceMoments& m, CellData& cells)
+{
+  cells.PieceDepth.push_back(depth);
+  for (int c = 0; c < 3; ++c)
+  {
+    // The mean fixes c0 + c1/2, the first moment c1.
+    double mean = 0.0, slope = 0.0;
+    if (m.W0 > 0.0 && depth > 0.0)
+    {
+      mean = m.S0[c] / m.W0;
+      slope = m.S0[c] > 0.0 ? 12.0 * mean * (m.S1[c] / m.S0[c] - m.W1 / m.W0) / depth : 0.0;
+    }
+    cells.PieceColor0.push_back(mean - 0.5 * slope);
+    cells.PieceColor1.push_back(slope);
+    cells.PieceColorMin.push_back(std::min(m.Min[c], mean));
+    cells.PieceColorMax.push_back(std::max(m.Max[c], mean));
+  }
+}
+
+// Integrates the piece [a, b] (no TF node inside): appends its depth and
+// colour fit to `cells`, adds its shadow depth to `cellSigma`, and returns
+// its depth (data units); `nonZero` tells whether any of it is not empty.
+double IntegratePiece(
+  const TransferFunctions& tf, double a, double b, CellData& cells, double& cellSigma, bool& nonZero)
+{
+  const double half = 0.5 * (b - a);
+  PieceDepth pieceDepth{ tf.Opacity, tf.UnitDistance, a, b, tf.Opacity->GetValue(a),
+    tf.Opacity->GetValue(b), true };
+  double x[GaussOrder], mu[GaussOrder], sigma[GaussOrder], rgb[GaussOrder][3];
+  double muGauss = 0.0;
+  nonZero = false;
+  for (int g = 0; g < GaussOrder; ++g)
+  {
+    double alpha;
+    x[g] = a + half * (1.0 + GaussX[g]);
+    tf.Sample(x[g], alpha, mu[g], sigma[g], rgb[g]);
+    muGauss += GaussW[g] * half * mu[g];
+    const double lerp =
+      pieceDepth.AlphaA + 0.5 * (pieceDepth.AlphaB - pieceDepth.AlphaA) * (1.0 + GaussX[g]);
+    pieceDepth.Linear = pieceDepth.Linear && std::abs(alpha - lerp) < 1e-9;
+    nonZero = nonZero || alpha > 0.0;
+  }
+  const double depth = pieceDepth(b);
+  // Rescaling the Gauss weights to the exact integral keeps colour and
+  // attenuation weighted means while the extinction itself stays exact.
+  const double scale = muGauss > 0.0 ? depth / muGauss : 0.0;
+  PieceMoments m;
+  {
+    // The colour range over the whole piece, ends included.
+    double alpha, muEnd, sigmaEnd, rgbA[3], rgbB[3];
+    tf.Sample(a, alpha, muEnd, sigmaEnd, rgbA);
+    tf.Sample(b, alpha, muEnd, sigmaEnd, rgbB);
+    for (int c = 0; c < 3; ++c)
+    {
+      m.Min[c] = std::min(rgbA[c], rgbB[c]);
+      m.Max[c] = std::max(rgbA[c], rgbB[c]);
+    }
+  }
+  for (int g = 0; g < GaussOrder; ++g)
+  {
+    if (!(mu[g] > 0.0))
+    {
+      continue;
+    }
+    const double w = GaussW[g] * half * scale;
+    const double q = pieceDepth(x[g]);
+    cellSigma += w * sigma[g];
+    m.W0 += w * mu[g];
+    m.W1 += w * mu[g] * q;
+    for (int c = 0; c < 3; ++c)
+    {
+      m.S0[c] += w * mu[g] * rgb[g][c];
+      m.S1[c] += w * mu[g] * rgb[g][c] * q;
+      m.Min[c] = std::min(m.Min[c], rgb[g][c]);
+      m.Max[c] = std::max(m.Max[c], rgb[g][c]);
+    }
+  }
+  AppendPiece(depth, m, cells);
+  return depth;
+}
+
+// Cell and piece integrals, then per node where the non-zero opacity starts
+// above it (Up) and below it (Down), positions relative to range[0].
+void IntegrateCells(
+  const TransferFunctions& tf, const std::vector<double>& breaks, double first, CellData& cells)
+{
+  const int n = cells.N;
+  const double inf = std::numeric_limits<double>::infinity();
+  cells.CellMu.resize(n - 1);
+  cells.PrefixMu.assign(n, 0.0);
+  cells.PrefixSigma.assign(n, 0.0);
+  cells.PieceStart.assign(1, 0);
+  std::vector<double> firstNonZero(n - 1, inf), lastNonZero(n - 1, -inf);
+  auto nextBreak = breaks.begin();
+  for (int k = 0; k < n - 1; ++k)
+  {
+    const double cellLo = first + k * cells.D;
+    const double cellHi = first + (k + 1) * cells.D;
+    double cellDepth = 0.0, cellSigma = 0.0;
+    double a = cellLo;
+    while (a < cellHi)
+    {
+      while (nextBreak != breaks.end() && *nextBreak <= a)
+      {
+        ++nextBreak;
+      }
+      const double b = (nextBreak != breaks.end() && *nextBreak < cellHi) ? *nextBreak : cellHi;
+      bool nonZero = false;
+      cellDepth += IntegratePiece(tf, a, b, cells, cellSigma, nonZero);
+      if (nonZero)
+      {
+        firstNonZero[k] = std::min(firstNonZero[k], a - first);
+        lastNonZero[k] = b - first;
+      }
+      a = b;
+    }
+    cells.PieceStart.push_back(static_cast<int>(cells.PieceDepth.size()));
+    cells.CellMu[k] = cellDepth / cells.D;
+    cells.PrefixMu[k + 1] = cells.PrefixMu[k] + cellDepth / cells.D;
+    cells.PrefixSigma[k + 1] = cells.PrefixSigma[k] + cellSigma / cells.D;
+  }
+
+  cells.Up.assign(n, inf);
+  cells.Down.assign(n, -inf);
+  for (int k = n - 2; k >= 0; --k)
+  {
+    cells.Up[k] = firstNonZero[k] < inf ? firstNonZero[k] : cells.Up[k + 1];
+  }
+  for (int k = 1; k < n; ++k)
+  {
+    cells.Down[k] = lastNonZero[k - 1] > -inf ? lastNonZero[k - 1] : cells.Down[k - 1];
+  }
+}
+
 } // namespace
 
 class vtkPreIntegrationTable::vtkInternals
@@ -349,12 +593,14 @@ vtkStandardNewMacro(vtkPreIntegrationTable);
 vtkPreIntegrationTable::vtkPreIntegrationTable()
   : Internals(new vtkInternals)
 {
+  vtkMultiMaterialLiveObjects::Constructed("vtkPreIntegrationTable");
 }
 
 //------------------------------------------------------------------------------
 vtkPreIntegrationTable::~vtkPreIntegrationTable()
 {
   delete this->Internals;
+  vtkMultiMaterialLiveObjects::Destroyed("vtkPreIntegrationTable");
 }
 
 //------------------------------------------------------------------------------
@@ -401,14 +647,9 @@ vtkMaterialTransferFunction* vtkPreIntegrationTable::GetMaterialTransferFunction
 }
 
 //------------------------------------------------------------------------------
-bool vtkPreIntegrationTable::Update()
+bool vtkPreIntegrationTable::CheckSettings()
 {
-  vtkInternals& internals = *this->Internals;
-  vtkPiecewiseFunction* otf = internals.Opacity;
-  vtkColorTransferFunction* ctf = internals.Color;
-  vtkMaterialTransferFunction* mtf = internals.Material;
-
-  if (!otf)
+  if (!this->Internals->Opacity)
   {
     vtkErrorMacro("No scalar opacity function set.");
     return false;
@@ -434,28 +675,31 @@ bool vtkPreIntegrationTable::Update()
     vtkErrorMacro("ScalarRange is not finite.");
     return false;
   }
+  return true;
+}
 
-  vtkMTimeType inputTime = this->GetMTime();
-  inputTime = std::max(inputTime, otf->GetMTime());
-  if (ctf)
+bool vtkPreIntegrationTable::IsUpToDate()
+{
+  const vtkInternals& internals = *this->Internals;
+  vtkMTimeType inputTime = std::max(this->GetMTime(), internals.Opacity->GetMTime());
+  if (internals.Color)
   {
-    inputTime = std::max(inputTime, ctf->GetMTime());
+    inputTime = std::max(inputTime, internals.Color->GetMTime());
   }
-  if (mtf)
+  if (internals.Material)
   {
-    inputTime = std::max(inputTime, mtf->GetMTime());
+    inputTime = std::max(inputTime, internals.Material->GetMTime());
   }
-  if (internals.Built && inputTime <= internals.BuildTime.GetMTime())
-  {
-    return true;
-  }
+  return internals.Built && inputTime <= internals.BuildTime.GetMTime();
+}
 
-  const auto start = std::chrono::steady_clock::now();
-
-  double range[2] = { this->ScalarRange[0], this->ScalarRange[1] };
+void vtkPreIntegrationTable::ResolveRange(double range[2])
+{
+  range[0] = this->ScalarRange[0];
+  range[1] = this->ScalarRange[1];
   if (!(range[0] < range[1]))
   {
-    const double* otfRange = otf->GetRange();
+    const double* otfRange = this->Internals->Opacity->GetRange();
     range[0] = otfRange[0];
     range[1] = otfRange[1];
   }
@@ -463,199 +707,33 @@ bool vtkPreIntegrationTable::Update()
   {
     range[1] = range[0] + 1.0;
   }
+}
 
+bool vtkPreIntegrationTable::Update()
+{
+  if (!this->CheckSettings())
+  {
+    return false;
+  }
+  if (this->IsUpToDate())
+  {
+    return true;
+  }
+  const auto start = std::chrono::steady_clock::now();
+  vtkInternals& internals = *this->Internals;
+  double range[2];
+  this->ResolveRange(range);
+
+  // O(n) samples and integrals of the TFs, then the O(n^2) fill.
   const int n = this->TableSize;
-  const double u = this->ScalarOpacityUnitDistance;
+  const TransferFunctions tf{ internals.Opacity, internals.Color, internals.Material,
+    this->ScalarOpacityUnitDistance };
   CellData cells;
   cells.N = n;
   cells.L = this->StepLength;
   cells.D = (range[1] - range[0]) / (n - 1);
-
-  // Every TF node inside the range splits the cells into smooth pieces, so
-  // features narrower than a cell (spikes, steps) are integrated exactly and
-  // the first non-zero opacity is found at the node where it starts.
-  std::vector<double> breaks;
-  {
-    double node[8];
-    for (int k = 0; k < otf->GetSize(); ++k)
-    {
-      otf->GetNodeValue(k, node);
-      breaks.push_back(node[0]);
-    }
-    for (int k = 0; ctf && k < ctf->GetSize(); ++k)
-    {
-      ctf->GetNodeValue(k, node);
-      breaks.push_back(node[0]);
-    }
-    for (int k = 0; mtf && k < mtf->GetSize(); ++k)
-    {
-      mtf->GetNode(k, node);
-      breaks.push_back(node[0]);
-    }
-    std::sort(breaks.begin(), breaks.end());
-  }
-
-  const auto sample = [&](double t, double& alpha, double& mu, double& sigma, double rgb[3])
-  {
-    alpha = otf->GetValue(t);
-    mu = mmv::ExtinctionFromOpacity(alpha, u);
-    sigma = mtf ? mu * mtf->EvaluateParameter(t, mmv::Attenuation) : mu;
-    if (ctf)
-    {
-      ctf->GetColor(t, rgb);
-    }
-    else
-    {
-      rgb[0] = rgb[1] = rgb[2] = 1.0;
-    }
-  };
-
-  cells.NodeMu.resize(n);
-  cells.NodeSigma.resize(n);
-  cells.NodeRGB.resize(3 * n);
-  cells.NodeOpaque.resize(n);
-  for (int k = 0; k < n; ++k)
-  {
-    double alpha;
-    sample(
-      range[0] + k * cells.D, alpha, cells.NodeMu[k], cells.NodeSigma[k], &cells.NodeRGB[3 * k]);
-    cells.NodeOpaque[k] = alpha > 0.0;
-  }
-
-  // Cell and piece integrals, and per cell where its non-zero opacity starts
-  // and ends (positions relative to range[0]).
-  const double inf = std::numeric_limits<double>::infinity();
-  cells.CellMu.resize(n - 1);
-  cells.PrefixMu.assign(n, 0.0);
-  cells.PrefixSigma.assign(n, 0.0);
-  cells.PieceStart.assign(1, 0);
-  std::vector<double> firstNonZero(n - 1, inf), lastNonZero(n - 1, -inf);
-  auto nextBreak = breaks.begin();
-  for (int k = 0; k < n - 1; ++k)
-  {
-    const double cellLo = range[0] + k * cells.D;
-    const double cellHi = range[0] + (k + 1) * cells.D;
-    double cellDepth = 0.0, cellSigma = 0.0;
-    double a = cellLo;
-    while (a < cellHi)
-    {
-      while (nextBreak != breaks.end() && *nextBreak <= a)
-      {
-        ++nextBreak;
-      }
-      const double b = (nextBreak != breaks.end() && *nextBreak < cellHi) ? *nextBreak : cellHi;
-      const double half = 0.5 * (b - a);
-      const double alphaA = otf->GetValue(a);
-      const double alphaB = otf->GetValue(b);
-      double x[GaussOrder], mu[GaussOrder], sigma[GaussOrder], rgb[GaussOrder][3];
-      double muGauss = 0.0;
-      bool linear = true, nonZero = false;
-      for (int g = 0; g < GaussOrder; ++g)
-      {
-        double alpha;
-        x[g] = a + half * (1.0 + GaussX[g]);
-        sample(x[g], alpha, mu[g], sigma[g], rgb[g]);
-        muGauss += GaussW[g] * half * mu[g];
-        const double lerp = alphaA + 0.5 * (alphaB - alphaA) * (1.0 + GaussX[g]);
-        linear = linear && std::abs(alpha - lerp) < 1e-9;
-        nonZero = nonZero || alpha > 0.0;
-      }
-      // int_a^x1 mu dt: closed form on a linear piece (the usual case),
-      // Gauss on a curved one (midpoint/sharpness nodes).
-      const auto pieceDepth = [&](double x1)
-      {
-        if (linear)
-        {
-          const double alpha1 = alphaA + (alphaB - alphaA) * (x1 - a) / (b - a);
-          return LinearOpacityDepth(alphaA, alpha1, x1 - a) / u;
-        }
-        const double h = 0.5 * (x1 - a);
-        double sum = 0.0;
-        for (int g = 0; g < GaussOrder; ++g)
-        {
-          const double alpha = otf->GetValue(a + h * (1.0 + GaussX[g]));
-          sum += GaussW[g] * h * mmv::ExtinctionFromOpacity(alpha, u);
-        }
-        return sum;
-      };
-      const double depth = pieceDepth(b);
-      // Rescaling the Gauss weights to the exact integral keeps colour and
-      // attenuation weighted means while the extinction itself stays exact.
-      const double scale = muGauss > 0.0 ? depth / muGauss : 0.0;
-      // Moments in the optical depth q of the extinction (w0, w1) and of the
-      // extinction-weighted colour (s0, s1).
-      double w0 = 0.0, w1 = 0.0, s0[3] = { 0.0, 0.0, 0.0 }, s1[3] = { 0.0, 0.0, 0.0 };
-      // The colour range over the whole piece, ends included.
-      double cMin[3], cMax[3];
-      {
-        double alpha, muEnd, sigmaEnd, rgbA[3], rgbB[3];
-        sample(a, alpha, muEnd, sigmaEnd, rgbA);
-        sample(b, alpha, muEnd, sigmaEnd, rgbB);
-        for (int c = 0; c < 3; ++c)
-        {
-          cMin[c] = std::min(rgbA[c], rgbB[c]);
-          cMax[c] = std::max(rgbA[c], rgbB[c]);
-        }
-      }
-      for (int g = 0; g < GaussOrder; ++g)
-      {
-        if (!(mu[g] > 0.0))
-        {
-          continue;
-        }
-        const double w = GaussW[g] * half * scale;
-        const double q = pieceDepth(x[g]);
-        cellSigma += w * sigma[g];
-        w0 += w * mu[g];
-        w1 += w * mu[g] * q;
-        for (int c = 0; c < 3; ++c)
-        {
-          s0[c] += w * mu[g] * rgb[g][c];
-          s1[c] += w * mu[g] * rgb[g][c] * q;
-          cMin[c] = std::min(cMin[c], rgb[g][c]);
-          cMax[c] = std::max(cMax[c], rgb[g][c]);
-        }
-      }
-      cells.PieceDepth.push_back(depth);
-      for (int c = 0; c < 3; ++c)
-      {
-        // Least-squares fit c0 + c1 q over q in [0, 1]: the mean fixes
-        // c0 + c1/2, the first moment c1.
-        double mean = 0.0, slope = 0.0;
-        if (w0 > 0.0 && depth > 0.0)
-        {
-          mean = s0[c] / w0;
-          slope = s0[c] > 0.0 ? 12.0 * mean * (s1[c] / s0[c] - w1 / w0) / depth : 0.0;
-        }
-        cells.PieceColor0.push_back(mean - 0.5 * slope);
-        cells.PieceColor1.push_back(slope);
-        cells.PieceColorMin.push_back(std::min(cMin[c], mean));
-        cells.PieceColorMax.push_back(std::max(cMax[c], mean));
-      }
-      cellDepth += depth;
-      if (nonZero)
-      {
-        firstNonZero[k] = std::min(firstNonZero[k], a - range[0]);
-        lastNonZero[k] = b - range[0];
-      }
-      a = b;
-    }
-    cells.PieceStart.push_back(static_cast<int>(cells.PieceDepth.size()));
-    cells.CellMu[k] = cellDepth / cells.D;
-    cells.PrefixMu[k + 1] = cells.PrefixMu[k] + cellDepth / cells.D;
-    cells.PrefixSigma[k + 1] = cells.PrefixSigma[k] + cellSigma / cells.D;
-  }
-
-  cells.Up.assign(n, inf);
-  cells.Down.assign(n, -inf);
-  for (int k = n - 2; k >= 0; --k)
-  {
-    cells.Up[k] = firstNonZero[k] < inf ? firstNonZero[k] : cells.Up[k + 1];
-  }
-  for (int k = 1; k < n; ++k)
-  {
-    cells.Down[k] = lastNonZero[k - 1] > -inf ? lastNonZero[k - 1] : cells.Down[k - 1];
-  }
+  SampleNodes(tf, range[0], cells);
+  IntegrateCells(tf, tf.Breaks(), range[0], cells);
 
   const std::size_t entries = static_cast<std::size_t>(n) * n;
   std::vector<float> colorOpacity(4 * entries), position(entries), shadow(entries);

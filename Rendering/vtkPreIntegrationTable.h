@@ -139,6 +139,12 @@ private:
   vtkPreIntegrationTable(const vtkPreIntegrationTable&) = delete;
   void operator=(const vtkPreIntegrationTable&) = delete;
 
+  // The steps of Update(): settings valid (errors otherwise), inputs older
+  // than the tables, the range the tables span.
+  bool CheckSettings();
+  bool IsUpToDate();
+  void ResolveRange(double range[2]);
+
   class vtkInternals;
   vtkInternals* Internals;
 };

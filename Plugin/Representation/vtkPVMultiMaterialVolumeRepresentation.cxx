@@ -8,6 +8,7 @@
 #include "vtkMultiProcessController.h"
 #include "vtkPVView.h"
 #include "vtkMaterialLibrary.h"
+#include "vtkMultiMaterialLiveObjects.h"
 #include "vtkMultiMaterialVolumeMapper.h"
 #include "vtkObjectFactory.h"
 #include "vtkVolumeProperty.h"
@@ -25,6 +26,7 @@ constexpr const char* CustomPreset = "Custom";
 //------------------------------------------------------------------------------
 vtkPVMultiMaterialVolumeRepresentation::vtkPVMultiMaterialVolumeRepresentation()
 {
+  vtkMultiMaterialLiveObjects::Constructed("vtkPVMultiMaterialVolumeRepresentation");
   // The base class drives whatever mapper sits here; ours is a
   // vtkOpenGLGPUVolumeRayCastMapper, so everything generic keeps working.
   vtkNew<vtkMultiMaterialVolumeMapper> mapper;
@@ -40,7 +42,10 @@ vtkPVMultiMaterialVolumeRepresentation::vtkPVMultiMaterialVolumeRepresentation()
 }
 
 //------------------------------------------------------------------------------
-vtkPVMultiMaterialVolumeRepresentation::~vtkPVMultiMaterialVolumeRepresentation() = default;
+vtkPVMultiMaterialVolumeRepresentation::~vtkPVMultiMaterialVolumeRepresentation()
+{
+  vtkMultiMaterialLiveObjects::Destroyed("vtkPVMultiMaterialVolumeRepresentation");
+}
 
 //------------------------------------------------------------------------------
 vtkMultiMaterialVolumeMapper* vtkPVMultiMaterialVolumeRepresentation::GetMultiMaterialMapper()

@@ -13,6 +13,7 @@
 #include "vtkInformation.h"
 #include "vtkInformationObjectBaseVectorKey.h"
 #include "vtkLightKit.h"
+#include "vtkMultiMaterialLiveObjects.h"
 #include "vtkMultiMaterialRenderPass.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLRenderPass.h"
@@ -527,6 +528,32 @@ vtkMultiMaterialRenderPass* FindPass(vtkInformation* keys)
   }
   return nullptr;
 }
+
+// A lit 16x16 scene of `image` shaded by a multi-material mapper, ready to
+// render. Members die in reverse order: the scene (volume, keys, window)
+// before the mapper.
+struct LitMaterialScene
+{
+  vtkSmartPointer<vtkMultiMaterialVolumeMapper> Mapper =
+    vtkSmartPointer<vtkMultiMaterialVolumeMapper>::New();
+  vtkNew<vtkMaterialTransferFunction> Materials;
+  mmvtest::Scene Scene{ 16 };
+
+  explicit LitMaterialScene(vtkImageData* image)
+  {
+    this->Materials->AddNode(4.0, 0.3, 0.7, 0.3, 20.0, 1.0, 0.0, 0.0);
+    this->Mapper->SetInputData(image);
+    this->Mapper->SetMaterialTransferFunction(this->Materials);
+    this->Scene.Color->AddRGBPoint(0.0, 1.0, 1.0, 1.0);
+    this->Scene.Opacity->AddPoint(0.0, 0.1);
+    this->Scene.Opacity->AddPoint(8.0, 0.5);
+    this->Scene.Volume->SetMapper(this->Mapper);
+    this->Scene.FrameBounds(image->GetBounds());
+    const double from[3] = { 4.0, 4.0, 100.0 };
+    const double to[3] = { 4.0, 4.0, 4.0 };
+    this->Scene.AddDirectionalLight(from, to);
+  }
+};
 }
 
 TEST(MultiMaterialVolumeMapper, MappersVolumesAndPassesAreFreed)
@@ -544,16 +571,10 @@ TEST(MultiMaterialVolumeMapper, MappersVolumesAndPassesAreFreed)
     vtkNew<ForeignRenderPass> foreign;
     watch.Watch(foreign);
     {
-      auto mapper = vtkSmartPointer<vtkMultiMaterialVolumeMapper>::New();
-      vtkNew<vtkMaterialTransferFunction> materials;
-      materials->AddNode(4.0, 0.3, 0.7, 0.3, 20.0, 1.0, 0.0, 0.0);
-      mapper->SetInputData(image);
-      mapper->SetMaterialTransferFunction(materials);
-      mmvtest::Scene scene(16);
-      scene.Color->AddRGBPoint(0.0, 1.0, 1.0, 1.0);
-      scene.Opacity->AddPoint(0.0, 0.1);
-      scene.Opacity->AddPoint(8.0, 0.5);
-      scene.Volume->SetMapper(mapper);
+      LitMaterialScene lit(image);
+      vtkSmartPointer<vtkMultiMaterialVolumeMapper>& mapper = lit.Mapper;
+      vtkMaterialTransferFunction* materials = lit.Materials;
+      mmvtest::Scene& scene = lit.Scene;
       {
         vtkNew<vtkInformation> newKeys; // the volume's only: they die with it
         scene.Volume->SetPropertyKeys(newKeys);
@@ -561,10 +582,6 @@ TEST(MultiMaterialVolumeMapper, MappersVolumesAndPassesAreFreed)
       vtkInformation* keys = scene.Volume->GetPropertyKeys();
       watch.Watch(keys);
       vtkOpenGLRenderPass::RenderPasses()->Append(keys, foreign);
-      scene.FrameBounds(image->GetBounds());
-      const double from[3] = { 4.0, 4.0, 100.0 };
-      const double to[3] = { 4.0, 4.0, 4.0 };
-      scene.AddDirectionalLight(from, to);
       scene.Window->Render();
       ASSERT_TRUE(mapper->GetMultiMaterialActive());
       vtkMultiMaterialRenderPass* pass = FindPass(keys);
@@ -572,7 +589,7 @@ TEST(MultiMaterialVolumeMapper, MappersVolumesAndPassesAreFreed)
       EXPECT_EQ(vtkOpenGLRenderPass::RenderPasses()->Length(keys), 2);
       EXPECT_EQ(vtkOpenGLRenderPass::RenderPasses()->Get(keys, 1), foreign.Get());
       for (vtkObject* object : std::initializer_list<vtkObject*>{ pass, mapper.Get(),
-             scene.Volume.Get(), scene.Renderer.Get(), scene.Window.Get(), materials.Get() })
+             scene.Volume.Get(), scene.Renderer.Get(), scene.Window.Get(), materials })
       {
         watch.Watch(object);
       }
@@ -598,4 +615,64 @@ TEST(MultiMaterialVolumeMapper, MappersVolumesAndPassesAreFreed)
   }
   std::printf("deletion watch: %d objects watched, %d deleted\n", watch.Watched, watch.Deleted);
   EXPECT_EQ(watch.Alive(), 0) << "objects still alive out of " << watch.Watched;
+}
+
+namespace
+{
+// The counted classes a rendered mapper brings to life: itself, its render
+// pass, its two pre-integration tables (segments, shadows) and its
+// irradiance input cache.
+constexpr int ObjectsPerMapper = 5;
+
+// Renders a lit multi-material scene once, so that the mapper makes its GL
+// resources (tables, gradient, irradiance volume, shader) and installs its
+// pass in the volume's keys; returns the mapper (the scene dies here).
+vtkSmartPointer<vtkMultiMaterialVolumeMapper> RenderOnce(vtkImageData* image)
+{
+  LitMaterialScene lit(image);
+  vtkSmartPointer<vtkMultiMaterialVolumeMapper> mapper = lit.Mapper;
+  lit.Scene.Window->Render();
+  EXPECT_TRUE(mapper->GetMultiMaterialActive());
+  EXPECT_EQ(mapper->GetIrradianceUpdateCount(), 1);
+  EXPECT_EQ(vtkMultiMaterialLiveObjects::GetCount("vtkMultiMaterialVolumeMapper"),
+    vtkMultiMaterialLiveObjects::GetCount("vtkMultiMaterialRenderPass"));
+  lit.Scene.Window->Finalize();
+  return mapper;
+}
+}
+
+TEST(MultiMaterialVolumeMapper, CreateRenderDestroyLoopKeepsLiveObjectCount)
+{
+  // vtkDebugLeaks is off in Debian's VTK, so the project's classes count
+  // their live instances (vtkMultiMaterialLiveObjects). Rounds of create,
+  // render (GL resources made, the pass in the volume's keys) and destroy
+  // must leave the count where it was.
+  auto image = mmvtest::MakeVolume(9, [](int i, int, int) { return static_cast<float>(i); });
+  const int start = vtkMultiMaterialLiveObjects::GetCount();
+  for (int round = 0; round < 5; ++round)
+  {
+    {
+      vtkSmartPointer<vtkMultiMaterialVolumeMapper> mapper = RenderOnce(image);
+      EXPECT_EQ(vtkMultiMaterialLiveObjects::GetCount(), start + ObjectsPerMapper)
+        << "round " << round << ": one mapper with its pass, tables and cache";
+    }
+    const int alive = vtkMultiMaterialLiveObjects::GetCount();
+    std::printf("round %d: %d live counted objects (start %d)\n", round, alive, start);
+    EXPECT_EQ(alive, start) << "round " << round << " left objects alive";
+  }
+
+  // The count sees a leak: a mapper kept by one extra reference keeps its
+  // pass, tables and cache; giving the reference back frees them.
+  vtkMultiMaterialVolumeMapper* leaked = nullptr;
+  {
+    vtkSmartPointer<vtkMultiMaterialVolumeMapper> mapper = RenderOnce(image);
+    leaked = mapper;
+    leaked->Register(nullptr);
+  }
+  const int withLeak = vtkMultiMaterialLiveObjects::GetCount();
+  leaked->UnRegister(nullptr);
+  std::printf("one mapper leaked: %d live counted objects; given back: %d\n", withLeak,
+    vtkMultiMaterialLiveObjects::GetCount());
+  EXPECT_EQ(withLeak, start + ObjectsPerMapper);
+  EXPECT_EQ(vtkMultiMaterialLiveObjects::GetCount(), start);
 }

@@ -54,3 +54,15 @@ set_tests_properties(PVPythonScriptLoadsPackageAndPlugin PROPERTIES
   TIMEOUT 120
   ENVIRONMENT "${mmv_python_environment};PVPYTHON=${PVPYTHON_EXECUTABLE}"
   LABELS "python")
+
+# Representations created, shown, rendered and deleted in a loop: the live
+# objects of the project's classes and the registered proxies come back to
+# where they were (the package's vtkMultiMaterialLiveObjects counts them).
+add_test(NAME PVPythonRepresentationLifetime
+  COMMAND "${PROJECT_SOURCE_DIR}/scripts/pvpython"
+    "${CMAKE_CURRENT_SOURCE_DIR}/TestRepresentationLifetime.py")
+set_tests_properties(PVPythonRepresentationLifetime PROPERTIES
+  TIMEOUT 120
+  ENVIRONMENT
+    "${mmv_python_environment};PVPYTHON=${PVPYTHON_EXECUTABLE};PYTHONPATH=${CMAKE_CURRENT_SOURCE_DIR}"
+  LABELS "python")

@@ -1,0 +1,153 @@
+#include "vtkIrradianceInputCache.h"
+
+#include "vtkGlobalPrefilteredVolume.h"
+#include "vtkMaterialTransferFunction.h"
+#include "vtkMultiMaterialLiveObjects.h"
+#include "vtkMultiMaterialParameters.h"
+#include "vtkObjectFactory.h"
+
+#include <algorithm>
+#include <cmath>
+
+vtkStandardNewMacro(vtkIrradianceInputCache);
+
+vtkIrradianceInputCache::vtkIrradianceInputCache()
+{
+  vtkMultiMaterialLiveObjects::Constructed("vtkIrradianceInputCache");
+}
+
+vtkIrradianceInputCache::~vtkIrradianceInputCache()
+{
+  vtkMultiMaterialLiveObjects::Destroyed("vtkIrradianceInputCache");
+}
+
+bool vtkIrradianceInputCache::VolumeKey::operator==(const VolumeKey& o) const
+{
+  return this->DataTime == o.DataTime && this->OpacityTime == o.OpacityTime &&
+    this->MaterialVersion == o.MaterialVersion && this->UnitDistance == o.UnitDistance &&
+    this->Range[0] == o.Range[0] && this->Range[1] == o.Range[1] &&
+    this->MultipleScattering == o.MultipleScattering && this->TableSize == o.TableSize &&
+    this->NumberOfLights == o.NumberOfLights && this->ShadowEstimation == o.ShadowEstimation &&
+    this->PiecewiseShadowSlices == o.PiecewiseShadowSlices && this->Cut == o.Cut;
+}
+
+bool vtkIrradianceInputCache::MaterialKey::operator==(const MaterialKey& o) const
+{
+  return this->MaterialTime == o.MaterialTime && this->Range[0] == o.Range[0] &&
+    this->Range[1] == o.Range[1] && this->TableSize == o.TableSize;
+}
+
+bool vtkIrradianceInputCache::PrefilterKey::operator==(const PrefilterKey& o) const
+{
+  return std::equal(this->Dimensions, this->Dimensions + 3, o.Dimensions) &&
+    this->DataTime == o.DataTime && this->Range[0] == o.Range[0] && this->Range[1] == o.Range[1];
+}
+
+//------------------------------------------------------------------------------
+void vtkIrradianceInputCache::SampleMaterials(
+  vtkMaterialTransferFunction* materials, const double range[2], int n)
+{
+  MaterialKey key;
+  key.MaterialTime = materials ? materials->GetMTime() : 0;
+  key.Range[0] = range[0];
+  key.Range[1] = range[1];
+  key.TableSize = n;
+  if (this->HasMaterials && key == this->Materials)
+  {
+    return;
+  }
+  std::vector<float> attenuation(n, 1.0f);
+  std::vector<float> scattering(n, 0.0f);
+  for (int i = 0; materials && i < n; ++i)
+  {
+    const double t = range[0] + (range[1] - range[0]) * i / (n - 1);
+    attenuation[i] = static_cast<float>(materials->EvaluateParameter(t, mmv::Attenuation));
+    scattering[i] = static_cast<float>(materials->EvaluateParameter(t, mmv::Scattering));
+  }
+  if (attenuation != this->Attenuation || scattering != this->Scattering)
+  {
+    this->Attenuation = attenuation;
+    this->Scattering = scattering;
+    ++this->MaterialVersion;
+  }
+  this->Materials = key;
+  this->HasMaterials = true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkIrradianceInputCache::UpdatePrefiltered(vtkImageData* image, vtkDataArray* scalars,
+  vtkGlobalPrefilteredVolume* global, const int dims[3], vtkMTimeType dataTime,
+  const double range[2])
+{
+  PrefilterKey key;
+  std::copy(dims, dims + 3, key.Dimensions);
+  key.DataTime = dataTime;
+  key.Range[0] = range[0];
+  key.Range[1] = range[1];
+  if (this->HasPrefiltered && key == this->PrefilteredFrom)
+  {
+    return false;
+  }
+  if (global)
+  {
+    this->Grid = global->GetGrid();
+    this->Prefiltered = global->GetValues();
+  }
+  else
+  {
+    this->Grid = mmv::MakeIrradianceGrid(image, dims);
+    mmv::PrefilterScalars(image, scalars, 0, this->Grid, this->Prefiltered);
+  }
+  ++this->PrefilteredVersion;
+  const double scale = 1.0 / (range[1] - range[0]);
+  bool nonFinite = false;
+  for (float& v : this->Prefiltered)
+  {
+    v = static_cast<float>((v - range[0]) * scale);
+    // NaN/Inf voxels (TestBadInput.NonFiniteVoxels) used to index the
+    // opacity tables out of bounds: NaN counts as empty, +-Inf as the
+    // range's ends.
+    if (!std::isfinite(v))
+    {
+      nonFinite = true;
+      v = std::isnan(v) ? 0.0f : (v > 0.0f ? 1.0f : 0.0f);
+    }
+  }
+  this->PrefilteredFrom = key;
+  this->HasPrefiltered = true;
+  return nonFinite;
+}
+
+//------------------------------------------------------------------------------
+bool vtkIrradianceInputCache::IsCurrent(
+  const VolumeKey& volume, const std::vector<mmv::LightSource>& lights, const int dims[3]) const
+{
+  return this->SameVolume(volume) && std::equal(dims, dims + 3, this->Dimensions) &&
+    lights == this->Lights;
+}
+
+bool vtkIrradianceInputCache::SameVolume(const VolumeKey& volume) const
+{
+  return this->HasVolume && volume == this->Volume;
+}
+
+void vtkIrradianceInputCache::Store(
+  const VolumeKey& volume, const std::vector<mmv::LightSource>& lights, const int dims[3])
+{
+  this->Volume = volume;
+  this->HasVolume = true;
+  this->Lights = lights;
+  std::copy(dims, dims + 3, this->Dimensions);
+}
+
+//------------------------------------------------------------------------------
+void vtkIrradianceInputCache::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "MaterialVersion: " << this->MaterialVersion << "\n";
+  os << indent << "PrefilteredVersion: " << this->PrefilteredVersion << "\n";
+  os << indent << "Prefiltered voxels: " << this->Prefiltered.size() << "\n";
+  os << indent << "Irradiance stored: " << (this->HasVolume ? "yes" : "no") << ", "
+     << this->Lights.size() << " lights, " << this->Dimensions[0] << " x " << this->Dimensions[1]
+     << " x " << this->Dimensions[2] << "\n";
+}

@@ -1,0 +1,146 @@
+/**
+ * @class   vtkIrradianceInputCache
+ * @brief   What vtkMultiMaterialVolumeMapper's irradiance volume was computed
+ *          from, and the inputs of vtkIrradianceVolumePass kept between frames.
+ *
+ * Three caches, each behind a key of named fields, so that a frame recomputes
+ * only what changed (the paper's Algorithm 1):
+ *  - the material samples the irradiance depends on (attenuation and
+ *    scattering over the scalar range), with a version bumped only when the
+ *    sampled values change, so editing a colour-only parameter keeps the
+ *    irradiance;
+ *  - the data pre-filtered onto the irradiance grid, normalised to [0, 1] over
+ *    the scalar range with NaN and Inf cleaned up, and a version counting the
+ *    pre-filterings (the pass re-uploads on a new version);
+ *  - the key of the last computed irradiance: the volume (data, opacity,
+ *    materials, settings, cutaway), each light, and the grid.
+ */
+#ifndef vtkIrradianceInputCache_h
+#define vtkIrradianceInputCache_h
+
+#include "vtkIrradianceGrid.h"            // mmv::IrradianceGrid
+#include "vtkMultiMaterialLightModel.h"   // mmv::LightSource
+#include "vtkMultiMaterialVolumeModule.h" // export macro
+#include "vtkObject.h"
+
+#include <vector> // keys, samples
+
+class vtkDataArray;
+class vtkGlobalPrefilteredVolume;
+class vtkImageData;
+class vtkMaterialTransferFunction;
+
+class VTKMULTIMATERIALVOLUME_EXPORT vtkIrradianceInputCache : public vtkObject
+{
+public:
+  static vtkIrradianceInputCache* New();
+  vtkTypeMacro(vtkIrradianceInputCache, vtkObject);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /// Everything the whole irradiance volume depends on besides the lights and
+  /// the grid: a change recomputes every light.
+  struct VolumeKey
+  {
+    vtkMTimeType DataTime = 0;
+    vtkMTimeType OpacityTime = 0;
+    int MaterialVersion = 0;
+    double UnitDistance = 1.0;
+    double Range[2] = { 0.0, 0.0 };
+    bool MultipleScattering = false;
+    int TableSize = 0;
+    int NumberOfLights = 0;
+    int ShadowEstimation = 0;
+    int PiecewiseShadowSlices = 0;
+    /// mmv::Cutaway::Key(): what cropping and clipping remove casts no shadow.
+    std::vector<double> Cut;
+
+    bool operator==(const VolumeKey& o) const;
+    bool operator!=(const VolumeKey& o) const { return !(*this == o); }
+  };
+
+  ///@{
+  /// Attenuation and scattering sampled at `tableSize` points over `range`
+  /// (materials null: attenuation 1, scattering 0), resampled only when the
+  /// materials, the range or the size changed.
+  void SampleMaterials(
+    vtkMaterialTransferFunction* materials, const double range[2], int tableSize);
+  /// Bumped only when the sampled values change.
+  int GetMaterialVersion() const { return this->MaterialVersion; }
+  const std::vector<float>& GetScattering() const { return this->Scattering; }
+  ///@}
+
+  ///@{
+  /**
+   * The data on a grid of `dims` voxels, normalised to [0, 1] over `range`:
+   * the global pre-filtered volume's when `global` is set, else `scalars`
+   * (point data of `image`) box-filtered onto the grid. Recomputed only when
+   * the grid, `dataTime` or the range changed. NaN voxels become 0 (empty)
+   * and +-Inf the range's ends; returns true when the recomputed data had
+   * any (so the caller can say so), false otherwise.
+   */
+  bool UpdatePrefiltered(vtkImageData* image, vtkDataArray* scalars,
+    vtkGlobalPrefilteredVolume* global, const int dims[3], vtkMTimeType dataTime,
+    const double range[2]);
+  const mmv::IrradianceGrid& GetGrid() const { return this->Grid; }
+  const std::vector<float>& GetPrefiltered() const { return this->Prefiltered; }
+  /// Counts the pre-filterings.
+  unsigned long GetPrefilteredVersion() const { return this->PrefilteredVersion; }
+  ///@}
+
+  ///@{
+  /// Whether the irradiance stored last was computed from `volume`, `lights`
+  /// and a grid of `dims`.
+  bool IsCurrent(const VolumeKey& volume, const std::vector<mmv::LightSource>& lights,
+    const int dims[3]) const;
+  /// Whether only the lights or the grid differ from the stored irradiance's.
+  bool SameVolume(const VolumeKey& volume) const;
+  /// Records a successfully computed irradiance.
+  void Store(const VolumeKey& volume, const std::vector<mmv::LightSource>& lights,
+    const int dims[3]);
+  /// Forgets the stored volume key (graphics resources released, a failed
+  /// computation): the next frame recomputes.
+  void Invalidate() { this->HasVolume = false; }
+  ///@}
+
+protected:
+  vtkIrradianceInputCache();
+  ~vtkIrradianceInputCache() override;
+
+private:
+  vtkIrradianceInputCache(const vtkIrradianceInputCache&) = delete;
+  void operator=(const vtkIrradianceInputCache&) = delete;
+
+  struct MaterialKey
+  {
+    vtkMTimeType MaterialTime = 0;
+    double Range[2] = { 0.0, 0.0 };
+    int TableSize = 0;
+    bool operator==(const MaterialKey& o) const;
+  };
+  struct PrefilterKey
+  {
+    int Dimensions[3] = { 0, 0, 0 };
+    vtkMTimeType DataTime = 0;
+    double Range[2] = { 0.0, 0.0 };
+    bool operator==(const PrefilterKey& o) const;
+  };
+
+  bool HasMaterials = false;
+  MaterialKey Materials;
+  std::vector<float> Attenuation;
+  std::vector<float> Scattering;
+  int MaterialVersion = 0;
+
+  bool HasPrefiltered = false;
+  PrefilterKey PrefilteredFrom;
+  mmv::IrradianceGrid Grid;
+  std::vector<float> Prefiltered;
+  unsigned long PrefilteredVersion = 0;
+
+  bool HasVolume = false;
+  VolumeKey Volume;
+  std::vector<mmv::LightSource> Lights;
+  int Dimensions[3] = { 0, 0, 0 };
+};
+
+#endif

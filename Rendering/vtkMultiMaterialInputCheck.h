@@ -1,0 +1,48 @@
+/**
+ * @file   vtkMultiMaterialInputCheck.h
+ * @brief  Whether vtkMultiMaterialVolumeMapper can shade its inputs with
+ *         materials, and if not, why: one verdict the mapper only reports.
+ *
+ * Multi-material shading needs composite blending, vtkImageData with as many
+ * one-component point scalars as points, a 1D transfer function and an
+ * OpenGL render window; anything else is rendered by VTK's own shading
+ * (the mapper warns once with the reason).
+ */
+#ifndef vtkMultiMaterialInputCheck_h
+#define vtkMultiMaterialInputCheck_h
+
+#include "vtkMultiMaterialVolumeModule.h" // export macro
+
+#include <string>
+
+class vtkDataArray;
+class vtkImageData;
+class vtkOpenGLRenderWindow;
+class vtkRenderer;
+class vtkVolume;
+class vtkVolumeMapper;
+
+namespace mmv
+{
+
+struct InputCheck
+{
+  bool Supported = false;
+  /// Why VTK's shading renders instead; empty when the base class reports
+  /// the problem itself or there is nothing to say (other blend modes).
+  std::string Reason;
+  /// A caveat about input that passed the checks before it (a single slice).
+  std::string Caveat;
+  /// What passed, when Supported.
+  vtkImageData* Image = nullptr;
+  vtkDataArray* Scalars = nullptr;
+  vtkOpenGLRenderWindow* Context = nullptr;
+};
+
+/// The verdict on `mapper`'s input, rendered by `ren` as `vol`.
+VTKMULTIMATERIALVOLUME_EXPORT InputCheck CheckMultiMaterialInputs(
+  vtkVolumeMapper* mapper, vtkRenderer* ren, vtkVolume* vol);
+
+} // namespace mmv
+
+#endif

@@ -1,0 +1,147 @@
+// vtkIrradianceInputCache: what makes vtkMultiMaterialVolumeMapper recompute
+// the irradiance (its keys), the material samples and their version, and the
+// pre-filtered data with NaN/Inf cleaned up.
+#include "mmvTestScenes.h"
+
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkIrradianceInputCache.h"
+#include "vtkMaterialTransferFunction.h"
+#include "vtkPointData.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+TEST(IrradianceInputCache, MaterialVersionChangesOnlyWithTheSampledValues)
+{
+  vtkNew<vtkIrradianceInputCache> cache;
+  const double range[2] = { 0.0, 10.0 };
+  cache->SampleMaterials(nullptr, range, 16);
+  EXPECT_EQ(cache->GetMaterialVersion(), 1);
+  ASSERT_EQ(cache->GetScattering().size(), 16u);
+  for (float s : cache->GetScattering())
+  {
+    EXPECT_EQ(s, 0.0f); // no materials: nothing scatters
+  }
+
+  vtkNew<vtkMaterialTransferFunction> materials;
+  materials->AddNode(0.0, 0.1, 0.7, 0.2, 10.0, 1.0, 0.5, 0.0);
+  materials->AddNode(10.0, 0.1, 0.7, 0.2, 10.0, 3.0, 0.0, 0.0);
+  cache->SampleMaterials(materials, range, 16);
+  EXPECT_EQ(cache->GetMaterialVersion(), 2);
+  // s falls linearly from 0.5 at 0 to 0 at 10: sample i at 10 i / 15.
+  EXPECT_NEAR(cache->GetScattering()[0], 0.5f, 1e-6);
+  EXPECT_NEAR(cache->GetScattering()[5], 0.5f * (1.0f - 5.0f / 15.0f), 1e-6);
+  EXPECT_NEAR(cache->GetScattering()[15], 0.0f, 1e-6);
+
+  // The same key: nothing resampled. A colour-only edit (diffuse) changes
+  // the materials' time but not the samples: the irradiance stays valid.
+  cache->SampleMaterials(materials, range, 16);
+  EXPECT_EQ(cache->GetMaterialVersion(), 2);
+  materials->AddNode(10.0, 0.1, 0.2, 0.2, 10.0, 3.0, 0.0, 0.0);
+  cache->SampleMaterials(materials, range, 16);
+  EXPECT_EQ(cache->GetMaterialVersion(), 2);
+  // Attenuation, scattering, the range or the table size do change them.
+  materials->AddNode(10.0, 0.1, 0.2, 0.2, 10.0, 2.0, 0.0, 0.0);
+  cache->SampleMaterials(materials, range, 16);
+  EXPECT_EQ(cache->GetMaterialVersion(), 3);
+  const double wider[2] = { -10.0, 10.0 };
+  cache->SampleMaterials(materials, wider, 16);
+  EXPECT_EQ(cache->GetMaterialVersion(), 4);
+  cache->SampleMaterials(materials, wider, 32);
+  EXPECT_EQ(cache->GetMaterialVersion(), 5);
+  EXPECT_EQ(cache->GetScattering().size(), 32u);
+}
+
+TEST(IrradianceInputCache, PrefilteredDataIsNormalisedAndCleanedOnce)
+{
+  // Values i on a 4^3 grid at the data's resolution (an exact copy), over
+  // the range [0, 3]: voxel (i, j, k) holds i / 3. Voxel 0 is NaN, then +Inf,
+  // then -Inf. (Voxel 0 because the copy samples trilinearly: a non-finite
+  // point would make the voxels before it along each axis NaN through
+  // their zero-weight taps.)
+  auto image = mmvtest::MakeVolume(4, [](int i, int, int) { return static_cast<float>(i); });
+  auto* values = vtkFloatArray::SafeDownCast(image->GetPointData()->GetScalars());
+  const int dims[3] = { 4, 4, 4 };
+  const double range[2] = { 0.0, 3.0 };
+  vtkNew<vtkIrradianceInputCache> cache;
+  const float nonFinite[3] = { std::numeric_limits<float>::quiet_NaN(),
+    std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity() };
+  const float cleaned[3] = { 0.0f, 1.0f, 0.0f }; // NaN: empty; +-Inf: the range's ends
+  for (int c = 0; c < 3; ++c)
+  {
+    values->SetValue(0, nonFinite[c]);
+    EXPECT_TRUE(cache->UpdatePrefiltered(image, values, nullptr, dims, 10 + c, range))
+      << "non-finite values are reported";
+    EXPECT_EQ(cache->GetPrefilteredVersion(), static_cast<unsigned long>(c + 1));
+    const std::vector<float>& v = cache->GetPrefiltered();
+    ASSERT_EQ(v.size(), 64u);
+    EXPECT_EQ(v[0], cleaned[c]) << "case " << c;
+    for (int id = 1; id < 64; ++id)
+    {
+      EXPECT_FLOAT_EQ(v[id], static_cast<float>(id % 4) / 3.0f) << "case " << c << " voxel " << id;
+    }
+  }
+  // The same grid, data time and range: kept, and nothing reported again.
+  EXPECT_FALSE(cache->UpdatePrefiltered(image, values, nullptr, dims, 12, range));
+  EXPECT_EQ(cache->GetPrefilteredVersion(), 3u);
+  // Finite data at a new time: pre-filtered again, nothing to report.
+  values->SetValue(0, 3.0f);
+  EXPECT_FALSE(cache->UpdatePrefiltered(image, values, nullptr, dims, 13, range));
+  EXPECT_EQ(cache->GetPrefilteredVersion(), 4u);
+  EXPECT_FLOAT_EQ(cache->GetPrefiltered()[0], 1.0f);
+  // A coarser grid or another range: pre-filtered again.
+  const int coarse[3] = { 2, 2, 2 };
+  cache->UpdatePrefiltered(image, values, nullptr, coarse, 13, range);
+  EXPECT_EQ(cache->GetPrefilteredVersion(), 5u);
+  EXPECT_EQ(cache->GetPrefiltered().size(), 8u);
+  const double wider[2] = { 0.0, 6.0 };
+  cache->UpdatePrefiltered(image, values, nullptr, coarse, 13, wider);
+  EXPECT_EQ(cache->GetPrefilteredVersion(), 6u);
+}
+
+TEST(IrradianceInputCache, StoredIrradianceIsCurrentUntilItsInputsChange)
+{
+  vtkNew<vtkIrradianceInputCache> cache;
+  vtkIrradianceInputCache::VolumeKey volume;
+  volume.DataTime = 10;
+  volume.Range[1] = 1.0;
+  volume.NumberOfLights = 1;
+  volume.Cut = { 1.0, 2.0 };
+  std::vector<mmv::LightSource> lights(1);
+  const int dims[3] = { 8, 8, 8 };
+  EXPECT_FALSE(cache->IsCurrent(volume, lights, dims)) << "nothing stored yet";
+  EXPECT_FALSE(cache->SameVolume(volume));
+  cache->Store(volume, lights, dims);
+  EXPECT_TRUE(cache->IsCurrent(volume, lights, dims));
+
+  // A moved light or another grid: not current, but the same volume (an
+  // interactive frame may keep the irradiance).
+  std::vector<mmv::LightSource> moved = lights;
+  moved[0].ToLight = glm::dvec3(1.0, 0.0, 0.0);
+  EXPECT_FALSE(cache->IsCurrent(volume, moved, dims));
+  const int finer[3] = { 16, 8, 8 };
+  EXPECT_FALSE(cache->IsCurrent(volume, lights, finer));
+  EXPECT_TRUE(cache->SameVolume(volume));
+
+  // Any field of the volume key makes it another volume.
+  vtkIrradianceInputCache::VolumeKey other = volume;
+  other.Cut[1] = 3.0;
+  EXPECT_FALSE(cache->SameVolume(other));
+  other = volume;
+  other.OpacityTime = 11;
+  EXPECT_FALSE(cache->SameVolume(other));
+  other = volume;
+  other.MultipleScattering = true;
+  EXPECT_FALSE(cache->SameVolume(other));
+  other = volume;
+  other.UnitDistance = std::nan("");
+  EXPECT_FALSE(cache->SameVolume(other)) << "a NaN never matches: recomputed every frame";
+
+  // Released graphics resources or a failed computation: recompute.
+  cache->Invalidate();
+  EXPECT_FALSE(cache->SameVolume(volume));
+  EXPECT_FALSE(cache->IsCurrent(volume, lights, dims));
+}
