@@ -720,6 +720,10 @@ bool vtkMultiMaterialVolumeMapper::PrepareMultiMaterial(vtkRenderer* ren, vtkVol
   variant.Reflection =
     in.Materials && in.Materials->GetMaximum(mmv::Reflection) > 0.0 && in.Materials->GetSize() > 0;
   variant.PreIntegration = this->PreIntegration;
+  const bool all = this->CompileUnusedOpticalTerms;
+  variant.Anisotropy = variant.NumberOfLights > 0 &&
+    (all || (in.Materials && in.Materials->HasNonZero(mmv::Anisotropy)));
+  variant.Emission = all || (in.Materials && in.Materials->HasNonZero(mmv::Emission));
   if (variant != in.Variant || in.Pass->GetFragmentReplacements().empty())
   {
     in.Pass->SetFragmentReplacements(mmv::RayCastReplacements(variant));
