@@ -1032,6 +1032,7 @@ void vtkMultiMaterialVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "PreIntegration: " << this->PreIntegration << "\n";
   os << indent << "PointLightRadius: " << this->PointLightRadius << "\n";
   os << indent << "PreIntegrationTableSize: " << this->PreIntegrationTableSize << "\n";
+  os << indent << "CompileUnusedOpticalTerms: " << this->CompileUnusedOpticalTerms << "\n";
   os << indent << "InteractiveIrradiance: "
      << (this->InteractiveIrradiance == ReuseWhileInteracting ? "ReuseWhileInteracting"
                                                               : "UpdateAlways")

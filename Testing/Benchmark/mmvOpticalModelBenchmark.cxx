@@ -45,15 +45,18 @@ namespace
 {
 using Clock = std::chrono::steady_clock;
 
-double Median(std::vector<double> v)
+/// The q-quantile (0.5: the median), linear between order statistics.
+double Quantile(std::vector<double> v, double q)
 {
   if (v.empty())
   {
     return 0.0;
   }
   std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+  const double x = q * (v.size() - 1);
+  const size_t i = static_cast<size_t>(x);
+  const size_t j = std::min(i + 1, v.size() - 1);
+  return v[i] + (x - i) * (v[j] - v[i]);
 }
 
 struct Variant
@@ -169,8 +172,8 @@ int main(int argc, char* argv[])
     return 1;
   }
   std::ofstream csv(opt.Out + "/optical_model.csv");
-  csv << "scene,variant,anisotropy,emission,compile_unused,frames,median_ms,ratio_to_default,"
-         "renderer\n";
+  csv << "scene,variant,anisotropy,emission,compile_unused,frames,median_ms,p25_ms,p75_ms,"
+         "ratio_to_default,renderer\n";
   for (const std::string& name : opt.Scenes)
   {
     const mmvbench::SceneSpec scene = mmvbench::MakeScene(name, opt.Head);
@@ -222,18 +225,22 @@ int main(int argc, char* argv[])
         in.Seconds.push_back(in.Render());
       }
     }
-    const double base = Median(instances.front()->Seconds);
+    const double base = Quantile(instances.front()->Seconds, 0.5);
     const std::string renderer = mmvtest::RendererString(instances.front()->Window);
     for (const auto& in : instances)
     {
-      const double median = Median(in->Seconds);
+      const double median = Quantile(in->Seconds, 0.5);
+      const double p25 = Quantile(in->Seconds, 0.25);
+      const double p75 = Quantile(in->Seconds, 0.75);
       std::cout << std::setw(10) << name << std::setw(13) << in->Spec->Name << "  median "
-                << std::fixed << std::setprecision(2) << 1e3 * median << " ms  ratio "
-                << std::setprecision(3) << median / base << "\n";
+                << std::fixed << std::setprecision(2) << 1e3 * median << " ms (quartiles "
+                << 1e3 * p25 << "-" << 1e3 * p75 << ")  ratio " << std::setprecision(3)
+                << median / base << "\n";
       csv << name << "," << in->Spec->Name << "," << in->Spec->Anisotropy << ","
           << in->Spec->Emission << "," << (in->Spec->CompileUnused ? 1 : 0) << ","
           << in->Seconds.size() << "," << std::setprecision(4) << 1e3 * median << ","
-          << median / base << ",\"" << renderer << "\"\n";
+          << 1e3 * p25 << "," << 1e3 * p75 << "," << median / base << ",\"" << renderer
+          << "\"\n";
     }
     csv.flush();
   }

@@ -15,10 +15,11 @@
 //   mmvPhysicalCalibration --out DIR [--size 128] [--truth-spp 1024] [--frames 3]
 //                          [--scenes synthetic,headsq,orbital,ct] [--head FILE.vti]
 //                          [--s-scales 1,0,0.5,2,4,8,16] [--ct-scales 1,0.5,2,4] [--no-vtk]
-//                          [--anisotropy G]
+//                          [--anisotropy G] [--back-light]
 //
 // Same camera, key light and gradient background as mmvBenchmark
-// (mmvbench::FrameScene). Errors are over the 8-bit images, as displayed:
+// (mmvbench::FrameScene); --back-light turns the key light to the opposite
+// direction (the volume lit from behind, where forward scattering shows). Errors are over the 8-bit images, as displayed:
 // RMSE (0-255), PSNR and SSIM over the whole image, and over the volume's
 // pixels (where the truth's paths met the medium) the RMSE as is and after the
 // best single brightness factor k (least squares, k = <M, T> / <M, M>), which
@@ -79,6 +80,7 @@ struct Options
   std::vector<double> AttenuationScales = { 1.0, 0.5, 2.0, 4.0 };
   bool VTK = true;
   double Anisotropy = 0.0; // every node's g, truth and ours; 0: the scene's
+  bool BackLight = false;
 };
 
 std::vector<double> Numbers(const std::string& text)
@@ -136,6 +138,10 @@ bool Parse(int argc, char* argv[], Options& o)
     else if (a == "--anisotropy")
     {
       o.Anisotropy = std::atof(next().c_str());
+    }
+    else if (a == "--back-light")
+    {
+      o.BackLight = true;
     }
     else
     {
@@ -300,7 +306,7 @@ int main(int argc, char* argv[])
     std::cerr << "usage: " << argv[0]
               << " --out DIR [--size N] [--truth-spp N] [--frames N]"
                  " [--scenes synthetic,headsq,orbital,ct] [--head FILE.vti]"
-                 " [--s-scales LIST] [--ct-scales LIST] [--no-vtk] [--anisotropy G]\n";
+                 " [--s-scales LIST] [--ct-scales LIST] [--no-vtk] [--anisotropy G] [--back-light]\n";
     return 2;
   }
   vtkSMPTools::SetBackend("STDThread");
@@ -322,6 +328,10 @@ int main(int argc, char* argv[])
     if (opt.Anisotropy != 0.0)
     {
       ScaleMaterials(scene.Materials, 1.0, 1.0, scene.Materials, opt.Anisotropy);
+    }
+    for (int a = 0; a < 3 && opt.BackLight; ++a)
+    {
+      scene.ToLight[a] = -scene.ToLight[a];
     }
     vtkNew<vtkCamera> camera;
     vtkNew<vtkLight> light;
