@@ -16,8 +16,11 @@
 // and every window renders once, the order rotating frame by frame, so
 // machine drift hits every variant alike; the light does not move, so the
 // irradiance volume is built once and the frames time the ray cast. Medians
-// and their ratios to the default variant go to DIR/optical_model.csv. Not a
-// test: it asserts nothing about timings.
+// and their ratios to the default variant go to DIR/optical_model.csv. Each
+// frame is timed twice: wall clock, and the process's CPU time, which on
+// llvmpipe (it renders on threads of this process) is the work done, far
+// less disturbed by other processes on a shared machine. Not a test: it
+// asserts nothing about timings.
 #include "mmvBenchmarkScenes.h"
 #include "mmvTestWindow.h"
 
@@ -34,6 +37,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <ctime>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -102,13 +106,23 @@ struct Instance
   vtkNew<vtkMultiMaterialVolumeMapper> Mapper;
   vtkSmartPointer<vtkMaterialTransferFunction> Materials;
   std::vector<double> Seconds;
+  std::vector<double> CPUSeconds;
 
-  double Render()
+  void Render()
   {
     const auto start = Clock::now();
+    const double cpu = ProcessCPUSeconds();
     this->Window->Render();
     this->Window->WaitForCompletion();
-    return std::chrono::duration<double>(Clock::now() - start).count();
+    this->CPUSeconds.push_back(ProcessCPUSeconds() - cpu);
+    this->Seconds.push_back(std::chrono::duration<double>(Clock::now() - start).count());
+  }
+
+  static double ProcessCPUSeconds()
+  {
+    timespec t{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return t.tv_sec + 1e-9 * t.tv_nsec;
   }
 };
 
@@ -173,7 +187,7 @@ int main(int argc, char* argv[])
   }
   std::ofstream csv(opt.Out + "/optical_model.csv");
   csv << "scene,variant,anisotropy,emission,compile_unused,frames,median_ms,p25_ms,p75_ms,"
-         "ratio_to_default,renderer\n";
+         "ratio_to_default,cpu_median_ms,cpu_p25_ms,cpu_p75_ms,cpu_ratio_to_default,renderer\n";
   for (const std::string& name : opt.Scenes)
   {
     const mmvbench::SceneSpec scene = mmvbench::MakeScene(name, opt.Head);
@@ -213,6 +227,8 @@ int main(int argc, char* argv[])
       in->Renderer->AddVolume(in->Volume);
       in->Render(); // build the tables, irradiance and program: untimed
       in->Render();
+      in->Seconds.clear();
+      in->CPUSeconds.clear();
       instances.push_back(std::move(in));
     }
     const size_t count = instances.size();
@@ -221,25 +237,30 @@ int main(int argc, char* argv[])
       camera->Azimuth(10.0);
       for (size_t n = 0; n < count; ++n)
       {
-        Instance& in = *instances[(n + f) % count];
-        in.Seconds.push_back(in.Render());
+        instances[(n + f) % count]->Render();
       }
     }
     const double base = Quantile(instances.front()->Seconds, 0.5);
+    const double cpuBase = Quantile(instances.front()->CPUSeconds, 0.5);
     const std::string renderer = mmvtest::RendererString(instances.front()->Window);
     for (const auto& in : instances)
     {
       const double median = Quantile(in->Seconds, 0.5);
       const double p25 = Quantile(in->Seconds, 0.25);
       const double p75 = Quantile(in->Seconds, 0.75);
-      std::cout << std::setw(10) << name << std::setw(13) << in->Spec->Name << "  median "
-                << std::fixed << std::setprecision(2) << 1e3 * median << " ms (quartiles "
-                << 1e3 * p25 << "-" << 1e3 * p75 << ")  ratio " << std::setprecision(3)
-                << median / base << "\n";
+      const double cpu = Quantile(in->CPUSeconds, 0.5);
+      const double cpu25 = Quantile(in->CPUSeconds, 0.25);
+      const double cpu75 = Quantile(in->CPUSeconds, 0.75);
+      std::cout << std::setw(10) << name << std::setw(13) << in->Spec->Name << "  wall "
+                << std::fixed << std::setprecision(1) << 1e3 * median << " ms (" << 1e3 * p25
+                << "-" << 1e3 * p75 << ") x" << std::setprecision(3) << median / base
+                << "  cpu " << std::setprecision(1) << 1e3 * cpu << " ms (" << 1e3 * cpu25 << "-"
+                << 1e3 * cpu75 << ") x" << std::setprecision(3) << cpu / cpuBase << "\n";
       csv << name << "," << in->Spec->Name << "," << in->Spec->Anisotropy << ","
           << in->Spec->Emission << "," << (in->Spec->CompileUnused ? 1 : 0) << ","
           << in->Seconds.size() << "," << std::setprecision(4) << 1e3 * median << ","
-          << 1e3 * p25 << "," << 1e3 * p75 << "," << median / base << ",\"" << renderer
+          << 1e3 * p25 << "," << 1e3 * p75 << "," << median / base << "," << 1e3 * cpu << ","
+          << 1e3 * cpu25 << "," << 1e3 * cpu75 << "," << cpu / cpuBase << ",\"" << renderer
           << "\"\n";
     }
     csv.flush();
