@@ -45,7 +45,7 @@
 
 namespace
 {
-constexpr int Stride = vtkMaterialTransferFunction::NodeStride; // value + 8 parameters
+constexpr int Stride = vtkMaterialTransferFunction::NodeStride; // value + 9 parameters
 constexpr int ParameterCount = mmv::MaterialParameterCount;
 static_assert(Stride == ParameterCount + 1, "MaterialNodes layout: value + parameters");
 
@@ -593,7 +593,8 @@ void pqMaterialNodesPropertyWidget::setMaterialNodes(const QList<QVariant>& valu
   {
     flat.push_back(v.toDouble());
   }
-  // States written before anisotropy have 8 numbers a node: g = 0.
+  // States written before emission have 9 numbers a node (e = 0), before
+  // anisotropy 8 (g = 0, e = 0); the emission field comes from the table.
   int stride = vtkMaterialTransferFunction::DetectNodeStride(
     static_cast<int>(flat.size()), flat.data());
   stride = stride > 0 ? stride : Stride;

@@ -11,6 +11,9 @@
 #include <string>
 #include <vector>
 
+// The wrapped API spells the size out (VTK's wrappers read a literal).
+static_assert(mmv::MaterialParameterCount == 9, "vtkMaterialLibrary.h: parameters[9]");
+
 namespace
 {
 struct Preset
@@ -194,7 +197,8 @@ bool vtkMaterialLibrary::HasPreset(const char* name) const
   return this->Internals->Find(name) != nullptr;
 }
 
-bool vtkMaterialLibrary::GetPreset(const char* name, double parameters[8]) const
+bool vtkMaterialLibrary::GetPreset(
+  const char* name, double parameters[mmv::MaterialParameterCount]) const
 {
   const Preset* preset = this->Internals->Find(name);
   if (!preset)
@@ -219,7 +223,8 @@ bool vtkMaterialLibrary::GetPresetColor(const char* name, double rgb[3]) const
   return true;
 }
 
-bool vtkMaterialLibrary::AddPreset(const char* name, const double parameters[8], const double rgb[3])
+bool vtkMaterialLibrary::AddPreset(
+  const char* name, const double parameters[mmv::MaterialParameterCount], const double rgb[3])
 {
   if (!name || !*name)
   {

@@ -14,6 +14,8 @@
 
 static_assert(vtkMaterialTransferFunction::NodeStride == 1 + mmv::MaterialParameterCount,
   "a flat node is its value followed by every material parameter");
+static_assert(vtkMaterialTransferFunction::AnisotropyNodeStride == 1 + mmv::Emission,
+  "the flat node before emission ends just before emission");
 static_assert(vtkMaterialTransferFunction::LegacyNodeStride == 1 + mmv::Anisotropy,
   "the legacy flat node ends just before anisotropy");
 
@@ -44,7 +46,7 @@ bool IsValidNode(const Node& node, std::string& why)
   return true;
 }
 
-/// Reads `count` numbers, `stride` per node (NodeStride, or LegacyNodeStride
+/// Reads `count` numbers, `stride` per node (NodeStride, or an older stride
 /// whose nodes lack the trailing parameters: they take their defaults).
 bool ReadFlatNodes(
   int count, const double* flat, int stride, std::vector<Node>& nodes, std::string& why)
@@ -175,8 +177,16 @@ int vtkMaterialTransferFunction::AddNode(double value, double ambient, double di
   double specular, double shininess, double attenuation, double scattering, double reflection,
   double anisotropy)
 {
+  return this->AddNode(value, ambient, diffuse, specular, shininess, attenuation, scattering,
+    reflection, anisotropy, mmv::MaterialParameterTable[mmv::Emission].Default);
+}
+
+int vtkMaterialTransferFunction::AddNode(double value, double ambient, double diffuse,
+  double specular, double shininess, double attenuation, double scattering, double reflection,
+  double anisotropy, double emission)
+{
   const double parameters[mmv::MaterialParameterCount] = { ambient, diffuse, specular, shininess,
-    attenuation, scattering, reflection, anisotropy };
+    attenuation, scattering, reflection, anisotropy, emission };
   return this->AddNode(value, parameters);
 }
 
@@ -252,19 +262,33 @@ bool vtkMaterialTransferFunction::GetNode(int i, double node[NodeStride]) const
 
 int vtkMaterialTransferFunction::DetectNodeStride(int count, const double* nodes)
 {
-  const bool current = count >= 0 && count % NodeStride == 0;
-  const bool legacy = count >= 0 && count % LegacyNodeStride == 0;
-  if (!current || !legacy || !nodes)
+  // Newest first: of several layouts that fit, the newest one that reads as
+  // valid, sorted nodes wins, else the oldest that fits.
+  constexpr int Strides[3] = { NodeStride, AnisotropyNodeStride, LegacyNodeStride };
+  std::vector<int> fitting;
+  for (int stride : Strides)
   {
-    return current ? NodeStride : (legacy ? LegacyNodeStride : 0);
+    if (count >= 0 && count % stride == 0)
+    {
+      fitting.push_back(stride);
+    }
   }
-  std::vector<Node> parsed;
-  std::string why;
-  return ReadFlatNodes(count, nodes, NodeStride, parsed, why) &&
+  if (fitting.size() <= 1 || !nodes)
+  {
+    return fitting.empty() ? 0 : fitting.front();
+  }
+  for (std::size_t i = 0; i + 1 < fitting.size(); ++i)
+  {
+    std::vector<Node> parsed;
+    std::string why;
+    if (ReadFlatNodes(count, nodes, fitting[i], parsed, why) &&
       std::is_sorted(parsed.begin(), parsed.end(),
-        [](const Node& a, const Node& b) { return a.Value < b.Value; })
-    ? NodeStride
-    : LegacyNodeStride;
+        [](const Node& a, const Node& b) { return a.Value < b.Value; }))
+    {
+      return fitting[i];
+    }
+  }
+  return fitting.back();
 }
 
 bool vtkMaterialTransferFunction::SetNodes(int count, const double* nodes)
@@ -274,8 +298,8 @@ bool vtkMaterialTransferFunction::SetNodes(int count, const double* nodes)
   {
     vtkErrorMacro("SetNodes: " << count << " numbers do not make whole nodes of " << NodeStride
                                << " (value + " << mmv::MaterialParameterCount
-                               << " parameters) nor of the older " << LegacyNodeStride
-                               << "; the function is unchanged.");
+                               << " parameters) nor of the older " << AnisotropyNodeStride
+                               << " or " << LegacyNodeStride << "; the function is unchanged.");
     return false;
   }
   if (count > 0 && !nodes)
@@ -404,6 +428,18 @@ double vtkMaterialTransferFunction::GetMaximum(int parameter) const
     maximum = std::max(maximum, n.Parameters[parameter]);
   }
   return maximum;
+}
+
+bool vtkMaterialTransferFunction::HasNonZero(int parameter) const
+{
+  if (parameter < 0 || parameter >= mmv::MaterialParameterCount)
+  {
+    vtkErrorMacro("HasNonZero: unknown material parameter index " << parameter << ".");
+    return false;
+  }
+  const std::vector<Node>& nodes = this->Internals->Nodes;
+  return std::any_of(nodes.begin(), nodes.end(),
+    [parameter](const Node& n) { return n.Parameters[parameter] != 0.0; });
 }
 
 void vtkMaterialTransferFunction::GetRange(double range[2]) const

@@ -1,11 +1,11 @@
 /**
  * @class   vtkMaterialTransferFunction
  * @brief   Maps a data value to the material parameters: the seven of Zhang &
- *          Ma eq. 4 plus the phase-function anisotropy of the path tracer.
+ *          Ma eq. 4 plus the phase-function anisotropy and the emission.
  *
  * Nodes are placed in data units (like vtkColorTransferFunction) and carry
  * (ambient, diffuse, specular, shininess, attenuation, scattering, reflection,
- * anisotropy);
+ * anisotropy, emission);
  * colour and opacity stay in the usual vtkVolumeProperty. Between nodes the
  * parameters are interpolated linearly; outside the nodes they are clamped to
  * the first/last node. With no nodes, Evaluate() returns the defaults of
@@ -31,9 +31,11 @@ public:
   vtkTypeMacro(vtkMaterialTransferFunction, vtkObject);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-  /// Number of numbers per node in flat arrays: value + 8 parameters.
-  static constexpr int NodeStride = 9;
-  /// The flat layout before anisotropy: value + 7 parameters (g = 0).
+  /// Number of numbers per node in flat arrays: value + 9 parameters.
+  static constexpr int NodeStride = 10;
+  /// The flat layout before emission: value + 8 parameters (e = 0).
+  static constexpr int AnisotropyNodeStride = 9;
+  /// The flat layout before anisotropy: value + 7 parameters (g = 0, e = 0).
   static constexpr int LegacyNodeStride = 8;
   /// Parameters per node (mmv::MaterialParameterCount): size arrays with it.
   static constexpr int NumberOfParameters = NodeStride - 1;
@@ -41,12 +43,15 @@ public:
   /**
    * Adds a node; a node already at `value` is replaced. Returns the node's
    * index in value order, or -1 (with an error) if any argument is invalid.
-   * Without `anisotropy` the node scatters isotropically (g = 0).
+   * Without `anisotropy` the node scatters isotropically (g = 0); without
+   * `emission` it does not glow (e = 0).
    */
   int AddNode(double value, double ambient, double diffuse, double specular, double shininess,
     double attenuation, double scattering, double reflection);
   int AddNode(double value, double ambient, double diffuse, double specular, double shininess,
     double attenuation, double scattering, double reflection, double anisotropy);
+  int AddNode(double value, double ambient, double diffuse, double specular, double shininess,
+    double attenuation, double scattering, double reflection, double anisotropy, double emission);
   int AddNode(double value, const double parameters[NumberOfParameters]);
 
   /// Removes the node at exactly `value`; returns its former index or -1.
@@ -54,42 +59,49 @@ public:
   void RemoveAllNodes();
   int GetSize() const;
 
-  /// Node i as value + 8 parameters (false if i is out of range).
+  /// Node i as value + 9 parameters (false if i is out of range).
   bool GetNode(int i, double node[NodeStride]) const;
 
   /**
-   * Replaces all nodes from a flat array of `count` numbers, 9 per node
+   * Replaces all nodes from a flat array of `count` numbers, 10 per node
    * (value, ka, kd, ks, shininess, attenuation, scattering, reflection,
-   * anisotropy), the layout of ParaView's MaterialNodes property. The layout
-   * before anisotropy, 8 per node (g = 0), still loads: see
-   * DetectNodeStride(). Rejects the whole array (and keeps the current nodes)
+   * anisotropy, emission), the layout of ParaView's MaterialNodes property.
+   * The older layouts still load: 9 per node before emission (e = 0) and 8
+   * before anisotropy (g = 0, e = 0); see DetectNodeStride(). Rejects the
+   * whole array (and keeps the current nodes)
    * if `count` makes no whole nodes or any number is invalid. Returns success.
    */
   bool SetNodes(int count, const double* nodes);
-  /// Writes GetSize()*9 numbers in the SetNodes() layout.
+  /// Writes GetSize()*10 numbers in the SetNodes() layout.
   void GetNodes(double* nodes) const;
 
   /**
-   * The layout of a flat node list: NodeStride, LegacyNodeStride, or 0 when
-   * `count` is a multiple of neither. A count that is a multiple of both
-   * (72, 144, ...) is read as NodeStride only if it makes valid nodes with
-   * non-decreasing values (what GetNodes() writes), else as the legacy layout.
+   * The layout of a flat node list: NodeStride, AnisotropyNodeStride,
+   * LegacyNodeStride, or 0 when `count` is a multiple of none. A count that
+   * is a multiple of several (40, 72, 90, ...) is read with the newest of
+   * them that makes valid nodes with non-decreasing values (what GetNodes()
+   * writes), else with the oldest.
    */
   static int DetectNodeStride(int count, const double* nodes);
 
-  /// The 8 parameters at `value` (interpolated, clamped outside the nodes).
+  /// The 9 parameters at `value` (interpolated, clamped outside the nodes).
   void Evaluate(double value, double parameters[NumberOfParameters]) const;
   double EvaluateParameter(double value, int parameter) const;
 
   /**
    * Samples `size` values evenly from xStart to xEnd (inclusive) into
-   * `table`, 8 floats per sample: table[i*8 + p]. Used for GPU textures.
+   * `table`, 9 floats per sample: table[i*9 + p]. Used for GPU textures.
    */
   void GetTable(double xStart, double xEnd, int size, float* table) const;
 
   /// Largest value of a parameter over all nodes (its default when empty).
   /// Lets callers skip work a scene does not need (e.g. no scattering).
   double GetMaximum(int parameter) const;
+
+  /// True when some node's value of the parameter is not 0 (false when
+  /// empty: every default the shader can leave out is 0). Chooses the shader
+  /// variant: no Henyey-Greenstein code for g = 0, no emission for e = 0.
+  bool HasNonZero(int parameter) const;
 
   /// Value range covered by the nodes (0,0 when empty).
   void GetRange(double range[2]) const;

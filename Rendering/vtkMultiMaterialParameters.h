@@ -16,6 +16,7 @@
  * | 5     | scattering    | s      | voxel^2          | 0       | 0 .. 20     |
  * | 6     | reflection    | r      | -                | 0       | 0 .. 1      |
  * | 7     | anisotropy    | g      | mean cosine      | 0       | -0.9 .. 0.9 |
+ * | 8     | emission      | e      | x colour         | 0       | 0 .. 10     |
  *
  * Attenuation: the extinction seen by shadow rays is sigma = c_t * mu, where
  * mu = -ln(1 - alpha) / u is the extinction implied by the scalar opacity
@@ -23,9 +24,17 @@
  * Scattering: the diffusion strength of eq. 15, in (data voxel)^2 per unit time,
  * solved to t = 1 (so it does not change with the irradiance resolution).
  * Anisotropy: g of the Henyey-Greenstein phase function, the mean cosine of
- * the scattering angle (0 isotropic, > 0 forward). Only the physically based
- * path tracer (vtkMultiMaterialPathTracer) reads it; |g| < 1 (HardMin and
- * HardMax are +-0.99: g = +-1 is a delta, not a phase function).
+ * the scattering angle (0 isotropic, > 0 forward); |g| < 1 (HardMin and
+ * HardMax are +-0.99: g = +-1 is a delta, not a phase function). The path
+ * tracer scatters with it; the ray caster and the reference renderer weight
+ * the particle (ambient) term of each light by 4 pi HG(g) between the light's
+ * and the view's directions (vtkMultiMaterialPhaseFunction.h), which is 1 at
+ * g = 0, so g = 0 renders exactly as the isotropic model did.
+ * Emission: Yang et al. eq. 27. Emitted radiance per unit length is
+ * e * colour * sigma_t (the emitting particles are the ones that absorb), so
+ * a segment of opacity alpha adds e * colour * alpha (= e * I_c) to the
+ * radiance, whatever the lights and shadows; a homogeneous slab of optical
+ * depth tau glows with e * colour * (1 - exp(-tau)).
  */
 #ifndef vtkMultiMaterialParameters_h
 #define vtkMultiMaterialParameters_h
@@ -47,6 +56,7 @@ enum MaterialParameter : int
   Scattering,
   Reflection,
   Anisotropy,
+  Emission,
   MaterialParameterCount
 };
 
@@ -70,7 +80,12 @@ constexpr MaterialParameterInfo MaterialParameterTable[MaterialParameterCount] =
   { "scattering", "MMV_SCATTERING", 0.0, 0.0, 20.0, 1.0e4 },
   { "reflection", "MMV_REFLECTION", 0.0, 0.0, 1.0, 1.0e3 },
   { "anisotropy", "MMV_ANISOTROPY", 0.0, -0.9, 0.9, 0.99, -0.99 },
+  { "emission", "MMV_EMISSION", 0.0, 0.0, 10.0, 1.0e4 },
 };
+
+/// Rows of the ray caster's material texture (vtkMultiMaterialTextures.h):
+/// (ka, kd, ks, ke), (r, c_t, s, g), (e, 0, 0, 0). GLSL: MMV_MATERIAL_ROWS.
+constexpr int MaterialTextureRows = 3;
 
 /// Lights the GPU path supports at once (more: the strongest are kept).
 constexpr int MaxLights = 8;
@@ -213,6 +228,7 @@ inline std::string MaterialGLSLPrelude()
     s += " " + std::to_string(i) + "\n";
   }
   s += "#define MMV_MATERIAL_PARAMETER_COUNT " + std::to_string(MaterialParameterCount) + "\n";
+  s += "#define MMV_MATERIAL_ROWS " + std::to_string(MaterialTextureRows) + "\n";
   s += "#define MMV_MAX_LIGHTS " + std::to_string(MaxLights) + "\n";
   char denominator[32];
   std::snprintf(denominator, sizeof(denominator), "%.9e", MinAttenuationDenominator);

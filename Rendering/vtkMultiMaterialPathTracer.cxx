@@ -435,13 +435,7 @@ dvec3 Medium::Trace(const dvec3& x0, const dvec3& d0, double tMax, const dvec3& 
       radiance += throughput * (bounce == 0 ? background : this->Environment(d));
       break;
     }
-    if (bounce >= this->MaxBounces)
-    {
-      break; // absorbed: no more events allowed
-    }
-    ++events;
-    x += event.T * d;
-    limit = std::numeric_limits<double>::max();
+    constexpr int P = mmv::MaterialParameterCount;
     const double s = this->Data.Sample(event.P);
     int i;
     double w;
@@ -449,12 +443,23 @@ dvec3 Medium::Trace(const dvec3& x0, const dvec3& d0, double tMax, const dvec3& 
     const dvec3 albedo(this->Tables.Lerp(this->Tables.Albedo, 3, 0, i, w),
       this->Tables.Lerp(this->Tables.Albedo, 3, 1, i, w),
       this->Tables.Lerp(this->Tables.Albedo, 3, 2, i, w));
+    // Emission, a source of e * colour * sigma_t per unit length: collisions
+    // come at density sigma_t T, so each one scores e * colour (an absorbed
+    // path's last collision too).
+    const double emission = this->Tables.Lerp(this->Tables.Material, P, mmv::Emission, i, w);
+    radiance += throughput * mmv::mmvEmission(emission, glm::dvec4(albedo, 1.0));
+    if (bounce >= this->MaxBounces)
+    {
+      break; // absorbed: no more events allowed
+    }
+    ++events;
+    x += event.T * d;
+    limit = std::numeric_limits<double>::max();
     throughput *= albedo;
     if (throughput == dvec3(0.0))
     {
       break;
     }
-    constexpr int P = mmv::MaterialParameterCount;
     Scatterer scatterer;
     scatterer.G = this->Tables.Lerp(this->Tables.Material, P, mmv::Anisotropy, i, w);
     const dvec3 wo = -d;

@@ -13,7 +13,9 @@
  *    the trilinearly interpolated scalar, u: scalar-opacity unit distance, as
  *    everywhere else); single-scattering albedo = the colour TF's RGB, per
  *    channel; Henyey-Greenstein phase function with the material's
- *    anisotropy g (vtkMultiMaterialPhaseFunction.h).
+ *    anisotropy g (vtkMultiMaterialPhaseFunction.h); emission e * colour *
+ *    sigma_t per unit length (Yang et al. eq. 27, the ray caster's e * I_c
+ *    per segment), scored at every collision.
  *  - Free flights by delta (Woodcock) tracking against a majorant grid (the
  *    largest extinction per brick of 8^3 cells), so empty space costs one
  *    step per brick; shadow rays by ratio tracking on the same grid.
@@ -84,7 +86,8 @@ public:
   vtkGetMacro(SamplesPerPixel, int);
 
   /// Most scattering events on a path (default 64; 1 = single scattering,
-  /// 0 = attenuated background only). Render() rejects negative values.
+  /// 0 = attenuated background and emission only). Render() rejects
+  /// negative values.
   vtkSetMacro(MaxBounces, int);
   vtkGetMacro(MaxBounces, int);
 

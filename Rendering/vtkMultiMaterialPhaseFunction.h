@@ -1,11 +1,18 @@
 /**
  * @file   vtkMultiMaterialPhaseFunction.h
- * @brief  The Henyey-Greenstein phase function of the path tracer: value,
- *         sampling, and a frame to turn a sampled cosine into a direction.
+ * @brief  The Henyey-Greenstein phase function: value, sampling, and a frame
+ *         to turn a sampled cosine into a direction.
  *
  * The angle is the one between the direction the light travelled before the
  * event and after it: cos = 1 is straight on. Its mean cosine is g, the
  * material's anisotropy (mmv::Anisotropy).
+ *
+ * Our convention, stated once: HG(g, cos) = (1 - g^2) / (4 pi (1 + g^2 -
+ * 2 g cos)^1.5) per steradian, pbrt's sign (g > 0 scatters forward) and
+ * normalised to 1 over the sphere. The ray caster and the reference renderer
+ * use it relative to isotropic scattering, 4 pi HG (mmvHenyeyGreensteinRelative,
+ * mirrored line for line by Shaders/mmvPhaseFunction.glsl): that is exactly 1
+ * at g = 0, so their former isotropic particle term is the g = 0 case.
  */
 #ifndef vtkMultiMaterialPhaseFunction_h
 #define vtkMultiMaterialPhaseFunction_h
@@ -22,11 +29,21 @@ namespace mmv
 /// CDF divides by g.
 constexpr double IsotropicAnisotropy = 1.0e-4;
 
+/// 4 pi HG(g, cos): the phase function relative to isotropic scattering
+/// (mean 1 over the sphere; 1 everywhere at g = 0, also in float).
+/// cosTheta: between the light's travel direction and the scattered one,
+/// -dot(v, l) for v toward the viewer and l toward the light.
+inline double mmvHenyeyGreensteinRelative(double g, double cosTheta)
+{
+  // |g| <= 0.99 (the parameter's hard limits) keeps the denominator >= 1e-4.
+  const double denominator = 1.0 + g * g - 2.0 * g * cosTheta;
+  return (1.0 - g * g) / (denominator * std::sqrt(denominator));
+}
+
 /// p(cos) per steradian: (1 - g^2) / (4 pi (1 + g^2 - 2 g cos)^1.5).
 inline double HenyeyGreenstein(double g, double cosTheta)
 {
-  const double denominator = 1.0 + g * g - 2.0 * g * cosTheta;
-  return (1.0 - g * g) / (4.0 * M_PI * denominator * std::sqrt(denominator));
+  return mmvHenyeyGreensteinRelative(g, cosTheta) / (4.0 * M_PI);
 }
 
 /// The cosine whose CDF is u in [0, 1): inverse-transform sampling.

@@ -15,6 +15,7 @@
 #include "vtkVolumeMapper.h"
 #include "vtkMultiMaterialLights.h"
 #include "vtkMultiMaterialParameters.h"
+#include "vtkMultiMaterialPhaseFunction.h"
 #include "vtkMultiMaterialShading.h"
 #include "vtkMultiMaterialVolumeMapper.h"
 #include "vtkMultiMaterialVolumeSampling.h"
@@ -233,7 +234,11 @@ struct Scene
         const double distance = glm::length(toLight);
         l = distance > 0.0 ? toLight / distance : n;
       }
-      radiance += irradiance * light.Radiance * mmv::mmvBlinnPhong(material, segment, n, v, l, directional);
+      // The particle (ambient) term in-scatters by the phase function: 1 at g = 0.
+      dvec4 lit = material;
+      lit.x *= mmv::mmvHenyeyGreensteinRelative(m[mmv::Anisotropy], -glm::dot(v, l));
+      radiance +=
+        irradiance * light.Radiance * mmv::mmvBlinnPhong(lit, segment, n, v, l, directional);
     }
     if (this->Reflection && m[mmv::Reflection] > 0.0)
     {
@@ -241,6 +246,7 @@ struct Scene
       radiance += directional * m[mmv::Reflection] * segment.w *
         mmv::mmvEnvironment(mirrored, this->EnvironmentUp, this->EnvironmentBottom, this->EnvironmentTop);
     }
+    radiance += mmv::mmvEmission(m[mmv::Emission], segment);
     return radiance;
   }
 

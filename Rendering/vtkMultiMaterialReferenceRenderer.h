@@ -36,7 +36,10 @@
  *    the directional fade |grad| / (0.005 / smallest spacing), and the
  *    environment reflection (gradient from the renderer background colours
  *    around the camera's view-up) when the material function has reflection.
- *    No active light: ambient emission ka * I_c.
+ *    The ambient (particle) term of each light is weighted by
+ *    mmv::mmvHenyeyGreensteinRelative(g, -v.l) (1 at g = 0), and every
+ *    segment adds its emission e * I_c (mmv::mmvEmission).
+ *    No active light: ambient emission ka * I_c (plus e * I_c).
  *  - Background: the colour is composited over the renderer's background
  *    (its vertical gradient when GradientBackground is on).
  *

@@ -2,6 +2,8 @@
 
 #include "vtkMultiMaterialParameters.h"
 
+#include "mmvEmission.h"
+#include "mmvPhaseFunction.h"
 #include "mmvRayCastDec.h"
 #include "mmvRayCastExit.h"
 #include "mmvRayCastImpl.h"
@@ -19,16 +21,28 @@ std::string VariantDefines(const ShaderVariant& variant)
   s += "#define MMV_IRRADIANCE_TEXTURES " + std::to_string(textures) + "\n";
   s += "#define MMV_USE_REFLECTION " + std::string(variant.Reflection ? "1" : "0") + "\n";
   s += "#define MMV_USE_PREINTEGRATION " + std::string(variant.PreIntegration ? "1" : "0") + "\n";
+  s += "#define MMV_USE_ANISOTROPY " + std::string(variant.Anisotropy ? "1" : "0") + "\n";
+  s += "#define MMV_USE_EMISSION " + std::string(variant.Emission ? "1" : "0") + "\n";
   return s;
 }
 
 std::vector<std::pair<std::string, std::string>> RayCastReplacements(const ShaderVariant& variant)
 {
   // Declarations and the per-ray init/exit keep VTK's own code after ours
-  // (the tag is re-emitted); the per-sample shading replaces VTK's.
+  // (the tag is re-emitted); the per-sample shading replaces VTK's. The
+  // optional terms' functions are left out of the source, not only compiled
+  // out, when no material uses them.
+  std::string declarations = VariantDefines(variant) + mmvShading;
+  if (variant.Anisotropy)
+  {
+    declarations += mmvPhaseFunction;
+  }
+  if (variant.Emission)
+  {
+    declarations += mmvEmission;
+  }
   return {
-    { "//VTK::Shading::Dec",
-      VariantDefines(variant) + mmvShading + mmvRayCastDec + "\n//VTK::Shading::Dec" },
+    { "//VTK::Shading::Dec", declarations + mmvRayCastDec + "\n//VTK::Shading::Dec" },
     { "//VTK::Shading::Init", std::string(mmvRayCastInit) + "\n//VTK::Shading::Init" },
     { "//VTK::Shading::Impl", mmvRayCastImpl },
     { "//VTK::Shading::Exit", std::string(mmvRayCastExit) + "\n//VTK::Shading::Exit" },

@@ -6,7 +6,9 @@
  * The only place that knows the tag table. Variants are chosen by defines,
  * so a scene gets no code it does not need: no light loop without lights, no
  * environment lookup when every reflection coefficient is 0, no segment
- * tables' second fetch without pre-integration.
+ * tables' second fetch without pre-integration, no Henyey-Greenstein code
+ * when every anisotropy g is 0 and no emission term when every emission is 0
+ * (at those values both terms would leave the image unchanged).
  */
 #ifndef vtkMultiMaterialShaderAssembly_h
 #define vtkMultiMaterialShaderAssembly_h
@@ -25,11 +27,14 @@ struct ShaderVariant
   int NumberOfLights = 0;  // 0..MaxLights
   bool Reflection = false; // some material has r > 0
   bool PreIntegration = true;
+  bool Anisotropy = false; // some material has g != 0 (and there is a light)
+  bool Emission = false;   // some material has e != 0
 
   bool operator==(const ShaderVariant& o) const
   {
     return this->NumberOfLights == o.NumberOfLights && this->Reflection == o.Reflection &&
-      this->PreIntegration == o.PreIntegration;
+      this->PreIntegration == o.PreIntegration && this->Anisotropy == o.Anisotropy &&
+      this->Emission == o.Emission;
   }
   bool operator!=(const ShaderVariant& o) const { return !(*this == o); }
 };

@@ -1,7 +1,8 @@
 /**
  * @file   vtkMultiMaterialShading.h
- * @brief  Segment shading on the CPU: Zhang & Ma eq. 16 and the environment
- *         term of eq. 17. Mirrors Shaders/mmvShading.glsl function for
+ * @brief  Segment shading on the CPU: Zhang & Ma eq. 16, the environment
+ *         term of eq. 17 and the emission of Yang et al. eq. 27. Mirrors
+ *         Shaders/mmvShading.glsl and Shaders/mmvEmission.glsl function for
  *         function; TestShaderMirror runs both.
  */
 #ifndef vtkMultiMaterialShading_h
@@ -25,6 +26,13 @@ inline glm::dvec3 mmvBlinnPhong(const glm::dvec4& material, const glm::dvec4& se
   const glm::dvec3 ambientDiffuse =
     (material.x + directional * material.y * ndotl) * glm::dvec3(segment);
   return ambientDiffuse + glm::dvec3(directional * material.z * highlight * segment.w);
+}
+
+/// Emission of a segment (Shaders/mmvEmission.glsl): e * I_c, the integral of
+/// e * colour * sigma_t with the segment's own attenuation.
+inline glm::dvec3 mmvEmission(double emission, const glm::dvec4& segment)
+{
+  return emission * glm::dvec3(segment);
 }
 
 /// Vertical gradient environment around `up` (unit vectors).

@@ -83,13 +83,16 @@ void vtkMultiMaterialTextures::UpdateMaterialTable(vtkOpenGLRenderWindow* contex
   }
   // Row 0: what every shaded segment reads; row 1: reflection (read only by
   // the reflection variant), the irradiance parameters and the anisotropy
-  // (for inspection).
-  std::vector<float> texels(static_cast<size_t>(n) * 2 * 4, 0.0f);
+  // (read only by the anisotropic variant); row 2: the emission (read only
+  // by the emissive variant).
+  constexpr int Rows = mmv::MaterialTextureRows;
+  std::vector<float> texels(static_cast<size_t>(n) * Rows * 4, 0.0f);
   for (int i = 0; i < n; ++i)
   {
     const float* m = &samples[i * P];
     float* row0 = &texels[4 * i];
     float* row1 = &texels[4 * (n + i)];
+    float* row2 = &texels[4 * (2 * n + i)];
     row0[0] = m[mmv::Ambient];
     row0[1] = m[mmv::Diffuse];
     row0[2] = m[mmv::Specular];
@@ -98,9 +101,10 @@ void vtkMultiMaterialTextures::UpdateMaterialTable(vtkOpenGLRenderWindow* contex
     row1[1] = m[mmv::Attenuation];
     row1[2] = m[mmv::Scattering];
     row1[3] = m[mmv::Anisotropy];
+    row2[0] = m[mmv::Emission];
   }
   this->Material->SetContext(context);
-  this->Material->Create2DFromRaw(n, 2, 4, VTK_FLOAT, texels.data());
+  this->Material->Create2DFromRaw(n, Rows, 4, VTK_FLOAT, texels.data());
   UseLinearClamped(this->Material);
   this->UploadedMaterials = materials;
   this->UploadedMaterialTime = time;
@@ -194,8 +198,9 @@ vtkIdType vtkMultiMaterialTextures::GetMemoryBytes() const
   // The texture's texels, fewer than the data's points when resampled to fit.
   const vtkIdType gradientBytes = static_cast<vtkIdType>(this->GradientTextureDimensions[0]) *
     this->GradientTextureDimensions[1] * this->GradientTextureDimensions[2] * 3 * 2;
-  return n * n * (4 + 1) * 4 + static_cast<vtkIdType>(this->UploadedMaterialSize) * 2 * 4 * 4 +
-    gradientBytes;
+  const vtkIdType materialBytes =
+    static_cast<vtkIdType>(this->UploadedMaterialSize) * mmv::MaterialTextureRows * 4 * 4;
+  return n * n * (4 + 1) * 4 + materialBytes + gradientBytes;
 }
 
 void vtkMultiMaterialTextures::ReleaseGraphicsResources(vtkWindow* window)

@@ -4,12 +4,13 @@
  *          the material table, uploaded only when their source changed.
  *
  * Segment tables: RGBA32F n x n (I_c rgb, I_alpha) and R32F n x n (I_beta)
- * from vtkPreIntegrationTable. Material table: RGBA32F n x 2, row 0 =
- * (ka, kd, ks, ke), row 1 = (r, c_t, s, 0), sampled over the scalar range
- * (the layout of mmv::MaterialParameterTable; the shader reads it at v = 0.25
- * and v = 0.75). Gradient volume: RGB16F at the data's resolution, the
- * normalised-value gradient per voxel (vtkValueGradient.h), uploaded when the
- * data or its range changed.
+ * from vtkPreIntegrationTable. Material table: RGBA32F n x 3, row 0 =
+ * (ka, kd, ks, ke), row 1 = (r, c_t, s, g), row 2 = (e, 0, 0, 0), sampled
+ * over the scalar range (the layout of mmv::MaterialParameterTable; the
+ * shader reads row r at v = (r + 0.5) / mmv::MaterialTextureRows).
+ * Gradient volume: RGB16F at the data's resolution, the normalised-value
+ * gradient per voxel (vtkValueGradient.h), uploaded when the data or its
+ * range changed.
  */
 #ifndef vtkMultiMaterialTextures_h
 #define vtkMultiMaterialTextures_h

@@ -603,6 +603,10 @@ void vtkMultiMaterialVolumeMapper::UpdateShading(
   variant.Reflection =
     in.Materials && in.Materials->GetMaximum(mmv::Reflection) > 0.0 && in.Materials->GetSize() > 0;
   variant.PreIntegration = this->PreIntegration;
+  const bool all = this->CompileUnusedOpticalTerms;
+  variant.Anisotropy = variant.NumberOfLights > 0 &&
+    (all || (in.Materials && in.Materials->HasNonZero(mmv::Anisotropy)));
+  variant.Emission = all || (in.Materials && in.Materials->HasNonZero(mmv::Emission));
   if (variant != in.Variant || in.Pass->GetFragmentReplacements().empty())
   {
     in.Pass->SetFragmentReplacements(mmv::RayCastReplacements(variant));
@@ -859,6 +863,7 @@ void vtkMultiMaterialVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "PreIntegration: " << this->PreIntegration << "\n";
   os << indent << "PointLightRadius: " << this->PointLightRadius << "\n";
   os << indent << "PreIntegrationTableSize: " << this->PreIntegrationTableSize << "\n";
+  os << indent << "CompileUnusedOpticalTerms: " << this->CompileUnusedOpticalTerms << "\n";
   os << indent << "InteractiveIrradiance: "
      << (this->InteractiveIrradiance == ReuseWhileInteracting ? "ReuseWhileInteracting"
                                                               : "UpdateAlways")

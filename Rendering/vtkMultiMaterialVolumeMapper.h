@@ -125,6 +125,12 @@ public:
   vtkSetMacro(PointLightRadius, double);
   vtkGetMacro(PointLightRadius, double);
 
+  /// Compile the Henyey-Greenstein and emission terms in even when every
+  /// material leaves them at 0 (default off: the shader then leaves them
+  /// out). For tests and benchmarks: at g = 0 and e = 0 the image is the same.
+  vtkSetMacro(CompileUnusedOpticalTerms, bool);
+  vtkGetMacro(CompileUnusedOpticalTerms, bool);
+
   /// Pre-integration table size n (n x n). Default 256.
   vtkSetClampMacro(PreIntegrationTableSize, int, 16, 1024);
   vtkGetMacro(PreIntegrationTableSize, int);
@@ -247,6 +253,7 @@ protected:
   int InteractiveIrradiance = ReuseWhileInteracting;
   int PreIntegrationTableSize = 256;
   bool TimeStages = false;
+  bool CompileUnusedOpticalTerms = false;
 
   int PreIntegrationCount = 0;
   int IrradianceUpdateCount = 0;

@@ -1,14 +1,16 @@
 // Multi-material volume shading inside VTK's ray caster: declarations.
 // Inserted before //VTK::Shading::Dec. The C++ side prepends the defines
-// MMV_NUMBER_OF_LIGHTS, MMV_IRRADIANCE_TEXTURES, MMV_USE_REFLECTION and
-// MMV_USE_PREINTEGRATION, and mmvShading.glsl.
+// MMV_NUMBER_OF_LIGHTS, MMV_IRRADIANCE_TEXTURES, MMV_USE_REFLECTION,
+// MMV_USE_PREINTEGRATION, MMV_USE_ANISOTROPY and MMV_USE_EMISSION, and
+// mmvShading.glsl (with mmvPhaseFunction.glsl and mmvEmission.glsl when
+// those are on).
 //
 // Data values are normalised to [0, 1] over the scalar range, the coordinate
 // of every table below.
 
 uniform sampler2D mmv_preintColor;  // (t1, t2) -> I_c (rgb, opacity-weighted), I_alpha
 uniform sampler2D mmv_preintBeta;   // (t1, t2) -> I_beta, shading position in the segment
-uniform sampler2D mmv_material;     // (t, 0.25) -> ka kd ks ke; (t, 0.75) -> r c_t s 0
+uniform sampler2D mmv_material;     // (t, row 0) -> ka kd ks ke; row 1 -> r c_t s g; row 2 -> e
 uniform float mmv_tableSize;        // entries per table axis
 uniform float mmv_tableStep;        // segment length the tables were built for (object units)
 uniform float mmv_gradientFade;     // |gradient| (normalised value per object unit) of full surface shading
@@ -82,6 +84,12 @@ vec3 mmvWholeTexCoord(vec3 texPos)
   return (mmv_blockFirstIndex + mmvBlockIndex(texPos) + 0.5) / mmv_wholeDimensions;
 }
 
+// The v coordinate of row r of mmv_material.
+float mmvMaterialRow(int r)
+{
+  return (float(r) + 0.5) / float(MMV_MATERIAL_ROWS);
+}
+
 float mmvTableCoord(float t)
 {
   return (clamp(t, 0.0, 1.0) * (mmv_tableSize - 1.0) + 0.5) / mmv_tableSize;
@@ -101,7 +109,7 @@ vec3 mmvGradient(vec3 texPos)
 vec3 mmvShadeSegment(vec3 texPos, float t, vec4 segment)
 {
   float tc = mmvTableCoord(t);
-  vec4 material = texture2D(mmv_material, vec2(tc, 0.25));
+  vec4 material = texture2D(mmv_material, vec2(tc, mmvMaterialRow(0)));
   vec3 position = (in_textureDatasetMatrix[0] * vec4(texPos, 1.0)).xyz;
   vec3 v = -normalize((in_textureDatasetMatrix[0] * vec4(g_dirStep, 0.0)).xyz);
   vec3 gradient = mmvGradient(texPos);
@@ -115,6 +123,9 @@ vec3 mmvShadeSegment(vec3 texPos, float t, vec4 segment)
 #if MMV_NUMBER_OF_LIGHTS > 0
   vec3 irradianceCoord = mmvWholeTexCoord(texPos) * mmv_irradianceScale + mmv_irradianceBias;
   vec4 irradiance0 = texture(mmv_irradiance0, irradianceCoord);
+#if MMV_USE_ANISOTROPY
+  float anisotropy = texture2D(mmv_material, vec2(tc, mmvMaterialRow(1))).w;
+#endif
 #if MMV_IRRADIANCE_TEXTURES > 1
   vec4 irradiance1 = texture(mmv_irradiance1, irradianceCoord);
 #endif
@@ -136,21 +147,31 @@ vec3 mmvShadeSegment(vec3 texPos, float t, vec4 segment)
       float distance = length(toLight);
       l = distance > 0.0 ? toLight / distance : n;
     }
-    radiance += irradiance * mmv_lightRadiance[k] *
-      mmvBlinnPhong(material, segment, n, v, l, directional);
+#if MMV_USE_ANISOTROPY
+    // The particle (ambient) term in-scatters by the phase function.
+    vec4 lit = material;
+    lit.x *= mmvHenyeyGreensteinRelative(anisotropy, -dot(v, l));
+#else
+    vec4 lit = material;
+#endif
+    radiance +=
+      irradiance * mmv_lightRadiance[k] * mmvBlinnPhong(lit, segment, n, v, l, directional);
   }
 #else
   // No active light: ambient emission only, so the volume stays visible.
   radiance = material.x * segment.rgb;
 #endif
 #if MMV_USE_REFLECTION
-  float reflection = texture2D(mmv_material, vec2(tc, 0.75)).x;
+  float reflection = texture2D(mmv_material, vec2(tc, mmvMaterialRow(1))).x;
   if (reflection > 0.0)
   {
     vec3 mirrored = reflect(-v, n);
     radiance += directional * reflection * segment.a *
       mmvEnvironment(mirrored, mmv_environmentUp, mmv_environmentBottom, mmv_environmentTop);
   }
+#endif
+#if MMV_USE_EMISSION
+  radiance += mmvEmission(texture2D(mmv_material, vec2(tc, mmvMaterialRow(2))).x, segment);
 #endif
   return radiance;
 }

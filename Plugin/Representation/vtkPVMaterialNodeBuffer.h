@@ -50,8 +50,10 @@ public:
       vtkErrorWithObjectMacro(owner,
         "MaterialNodes needs " << vtkMaterialTransferFunction::NodeStride
                                << " numbers per node (value, ambient, diffuse, specular, "
-                                  "shininess, attenuation, scattering, reflection, anisotropy; "
-                                  "or the older "
+                                  "shininess, attenuation, scattering, reflection, anisotropy, "
+                                  "emission; or the older "
+                               << vtkMaterialTransferFunction::AnisotropyNodeStride
+                               << " without emission or "
                                << vtkMaterialTransferFunction::LegacyNodeStride
                                << " without anisotropy); got " << count
                                << ". Keeping the previous nodes.");

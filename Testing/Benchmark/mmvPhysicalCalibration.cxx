@@ -4,6 +4,9 @@
 //
 //  - ours (vtkMultiMaterialVolumeMapper): every node's scattering s and
 //    attenuation c_t scaled by factors (1, 1 = the scene's defaults);
+//    with --anisotropy G every node (truth and ours) has g = G, and ours is
+//    measured twice per setting: "ours" shading with HG(G) (optical model
+//    v2) and "ours-v1" with g = 0 (the isotropic particle term);
 //  - VTK Phong (vtkOpenGLGPUVolumeRayCastMapper, shading on, mmv default
 //    material);
 //  - VTK volumetric scattering: VolumetricScatteringBlending x
@@ -12,9 +15,11 @@
 //   mmvPhysicalCalibration --out DIR [--size 128] [--truth-spp 1024] [--frames 3]
 //                          [--scenes synthetic,headsq,orbital,ct] [--head FILE.vti]
 //                          [--s-scales 1,0,0.5,2,4,8,16] [--ct-scales 1,0.5,2,4] [--no-vtk]
+//                          [--anisotropy G] [--back-light]
 //
 // Same camera, key light and gradient background as mmvBenchmark
-// (mmvbench::FrameScene). Errors are over the 8-bit images, as displayed:
+// (mmvbench::FrameScene); --back-light turns the key light to the opposite
+// direction (the volume lit from behind, where forward scattering shows). Errors are over the 8-bit images, as displayed:
 // RMSE (0-255), PSNR and SSIM over the whole image, and over the volume's
 // pixels (where the truth's paths met the medium) the RMSE as is and after the
 // best single brightness factor k (least squares, k = <M, T> / <M, M>), which
@@ -74,6 +79,8 @@ struct Options
   std::vector<double> ScatteringScales = { 1.0, 0.0, 0.5, 2.0, 4.0, 8.0, 16.0 };
   std::vector<double> AttenuationScales = { 1.0, 0.5, 2.0, 4.0 };
   bool VTK = true;
+  double Anisotropy = 0.0; // every node's g, truth and ours; 0: the scene's
+  bool BackLight = false;
 };
 
 std::vector<double> Numbers(const std::string& text)
@@ -128,6 +135,14 @@ bool Parse(int argc, char* argv[], Options& o)
     {
       o.VTK = false;
     }
+    else if (a == "--anisotropy")
+    {
+      o.Anisotropy = std::atof(next().c_str());
+    }
+    else if (a == "--back-light")
+    {
+      o.BackLight = true;
+    }
     else
     {
       return false;
@@ -145,9 +160,10 @@ double Median(std::vector<double> v)
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-// The scene's materials with every node's s and c_t scaled.
+// The scene's materials with every node's s and c_t scaled, and g set
+// (NaN: kept).
 void ScaleMaterials(vtkMaterialTransferFunction* source, double scattering, double attenuation,
-  vtkMaterialTransferFunction* target)
+  vtkMaterialTransferFunction* target, double anisotropy = std::nan(""))
 {
   const int stride = vtkMaterialTransferFunction::NodeStride;
   std::vector<double> nodes(static_cast<size_t>(source->GetSize()) * stride);
@@ -156,6 +172,10 @@ void ScaleMaterials(vtkMaterialTransferFunction* source, double scattering, doub
   {
     nodes[n + 1 + mmv::Scattering] *= scattering;
     nodes[n + 1 + mmv::Attenuation] *= attenuation;
+    if (!std::isnan(anisotropy))
+    {
+      nodes[n + 1 + mmv::Anisotropy] = anisotropy;
+    }
   }
   target->SetNodes(static_cast<int>(nodes.size()), nodes.data());
 }
@@ -286,7 +306,7 @@ int main(int argc, char* argv[])
     std::cerr << "usage: " << argv[0]
               << " --out DIR [--size N] [--truth-spp N] [--frames N]"
                  " [--scenes synthetic,headsq,orbital,ct] [--head FILE.vti]"
-                 " [--s-scales LIST] [--ct-scales LIST] [--no-vtk]\n";
+                 " [--s-scales LIST] [--ct-scales LIST] [--no-vtk] [--anisotropy G] [--back-light]\n";
     return 2;
   }
   vtkSMPTools::SetBackend("STDThread");
@@ -304,6 +324,14 @@ int main(int argc, char* argv[])
     {
       std::cerr << "unknown or unreadable scene " << name << "\n";
       return 1;
+    }
+    if (opt.Anisotropy != 0.0)
+    {
+      ScaleMaterials(scene.Materials, 1.0, 1.0, scene.Materials, opt.Anisotropy);
+    }
+    for (int a = 0; a < 3 && opt.BackLight; ++a)
+    {
+      scene.ToLight[a] = -scene.ToLight[a];
     }
     vtkNew<vtkCamera> camera;
     vtkNew<vtkLight> light;
@@ -376,6 +404,11 @@ int main(int argc, char* argv[])
         ScaleMaterials(scene.Materials, s, ct, materials);
         measure(s == 1.0 && ct == 1.0 ? "ours-default" : "ours",
           Setting({ { "s_scale", s }, { "ct_scale", ct } }), oursWindow);
+        if (opt.Anisotropy != 0.0)
+        {
+          ScaleMaterials(scene.Materials, s, ct, materials, 0.0);
+          measure("ours-v1", Setting({ { "s_scale", s }, { "ct_scale", ct } }), oursWindow);
+        }
       }
     }
     if (opt.VTK)

@@ -23,7 +23,8 @@
 namespace
 {
 constexpr int P = mmv::MaterialParameterCount;
-const char* const BuiltinNames[] = { "plastic", "metal", "skin", "bone", "glass", "leaf", "matte" };
+const char* const BuiltinNames[] = { "plastic", "metal", "skin", "bone", "glass", "leaf", "matte",
+  "smoke", "glow" };
 
 std::vector<double> PresetOf(vtkMaterialLibrary* library, const char* name)
 {
@@ -104,7 +105,7 @@ std::vector<double> ColorInFile(const std::string& text)
 TEST(MaterialLibrary, AllBuiltinsArePresent)
 {
   vtkNew<vtkMaterialLibrary> library;
-  EXPECT_EQ(library->GetNumberOfPresets(), 7);
+  EXPECT_EQ(library->GetNumberOfPresets(), 9);
   for (const char* name : BuiltinNames)
   {
     EXPECT_TRUE(library->HasPreset(name)) << name;
@@ -148,9 +149,11 @@ TEST(MaterialLibrary, BuiltinSpotValues)
   // Numbers copied from Rendering/Materials/*.json: a change there is caught.
   vtkNew<vtkMaterialLibrary> library;
   EXPECT_EQ(PresetOf(library, "metal"),
-    (std::vector<double>{ 0.1, 0.3, 0.9, 120.0, 1.0, 0.0, 0.6, 0.0 }));
+    (std::vector<double>{ 0.1, 0.3, 0.9, 120.0, 1.0, 0.0, 0.6, 0.0, 0.0 }));
   EXPECT_EQ(PresetOf(library, "skin"),
-    (std::vector<double>{ 0.25, 0.7, 0.3, 15.0, 0.5, 8.0, 0.0, 0.0 }));
+    (std::vector<double>{ 0.25, 0.7, 0.3, 15.0, 0.5, 8.0, 0.0, 0.0, 0.0 }));
+  EXPECT_EQ(PresetOf(library, "smoke")[mmv::Anisotropy], 0.6);
+  EXPECT_EQ(PresetOf(library, "glow")[mmv::Emission], 2.0);
   EXPECT_EQ(PresetOf(library, "glass")[mmv::Shininess], 200.0);
   EXPECT_EQ(PresetOf(library, "glass")[mmv::Attenuation], 0.2);
   EXPECT_EQ(PresetOf(library, "leaf")[mmv::Scattering], 4.0);
@@ -167,7 +170,7 @@ TEST(MaterialLibrary, EveryBuiltinIsValidAndLoadsWithoutErrors)
   mmvtest::ErrorCounter errors(library);
   library->ResetToBuiltins(); // reloads with the observer in place
   EXPECT_EQ(errors.Errors(), 0) << errors.LastMessage();
-  ASSERT_EQ(library->GetNumberOfPresets(), 7);
+  ASSERT_EQ(library->GetNumberOfPresets(), 9);
   for (int i = 0; i < library->GetNumberOfPresets(); ++i)
   {
     const char* name = library->GetPresetName(i);
@@ -194,9 +197,10 @@ TEST(MaterialLibrary, PresetNamesAndUnknownLookups)
   vtkNew<vtkMaterialLibrary> library;
   // Built-ins are embedded in file-name order.
   EXPECT_EQ(NamesOf(library),
-    (std::vector<std::string>{ "bone", "glass", "leaf", "matte", "metal", "plastic", "skin" }));
+    (std::vector<std::string>{
+      "bone", "glass", "glow", "leaf", "matte", "metal", "plastic", "skin", "smoke" }));
   EXPECT_EQ(library->GetPresetName(-1), nullptr);
-  EXPECT_EQ(library->GetPresetName(7), nullptr);
+  EXPECT_EQ(library->GetPresetName(9), nullptr);
 
   mmvtest::ErrorCounter errors(library);
   double parameters[P] = { -5 };
@@ -216,30 +220,31 @@ TEST(MaterialLibrary, AddReplaceRemove)
   const double chrome[P] = { 0.05, 0.1, 1.0, 300.0, 1.0, 0.0, 0.9 };
   const double chromeColor[3] = { 0.9, 0.9, 0.95 };
   ASSERT_TRUE(library->AddPreset("chrome", chrome, chromeColor));
-  EXPECT_EQ(library->GetNumberOfPresets(), 8);
-  EXPECT_STREQ(library->GetPresetName(7), "chrome");
+  EXPECT_EQ(library->GetNumberOfPresets(), 10);
+  EXPECT_STREQ(library->GetPresetName(9), "chrome");
   EXPECT_EQ(PresetOf(library, "chrome"), std::vector<double>(chrome, chrome + P));
   EXPECT_EQ(ColorOf(library, "chrome"), std::vector<double>(chromeColor, chromeColor + 3));
 
   // Replacing keeps the position; without a colour the preset is white.
   const double softMetal[P] = { 0.2, 0.4, 0.5, 30.0, 1.0, 0.5, 0.2 };
   ASSERT_TRUE(library->AddPreset("metal", softMetal));
-  EXPECT_EQ(library->GetNumberOfPresets(), 8);
-  EXPECT_STREQ(library->GetPresetName(4), "metal");
+  EXPECT_EQ(library->GetNumberOfPresets(), 10);
+  EXPECT_STREQ(library->GetPresetName(5), "metal");
   EXPECT_EQ(PresetOf(library, "metal"), std::vector<double>(softMetal, softMetal + P));
   EXPECT_EQ(ColorOf(library, "metal"), (std::vector<double>{ 1.0, 1.0, 1.0 }));
 
   EXPECT_TRUE(library->RemovePreset("glass"));
   EXPECT_FALSE(library->HasPreset("glass"));
-  EXPECT_EQ(library->GetNumberOfPresets(), 7);
+  EXPECT_EQ(library->GetNumberOfPresets(), 9);
   EXPECT_EQ(NamesOf(library),
-    (std::vector<std::string>{ "bone", "leaf", "matte", "metal", "plastic", "skin", "chrome" }));
+    (std::vector<std::string>{
+      "bone", "glow", "leaf", "matte", "metal", "plastic", "skin", "smoke", "chrome" }));
   EXPECT_FALSE(library->RemovePreset("glass"));
   EXPECT_FALSE(library->RemovePreset(nullptr));
   EXPECT_EQ(errors.Errors(), 0);
 
   library->ResetToBuiltins();
-  EXPECT_EQ(library->GetNumberOfPresets(), 7);
+  EXPECT_EQ(library->GetNumberOfPresets(), 9);
   EXPECT_FALSE(library->HasPreset("chrome"));
   EXPECT_TRUE(library->HasPreset("glass"));
   EXPECT_EQ(PresetOf(library, "metal")[mmv::Shininess], 120.0);
@@ -322,7 +327,7 @@ TEST(MaterialLibrary, AddPresetRejectsInvalidInput)
   EXPECT_FALSE(library->AddPreset(nullptr, good));
   EXPECT_FALSE(library->AddPreset("x", nullptr));
   EXPECT_EQ(errors.Errors(), 2);
-  EXPECT_EQ(library->GetNumberOfPresets(), 7);
+  EXPECT_EQ(library->GetNumberOfPresets(), 9);
 }
 
 TEST(MaterialLibrary, JSONRoundTrip)
@@ -379,9 +384,9 @@ TEST(MaterialLibrary, ReadsASinglePresetFile)
   WriteFile(path, R"({"name": "wax", "description": "candle", "scattering": 12, "ambient": 0.4})");
   vtkNew<vtkMaterialLibrary> library;
   ASSERT_TRUE(library->ReadJSONFile(path.c_str()));
-  EXPECT_EQ(library->GetNumberOfPresets(), 8);
+  EXPECT_EQ(library->GetNumberOfPresets(), 10);
   // Missing keys take the table defaults; a missing colour is white.
-  EXPECT_EQ(PresetOf(library, "wax"), (std::vector<double>{ 0.4, 0.7, 0.2, 20.0, 1.0, 12.0, 0.0, 0.0 }));
+  EXPECT_EQ(PresetOf(library, "wax"), (std::vector<double>{ 0.4, 0.7, 0.2, 20.0, 1.0, 12.0, 0.0, 0.0, 0.0 }));
   EXPECT_EQ(ColorOf(library, "wax"), (std::vector<double>{ 1.0, 1.0, 1.0 }));
   std::remove(path.c_str());
 }
@@ -434,10 +439,10 @@ TEST(MaterialLibrary, ArrayIsAllOrNothing)
       {"name": "first", "ambient": 0.5},
       {"name": "metal", "shininess": 1}
     ])"));
-  EXPECT_EQ(library->GetNumberOfPresets(), 8);
+  EXPECT_EQ(library->GetNumberOfPresets(), 10);
   EXPECT_EQ(PresetOf(library, "first")[mmv::Ambient], 0.5);
   EXPECT_EQ(PresetOf(library, "metal")[mmv::Shininess], 1.0);
-  EXPECT_STREQ(library->GetPresetName(4), "metal");
+  EXPECT_STREQ(library->GetPresetName(5), "metal");
   EXPECT_EQ(errors.Errors(), 1);
 }
 
@@ -493,7 +498,7 @@ TEST(MaterialLibrary, EmptyArrayIsAcceptedAndChangesNothing)
   vtkNew<vtkMaterialLibrary> library;
   const vtkMTimeType mtime = library->GetMTime();
   EXPECT_TRUE(library->AddPresetsFromJSON("[]"));
-  EXPECT_EQ(library->GetNumberOfPresets(), 7);
+  EXPECT_EQ(library->GetNumberOfPresets(), 9);
   EXPECT_EQ(library->GetMTime(), mtime);
 }
 
@@ -503,7 +508,7 @@ TEST(MaterialLibrary, PrintSelfListsPresets)
   std::ostringstream os;
   library->Print(os);
   const std::string text = os.str();
-  EXPECT_NE(text.find("Presets: 7"), std::string::npos) << text;
+  EXPECT_NE(text.find("Presets: 9"), std::string::npos) << text;
   EXPECT_NE(text.find("metal"), std::string::npos) << text;
   EXPECT_NE(text.find("shininess=120"), std::string::npos) << text;
 }

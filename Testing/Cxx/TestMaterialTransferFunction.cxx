@@ -44,8 +44,8 @@ std::vector<double> Evaluated(vtkMaterialTransferFunction* tf, double x)
 /// interpolated values can be compared exactly.
 void AddTwoNodes(vtkMaterialTransferFunction* tf)
 {
-  ASSERT_EQ(tf->AddNode(0.0, 0.0, 0.5, 1.0, 10.0, 0.0, 2.0, 0.25, -0.5), 0);
-  ASSERT_EQ(tf->AddNode(10.0, 1.0, 0.25, 0.0, 50.0, 2.0, 6.0, 0.75, 0.5), 1);
+  ASSERT_EQ(tf->AddNode(0.0, 0.0, 0.5, 1.0, 10.0, 0.0, 2.0, 0.25, -0.5, 1.0), 0);
+  ASSERT_EQ(tf->AddNode(10.0, 1.0, 0.25, 0.0, 50.0, 2.0, 6.0, 0.75, 0.5, 3.0), 1);
 }
 
 std::string TempPath(const std::string& name)
@@ -80,13 +80,13 @@ TEST(MaterialTransferFunction, InterpolatesLinearlyBetweenNodes)
   vtkNew<vtkMaterialTransferFunction> tf;
   AddTwoNodes(tf);
   const std::vector<double> mid = Evaluated(tf, 5.0);
-  const std::vector<double> expectedMid = { 0.5, 0.375, 0.5, 30.0, 1.0, 4.0, 0.5, 0.0 };
+  const std::vector<double> expectedMid = { 0.5, 0.375, 0.5, 30.0, 1.0, 4.0, 0.5, 0.0, 2.0 };
   for (int p = 0; p < P; ++p)
   {
     EXPECT_EQ(mid[p], expectedMid[p]) << "parameter " << mmv::MaterialParameterTable[p].Key;
   }
   const std::vector<double> quarter = Evaluated(tf, 2.5);
-  const std::vector<double> expectedQuarter = { 0.25, 0.4375, 0.75, 20.0, 0.5, 3.0, 0.375, -0.25 };
+  const std::vector<double> expectedQuarter = { 0.25, 0.4375, 0.75, 20.0, 0.5, 3.0, 0.375, -0.25, 1.5 };
   for (int p = 0; p < P; ++p)
   {
     EXPECT_EQ(quarter[p], expectedQuarter[p]) << "parameter " << mmv::MaterialParameterTable[p].Key;
@@ -114,8 +114,8 @@ TEST(MaterialTransferFunction, ClampsOutsideTheNodes)
 {
   vtkNew<vtkMaterialTransferFunction> tf;
   AddTwoNodes(tf);
-  const std::vector<double> first = { 0.0, 0.5, 1.0, 10.0, 0.0, 2.0, 0.25, -0.5 };
-  const std::vector<double> last = { 1.0, 0.25, 0.0, 50.0, 2.0, 6.0, 0.75, 0.5 };
+  const std::vector<double> first = { 0.0, 0.5, 1.0, 10.0, 0.0, 2.0, 0.25, -0.5, 1.0 };
+  const std::vector<double> last = { 1.0, 0.25, 0.0, 50.0, 2.0, 6.0, 0.75, 0.5, 3.0 };
   EXPECT_EQ(Evaluated(tf, -0.001), first);
   EXPECT_EQ(Evaluated(tf, -1.0e30), first);
   EXPECT_EQ(Evaluated(tf, -Inf), first);
@@ -130,8 +130,8 @@ TEST(MaterialTransferFunction, SingleNodeIsConstant)
 {
   vtkNew<vtkMaterialTransferFunction> tf;
   tf->AddNode(4.0, 0.1, 0.2, 0.3, 40.0, 0.5, 6.0, 0.7);
-  // The 8-argument AddNode scatters isotropically: g = 0.
-  const std::vector<double> node = { 0.1, 0.2, 0.3, 40.0, 0.5, 6.0, 0.7, 0.0 };
+  // The 8-argument AddNode scatters isotropically and does not glow: g = e = 0.
+  const std::vector<double> node = { 0.1, 0.2, 0.3, 40.0, 0.5, 6.0, 0.7, 0.0, 0.0 };
   EXPECT_EQ(Evaluated(tf, -100.0), node);
   EXPECT_EQ(Evaluated(tf, 4.0), node);
   EXPECT_EQ(Evaluated(tf, 100.0), node);
@@ -211,16 +211,16 @@ TEST(MaterialTransferFunction, SetNodesGetNodesRoundTrip)
   vtkNew<vtkMaterialTransferFunction> tf;
   // Out of order on purpose: SetNodes sorts.
   const std::vector<double> input = {
-    7.0, 0.7, 0.6, 0.5, 70.0, 1.7, 7.0, 0.07, 0.7, //
-    -2.0, 0.2, 0.3, 0.4, 2.0, 0.2, 0.5, 0.02, -0.2, //
-    3.0, 0.3, 0.4, 0.6, 30.0, 1.3, 3.0, 0.03, 0.3, //
+    7.0, 0.7, 0.6, 0.5, 70.0, 1.7, 7.0, 0.07, 0.7, 7.5, //
+    -2.0, 0.2, 0.3, 0.4, 2.0, 0.2, 0.5, 0.02, -0.2, 0.0, //
+    3.0, 0.3, 0.4, 0.6, 30.0, 1.3, 3.0, 0.03, 0.3, 0.25, //
   };
   ASSERT_TRUE(tf->SetNodes(static_cast<int>(input.size()), input.data()));
   ASSERT_EQ(tf->GetSize(), 3);
   const std::vector<double> expected = {
-    -2.0, 0.2, 0.3, 0.4, 2.0, 0.2, 0.5, 0.02, -0.2, //
-    3.0, 0.3, 0.4, 0.6, 30.0, 1.3, 3.0, 0.03, 0.3, //
-    7.0, 0.7, 0.6, 0.5, 70.0, 1.7, 7.0, 0.07, 0.7, //
+    -2.0, 0.2, 0.3, 0.4, 2.0, 0.2, 0.5, 0.02, -0.2, 0.0, //
+    3.0, 0.3, 0.4, 0.6, 30.0, 1.3, 3.0, 0.03, 0.3, 0.25, //
+    7.0, 0.7, 0.6, 0.5, 70.0, 1.7, 7.0, 0.07, 0.7, 7.5, //
   };
   EXPECT_EQ(AllNodes(tf), expected);
   for (int i = 0; i < 3; ++i)
@@ -244,8 +244,8 @@ TEST(MaterialTransferFunction, SetNodesDuplicateValuesLastWins)
 {
   vtkNew<vtkMaterialTransferFunction> tf;
   const std::vector<double> input = {
-    1.0, 0.1, 0.1, 0.1, 1.0, 0.1, 0.1, 0.1, 0.1, //
-    1.0, 0.9, 0.9, 0.9, 9.0, 0.9, 0.9, 0.9, 0.9, //
+    1.0, 0.1, 0.1, 0.1, 1.0, 0.1, 0.1, 0.1, 0.1, 0.1, //
+    1.0, 0.9, 0.9, 0.9, 9.0, 0.9, 0.9, 0.9, 0.9, 0.9, //
   };
   ASSERT_TRUE(tf->SetNodes(static_cast<int>(input.size()), input.data()));
   EXPECT_EQ(AllNodes(tf), std::vector<double>(input.begin() + Stride, input.end()));
@@ -255,7 +255,9 @@ TEST(MaterialTransferFunction, SetNodesRejectsInvalidInput)
 {
   std::vector<std::pair<std::string, std::vector<double>>> cases = {
     { "7 numbers", { 1, 0.1, 0.1, 0.1, 1, 0.1, 0.1 } },
-    { "10 numbers", { 1, 0.1, 0.1, 0.1, 1, 0.1, 0.1, 0.1, 0.1, 2 } },
+    { "11 numbers", { 1, 0.1, 0.1, 0.1, 1, 0.1, 0.1, 0.1, 0.1, 2, 3 } },
+    { "negative emission", { 1, 0.1, 0.1, 0.1, 1, 0.1, 0.1, 0.1, 0.1, -0.5 } },
+    { "NaN emission", { 1, 0.1, 0.1, 0.1, 1, 0.1, 0.1, 0.1, 0.1, NaN } },
     { "anisotropy -1", { 1, 0.1, 0.1, 0.1, 1, 0.1, 0.1, 0.1, -1.0 } },
     { "anisotropy below HardMin",
       { 1, 0.1, 0.1, 0.1, 1, 0.1, 0.1, 0.1,
@@ -270,7 +272,7 @@ TEST(MaterialTransferFunction, SetNodesRejectsInvalidInput)
   };
   for (int p = 0; p < P; ++p)
   {
-    std::vector<double> node = { 1, 0.1, 0.1, 0.1, 1, 0.1, 0.1, 0.1, 0.1 };
+    std::vector<double> node = { 1, 0.1, 0.1, 0.1, 1, 0.1, 0.1, 0.1, 0.1, 0.1 };
     node[1 + p] = std::nextafter(mmv::MaterialParameterTable[p].HardMax, Inf);
     cases.emplace_back(std::string(mmv::MaterialParameterTable[p].Key) + " above HardMax", node);
   }
@@ -460,7 +462,7 @@ TEST(MaterialTransferFunction, GetMaximum)
   }
   AddTwoNodes(tf);
   tf->AddNode(4.0, 0.3, 0.9, 0.2, 100.0, 1.0, 12.0, 0.5);
-  const double expected[P] = { 1.0, 0.9, 1.0, 100.0, 2.0, 12.0, 0.75, 0.5 };
+  const double expected[P] = { 1.0, 0.9, 1.0, 100.0, 2.0, 12.0, 0.75, 0.5, 3.0 };
   for (int p = 0; p < P; ++p)
   {
     EXPECT_EQ(tf->GetMaximum(p), expected[p]) << mmv::MaterialParameterTable[p].Key;
@@ -512,8 +514,8 @@ TEST(MaterialTransferFunction, JSONMissingParametersTakeDefaultsAndNodesAreSorte
     ]})"));
   ASSERT_EQ(tf->GetSize(), 2);
   const std::vector<double> expected = {
-    -1.0, 0.0, 0.7, 0.2, 80.0, 1.0, 0.0, 0.0, 0.0, //
-    5.0, 0.2, 0.7, 0.2, 20.0, 1.0, 3.0, 0.0, 0.0,  //
+    -1.0, 0.0, 0.7, 0.2, 80.0, 1.0, 0.0, 0.0, 0.0, 0.0, //
+    5.0, 0.2, 0.7, 0.2, 20.0, 1.0, 3.0, 0.0, 0.0, 0.0,  //
   };
   EXPECT_EQ(AllNodes(tf), expected);
   // Integers are accepted as numbers.
@@ -707,8 +709,8 @@ TEST(MaterialTransferFunction, LegacyEightNumberNodesLoadWithIsotropicScattering
   mmvtest::ErrorCounter errors(tf);
   ASSERT_TRUE(tf->SetNodes(static_cast<int>(legacy.size()), legacy.data()));
   const std::vector<double> expected = {
-    -2.0, 0.2, 0.3, 0.4, 2.0, 0.2, 0.5, 0.02, 0.0, //
-    3.0, 0.3, 0.4, 0.6, 30.0, 1.3, 3.0, 0.03, 0.0, //
+    -2.0, 0.2, 0.3, 0.4, 2.0, 0.2, 0.5, 0.02, 0.0, 0.0, //
+    3.0, 0.3, 0.4, 0.6, 30.0, 1.3, 3.0, 0.03, 0.0, 0.0, //
   };
   EXPECT_EQ(AllNodes(tf), expected);
   EXPECT_EQ(errors.Errors(), 0);
@@ -716,8 +718,8 @@ TEST(MaterialTransferFunction, LegacyEightNumberNodesLoadWithIsotropicScattering
 
 TEST(MaterialTransferFunction, DetectNodeStrideOnCountsOfBothLayouts)
 {
-  // 72 numbers: 8 nodes of 9 or 9 nodes of 8. Sorted valid 9-number nodes
-  // (what GetNodes writes) are read as such...
+  // 72 numbers: 8 nodes of 9 (before emission) or 9 nodes of 8. Sorted
+  // valid 9-number nodes (what GetNodes wrote then) are read as such...
   std::vector<double> current;
   for (int i = 0; i < 8; ++i)
   {
@@ -725,7 +727,7 @@ TEST(MaterialTransferFunction, DetectNodeStrideOnCountsOfBothLayouts)
     current.insert(current.end(), node.begin(), node.end());
   }
   EXPECT_EQ(vtkMaterialTransferFunction::DetectNodeStride(72, current.data()),
-    vtkMaterialTransferFunction::NodeStride);
+    vtkMaterialTransferFunction::AnisotropyNodeStride);
   // ...while 9 legacy nodes (a data value where g would be, shininess 20
   // where g would be further on) are not valid 9-number nodes.
   std::vector<double> legacy;
@@ -753,4 +755,9 @@ TEST(MaterialTransferFunction, OldJSONWithoutAnisotropyLoads)
   ASSERT_TRUE(tf->FromJSON(R"({"nodes": [{"value": 1, "anisotropy": -0.4}]})"));
   EXPECT_EQ(tf->EvaluateParameter(1.0, mmv::Anisotropy), -0.4);
   EXPECT_NE(tf->ToJSON().find("\"anisotropy\""), std::string::npos);
+  // Likewise emission (0 when missing).
+  EXPECT_EQ(tf->EvaluateParameter(1.0, mmv::Emission), 0.0);
+  ASSERT_TRUE(tf->FromJSON(R"({"nodes": [{"value": 1, "emission": 2.5}]})"));
+  EXPECT_EQ(tf->EvaluateParameter(1.0, mmv::Emission), 2.5);
+  EXPECT_NE(tf->ToJSON().find("\"emission\""), std::string::npos);
 }

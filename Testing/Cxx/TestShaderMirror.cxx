@@ -4,8 +4,11 @@
 #include "mmvTestWindow.h"
 #include "vtkMultiMaterialLightModel.h"
 #include "vtkMultiMaterialParameters.h"
+#include "mmvEmission.h"
 #include "mmvLightModel.h"
+#include "mmvPhaseFunction.h"
 #include "mmvShading.h"
+#include "vtkMultiMaterialPhaseFunction.h"
 #include "vtkMultiMaterialShading.h"
 
 #include "vtkNew.h"
@@ -55,7 +58,8 @@ public:
     }
     this->GL->MakeCurrent();
     const std::string fs = std::string("//VTK::System::Dec\n") + mmv::MaterialGLSLPrelude() +
-      mmvLightModel + mmvShading + "\nin vec2 texCoord;\n//VTK::Output::Dec\n" + body;
+      mmvLightModel + mmvShading + mmvPhaseFunction + mmvEmission +
+      "\nin vec2 texCoord;\n//VTK::Output::Dec\n" + body;
     vtkNew<vtkOpenGLFramebufferObject> fbo;
     fbo->SetContext(this->GL);
     this->GL->GetState()->PushFramebufferBindings();
@@ -411,4 +415,46 @@ TEST(ShaderMirror, BlinnPhongAndEnvironmentMatchCPU)
   }
   // The sweep must reach lit, unlit and highlighted configurations.
   EXPECT_GT(highlights, 10);
+}
+
+const char* PhaseAndEmissionBody = R"(
+void main()
+{
+  // x: g over [-0.99, 0.99]; y: the cosine over [-1, 1].
+  float g = mix(-0.99, 0.99, texCoord.x);
+  float cosTheta = mix(-1.0, 1.0, texCoord.y);
+  vec3 glow = mmvEmission(3.0 * texCoord.x, vec4(0.3, 0.2, 0.1, 0.6));
+  gl_FragData[0] = vec4(mmvHenyeyGreensteinRelative(g, cosTheta),
+    mmvHenyeyGreensteinRelative(0.0, cosTheta), glow.x, glow.z);
+}
+)";
+
+TEST(ShaderMirror, HenyeyGreensteinAndEmissionMatchCPU)
+{
+  ShaderRunner runner;
+  ASSERT_NE(runner.GL, nullptr);
+  std::vector<float> pixels;
+  ASSERT_TRUE(runner.Run(PhaseAndEmissionBody, [](vtkShaderProgram*) {}, pixels));
+  double largest = 0.0;
+  for (int j = 0; j < Size; ++j)
+  {
+    for (int i = 0; i < Size; ++i)
+    {
+      const float* px = &pixels[4 * (j * Size + i)];
+      const double u = (i + 0.5) / Size;
+      const double g = -0.99 + 1.98 * u;
+      const double cosTheta = -1.0 + 2.0 * (j + 0.5) / Size;
+      const double phase = mmv::mmvHenyeyGreensteinRelative(g, cosTheta);
+      largest = std::max(largest, phase);
+      // float vs double: 1 + g^2 - 2 g cos cancels near the forward peak.
+      ASSERT_NEAR(px[0], phase, 1e-4 * phase + 1e-6) << "g " << g << " cos " << cosTheta;
+      // g = 0 is exactly isotropic on the GPU too: the isotropic model's images.
+      ASSERT_EQ(px[1], 1.0f) << "cos " << cosTheta;
+      const glm::dvec3 glow = mmv::mmvEmission(3.0 * u, glm::dvec4(0.3, 0.2, 0.1, 0.6));
+      ASSERT_NEAR(px[2], glow.x, 1e-6);
+      ASSERT_NEAR(px[3], glow.z, 1e-6);
+    }
+  }
+  // The sweep reaches the forward peak (7.1 at g = 0.969, cos = 0.979).
+  EXPECT_GT(largest, 5.0);
 }

@@ -37,7 +37,7 @@ def check_nodes(expected_count, preset_node=None, preset="metal", preset_expecte
     problems = []
     if display.MaterialPreset != material_preset:
         problems.append("MaterialPreset is %r, not %r" % (display.MaterialPreset, material_preset))
-    stride = 9  # value + 8 parameters
+    stride = 10  # value + 9 parameters
     if len(nodes) != stride * expected_count:
         problems.append("expected %d nodes, property holds %d numbers" % (expected_count, len(nodes)))
     values = nodes[0::stride]
@@ -48,7 +48,7 @@ def check_nodes(expected_count, preset_node=None, preset="metal", preset_expecte
         with open(os.path.join(os.environ["MMV_MATERIALS_DIR"], preset + ".json")) as f:
             spec = json.load(f)
         keys = ["ambient", "diffuse", "specular", "shininess", "attenuation", "scattering",
-                "reflection", "anisotropy"]
+                "reflection", "anisotropy", "emission"]
         params = [float(spec.get(k, 0.0)) for k in keys]
         got = nodes[stride * preset_node + 1: stride * preset_node + stride]
         matches = all(abs(a - b) <= 1e-9 for a, b in zip(got, params))

@@ -15,8 +15,8 @@ mmv.load_plugin(args)
 checker = mmv.Checker()
 errors = mmv.ErrorCapture()
 
-GOOD = [37.0, 0.1, 0.8, 0.3, 20.0, 1.0, 0.5, 0.0, 0.0,
-        277.0, 0.1, 0.8, 0.3, 20.0, 1.0, 0.5, 0.0, 0.0]
+GOOD = [37.0, 0.1, 0.8, 0.3, 20.0, 1.0, 0.5, 0.0, 0.0, 0.0,
+        277.0, 0.1, 0.8, 0.3, 20.0, 1.0, 0.5, 0.0, 0.0, 0.0]
 
 view = mmv.make_view()
 rep = mmv.show_volume(mmv.make_volume(), view, preset="Custom")
@@ -36,7 +36,7 @@ def expect_rejected(what, message_part):
 
 
 rep.MaterialNodes = GOOD[:-1]
-expect_rejected("17 numbers", "9 numbers per node")
+expect_rejected("19 numbers", "10 numbers per node")
 
 too_anisotropic = list(GOOD)
 too_anisotropic[8] = 1.0
@@ -57,14 +57,19 @@ rep.MaterialPreset = "unobtainium"
 expect_rejected("unknown preset", "Unknown material preset")
 
 # A good list afterwards is taken again.
-rep.MaterialNodes = GOOD[:9]
+rep.MaterialNodes = GOOD[:10]
 mmv.render_image(view, os.path.join(args.temp_dir, "bad_recovered.png"))
-checker.check(mmv.info(rep, "AppliedMaterialNodes") == GOOD[:9], "a valid list is accepted again")
+checker.check(mmv.info(rep, "AppliedMaterialNodes") == GOOD[:10], "a valid list is accepted again")
 
-# The layout before anisotropy (8 numbers a node) still loads, with g = 0.
-rep.MaterialNodes = GOOD[:8] + GOOD[9:17]
+# The layout before anisotropy (8 numbers a node) still loads, with g = 0, e = 0.
+rep.MaterialNodes = GOOD[:8] + GOOD[10:18]
 mmv.render_image(view, os.path.join(args.temp_dir, "bad_legacy.png"))
 checker.check(mmv.info(rep, "AppliedMaterialNodes") == GOOD, "8-number nodes load with g = 0")
+
+# The layout before emission (9 numbers a node) still loads, with e = 0.
+rep.MaterialNodes = GOOD[:9] + GOOD[10:19]
+mmv.render_image(view, os.path.join(args.temp_dir, "bad_legacy9.png"))
+checker.check(mmv.info(rep, "AppliedMaterialNodes") == GOOD, "9-number nodes load with e = 0")
 checker.check(errors.take_errors() == "", "no further errors")
 
 # Out-of-range light and resolution values typed into the panel (issue 12):

@@ -20,7 +20,7 @@ types = rep.GetProperty("Representation").Available
 checker.check(mmv.REPRESENTATION in types, "'%s' is a representation type" % mmv.REPRESENTATION)
 presets = rep.GetProperty("MaterialPreset").Available
 checker.check(
-    all(p in presets for p in ("plastic", "metal", "skin", "bone", "glass", "leaf", "matte")),
+    all(p in presets for p in ("plastic", "metal", "skin", "bone", "glass", "leaf", "matte", "smoke", "glow")),
     "MaterialPreset domain lists the library's presets: %s" % presets)
 
 path = os.path.join(args.temp_dir, "PVMultiMaterialVolume.png")
@@ -31,7 +31,7 @@ checker.check(mmv.info(rep, "IrradianceUpdateCount") >= 1, "the irradiance volum
 checker.check(mmv.info(rep, "NumberOfShadedLights") >= 1,
               "the view's lights reach the mapper (%d)" % mmv.info(rep, "NumberOfShadedLights"))
 applied = mmv.info(rep, "AppliedMaterialNodes")
-checker.check(len(applied) == 18 and abs(applied[0] - 37.0) < 1e-9 and abs(applied[9] - 277.0) < 1e-9,
+checker.check(len(applied) == 20 and abs(applied[0] - 37.0) < 1e-9 and abs(applied[10] - 277.0) < 1e-9,
               "the bone preset spans the colour map range: %s" % applied)
 checker.check(mmv.compare_with_baseline(args, path, "PVMultiMaterialVolume.png"),
               "image matches the baseline")
