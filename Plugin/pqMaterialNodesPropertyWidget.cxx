@@ -26,6 +26,7 @@
 #include <QGridLayout>
 #include <QHBoxLayout>
 #include <QIcon>
+#include <QImage>
 #include <QKeyEvent>
 #include <QLabel>
 #include <QMouseEvent>
@@ -33,6 +34,7 @@
 #include <QPainterPath>
 #include <QPixmap>
 #include <QResizeEvent>
+#include <QStringList>
 #include <QStyle>
 #include <QTextStream>
 #include <QToolButton>
@@ -65,6 +67,59 @@ QString editorLabel(int p)
 {
   return p == mmv::Specular ? pqMaterialNodesPropertyWidget::tr("Material Specular")
                             : parameterLabel(p);
+}
+
+// A preset's swatch: a grey sphere shaded with the preset's ambient,
+// diffuse, specular and shininess (Blinn-Phong, light from the upper left).
+// Grey, because a preset sets the material, never the colour: that comes
+// from the colour map (issue 12: coloured swatches promised colours).
+QPixmap presetSwatch(const double parameters[ParameterCount], int size)
+{
+  QImage image(size, size, QImage::Format_ARGB32);
+  image.fill(Qt::transparent);
+  const double light[3] = { -0.48, -0.55, 0.68 }; // y down, towards the viewer
+  const double norm = std::sqrt(light[0] * light[0] + light[1] * light[1] + light[2] * light[2]);
+  const double l[3] = { light[0] / norm, light[1] / norm, light[2] / norm };
+  double h[3] = { l[0], l[1], l[2] + 1.0 };
+  const double hn = std::sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
+  const double albedo = 0.75;
+  for (int y = 0; y < size; ++y)
+  {
+    for (int x = 0; x < size; ++x)
+    {
+      const double nx = (x + 0.5) / size * 2.0 - 1.0;
+      const double ny = (y + 0.5) / size * 2.0 - 1.0;
+      const double r2 = nx * nx + ny * ny;
+      if (r2 > 1.0)
+      {
+        continue;
+      }
+      const double nz = std::sqrt(1.0 - r2);
+      const double ndotl = std::max(0.0, nx * l[0] + ny * l[1] + nz * l[2]);
+      const double ndoth = std::max(0.0, (nx * h[0] + ny * h[1] + nz * h[2]) / hn);
+      const double shade = albedo * (parameters[mmv::Ambient] + parameters[mmv::Diffuse] * ndotl) +
+        (ndotl > 0.0 ? parameters[mmv::Specular] * std::pow(ndoth, parameters[mmv::Shininess])
+                     : 0.0);
+      const int grey = static_cast<int>(std::round(255.0 * std::min(1.0, shade)));
+      image.setPixel(x, y, qRgba(grey, grey, grey, 255));
+    }
+  }
+  return QPixmap::fromImage(image);
+}
+
+// What a preset sets, for its tooltip.
+QString presetDescription(const char* name, const double parameters[ParameterCount])
+{
+  QStringList values;
+  for (int p = 0; p < ParameterCount; ++p)
+  {
+    values << QStringLiteral("%1 %2").arg(QString::fromLatin1(mmv::MaterialParameterTable[p].Key))
+                .arg(parameters[p]);
+  }
+  return pqMaterialNodesPropertyWidget::tr(
+    "%1 sets the material only (%2); colour and opacity stay those of the colour map.")
+    .arg(QString::fromUtf8(name))
+    .arg(values.join(", "));
 }
 
 bool validRange(const double r[2])
@@ -395,9 +450,8 @@ void pqMaterialNodesTrack::paintEvent(QPaintEvent*)
   const bool presetActive = internals.presetActive();
   if (presetActive)
   {
-    double rgb[3] = { 0.5, 0.5, 0.5 };
-    internals.Library->GetPresetColor(internals.Preset.toUtf8().constData(), rgb);
-    QColor band = QColor::fromRgbF(rgb[0], rgb[1], rgb[2]);
+    // Neutral: a preset sets no colour (the caption names it).
+    QColor band = pal.color(QPalette::Mid);
     band.setAlpha(90);
     painter.fillRect(plot, band);
   }
@@ -606,18 +660,22 @@ pqMaterialNodesPropertyWidget::pqMaterialNodesPropertyWidget(
   row->setSpacing(pqPropertiesPanel::suggestedHorizontalSpacing());
   internals.Presets = new QComboBox(this);
   internals.Presets->setObjectName("Presets");
-  internals.Presets->setToolTip(tr("Applies a material preset to the selected node, or to the "
-                                   "whole range when no node is selected."));
-  internals.Presets->addItem(tr("Apply preset..."));
+  internals.Presets->setToolTip(tr("Applies a material preset (shading parameters, not colour: "
+                                   "colour comes from the colour map) to the selected node, or to "
+                                   "the whole range when no node is selected."));
+  internals.Presets->addItem(tr("Apply material preset..."));
   const int swatch = this->style()->pixelMetric(QStyle::PM_SmallIconSize);
   for (int i = 0; i < internals.Library->GetNumberOfPresets(); ++i)
   {
     const char* name = internals.Library->GetPresetName(i);
-    double rgb[3] = { 0.5, 0.5, 0.5 };
-    internals.Library->GetPresetColor(name, rgb);
-    QPixmap pixmap(swatch, swatch);
-    pixmap.fill(QColor::fromRgbF(rgb[0], rgb[1], rgb[2]));
-    internals.Presets->addItem(QIcon(pixmap), QString::fromUtf8(name));
+    double parameters[ParameterCount];
+    if (!internals.Library->GetPreset(name, parameters))
+    {
+      continue;
+    }
+    internals.Presets->addItem(QIcon(presetSwatch(parameters, swatch)), QString::fromUtf8(name));
+    internals.Presets->setItemData(internals.Presets->count() - 1,
+      presetDescription(name, parameters), Qt::ToolTipRole);
   }
   row->addWidget(internals.Presets, 1);
   internals.Status = new QLabel(this);
