@@ -910,6 +910,10 @@ bool vtkMultiMaterialVolumeMapper::UpdateIrradiance(vtkRenderer* ren, vtkVolume*
     ++this->DeferredIrradianceCount;
     return true;
   }
+  // A real update (seconds on a software GPU): VTK progress events, which
+  // ParaView's progress bar shows, mark its start and end (issue 12).
+  this->SetProgressText("Irradiance volume");
+  this->UpdateProgress(0.0);
 
   // Pre-filtered data: only when the data or the grid changed.
   const std::vector<double> prefilterKey = { double(dims[0]), double(dims[1]), double(dims[2]),
@@ -960,6 +964,7 @@ bool vtkMultiMaterialVolumeMapper::UpdateIrradiance(vtkRenderer* ren, vtkVolume*
   shadow->SetStepLength(shadowStep);
   if (!shadow->Update())
   {
+    this->SetProgressText(nullptr);
     return false;
   }
 
@@ -987,10 +992,14 @@ bool vtkMultiMaterialVolumeMapper::UpdateIrradiance(vtkRenderer* ren, vtkVolume*
   {
     vtkErrorMacro("the irradiance volume could not be computed on the GPU");
     in.VolumeKey.clear();
+    this->SetProgressText(nullptr);
     return false;
   }
   in.VolumeKey = volumeKey;
   in.LightsKey = lightsKey;
+  this->UpdateProgress(1.0);
+  // The mapper's own pipeline progress (its input's update) is not this.
+  this->SetProgressText(nullptr);
   for (int a = 0; a < 3; ++a)
   {
     this->IrradianceDimensions[a] = dims[a];
