@@ -2,6 +2,7 @@
 
 #include "pqDoubleLineEdit.h"
 #include "pqMaterialParameterSpinBox.h"
+#include "mmvNumberText.h"
 #include "pqPropertiesPanel.h"
 
 #include "vtkCommand.h"
@@ -1100,14 +1101,17 @@ void pqMaterialNodesPropertyWidget::onValueEdited()
   {
     return;
   }
-  bool ok = false;
-  const double value = internals.Value->text().toDouble(&ok);
-  if (ok)
+  // Same parser as the spin boxes: "nan" or "inf" would pass toDouble().
+  const mmv::NumberText parsed = mmv::ParseNumberText(
+    internals.Value->text().toStdString(), -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX);
+  if (parsed.State == mmv::NumberTextState::Acceptable)
   {
-    this->moveNode(internals.Current, value, true);
+    this->moveNode(internals.Current, parsed.Value, true);
   }
   else
   {
+    internals.Refusal =
+      tr("%1 refused: a node's value must be a finite number").arg(internals.Value->text());
     this->updateEditors(); // restore the node's value
   }
 }
