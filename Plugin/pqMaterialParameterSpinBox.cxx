@@ -46,6 +46,12 @@ double pqMaterialParameterSpinBox::valueFromText(const QString& text) const
 }
 
 //-----------------------------------------------------------------------------
+QString pqMaterialParameterSpinBox::textFromValue(double value) const
+{
+  return QString::number(value, 'f', this->decimals());
+}
+
+//-----------------------------------------------------------------------------
 void pqMaterialParameterSpinBox::fixup(QString& text) const
 {
   const mmv::NumberText parsed = parse(text, this->minimum(), this->maximum());

@@ -23,6 +23,8 @@ public:
 
   QValidator::State validate(QString& text, int& pos) const override;
   double valueFromText(const QString& text) const override;
+  /// Always with a '.' (the parser is locale-independent, so the text must be).
+  QString textFromValue(double value) const override;
   void fixup(QString& text) const override;
 
   /// Marks the box as holding a problem (red border, `why` as tooltip) or,
