@@ -44,12 +44,7 @@ def check_nodes(expected_count, preset_node=None, preset="metal", preset_expecte
     if values != sorted(values):
         problems.append("node values not sorted: %s" % values)
     if preset_node is not None and len(nodes) >= stride * (preset_node + 1):
-        import json
-        with open(os.path.join(os.environ["MMV_MATERIALS_DIR"], preset + ".json")) as f:
-            spec = json.load(f)
-        keys = ["ambient", "diffuse", "specular", "shininess", "attenuation", "scattering",
-                "reflection", "anisotropy"]
-        params = [float(spec.get(k, 0.0)) for k in keys]
+        params = _preset_parameters(preset)
         got = nodes[stride * preset_node + 1: stride * preset_node + stride]
         matches = all(abs(a - b) <= 1e-9 for a, b in zip(got, params))
         if matches != preset_expected:
