@@ -1,6 +1,8 @@
 #include "pqMaterialNodesPropertyWidget.h"
 
 #include "pqDoubleLineEdit.h"
+#include "pqMaterialParameterSpinBox.h"
+#include "mmvNumberText.h"
 #include "pqPropertiesPanel.h"
 
 #include "vtkCommand.h"
@@ -25,6 +27,7 @@
 #include <QGridLayout>
 #include <QHBoxLayout>
 #include <QIcon>
+#include <QImage>
 #include <QKeyEvent>
 #include <QLabel>
 #include <QMouseEvent>
@@ -32,6 +35,7 @@
 #include <QPainterPath>
 #include <QPixmap>
 #include <QResizeEvent>
+#include <QStringList>
 #include <QStyle>
 #include <QTextStream>
 #include <QToolButton>
@@ -56,6 +60,67 @@ QString parameterLabel(int p)
   QString key = QString::fromLatin1(mmv::MaterialParameterTable[p].Key);
   key[0] = key[0].toUpper();
   return key;
+}
+
+// The editor's row label. ParaView's Volume representation shows its own
+// "Specular" (Lighting group) in the same panel, so ours says whose it is.
+QString editorLabel(int p)
+{
+  return p == mmv::Specular ? pqMaterialNodesPropertyWidget::tr("Material Specular")
+                            : parameterLabel(p);
+}
+
+// A preset's swatch: a grey sphere shaded with the preset's ambient,
+// diffuse, specular and shininess (Blinn-Phong, light from the upper left).
+// Grey, because a preset sets the material, never the colour: that comes
+// from the colour map (issue 12: coloured swatches promised colours).
+QPixmap presetSwatch(const double parameters[ParameterCount], int size)
+{
+  QImage image(size, size, QImage::Format_ARGB32);
+  image.fill(Qt::transparent);
+  const double light[3] = { -0.48, -0.55, 0.68 }; // y down, towards the viewer
+  const double norm = std::sqrt(light[0] * light[0] + light[1] * light[1] + light[2] * light[2]);
+  const double l[3] = { light[0] / norm, light[1] / norm, light[2] / norm };
+  double h[3] = { l[0], l[1], l[2] + 1.0 };
+  const double hn = std::sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
+  const double albedo = 0.75;
+  for (int y = 0; y < size; ++y)
+  {
+    for (int x = 0; x < size; ++x)
+    {
+      const double nx = (x + 0.5) / size * 2.0 - 1.0;
+      const double ny = (y + 0.5) / size * 2.0 - 1.0;
+      const double r2 = nx * nx + ny * ny;
+      if (r2 > 1.0)
+      {
+        continue;
+      }
+      const double nz = std::sqrt(1.0 - r2);
+      const double ndotl = std::max(0.0, nx * l[0] + ny * l[1] + nz * l[2]);
+      const double ndoth = std::max(0.0, (nx * h[0] + ny * h[1] + nz * h[2]) / hn);
+      const double shade = albedo * (parameters[mmv::Ambient] + parameters[mmv::Diffuse] * ndotl) +
+        (ndotl > 0.0 ? parameters[mmv::Specular] * std::pow(ndoth, parameters[mmv::Shininess])
+                     : 0.0);
+      const int grey = static_cast<int>(std::round(255.0 * std::min(1.0, shade)));
+      image.setPixel(x, y, qRgba(grey, grey, grey, 255));
+    }
+  }
+  return QPixmap::fromImage(image);
+}
+
+// What a preset sets, for its tooltip.
+QString presetDescription(const char* name, const double parameters[ParameterCount])
+{
+  QStringList values;
+  for (int p = 0; p < ParameterCount; ++p)
+  {
+    values << QStringLiteral("%1 %2").arg(QString::fromLatin1(mmv::MaterialParameterTable[p].Key))
+                .arg(parameters[p]);
+  }
+  return pqMaterialNodesPropertyWidget::tr(
+    "%1 sets the material only (%2); colour and opacity stay those of the colour map.")
+    .arg(QString::fromUtf8(name))
+    .arg(values.join(", "));
 }
 
 bool validRange(const double r[2])
@@ -149,10 +214,31 @@ public:
 
   pqMaterialNodesTrack* Track = nullptr;
   pqDoubleLineEdit* Value = nullptr;
-  QDoubleSpinBox* Spin[ParameterCount] = {};
+  pqMaterialParameterSpinBox* Spin[ParameterCount] = {};
   QComboBox* Presets = nullptr;
   QToolButton* Remove = nullptr;
   QLabel* Status = nullptr;
+  // Numbers MaterialNodes held that the renderer rejects, as loaded: the
+  // editors show a sane stand-in (never a NaN clamped to 1000) and mark it,
+  // and the next edit writes the stand-in, never the bad number, back.
+  QStringList LoadProblems;
+  std::vector<std::pair<int, int>> ProblemCells; // (node, parameter) marked red
+  QString Refusal; // the last typed value a spin box refused
+  QLabel* Notice = nullptr; // shows LoadProblems or Refusal, in red
+
+  void showNotice()
+  {
+    QString text = this->Refusal;
+    if (!this->LoadProblems.isEmpty())
+    {
+      text = pqMaterialNodesPropertyWidget::tr(
+        "MaterialNodes holds invalid numbers, so the renderer ignores it: %1. The editor shows "
+        "stand-ins (red); your next edit applies them.")
+               .arg(this->LoadProblems.join("; "));
+    }
+    this->Notice->setText(text);
+    this->Notice->setVisible(!text.isEmpty());
+  }
   QGridLayout* Grid = nullptr;
   std::vector<std::pair<QLabel*, QWidget*>> Rows; // Value, then the parameters
   int Columns = 0;                                // label/editor pairs per grid row
@@ -179,6 +265,111 @@ public:
   {
     return this->HasPresetProperty && !this->Preset.isEmpty() &&
       this->Library->HasPreset(this->Preset.toUtf8().constData());
+  }
+
+  // The colour map's range, as the representation spreads a preset over it
+  // (vtkPVMultiMaterialVolumeRepresentation::UpdateMapperParameters).
+  static void colorMapRange(vtkSMProxy* repr, double range[2])
+  {
+    range[0] = 0.0;
+    range[1] = 1.0;
+    vtkSMProxy* lut = repr->GetProperty("LookupTable")
+      ? vtkSMPropertyHelper(repr, "LookupTable", true).GetAsProxy()
+      : nullptr;
+    if (lut && lut->GetProperty("RGBPoints"))
+    {
+      vtkSMPropertyHelper points(lut, "RGBPoints");
+      const unsigned int n = points.GetNumberOfElements();
+      if (n >= 4)
+      {
+        range[0] = points.GetAsDouble(0);
+        range[1] = points.GetAsDouble(n - 4);
+      }
+    }
+    if (!(range[1] > range[0]))
+    {
+      range[1] = range[0] + 1.0;
+    }
+  }
+
+  // Replaces the nodes by the active preset's, as the renderer applies it,
+  // so a node added while a preset shows takes the preset's material there
+  // (docs/material-editor.md) instead of whatever the unused nodes hold.
+  void takePresetNodes(vtkSMProxy* repr)
+  {
+    double range[2];
+    colorMapRange(repr, range);
+    vtkNew<vtkMaterialTransferFunction> preset;
+    if (!preset->ApplyPreset(this->Preset.toUtf8().constData(), range[0], range[1]))
+    {
+      return;
+    }
+    std::vector<double> flat(static_cast<size_t>(preset->GetSize()) * Stride);
+    preset->GetNodes(flat.data());
+    this->Nodes.clear();
+    for (size_t i = 0; i + Stride <= flat.size(); i += Stride)
+    {
+      Node n;
+      std::copy(flat.begin() + i, flat.begin() + i + Stride, n.begin());
+      this->Nodes.push_back(n);
+    }
+    this->syncFunction();
+  }
+
+  // Leaves out nodes at a non-finite value and replaces parameters the
+  // renderer rejects (NaN: the default; out of limits: the nearest limit),
+  // noting each in LoadProblems / ProblemCells. `nodes` is sorted after.
+  void sanitize(std::vector<Node>& nodes)
+  {
+    this->LoadProblems.clear();
+    this->ProblemCells.clear();
+    // stable_partition, not remove_if: the nodes left out are reported.
+    const auto dropped = std::stable_partition(
+      nodes.begin(), nodes.end(), [](const Node& n) { return std::isfinite(n[0]); });
+    for (auto it = dropped; it != nodes.end(); ++it)
+    {
+      this->LoadProblems << pqMaterialNodesPropertyWidget::tr("a node at value %1 is left out")
+                              .arg((*it)[0]);
+    }
+    nodes.erase(dropped, nodes.end());
+    std::stable_sort(
+      nodes.begin(), nodes.end(), [](const Node& a, const Node& b) { return a[0] < b[0]; });
+    for (size_t i = 0; i < nodes.size(); ++i)
+    {
+      for (int p = 0; p < ParameterCount; ++p)
+      {
+        double& v = nodes[i][p + 1];
+        std::string why;
+        if (mmv::IsValidMaterialValue(p, v, &why))
+        {
+          continue;
+        }
+        const mmv::MaterialParameterInfo& info = mmv::MaterialParameterTable[p];
+        const double shown =
+          std::isfinite(v) ? std::min(info.HardMax, std::max(info.HardMin, v)) : info.Default;
+        this->LoadProblems << pqMaterialNodesPropertyWidget::tr("node %1: %2; shown as %3")
+                                .arg(i + 1)
+                                .arg(QString::fromStdString(why))
+                                .arg(shown);
+        this->ProblemCells.emplace_back(static_cast<int>(i), p);
+        v = shown;
+      }
+    }
+  }
+
+  // The load problem of the selected node's parameter `p`, or "".
+  QString cellProblem(int p) const
+  {
+    for (const auto& cell : this->ProblemCells)
+    {
+      if (cell.first == this->Current && cell.second == p)
+      {
+        return pqMaterialNodesPropertyWidget::tr(
+          "MaterialNodes held an invalid number here (the renderer ignored the list); this "
+          "shows a stand-in, written back with your next edit.");
+      }
+    }
+    return QString();
   }
 
   // Preset whose parameters a node carries (for the handle colour), or null.
@@ -260,9 +451,8 @@ void pqMaterialNodesTrack::paintEvent(QPaintEvent*)
   const bool presetActive = internals.presetActive();
   if (presetActive)
   {
-    double rgb[3] = { 0.5, 0.5, 0.5 };
-    internals.Library->GetPresetColor(internals.Preset.toUtf8().constData(), rgb);
-    QColor band = QColor::fromRgbF(rgb[0], rgb[1], rgb[2]);
+    // Neutral: a preset sets no colour (the caption names it).
+    QColor band = pal.color(QPalette::Mid);
     band.setAlpha(90);
     painter.fillRect(plot, band);
   }
@@ -367,10 +557,8 @@ void pqMaterialNodesTrack::mousePressEvent(QMouseEvent* event)
   {
     const double value = std::min(this->DragRange[1],
       std::max(this->DragRange[0], this->toValue(event->pos().x(), this->DragRange)));
-    const int before = this->Owner->nodeCount();
     // Added locally; the release commits add + drag as one undoable change.
-    index = this->Owner->insertNode(value);
-    this->Pending = this->Owner->nodeCount() != before;
+    index = this->Owner->insertNode(value, &this->Pending);
   }
   this->Dragging = index;
   this->Owner->setCurrentNode(index);
@@ -473,18 +661,22 @@ pqMaterialNodesPropertyWidget::pqMaterialNodesPropertyWidget(
   row->setSpacing(pqPropertiesPanel::suggestedHorizontalSpacing());
   internals.Presets = new QComboBox(this);
   internals.Presets->setObjectName("Presets");
-  internals.Presets->setToolTip(tr("Applies a material preset to the selected node, or to the "
-                                   "whole range when no node is selected."));
-  internals.Presets->addItem(tr("Apply preset..."));
+  internals.Presets->setToolTip(tr("Applies a material preset (shading parameters, not colour: "
+                                   "colour comes from the colour map) to the selected node, or to "
+                                   "the whole range when no node is selected."));
+  internals.Presets->addItem(tr("Apply material preset..."));
   const int swatch = this->style()->pixelMetric(QStyle::PM_SmallIconSize);
   for (int i = 0; i < internals.Library->GetNumberOfPresets(); ++i)
   {
     const char* name = internals.Library->GetPresetName(i);
-    double rgb[3] = { 0.5, 0.5, 0.5 };
-    internals.Library->GetPresetColor(name, rgb);
-    QPixmap pixmap(swatch, swatch);
-    pixmap.fill(QColor::fromRgbF(rgb[0], rgb[1], rgb[2]));
-    internals.Presets->addItem(QIcon(pixmap), QString::fromUtf8(name));
+    double parameters[ParameterCount];
+    if (!internals.Library->GetPreset(name, parameters))
+    {
+      continue;
+    }
+    internals.Presets->addItem(QIcon(presetSwatch(parameters, swatch)), QString::fromUtf8(name));
+    internals.Presets->setItemData(internals.Presets->count() - 1,
+      presetDescription(name, parameters), Qt::ToolTipRole);
   }
   row->addWidget(internals.Presets, 1);
   internals.Status = new QLabel(this);
@@ -497,6 +689,12 @@ pqMaterialNodesPropertyWidget::pqMaterialNodesPropertyWidget(
   internals.Remove->setAutoRaise(true);
   row->addWidget(internals.Remove);
   vbox->addLayout(row);
+  internals.Notice = new QLabel(this);
+  internals.Notice->setObjectName("Notice");
+  internals.Notice->setWordWrap(true);
+  internals.Notice->setStyleSheet(QStringLiteral("QLabel { color: #d02020; }"));
+  internals.Notice->setVisible(false);
+  vbox->addWidget(internals.Notice);
 
   // The selected node: its value and the parameters, two per row.
   internals.Grid = new QGridLayout();
@@ -509,7 +707,7 @@ pqMaterialNodesPropertyWidget::pqMaterialNodesPropertyWidget(
   for (int p = 0; p < ParameterCount; ++p)
   {
     const mmv::MaterialParameterInfo& info = mmv::MaterialParameterTable[p];
-    auto* spin = new QDoubleSpinBox(this);
+    auto* spin = new pqMaterialParameterSpinBox(this);
     spin->setObjectName(QString::fromLatin1(info.Key));
     // The spin box accepts everything the renderer accepts; the soft range
     // only sets the step, so typical values are a few clicks apart.
@@ -518,13 +716,19 @@ pqMaterialNodesPropertyWidget::pqMaterialNodesPropertyWidget(
     spin->setSingleStep((info.SoftMax - info.SoftMin) / (info.SoftMax > 10 ? 20.0 : 100.0));
     // Commit on Enter/focus-out/arrows, not on every keystroke: one undo step.
     spin->setKeyboardTracking(false);
-    spin->setToolTip(tr("%1 of the selected node (typically %2 to %3, at most %4)")
-                       .arg(parameterLabel(p))
-                       .arg(info.SoftMin)
-                       .arg(info.SoftMax)
-                       .arg(info.HardMax));
+    spin->setNormalToolTip(tr("%1 of the selected node (typically %2 to %3, at most %4; "
+                              "exponent notation such as 2.5e-1 works)")
+                             .arg(parameterLabel(p))
+                             .arg(info.SoftMin)
+                             .arg(info.SoftMax)
+                             .arg(info.HardMax));
+    spin->Refused = [&internals](const QString& why) {
+      internals.Refusal = why;
+      internals.showNotice();
+      vtkVLogF(PARAVIEW_LOG_APPLICATION_VERBOSITY(), "%s", why.toUtf8().constData());
+    };
     internals.Spin[p] = spin;
-    auto* label = new QLabel(parameterLabel(p), this);
+    auto* label = new QLabel(editorLabel(p), this);
     label->setBuddy(spin);
     internals.Rows.emplace_back(label, spin);
     QObject::connect(spin, QOverload<double>::of(&QDoubleSpinBox::valueChanged), this,
@@ -608,8 +812,13 @@ void pqMaterialNodesPropertyWidget::setMaterialNodes(const QList<QVariant>& valu
     }
     nodes.push_back(n);
   }
-  std::stable_sort(
-    nodes.begin(), nodes.end(), [](const Node& a, const Node& b) { return a[0] < b[0]; });
+  internals.sanitize(nodes);
+  if (!internals.LoadProblems.isEmpty())
+  {
+    vtkVLogF(PARAVIEW_LOG_APPLICATION_VERBOSITY(), "MaterialNodes: %d invalid number(s) shown as "
+      "stand-ins: %s", static_cast<int>(internals.LoadProblems.size()),
+      internals.LoadProblems.join("; ").toUtf8().constData());
+  }
   const bool sameCount = nodes.size() == internals.Nodes.size();
   internals.Nodes = std::move(nodes);
   // Keep the selection across value edits (undo of a drag); a different
@@ -703,9 +912,9 @@ void pqMaterialNodesPropertyWidget::setCurrentNode(int index)
 //-----------------------------------------------------------------------------
 int pqMaterialNodesPropertyWidget::addNode(double value)
 {
-  const int before = this->nodeCount();
-  const int index = this->insertNode(value);
-  if (this->nodeCount() != before)
+  bool changed = false;
+  const int index = this->insertNode(value, &changed);
+  if (changed)
   {
     this->commitNodes();
   }
@@ -713,10 +922,20 @@ int pqMaterialNodesPropertyWidget::addNode(double value)
 }
 
 //-----------------------------------------------------------------------------
-int pqMaterialNodesPropertyWidget::insertNode(double value)
+int pqMaterialNodesPropertyWidget::insertNode(double value, bool* changed)
 {
   auto& internals = *this->Internals;
   auto& nodes = internals.Nodes;
+  const bool fromPreset = internals.presetActive();
+  if (fromPreset)
+  {
+    // commitNodes() then switches MaterialPreset to Custom.
+    internals.takePresetNodes(this->proxy());
+  }
+  if (changed)
+  {
+    *changed = fromPreset;
+  }
   auto it = std::lower_bound(
     nodes.begin(), nodes.end(), value, [](const Node& n, double v) { return n[0] < v; });
   if (it != nodes.end() && (*it)[0] == value)
@@ -733,6 +952,10 @@ int pqMaterialNodesPropertyWidget::insertNode(double value)
   // The offset first: insert() may reallocate, invalidating begin().
   const int index = static_cast<int>(it - nodes.begin());
   nodes.insert(it, node);
+  if (changed)
+  {
+    *changed = true;
+  }
   internals.Current = index;
   internals.syncFunction();
   this->updateEditors();
@@ -832,6 +1055,10 @@ void pqMaterialNodesPropertyWidget::applyPreset(const QString& name)
 void pqMaterialNodesPropertyWidget::commitNodes()
 {
   auto& internals = *this->Internals;
+  // What is written now holds only the stand-ins, so nothing is left to flag.
+  internals.LoadProblems.clear();
+  internals.ProblemCells.clear();
+  internals.Refusal.clear();
   internals.syncFunction();
   this->updateEditors();
   vtkVLogF(PARAVIEW_LOG_APPLICATION_VERBOSITY(), "MaterialNodes edited: %d nodes",
@@ -875,14 +1102,17 @@ void pqMaterialNodesPropertyWidget::onValueEdited()
   {
     return;
   }
-  bool ok = false;
-  const double value = internals.Value->text().toDouble(&ok);
-  if (ok)
+  // Same parser as the spin boxes: "nan" or "inf" would pass toDouble().
+  const mmv::NumberText parsed = mmv::ParseNumberText(
+    internals.Value->text().toStdString(), -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX);
+  if (parsed.State == mmv::NumberTextState::Acceptable)
   {
-    this->moveNode(internals.Current, value, true);
+    this->moveNode(internals.Current, parsed.Value, true);
   }
   else
   {
+    internals.Refusal =
+      tr("%1 refused: a node's value must be a finite number").arg(internals.Value->text());
     this->updateEditors(); // restore the node's value
   }
 }
@@ -914,7 +1144,9 @@ void pqMaterialNodesPropertyWidget::updateEditors()
     // With no selection the editors show the defaults a new node would get.
     internals.Spin[p]->setValue(selected ? internals.Nodes[internals.Current][p + 1]
                                          : mmv::MaterialParameterTable[p].Default);
+    internals.Spin[p]->setProblem(selected ? internals.cellProblem(p) : QString());
   }
+  internals.showNotice();
   internals.Value->setText(selected
       ? pqDoubleLineEdit::formatDoubleUsingGlobalPrecisionAndNotation(
           internals.Nodes[internals.Current][0])

@@ -104,7 +104,9 @@ private: // NOLINT(readability-redundant-access-specifiers)
   QScopedPointer<pqInternals> Internals;
 
   /// Inserts a node at `value` without committing; returns its index.
-  int insertNode(double value);
+  /// `changed` tells whether the nodes changed (with a preset showing, they
+  /// become the preset's plus the new one: the count may stay the same).
+  int insertNode(double value, bool* changed = nullptr);
   /// Pushes the nodes to the property (one undoable change).
   void commitNodes();
   /// Moves node `index` to `value`, kept strictly between its neighbours.

@@ -750,6 +750,10 @@ bool vtkMultiMaterialVolumeMapper::UpdateIrradiance(vtkRenderer* ren, vtkVolume*
     ++this->DeferredIrradianceCount;
     return true;
   }
+  // A real update (seconds on a software GPU): VTK progress events, which
+  // ParaView's progress bar shows, mark its start and end (issue 12).
+  this->SetProgressText("Irradiance volume");
+  this->UpdateProgress(0.0);
 
   // Pre-filtered data: only when the data or the grid changed.
   if (in.Cache->UpdatePrefiltered(image, scalars, global, dims, dataTime, range))
@@ -762,6 +766,9 @@ bool vtkMultiMaterialVolumeMapper::UpdateIrradiance(vtkRenderer* ren, vtkVolume*
     return false;
   }
   in.Cache->Store(volumeKey, sources, dims);
+  this->UpdateProgress(1.0);
+  // The mapper's own pipeline progress (its input's update) is not this.
+  this->SetProgressText(nullptr);
   this->RecordIrradianceUpdate(resolution);
   return true;
 }
@@ -785,6 +792,7 @@ bool vtkMultiMaterialVolumeMapper::ComputeIrradiance(vtkRenderer* ren, vtkVolume
   shadow->SetStepLength(shadowStep);
   if (!shadow->Update())
   {
+    this->SetProgressText(nullptr);
     return false;
   }
 
@@ -809,6 +817,7 @@ bool vtkMultiMaterialVolumeMapper::ComputeIrradiance(vtkRenderer* ren, vtkVolume
   {
     vtkErrorMacro("the irradiance volume could not be computed on the GPU");
     in.Cache->Invalidate();
+    this->SetProgressText(nullptr);
     return false;
   }
   return true;

@@ -8,6 +8,7 @@
 #include "vtkMultiProcessController.h"
 #include "vtkPVView.h"
 #include "vtkMaterialLibrary.h"
+#include "vtkCommand.h"
 #include "vtkMultiMaterialLiveObjects.h"
 #include "vtkMultiMaterialVolumeMapper.h"
 #include "vtkObjectFactory.h"
@@ -31,6 +32,9 @@ vtkPVMultiMaterialVolumeRepresentation::vtkPVMultiMaterialVolumeRepresentation()
   // vtkOpenGLGPUVolumeRayCastMapper, so everything generic keeps working.
   vtkNew<vtkMultiMaterialVolumeMapper> mapper;
   mapper->SetMaterialTransferFunction(this->Materials);
+  // ParaView's progress bar listens to the representation, not its mapper.
+  mapper->AddObserver(
+    vtkCommand::ProgressEvent, this, &vtkPVMultiMaterialVolumeRepresentation::ForwardProgress);
   this->VolumeMapper = mapper;
 
   this->AppliedNodes->SetName("MaterialNodes");
@@ -45,6 +49,27 @@ vtkPVMultiMaterialVolumeRepresentation::vtkPVMultiMaterialVolumeRepresentation()
 vtkPVMultiMaterialVolumeRepresentation::~vtkPVMultiMaterialVolumeRepresentation()
 {
   vtkMultiMaterialLiveObjects::Destroyed("vtkPVMultiMaterialVolumeRepresentation");
+}
+
+//------------------------------------------------------------------------------
+void vtkPVMultiMaterialVolumeRepresentation::ForwardProgress(
+  vtkObject* caller, unsigned long, void* progress)
+{
+  // Only the irradiance update's events carry a text; the mapper's pipeline
+  // progress (its input's update, every frame) is left out.
+  auto* mapper = vtkAlgorithm::SafeDownCast(caller);
+  if (!mapper || !mapper->GetProgressText())
+  {
+    return;
+  }
+  const double amount = *static_cast<double*>(progress);
+  this->SetProgressText(mapper->GetProgressText());
+  this->UpdateProgress(amount);
+  if (amount >= 1.0)
+  {
+    // This representation's own pipeline progress is not the irradiance's.
+    this->SetProgressText(nullptr);
+  }
 }
 
 //------------------------------------------------------------------------------

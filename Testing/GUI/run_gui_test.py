@@ -9,7 +9,8 @@ xvfb-run; that display is simply not used).
 
 Pass: the client exits 0 (QtTesting's <pqcheck>s passed), the widget logged its
 creation, the server-manager checks in results.txt all say OK, and the
-screenshot has real content. Writes <out>/material-editor.png (whole screen)
+screenshot has real content, and the NaN list the script sets is reported by
+the renderer exactly once. Writes <out>/material-editor.png (whole screen)
 and <out>/paraview.log.
 
 usage: run_gui_test.py --paraview P --plugin SO --materials DIR --out DIR
@@ -181,6 +182,13 @@ def main():
     if not any(line.startswith("FINAL") for line in lines):
         failures.append("the XML script did not reach its final check")
     failures += ["server manager check: " + line for line in lines if line.startswith("FAIL")]
+    # The script sets one NaN list from Python: the renderer must report it
+    # once, and editing afterwards must not write the NaN back (a second
+    # report; issue 12).
+    nan_reports = [line for line in output.splitlines() if "SetNodes:" in line]
+    if len(nan_reports) != 1:
+        failures.append("expected the NaN MaterialNodes reported once, got %d:\n    %s"
+                        % (len(nan_reports), "\n    ".join(nan_reports)))
 
     if "xwd" in grabbed:
         width, height, rows = read_xwd(grabbed["xwd"])
