@@ -338,6 +338,7 @@ public:
   bool PiecewiseShadowPass(vtkOpenGLRenderWindow* context, int light, int slicesPerChunk,
     bool skipEmpty, bool layered);
   int Diffuse(vtkOpenGLRenderWindow* context, bool layered, int mask);
+  void SetDiffusionGridUniforms(vtkShaderProgram* program);
   int BackwardEulerSweeps(
     vtkOpenGLRenderWindow* context, vtkShaderProgram* sweep, bool layered, int mask, int& current);
   int ExponentialSweeps(
@@ -833,6 +834,20 @@ int vtkIrradianceVolumePass::vtkInternals::Diffuse(
 }
 
 //------------------------------------------------------------------------------
+// The diffusion grid's strength texture (activated here, deactivated by the
+// caller), dimensions and 1 / h^2, for the sweeps and the exponential's steps.
+void vtkIrradianceVolumePass::vtkInternals::SetDiffusionGridUniforms(vtkShaderProgram* program)
+{
+  const glm::vec3 invH2(1.0 / (this->Coarse.Spacing[0] * this->Coarse.Spacing[0]),
+    1.0 / (this->Coarse.Spacing[1] * this->Coarse.Spacing[1]),
+    1.0 / (this->Coarse.Spacing[2] * this->Coarse.Spacing[2]));
+  this->CoarseStrengthTexture->Activate();
+  program->SetUniformi("classes", this->CoarseStrengthTexture->GetTextureUnit());
+  program->SetUniform1iv("dims", 3, this->Coarse.Dimensions);
+  program->SetUniform3f("invH2", glm::value_ptr(invH2));
+}
+
+//------------------------------------------------------------------------------
 // Backward-Euler sub-steps on the diffusion grid, each solved by Chebyshev-
 // accelerated Jacobi sweeps; `current` receives the texture of the result.
 int vtkIrradianceVolumePass::vtkInternals::BackwardEulerSweeps(vtkOpenGLRenderWindow* context,
@@ -840,13 +855,7 @@ int vtkIrradianceVolumePass::vtkInternals::BackwardEulerSweeps(vtkOpenGLRenderWi
 {
   auto& coarse = this->CoarseScratch;
   context->GetShaderCache()->ReadyShaderProgram(sweep);
-  const glm::vec3 invH2(1.0 / (this->Coarse.Spacing[0] * this->Coarse.Spacing[0]),
-    1.0 / (this->Coarse.Spacing[1] * this->Coarse.Spacing[1]),
-    1.0 / (this->Coarse.Spacing[2] * this->Coarse.Spacing[2]));
-  this->CoarseStrengthTexture->Activate();
-  sweep->SetUniformi("classes", this->CoarseStrengthTexture->GetTextureUnit());
-  sweep->SetUniform1iv("dims", 3, this->Coarse.Dimensions);
-  sweep->SetUniform3f("invH2", glm::value_ptr(invH2));
+  this->SetDiffusionGridUniforms(sweep);
   sweep->SetUniformf("dt", static_cast<float>(this->Diffusion.Time / this->SubSteps));
   // Stop on the residual: |J(x) - x| <= (1 - rho) tol everywhere bounds the
   // error by tol; checked every few sweeps, the error bound's count at most.
@@ -927,13 +936,7 @@ int vtkIrradianceVolumePass::vtkInternals::ExponentialSweeps(vtkOpenGLRenderWind
 {
   auto& coarse = this->CoarseScratch;
   context->GetShaderCache()->ReadyShaderProgram(sweep);
-  const glm::vec3 invH2(1.0 / (this->Coarse.Spacing[0] * this->Coarse.Spacing[0]),
-    1.0 / (this->Coarse.Spacing[1] * this->Coarse.Spacing[1]),
-    1.0 / (this->Coarse.Spacing[2] * this->Coarse.Spacing[2]));
-  this->CoarseStrengthTexture->Activate();
-  sweep->SetUniformi("classes", this->CoarseStrengthTexture->GetTextureUnit());
-  sweep->SetUniform1iv("dims", 3, this->Coarse.Dimensions);
-  sweep->SetUniform3f("invH2", glm::value_ptr(invH2));
+  this->SetDiffusionGridUniforms(sweep);
   sweep->SetUniformf("invRate", static_cast<float>(1.0 / this->CoarseMaxRate));
   const std::vector<double>& c = this->ExponentialSeries;
   const int n = static_cast<int>(c.size()) - 1;

@@ -23,6 +23,18 @@ uniform sampler3D classes; // s per voxel, < 0 where the voxel is empty
                            // (Jacobi sweeps: the diffusion grid's strength)
 uniform int dims[3];
 
+// The diffusion grid's s per block (sweeps and the exponential's steps).
+float mmvStrength(ivec3 voxel)
+{
+  return max(texelFetch(classes, voxel, 0).r, 0.0);
+}
+
+// s = 0 on either side blocks the flux (the arithmetic mean would not).
+float mmvHarmonicMean(float a, float b)
+{
+  return (a > 0.0 && b > 0.0) ? 2.0 * a * b / (a + b) : 0.0;
+}
+
 #ifdef MMV_FILL_PASS
 
 void mmvVoxelMain()
@@ -73,17 +85,6 @@ uniform float beta;
 uniform float gammaWeight;
 uniform float invRate;      // 1 / R
 uniform vec3 invH2;         // 1 / h^2 per axis, h in data voxels
-
-float mmvStrength(ivec3 voxel)
-{
-  return max(texelFetch(classes, voxel, 0).r, 0.0);
-}
-
-// s = 0 on either side blocks the flux (the arithmetic mean would not).
-float mmvHarmonicMean(float a, float b)
-{
-  return (a > 0.0 && b > 0.0) ? 2.0 * a * b / (a + b) : 0.0;
-}
 
 void mmvVoxelMain()
 {
@@ -145,17 +146,6 @@ uniform float residualThreshold;
 uniform bvec4 residualChannels; // the lights being updated (the others: scratch)
 uniform vec3 invH2;         // 1 / h^2 per axis, h in data voxels
 uniform float dt;
-
-float mmvStrength(ivec3 voxel)
-{
-  return max(texelFetch(classes, voxel, 0).r, 0.0);
-}
-
-// s = 0 on either side blocks the flux (the arithmetic mean would not).
-float mmvHarmonicMean(float a, float b)
-{
-  return (a > 0.0 && b > 0.0) ? 2.0 * a * b / (a + b) : 0.0;
-}
 
 void mmvVoxelMain()
 {

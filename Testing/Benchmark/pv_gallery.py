@@ -27,6 +27,7 @@ sys.path.insert(0, HERE)
 from paraview import simple  # noqa: E402
 
 import pv_lightkit_orbit as orbit  # noqa: E402
+import pv_spot_light  # noqa: E402
 
 
 def parse_args():
@@ -40,19 +41,6 @@ def parse_args():
     args.zoom = 1.3
     args.paraview_lod = False
     return args
-
-
-def spot_light(view, center):
-    """From the camera's side, up and to the left, 600 units away, cone 25."""
-    direction = [-0.35, 1.0, -0.45]
-    norm = sum(d * d for d in direction) ** 0.5
-    light = simple.AddLight(view=view)
-    light.Coords = "Scene"
-    light.Type = "Positional"
-    light.ConeAngle = 25.0
-    light.Position = [c + 600.0 * d / norm for c, d in zip(center, direction)]
-    light.FocalPoint = list(center)
-    return light
 
 
 def main():
@@ -89,7 +77,8 @@ def main():
             return 1
         orbit.place_camera(view, args)
         if name == "spot":
-            spot_light(view, center)
+            # The light pv_spot_light.py adds: 600 units up and to the left, cone 25.
+            pv_spot_light.add_spot(view, center, argparse.Namespace(distance=600.0, cone=25.0))
         start = time.time()
         view.SMProxy.StillRender()
         seconds = time.time() - start
