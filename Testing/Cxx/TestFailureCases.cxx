@@ -347,8 +347,10 @@ TEST(FailureCases, DegenerateLightPlacements)
       ASSERT_GE(v, 0.0f);
       ASSERT_LE(v, 1.0f);
     }
-    // Measured: 7.6e-6 at most. 1e-3 leaves room for 16-bit storage
-    // (2^-11 relative); the unfilled CPU result differs by 0.9 (light 1).
+    // Measured: 7.6e-6 at most on llvmpipe, 1.0e-3 on an H100 (light 2: its
+    // driver rounds the 16-bit result, whose step is 2^-10 = 9.8e-4 between
+    // 1 and 2, by up to a step). 1.5e-3 allows one step; the unfilled CPU
+    // result differs by 0.9 (light 1).
     auto cpu = IrradianceArray(matching, l);
     ASSERT_EQ(static_cast<vtkIdType>(gpu.size()), cpu->GetNumberOfTuples());
     double worst = 0.0;
@@ -357,7 +359,7 @@ TEST(FailureCases, DegenerateLightPlacements)
       worst = std::max(worst, std::abs(double(gpu[i]) - cpu->GetValue(i)));
     }
     std::printf("light %d: GPU vs CPU max |irradiance difference| %.2g\n", l, worst);
-    EXPECT_LE(worst, 1e-3) << "light " << l;
+    EXPECT_LE(worst, 1.5e-3) << "light " << l;
   }
   double mean, variance;
   CenterStatistics(scene, 8, mean, variance);

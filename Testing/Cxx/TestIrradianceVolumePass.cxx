@@ -471,10 +471,12 @@ TEST(IrradianceVolumePass, DiffusionKeepsMaximumPrinciple)
     // did so only for mild scattering). Measured on llvmpipe: 1.1e-4, 1.2e-4
     // and 2.5e-5 for s = 1, 20, 1000 (the exponential integrator of
     // DiffusionMatchesCPUSolverForEveryStrength: 2.7e-4, 1.3e-4, 1.0e-4);
-    // 1e-3 is 10x tighter than CompareWithFilter's own.
+    // on an H100 up to 1.06e-3, one step of the 16-bit result between 1 and 2
+    // (2^-10). 1.5e-3 allows that step and is 6x tighter than
+    // CompareWithFilter's own.
     const double diff = CompareWithFilter(ctx, scene, pass, true);
     std::cout << "GPU vs CPU max |difference| (diffusion, s = " << s << "): " << diff << std::endl;
-    EXPECT_LE(diff, 1e-3) << "s " << s;
+    EXPECT_LE(diff, 1.5e-3) << "s " << s;
     pass->ReleaseGraphicsResources(ctx.GL);
   }
 }
