@@ -35,6 +35,33 @@ float mmvHarmonicMean(float a, float b)
   return (a > 0.0 && b > 0.0) ? 2.0 * a * b / (a + b) : 0.0;
 }
 
+// Over the faces of `voxel` (s > 0) that exchange light: sum of c_f x_f and of
+// c_f, c_f = harmonic mean of the two s over h^2 (inverseH2: 1 / h^2 per
+// axis). Blocks that do not scatter are never drawn: never read them.
+void mmvNeighborSums(ivec3 voxel, float s, sampler3D x, vec3 inverseH2, out vec4 weighted,
+  out float total)
+{
+  weighted = vec4(0.0);
+  total = 0.0;
+  for (int a = 0; a < 3; ++a)
+  {
+    for (int side = -1; side <= 1; side += 2)
+    {
+      ivec3 neighbor = voxel;
+      neighbor[a] += side;
+      if (neighbor[a] >= 0 && neighbor[a] < dims[a])
+      {
+        float c = mmvHarmonicMean(s, mmvStrength(neighbor)) * inverseH2[a];
+        if (c > 0.0)
+        {
+          weighted += c * texelFetch(x, neighbor, 0);
+          total += c;
+        }
+      }
+    }
+  }
+}
+
 #ifdef MMV_FILL_PASS
 
 void mmvVoxelMain()
@@ -92,28 +119,14 @@ void mmvVoxelMain()
   float s = mmvStrength(voxel);
   vec4 u0 = texelFetch(initial, voxel, 0);
   vec4 b = texelFetch(current, voxel, 0);
-  vec4 flux = vec4(0.0);
-  bool exchanges = false;
+  vec4 weighted = vec4(0.0);
+  float total = 0.0;
   if (s > 0.0)
   {
-    for (int a = 0; a < 3; ++a)
-    {
-      for (int side = -1; side <= 1; side += 2)
-      {
-        ivec3 neighbor = voxel;
-        neighbor[a] += side;
-        if (neighbor[a] >= 0 && neighbor[a] < dims[a])
-        {
-          float c = mmvHarmonicMean(s, mmvStrength(neighbor)) * invH2[a];
-          if (c > 0.0) // blocks that do not scatter are never drawn: never read them
-          {
-            flux += c * (texelFetch(current, neighbor, 0) - b);
-            exchanges = true;
-          }
-        }
-      }
-    }
+    mmvNeighborSums(voxel, s, current, invH2, weighted, total);
   }
+  vec4 flux = weighted - total * b;
+  bool exchanges = total > 0.0;
   if (!exchanges)
   {
     mmvWrite(u0);
@@ -158,23 +171,11 @@ void mmvVoxelMain()
   float denominator = capacity;
   if (s > 0.0)
   {
-    for (int a = 0; a < 3; ++a)
-    {
-      for (int side = -1; side <= 1; side += 2)
-      {
-        ivec3 neighbor = voxel;
-        neighbor[a] += side;
-        if (neighbor[a] >= 0 && neighbor[a] < dims[a])
-        {
-          float c = dt * mmvHarmonicMean(s, mmvStrength(neighbor)) * invH2[a];
-          if (c > 0.0) // blocks that do not scatter are never drawn: never read them
-          {
-            numerator += c * texelFetch(current, neighbor, 0);
-            denominator += c;
-          }
-        }
-      }
-    }
+    vec4 weighted;
+    float total;
+    mmvNeighborSums(voxel, s, current, invH2, weighted, total);
+    numerator += dt * weighted;
+    denominator += dt * total;
   }
   if (residualThreshold > 0.0)
   {

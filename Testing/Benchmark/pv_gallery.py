@@ -50,12 +50,7 @@ def main():
     if problem:
         print("ERROR: " + problem)
         return 1
-    reader = simple.XMLImageDataReader(FileName=[args.data])
-    source = simple.ResampleToImage(Input=reader)
-    source.SamplingDimensions = args.dims
-    source.UpdatePipeline()
-    bounds = source.GetDataInformation().GetBounds()
-    center = [0.5 * (bounds[2 * a] + bounds[2 * a + 1]) for a in range(3)]
+    source, _, center = orbit.resampled_head(args)
 
     shots = [
         ("lightkit", {"MaterialPreset": "skin", "GradientSmoothing": 3.0}),

@@ -239,6 +239,18 @@ class Method(object):
         self.psnr = float("nan")
 
 
+def resampled_head(args):
+    """args.data resampled to args.dims (ResampleToImage, updated), and the
+    centre of its bounds."""
+    reader = simple.XMLImageDataReader(FileName=[args.data])
+    source = simple.ResampleToImage(Input=reader)
+    source.SamplingDimensions = args.dims
+    source.UpdatePipeline()
+    bounds = source.GetDataInformation().GetBounds()
+    center = [0.5 * (bounds[2 * a] + bounds[2 * a + 1]) for a in range(3)]
+    return source, bounds, center
+
+
 def make_view(args):
     view = simple.CreateView("RenderView")
     view.ViewSize = [args.view_size, args.view_size]
@@ -461,10 +473,7 @@ def main():
            args.step_degrees, args.interactive_frames, args.max_frame_seconds,
            "ParaView default" if args.paraview_lod else "off"))
 
-    reader = simple.XMLImageDataReader(FileName=[args.data])
-    source = simple.ResampleToImage(Input=reader)
-    source.SamplingDimensions = args.dims
-    source.UpdatePipeline()
+    source, _, _ = resampled_head(args)
 
     for m in methods:
         if m.representation == MMV and plugin_problem:
