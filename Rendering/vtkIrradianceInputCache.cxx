@@ -28,7 +28,8 @@ bool vtkIrradianceInputCache::VolumeKey::operator==(const VolumeKey& o) const
     this->Range[0] == o.Range[0] && this->Range[1] == o.Range[1] &&
     this->MultipleScattering == o.MultipleScattering && this->TableSize == o.TableSize &&
     this->NumberOfLights == o.NumberOfLights && this->ShadowEstimation == o.ShadowEstimation &&
-    this->PiecewiseShadowSlices == o.PiecewiseShadowSlices && this->Cut == o.Cut;
+    this->PiecewiseShadowSlices == o.PiecewiseShadowSlices &&
+    this->ExponentialDiffusion == o.ExponentialDiffusion && this->Cut == o.Cut;
 }
 
 bool vtkIrradianceInputCache::MaterialKey::operator==(const MaterialKey& o) const

@@ -51,6 +51,7 @@ public:
     int NumberOfLights = 0;
     int ShadowEstimation = 0;
     int PiecewiseShadowSlices = 0;
+    bool ExponentialDiffusion = false;
     /// mmv::Cutaway::Key(): what cropping and clipping remove casts no shadow.
     std::vector<double> Cut;
 

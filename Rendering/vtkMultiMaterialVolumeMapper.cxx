@@ -273,6 +273,7 @@ vtkIrradianceInputCache::VolumeKey MakeVolumeKey(vtkMultiMaterialVolumeMapper* m
   key.NumberOfLights = lights;
   key.ShadowEstimation = mapper->GetShadowEstimation();
   key.PiecewiseShadowSlices = mapper->GetPiecewiseShadowSlices();
+  key.ExponentialDiffusion = mapper->GetExponentialDiffusion();
   key.Cut = cutaway.Key();
   return key;
 }
@@ -809,6 +810,7 @@ bool vtkMultiMaterialVolumeMapper::ComputeIrradiance(vtkRenderer* ren, vtkVolume
   pass->SetMultipleScattering(this->MultipleScattering);
   pass->SetShadowEstimation(this->ShadowEstimation);
   pass->SetPiecewiseShadowSlices(this->PiecewiseShadowSlices);
+  pass->SetExponentialDiffusion(this->ExponentialDiffusion);
   pass->SetCutaway(cutaway);
   pass->SetInputs(grid, in.Cache->GetPrefiltered(), n, shadow->GetShadowOpacityTable(),
     shadowStep, opacityTable.data(), scatteringTable.data(), sources,
@@ -869,6 +871,7 @@ void vtkMultiMaterialVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MultipleScattering: " << this->MultipleScattering << "\n";
   os << indent << "ShadowEstimation: " << this->ShadowEstimation << "\n";
   os << indent << "PiecewiseShadowSlices: " << this->PiecewiseShadowSlices << "\n";
+  os << indent << "ExponentialDiffusion: " << this->ExponentialDiffusion << "\n";
   os << indent << "PreIntegration: " << this->PreIntegration << "\n";
   os << indent << "PointLightRadius: " << this->PointLightRadius << "\n";
   os << indent << "PreIntegrationTableSize: " << this->PreIntegrationTableSize << "\n";

@@ -200,6 +200,7 @@ void vtkPVMultiMaterialVolumeRepresentation::UpdateMapperParameters()
   mapper->SetInteractiveIrradiance(this->InteractiveIrradiance);
   mapper->SetShadowEstimation(this->ShadowEstimation);
   mapper->SetPiecewiseShadowSlices(this->PiecewiseShadowSlices);
+  mapper->SetExponentialDiffusion(this->ExponentialDiffusion);
 }
 
 //------------------------------------------------------------------------------
@@ -227,6 +228,7 @@ vtkPVMMVSetter(LockSampleDistanceToInputSpacing, bool);
 vtkPVMMVSetter(InteractiveIrradiance, int);
 vtkPVMMVSetter(ShadowEstimation, int);
 vtkPVMMVSetter(PiecewiseShadowSlices, int);
+vtkPVMMVSetter(ExponentialDiffusion, bool);
 #undef vtkPVMMVSetter
 
 //------------------------------------------------------------------------------
@@ -389,4 +391,5 @@ void vtkPVMultiMaterialVolumeRepresentation::PrintSelf(ostream& os, vtkIndent in
   os << indent << "InteractiveIrradiance: " << this->InteractiveIrradiance << "\n";
   os << indent << "ShadowEstimation: " << this->ShadowEstimation << "\n";
   os << indent << "PiecewiseShadowSlices: " << this->PiecewiseShadowSlices << "\n";
+  os << indent << "ExponentialDiffusion: " << this->ExponentialDiffusion << "\n";
 }

@@ -92,6 +92,7 @@ public:
   void SetInteractiveIrradiance(int mode);
   void SetShadowEstimation(int estimation);
   void SetPiecewiseShadowSlices(int slices);
+  void SetExponentialDiffusion(bool exponential);
   ///@}
 
   ///@{
@@ -160,6 +161,7 @@ private:
   int InteractiveIrradiance = 1; // vtkMultiMaterialVolumeMapper::ReuseWhileInteracting
   int ShadowEstimation = mmv::PiecewiseShadowRays;
   int PiecewiseShadowSlices = mmv::DefaultPiecewiseShadowSlices;
+  bool ExponentialDiffusion = false;
 
   vtkNew<vtkGlobalPrefilteredVolume> GlobalVolume;
   // RequestData runs on every rank together, so counting it gives every rank
