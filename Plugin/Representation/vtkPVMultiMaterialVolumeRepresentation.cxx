@@ -8,7 +8,6 @@
 #include "vtkMultiProcessController.h"
 #include "vtkPVView.h"
 #include "vtkMaterialLibrary.h"
-#include "vtkCommand.h"
 #include "vtkMultiMaterialLiveObjects.h"
 #include "vtkMultiMaterialVolumeMapper.h"
 #include "vtkObjectFactory.h"
@@ -32,9 +31,11 @@ vtkPVMultiMaterialVolumeRepresentation::vtkPVMultiMaterialVolumeRepresentation()
   // vtkOpenGLGPUVolumeRayCastMapper, so everything generic keeps working.
   vtkNew<vtkMultiMaterialVolumeMapper> mapper;
   mapper->SetMaterialTransferFunction(this->Materials);
-  // ParaView's progress bar listens to the representation, not its mapper.
-  mapper->AddObserver(
-    vtkCommand::ProgressEvent, this, &vtkPVMultiMaterialVolumeRepresentation::ForwardProgress);
+  // The mapper's progress events (an irradiance update's start and end) are
+  // not forwarded to ParaView's progress handler: it processes Qt events
+  // inside our render, and what other widgets draw then leaves the GL state
+  // out of VTK's cache (28 vtkOpenGLState warnings and the Output Messages
+  // window in the GUI test when they were).
   this->VolumeMapper = mapper;
 
   this->AppliedNodes->SetName("MaterialNodes");
@@ -51,26 +52,6 @@ vtkPVMultiMaterialVolumeRepresentation::~vtkPVMultiMaterialVolumeRepresentation(
   vtkMultiMaterialLiveObjects::Destroyed("vtkPVMultiMaterialVolumeRepresentation");
 }
 
-//------------------------------------------------------------------------------
-void vtkPVMultiMaterialVolumeRepresentation::ForwardProgress(
-  vtkObject* caller, unsigned long, void* progress)
-{
-  // Only the irradiance update's events carry a text; the mapper's pipeline
-  // progress (its input's update, every frame) is left out.
-  auto* mapper = vtkAlgorithm::SafeDownCast(caller);
-  if (!mapper || !mapper->GetProgressText())
-  {
-    return;
-  }
-  const double amount = *static_cast<double*>(progress);
-  this->SetProgressText(mapper->GetProgressText());
-  this->UpdateProgress(amount);
-  if (amount >= 1.0)
-  {
-    // This representation's own pipeline progress is not the irradiance's.
-    this->SetProgressText(nullptr);
-  }
-}
 
 //------------------------------------------------------------------------------
 vtkMultiMaterialVolumeMapper* vtkPVMultiMaterialVolumeRepresentation::GetMultiMaterialMapper()

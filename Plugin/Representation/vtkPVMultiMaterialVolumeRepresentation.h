@@ -130,8 +130,6 @@ private:
   void operator=(const vtkPVMultiMaterialVolumeRepresentation&) = delete;
 
   bool UsesPreset() const;
-  // The mapper's ProgressEvent (an irradiance update) as this one's.
-  void ForwardProgress(vtkObject* caller, unsigned long event, void* progress);
   // Collective (every rank, same order): combines the pieces into
   // GlobalVolume when the data or the settings it depends on changed.
   void UpdateGlobalVolume();

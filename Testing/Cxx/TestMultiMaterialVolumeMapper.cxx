@@ -9,6 +9,7 @@
 #include "vtkMultiMaterialVolumeMapper.h"
 #include "vtkOpenGLGPUVolumeRayCastMapper.h"
 #include "vtkCallbackCommand.h"
+#include "vtkCommand.h"
 #include "vtkCamera.h"
 #include "vtkInformation.h"
 #include "vtkInformationObjectBaseVectorKey.h"
@@ -25,6 +26,8 @@
 #include <cmath>
 #include <cstdio>
 #include <initializer_list>
+#include <string>
+#include <utility>
 
 namespace
 {
@@ -165,6 +168,43 @@ TEST(MultiMaterialVolumeMapper, CameraMovesDoNotRecomputeIrradiance)
   scene.Image->GetPointData()->GetScalars()->Modified();
   scene.Window->Render();
   EXPECT_EQ(scene.Mapper->GetGradientUploadCount(), 2);
+}
+
+TEST(MultiMaterialVolumeMapper, IrradianceUpdatesReportProgress)
+{
+  // An irradiance update (seconds on llvmpipe) reports VTK progress 0 when it
+  // starts and 1 when it ends, with the text "Irradiance volume"; a frame
+  // that reuses the irradiance reports none (issue 12). The mapper's other
+  // progress (its input's update) carries no text.
+  CubeScene scene(1.0);
+  std::vector<std::pair<double, std::string>> events;
+  vtkNew<vtkCallbackCommand> observer;
+  observer->SetClientData(&events);
+  observer->SetCallback([](vtkObject* caller, unsigned long, void* client, void* data) {
+    auto* algorithm = vtkAlgorithm::SafeDownCast(caller);
+    if (algorithm && algorithm->GetProgressText())
+    {
+      static_cast<std::vector<std::pair<double, std::string>>*>(client)->emplace_back(
+        *static_cast<double*>(data), algorithm->GetProgressText());
+    }
+  });
+  scene.Mapper->AddObserver(vtkCommand::ProgressEvent, observer);
+  const double from[3] = { 16.0, 16.0, 1000.0 };
+  vtkLight* light = scene.AddDirectionalLight(from, CubeCenter);
+  const std::vector<std::pair<double, std::string>> startEnd = { { 0.0, "Irradiance volume" },
+    { 1.0, "Irradiance volume" } };
+  scene.Window->Render();
+  EXPECT_EQ(scene.Mapper->GetIrradianceUpdateCount(), 1);
+  EXPECT_EQ(events, startEnd);
+  events.clear();
+  scene.Renderer->GetActiveCamera()->Azimuth(20.0);
+  scene.Window->Render();
+  EXPECT_TRUE(events.empty()) << events.size() << " events for a camera move";
+  light->SetPosition(16.0, 1000.0, 16.0);
+  scene.Window->Render();
+  EXPECT_EQ(scene.Mapper->GetIrradianceUpdateCount(), 2);
+  EXPECT_EQ(events, startEnd);
+  EXPECT_EQ(scene.Mapper->GetProgressText(), nullptr) << "the text is cleared after an update";
 }
 
 TEST(MultiMaterialVolumeMapper, ColourOnlyMaterialEditsKeepTheIrradiance)
