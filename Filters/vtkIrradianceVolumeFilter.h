@@ -194,7 +194,7 @@ protected:
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   double ScalarOpacityUnitDistance = 1.0;
   double IrradianceScale = 0.0;
-  double IrradianceMemoryMB = 64.0;
+  double IrradianceMemoryMB = mmv::DefaultIrradianceBudgetMB;
   double PointLightRadius = 0.0;
   double ShadowStepScale = 1.0;
   int ShadowEstimation = mmv::PiecewiseShadowRays;

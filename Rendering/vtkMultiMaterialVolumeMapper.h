@@ -251,7 +251,7 @@ protected:
   vtkMultiMaterialVolumeMapper();
   ~vtkMultiMaterialVolumeMapper() override;
 
-  double IrradianceMemoryMB = 64.0;
+  double IrradianceMemoryMB = mmv::DefaultIrradianceBudgetMB;
   double IrradianceScale = 0.0;
   double GradientSmoothing = 0.0;
   bool MultipleScattering = true;

@@ -17,6 +17,7 @@
 #ifndef vtkGlobalPrefilterExchange_h
 #define vtkGlobalPrefilterExchange_h
 
+#include "vtkMultiMaterialParameters.h" // mmv::DefaultIrradianceBudgetMB
 #include "vtkType.h"
 
 #include <string>
@@ -30,7 +31,7 @@ namespace mmv
 
 struct GlobalPrefilterSettings
 {
-  double BudgetMB = 64.0;   // the irradiance memory budget
+  double BudgetMB = mmv::DefaultIrradianceBudgetMB; // the irradiance memory budget
   int ExpectedLights = 4;   // lights the budget is shared by (not known before rendering)
   double Scale = 0.0;       // IrradianceScale; 0: from the budget
   vtkIdType MaxVoxels = 128 * 128 * 128; // bound on the exchanged grid

@@ -147,7 +147,7 @@ private:
   std::string MaterialPreset;
   double PresetRange[2] = { 0.0, -1.0 };
 
-  double IrradianceMemoryMB = 64.0;
+  double IrradianceMemoryMB = mmv::DefaultIrradianceBudgetMB;
   double IrradianceScale = 0.0;
   double GradientSmoothing = 0.0;
   bool MultipleScattering = true;

@@ -1,0 +1,55 @@
+// The ParaView proxies (Plugin/MultiMaterialVolume.xml) repeat the C++
+// defaults as text; this keeps every copy equal to the one constant
+// (issue 13: the 64 MB budget was written in several places).
+#include "vtkMultiMaterialParameters.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace
+{
+std::string ReadPluginXML()
+{
+  std::ifstream in(MMV_SOURCE_DIR "/Plugin/MultiMaterialVolume.xml");
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+/// default_values of every property called `name`, in file order.
+std::vector<double> Defaults(const std::string& xml, const std::string& name)
+{
+  const std::regex property("name=\"" + name + "\"[^>]*default_values=\"([^\"]*)\"");
+  std::vector<double> values;
+  for (auto it = std::sregex_iterator(xml.begin(), xml.end(), property);
+       it != std::sregex_iterator(); ++it)
+  {
+    values.push_back(std::stod((*it)[1].str()));
+  }
+  return values;
+}
+} // namespace
+
+TEST(ParaViewDefaults, ProxyDefaultsAreTheCppConstants)
+{
+  const std::string xml = ReadPluginXML();
+  ASSERT_FALSE(xml.empty());
+  // The representation and the Irradiance Volume filter.
+  const std::vector<double> budget = Defaults(xml, "IrradianceMemoryMB");
+  ASSERT_EQ(budget.size(), 2u);
+  for (const double value : budget)
+  {
+    EXPECT_EQ(value, mmv::DefaultIrradianceBudgetMB);
+  }
+  const std::vector<double> slices = Defaults(xml, "PiecewiseShadowSlices");
+  ASSERT_EQ(slices.size(), 2u);
+  for (const double value : slices)
+  {
+    EXPECT_EQ(value, mmv::DefaultPiecewiseShadowSlices);
+  }
+}
