@@ -18,6 +18,15 @@ constexpr int MaxFootprintSamples = 8;
 
 /// Trilinear interpolation of `values` (dims, x fastest) at a continuous
 /// index, clamped to the grid.
+/// a (1 - w) + b w, where a tap of weight 0 is not read at all: a non-finite
+/// neighbour must not turn a sample that sits exactly on a point into NaN
+/// (0 * Inf is NaN), so at the data's resolution a NaN or Inf point stays
+/// where it is.
+double Lerp(double a, double b, double w)
+{
+  return w == 0.0 ? a : (w == 1.0 ? b : a * (1 - w) + b * w);
+}
+
 double Interpolate(const int dims[3], const float* values, const glm::dvec3& index)
 {
   int i0[3];
@@ -33,13 +42,14 @@ double Interpolate(const int dims[3], const float* values, const glm::dvec3& ind
   const vtkIdType sy = dims[0];
   const vtkIdType sz = static_cast<vtkIdType>(dims[0]) * dims[1];
   auto at = [&](int i, int j, int k) { return static_cast<double>(values[i + j * sy + k * sz]); };
-  const double c00 = at(i0[0], i0[1], i0[2]) * (1 - w[0]) + at(i1[0], i0[1], i0[2]) * w[0];
-  const double c10 = at(i0[0], i1[1], i0[2]) * (1 - w[0]) + at(i1[0], i1[1], i0[2]) * w[0];
-  const double c01 = at(i0[0], i0[1], i1[2]) * (1 - w[0]) + at(i1[0], i0[1], i1[2]) * w[0];
-  const double c11 = at(i0[0], i1[1], i1[2]) * (1 - w[0]) + at(i1[0], i1[1], i1[2]) * w[0];
-  const double c0 = c00 * (1 - w[1]) + c10 * w[1];
-  const double c1 = c01 * (1 - w[1]) + c11 * w[1];
-  return c0 * (1 - w[2]) + c1 * w[2];
+  // Taps of weight 0 along an axis are skipped (Lerp), so read lazily.
+  auto row = [&](int j, int k) {
+    return w[0] == 0.0 ? at(i0[0], j, k) : Lerp(at(i0[0], j, k), at(i1[0], j, k), w[0]);
+  };
+  auto plane = [&](int k) {
+    return w[1] == 0.0 ? row(i0[1], k) : Lerp(row(i0[1], k), row(i1[1], k), w[1]);
+  };
+  return w[2] == 0.0 ? plane(i0[2]) : Lerp(plane(i0[2]), plane(i1[2]), w[2]);
 }
 
 } // namespace

@@ -58,10 +58,9 @@ TEST(IrradianceInputCache, MaterialVersionChangesOnlyWithTheSampledValues)
 TEST(IrradianceInputCache, PrefilteredDataIsNormalisedAndCleanedOnce)
 {
   // Values i on a 4^3 grid at the data's resolution (an exact copy), over
-  // the range [0, 3]: voxel (i, j, k) holds i / 3. Voxel 0 is NaN, then +Inf,
-  // then -Inf. (Voxel 0 because the copy samples trilinearly: a non-finite
-  // point would make the voxels before it along each axis NaN through
-  // their zero-weight taps.)
+  // the range [0, 3]: voxel (i, j, k) holds i / 3. Voxel (1, 1, 1) is NaN,
+  // then +Inf, then -Inf; its neighbours stay as they are (the copy samples
+  // trilinearly, and a zero-weight tap once made them NaN: 0 * Inf).
   auto image = mmvtest::MakeVolume(4, [](int i, int, int) { return static_cast<float>(i); });
   auto* values = vtkFloatArray::SafeDownCast(image->GetPointData()->GetScalars());
   const int dims[3] = { 4, 4, 4 };
@@ -70,28 +69,32 @@ TEST(IrradianceInputCache, PrefilteredDataIsNormalisedAndCleanedOnce)
   const float nonFinite[3] = { std::numeric_limits<float>::quiet_NaN(),
     std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity() };
   const float cleaned[3] = { 0.0f, 1.0f, 0.0f }; // NaN: empty; +-Inf: the range's ends
+  constexpr int Middle = 1 + 4 * (1 + 4 * 1); // voxel (1, 1, 1)
   for (int c = 0; c < 3; ++c)
   {
-    values->SetValue(0, nonFinite[c]);
+    values->SetValue(Middle, nonFinite[c]);
     EXPECT_TRUE(cache->UpdatePrefiltered(image, values, nullptr, dims, 10 + c, range))
       << "non-finite values are reported";
     EXPECT_EQ(cache->GetPrefilteredVersion(), static_cast<unsigned long>(c + 1));
     const std::vector<float>& v = cache->GetPrefiltered();
     ASSERT_EQ(v.size(), 64u);
-    EXPECT_EQ(v[0], cleaned[c]) << "case " << c;
-    for (int id = 1; id < 64; ++id)
+    EXPECT_EQ(v[Middle], cleaned[c]) << "case " << c;
+    for (int id = 0; id < 64; ++id)
     {
-      EXPECT_FLOAT_EQ(v[id], static_cast<float>(id % 4) / 3.0f) << "case " << c << " voxel " << id;
+      if (id != Middle)
+      {
+        EXPECT_FLOAT_EQ(v[id], static_cast<float>(id % 4) / 3.0f) << "case " << c << " voxel " << id;
+      }
     }
   }
   // The same grid, data time and range: kept, and nothing reported again.
   EXPECT_FALSE(cache->UpdatePrefiltered(image, values, nullptr, dims, 12, range));
   EXPECT_EQ(cache->GetPrefilteredVersion(), 3u);
   // Finite data at a new time: pre-filtered again, nothing to report.
-  values->SetValue(0, 3.0f);
+  values->SetValue(Middle, 3.0f);
   EXPECT_FALSE(cache->UpdatePrefiltered(image, values, nullptr, dims, 13, range));
   EXPECT_EQ(cache->GetPrefilteredVersion(), 4u);
-  EXPECT_FLOAT_EQ(cache->GetPrefiltered()[0], 1.0f);
+  EXPECT_FLOAT_EQ(cache->GetPrefiltered()[Middle], 1.0f);
   // A coarser grid or another range: pre-filtered again.
   const int coarse[3] = { 2, 2, 2 };
   cache->UpdatePrefiltered(image, values, nullptr, coarse, 13, range);
