@@ -536,76 +536,28 @@ std::uint64_t PixelSeed(unsigned int seed, vtkIdType pixel)
 vtkMultiMaterialPathTracer::vtkMultiMaterialPathTracer() = default;
 vtkMultiMaterialPathTracer::~vtkMultiMaterialPathTracer() = default;
 
-void vtkMultiMaterialPathTracer::SetInputData(vtkImageData* image)
-{
-  if (this->Input != image)
-  {
-    this->Input = image;
-    this->Modified();
-  }
-}
 
-vtkImageData* vtkMultiMaterialPathTracer::GetInput()
-{
-  return this->Input;
-}
 
-void vtkMultiMaterialPathTracer::SetVolumeProperty(vtkVolumeProperty* property)
-{
-  if (this->Property != property)
-  {
-    this->Property = property;
-    this->Modified();
-  }
-}
 
-vtkVolumeProperty* vtkMultiMaterialPathTracer::GetVolumeProperty()
-{
-  return this->Property;
-}
 
-void vtkMultiMaterialPathTracer::SetMaterialTransferFunction(vtkMaterialTransferFunction* materials)
-{
-  if (this->Materials != materials)
-  {
-    this->Materials = materials;
-    this->Modified();
-  }
-}
 
-vtkMaterialTransferFunction* vtkMultiMaterialPathTracer::GetMaterialTransferFunction()
-{
-  return this->Materials;
-}
 
-void vtkMultiMaterialPathTracer::SetVolumeMatrix(vtkMatrix4x4* matrix)
-{
-  if (this->Matrix != matrix)
-  {
-    this->Matrix = matrix;
-    this->Modified();
-  }
-}
 
-vtkMatrix4x4* vtkMultiMaterialPathTracer::GetVolumeMatrix()
-{
-  return this->Matrix;
-}
 
 vtkImageData* vtkMultiMaterialPathTracer::RenderToImage(vtkRenderer* ren, vtkVolume* volume)
 {
-  if (!ren || !volume || !volume->GetMapper())
+  if (!ren)
   {
     vtkErrorMacro("RenderToImage needs a renderer and a volume with a mapper");
     return nullptr;
   }
-  vtkAbstractVolumeMapper* mapper = volume->GetMapper();
-  this->SetInputData(vtkImageData::SafeDownCast(mapper->GetDataSetInput()));
-  this->SetVolumeProperty(volume->GetProperty());
-  this->SetVolumeMatrix(volume->GetMatrix());
-  if (auto* mmvMapper = vtkMultiMaterialVolumeMapper::SafeDownCast(mapper))
+  vtkMultiMaterialVolumeMapper* mmvMapper = nullptr;
+  if (!this->AdoptVolume(volume, &mmvMapper))
   {
-    this->SetMaterialTransferFunction(mmvMapper->GetMaterialTransferFunction());
+    return nullptr;
+  }
+  if (mmvMapper)
+  {
     this->SetPointLightRadius(mmvMapper->GetPointLightRadius());
   }
   const int* size = ren->GetSize();

@@ -50,7 +50,7 @@
 #define vtkMultiMaterialPathTracer_h
 
 #include "vtkMultiMaterialVolumeModule.h" // export macro
-#include "vtkObject.h"
+#include "vtkMultiMaterialVolumeScene.h"
 #include "vtkSmartPointer.h" // members
 
 class vtkImageData;
@@ -60,26 +60,15 @@ class vtkRenderer;
 class vtkVolume;
 class vtkVolumeProperty;
 
-class VTKMULTIMATERIALVOLUME_EXPORT vtkMultiMaterialPathTracer : public vtkObject
+class VTKMULTIMATERIALVOLUME_EXPORT vtkMultiMaterialPathTracer
+  : public vtkMultiMaterialVolumeScene
 {
 public:
   static vtkMultiMaterialPathTracer* New();
-  vtkTypeMacro(vtkMultiMaterialPathTracer, vtkObject);
+  vtkTypeMacro(vtkMultiMaterialPathTracer, vtkMultiMaterialVolumeScene);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-  ///@{
-  /// The scene, as for vtkMultiMaterialReferenceRenderer: data (active point
-  /// scalars, component 0), colour/opacity, materials (null: the defaults
-  /// everywhere) and the object-to-world matrix (null: identity).
-  void SetInputData(vtkImageData* image);
-  vtkImageData* GetInput();
-  void SetVolumeProperty(vtkVolumeProperty* property);
-  vtkVolumeProperty* GetVolumeProperty();
-  void SetMaterialTransferFunction(vtkMaterialTransferFunction* materials);
-  vtkMaterialTransferFunction* GetMaterialTransferFunction();
-  void SetVolumeMatrix(vtkMatrix4x4* matrix);
-  vtkMatrix4x4* GetVolumeMatrix();
-  ///@}
+  // The scene (data, property, materials, matrix): vtkMultiMaterialVolumeScene.
 
   /// Paths per pixel (default 64). Render() rejects values below 1.
   vtkSetMacro(SamplesPerPixel, int);
@@ -146,10 +135,6 @@ private:
   vtkMultiMaterialPathTracer(const vtkMultiMaterialPathTracer&) = delete;
   void operator=(const vtkMultiMaterialPathTracer&) = delete;
 
-  vtkSmartPointer<vtkImageData> Input;
-  vtkSmartPointer<vtkVolumeProperty> Property;
-  vtkSmartPointer<vtkMaterialTransferFunction> Materials;
-  vtkSmartPointer<vtkMatrix4x4> Matrix;
   vtkSmartPointer<vtkImageData> Output;
 };
 

@@ -306,62 +306,13 @@ double Seconds(std::chrono::steady_clock::time_point start)
 vtkMultiMaterialReferenceRenderer::vtkMultiMaterialReferenceRenderer() = default;
 vtkMultiMaterialReferenceRenderer::~vtkMultiMaterialReferenceRenderer() = default;
 
-void vtkMultiMaterialReferenceRenderer::SetInputData(vtkImageData* image)
-{
-  if (this->Input != image)
-  {
-    this->Input = image;
-    this->Modified();
-  }
-}
 
-vtkImageData* vtkMultiMaterialReferenceRenderer::GetInput()
-{
-  return this->Input;
-}
 
-void vtkMultiMaterialReferenceRenderer::SetVolumeProperty(vtkVolumeProperty* property)
-{
-  if (this->Property != property)
-  {
-    this->Property = property;
-    this->Modified();
-  }
-}
 
-vtkVolumeProperty* vtkMultiMaterialReferenceRenderer::GetVolumeProperty()
-{
-  return this->Property;
-}
 
-void vtkMultiMaterialReferenceRenderer::SetMaterialTransferFunction(
-  vtkMaterialTransferFunction* materials)
-{
-  if (this->Materials != materials)
-  {
-    this->Materials = materials;
-    this->Modified();
-  }
-}
 
-vtkMaterialTransferFunction* vtkMultiMaterialReferenceRenderer::GetMaterialTransferFunction()
-{
-  return this->Materials;
-}
 
-void vtkMultiMaterialReferenceRenderer::SetVolumeMatrix(vtkMatrix4x4* matrix)
-{
-  if (this->Matrix != matrix)
-  {
-    this->Matrix = matrix;
-    this->Modified();
-  }
-}
 
-vtkMatrix4x4* vtkMultiMaterialReferenceRenderer::GetVolumeMatrix()
-{
-  return this->Matrix;
-}
 
 void vtkMultiMaterialReferenceRenderer::SetCutawayMapper(vtkVolumeMapper* mapper)
 {
@@ -379,19 +330,19 @@ vtkVolumeMapper* vtkMultiMaterialReferenceRenderer::GetCutawayMapper()
 
 vtkImageData* vtkMultiMaterialReferenceRenderer::RenderToImage(vtkRenderer* ren, vtkVolume* volume)
 {
-  if (!ren || !volume || !volume->GetMapper())
+  if (!ren)
   {
     vtkErrorMacro("RenderToImage needs a renderer and a volume with a mapper");
     return nullptr;
   }
-  vtkAbstractVolumeMapper* mapper = volume->GetMapper();
-  this->SetInputData(vtkImageData::SafeDownCast(mapper->GetDataSetInput()));
-  this->SetVolumeProperty(volume->GetProperty());
-  this->SetVolumeMatrix(volume->GetMatrix());
-  this->SetCutawayMapper(vtkVolumeMapper::SafeDownCast(mapper));
-  if (auto* mmvMapper = vtkMultiMaterialVolumeMapper::SafeDownCast(mapper))
+  vtkMultiMaterialVolumeMapper* mmvMapper = nullptr;
+  if (!this->AdoptVolume(volume, &mmvMapper))
   {
-    this->SetMaterialTransferFunction(mmvMapper->GetMaterialTransferFunction());
+    return nullptr;
+  }
+  this->SetCutawayMapper(vtkVolumeMapper::SafeDownCast(volume->GetMapper()));
+  if (mmvMapper)
+  {
     this->SetMultipleScattering(mmvMapper->GetMultipleScattering());
     this->SetPointLightRadius(mmvMapper->GetPointLightRadius());
   }

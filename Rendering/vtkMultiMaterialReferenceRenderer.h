@@ -57,7 +57,7 @@
 #define vtkMultiMaterialReferenceRenderer_h
 
 #include "vtkMultiMaterialVolumeModule.h" // export macro
-#include "vtkObject.h"
+#include "vtkMultiMaterialVolumeScene.h"
 #include "vtkSmartPointer.h" // members
 
 class vtkImageData;
@@ -68,26 +68,17 @@ class vtkRenderer;
 class vtkVolume;
 class vtkVolumeProperty;
 
-class VTKMULTIMATERIALVOLUME_EXPORT vtkMultiMaterialReferenceRenderer : public vtkObject
+class VTKMULTIMATERIALVOLUME_EXPORT vtkMultiMaterialReferenceRenderer
+  : public vtkMultiMaterialVolumeScene
 {
 public:
   static vtkMultiMaterialReferenceRenderer* New();
-  vtkTypeMacro(vtkMultiMaterialReferenceRenderer, vtkObject);
+  vtkTypeMacro(vtkMultiMaterialReferenceRenderer, vtkMultiMaterialVolumeScene);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-  ///@{
-  /// The scene: data (active point scalars, component 0), colour/opacity,
-  /// materials (null: the defaults everywhere) and the object-to-world matrix
-  /// (null: identity).
-  void SetInputData(vtkImageData* image);
-  vtkImageData* GetInput();
-  void SetVolumeProperty(vtkVolumeProperty* property);
-  vtkVolumeProperty* GetVolumeProperty();
-  void SetMaterialTransferFunction(vtkMaterialTransferFunction* materials);
-  vtkMaterialTransferFunction* GetMaterialTransferFunction();
-  void SetVolumeMatrix(vtkMatrix4x4* matrix);
-  vtkMatrix4x4* GetVolumeMatrix();
+  // The scene (data, property, materials, matrix): vtkMultiMaterialVolumeScene.
 
+  ///@{
   /// The mapper whose cropping region and clipping planes remove parts of
   /// the volume, as VTK's ray caster does, for the primary rays and the
   /// shadow rays (what is cut away casts no shadow). RenderToImage() sets it
@@ -166,10 +157,6 @@ private:
   vtkMultiMaterialReferenceRenderer(const vtkMultiMaterialReferenceRenderer&) = delete;
   void operator=(const vtkMultiMaterialReferenceRenderer&) = delete;
 
-  vtkSmartPointer<vtkImageData> Input;
-  vtkSmartPointer<vtkVolumeProperty> Property;
-  vtkSmartPointer<vtkMaterialTransferFunction> Materials;
-  vtkSmartPointer<vtkMatrix4x4> Matrix;
   vtkSmartPointer<vtkVolumeMapper> CutawayMapper;
   vtkSmartPointer<vtkImageData> Output;
 };

@@ -1,0 +1,96 @@
+#include "vtkMultiMaterialVolumeScene.h"
+
+#include "vtkImageData.h"
+#include "vtkMaterialTransferFunction.h"
+#include "vtkMatrix4x4.h"
+#include "vtkMultiMaterialVolumeMapper.h"
+#include "vtkVolume.h"
+#include "vtkVolumeProperty.h"
+
+vtkMultiMaterialVolumeScene::vtkMultiMaterialVolumeScene() = default;
+vtkMultiMaterialVolumeScene::~vtkMultiMaterialVolumeScene() = default;
+
+namespace
+{
+/// Sets `member` and marks `owner` modified when the pointer changes.
+template <typename T>
+void SetMember(vtkObject* owner, vtkSmartPointer<T>& member, T* value)
+{
+  if (member != value)
+  {
+    member = value;
+    owner->Modified();
+  }
+}
+}
+
+void vtkMultiMaterialVolumeScene::SetInputData(vtkImageData* image)
+{
+  SetMember(this, this->Input, image);
+}
+
+vtkImageData* vtkMultiMaterialVolumeScene::GetInput()
+{
+  return this->Input;
+}
+
+void vtkMultiMaterialVolumeScene::SetVolumeProperty(vtkVolumeProperty* property)
+{
+  SetMember(this, this->Property, property);
+}
+
+vtkVolumeProperty* vtkMultiMaterialVolumeScene::GetVolumeProperty()
+{
+  return this->Property;
+}
+
+void vtkMultiMaterialVolumeScene::SetMaterialTransferFunction(
+  vtkMaterialTransferFunction* materials)
+{
+  SetMember(this, this->Materials, materials);
+}
+
+vtkMaterialTransferFunction* vtkMultiMaterialVolumeScene::GetMaterialTransferFunction()
+{
+  return this->Materials;
+}
+
+void vtkMultiMaterialVolumeScene::SetVolumeMatrix(vtkMatrix4x4* matrix)
+{
+  SetMember(this, this->Matrix, matrix);
+}
+
+vtkMatrix4x4* vtkMultiMaterialVolumeScene::GetVolumeMatrix()
+{
+  return this->Matrix;
+}
+
+bool vtkMultiMaterialVolumeScene::AdoptVolume(
+  vtkVolume* volume, vtkMultiMaterialVolumeMapper** mmvMapper)
+{
+  *mmvMapper = nullptr;
+  if (!volume || !volume->GetMapper())
+  {
+    vtkErrorMacro("RenderToImage needs a renderer and a volume with a mapper");
+    return false;
+  }
+  vtkAbstractVolumeMapper* mapper = volume->GetMapper();
+  this->SetInputData(vtkImageData::SafeDownCast(mapper->GetDataSetInput()));
+  this->SetVolumeProperty(volume->GetProperty());
+  this->SetVolumeMatrix(volume->GetMatrix());
+  *mmvMapper = vtkMultiMaterialVolumeMapper::SafeDownCast(mapper);
+  if (*mmvMapper)
+  {
+    this->SetMaterialTransferFunction((*mmvMapper)->GetMaterialTransferFunction());
+  }
+  return true;
+}
+
+void vtkMultiMaterialVolumeScene::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Input: " << this->Input.Get() << "\n";
+  os << indent << "VolumeProperty: " << this->Property.Get() << "\n";
+  os << indent << "MaterialTransferFunction: " << this->Materials.Get() << "\n";
+  os << indent << "VolumeMatrix: " << this->Matrix.Get() << "\n";
+}
