@@ -569,14 +569,8 @@ vtkImageData* vtkMultiMaterialPathTracer::Render(vtkRenderer* ren, int width, in
   const auto start = std::chrono::steady_clock::now();
   vtkImageData* image = this->Input;
   vtkVolumeProperty* property = this->Property;
-  if (!ren || !ren->GetActiveCamera() || width < 1 || height < 1)
+  if (!this->CheckRenderInputs(ren, width, height))
   {
-    vtkErrorMacro("Render needs a renderer with a camera and a positive image size");
-    return nullptr;
-  }
-  if (!image || !property || !property->GetScalarOpacity(0))
-  {
-    vtkErrorMacro("Render needs input data and a volume property with a scalar opacity");
     return nullptr;
   }
   if (this->SamplesPerPixel < 1 || this->MaxBounces < 0)

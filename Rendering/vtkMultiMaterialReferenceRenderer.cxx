@@ -355,14 +355,8 @@ vtkImageData* vtkMultiMaterialReferenceRenderer::Render(vtkRenderer* ren, int wi
   const auto start = std::chrono::steady_clock::now();
   vtkImageData* image = this->Input;
   vtkVolumeProperty* property = this->Property;
-  if (!ren || !ren->GetActiveCamera() || width < 1 || height < 1)
+  if (!this->CheckRenderInputs(ren, width, height))
   {
-    vtkErrorMacro("Render needs a renderer with a camera and a positive image size");
-    return nullptr;
-  }
-  if (!image || !property || !property->GetScalarOpacity(0))
-  {
-    vtkErrorMacro("Render needs input data and a volume property with a scalar opacity");
     return nullptr;
   }
   Scene scene;

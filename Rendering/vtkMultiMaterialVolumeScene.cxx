@@ -4,6 +4,8 @@
 #include "vtkMaterialTransferFunction.h"
 #include "vtkMatrix4x4.h"
 #include "vtkMultiMaterialVolumeMapper.h"
+#include "vtkPiecewiseFunction.h"
+#include "vtkRenderer.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
 
@@ -82,6 +84,21 @@ bool vtkMultiMaterialVolumeScene::AdoptVolume(
   if (*mmvMapper)
   {
     this->SetMaterialTransferFunction((*mmvMapper)->GetMaterialTransferFunction());
+  }
+  return true;
+}
+
+bool vtkMultiMaterialVolumeScene::CheckRenderInputs(vtkRenderer* ren, int width, int height)
+{
+  if (!ren || !ren->GetActiveCamera() || width < 1 || height < 1)
+  {
+    vtkErrorMacro("Render needs a renderer with a camera and a positive image size");
+    return false;
+  }
+  if (!this->Input || !this->Property || !this->Property->GetScalarOpacity(0))
+  {
+    vtkErrorMacro("Render needs input data and a volume property with a scalar opacity");
+    return false;
   }
   return true;
 }

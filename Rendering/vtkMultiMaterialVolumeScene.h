@@ -19,6 +19,7 @@ class vtkImageData;
 class vtkMaterialTransferFunction;
 class vtkMatrix4x4;
 class vtkMultiMaterialVolumeMapper;
+class vtkRenderer;
 class vtkVolume;
 class vtkVolumeProperty;
 
@@ -50,6 +51,10 @@ protected:
   /// when that is a vtkMultiMaterialVolumeMapper (returned, else null). False
   /// (with an error) when the volume has no mapper.
   bool AdoptVolume(vtkVolume* volume, vtkMultiMaterialVolumeMapper** mmvMapper);
+
+  /// Render()'s common checks: a renderer with a camera, a positive size,
+  /// input data and a property with a scalar opacity (an error otherwise).
+  bool CheckRenderInputs(vtkRenderer* ren, int width, int height);
 
   vtkSmartPointer<vtkImageData> Input;
   vtkSmartPointer<vtkVolumeProperty> Property;
