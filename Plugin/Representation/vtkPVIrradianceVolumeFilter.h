@@ -39,8 +39,9 @@ public:
   ///@}
 
   ///@{
-  /// Material nodes, pushed as a count then every value (9 per node, or the older 8); applied
-  /// all or nothing once complete, see vtkPVMaterialNodeBuffer.
+  /// Material nodes, pushed as a count then every value (10 per node, or the
+  /// older 9 or 8); applied all or nothing once complete, see
+  /// vtkPVMaterialNodeBuffer.
   void SetNumberOfMaterialNodeValues(int count);
   void SetMaterialNodeValue(int index, double value);
   ///@}
