@@ -69,6 +69,21 @@ std::vector<float> CopyComponent(vtkDataArray* scalars, int component)
   return values;
 }
 
+int IrradianceTextureChannels(int lights)
+{
+  return lights <= 2 ? std::max(1, lights) : 4;
+}
+
+double IrradianceBytesPerVoxel(int numberOfLights)
+{
+  const int lights = std::max(1, numberOfLights);
+  const int full = lights / IrradianceLightsPerTexture;
+  const int rest = lights % IrradianceLightsPerTexture;
+  const int channels =
+    full * IrradianceLightsPerTexture + (rest > 0 ? IrradianceTextureChannels(rest) : 0);
+  return IrradianceBytesPerVoxelPerLight * channels;
+}
+
 void ComputeIrradianceDimensions(const int dataDims[3], int numberOfLights, double budgetMB,
   double scale, int irradianceDims[3])
 {
@@ -93,7 +108,7 @@ void ComputeIrradianceDimensions(const int dataDims[3], int numberOfLights, doub
     apply(std::min(scale, 1.0));
     return;
   }
-  const double bytesPerVoxel = IrradianceBytesPerVoxelPerLight * std::max(1, numberOfLights);
+  const double bytesPerVoxel = IrradianceBytesPerVoxel(numberOfLights);
   const double budgetVoxels = std::max(0.0, budgetMB) * 1024.0 * 1024.0 / bytesPerVoxel;
   auto voxels = [&]() {
     return static_cast<double>(irradianceDims[0]) * irradianceDims[1] * irradianceDims[2];

@@ -67,11 +67,25 @@ struct IrradianceGrid
   }
 };
 
+/// Lights an irradiance texture holds, one per channel.
+constexpr int IrradianceLightsPerTexture = 4;
+
+/// Channels of the 16-bit irradiance texture that holds `lights` (1-4)
+/// lights: R16, RG16, else RGBA16 (RGB16 is not colour-renderable in core
+/// OpenGL, so three lights take four channels).
+VTKMULTIMATERIALVOLUME_EXPORT int IrradianceTextureChannels(int lights);
+
+/// Bytes per voxel that the irradiance textures of `numberOfLights` lights
+/// hold: four lights to a texture, the last with IrradianceTextureChannels
+/// of the rest, IrradianceBytesPerVoxelPerLight per channel (the GPU's
+/// memory, what the budget counts).
+VTKMULTIMATERIALVOLUME_EXPORT double IrradianceBytesPerVoxel(int numberOfLights);
+
 /**
  * Irradiance dimensions for data of `dataDims` points: `scale` in (0, 1]
  * scales every axis; scale <= 0 picks the largest scale whose
- * numberOfLights * IrradianceBytesPerVoxelPerLight bytes per voxel fit
- * `budgetMB`. Axes never exceed the data's and never drop below min(2, data).
+ * IrradianceBytesPerVoxel(numberOfLights) fit `budgetMB`. Axes never exceed
+ * the data's and never drop below min(2, data).
  */
 VTKMULTIMATERIALVOLUME_EXPORT void ComputeIrradianceDimensions(const int dataDims[3],
   int numberOfLights, double budgetMB, double scale, int irradianceDims[3]);

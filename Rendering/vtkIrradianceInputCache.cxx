@@ -2,6 +2,7 @@
 
 #include "vtkGlobalPrefilteredVolume.h"
 #include "vtkMaterialTransferFunction.h"
+#include "vtkMultiMaterialLightTolerance.h"
 #include "vtkMultiMaterialLiveObjects.h"
 #include "vtkMultiMaterialParameters.h"
 #include "vtkObjectFactory.h"
@@ -120,11 +121,25 @@ bool vtkIrradianceInputCache::UpdatePrefiltered(vtkImageData* image, vtkDataArra
 }
 
 //------------------------------------------------------------------------------
-bool vtkIrradianceInputCache::IsCurrent(
-  const VolumeKey& volume, const std::vector<mmv::LightSource>& lights, const int dims[3]) const
+bool vtkIrradianceInputCache::IsCurrent(const VolumeKey& volume,
+  const std::vector<mmv::LightSource>& lights, const int dims[3], double toleranceRadians) const
 {
-  return this->SameVolume(volume) && std::equal(dims, dims + 3, this->Dimensions) &&
-    lights == this->Lights;
+  if (!this->SameVolume(volume) || !std::equal(dims, dims + 3, this->Dimensions) ||
+    lights.size() != this->Lights.size())
+  {
+    return false;
+  }
+  const mmv::IrradianceGrid& g = this->Grid;
+  const glm::dvec3 centre = g.IndexToPhysical(
+    0.5 * (glm::dvec3(g.Dimensions[0], g.Dimensions[1], g.Dimensions[2]) - 1.0));
+  for (size_t k = 0; k < lights.size(); ++k)
+  {
+    if (!mmv::LightWithinTolerance(this->Lights[k], lights[k], toleranceRadians, centre))
+    {
+      return false;
+    }
+  }
+  return true;
 }
 
 bool vtkIrradianceInputCache::SameVolume(const VolumeKey& volume) const

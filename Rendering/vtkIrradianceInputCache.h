@@ -89,13 +89,15 @@ public:
   ///@}
 
   ///@{
-  /// Whether the irradiance stored last was computed from `volume`, `lights`
-  /// and a grid of `dims`.
+  /// Whether the irradiance stored last was computed from `volume` and a grid
+  /// of `dims`, with each light within `toleranceRadians` of `lights`
+  /// (mmv::LightWithinTolerance about the grid's centre).
   bool IsCurrent(const VolumeKey& volume, const std::vector<mmv::LightSource>& lights,
-    const int dims[3]) const;
+    const int dims[3], double toleranceRadians) const;
   /// Whether only the lights or the grid differ from the stored irradiance's.
   bool SameVolume(const VolumeKey& volume) const;
-  /// Records a successfully computed irradiance.
+  /// Records a successfully computed irradiance: `lights` are the placements
+  /// it holds (vtkIrradianceVolumePass::GetComputedLights()).
   void Store(const VolumeKey& volume, const std::vector<mmv::LightSource>& lights,
     const int dims[3]);
   /// Forgets the stored volume key (graphics resources released, a failed

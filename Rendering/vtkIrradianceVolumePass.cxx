@@ -2,6 +2,7 @@
 
 #include "vtkIrradianceComputeProgram.h"
 #include "vtkIrradianceDiffusion.h"
+#include "vtkMultiMaterialLightTolerance.h"
 #include "vtkMultiMaterialParameters.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLFramebufferObject.h"
@@ -41,7 +42,7 @@
 namespace
 {
 
-constexpr int LightsPerTexture = 4;
+constexpr int LightsPerTexture = mmv::IrradianceLightsPerTexture;
 
 /// Residual checks of a diffusion sub-step: each costs about a sweep and
 /// waits for the GPU, so only sub-steps whose error bound asks for at least
@@ -200,11 +201,6 @@ bool SameGrid(const mmv::IrradianceGrid& a, const mmv::IrradianceGrid& b)
 {
   return std::equal(a.Dimensions, a.Dimensions + 3, b.Dimensions) && a.Origin == b.Origin &&
     a.Spacing == b.Spacing && a.Direction == b.Direction;
-}
-
-bool SameLight(const mmv::LightSource& a, const mmv::LightSource& b)
-{
-  return a == b;
 }
 
 /// Activates textures for one draw and deactivates them when it ends.
@@ -465,16 +461,26 @@ bool vtkIrradianceVolumePass::vtkInternals::AllocateTargets(
   reallocated = this->Irradiance.size() != textures;
   this->Irradiance.resize(textures);
   bool ok = true;
-  for (auto& texture : this->Irradiance)
+  for (size_t t = 0; t < textures; ++t)
   {
-    if (!HasSize(texture, d))
+    // As many channels as lights (the last texture may hold fewer than 4),
+    // so the memory is what mmv::IrradianceBytesPerVoxel counts.
+    const int lights = std::min(LightsPerTexture,
+      static_cast<int>(this->Lights.size()) - static_cast<int>(t) * LightsPerTexture);
+    const int channels = mmv::IrradianceTextureChannels(lights);
+    vtkSmartPointer<vtkTextureObject>& texture = this->Irradiance[t];
+    if (!HasSize(texture, d) || texture->GetComponents() != channels)
     {
       // 16-bit unsigned normalised: values are fractions in [0, 1]. Zeroed:
       // channels without a light are never written, and an NVIDIA driver
       // hands out garbage (NaN after the conversion) where llvmpipe zeroes.
-      texture = NewTexture(context, GL_RGBA16, GL_RGBA, GL_UNSIGNED_SHORT, true);
-      std::vector<unsigned short> zeros(4 * static_cast<size_t>(d[0]) * d[1] * d[2], 0);
-      ok = ok && texture->Create3DFromRaw(d[0], d[1], d[2], 4, VTK_UNSIGNED_SHORT, zeros.data());
+      static const GLenum internal[] = { GL_R16, GL_RG16, GL_RGBA16, GL_RGBA16 };
+      static const GLenum format[] = { GL_RED, GL_RG, GL_RGBA, GL_RGBA };
+      texture = NewTexture(
+        context, internal[channels - 1], format[channels - 1], GL_UNSIGNED_SHORT, true);
+      std::vector<unsigned short> zeros(channels * static_cast<size_t>(d[0]) * d[1] * d[2], 0);
+      ok = ok &&
+        texture->Create3DFromRaw(d[0], d[1], d[2], channels, VTK_UNSIGNED_SHORT, zeros.data());
       reallocated = true;
     }
   }
@@ -1224,15 +1230,38 @@ bool vtkIrradianceVolumePass::Render(vtkOpenGLRenderWindow* context)
     // Only the lights that moved (or all, when the volume changed) are
     // recomputed: each light keeps its own channel.
     const bool all = internals.VolumeChanged || reallocated;
+    std::vector<bool> updated(internals.Lights.size(), false);
+    const double tolerance = mmv::LightToleranceRadians(this->LightDirectionTolerance);
+    const glm::dvec3 centre = internals.Grid.IndexToPhysical(
+      0.5 * (glm::dvec3(internals.Grid.Dimensions[0], internals.Grid.Dimensions[1],
+               internals.Grid.Dimensions[2]) - 1.0));
+    // A new light, or one beyond the tolerance of what its channel holds;
+    // the others keep the placement they were computed for.
+    std::vector<mmv::LightSource>& held = internals.ComputedLights;
+    held.resize(std::min(held.size(), internals.Lights.size()));
+    for (size_t k = 0; k < internals.Lights.size(); ++k)
+    {
+      if (all || k >= held.size() ||
+        !mmv::LightWithinTolerance(held[k], internals.Lights[k], tolerance, centre))
+      {
+        updated[k] = true;
+        if (k < held.size())
+        {
+          held[k] = internals.Lights[k];
+        }
+        else
+        {
+          held.push_back(internals.Lights[k]);
+        }
+      }
+    }
     for (int group = 0; ok && group < this->GetNumberOfIrradianceTextures(); ++group)
     {
       int mask = 0;
       for (int l = 0; l < LightsPerTexture; ++l)
       {
         const size_t k = static_cast<size_t>(group * LightsPerTexture + l);
-        if (k < internals.Lights.size() &&
-          (all || k >= internals.ComputedLights.size() ||
-            !SameLight(internals.Lights[k], internals.ComputedLights[k])))
+        if (k < internals.Lights.size() && updated[k])
         {
           mask |= 1 << l;
           ++this->NumberOfUpdatedLights;
@@ -1302,7 +1331,6 @@ bool vtkIrradianceVolumePass::Render(vtkOpenGLRenderWindow* context)
     vtkErrorMacro("The irradiance passes failed (shader or texture setup).");
     return false;
   }
-  internals.ComputedLights = internals.Lights;
   internals.VolumeChanged = false;
   this->NumberOfComputedVoxels = internals.NonEmptyVoxels;
   return true;
@@ -1342,6 +1370,11 @@ vtkTextureObject* vtkIrradianceVolumePass::GetIrradianceTexture(int i) const
 int vtkIrradianceVolumePass::GetNumberOfIrradianceTextures() const
 {
   return static_cast<int>(this->Internals->Irradiance.size());
+}
+
+const std::vector<mmv::LightSource>& vtkIrradianceVolumePass::GetComputedLights() const
+{
+  return this->Internals->ComputedLights;
 }
 
 //------------------------------------------------------------------------------
@@ -1387,12 +1420,11 @@ vtkIdType vtkIrradianceVolumePass::GetNumberOfVolumeUploads() const
 
 vtkIdType vtkIrradianceVolumePass::GetTextureMemoryBytes() const
 {
-  const vtkIdType bytesPerVoxel = 4 * sizeof(unsigned short);
   vtkIdType bytes = 0;
   for (const auto& texture : this->Internals->Irradiance)
   {
     bytes += static_cast<vtkIdType>(texture->GetWidth()) * texture->GetHeight() *
-      texture->GetDepth() * bytesPerVoxel;
+      texture->GetDepth() * texture->GetComponents() * sizeof(unsigned short);
   }
   return bytes;
 }
@@ -1422,6 +1454,7 @@ void vtkIrradianceVolumePass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "DiffusionGrid: " << internals.Coarse.Dimensions[0] << " "
      << internals.Coarse.Dimensions[1] << " " << internals.Coarse.Dimensions[2] << " ("
      << internals.SubSteps << " sub-steps x " << internals.SweepsPerStep << " sweeps)\n";
+  os << indent << "LightDirectionTolerance: " << this->LightDirectionTolerance << "\n";
   os << indent << "NumberOfUpdatedLights: " << this->NumberOfUpdatedLights << "\n";
   os << indent << "NumberOfComputedVoxels: " << this->NumberOfComputedVoxels << "\n";
   os << indent << "DiffusionPasses: " << this->DiffusionPasses << "\n";

@@ -154,6 +154,21 @@ public:
   vtkSetClampMacro(PiecewiseShadowSlices, int, 1, 4096);
   vtkGetMacro(PiecewiseShadowSlices, int);
 
+  /**
+   * Degrees a light may move and keep its irradiance (directional: its
+   * direction; point and spot: the angle its move subtends at the grid's
+   * centre, and the spot axis). Default 0: every move recomputes (up to
+   * mmv::LightRoundingRadians, the camera's rounding). Always compared with
+   * the placement the irradiance was computed for, so moves do not add up.
+   * Clamped to [0, mmv::MaxLightDirectionToleranceDegrees].
+   */
+  vtkSetClampMacro(LightDirectionTolerance, double, 0.0, mmv::MaxLightDirectionToleranceDegrees);
+  vtkGetMacro(LightDirectionTolerance, double);
+
+  /// The light placements the irradiance textures hold (empty before the
+  /// first Render() or after a failed one).
+  const std::vector<mmv::LightSource>& GetComputedLights() const;
+
   /// Runs the passes. Needs the context current. False (with an error) if
   /// inputs are missing or the context lacks what the passes need.
   bool Render(vtkOpenGLRenderWindow* context);
@@ -207,6 +222,7 @@ protected:
   bool SkipEmptyVoxels = true;
   int ShadowEstimation = mmv::PiecewiseShadowRays;
   int PiecewiseShadowSlices = mmv::DefaultPiecewiseShadowSlices;
+  double LightDirectionTolerance = 0.0;
   vtkIdType NumberOfComputedVoxels = 0;
   int DiffusionPasses = 0;
   int NumberOfUpdatedLights = 0;

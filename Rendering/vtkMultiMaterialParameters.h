@@ -133,6 +133,12 @@ constexpr int DefaultPiecewiseShadowSlices = 16;
 /// Default irradiance memory budget in MB (the paper's recommendation).
 constexpr double DefaultIrradianceBudgetMB = 64.0;
 
+/// Default LightDirectionTolerance in degrees (vtkMultiMaterialLightTolerance.h):
+/// 0, every light move recomputes, so the image at rest equals a fresh render.
+constexpr double DefaultLightDirectionToleranceDegrees = 0.0;
+/// Largest LightDirectionTolerance accepted, in degrees.
+constexpr double MaxLightDirectionToleranceDegrees = 45.0;
+
 /// Transmittance below which a shadow ray stops (the paper's early
 /// termination); GLSL: MMV_MIN_TRANSMITTANCE.
 constexpr double MinShadowTransmittance = 1.0e-4;

@@ -14,6 +14,7 @@
 #include "vtkMatrix4x4.h"
 #include "vtkMultiMaterialCutaway.h"
 #include "vtkMultiMaterialInputCheck.h"
+#include "vtkMultiMaterialLightTolerance.h"
 #include "vtkMultiMaterialLights.h"
 #include "vtkMultiMaterialLiveObjects.h"
 #include "vtkMultiMaterialParameters.h"
@@ -739,7 +740,8 @@ bool vtkMultiMaterialVolumeMapper::UpdateIrradiance(vtkRenderer* ren, vtkVolume*
     sources.push_back(light.Source);
   }
   const bool computed = in.Irradiance->GetNumberOfIrradianceTextures() > 0;
-  if (computed && in.Cache->IsCurrent(volumeKey, sources, dims))
+  const double tolerance = mmv::LightToleranceRadians(this->LightDirectionTolerance);
+  if (computed && in.Cache->IsCurrent(volumeKey, sources, dims, tolerance))
   {
     return true;
   }
@@ -766,7 +768,7 @@ bool vtkMultiMaterialVolumeMapper::UpdateIrradiance(vtkRenderer* ren, vtkVolume*
   {
     return false;
   }
-  in.Cache->Store(volumeKey, sources, dims);
+  in.Cache->Store(volumeKey, in.Irradiance->GetComputedLights(), dims);
   this->UpdateProgress(1.0);
   // The mapper's own pipeline progress (its input's update) is not this.
   this->SetProgressText(nullptr);
@@ -811,6 +813,7 @@ bool vtkMultiMaterialVolumeMapper::ComputeIrradiance(vtkRenderer* ren, vtkVolume
   pass->SetShadowEstimation(this->ShadowEstimation);
   pass->SetPiecewiseShadowSlices(this->PiecewiseShadowSlices);
   pass->SetExponentialDiffusion(this->ExponentialDiffusion);
+  pass->SetLightDirectionTolerance(this->LightDirectionTolerance);
   pass->SetCutaway(cutaway);
   pass->SetInputs(grid, in.Cache->GetPrefiltered(), n, shadow->GetShadowOpacityTable(),
     shadowStep, opacityTable.data(), scatteringTable.data(), sources,
@@ -868,6 +871,7 @@ void vtkMultiMaterialVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaxBrickMB: " << this->MaxBrickMB << "\n";
   os << indent << "IrradianceScale: " << this->IrradianceScale << "\n";
   os << indent << "GradientSmoothing: " << this->GradientSmoothing << "\n";
+  os << indent << "LightDirectionTolerance: " << this->LightDirectionTolerance << "\n";
   os << indent << "MultipleScattering: " << this->MultipleScattering << "\n";
   os << indent << "ShadowEstimation: " << this->ShadowEstimation << "\n";
   os << indent << "PiecewiseShadowSlices: " << this->PiecewiseShadowSlices << "\n";

@@ -121,6 +121,21 @@ public:
   vtkGetMacro(ExponentialDiffusion, bool);
   vtkBooleanMacro(ExponentialDiffusion, bool);
 
+  /**
+   * Degrees a light may move and keep its irradiance (ParaView's light kit
+   * follows the camera, so a rotation moves every kit light). Default
+   * mmv::DefaultLightDirectionToleranceDegrees (0): every move recomputes,
+   * and the image at rest equals a fresh render. Directional lights compare
+   * directions; point and spot lights the angle their move subtends at the
+   * volume's centre, and the spot axis. The comparison is with the placement
+   * the irradiance holds, so small moves do not add up; shading terms always
+   * use the current placement. The image error against the exact one per
+   * angle is in docs/benchmark.md ("Light tolerance"). Clamped to [0, 45];
+   * NaN: 0.
+   */
+  vtkSetClampMacro(LightDirectionTolerance, double, 0.0, mmv::MaxLightDirectionToleranceDegrees);
+  vtkGetMacro(LightDirectionTolerance, double);
+
   /// Pre-integrated segments (default on); off: post-classified samples.
   vtkSetMacro(PreIntegration, bool);
   vtkGetMacro(PreIntegration, bool);
@@ -261,6 +276,7 @@ protected:
   bool PreIntegration = true;
   double PointLightRadius = 0.0;
   int InteractiveIrradiance = ReuseWhileInteracting;
+  double LightDirectionTolerance = mmv::DefaultLightDirectionToleranceDegrees;
   int PreIntegrationTableSize = 256;
   bool TimeStages = false;
   bool CompileUnusedOpticalTerms = false;

@@ -182,6 +182,7 @@ void vtkPVMultiMaterialVolumeRepresentation::UpdateMapperParameters()
   mapper->SetShadowEstimation(this->ShadowEstimation);
   mapper->SetPiecewiseShadowSlices(this->PiecewiseShadowSlices);
   mapper->SetExponentialDiffusion(this->ExponentialDiffusion);
+  mapper->SetLightDirectionTolerance(this->LightDirectionTolerance);
 }
 
 //------------------------------------------------------------------------------
@@ -210,6 +211,7 @@ vtkPVMMVSetter(InteractiveIrradiance, int);
 vtkPVMMVSetter(ShadowEstimation, int);
 vtkPVMMVSetter(PiecewiseShadowSlices, int);
 vtkPVMMVSetter(ExponentialDiffusion, bool);
+vtkPVMMVSetter(LightDirectionTolerance, double);
 #undef vtkPVMMVSetter
 
 //------------------------------------------------------------------------------
@@ -373,4 +375,5 @@ void vtkPVMultiMaterialVolumeRepresentation::PrintSelf(ostream& os, vtkIndent in
   os << indent << "ShadowEstimation: " << this->ShadowEstimation << "\n";
   os << indent << "PiecewiseShadowSlices: " << this->PiecewiseShadowSlices << "\n";
   os << indent << "ExponentialDiffusion: " << this->ExponentialDiffusion << "\n";
+  os << indent << "LightDirectionTolerance: " << this->LightDirectionTolerance << "\n";
 }

@@ -93,6 +93,7 @@ public:
   void SetShadowEstimation(int estimation);
   void SetPiecewiseShadowSlices(int slices);
   void SetExponentialDiffusion(bool exponential);
+  void SetLightDirectionTolerance(double degrees);
   ///@}
 
   ///@{
@@ -160,6 +161,7 @@ private:
   int ShadowEstimation = mmv::PiecewiseShadowRays;
   int PiecewiseShadowSlices = mmv::DefaultPiecewiseShadowSlices;
   bool ExponentialDiffusion = false;
+  double LightDirectionTolerance = mmv::DefaultLightDirectionToleranceDegrees;
 
   vtkNew<vtkGlobalPrefilteredVolume> GlobalVolume;
   // RequestData runs on every rank together, so counting it gives every rank

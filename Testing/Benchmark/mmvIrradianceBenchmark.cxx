@@ -6,8 +6,9 @@
 //
 //   mmvIrradianceBenchmark --out DIR [--size N] [--reps N] [--head FILE.vti] [--quick]
 //                          [--only SECTION[,SECTION...]]  (updates, resolution,
-//                          estimation, raycast, orbit, compute, diffusion; all
-//                          but raycast, orbit, compute and diffusion by default)
+//                          estimation, raycast, orbit, compute, diffusion,
+//                          tolerance; all but raycast, orbit, compute,
+//                          diffusion and tolerance by default)
 //                          [--orbit-steps N] [--orbit-interactive-frames K]
 //                          [--image-sample-distance D] [--lights N]  (raycast: both
 //                          mappers, no auto-adjust, N scene lights, default 5)
@@ -228,6 +229,90 @@ std::string Join(const int v[3])
   s << v[0] << "x" << v[1] << "x" << v[2];
   return s.str();
 }
+/// The window's back buffer as an image.
+vtkSmartPointer<vtkImageData> Grab(vtkRenderWindow* window)
+{
+  vtkNew<vtkWindowToImageFilter> filter;
+  filter->SetInput(window);
+  filter->ReadFrontBufferOff();
+  filter->Update();
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->DeepCopy(filter->GetOutput());
+  return image;
+}
+
+/// A ParaView light kit in place of the bench's lights.
+void UseLightKit(Bench& bench)
+{
+  bench.Renderer->RemoveAllLights();
+  vtkNew<vtkLightKit> kit;
+  kit->AddLightsToRenderer(bench.Renderer);
+}
+
+/// LightDirectionTolerance: the camera (and the light kit with it) turns by
+/// an angle after an exact frame, and the frame that keeps the irradiance is
+/// compared with an exact frame of the same camera (PSNR), with the time of
+/// both still frames. Default material and `skin`. Writes
+/// OUT/light_tolerance.csv.
+int RunLightTolerance(const mmvbench::SceneSpec& scene, int size, const std::string& out)
+{
+  double range[2];
+  scene.Image->GetScalarRange(range);
+  std::ofstream csv(out + "/light_tolerance.csv");
+  csv << "material,angle_deg,psnr_kept_vs_exact_db,kept_frame_s,exact_frame_s,renderer\n";
+  std::printf("material  angle deg  kept vs exact dB  kept frame s  exact frame s\n");
+  auto timed = [](vtkRenderWindow* window) {
+    const auto start = std::chrono::steady_clock::now();
+    window->Render();
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
+  for (const std::string material : { "default", "skin" })
+  {
+    Bench kept(scene, size, true);
+    Bench exact(scene, size, true);
+    for (Bench* b : { &kept, &exact })
+    {
+      UseLightKit(*b);
+      if (material == "skin")
+      {
+        b->Materials->ApplyPreset("skin", range[0], range[1]);
+      }
+      b->Ours->TimeStagesOff();
+      b->Window->SetDesiredUpdateRate(0.0001); // still renders only
+    }
+    const std::string renderer = mmvtest::RendererString(kept.Window);
+    for (double angle : { 0.25, 0.5, 1.0, 2.0, 4.0, 8.0, 16.0 })
+    {
+      // An exact frame at the start camera, then the turn within tolerance.
+      kept.Ours->SetLightDirectionTolerance(0.0);
+      kept.Window->Render();
+      kept.Ours->SetLightDirectionTolerance(mmv::MaxLightDirectionToleranceDegrees);
+      kept.Renderer->GetActiveCamera()->Azimuth(angle);
+      const int updates = kept.Ours->GetIrradianceUpdateCount();
+      const double keptSeconds = timed(kept.Window);
+      if (kept.Ours->GetIrradianceUpdateCount() != updates)
+      {
+        std::cerr << "the irradiance was recomputed within the tolerance\n";
+        return 1;
+      }
+      exact.Renderer->GetActiveCamera()->DeepCopy(kept.Renderer->GetActiveCamera());
+      exact.Renderer->ResetCameraClippingRange();
+      kept.Renderer->ResetCameraClippingRange();
+      const double exactSeconds = timed(exact.Window);
+      kept.Window->Render(); // the same clipping range as the exact frame
+      vtkNew<vtkImageErrorMetrics> metrics;
+      metrics->Compute(Grab(kept.Window), Grab(exact.Window));
+      csv << material << "," << angle << "," << metrics->GetPSNR() << "," << keptSeconds << ","
+          << exactSeconds << ",\"" << renderer << "\"\n";
+      std::printf("%-9s %9.2f %17.1f %13.3f %14.3f\n", material.c_str(), angle,
+        metrics->GetPSNR(), keptSeconds, exactSeconds);
+      kept.Renderer->GetActiveCamera()->Azimuth(-angle);
+    }
+  }
+  std::cout << "== wrote " << out << "/light_tolerance.csv" << std::endl;
+  return 0;
+}
+
 /// ParaView's default lighting in C++: a light kit (key, fill, two back
 /// lights and the head light, all following the camera), a camera orbit of
 /// `steps` steps, each of `interactive` frames with a small allocated render
@@ -250,9 +335,7 @@ int RunLightKitOrbit(const mmvbench::SceneSpec& scene, int size, const std::stri
   scene.Image->GetScalarRange(range);
   auto make = [&](int method) {
     auto bench = std::make_unique<Bench>(scene, size, method >= OursDefault);
-    bench->Renderer->RemoveAllLights();
-    vtkNew<vtkLightKit> kit;
-    kit->AddLightsToRenderer(bench->Renderer);
+    UseLightKit(*bench);
     if (method == Scattering)
     {
       bench->Mapper->SetVolumetricScatteringBlending(1.0);
@@ -323,17 +406,8 @@ int RunLightKitOrbit(const mmvbench::SceneSpec& scene, int size, const std::stri
       benches[m]->Renderer->ResetCameraClippingRange();
       fresh->Window->Render();
       benches[m]->Window->Render();
-      auto grab = [](vtkRenderWindow* window) {
-        vtkNew<vtkWindowToImageFilter> filter;
-        filter->SetInput(window);
-        filter->ReadFrontBufferOff();
-        filter->Update();
-        auto image = vtkSmartPointer<vtkImageData>::New();
-        image->DeepCopy(filter->GetOutput());
-        return image;
-      };
       vtkNew<vtkImageErrorMetrics> metrics;
-      metrics->Compute(grab(benches[m]->Window), grab(fresh->Window));
+      metrics->Compute(Grab(benches[m]->Window), Grab(fresh->Window));
       psnr = metrics->GetPSNR();
     }
     const double i = Median(inter[m]), st = Median(settled[m]), sl = Median(still[m]);
@@ -479,6 +553,10 @@ int main(int argc, char* argv[])
     configs.push_back({ "fragment", 5, s, 0.5, true, true, false });
   }
 
+  if (Wanted(only, "tolerance") && !only.empty()) // alone: windows of its own
+  {
+    return RunLightTolerance(scene, size, out);
+  }
   if (Wanted(only, "orbit") && !only.empty()) // alone: four windows of its own
   {
     return RunLightKitOrbit(scene, size, out, orbitSteps, orbitInteractive);

@@ -7,6 +7,7 @@
 #include "vtkImageData.h"
 #include "vtkIrradianceInputCache.h"
 #include "vtkMaterialTransferFunction.h"
+#include "vtkMultiMaterialLightTolerance.h"
 #include "vtkPointData.h"
 
 #include <gtest/gtest.h>
@@ -115,18 +116,18 @@ TEST(IrradianceInputCache, StoredIrradianceIsCurrentUntilItsInputsChange)
   volume.Cut = { 1.0, 2.0 };
   std::vector<mmv::LightSource> lights(1);
   const int dims[3] = { 8, 8, 8 };
-  EXPECT_FALSE(cache->IsCurrent(volume, lights, dims)) << "nothing stored yet";
+  EXPECT_FALSE(cache->IsCurrent(volume, lights, dims, 0.0)) << "nothing stored yet";
   EXPECT_FALSE(cache->SameVolume(volume));
   cache->Store(volume, lights, dims);
-  EXPECT_TRUE(cache->IsCurrent(volume, lights, dims));
+  EXPECT_TRUE(cache->IsCurrent(volume, lights, dims, 0.0));
 
   // A moved light or another grid: not current, but the same volume (an
   // interactive frame may keep the irradiance).
   std::vector<mmv::LightSource> moved = lights;
   moved[0].ToLight = glm::dvec3(1.0, 0.0, 0.0);
-  EXPECT_FALSE(cache->IsCurrent(volume, moved, dims));
+  EXPECT_FALSE(cache->IsCurrent(volume, moved, dims, 0.0));
   const int finer[3] = { 16, 8, 8 };
-  EXPECT_FALSE(cache->IsCurrent(volume, lights, finer));
+  EXPECT_FALSE(cache->IsCurrent(volume, lights, finer, 0.0));
   EXPECT_TRUE(cache->SameVolume(volume));
 
   // Any field of the volume key makes it another volume.
@@ -146,5 +147,64 @@ TEST(IrradianceInputCache, StoredIrradianceIsCurrentUntilItsInputsChange)
   // Released graphics resources or a failed computation: recompute.
   cache->Invalidate();
   EXPECT_FALSE(cache->SameVolume(volume));
-  EXPECT_FALSE(cache->IsCurrent(volume, lights, dims));
+  EXPECT_FALSE(cache->IsCurrent(volume, lights, dims, 0.0));
+}
+
+TEST(IrradianceInputCache, LightsWithinTheToleranceKeepTheStoredIrradiance)
+{
+  vtkNew<vtkIrradianceInputCache> cache;
+  vtkIrradianceInputCache::VolumeKey volume;
+  volume.NumberOfLights = 2;
+  std::vector<mmv::LightSource> lights(2);
+  lights[1].Kind = mmv::PointLight;
+  lights[1].Position = glm::dvec3(100.0, 0.0, 0.0);
+  const int dims[3] = { 8, 8, 8 };
+  cache->Store(volume, lights, dims);
+
+  // ParaView's kit differs in the last bits between its first renders: the
+  // rounding floor keeps the irradiance even with tolerance 0.
+  std::vector<mmv::LightSource> rounded = lights;
+  rounded[0].ToLight = glm::normalize(glm::dvec3(1e-15, 0.0, 1.0));
+  EXPECT_TRUE(cache->IsCurrent(volume, rounded, dims, 0.0));
+  rounded[0].ToLight = glm::normalize(glm::dvec3(1e-5, 0.0, 1.0));
+  EXPECT_FALSE(cache->IsCurrent(volume, rounded, dims, 0.0));
+
+  // A directional light turned by 0.5 degrees, tolerance 1 degree: kept;
+  // by 1.5 degrees: recomputed.
+  const double one = mmv::LightToleranceRadians(1.0);
+  auto turned = [&](double degrees) {
+    std::vector<mmv::LightSource> l = lights;
+    const double a = glm::radians(degrees);
+    l[0].ToLight = glm::dvec3(std::sin(a), 0.0, std::cos(a));
+    return l;
+  };
+  EXPECT_TRUE(cache->IsCurrent(volume, turned(0.5), dims, one));
+  EXPECT_FALSE(cache->IsCurrent(volume, turned(1.5), dims, one));
+
+  // A point light: the angle its move subtends at the grid's centre.
+  const mmv::IrradianceGrid& g = cache->GetGrid();
+  const glm::dvec3 centre =
+    g.IndexToPhysical(0.5 * (glm::dvec3(g.Dimensions[0], g.Dimensions[1], g.Dimensions[2]) - 1.0));
+  const double distance = glm::length(lights[1].Position - centre);
+  std::vector<mmv::LightSource> shifted = lights;
+  shifted[1].Position.y += 0.9 * one * distance;
+  EXPECT_TRUE(cache->IsCurrent(volume, shifted, dims, one));
+  shifted[1].Position.y += 0.2 * one * distance;
+  EXPECT_FALSE(cache->IsCurrent(volume, shifted, dims, one));
+
+  // Anything but the placement must match exactly.
+  std::vector<mmv::LightSource> attenuated = lights;
+  attenuated[1].Attenuation.y = 1e-9;
+  EXPECT_FALSE(cache->IsCurrent(volume, attenuated, dims, mmv::LightToleranceRadians(45.0)));
+  std::vector<mmv::LightSource> kind = lights;
+  kind[0].Kind = mmv::PointLight;
+  EXPECT_FALSE(cache->IsCurrent(volume, kind, dims, mmv::LightToleranceRadians(45.0)));
+}
+
+TEST(IrradianceInputCache, LightToleranceDegreesAreValidated)
+{
+  EXPECT_EQ(mmv::LightToleranceRadians(-1.0), 0.0);
+  EXPECT_EQ(mmv::LightToleranceRadians(std::nan("")), 0.0);
+  EXPECT_DOUBLE_EQ(mmv::LightToleranceRadians(90.0), glm::radians(45.0));
+  EXPECT_DOUBLE_EQ(mmv::LightToleranceRadians(2.0), glm::radians(2.0));
 }

@@ -1,6 +1,7 @@
 // vtkIrradianceVolumeFilter (Zhang & Ma §5.1-5.2) against closed forms:
 // Beer-Lambert through homogeneous slabs, eq. 12 falloff, eq. 14 cones, plus
 // sparsity, diffusion on/off, resolution choice and error handling.
+#include "vtkIrradianceGrid.h"
 #include "vtkIrradianceVolumeFilter.h"
 
 #include "vtkCallbackCommand.h"
@@ -556,12 +557,19 @@ TEST(IrradianceVolumeFilter, ComputeIrradianceDimensions)
 
   // Budget mode: fits, never above the data, and not wastefully small.
   const int big[3] = { 256, 200, 300 };
-  for (const int lights : { 1, 3, 8 })
+  // The GPU's textures: 16 bits per channel, four lights to a texture, the
+  // last with R16, RG16 or RGBA16 (three lights take four channels).
+  const double perVoxel[] = { 2, 2, 4, 8, 8, 10, 12, 16, 16 };
+  for (int lights = 0; lights <= 8; ++lights)
+  {
+    EXPECT_EQ(mmv::IrradianceBytesPerVoxel(lights), perVoxel[lights]) << lights << " lights";
+  }
+  for (const int lights : { 1, 3, 5, 8 })
   {
     for (const double mb : { 1.0, 8.0, 20.0 })
     {
       vtkIrradianceVolumeFilter::ComputeIrradianceDimensions(big, lights, mb, 0.0, dims);
-      const double bytes = 2.0 * lights * dims[0] * dims[1] * dims[2];
+      const double bytes = mmv::IrradianceBytesPerVoxel(lights) * dims[0] * dims[1] * dims[2];
       EXPECT_LE(bytes, mb * 1024 * 1024) << lights << " lights, " << mb << " MB";
       EXPECT_GT(bytes, 0.9 * mb * 1024 * 1024) << lights << " lights, " << mb << " MB";
       for (int a = 0; a < 3; ++a)

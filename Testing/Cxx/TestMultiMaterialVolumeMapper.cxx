@@ -6,6 +6,7 @@
 #include "vtkIrradianceGrid.h"
 #include "vtkIrradianceVolumeFilter.h"
 #include "vtkMaterialTransferFunction.h"
+#include "vtkMath.h"
 #include "vtkMultiMaterialVolumeMapper.h"
 #include "vtkOpenGLGPUVolumeRayCastMapper.h"
 #include "vtkCallbackCommand.h"
@@ -487,6 +488,50 @@ TEST(MultiMaterialVolumeMapper, SceneLightsThatDidNotMoveKeepTheirIrradiance)
   scene.Window->Render();
   EXPECT_EQ(scene.Mapper->GetIrradianceUpdateCount(), 2);
   EXPECT_EQ(scene.Mapper->GetNumberOfUpdatedLights(), 1);
+}
+
+TEST(MultiMaterialVolumeMapper, LightsWithinTheToleranceKeepTheirIrradianceWithoutDrift)
+{
+  CubeScene scene(1.0);
+  const double from1[3] = { 1000.0, 16.0, 16.0 };
+  scene.AddDirectionalLight(from1, CubeCenter);
+  vtkLight* turning = scene.AddDirectionalLight(CubeCenter, CubeCenter);
+  auto turn = [&](double degrees) {
+    const double a = degrees * vtkMath::Pi() / 180.0;
+    turning->SetPosition(16.0 + 984.0 * std::sin(a), 16.0, 16.0 + 984.0 * std::cos(a));
+  };
+  turn(0.0);
+  scene.Mapper->SetLightDirectionTolerance(1.0);
+  scene.Window->Render();
+  ASSERT_EQ(scene.Mapper->GetIrradianceUpdateCount(), 1);
+
+  // 0.6 degrees: within the tolerance, kept.
+  turn(0.6);
+  scene.Window->Render();
+  EXPECT_EQ(scene.Mapper->GetIrradianceUpdateCount(), 1);
+  // 1.2 degrees from what the irradiance holds (0.6 from the last frame):
+  // recomputed, that light alone. Comparing with the last frame instead
+  // would let small moves add up without end.
+  turn(1.2);
+  scene.Window->Render();
+  EXPECT_EQ(scene.Mapper->GetIrradianceUpdateCount(), 2);
+  EXPECT_EQ(scene.Mapper->GetNumberOfUpdatedLights(), 1);
+  // Back by 0.6: within the tolerance of 1.2.
+  turn(0.6);
+  scene.Window->Render();
+  EXPECT_EQ(scene.Mapper->GetIrradianceUpdateCount(), 2);
+
+  // Tolerance 0 (the default): any move beyond the camera's rounding updates.
+  scene.Mapper->SetLightDirectionTolerance(mmv::DefaultLightDirectionToleranceDegrees);
+  turn(0.61);
+  scene.Window->Render();
+  EXPECT_EQ(scene.Mapper->GetIrradianceUpdateCount(), 3);
+
+  // Out-of-range values are clamped by the setter.
+  scene.Mapper->SetLightDirectionTolerance(1000.0);
+  EXPECT_EQ(scene.Mapper->GetLightDirectionTolerance(), mmv::MaxLightDirectionToleranceDegrees);
+  scene.Mapper->SetLightDirectionTolerance(-1.0);
+  EXPECT_EQ(scene.Mapper->GetLightDirectionTolerance(), 0.0);
 }
 
 TEST(MultiMaterialVolumeMapper, ReportsTheChosenIrradianceResolution)

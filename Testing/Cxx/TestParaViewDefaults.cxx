@@ -52,4 +52,7 @@ TEST(ParaViewDefaults, ProxyDefaultsAreTheCppConstants)
   {
     EXPECT_EQ(value, mmv::DefaultPiecewiseShadowSlices);
   }
+  const std::vector<double> tolerance = Defaults(xml, "LightDirectionTolerance");
+  ASSERT_EQ(tolerance.size(), 1u);
+  EXPECT_EQ(tolerance[0], mmv::DefaultLightDirectionToleranceDegrees);
 }

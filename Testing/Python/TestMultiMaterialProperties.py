@@ -35,8 +35,11 @@ def changed(a, b, what, minimum=0.5):
 
 base = render()
 c0 = counters()
-checker.check(c0["IrradianceUpdateCount"] >= 1 and c0["DiffusionPassCount"] >= 1,
-              "bone scatters: irradiance and diffusion ran (%s)" % c0)
+checker.check(c0["IrradianceUpdateCount"] == 1 and c0["DiffusionPassCount"] >= 1,
+              "bone scatters: irradiance and diffusion ran, the irradiance once (%s)" % c0)
+# ParaView's first renders recompute the light kit from the camera with a
+# rounding difference (1e-16): that once ran the whole irradiance twice.
+checker.check(counters()["RayCastCount"] > 1, "the first frame drew more than once (%s)" % c0)
 
 # A camera move: the light kit's lights follow the camera, so the irradiance
 # follows too, but the segment tables do not change.
