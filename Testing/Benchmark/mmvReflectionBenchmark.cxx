@@ -215,7 +215,7 @@ int main(int argc, char* argv[])
   std::ofstream csv(opt.Out + "/reflection.csv");
   csv << "scene,size,variant,reflection,visibility,frames,median_ms,p25_ms,p75_ms,"
          "ratio_to_r0,cpu_median_ms,cpu_p25_ms,cpu_p75_ms,cpu_ratio_to_r0,renderer\n";
-  vtkSmartPointer<vtkTexture> sky = MakeSky();
+
   for (const std::string& name : opt.Scenes)
   {
     const mmvbench::SceneSpec scene = mmvbench::MakeScene(name, opt.Head);
@@ -239,7 +239,9 @@ int main(int argc, char* argv[])
       in->Window->SetMultiSamples(0);
       in->Window->AddRenderer(in->Renderer);
       in->Renderer->SetBackground(const_cast<double*>(scene.Background));
-      in->Renderer->SetEnvironmentTexture(sky);
+      // One texture per window: a vtkOpenGLTexture's GL object lives in one
+      // context (shared across windows, binding it fails: GL_INVALID_OPERATION).
+      in->Renderer->SetEnvironmentTexture(MakeSky());
       in->Renderer->AutomaticLightCreationOff();
       in->Renderer->AddLight(light);
       in->Renderer->SetActiveCamera(camera);
