@@ -1367,6 +1367,16 @@ vtkTextureObject* vtkIrradianceVolumePass::GetIrradianceTexture(int i) const
   return i >= 0 && i < static_cast<int>(textures.size()) ? textures[i].Get() : nullptr;
 }
 
+vtkTextureObject* vtkIrradianceVolumePass::GetScalarTexture() const
+{
+  return this->Internals->Uploaded ? this->Internals->ScalarTexture.Get() : nullptr;
+}
+
+vtkTextureObject* vtkIrradianceVolumePass::GetShadowTableTexture() const
+{
+  return this->Internals->Uploaded ? this->Internals->TableTexture.Get() : nullptr;
+}
+
 int vtkIrradianceVolumePass::GetNumberOfIrradianceTextures() const
 {
   return static_cast<int>(this->Internals->Irradiance.size());

@@ -175,6 +175,11 @@ public:
 
   /// RGBA16 3D texture holding lights 4i..4i+3 (nullptr before Render()).
   vtkTextureObject* GetIrradianceTexture(int i) const;
+  /// The pre-filtered scalars (R32F, linear) and the shadow-opacity table the
+  /// shadow rays march, for other marches through the same extinction (the
+  /// reflections' visibility); nullptr before Render().
+  vtkTextureObject* GetScalarTexture() const;
+  vtkTextureObject* GetShadowTableTexture() const;
   int GetNumberOfIrradianceTextures() const;
 
   /// Test hook: light k's irradiance, GetNumberOfVoxels() floats, x fastest.

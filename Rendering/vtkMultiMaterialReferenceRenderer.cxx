@@ -1,5 +1,7 @@
 #include "vtkMultiMaterialReferenceRenderer.h"
 
+#include "vtkMultiMaterialEnvironment.h"
+
 #include "vtkAbstractVolumeMapper.h"
 #include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
@@ -93,9 +95,9 @@ struct Scene
   // Per light: diffused minus direct irradiance at the voxels (empty: none).
   std::vector<std::vector<float>> ScatteringDelta;
   bool Reflection = false;
-  dvec3 EnvironmentUp{ 0.0, 1.0, 0.0 };
-  dvec3 EnvironmentBottom{ 0.0 };
-  dvec3 EnvironmentTop{ 0.0 };
+  const vtkMultiMaterialEnvironment* Environment = nullptr; // c_r
+  bool ReflectionVisibility = false; // I(x, w_r) by a shadow ray along w_r
+  double ReflectionOffset = 0.0;     // object units along n (self-occlusion)
 
   dvec3 ToIndex(const dvec3& x) const { return this->ObjectToIndex * (x - this->Origin); }
 
@@ -242,12 +244,27 @@ struct Scene
     }
     if (this->Reflection && m[mmv::Reflection] > 0.0)
     {
-      const dvec3 mirrored = glm::reflect(-v, n);
-      radiance += directional * m[mmv::Reflection] * segment.w *
-        mmv::mmvEnvironment(mirrored, this->EnvironmentUp, this->EnvironmentBottom, this->EnvironmentTop);
+      radiance += directional * m[mmv::Reflection] * segment.w * this->Reflected(x, n, v);
     }
     radiance += mmv::mmvEmission(m[mmv::Emission], segment);
     return radiance;
+  }
+
+  // Eq. 17's I(x, w_r) c_r(w_r) (Shaders/mmvReflection.glsl): the
+  // visibility is a shadow ray toward a directional light along w_r,
+  // started off the surface along n.
+  dvec3 Reflected(const dvec3& x, const dvec3& n, const dvec3& v) const
+  {
+    const dvec3 mirrored = glm::reflect(-v, n);
+    dvec3 c = this->Environment->Lookup(mirrored);
+    if (this->ReflectionVisibility)
+    {
+      mmv::LightSource along;
+      along.Kind = mmv::DirectionalLight;
+      along.ToLight = mirrored;
+      c *= this->DirectIrradiance(along, x + this->ReflectionOffset * n);
+    }
+    return c;
   }
 
   // Front-to-back composite of the ray x + t d, t in [tNear, tFar]; rgb and
@@ -345,6 +362,8 @@ vtkImageData* vtkMultiMaterialReferenceRenderer::RenderToImage(vtkRenderer* ren,
   {
     this->SetMultipleScattering(mmvMapper->GetMultipleScattering());
     this->SetPointLightRadius(mmvMapper->GetPointLightRadius());
+    this->SetReflectionSource(mmvMapper->GetReflectionSource());
+    this->SetReflectionVisibility(mmvMapper->GetReflectionVisibility());
   }
   const int* size = ren->GetSize();
   return this->Render(ren, size[0], size[1]);
@@ -446,12 +465,21 @@ vtkImageData* vtkMultiMaterialReferenceRenderer::Render(vtkRenderer* ren, int wi
   vtkCamera* camera = ren->GetActiveCamera();
   scene.Reflection =
     materials && materials->GetSize() > 0 && materials->GetMaximum(mmv::Reflection) > 0.0;
+  vtkNew<vtkMultiMaterialEnvironment> environment;
+  if (scene.Reflection)
   {
-    scene.EnvironmentUp = mmv::ViewUpInObject(camera, worldToObject);
-    const double* bottom = ren->GetBackground();
-    const double* top = ren->GetGradientBackground() ? ren->GetBackground2() : bottom;
-    scene.EnvironmentBottom = dvec3(bottom[0], bottom[1], bottom[2]);
-    scene.EnvironmentTop = dvec3(top[0], top[1], top[2]);
+    std::vector<std::string> environmentProblems;
+    environment->Update(ren, objectToWorld, this->ReflectionSource, &environmentProblems);
+    for (const std::string& problem : environmentProblems)
+    {
+      vtkWarningMacro(<< problem);
+    }
+    scene.Environment = environment;
+    // As the GPU: the visibility marches the pre-filtered volume, which
+    // only exists with a light.
+    scene.ReflectionVisibility =
+      this->ReflectionVisibility == mmv::MarchedReflectionVisibility && !scene.Lights.empty();
+    scene.ReflectionOffset = mmv::ReflectionVisibilityOffsetVoxels * smallestSpacing;
   }
 
   // Multiple scattering: diffuse the direct irradiance of every voxel.
@@ -579,6 +607,8 @@ void vtkMultiMaterialReferenceRenderer::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "PointLightRadius: " << this->PointLightRadius << "\n";
   os << indent << "MultipleScattering: " << this->MultipleScattering << "\n";
   os << indent << "MinimumTransmittance: " << this->MinimumTransmittance << "\n";
+  os << indent << "ReflectionSource: " << this->ReflectionSource << "\n";
+  os << indent << "ReflectionVisibility: " << this->ReflectionVisibility << "\n";
   os << indent << "LastRenderSeconds: " << this->LastRenderSeconds << "\n";
   os << indent << "NumberOfSamples: " << this->NumberOfSamples << "\n";
   os << indent << "NumberOfShadowRays: " << this->NumberOfShadowRays << "\n";

@@ -34,8 +34,12 @@
  *    mmv::mmvBlinnPhong per light with its colour * intensity, two-sided
  *    normal from central differences (+-1 voxel) of the normalised value,
  *    the directional fade |grad| / (0.005 / smallest spacing), and the
- *    environment reflection (gradient from the renderer background colours
- *    around the camera's view-up) when the material function has reflection.
+ *    environment reflection of eq. 17 when the material function has
+ *    reflection: c_r from vtkMultiMaterialEnvironment (the renderer's
+ *    environment texture or background, ReflectionSource), times the
+ *    visibility I(x, w_r) (ReflectionVisibility, with a light): a shadow ray
+ *    along w_r as above, from the sample moved
+ *    mmv::ReflectionVisibilityOffsetVoxels smallest spacings along n.
  *    The ambient (particle) term of each light is weighted by
  *    mmv::mmvHenyeyGreensteinRelative(g, -v.l) (1 at g = 0), and every
  *    segment adds its emission e * I_c (mmv::mmvEmission).
@@ -108,6 +112,12 @@ public:
   vtkGetMacro(MultipleScattering, bool);
   vtkBooleanMacro(MultipleScattering, bool);
 
+  /// As vtkMultiMaterialVolumeMapper's (RenderToImage() copies them).
+  vtkSetClampMacro(ReflectionSource, int, 0, 1);
+  vtkGetMacro(ReflectionSource, int);
+  vtkSetClampMacro(ReflectionVisibility, int, 0, 1);
+  vtkGetMacro(ReflectionVisibility, int);
+
   /// Primary and shadow rays stop below this transmittance. Default 1e-6.
   vtkSetClampMacro(MinimumTransmittance, double, 0.0, 1.0);
   vtkGetMacro(MinimumTransmittance, double);
@@ -146,6 +156,8 @@ protected:
   double PointLightRadius = 0.0;
   bool MultipleScattering = true;
   double MinimumTransmittance = 1.0e-6;
+  int ReflectionSource = 0;     // mmv::ReflectEnvironmentTexture
+  int ReflectionVisibility = 1; // mmv::MarchedReflectionVisibility
 
   double LastRenderSeconds = 0.0;
   double LastScatteringSeconds = 0.0;

@@ -2,13 +2,18 @@
 
 #include "vtkMultiMaterialParameters.h"
 
+#include "vtkMultiMaterialCutaway.h"
+
+#include "mmvCutaway.h"
 #include "mmvEmission.h"
 #include "mmvPhaseFunction.h"
 #include "mmvRayCastDec.h"
 #include "mmvRayCastExit.h"
 #include "mmvRayCastImpl.h"
 #include "mmvRayCastInit.h"
+#include "mmvReflection.h"
 #include "mmvShading.h"
+#include "mmvShadowRay.h"
 
 namespace mmv
 {
@@ -23,6 +28,8 @@ std::string VariantDefines(const ShaderVariant& variant)
   s += "#define MMV_USE_PREINTEGRATION " + std::string(variant.PreIntegration ? "1" : "0") + "\n";
   s += "#define MMV_USE_ANISOTROPY " + std::string(variant.Anisotropy ? "1" : "0") + "\n";
   s += "#define MMV_USE_EMISSION " + std::string(variant.Emission ? "1" : "0") + "\n";
+  s += "#define MMV_ENVIRONMENT " + std::to_string(variant.Environment) + "\n";
+  s += "#define MMV_REFLECTION_VISIBILITY " + std::to_string(variant.ReflectionVisibility) + "\n";
   return s;
 }
 
@@ -40,6 +47,15 @@ std::vector<std::pair<std::string, std::string>> RayCastReplacements(const Shade
   if (variant.Emission)
   {
     declarations += mmvEmission;
+  }
+  if (variant.Reflection)
+  {
+    if (variant.ReflectionVisibility != 0)
+    {
+      // The irradiance pass's shadow-ray march (nothing cut: MMV_CUTAWAY unset).
+      declarations += ShadowRayGLSLPrelude() + CutawayGLSLPrelude() + mmvCutaway + mmvShadowRay;
+    }
+    declarations += mmvReflection;
   }
   return {
     { "//VTK::Shading::Dec", declarations + mmvRayCastDec + "\n//VTK::Shading::Dec" },

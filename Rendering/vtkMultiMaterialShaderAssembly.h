@@ -29,12 +29,16 @@ struct ShaderVariant
   bool PreIntegration = true;
   bool Anisotropy = false; // some material has g != 0 (and there is a light)
   bool Emission = false;   // some material has e != 0
+  // With Reflection: mmv::EnvironmentKind and mmv::ReflectionVisibility.
+  int Environment = 0;
+  int ReflectionVisibility = 0;
 
   bool operator==(const ShaderVariant& o) const
   {
     return this->NumberOfLights == o.NumberOfLights && this->Reflection == o.Reflection &&
       this->PreIntegration == o.PreIntegration && this->Anisotropy == o.Anisotropy &&
-      this->Emission == o.Emission;
+      this->Emission == o.Emission && this->Environment == o.Environment &&
+      this->ReflectionVisibility == o.ReflectionVisibility;
   }
   bool operator!=(const ShaderVariant& o) const { return !(*this == o); }
 };

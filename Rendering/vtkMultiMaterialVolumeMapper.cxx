@@ -18,6 +18,7 @@
 #include "vtkMultiMaterialLights.h"
 #include "vtkMultiMaterialLiveObjects.h"
 #include "vtkMultiMaterialParameters.h"
+#include "vtkMultiMaterialReflection.h"
 #include "vtkMultiMaterialRenderPass.h"
 #include "vtkMultiMaterialShaderAssembly.h"
 #include "vtkMultiMaterialTextures.h"
@@ -95,9 +96,7 @@ public:
   float GradientTexScale[3] = { 1.0f, 1.0f, 1.0f };
   float GradientTexBias[3] = { 0.0f, 0.0f, 0.0f };
   float TableStep = 1.0f;
-  float EnvironmentUp[3] = { 0.0f, 1.0f, 0.0f };
-  float EnvironmentBottom[3] = { 0.0f, 0.0f, 0.0f };
-  float EnvironmentTop[3] = { 0.0f, 0.0f, 0.0f };
+  vtkNew<vtkMultiMaterialReflection> Reflection; // eq. 17's c_r and visibility
 
   std::set<std::string> Warnings;
 
@@ -117,6 +116,10 @@ void vtkMultiMaterialVolumeMapper::vtkInternals::ActivateTextures(bool on)
   else
   {
     this->Textures->Deactivate();
+  }
+  if (this->Variant.Reflection)
+  {
+    on ? this->Reflection->Activate() : this->Reflection->Deactivate();
   }
   for (int i = 0; i < textures; ++i)
   {
@@ -185,9 +188,7 @@ void vtkMultiMaterialVolumeMapper::vtkInternals::SetUniforms(vtkShaderProgram* p
   }
   if (this->Variant.Reflection)
   {
-    program->SetUniform3f("mmv_environmentUp", this->EnvironmentUp);
-    program->SetUniform3f("mmv_environmentBottom", this->EnvironmentBottom);
-    program->SetUniform3f("mmv_environmentTop", this->EnvironmentTop);
+    this->Reflection->SetUniforms(program);
   }
 }
 
@@ -609,6 +610,12 @@ void vtkMultiMaterialVolumeMapper::UpdateShading(
   variant.Anisotropy = variant.NumberOfLights > 0 &&
     (all || (in.Materials && in.Materials->HasNonZero(mmv::Anisotropy)));
   variant.Emission = all || (in.Materials && in.Materials->HasNonZero(mmv::Emission));
+  if (variant.Reflection)
+  {
+    this->UpdateReflection(ren, worldToObject);
+    variant.Environment = in.Reflection->GetEnvironmentKind();
+    variant.ReflectionVisibility = in.Reflection->GetVisibility();
+  }
   if (variant != in.Variant || in.Pass->GetFragmentReplacements().empty())
   {
     in.Pass->SetFragmentReplacements(mmv::RayCastReplacements(variant));
@@ -638,25 +645,21 @@ void vtkMultiMaterialVolumeMapper::UpdateShading(
   const double smallestSpacing =
     std::min({ std::abs(spacing[0]), std::abs(spacing[1]), std::abs(spacing[2]) });
   in.GradientFade = static_cast<float>(mmv::FullShadingGradientPerVoxel / smallestSpacing);
+}
 
-  if (variant.Reflection)
+void vtkMultiMaterialVolumeMapper::UpdateReflection(vtkRenderer* ren, vtkMatrix4x4* worldToObject)
+{
+  vtkInternals& in = *this->Internals;
+  vtkNew<vtkMatrix4x4> objectToWorld;
+  vtkMatrix4x4::Invert(worldToObject, objectToWorld);
+  const mmv::IrradianceGrid& grid = in.Cache->GetGrid();
+  std::vector<std::string> problems;
+  in.Reflection->Update(ren, objectToWorld, this->ReflectionSource, this->ReflectionVisibility,
+    in.Lights.empty() ? nullptr : in.Irradiance.Get(), grid, this->PreIntegrationTableSize,
+    std::min({ grid.Spacing.x, grid.Spacing.y, grid.Spacing.z }), &problems);
+  for (const std::string& problem : problems)
   {
-    const double* up = ren->GetActiveCamera()->GetViewUp();
-    glm::dvec3 u(0.0);
-    for (int i = 0; i < 3; ++i)
-    {
-      u[i] = worldToObject->GetElement(i, 0) * up[0] + worldToObject->GetElement(i, 1) * up[1] +
-        worldToObject->GetElement(i, 2) * up[2];
-    }
-    u = glm::length(u) > 0.0 ? glm::normalize(u) : glm::dvec3(0.0, 1.0, 0.0);
-    const double* bottom = ren->GetBackground();
-    const double* top = ren->GetGradientBackground() ? ren->GetBackground2() : bottom;
-    for (int i = 0; i < 3; ++i)
-    {
-      in.EnvironmentUp[i] = static_cast<float>(u[i]);
-      in.EnvironmentBottom[i] = static_cast<float>(bottom[i]);
-      in.EnvironmentTop[i] = static_cast<float>(top[i]);
-    }
+    this->WarnOnce(problem);
   }
 }
 
@@ -880,6 +883,8 @@ void vtkMultiMaterialVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "PointLightRadius: " << this->PointLightRadius << "\n";
   os << indent << "PreIntegrationTableSize: " << this->PreIntegrationTableSize << "\n";
   os << indent << "CompileUnusedOpticalTerms: " << this->CompileUnusedOpticalTerms << "\n";
+  os << indent << "ReflectionSource: " << this->ReflectionSource << "\n";
+  os << indent << "ReflectionVisibility: " << this->ReflectionVisibility << "\n";
   os << indent << "InteractiveIrradiance: "
      << (this->InteractiveIrradiance == ReuseWhileInteracting ? "ReuseWhileInteracting"
                                                               : "UpdateAlways")

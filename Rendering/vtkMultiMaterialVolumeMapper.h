@@ -155,6 +155,23 @@ public:
   vtkSetMacro(CompileUnusedOpticalTerms, bool);
   vtkGetMacro(CompileUnusedOpticalTerms, bool);
 
+  /// Where reflections take their environment colour c_r (eq. 17) from:
+  /// 0 (mmv::ReflectEnvironmentTexture, default), the renderer's environment
+  /// texture (cube map or equirectangular image) when one is set, else the
+  /// background; 1 (mmv::ReflectBackground), the background colour or
+  /// gradient. A texture that is not a cube map or 2D image, or is empty, is
+  /// reported (warning) and the background used (vtkMultiMaterialEnvironment).
+  vtkSetClampMacro(ReflectionSource, int, 0, 1);
+  vtkGetMacro(ReflectionSource, int);
+
+  /// The visibility I(x, w_r) of reflections (eq. 17): 1
+  /// (mmv::MarchedReflectionVisibility, default), a march through the
+  /// pre-filtered extinction from every shaded sample with r > 0; 0
+  /// (mmv::UnoccludedReflections), none. Needs a light (the pre-filtered
+  /// volume comes with the irradiance): without one, unoccluded (warning).
+  vtkSetClampMacro(ReflectionVisibility, int, 0, 1);
+  vtkGetMacro(ReflectionVisibility, int);
+
   /// Pre-integration table size n (n x n). Default 256.
   vtkSetClampMacro(PreIntegrationTableSize, int, 16, 1024);
   vtkGetMacro(PreIntegrationTableSize, int);
@@ -280,6 +297,8 @@ protected:
   int PreIntegrationTableSize = 256;
   bool TimeStages = false;
   bool CompileUnusedOpticalTerms = false;
+  int ReflectionSource = 0;     // mmv::ReflectEnvironmentTexture
+  int ReflectionVisibility = 1; // mmv::MarchedReflectionVisibility
 
   int PreIntegrationCount = 0;
   int IrradianceUpdateCount = 0;
@@ -320,6 +339,7 @@ private:
     vtkRenderer* ren, vtkVolume* vol, vtkImageData* image);
   void RecordIrradianceUpdate(const mmv::IrradianceResolution& resolution);
   void UpdateShading(vtkRenderer* ren, vtkImageData* image, vtkMatrix4x4* worldToObject);
+  void UpdateReflection(vtkRenderer* ren, vtkMatrix4x4* worldToObject);
   // The irradiance texture coordinates of the input, a piece of the global
   // pre-filtered volume.
   void MapPieceToGlobalIrradiance(vtkImageData* piece);

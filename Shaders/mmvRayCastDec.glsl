@@ -2,8 +2,8 @@
 // Inserted before //VTK::Shading::Dec. The C++ side prepends the defines
 // MMV_NUMBER_OF_LIGHTS, MMV_IRRADIANCE_TEXTURES, MMV_USE_REFLECTION,
 // MMV_USE_PREINTEGRATION, MMV_USE_ANISOTROPY and MMV_USE_EMISSION, and
-// mmvShading.glsl (with mmvPhaseFunction.glsl and mmvEmission.glsl when
-// those are on).
+// mmvShading.glsl (with mmvPhaseFunction.glsl, mmvEmission.glsl and
+// mmvReflection.glsl when those are on).
 //
 // Data values are normalised to [0, 1] over the scalar range, the coordinate
 // of every table below.
@@ -35,11 +35,6 @@ uniform sampler3D mmv_irradiance1;  // lights 4-7
 uniform int mmv_lightKind[MMV_NUMBER_OF_LIGHTS];       // 0 directional, 1 point, 2 spot
 uniform vec3 mmv_lightVector[MMV_NUMBER_OF_LIGHTS];    // toward the light, or its position (object space)
 uniform vec3 mmv_lightRadiance[MMV_NUMBER_OF_LIGHTS];  // colour * intensity
-#endif
-#if MMV_USE_REFLECTION
-uniform vec3 mmv_environmentUp;     // object space
-uniform vec3 mmv_environmentBottom;
-uniform vec3 mmv_environmentTop;
 #endif
 
 // The back end of the previous segment.
@@ -165,9 +160,7 @@ vec3 mmvShadeSegment(vec3 texPos, float t, vec4 segment)
   float reflection = texture2D(mmv_material, vec2(tc, mmvMaterialRow(1))).x;
   if (reflection > 0.0)
   {
-    vec3 mirrored = reflect(-v, n);
-    radiance += directional * reflection * segment.a *
-      mmvEnvironment(mirrored, mmv_environmentUp, mmv_environmentBottom, mmv_environmentTop);
+    radiance += directional * reflection * segment.a * mmvReflectedRadiance(position, n, v);
   }
 #endif
 #if MMV_USE_EMISSION

@@ -174,7 +174,15 @@ void vtkPVMultiMaterialVolumeRepresentation::UpdateMapperParameters()
   mapper->SetGradientSmoothing(this->GradientSmoothing);
   mapper->SetMultipleScattering(this->MultipleScattering);
   mapper->SetPreIntegration(this->PreIntegration);
-  mapper->SetPointLightRadius(this->PointLightRadius);
+  if (this->LightFalloff == 1 && !(this->PointLightRadius > 0.0) && !this->WarnedZeroRadius)
+  {
+    vtkWarningMacro("LightFalloff \"Inverse Square Beyond Radius\" needs a PointLightRadius "
+                    "greater than 0: using the lights' attenuation");
+    this->WarnedZeroRadius = true;
+  }
+  mapper->SetPointLightRadius(this->LightFalloff == 1 ? this->PointLightRadius : 0.0);
+  mapper->SetReflectionSource(this->ReflectionSource);
+  mapper->SetReflectionVisibility(this->ReflectionVisibility);
   mapper->SetSampleDistance(static_cast<float>(this->SampleDistance));
   mapper->SetAutoAdjustSampleDistances(this->AutoAdjustSampleDistances);
   mapper->SetLockSampleDistanceToInputSpacing(this->LockSampleDistanceToInputSpacing);
@@ -212,6 +220,9 @@ vtkPVMMVSetter(ShadowEstimation, int);
 vtkPVMMVSetter(PiecewiseShadowSlices, int);
 vtkPVMMVSetter(ExponentialDiffusion, bool);
 vtkPVMMVSetter(LightDirectionTolerance, double);
+vtkPVMMVSetter(ReflectionSource, int);
+vtkPVMMVSetter(ReflectionVisibility, int);
+vtkPVMMVSetter(LightFalloff, int);
 #undef vtkPVMMVSetter
 
 //------------------------------------------------------------------------------
@@ -376,4 +387,7 @@ void vtkPVMultiMaterialVolumeRepresentation::PrintSelf(ostream& os, vtkIndent in
   os << indent << "PiecewiseShadowSlices: " << this->PiecewiseShadowSlices << "\n";
   os << indent << "ExponentialDiffusion: " << this->ExponentialDiffusion << "\n";
   os << indent << "LightDirectionTolerance: " << this->LightDirectionTolerance << "\n";
+  os << indent << "LightFalloff: " << this->LightFalloff << "\n";
+  os << indent << "ReflectionSource: " << this->ReflectionSource << "\n";
+  os << indent << "ReflectionVisibility: " << this->ReflectionVisibility << "\n";
 }

@@ -94,7 +94,14 @@ public:
   void SetPiecewiseShadowSlices(int slices);
   void SetExponentialDiffusion(bool exponential);
   void SetLightDirectionTolerance(double degrees);
+  void SetReflectionSource(int source);
+  void SetReflectionVisibility(int visibility);
   ///@}
+
+  /// Point and spot lights' falloff: 0 (default), the lights' attenuation;
+  /// 1, the paper's eq. 12 with PointLightRadius (the mapper gets radius 0
+  /// with 0, PointLightRadius with 1).
+  void SetLightFalloff(int falloff);
 
   ///@{
   /// The mapper's counters on this process (see vtkMultiMaterialVolumeMapper).
@@ -162,6 +169,10 @@ private:
   int PiecewiseShadowSlices = mmv::DefaultPiecewiseShadowSlices;
   bool ExponentialDiffusion = false;
   double LightDirectionTolerance = mmv::DefaultLightDirectionToleranceDegrees;
+  int ReflectionSource = 0;     // mmv::ReflectEnvironmentTexture
+  int ReflectionVisibility = 1; // mmv::MarchedReflectionVisibility
+  int LightFalloff = 0;
+  bool WarnedZeroRadius = false;
 
   vtkNew<vtkGlobalPrefilteredVolume> GlobalVolume;
   // RequestData runs on every rank together, so counting it gives every rank

@@ -84,9 +84,11 @@ def main():
         ("pv-volume", "Volume", {"Shade": 1}),
         ("mmv-bone", orbit.MMV, {"MaterialPreset": "bone"}),
         ("mmv-bone-eq12-one-voxel", orbit.MMV,
-         {"MaterialPreset": "bone", "PointLightRadius": spacing}),
+         {"MaterialPreset": "bone", "LightFalloff": "Inverse Square Beyond Radius",
+          "PointLightRadius": spacing}),
         ("mmv-bone-eq12-huge-radius", orbit.MMV,
-         {"MaterialPreset": "bone", "PointLightRadius": 1.0e6}),
+         {"MaterialPreset": "bone", "LightFalloff": "Inverse Square Beyond Radius",
+          "PointLightRadius": 1.0e6}),
     ]
     images = {}
     for name, representation, props in methods:

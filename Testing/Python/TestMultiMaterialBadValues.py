@@ -95,6 +95,7 @@ def expect_replaced(prop, bad, fallback, message_part):
     setattr(rep, prop, fallback)
 
 
+rep.LightFalloff = "Inverse Square Beyond Radius"  # the radius is used
 expect_replaced("PointLightRadius", -5.0, 0.0, "PointLightRadius -5")
 expect_replaced("IrradianceScale", 5.0, 1.0, "IrradianceScale 5")
 rep.IrradianceScale = 0.0

@@ -114,8 +114,10 @@ checker.check(counters()["PreIntegrationCount"] > before, "SampleDistance rebuil
 changed(base, coarse, "SampleDistance 3", minimum=0.05)
 rep.AutoAdjustSampleDistances = 1
 rep.SampleDistance = 1.0
-# PointLightRadius > 0 selects eq. 12, (radius / distance)^2 beyond it; the
-# default 0 is VTK's falloff by the light's AttenuationValues (none here).
+# LightFalloff "Inverse Square Beyond Radius" selects eq. 12,
+# (radius / distance)^2 beyond PointLightRadius; the default is VTK's falloff
+# by the light's AttenuationValues (none here).
+rep.LightFalloff = "Inverse Square Beyond Radius"
 rep.PointLightRadius = 30.0
 base = render()
 
@@ -138,10 +140,10 @@ checker.check(lightsAfter["IrradianceUpdateCount"] > lightsBefore["IrradianceUpd
               "the spot light recomputes the irradiance")
 changed(base, spot, "AddLight (spot)")
 
-# PointLightRadius matters for the spot light (back to VTK's attenuation).
-rep.PointLightRadius = 0.0
-changed(spot, render(), "PointLightRadius", minimum=0.05)
-rep.PointLightRadius = 30.0
+# The falloff matters for the spot light (back to VTK's attenuation).
+rep.LightFalloff = "Light Attenuation"
+changed(spot, render(), "LightFalloff", minimum=0.05)
+rep.LightFalloff = "Inverse Square Beyond Radius"
 
 # The light kit off: the spot light alone, and a camera move then costs no
 # irradiance update (scene lights stay put relative to the volume).

@@ -1,0 +1,105 @@
+/**
+ * @class   vtkMultiMaterialEnvironment
+ * @brief   The environment colour c_r(omega_r) of Zhang & Ma eq. 17, read from
+ *          a renderer: its environment texture or its background.
+ *
+ * Source (mmv::ReflectionSource): the renderer's environment texture
+ * (vtkRenderer::SetEnvironmentTexture, which ParaView's "Skybox" background
+ * with environment lighting sets) when one is set: a cube map (six 2D images,
+ * +x -x +y -y +z -z) or one 2D equirectangular image, oriented by the
+ * renderer's EnvironmentUp and EnvironmentRight exactly as VTK's skybox
+ * shows it. Otherwise, or with mmv::ReflectBackground, the background: its
+ * vertical gradient around the camera's view-up (Background at the bottom,
+ * Background2 at the top when GradientBackground is on), as before.
+ *
+ * Bad input gets a warning (Update()'s problems) and the background: a
+ * texture whose input is not a 2D image (a 3D image, a cube map without six
+ * equal 2D faces) or an empty image (no points, no scalars).
+ *
+ * CPU (Lookup(), for the reference renderer) and GPU (Activate(),
+ * SetUniforms(), for Shaders/mmvReflection.glsl) read the same texels: the
+ * CPU samples the images as OpenGL does (nearest or bilinear as the
+ * texture's Interpolate, repeat or clamp as its Repeat, sRGB decoded when the
+ * texture says so; 8-bit values / 255, others as they are).
+ */
+#ifndef vtkMultiMaterialEnvironment_h
+#define vtkMultiMaterialEnvironment_h
+
+#include "vtkMultiMaterialEnvironmentLookup.h" // mmv::ReflectionSource, EnvironmentKind
+#include "vtkMultiMaterialVolumeModule.h"      // export macro
+#include "vtkObject.h"
+#include "vtkSmartPointer.h" // images
+
+#include <glm/glm.hpp> // directions
+#include <string>      // problems
+#include <vector>      // faces
+
+class vtkImageData;
+class vtkMatrix4x4;
+class vtkRenderer;
+class vtkShaderProgram;
+class vtkTexture;
+
+class VTKMULTIMATERIALVOLUME_EXPORT vtkMultiMaterialEnvironment : public vtkObject
+{
+public:
+  static vtkMultiMaterialEnvironment* New();
+  vtkTypeMacro(vtkMultiMaterialEnvironment, vtkObject);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /**
+   * Reads `ren`'s environment for a volume whose object space maps to world
+   * space by `objectToWorld` (the volume's matrix). Problems with the texture
+   * (the background is used instead) are appended to `problems`.
+   */
+  void Update(vtkRenderer* ren, vtkMatrix4x4* objectToWorld, int source,
+    std::vector<std::string>* problems);
+
+  /// mmv::EnvironmentKind of the last Update().
+  int GetKind() const { return this->Kind; }
+
+  /// c_r along object-space direction d (any length but zero), on the CPU.
+  glm::dvec3 Lookup(const glm::dvec3& d) const;
+
+  ///@{
+  /// GPU: uploads (if needed) and binds the texture, sets the uniforms of
+  /// Shaders/mmvReflection.glsl, unbinds. Between Activate() and Deactivate()
+  /// the renderer of the last Update() must be current.
+  void Activate();
+  void Deactivate();
+  void SetUniforms(vtkShaderProgram* program) const;
+  ///@}
+
+protected:
+  vtkMultiMaterialEnvironment();
+  ~vtkMultiMaterialEnvironment() override;
+
+private:
+  vtkMultiMaterialEnvironment(const vtkMultiMaterialEnvironment&) = delete;
+  void operator=(const vtkMultiMaterialEnvironment&) = delete;
+
+  // Checks the texture's inputs and keeps its images; false (with the
+  // problem) when it cannot be used.
+  bool ReadTexture(vtkTexture* texture, std::string& problem);
+  glm::dvec3 SampleImage(int image, const glm::dvec2& st, bool repeat) const;
+  glm::dvec3 Texel(int image, int i, int j) const;
+
+  int Kind = mmv::BackgroundEnvironment;
+  vtkRenderer* Renderer = nullptr; // of the last Update(), not owned
+  vtkSmartPointer<vtkTexture> Texture;
+  std::vector<vtkSmartPointer<vtkImageData>> Images;
+  bool Interpolate = false;
+  bool Repeat = true;
+  bool SRGB = false;
+  bool Active = false;
+  // The frame in object space (world axes pulled back by objectToWorld).
+  glm::dvec3 Right{ 1.0, 0.0, 0.0 };
+  glm::dvec3 Up{ 0.0, 1.0, 0.0 };
+  glm::dvec3 Front{ 0.0, 0.0, -1.0 };
+  // Background gradient: object-space view-up and the two colours.
+  glm::dvec3 ViewUp{ 0.0, 1.0, 0.0 };
+  glm::dvec3 Bottom{ 0.0 };
+  glm::dvec3 Top{ 0.0 };
+};
+
+#endif

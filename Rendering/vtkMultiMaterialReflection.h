@@ -1,0 +1,86 @@
+/**
+ * @class   vtkMultiMaterialReflection
+ * @brief   The environment reflection of Zhang & Ma eq. 17 for the GPU ray
+ *          caster: where c_r comes from and how I(x, w_r) is estimated.
+ *
+ * Consumer of two producers: the environment (vtkMultiMaterialEnvironment,
+ * from the renderer) and the pre-filtered extinction of the irradiance pass
+ * (vtkIrradianceVolumePass: its scalars and shadow-opacity table, marched as
+ * its shadow rays march them). Gives the shader variant its
+ * MMV_ENVIRONMENT and MMV_REFLECTION_VISIBILITY, binds the textures and sets
+ * the uniforms of Shaders/mmvReflection.glsl.
+ *
+ * The visibility needs the pre-filtered volume, which the irradiance pass
+ * builds only when there is a light: without one, reflections are unoccluded
+ * (with a warning); the reference renderer does the same.
+ */
+#ifndef vtkMultiMaterialReflection_h
+#define vtkMultiMaterialReflection_h
+
+#include "vtkMultiMaterialVolumeModule.h" // export macro
+#include "vtkNew.h"                       // environment
+#include "vtkObject.h"
+
+#include <string> // problems
+#include <vector> // problems
+
+class vtkIrradianceVolumePass;
+class vtkMatrix4x4;
+class vtkMultiMaterialEnvironment;
+class vtkRenderer;
+class vtkShaderProgram;
+namespace mmv
+{
+struct IrradianceGrid;
+}
+
+class VTKMULTIMATERIALVOLUME_EXPORT vtkMultiMaterialReflection : public vtkObject
+{
+public:
+  static vtkMultiMaterialReflection* New();
+  vtkTypeMacro(vtkMultiMaterialReflection, vtkObject);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /**
+   * Reads the environment (`source`: mmv::ReflectionSource) and, for
+   * `visibility` (mmv::ReflectionVisibility), the pass's pre-filtered volume
+   * on `grid` with its table of `tableSize` entries built for `stepLength`
+   * (object units); `pass` may be null (no light). What cannot be honoured
+   * is appended to `problems`.
+   */
+  void Update(vtkRenderer* ren, vtkMatrix4x4* objectToWorld, int source, int visibility,
+    vtkIrradianceVolumePass* pass, const mmv::IrradianceGrid& grid, int tableSize,
+    double stepLength, std::vector<std::string>* problems);
+
+  /// mmv::EnvironmentKind and mmv::ReflectionVisibility in effect.
+  int GetEnvironmentKind() const;
+  int GetVisibility() const { return this->Visibility; }
+  vtkMultiMaterialEnvironment* GetEnvironment();
+
+  ///@{
+  /// Binds / unbinds the textures; the uniforms of mmvReflection.glsl.
+  void Activate();
+  void Deactivate();
+  void SetUniforms(vtkShaderProgram* program) const;
+  ///@}
+
+protected:
+  vtkMultiMaterialReflection();
+  ~vtkMultiMaterialReflection() override;
+
+private:
+  vtkMultiMaterialReflection(const vtkMultiMaterialReflection&) = delete;
+  void operator=(const vtkMultiMaterialReflection&) = delete;
+
+  vtkNew<vtkMultiMaterialEnvironment> Environment;
+  int Visibility = 0;
+  vtkIrradianceVolumePass* Pass = nullptr; // not owned
+  float ToIndex[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
+  float Origin[3] = { 0, 0, 0 };
+  int Dimensions[3] = { 1, 1, 1 };
+  float Offset = 0.0f;
+  float TableSize = 1.0f;
+  float StepLength = 1.0f;
+};
+
+#endif
