@@ -1,8 +1,10 @@
 #include "vtkMultiMaterialShaderAssembly.h"
 
+#include "vtkMultiMaterialLightUniforms.h"
 #include "vtkMultiMaterialParameters.h"
 
 #include "mmvEmission.h"
+#include "mmvLightModel.h"
 #include "mmvPhaseFunction.h"
 #include "mmvRayCastDec.h"
 #include "mmvRayCastExit.h"
@@ -32,7 +34,12 @@ std::vector<std::pair<std::string, std::string>> RayCastReplacements(const Shade
   // (the tag is re-emitted); the per-sample shading replaces VTK's. The
   // optional terms' functions are left out of the source, not only compiled
   // out, when no material uses them.
-  std::string declarations = VariantDefines(variant) + mmvShading;
+  std::string declarations = VariantDefines(variant);
+  if (variant.NumberOfLights > 0)
+  {
+    declarations += LightUniformDeclarations("MMV_NUMBER_OF_LIGHTS");
+  }
+  declarations += mmvLightModel;
   if (variant.Anisotropy)
   {
     declarations += mmvPhaseFunction;
@@ -41,6 +48,7 @@ std::vector<std::pair<std::string, std::string>> RayCastReplacements(const Shade
   {
     declarations += mmvEmission;
   }
+  declarations += mmvShading;
   return {
     { "//VTK::Shading::Dec", declarations + mmvRayCastDec + "\n//VTK::Shading::Dec" },
     { "//VTK::Shading::Init", std::string(mmvRayCastInit) + "\n//VTK::Shading::Init" },

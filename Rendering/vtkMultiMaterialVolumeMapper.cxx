@@ -19,6 +19,7 @@
 #include "vtkMultiMaterialParameters.h"
 #include "vtkMultiMaterialRenderPass.h"
 #include "vtkMultiMaterialShaderAssembly.h"
+#include "vtkMultiMaterialShadingUniforms.h"
 #include "vtkMultiMaterialTextures.h"
 #include "vtkMultiMaterialVolumeGeometry.h"
 #include "vtkObjectFactory.h"
@@ -80,115 +81,23 @@ public:
   vtkNew<vtkIrradianceInputCache> Cache;
   std::string ResolutionReason;
 
-  // Per-frame shading inputs, read by SetUniforms().
-  mmv::ShaderVariant Variant;
+  // The lights of this frame, in object space.
   std::vector<mmv::ShadingLight> Lights;
-  float IrradianceScale[3] = { 1.0f, 1.0f, 1.0f };
-  float IrradianceBias[3] = { 0.0f, 0.0f, 0.0f };
-  float PhysicalToWholeIndex[16] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 };
-  float GradientToObject[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
-  float WholeDimensions[3] = { 1.0f, 1.0f, 1.0f };
-  float DataSpacing[3] = { 1.0f, 1.0f, 1.0f };
-  float GradientFade = 1.0f;
-  float GradientScale[3] = { 1.0f, 1.0f, 1.0f };
-  float GradientTexScale[3] = { 1.0f, 1.0f, 1.0f };
-  float GradientTexBias[3] = { 0.0f, 0.0f, 0.0f };
-  float TableStep = 1.0f;
-  float EnvironmentUp[3] = { 0.0f, 1.0f, 0.0f };
-  float EnvironmentBottom[3] = { 0.0f, 0.0f, 0.0f };
-  float EnvironmentTop[3] = { 0.0f, 0.0f, 0.0f };
+  // The ray cast's uniforms of this frame, set whenever VTK binds its program.
+  vtkMultiMaterialShadingUniforms Uniforms;
 
   std::set<std::string> Warnings;
 
-  void SetUniforms(vtkShaderProgram* program);
-  void ActivateTextures(bool on);
+  void SetUniforms(vtkShaderProgram* program)
+  {
+    this->Uniforms.Apply(program, this->Textures, this->SegmentTable->GetTableSize(),
+      this->Irradiance);
+  }
+  void ActivateTextures(bool on)
+  {
+    this->Uniforms.ActivateTextures(on, this->Textures, this->Irradiance);
+  }
 };
-
-void vtkMultiMaterialVolumeMapper::vtkInternals::ActivateTextures(bool on)
-{
-  const int textures = this->Variant.NumberOfLights > 0
-    ? std::min(this->Irradiance->GetNumberOfIrradianceTextures(), 2)
-    : 0;
-  if (on)
-  {
-    this->Textures->Activate();
-  }
-  else
-  {
-    this->Textures->Deactivate();
-  }
-  for (int i = 0; i < textures; ++i)
-  {
-    vtkTextureObject* texture = this->Irradiance->GetIrradianceTexture(i);
-    if (on)
-    {
-      texture->Activate();
-    }
-    else
-    {
-      texture->Deactivate();
-    }
-  }
-}
-
-void vtkMultiMaterialVolumeMapper::vtkInternals::SetUniforms(vtkShaderProgram* program)
-{
-  program->SetUniformi(
-    "mmv_preintColor", this->Textures->GetSegmentColorTexture()->GetTextureUnit());
-  program->SetUniformi(
-    "mmv_preintBeta", this->Textures->GetSegmentPositionTexture()->GetTextureUnit());
-  program->SetUniformi("mmv_material", this->Textures->GetMaterialTexture()->GetTextureUnit());
-  program->SetUniformf("mmv_tableSize", static_cast<float>(this->SegmentTable->GetTableSize()));
-  program->SetUniformf("mmv_tableStep", this->TableStep);
-  program->SetUniformf("mmv_gradientFade", this->GradientFade);
-  program->SetUniformi("mmv_gradient", this->Textures->GetGradientTexture()->GetTextureUnit());
-  program->SetUniform3f("mmv_gradientScale", this->GradientScale);
-  program->SetUniform3f("mmv_gradientTexScale", this->GradientTexScale);
-  program->SetUniform3f("mmv_gradientTexBias", this->GradientTexBias);
-  program->SetUniform3f("mmv_irradianceScale", this->IrradianceScale);
-  program->SetUniform3f("mmv_irradianceBias", this->IrradianceBias);
-  program->SetUniformMatrix4x4("mmv_physicalToWholeIndex", this->PhysicalToWholeIndex);
-  program->SetUniformMatrix3x3("mmv_gradientToObject", this->GradientToObject);
-  program->SetUniform3f("mmv_wholeDimensions", this->WholeDimensions);
-  program->SetUniform3f("mmv_dataSpacing", this->DataSpacing);
-
-  const int count = this->Variant.NumberOfLights;
-  if (count > 0)
-  {
-    program->SetUniformi(
-      "mmv_irradiance0", this->Irradiance->GetIrradianceTexture(0)->GetTextureUnit());
-    if (count > 4)
-    {
-      program->SetUniformi(
-        "mmv_irradiance1", this->Irradiance->GetIrradianceTexture(1)->GetTextureUnit());
-    }
-    std::vector<int> kinds(count);
-    std::vector<float> vectors(3 * count);
-    std::vector<float> radiance(3 * count);
-    for (int k = 0; k < count; ++k)
-    {
-      const mmv::LightSource& source = this->Lights[k].Source;
-      kinds[k] = source.Kind;
-      const glm::dvec3 v = source.Kind == mmv::DirectionalLight ? source.ToLight : source.Position;
-      for (int c = 0; c < 3; ++c)
-      {
-        vectors[3 * k + c] = static_cast<float>(v[c]);
-        radiance[3 * k + c] = static_cast<float>(this->Lights[k].Radiance[c]);
-      }
-    }
-    program->SetUniform1iv("mmv_lightKind", count, kinds.data());
-    program->SetUniform3fv(
-      "mmv_lightVector", count, reinterpret_cast<const float(*)[3]>(vectors.data()));
-    program->SetUniform3fv(
-      "mmv_lightRadiance", count, reinterpret_cast<const float(*)[3]>(radiance.data()));
-  }
-  if (this->Variant.Reflection)
-  {
-    program->SetUniform3f("mmv_environmentUp", this->EnvironmentUp);
-    program->SetUniform3f("mmv_environmentBottom", this->EnvironmentBottom);
-    program->SetUniform3f("mmv_environmentTop", this->EnvironmentTop);
-  }
-}
 
 //------------------------------------------------------------------------------
 vtkMultiMaterialVolumeMapper::vtkMultiMaterialVolumeMapper()
@@ -525,7 +434,7 @@ bool vtkMultiMaterialVolumeMapper::UpdateSegmentTables(
     ++this->PreIntegrationCount;
     this->LastPreIntegrationSeconds = table->GetLastBuildSeconds();
   }
-  in.TableStep = static_cast<float>(step);
+  in.Uniforms.SetTableStep(step);
   in.Textures->UpdateSegmentTables(context, table);
   in.Textures->UpdateMaterialTable(context, in.Materials, range, this->PreIntegrationTableSize);
   return true;
@@ -556,12 +465,7 @@ bool vtkMultiMaterialVolumeMapper::UpdateGradient(vtkOpenGLRenderWindow* context
                    "context?); using VTK's shading");
     return false;
   }
-  const int* gradientTexels = in.Textures->GetGradientTextureDimensions();
-  for (int a = 0; a < 3; ++a)
-  {
-    in.GradientScale[a] = static_cast<float>(dataDims[a]);
-    mmv::SamePointsMap(dataDims[a], gradientTexels[a], in.GradientTexScale[a], in.GradientTexBias[a]);
-  }
+  in.Uniforms.SetGradientMap(dataDims, in.Textures->GetGradientTextureDimensions());
   return true;
 }
 
@@ -608,67 +512,17 @@ void vtkMultiMaterialVolumeMapper::UpdateShading(
   variant.Anisotropy = variant.NumberOfLights > 0 &&
     (all || (in.Materials && in.Materials->HasNonZero(mmv::Anisotropy)));
   variant.Emission = all || (in.Materials && in.Materials->HasNonZero(mmv::Emission));
-  if (variant != in.Variant || in.Pass->GetFragmentReplacements().empty())
+  if (variant != in.Uniforms.GetVariant() || in.Pass->GetFragmentReplacements().empty())
   {
     in.Pass->SetFragmentReplacements(mmv::RayCastReplacements(variant));
   }
-  in.Variant = variant;
-
-  int dims[3];
-  image->GetDimensions(dims);
-  mmv::WholeVolumeMaps(
-    image, in.PhysicalToWholeIndex, in.GradientToObject, in.WholeDimensions, in.DataSpacing);
-  if (in.ActiveGlobal())
-  {
-    this->MapPieceToGlobalIrradiance(image);
-  }
-  else
-  {
-    for (int a = 0; a < 3; ++a)
-    {
-      // Data point i sits at texture coordinate (i + 0.5) / N, irradiance
-      // voxel j at (j + 0.5) / M, and both grids span the same points.
-      mmv::SamePointsMap(dims[a],
-        this->IrradianceDimensions[a] > 0 ? this->IrradianceDimensions[a] : 1,
-        in.IrradianceScale[a], in.IrradianceBias[a]);
-    }
-  }
-  const double* spacing = image->GetSpacing();
-  const double smallestSpacing =
-    std::min({ std::abs(spacing[0]), std::abs(spacing[1]), std::abs(spacing[2]) });
-  in.GradientFade = static_cast<float>(mmv::FullShadingGradientPerVoxel / smallestSpacing);
-
+  in.Uniforms.SetVariant(variant);
+  in.Uniforms.SetLights(in.Lights);
+  in.Uniforms.SetGeometry(image, this->IrradianceDimensions, in.ActiveGlobal());
   if (variant.Reflection)
   {
-    const double* up = ren->GetActiveCamera()->GetViewUp();
-    glm::dvec3 u(0.0);
-    for (int i = 0; i < 3; ++i)
-    {
-      u[i] = worldToObject->GetElement(i, 0) * up[0] + worldToObject->GetElement(i, 1) * up[1] +
-        worldToObject->GetElement(i, 2) * up[2];
-    }
-    u = glm::length(u) > 0.0 ? glm::normalize(u) : glm::dvec3(0.0, 1.0, 0.0);
-    const double* bottom = ren->GetBackground();
-    const double* top = ren->GetGradientBackground() ? ren->GetBackground2() : bottom;
-    for (int i = 0; i < 3; ++i)
-    {
-      in.EnvironmentUp[i] = static_cast<float>(u[i]);
-      in.EnvironmentBottom[i] = static_cast<float>(bottom[i]);
-      in.EnvironmentTop[i] = static_cast<float>(top[i]);
-    }
+    in.Uniforms.SetEnvironment(ren, worldToObject);
   }
-}
-
-void vtkMultiMaterialVolumeMapper::MapPieceToGlobalIrradiance(vtkImageData* piece)
-{
-  vtkInternals& in = *this->Internals;
-  vtkGlobalPrefilteredVolume* global = in.ActiveGlobal();
-  const glm::dvec3 offset = global->PieceOffset(piece);
-  const double o[3] = { offset[0], offset[1], offset[2] };
-  int dims[3];
-  piece->GetDimensions(dims);
-  mmv::PieceToGlobalIrradianceMap(
-    global->GetGrid(), o, dims, in.IrradianceScale, in.IrradianceBias);
 }
 
 mmv::IrradianceResolution vtkMultiMaterialVolumeMapper::ChooseIrradianceGrid(

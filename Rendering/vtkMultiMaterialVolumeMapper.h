@@ -304,9 +304,6 @@ private:
     vtkRenderer* ren, vtkVolume* vol, vtkImageData* image);
   void RecordIrradianceUpdate(const mmv::IrradianceResolution& resolution);
   void UpdateShading(vtkRenderer* ren, vtkImageData* image, vtkMatrix4x4* worldToObject);
-  // The irradiance texture coordinates of the input, a piece of the global
-  // pre-filtered volume.
-  void MapPieceToGlobalIrradiance(vtkImageData* piece);
   void WarnOnce(const std::string& message);
   // Partitions the texture so that every brick fits the context's largest
   // 3D texture; false (with an error) when nothing fits.
