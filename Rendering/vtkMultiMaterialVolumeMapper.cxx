@@ -1,19 +1,16 @@
 #include "vtkMultiMaterialVolumeMapper.h"
 
-#include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
 #include "vtkDataArray.h"
 #include "vtkGlobalPrefilteredVolume.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
-#include "vtkIrradianceGrid.h"
-#include "vtkIrradianceInputCache.h"
 #include "vtkIrradianceVolumePass.h"
 #include "vtkLightCollection.h"
 #include "vtkMaterialTransferFunction.h"
 #include "vtkMatrix4x4.h"
-#include "vtkMultiMaterialCutaway.h"
 #include "vtkMultiMaterialInputCheck.h"
+#include "vtkMultiMaterialIrradianceStage.h"
 #include "vtkMultiMaterialLights.h"
 #include "vtkMultiMaterialLiveObjects.h"
 #include "vtkMultiMaterialParameters.h"
@@ -69,17 +66,11 @@ public:
     return this->Global && this->Global->GetValid() ? this->Global.Get() : nullptr;
   }
   vtkNew<vtkPreIntegrationTable> SegmentTable;
-  vtkNew<vtkPreIntegrationTable> ShadowTable;
   vtkNew<vtkMultiMaterialTextures> Textures;
-  vtkNew<vtkIrradianceVolumePass> Irradiance;
+  vtkMultiMaterialIrradianceStage Irradiance;
   vtkNew<vtkMultiMaterialRenderPass> Pass;
   vtkNew<vtkColorTransferFunction> GrayAsColor;
   vtkMTimeType GrayTime = 0;
-
-  // What the irradiance volume was computed from, and the pass's inputs
-  // kept between frames (pre-filtered data, material samples).
-  vtkNew<vtkIrradianceInputCache> Cache;
-  std::string ResolutionReason;
 
   // The lights of this frame, in object space.
   std::vector<mmv::ShadingLight> Lights;
@@ -91,11 +82,11 @@ public:
   void SetUniforms(vtkShaderProgram* program)
   {
     this->Uniforms.Apply(program, this->Textures, this->SegmentTable->GetTableSize(),
-      this->Irradiance);
+      this->Irradiance.GetPass());
   }
   void ActivateTextures(bool on)
   {
-    this->Uniforms.ActivateTextures(on, this->Textures, this->Irradiance);
+    this->Uniforms.ActivateTextures(on, this->Textures, this->Irradiance.GetPass());
   }
 };
 
@@ -162,32 +153,6 @@ vtkMTimeType vtkMultiMaterialVolumeMapper::GetMTime()
   return t;
 }
 
-//------------------------------------------------------------------------------
-namespace
-{
-/// What the whole irradiance volume depends on besides the lights and the grid.
-vtkIrradianceInputCache::VolumeKey MakeVolumeKey(vtkMultiMaterialVolumeMapper* mapper,
-  vtkVolumeProperty* property, vtkMTimeType dataTime, int materialVersion, int lights,
-  const double range[2], const mmv::Cutaway& cutaway)
-{
-  vtkIrradianceInputCache::VolumeKey key;
-  key.DataTime = dataTime;
-  key.OpacityTime = property->GetScalarOpacity(0)->GetMTime();
-  key.MaterialVersion = materialVersion;
-  key.UnitDistance = property->GetScalarOpacityUnitDistance(0);
-  key.Range[0] = range[0];
-  key.Range[1] = range[1];
-  key.MultipleScattering = mapper->GetMultipleScattering();
-  key.TableSize = mapper->GetPreIntegrationTableSize();
-  key.NumberOfLights = lights;
-  key.ShadowEstimation = mapper->GetShadowEstimation();
-  key.PiecewiseShadowSlices = mapper->GetPiecewiseShadowSlices();
-  key.ExponentialDiffusion = mapper->GetExponentialDiffusion();
-  key.Cut = cutaway.Key();
-  return key;
-}
-}
-
 bool vtkMultiMaterialVolumeMapper::ReadIrradiance(
   vtkRenderWindow* window, int light, std::vector<float>& values)
 {
@@ -198,12 +163,12 @@ bool vtkMultiMaterialVolumeMapper::ReadIrradiance(
     return false;
   }
   context->MakeCurrent();
-  return this->Internals->Irradiance->ReadBack(context, light, values);
+  return this->Internals->Irradiance.GetPass()->ReadBack(context, light, values);
 }
 
 vtkIrradianceVolumePass* vtkMultiMaterialVolumeMapper::GetIrradianceVolumePass()
 {
-  return this->Internals->Irradiance;
+  return this->Internals->Irradiance.GetPass();
 }
 
 std::string vtkMultiMaterialVolumeMapper::GetLastFragmentShaderSource()
@@ -218,15 +183,14 @@ int vtkMultiMaterialVolumeMapper::GetGradientUploadCount()
 
 vtkIdType vtkMultiMaterialVolumeMapper::GetMultiMaterialMemoryBytes()
 {
-  return this->Internals->Irradiance->GetTextureMemoryBytes() +
+  return this->Internals->Irradiance.GetPass()->GetTextureMemoryBytes() +
     this->Internals->Textures->GetMemoryBytes();
 }
 
 void vtkMultiMaterialVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
 {
   this->Internals->Textures->ReleaseGraphicsResources(window);
-  this->Internals->Irradiance->ReleaseGraphicsResources(window);
-  this->Internals->Cache->Invalidate();
+  this->Internals->Irradiance.ReleaseGraphicsResources(window);
   this->Superclass::ReleaseGraphicsResources(window);
 }
 
@@ -380,7 +344,8 @@ bool vtkMultiMaterialVolumeMapper::PrepareMultiMaterial(vtkRenderer* ren, vtkVol
   // 3. The irradiance volume: only when lights, opacity, materials or data change.
   this->LastRenderInteractive = vol->GetAllocatedRenderTime() < 1.0;
   if (!this->Internals->Lights.empty() &&
-    !this->UpdateIrradiance(ren, vol, input.Image, input.Scalars, range))
+    !this->Internals->Irradiance.Update(this, ren, vol, input.Image, input.Scalars, range,
+      this->Internals->ActiveGlobal(), this->Internals->Materials, this->Internals->Lights))
   {
     return false;
   }
@@ -525,194 +490,9 @@ void vtkMultiMaterialVolumeMapper::UpdateShading(
   }
 }
 
-mmv::IrradianceResolution vtkMultiMaterialVolumeMapper::ChooseIrradianceGrid(
-  vtkRenderer* ren, vtkVolume* vol, vtkImageData* image)
-{
-  int dataDims[3];
-  image->GetDimensions(dataDims);
-  // The screen only matters when the resolution is automatic.
-  std::string scaleProblem;
-  const double scale = mmv::ValidIrradianceScale(this->IrradianceScale, &scaleProblem);
-  if (!scaleProblem.empty())
-  {
-    this->WarnOnce(scaleProblem);
-  }
-  const double pixelsPerVoxel = scale > 0.0 ? 0.0 : mmv::ProjectedPixelsPerVoxel(ren, vol, image);
-  mmv::IrradianceResolution resolution;
-  if (vtkGlobalPrefilteredVolume* global = this->Internals->ActiveGlobal())
-  {
-    global->GetIrradianceDimensions(resolution.Dimensions);
-    resolution.Reason = "the global grid of a volume in pieces";
-    return resolution;
-  }
-  resolution = mmv::ChooseIrradianceResolution(dataDims,
-    static_cast<int>(this->Internals->Lights.size()), this->IrradianceMemoryMB, scale,
-    pixelsPerVoxel);
-  // The irradiance is one 3D texture: no axis longer than the largest one
-  // (a long volume is drawn in bricks, its irradiance spans it whole).
-  const int largest = vtkTextureObject::GetMaximumTextureSize3D(
-    vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow()));
-  for (int a = 0; a < 3 && largest > 1; ++a)
-  {
-    resolution.Dimensions[a] = std::min(resolution.Dimensions[a], largest);
-  }
-  return resolution;
-}
-
-bool vtkMultiMaterialVolumeMapper::UpdateIrradiance(vtkRenderer* ren, vtkVolume* vol,
-  vtkImageData* image, vtkDataArray* scalars, const double pieceRange[2])
-{
-  vtkInternals& in = *this->Internals;
-  // A piece of a larger volume is lit from the whole volume's pre-filtered
-  // data, on its grid and over its range.
-  vtkGlobalPrefilteredVolume* global = in.ActiveGlobal();
-  const double* range = global ? global->GetScalarRange() : pieceRange;
-  this->NumberOfUpdatedLights = 0;
-
-  const mmv::IrradianceResolution resolution = this->ChooseIrradianceGrid(ren, vol, image);
-  const int* dims = resolution.Dimensions;
-  in.Cache->SampleMaterials(in.Materials, range, this->PreIntegrationTableSize);
-  const vtkMTimeType dataTime =
-    global ? global->GetMTime() : std::max(image->GetMTime(), scalars->GetMTime());
-  // What cropping and clipping remove casts no shadow: part of the key, so a
-  // moved crop box or plane updates the irradiance.
-  vtkNew<vtkMatrix4x4> worldToObject;
-  vtkMatrix4x4::Invert(vol->GetMatrix(), worldToObject);
-  int droppedPlanes = 0;
-  const mmv::Cutaway cutaway = mmv::MakeCutaway(this, worldToObject, &droppedPlanes);
-  if (droppedPlanes > 0)
-  {
-    this->WarnOnce("more than " + std::to_string(mmv::MaxCutPlanes) +
-      " clipping planes: the shadow rays ignore the others");
-  }
-  const vtkIrradianceInputCache::VolumeKey volumeKey = MakeVolumeKey(this, vol->GetProperty(),
-    dataTime, in.Cache->GetMaterialVersion(), static_cast<int>(in.Lights.size()), range, cutaway);
-  std::vector<mmv::LightSource> sources;
-  for (const auto& light : in.Lights)
-  {
-    sources.push_back(light.Source);
-  }
-  const bool computed = in.Irradiance->GetNumberOfIrradianceTextures() > 0;
-  if (computed && in.Cache->IsCurrent(volumeKey, sources, dims))
-  {
-    return true;
-  }
-  // Interactive frames keep the last irradiance while only the lights or the
-  // screen-chosen grid moved; the still frame after them updates it.
-  if (computed && this->LastRenderInteractive &&
-    this->InteractiveIrradiance == ReuseWhileInteracting && in.Cache->SameVolume(volumeKey))
-  {
-    ++this->DeferredIrradianceCount;
-    return true;
-  }
-  // A real update (seconds on a software GPU): VTK progress events, which
-  // ParaView's progress bar shows, mark its start and end (issue 12).
-  this->SetProgressText("Irradiance volume");
-  this->UpdateProgress(0.0);
-
-  // Pre-filtered data: only when the data or the grid changed.
-  if (in.Cache->UpdatePrefiltered(image, scalars, global, dims, dataTime, range))
-  {
-    this->WarnOnce("the scalars contain NaN or Inf: lit as empty (NaN) or as the ends of the "
-                   "finite range (Inf)");
-  }
-  if (!this->ComputeIrradiance(ren, vol, range, cutaway, sources))
-  {
-    return false;
-  }
-  in.Cache->Store(volumeKey, sources, dims);
-  this->UpdateProgress(1.0);
-  // The mapper's own pipeline progress (its input's update) is not this.
-  this->SetProgressText(nullptr);
-  this->RecordIrradianceUpdate(resolution);
-  return true;
-}
-
-bool vtkMultiMaterialVolumeMapper::ComputeIrradiance(vtkRenderer* ren, vtkVolume* vol,
-  const double range[2], const mmv::Cutaway& cutaway,
-  const std::vector<mmv::LightSource>& sources)
-{
-  vtkInternals& in = *this->Internals;
-  vtkPiecewiseFunction* opacity = vol->GetProperty()->GetScalarOpacity(0);
-  const int n = this->PreIntegrationTableSize;
-  // Shadow rays step one irradiance voxel, with their own pre-integrated table.
-  const mmv::IrradianceGrid& grid = in.Cache->GetGrid();
-  const double shadowStep = std::min({ grid.Spacing.x, grid.Spacing.y, grid.Spacing.z });
-  vtkPreIntegrationTable* shadow = in.ShadowTable;
-  shadow->SetScalarOpacity(opacity);
-  shadow->SetMaterialTransferFunction(in.Materials);
-  shadow->SetScalarOpacityUnitDistance(vol->GetProperty()->GetScalarOpacityUnitDistance(0));
-  shadow->SetTableSize(n);
-  shadow->SetScalarRange(range[0], range[1]);
-  shadow->SetStepLength(shadowStep);
-  if (!shadow->Update())
-  {
-    this->SetProgressText(nullptr);
-    return false;
-  }
-
-  std::vector<float> opacityTable(n);
-  for (int i = 0; i < n; ++i)
-  {
-    opacityTable[i] =
-      static_cast<float>(opacity->GetValue(range[0] + (range[1] - range[0]) * i / (n - 1)));
-  }
-  const std::vector<float> scatteringTable =
-    this->MultipleScattering ? in.Cache->GetScattering() : std::vector<float>(n, 0.0f);
-
-  vtkIrradianceVolumePass* pass = in.Irradiance;
-  pass->SetMultipleScattering(this->MultipleScattering);
-  pass->SetShadowEstimation(this->ShadowEstimation);
-  pass->SetPiecewiseShadowSlices(this->PiecewiseShadowSlices);
-  pass->SetExponentialDiffusion(this->ExponentialDiffusion);
-  pass->SetCutaway(cutaway);
-  pass->SetInputs(grid, in.Cache->GetPrefiltered(), n, shadow->GetShadowOpacityTable(),
-    shadowStep, opacityTable.data(), scatteringTable.data(), sources,
-    in.Cache->GetPrefilteredVersion());
-  if (!pass->Render(vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow())))
-  {
-    vtkErrorMacro("the irradiance volume could not be computed on the GPU");
-    in.Cache->Invalidate();
-    this->SetProgressText(nullptr);
-    return false;
-  }
-  return true;
-}
-
-void vtkMultiMaterialVolumeMapper::RecordIrradianceUpdate(
-  const mmv::IrradianceResolution& resolution)
-{
-  vtkInternals& in = *this->Internals;
-  vtkIrradianceVolumePass* pass = in.Irradiance;
-  const int* dims = resolution.Dimensions;
-  std::copy(dims, dims + 3, this->IrradianceDimensions);
-  this->NumberOfUpdatedLights = pass->GetNumberOfUpdatedLights();
-  if (this->NumberOfUpdatedLights > 0)
-  {
-    ++this->IrradianceUpdateCount;
-    this->DiffusionPassCount += pass->GetDiffusionPasses();
-    this->LastIrradianceSeconds = pass->GetLastRenderSeconds();
-  }
-  int coarse[3];
-  pass->GetDiffusionGridDimensions(coarse);
-  std::ostringstream reason;
-  reason << dims[0] << "x" << dims[1] << "x" << dims[2] << " (" << resolution.Reason << ")";
-  if (pass->GetDiffusionLength() > 0.0 && this->MultipleScattering)
-  {
-    reason << "; diffusion on " << coarse[0] << "x" << coarse[1] << "x" << coarse[2]
-           << " (diffusion length " << pass->GetDiffusionLength() << " data voxels, "
-           << pass->GetDiffusionSubSteps() << " sub-steps x " << pass->GetDiffusionSweepsPerStep()
-           << " sweeps)";
-  }
-  in.ResolutionReason = reason.str();
-  vtkDebugMacro(<< "irradiance " << in.ResolutionReason << ", " << this->NumberOfUpdatedLights
-                << " of " << in.Lights.size() << " lights updated in "
-                << this->LastIrradianceSeconds << " s");
-}
-
 const char* vtkMultiMaterialVolumeMapper::GetIrradianceResolutionReason()
 {
-  return this->Internals->ResolutionReason.c_str();
+  return this->Internals->Irradiance.GetResolutionReason().c_str();
 }
 
 void vtkMultiMaterialVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
@@ -734,7 +514,8 @@ void vtkMultiMaterialVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
      << (this->InteractiveIrradiance == ReuseWhileInteracting ? "ReuseWhileInteracting"
                                                               : "UpdateAlways")
      << "\n";
-  os << indent << "IrradianceResolution: " << this->Internals->ResolutionReason << "\n";
+  os << indent << "IrradianceResolution: " << this->Internals->Irradiance.GetResolutionReason()
+     << "\n";
   os << indent << "DeferredIrradianceCount: " << this->DeferredIrradianceCount << "\n";
   os << indent << "IrradianceDimensions: " << this->IrradianceDimensions[0] << " "
      << this->IrradianceDimensions[1] << " " << this->IrradianceDimensions[2] << "\n";

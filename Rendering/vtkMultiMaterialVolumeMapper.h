@@ -51,12 +51,6 @@ class vtkMaterialTransferFunction;
 class vtkMatrix4x4;
 class vtkOpenGLRenderWindow;
 class vtkVolumeProperty;
-namespace mmv
-{
-struct Cutaway;
-struct IrradianceResolution;
-struct LightSource;
-}
 
 class VTKMULTIMATERIALVOLUME_EXPORT vtkMultiMaterialVolumeMapper
   : public vtkOpenGLGPUVolumeRayCastMapper
@@ -296,13 +290,6 @@ private:
   bool UpdateGradient(vtkOpenGLRenderWindow* context, vtkImageData* image,
     vtkDataArray* scalars, const double range[2]);
   void CollectShadedLights(vtkRenderer* ren, vtkMatrix4x4* worldToObject);
-  bool UpdateIrradiance(vtkRenderer* ren, vtkVolume* vol, vtkImageData* image,
-    vtkDataArray* scalars, const double pieceRange[2]);
-  bool ComputeIrradiance(vtkRenderer* ren, vtkVolume* vol, const double range[2],
-    const mmv::Cutaway& cutaway, const std::vector<mmv::LightSource>& sources);
-  mmv::IrradianceResolution ChooseIrradianceGrid(
-    vtkRenderer* ren, vtkVolume* vol, vtkImageData* image);
-  void RecordIrradianceUpdate(const mmv::IrradianceResolution& resolution);
   void UpdateShading(vtkRenderer* ren, vtkImageData* image, vtkMatrix4x4* worldToObject);
   void WarnOnce(const std::string& message);
   // Partitions the texture so that every brick fits the context's largest
@@ -311,6 +298,8 @@ private:
 
   class vtkInternals;
   vtkInternals* Internals;
+  // The irradiance step reads the settings and keeps the counters above.
+  friend class vtkMultiMaterialIrradianceStage;
 };
 
 #endif

@@ -5,10 +5,12 @@
 #include "vtkMultiMaterialLightModel.h"
 #include "vtkMultiMaterialLightUniforms.h"
 #include "vtkMultiMaterialParameters.h"
+#include "vtkIrradianceDiffusion.h"
 #include "vtkMaterialTransferFunction.h"
 #include "vtkMultiMaterialShaderAssembly.h"
 #include "vtkMultiMaterialTextures.h"
 #include "vtkTextureObject.h"
+#include "mmvDiffusionFS.h"
 #include "mmvEmission.h"
 #include "mmvLightModel.h"
 #include "mmvPhaseFunction.h"
@@ -31,6 +33,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <iostream>
 #include <string>
 #include <vector>
 
@@ -160,7 +163,7 @@ void main()
   gl_FragData[0] = vec4(mmvLightGeometryTerm(kind, lightPosition, spotAxis, cosCone,
     spotExponent, attenuation, radius, x),
     mmvSpotFactor(x - lightPosition, spotAxis, cosCone, spotExponent),
-    float(4 * MMV_SCATTERING_ROW + MMV_SCATTERING_CHANNEL), float(MMV_SPOT_LIGHT));
+    float(4 * MMV_ANISOTROPY_ROW + MMV_ANISOTROPY_CHANNEL), float(MMV_SPOT_LIGHT));
 }
 )";
 }
@@ -211,7 +214,7 @@ TEST(ShaderMirror, LightGeometryTermMatchesCPU)
         ASSERT_NEAR(px[1],
           mmv::mmvSpotFactor(toPoint, light.SpotAxis, light.CosCone, light.SpotExponent), 1e-5);
         // The prelude's generated names carry the C++ contract's values.
-        const mmv::MaterialTexel texel = mmv::MaterialTexelLayout[mmv::Scattering];
+        const mmv::MaterialTexel texel = mmv::MaterialTexelLayout[mmv::Anisotropy];
         ASSERT_EQ(px[2], float(4 * texel.Row + texel.Channel));
         ASSERT_EQ(px[3], float(mmv::SpotLight));
         ++compared;
@@ -543,6 +546,7 @@ TEST(ShaderMirror, LightModelOfEveryLightTypeThroughTheLightUniforms)
   const std::vector<mmv::LightSource> lights = EveryKindOfLight();
   ASSERT_EQ(static_cast<int>(lights.size()), mmv::MaxLights);
   int kinds[3] = { 0, 0, 0 };
+  double worst = 0.0;
   for (int k = 0; k < mmv::MaxLights; ++k)
   {
     const mmv::LightSource& light = lights[k];
@@ -575,6 +579,7 @@ TEST(ShaderMirror, LightModelOfEveryLightTypeThroughTheLightUniforms)
         // spot's pow(cos, exponent) (exponent 7.5: ~1e-6), far below any
         // change of the model (a different kind, falloff or cone).
         ASSERT_NEAR(px[0], cpu, 1e-5 * std::max(1.0, cpu)) << "light " << k << " at " << i << "," << j;
+        worst = std::max(worst, std::abs(px[0] - cpu) / std::max(1.0, cpu));
         double distance = 0.0;
         const glm::dvec3 l = mmv::mmvDirectionToLight(light, x, distance);
         ASSERT_NEAR(px[1], glm::dot(l, glm::dvec3(0.3, 0.5, 0.8)), 1e-5) << "light " << k;
@@ -588,6 +593,7 @@ TEST(ShaderMirror, LightModelOfEveryLightTypeThroughTheLightUniforms)
       EXPECT_GT(unlit, Size * Size / 20) << "spot light " << k << " lights everything";
     }
   }
+  std::cout << "largest |GPU - CPU| / max(1, CPU) of the geometry term: " << worst << "\n";
   EXPECT_GT(kinds[mmv::DirectionalLight], 0);
   EXPECT_GT(kinds[mmv::PointLight], 0);
   EXPECT_GT(kinds[mmv::SpotLight], 0);
@@ -708,6 +714,7 @@ TEST(ShaderMirror, SegmentShadingMatchesTheReferenceRenderersFunction)
       pixels, FullVariant(count)))
       << count << " lights";
     double largest = 0.0;
+    double worst = 0.0;
     int reflecting = 0;
     for (int j = 0; j < Size; ++j)
     {
@@ -731,11 +738,13 @@ TEST(ShaderMirror, SegmentShadingMatchesTheReferenceRenderersFunction)
             << count << " lights, material " << in.Material << ", pixel " << i << "," << j
             << ", channel " << c;
           largest = std::max(largest, cpu[c]);
+          worst = std::max(worst, std::abs(px[c] - cpu[c]) / std::max(1.0, std::abs(cpu[c])));
         }
         reflecting += Optics[in.Material].y > 0.0 && in.Directional > 0.0 &&
             glm::length(in.N) > 0.0 ? 1 : 0;
       }
     }
+    std::cout << count << " lights: largest |GPU - CPU| / max(1, CPU) " << worst << "\n";
     EXPECT_GT(largest, 0.5) << count << " lights";
     EXPECT_GT(reflecting, Size * Size / 10);
   }
@@ -771,11 +780,23 @@ TEST(ShaderMirror, MaterialTexturePackingMatchesTheGeneratedTexelNames)
   textures->UpdateMaterialTable(runner.GL, materials, range, Size);
   std::vector<float> table(static_cast<size_t>(Size) * mmv::MaterialParameterCount);
   materials->GetTable(range[0], range[1], Size, table.data());
+  int read = 0;
   for (int p = 0; p < mmv::MaterialParameterCount; ++p)
   {
     const std::string name = mmv::MaterialParameterTable[p].GLSLName;
-    const std::string body = "#define PARAMETER_ROW " + name + "_ROW\n#define PARAMETER_CHANNEL " +
-      name + "_CHANNEL\n" + MaterialTexelBody;
+    const mmv::MaterialTexel texel = mmv::MaterialTexelLayout[p];
+    if (texel.Row < 0)
+    {
+      continue; // in no texel: no shader reads it
+    }
+    // (ka, kd, ks, ke) are read as one texel, the vec4 mmvBlinnPhong takes.
+    const std::string row = texel.Row == mmv::BlinnPhongRow ? "MMV_BLINN_PHONG_ROW" : name + "_ROW";
+    const std::string channel = texel.Row == mmv::BlinnPhongRow
+      ? std::to_string(p - mmv::Ambient)
+      : name + "_CHANNEL";
+    const std::string body = "#define PARAMETER_ROW " + row + "\n#define PARAMETER_CHANNEL " +
+      channel + "\n" + MaterialTexelBody;
+    ++read;
     std::vector<float> pixels;
     ASSERT_TRUE(runner.Run(body,
       [&](vtkShaderProgram* program) {
@@ -796,5 +817,60 @@ TEST(ShaderMirror, MaterialTexturePackingMatchesTheGeneratedTexelNames)
     EXPECT_NE(table[p], table[static_cast<size_t>(Size - 1) * mmv::MaterialParameterCount + p])
       << name;
   }
+  EXPECT_EQ(read, 7); // all but c_t and s
   textures->ReleaseGraphicsResources(runner.Window);
+}
+
+namespace
+{
+// The definition of GLSL function `signature` in `source`, up to the brace
+// that closes it at the start of a line: the diffusion shader's helpers
+// cannot be compiled without its voxel-pass framework.
+std::string GLSLFunction(const std::string& source, const std::string& signature)
+{
+  const size_t begin = source.find(signature);
+  const size_t end = begin == std::string::npos ? begin : source.find("\n}\n", begin);
+  return end == std::string::npos ? std::string() : source.substr(begin, end + 3 - begin);
+}
+
+// Column block -> a in {0, 0.5, 2, 20}, row -> b from -0.5 to 23 (0 and
+// negative strengths included: they block the flux).
+const char* HarmonicMeanBody = R"(
+void main()
+{
+  float a = float[4](0.0, 0.5, 2.0, 20.0)[int(floor(texCoord.x * 4.0))];
+  float b = -0.5 + 0.5 * floor(texCoord.y * float(SIZE));
+  gl_FragData[0] = vec4(mmvHarmonicMean(a, b), a, b, 0.0);
+}
+)";
+}
+
+TEST(ShaderMirror, DiffusionFaceStrengthMatchesCPU)
+{
+  // mmvHarmonicMean of Shaders/mmvDiffusionFS.glsl against
+  // mmv::DiffusionFaceStrength, the CPU diffusion's face coefficient.
+  const std::string harmonicMean = GLSLFunction(mmvDiffusionFS, "float mmvHarmonicMean(");
+  ASSERT_FALSE(harmonicMean.empty()) << "mmvHarmonicMean not found in mmvDiffusionFS.glsl";
+  ShaderRunner runner;
+  ASSERT_NE(runner.GL, nullptr);
+  std::vector<float> pixels;
+  const std::string body =
+    "#define SIZE " + std::to_string(Size) + "\n" + harmonicMean + HarmonicMeanBody;
+  ASSERT_TRUE(runner.Run(body, [](vtkShaderProgram*) {}, pixels));
+  int blocked = 0;
+  for (int j = 0; j < Size; ++j)
+  {
+    for (int i = 0; i < Size; ++i)
+    {
+      const float* px = &pixels[4 * (j * Size + i)];
+      const double a = px[1];
+      const double b = px[2];
+      ASSERT_EQ(b, -0.5 + 0.5 * j);
+      const double cpu = mmv::DiffusionFaceStrength(a, b);
+      // float against double: one rounding of 2ab / (a + b).
+      ASSERT_NEAR(px[0], cpu, 1e-6 * std::max(1.0, cpu)) << "a " << a << " b " << b;
+      blocked += cpu == 0.0 ? 1 : 0;
+    }
+  }
+  EXPECT_GT(blocked, Size); // a = 0 column block, b <= 0 rows
 }
