@@ -3,6 +3,7 @@
 #include "vtkIrradianceComputeProgram.h"
 #include "vtkIrradianceDiffusion.h"
 #include "vtkMultiMaterialLightTolerance.h"
+#include "vtkMultiMaterialLightUniforms.h"
 #include "vtkMultiMaterialParameters.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLFramebufferObject.h"
@@ -76,6 +77,7 @@ std::string ComposeShader(
   source += "\n";
   if (lightModel)
   {
+    source += mmv::LightUniformDeclarations(std::to_string(LightsPerTexture));
     source += mmvLightModel;
     source += "\n";
   }
@@ -128,43 +130,15 @@ bool EnsureFloatTexture(
   return texture->Allocate3D(d[0], d[1], d[2], 4, VTK_FLOAT);
 }
 
+/// The pass's lights first .. first + 3 (one output texture's channels)
+/// through the ray cast's light layout, and which of them to compute.
 void SetLightUniforms(
   vtkShaderProgram* program, const std::vector<mmv::LightSource>& lights, int first, int mask)
 {
   const int count = std::min(LightsPerTexture, static_cast<int>(lights.size()) - first);
-  int kind[LightsPerTexture] = { 0, 0, 0, 0 };
-  float position[LightsPerTexture][3] = {};
-  float toLight[LightsPerTexture][3] = {};
-  float spotAxis[LightsPerTexture][3] = {};
-  float cosCone[LightsPerTexture] = { -1.0f, -1.0f, -1.0f, -1.0f };
-  float spotExponent[LightsPerTexture] = {};
-  float attenuation[LightsPerTexture][3] = {};
-  float radius[LightsPerTexture] = {};
-  for (int l = 0; l < count; ++l)
-  {
-    const mmv::LightSource& light = lights[first + l];
-    kind[l] = light.Kind;
-    for (int a = 0; a < 3; ++a)
-    {
-      position[l][a] = static_cast<float>(light.Position[a]);
-      toLight[l][a] = static_cast<float>(light.ToLight[a]);
-      spotAxis[l][a] = static_cast<float>(light.SpotAxis[a]);
-      attenuation[l][a] = static_cast<float>(light.Attenuation[a]);
-    }
-    cosCone[l] = static_cast<float>(light.CosCone);
-    spotExponent[l] = static_cast<float>(light.SpotExponent);
-    radius[l] = static_cast<float>(light.Radius);
-  }
   program->SetUniformi("numberOfLights", count);
   program->SetUniformi("lightMask", mask);
-  program->SetUniform1iv("lightKind", LightsPerTexture, kind);
-  program->SetUniform3fv("lightPosition", LightsPerTexture, position);
-  program->SetUniform3fv("lightToLight", LightsPerTexture, toLight);
-  program->SetUniform3fv("lightSpotAxis", LightsPerTexture, spotAxis);
-  program->SetUniform1fv("lightCosCone", LightsPerTexture, cosCone);
-  program->SetUniform1fv("lightSpotExponent", LightsPerTexture, spotExponent);
-  program->SetUniform3fv("lightAttenuation", LightsPerTexture, attenuation);
-  program->SetUniform1fv("lightRadius", LightsPerTexture, radius);
+  mmv::SetLightUniforms(program, lights.data() + first, nullptr, count, LightsPerTexture);
 }
 
 /// The uniforms of Shaders/mmvCutaway.glsl.

@@ -26,7 +26,7 @@
 #ifndef vtkMultiMaterialLightModel_h
 #define vtkMultiMaterialLightModel_h
 
-#include "vtkMultiMaterialParameters.h" // MinAttenuationDenominator
+#include "vtkMultiMaterialParameters.h" // LightKind, MinAttenuationDenominator
 
 #include <glm/glm.hpp>
 
@@ -35,15 +35,10 @@
 namespace mmv
 {
 
-enum LightKind : int
-{
-  DirectionalLight = 0,
-  PointLight = 1,
-  SpotLight = 2
-};
-
 /// A light in object coordinates, as the irradiance estimation sees it.
 /// Colour and intensity are not here: irradiance is stored without them.
+/// The shaders get it through the light uniforms of
+/// vtkMultiMaterialLightUniforms.h.
 struct LightSource
 {
   LightKind Kind = DirectionalLight;

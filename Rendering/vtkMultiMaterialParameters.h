@@ -6,6 +6,16 @@
  * and (through the GLSL prelude) the GPU shaders all read this table, so the
  * CPU model and the GPU path cannot drift apart.
  *
+ * It is the CPU/GPU contract: besides the parameters it defines the material
+ * texture's texel layout (MaterialTexelLayout), the light kinds and the
+ * shadow-ray constants, all emitted to GLSL as generated names
+ * (MaterialGLSLPrelude, ShadowRayGLSLPrelude). Next to it: the light struct
+ * (vtkMultiMaterialLightModel.h), the one light-uniform layout of the ray
+ * cast and the irradiance pass (vtkMultiMaterialLightUniforms.h) and the
+ * diffusion's face coefficient, sub-steps and stiffness bounds
+ * (vtkIrradianceDiffusion.h). TestShaderMirror runs each GLSL function
+ * against its C++ twin.
+ *
  * | index | key           | symbol | unit             | default | UI range    |
  * |-------|---------------|--------|------------------|---------|-------------|
  * | 0     | ambient       | ka     | -                | 0.2     | 0 .. 1      |
@@ -63,7 +73,7 @@ enum MaterialParameter : int
 struct MaterialParameterInfo
 {
   const char* Key;      // JSON key and ParaView label stem
-  const char* GLSLName; // index macro in the GLSL prelude
+  const char* GLSLName; // stem of its texel macros in the GLSL prelude
   double Default;
   double SoftMin;       // editor range
   double SoftMax;
@@ -84,8 +94,77 @@ constexpr MaterialParameterInfo MaterialParameterTable[MaterialParameterCount] =
 };
 
 /// Rows of the ray caster's material texture (vtkMultiMaterialTextures.h):
-/// (ka, kd, ks, ke), (r, c_t, s, g), (e, 0, 0, 0). GLSL: MMV_MATERIAL_ROWS.
+/// (ka, kd, ks, ke), (r, 0, 0, g), (e, 0, 0, 0). GLSL: MMV_MATERIAL_ROWS.
 constexpr int MaterialTextureRows = 3;
+
+/// Where a parameter sits in the material texture: texel row and channel;
+/// row -1: not in it (no ray-cast shader reads it: the shadow rays and the
+/// diffusion get c_t and s through their own tables).
+struct MaterialTexel
+{
+  int Row;
+  int Channel;
+};
+
+/// The texel layout, by parameter. Row 0 is what every shaded segment
+/// reads; the optional terms' parameters are in rows the shader fetches only
+/// when its variant uses them. GLSL: MMV_BLINN_PHONG_ROW for the row 0 texel,
+/// MMV_<NAME>_ROW and MMV_<NAME>_CHANNEL for the others (MaterialGLSLPrelude);
+/// the texture is packed by PackMaterialTexels.
+constexpr MaterialTexel MaterialTexelLayout[MaterialParameterCount] = {
+  { 0, 0 },  // ambient
+  { 0, 1 },  // diffuse
+  { 0, 2 },  // specular
+  { 0, 3 },  // shininess
+  { -1, 0 }, // attenuation
+  { -1, 0 }, // scattering
+  { 1, 0 },  // reflection
+  { 1, 3 },  // anisotropy
+  { 2, 0 },  // emission
+};
+
+/// The Blinn-Phong coefficients are read as one texel (ka, kd, ks, ke), the
+/// vec4 mmvBlinnPhong takes (GLSL: MMV_BLINN_PHONG_ROW).
+constexpr int BlinnPhongRow = MaterialTexelLayout[Ambient].Row;
+static_assert(MaterialTexelLayout[Ambient].Channel == 0 &&
+    MaterialTexelLayout[Diffuse].Row == BlinnPhongRow &&
+    MaterialTexelLayout[Diffuse].Channel == 1 &&
+    MaterialTexelLayout[Specular].Row == BlinnPhongRow &&
+    MaterialTexelLayout[Specular].Channel == 2 &&
+    MaterialTexelLayout[Shininess].Row == BlinnPhongRow &&
+    MaterialTexelLayout[Shininess].Channel == 3,
+  "mmvBlinnPhong reads (ka, kd, ks, ke) as one texel");
+
+/// Writes the parameters `values` of table entry `entry` (of `entries`)
+/// into RGBA texels laid out as MaterialTexelLayout (rows of `entries`
+/// texels); channels no parameter uses stay as they are.
+inline void PackMaterialTexels(const float values[MaterialParameterCount], int entry, int entries,
+  float* texels)
+{
+  for (int p = 0; p < MaterialParameterCount; ++p)
+  {
+    const MaterialTexel& texel = MaterialTexelLayout[p];
+    if (texel.Row < 0)
+    {
+      continue;
+    }
+    texels[4 * (texel.Row * entries + entry) + texel.Channel] = values[p];
+  }
+}
+
+/// How a light is modelled (vtkMultiMaterialLightModel.h): its kind, as the
+/// light uniforms hold it (GLSL: MMV_DIRECTIONAL_LIGHT, MMV_POINT_LIGHT,
+/// MMV_SPOT_LIGHT).
+enum LightKind : int
+{
+  DirectionalLight = 0,
+  PointLight = 1,
+  SpotLight = 2
+};
+
+/// The GLSL names of the light kinds, by kind.
+constexpr const char* LightKindGLSLNames[] = { "MMV_DIRECTIONAL_LIGHT", "MMV_POINT_LIGHT",
+  "MMV_SPOT_LIGHT" };
 
 /// Lights the GPU path supports at once (more: the strongest are kept).
 constexpr int MaxLights = 8;
@@ -221,21 +300,30 @@ inline bool IsValidMaterialValue(int parameter, double value, std::string* why =
   return true;
 }
 
-/// The GLSL `#define` prelude for the material layout: one index macro per
-/// parameter plus the count. Shaders index the material texture only through
-/// these names.
+/// The GLSL `#define` prelude of the contract above: the texture's rows, the
+/// Blinn-Phong texel, the texel of each parameter the shaders read alone
+/// (MMV_<NAME>_ROW, MMV_<NAME>_CHANNEL), the light kinds and the attenuation
+/// clamp. Shaders read the material texture and test light kinds only
+/// through these names.
 inline std::string MaterialGLSLPrelude()
 {
   std::string s;
   for (int i = 0; i < MaterialParameterCount; ++i)
   {
-    s += "#define ";
-    s += MaterialParameterTable[i].GLSLName;
-    s += " " + std::to_string(i) + "\n";
+    if (MaterialTexelLayout[i].Row < 0 || MaterialTexelLayout[i].Row == BlinnPhongRow)
+    {
+      continue;
+    }
+    const std::string stem = std::string("#define ") + MaterialParameterTable[i].GLSLName;
+    s += stem + "_ROW " + std::to_string(MaterialTexelLayout[i].Row) + "\n";
+    s += stem + "_CHANNEL " + std::to_string(MaterialTexelLayout[i].Channel) + "\n";
   }
-  s += "#define MMV_MATERIAL_PARAMETER_COUNT " + std::to_string(MaterialParameterCount) + "\n";
   s += "#define MMV_MATERIAL_ROWS " + std::to_string(MaterialTextureRows) + "\n";
-  s += "#define MMV_MAX_LIGHTS " + std::to_string(MaxLights) + "\n";
+  s += "#define MMV_BLINN_PHONG_ROW " + std::to_string(BlinnPhongRow) + "\n";
+  for (int kind : { DirectionalLight, PointLight, SpotLight })
+  {
+    s += std::string("#define ") + LightKindGLSLNames[kind] + " " + std::to_string(kind) + "\n";
+  }
   char denominator[32];
   std::snprintf(denominator, sizeof(denominator), "%.9e", MinAttenuationDenominator);
   s += std::string("#define MMV_MIN_ATTENUATION_DENOMINATOR ") + denominator + "\n";

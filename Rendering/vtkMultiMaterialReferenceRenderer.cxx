@@ -91,6 +91,9 @@ struct Scene
   double MaxOpticalDepth = 13.8;
   double GradientFade = 1.0;
   std::vector<mmv::ShadingLight> Lights;
+  // The same lights as mmvShadeSample takes them.
+  std::vector<mmv::LightSource> Sources;
+  std::vector<dvec3> Radiances;
   mmv::IndexCutaway Cut; // in data index space: removed, as VTK's ray caster does
   // Per light: diffused minus direct irradiance at the voxels (empty: none).
   std::vector<std::vector<float>> ScatteringDelta;
@@ -211,43 +214,23 @@ struct Scene
     n = glm::dot(n, v) < 0.0 ? -n : n; // two-sided
     const double directional = std::min(std::max(gradientLength / this->GradientFade, 0.0), 1.0);
 
-    dvec3 radiance(0.0);
-    if (this->Lights.empty())
+    const int count = static_cast<int>(this->Lights.size());
+    double irradiance[mmv::MaxLights] = {};
+    for (int k = 0; k < count; ++k)
     {
-      radiance = material.x * dvec3(segment);
-    }
-    for (size_t k = 0; k < this->Lights.size(); ++k)
-    {
-      const mmv::ShadingLight& light = this->Lights[k];
-      double irradiance = this->DirectIrradiance(light.Source, x);
+      irradiance[k] = this->DirectIrradiance(this->Sources[k], x);
       ++shadowRays;
       if (!this->ScatteringDelta.empty())
       {
-        irradiance = std::max(0.0, irradiance + this->Data.SampleArray(this->ScatteringDelta[k].data(), p));
+        irradiance[k] =
+          std::max(0.0, irradiance[k] + this->Data.SampleArray(this->ScatteringDelta[k].data(), p));
       }
-      if (irradiance <= 0.0)
-      {
-        continue;
-      }
-      dvec3 l = light.Source.ToLight;
-      if (light.Source.Kind != mmv::DirectionalLight)
-      {
-        const dvec3 toLight = light.Source.Position - x;
-        const double distance = glm::length(toLight);
-        l = distance > 0.0 ? toLight / distance : n;
-      }
-      // The particle (ambient) term in-scatters by the phase function: 1 at g = 0.
-      dvec4 lit = material;
-      lit.x *= mmv::mmvHenyeyGreensteinRelative(m[mmv::Anisotropy], -glm::dot(v, l));
-      radiance +=
-        irradiance * light.Radiance * mmv::mmvBlinnPhong(lit, segment, n, v, l, directional);
     }
-    if (this->Reflection && m[mmv::Reflection] > 0.0)
-    {
-      radiance += directional * m[mmv::Reflection] * segment.w * this->Reflected(x, n, v);
-    }
-    radiance += mmv::mmvEmission(m[mmv::Emission], segment);
-    return radiance;
+    const double reflection = this->Reflection ? m[mmv::Reflection] : 0.0;
+    const dvec3 environment = reflection > 0.0 ? this->Reflected(x, n, v) : dvec3(0.0);
+    return mmv::mmvShadeSample(material, m[mmv::Anisotropy], reflection, m[mmv::Emission],
+      segment, x, n, v, directional, this->Sources.data(), this->Radiances.data(), irradiance, count,
+      environment);
   }
 
   // Eq. 17's I(x, w_r) c_r(w_r) (Shaders/mmvReflection.glsl): the
@@ -461,6 +444,11 @@ vtkImageData* vtkMultiMaterialReferenceRenderer::Render(vtkRenderer* ren, int wi
   for (const std::string& problem : problems)
   {
     vtkWarningMacro(<< problem);
+  }
+  for (const mmv::ShadingLight& light : scene.Lights)
+  {
+    scene.Sources.push_back(light.Source);
+    scene.Radiances.push_back(light.Radiance);
   }
   vtkCamera* camera = ren->GetActiveCamera();
   scene.Reflection =

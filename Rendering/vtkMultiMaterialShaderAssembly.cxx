@@ -1,11 +1,13 @@
 #include "vtkMultiMaterialShaderAssembly.h"
 
+#include "vtkMultiMaterialLightUniforms.h"
 #include "vtkMultiMaterialParameters.h"
 
 #include "vtkMultiMaterialCutaway.h"
 
 #include "mmvCutaway.h"
 #include "mmvEmission.h"
+#include "mmvLightModel.h"
 #include "mmvPhaseFunction.h"
 #include "mmvRayCastDec.h"
 #include "mmvRayCastExit.h"
@@ -39,7 +41,12 @@ std::vector<std::pair<std::string, std::string>> RayCastReplacements(const Shade
   // (the tag is re-emitted); the per-sample shading replaces VTK's. The
   // optional terms' functions are left out of the source, not only compiled
   // out, when no material uses them.
-  std::string declarations = VariantDefines(variant) + mmvShading;
+  std::string declarations = VariantDefines(variant);
+  if (variant.NumberOfLights > 0)
+  {
+    declarations += LightUniformDeclarations("MMV_NUMBER_OF_LIGHTS");
+  }
+  declarations += mmvLightModel;
   if (variant.Anisotropy)
   {
     declarations += mmvPhaseFunction;
@@ -48,6 +55,9 @@ std::vector<std::pair<std::string, std::string>> RayCastReplacements(const Shade
   {
     declarations += mmvEmission;
   }
+  // Before the reflection: mmvReflection.glsl draws the background gradient
+  // with mmvShading.glsl's mmvEnvironment.
+  declarations += mmvShading;
   if (variant.Reflection)
   {
     if (variant.ReflectionVisibility != 0)

@@ -3,10 +3,14 @@
  * @brief  Segment shading on the CPU: Zhang & Ma eq. 16, the environment
  *         term of eq. 17 and the emission of Yang et al. eq. 27. Mirrors
  *         Shaders/mmvShading.glsl and Shaders/mmvEmission.glsl function for
- *         function; TestShaderMirror runs both.
+ *         function; TestShaderMirror runs both. The reference renderer
+ *         shades its segments with mmvShadeSample, as the ray cast does.
  */
 #ifndef vtkMultiMaterialShading_h
 #define vtkMultiMaterialShading_h
+
+#include "vtkMultiMaterialLightModel.h"    // mmvDirectionToLight
+#include "vtkMultiMaterialPhaseFunction.h" // mmvHenyeyGreensteinRelative
 
 #include <glm/glm.hpp>
 
@@ -40,6 +44,47 @@ inline glm::dvec3 mmvEnvironment(const glm::dvec3& d, const glm::dvec3& up,
   const glm::dvec3& bottom, const glm::dvec3& top)
 {
   return glm::mix(bottom, top, glm::clamp(0.5 + 0.5 * glm::dot(d, up), 0.0, 1.0));
+}
+
+/// The radiance of one segment (mmvShadeSample in Shaders/mmvShading.glsl,
+/// the arithmetic of the ray cast's mmvShadeSegment once it has read its
+/// textures): eq. 16 summed over the lights, eq. 17's environment term and
+/// emission. material: (ka, kd, ks, ke); position: the shading point (object
+/// space); n, v, directional: as mmvBlinnPhong; for k < count, light k's
+/// geometry lights[k], its colour * intensity radiance[k] and its irradiance
+/// irradiance[k]; environment: the environment's radiance along the mirrored
+/// view direction. The GPU compiles the phase function, the reflection and
+/// the emission out when no material uses them; at g = 0, r = 0 and e = 0
+/// they change nothing here either.
+inline glm::dvec3 mmvShadeSample(const glm::dvec4& material, double anisotropy, double reflection,
+  double emission, const glm::dvec4& segment, const glm::dvec3& position, const glm::dvec3& n,
+  const glm::dvec3& v, double directional, const LightSource* lights, const glm::dvec3* radiance,
+  const double* irradiance, int count, const glm::dvec3& environment)
+{
+  glm::dvec3 result(0.0);
+  if (count == 0)
+  {
+    // No active light: ambient emission only, so the volume stays visible.
+    result = material.x * glm::dvec3(segment);
+  }
+  for (int k = 0; k < count; ++k)
+  {
+    if (irradiance[k] <= 0.0)
+    {
+      continue;
+    }
+    double lightDistance = 0.0;
+    const glm::dvec3 l = mmvDirectionToLight(lights[k], position, lightDistance);
+    // The particle (ambient) term in-scatters by the phase function.
+    glm::dvec4 lit = material;
+    lit.x *= mmvHenyeyGreensteinRelative(anisotropy, -glm::dot(v, l));
+    result += irradiance[k] * radiance[k] * mmvBlinnPhong(lit, segment, n, v, l, directional);
+  }
+  if (reflection > 0.0)
+  {
+    result += directional * reflection * segment.w * environment;
+  }
+  return result + mmvEmission(emission, segment);
 }
 
 } // namespace mmv

@@ -81,30 +81,15 @@ void vtkMultiMaterialTextures::UpdateMaterialTable(vtkOpenGLRenderWindow* contex
       }
     }
   }
-  // Row 0: what every shaded segment reads; row 1: reflection (read only by
-  // the reflection variant), the irradiance parameters and the anisotropy
-  // (read only by the anisotropic variant); row 2: the emission (read only
-  // by the emissive variant).
-  constexpr int Rows = mmv::MaterialTextureRows;
-  std::vector<float> texels(static_cast<size_t>(n) * Rows * 4, 0.0f);
+  // Laid out as mmv::MaterialTexelLayout, which the shaders read through the
+  // prelude's MMV_<NAME>_ROW / _CHANNEL; unused channels hold 0.
+  std::vector<float> texels(static_cast<size_t>(n) * mmv::MaterialTextureRows * 4, 0.0f);
   for (int i = 0; i < n; ++i)
   {
-    const float* m = &samples[i * P];
-    float* row0 = &texels[4 * i];
-    float* row1 = &texels[4 * (n + i)];
-    float* row2 = &texels[4 * (2 * n + i)];
-    row0[0] = m[mmv::Ambient];
-    row0[1] = m[mmv::Diffuse];
-    row0[2] = m[mmv::Specular];
-    row0[3] = m[mmv::Shininess];
-    row1[0] = m[mmv::Reflection];
-    row1[1] = m[mmv::Attenuation];
-    row1[2] = m[mmv::Scattering];
-    row1[3] = m[mmv::Anisotropy];
-    row2[0] = m[mmv::Emission];
+    mmv::PackMaterialTexels(&samples[i * P], i, n, texels.data());
   }
   this->Material->SetContext(context);
-  this->Material->Create2DFromRaw(n, Rows, 4, VTK_FLOAT, texels.data());
+  this->Material->Create2DFromRaw(n, mmv::MaterialTextureRows, 4, VTK_FLOAT, texels.data());
   UseLinearClamped(this->Material);
   this->UploadedMaterials = materials;
   this->UploadedMaterialTime = time;

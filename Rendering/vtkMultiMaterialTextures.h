@@ -5,7 +5,7 @@
  *
  * Segment tables: RGBA32F n x n (I_c rgb, I_alpha) and R32F n x n (I_beta)
  * from vtkPreIntegrationTable. Material table: RGBA32F n x 3, row 0 =
- * (ka, kd, ks, ke), row 1 = (r, c_t, s, g), row 2 = (e, 0, 0, 0), sampled
+ * (ka, kd, ks, ke), row 1 = (r, 0, 0, g), row 2 = (e, 0, 0, 0), sampled
  * over the scalar range (the layout of mmv::MaterialParameterTable; the
  * shader reads row r at v = (r + 0.5) / mmv::MaterialTextureRows).
  * Gradient volume: RGB16F at the data's resolution, the normalised-value

@@ -1,26 +1,23 @@
 #include "vtkMultiMaterialVolumeMapper.h"
 
-#include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
 #include "vtkDataArray.h"
 #include "vtkGlobalPrefilteredVolume.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
-#include "vtkIrradianceGrid.h"
-#include "vtkIrradianceInputCache.h"
 #include "vtkIrradianceVolumePass.h"
 #include "vtkLightCollection.h"
 #include "vtkMaterialTransferFunction.h"
 #include "vtkMatrix4x4.h"
-#include "vtkMultiMaterialCutaway.h"
 #include "vtkMultiMaterialInputCheck.h"
-#include "vtkMultiMaterialLightTolerance.h"
+#include "vtkMultiMaterialIrradianceStage.h"
 #include "vtkMultiMaterialLights.h"
 #include "vtkMultiMaterialLiveObjects.h"
 #include "vtkMultiMaterialParameters.h"
 #include "vtkMultiMaterialReflection.h"
 #include "vtkMultiMaterialRenderPass.h"
 #include "vtkMultiMaterialShaderAssembly.h"
+#include "vtkMultiMaterialShadingUniforms.h"
 #include "vtkMultiMaterialTextures.h"
 #include "vtkMultiMaterialVolumeGeometry.h"
 #include "vtkObjectFactory.h"
@@ -70,127 +67,30 @@ public:
     return this->Global && this->Global->GetValid() ? this->Global.Get() : nullptr;
   }
   vtkNew<vtkPreIntegrationTable> SegmentTable;
-  vtkNew<vtkPreIntegrationTable> ShadowTable;
   vtkNew<vtkMultiMaterialTextures> Textures;
-  vtkNew<vtkIrradianceVolumePass> Irradiance;
+  vtkMultiMaterialIrradianceStage Irradiance;
   vtkNew<vtkMultiMaterialRenderPass> Pass;
   vtkNew<vtkColorTransferFunction> GrayAsColor;
   vtkMTimeType GrayTime = 0;
 
-  // What the irradiance volume was computed from, and the pass's inputs
-  // kept between frames (pre-filtered data, material samples).
-  vtkNew<vtkIrradianceInputCache> Cache;
-  std::string ResolutionReason;
-
-  // Per-frame shading inputs, read by SetUniforms().
-  mmv::ShaderVariant Variant;
+  // The lights of this frame, in object space.
   std::vector<mmv::ShadingLight> Lights;
-  float IrradianceScale[3] = { 1.0f, 1.0f, 1.0f };
-  float IrradianceBias[3] = { 0.0f, 0.0f, 0.0f };
-  float PhysicalToWholeIndex[16] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 };
-  float GradientToObject[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
-  float WholeDimensions[3] = { 1.0f, 1.0f, 1.0f };
-  float DataSpacing[3] = { 1.0f, 1.0f, 1.0f };
-  float GradientFade = 1.0f;
-  float GradientScale[3] = { 1.0f, 1.0f, 1.0f };
-  float GradientTexScale[3] = { 1.0f, 1.0f, 1.0f };
-  float GradientTexBias[3] = { 0.0f, 0.0f, 0.0f };
-  float TableStep = 1.0f;
+  // The ray cast's uniforms of this frame, set whenever VTK binds its program.
+  vtkMultiMaterialShadingUniforms Uniforms;
   vtkNew<vtkMultiMaterialReflection> Reflection; // eq. 17's c_r and visibility
 
   std::set<std::string> Warnings;
 
-  void SetUniforms(vtkShaderProgram* program);
-  void ActivateTextures(bool on);
+  void SetUniforms(vtkShaderProgram* program)
+  {
+    this->Uniforms.Apply(program, this->Textures, this->SegmentTable->GetTableSize(),
+      this->Irradiance.GetPass());
+  }
+  void ActivateTextures(bool on)
+  {
+    this->Uniforms.ActivateTextures(on, this->Textures, this->Irradiance.GetPass());
+  }
 };
-
-void vtkMultiMaterialVolumeMapper::vtkInternals::ActivateTextures(bool on)
-{
-  const int textures = this->Variant.NumberOfLights > 0
-    ? std::min(this->Irradiance->GetNumberOfIrradianceTextures(), 2)
-    : 0;
-  if (on)
-  {
-    this->Textures->Activate();
-  }
-  else
-  {
-    this->Textures->Deactivate();
-  }
-  if (this->Variant.Reflection)
-  {
-    on ? this->Reflection->Activate() : this->Reflection->Deactivate();
-  }
-  for (int i = 0; i < textures; ++i)
-  {
-    vtkTextureObject* texture = this->Irradiance->GetIrradianceTexture(i);
-    if (on)
-    {
-      texture->Activate();
-    }
-    else
-    {
-      texture->Deactivate();
-    }
-  }
-}
-
-void vtkMultiMaterialVolumeMapper::vtkInternals::SetUniforms(vtkShaderProgram* program)
-{
-  program->SetUniformi(
-    "mmv_preintColor", this->Textures->GetSegmentColorTexture()->GetTextureUnit());
-  program->SetUniformi(
-    "mmv_preintBeta", this->Textures->GetSegmentPositionTexture()->GetTextureUnit());
-  program->SetUniformi("mmv_material", this->Textures->GetMaterialTexture()->GetTextureUnit());
-  program->SetUniformf("mmv_tableSize", static_cast<float>(this->SegmentTable->GetTableSize()));
-  program->SetUniformf("mmv_tableStep", this->TableStep);
-  program->SetUniformf("mmv_gradientFade", this->GradientFade);
-  program->SetUniformi("mmv_gradient", this->Textures->GetGradientTexture()->GetTextureUnit());
-  program->SetUniform3f("mmv_gradientScale", this->GradientScale);
-  program->SetUniform3f("mmv_gradientTexScale", this->GradientTexScale);
-  program->SetUniform3f("mmv_gradientTexBias", this->GradientTexBias);
-  program->SetUniform3f("mmv_irradianceScale", this->IrradianceScale);
-  program->SetUniform3f("mmv_irradianceBias", this->IrradianceBias);
-  program->SetUniformMatrix4x4("mmv_physicalToWholeIndex", this->PhysicalToWholeIndex);
-  program->SetUniformMatrix3x3("mmv_gradientToObject", this->GradientToObject);
-  program->SetUniform3f("mmv_wholeDimensions", this->WholeDimensions);
-  program->SetUniform3f("mmv_dataSpacing", this->DataSpacing);
-
-  const int count = this->Variant.NumberOfLights;
-  if (count > 0)
-  {
-    program->SetUniformi(
-      "mmv_irradiance0", this->Irradiance->GetIrradianceTexture(0)->GetTextureUnit());
-    if (count > 4)
-    {
-      program->SetUniformi(
-        "mmv_irradiance1", this->Irradiance->GetIrradianceTexture(1)->GetTextureUnit());
-    }
-    std::vector<int> kinds(count);
-    std::vector<float> vectors(3 * count);
-    std::vector<float> radiance(3 * count);
-    for (int k = 0; k < count; ++k)
-    {
-      const mmv::LightSource& source = this->Lights[k].Source;
-      kinds[k] = source.Kind;
-      const glm::dvec3 v = source.Kind == mmv::DirectionalLight ? source.ToLight : source.Position;
-      for (int c = 0; c < 3; ++c)
-      {
-        vectors[3 * k + c] = static_cast<float>(v[c]);
-        radiance[3 * k + c] = static_cast<float>(this->Lights[k].Radiance[c]);
-      }
-    }
-    program->SetUniform1iv("mmv_lightKind", count, kinds.data());
-    program->SetUniform3fv(
-      "mmv_lightVector", count, reinterpret_cast<const float(*)[3]>(vectors.data()));
-    program->SetUniform3fv(
-      "mmv_lightRadiance", count, reinterpret_cast<const float(*)[3]>(radiance.data()));
-  }
-  if (this->Variant.Reflection)
-  {
-    this->Reflection->SetUniforms(program);
-  }
-}
 
 //------------------------------------------------------------------------------
 vtkMultiMaterialVolumeMapper::vtkMultiMaterialVolumeMapper()
@@ -255,32 +155,6 @@ vtkMTimeType vtkMultiMaterialVolumeMapper::GetMTime()
   return t;
 }
 
-//------------------------------------------------------------------------------
-namespace
-{
-/// What the whole irradiance volume depends on besides the lights and the grid.
-vtkIrradianceInputCache::VolumeKey MakeVolumeKey(vtkMultiMaterialVolumeMapper* mapper,
-  vtkVolumeProperty* property, vtkMTimeType dataTime, int materialVersion, int lights,
-  const double range[2], const mmv::Cutaway& cutaway)
-{
-  vtkIrradianceInputCache::VolumeKey key;
-  key.DataTime = dataTime;
-  key.OpacityTime = property->GetScalarOpacity(0)->GetMTime();
-  key.MaterialVersion = materialVersion;
-  key.UnitDistance = property->GetScalarOpacityUnitDistance(0);
-  key.Range[0] = range[0];
-  key.Range[1] = range[1];
-  key.MultipleScattering = mapper->GetMultipleScattering();
-  key.TableSize = mapper->GetPreIntegrationTableSize();
-  key.NumberOfLights = lights;
-  key.ShadowEstimation = mapper->GetShadowEstimation();
-  key.PiecewiseShadowSlices = mapper->GetPiecewiseShadowSlices();
-  key.ExponentialDiffusion = mapper->GetExponentialDiffusion();
-  key.Cut = cutaway.Key();
-  return key;
-}
-}
-
 bool vtkMultiMaterialVolumeMapper::ReadIrradiance(
   vtkRenderWindow* window, int light, std::vector<float>& values)
 {
@@ -291,12 +165,12 @@ bool vtkMultiMaterialVolumeMapper::ReadIrradiance(
     return false;
   }
   context->MakeCurrent();
-  return this->Internals->Irradiance->ReadBack(context, light, values);
+  return this->Internals->Irradiance.GetPass()->ReadBack(context, light, values);
 }
 
 vtkIrradianceVolumePass* vtkMultiMaterialVolumeMapper::GetIrradianceVolumePass()
 {
-  return this->Internals->Irradiance;
+  return this->Internals->Irradiance.GetPass();
 }
 
 std::string vtkMultiMaterialVolumeMapper::GetLastFragmentShaderSource()
@@ -311,15 +185,14 @@ int vtkMultiMaterialVolumeMapper::GetGradientUploadCount()
 
 vtkIdType vtkMultiMaterialVolumeMapper::GetMultiMaterialMemoryBytes()
 {
-  return this->Internals->Irradiance->GetTextureMemoryBytes() +
+  return this->Internals->Irradiance.GetPass()->GetTextureMemoryBytes() +
     this->Internals->Textures->GetMemoryBytes();
 }
 
 void vtkMultiMaterialVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
 {
   this->Internals->Textures->ReleaseGraphicsResources(window);
-  this->Internals->Irradiance->ReleaseGraphicsResources(window);
-  this->Internals->Cache->Invalidate();
+  this->Internals->Irradiance.ReleaseGraphicsResources(window);
   this->Superclass::ReleaseGraphicsResources(window);
 }
 
@@ -473,7 +346,8 @@ bool vtkMultiMaterialVolumeMapper::PrepareMultiMaterial(vtkRenderer* ren, vtkVol
   // 3. The irradiance volume: only when lights, opacity, materials or data change.
   this->LastRenderInteractive = vol->GetAllocatedRenderTime() < 1.0;
   if (!this->Internals->Lights.empty() &&
-    !this->UpdateIrradiance(ren, vol, input.Image, input.Scalars, range))
+    !this->Internals->Irradiance.Update(this, ren, vol, input.Image, input.Scalars, range,
+      this->Internals->ActiveGlobal(), this->Internals->Materials, this->Internals->Lights))
   {
     return false;
   }
@@ -527,7 +401,7 @@ bool vtkMultiMaterialVolumeMapper::UpdateSegmentTables(
     ++this->PreIntegrationCount;
     this->LastPreIntegrationSeconds = table->GetLastBuildSeconds();
   }
-  in.TableStep = static_cast<float>(step);
+  in.Uniforms.SetTableStep(step);
   in.Textures->UpdateSegmentTables(context, table);
   in.Textures->UpdateMaterialTable(context, in.Materials, range, this->PreIntegrationTableSize);
   return true;
@@ -558,12 +432,7 @@ bool vtkMultiMaterialVolumeMapper::UpdateGradient(vtkOpenGLRenderWindow* context
                    "context?); using VTK's shading");
     return false;
   }
-  const int* gradientTexels = in.Textures->GetGradientTextureDimensions();
-  for (int a = 0; a < 3; ++a)
-  {
-    in.GradientScale[a] = static_cast<float>(dataDims[a]);
-    mmv::SamePointsMap(dataDims[a], gradientTexels[a], in.GradientTexScale[a], in.GradientTexBias[a]);
-  }
+  in.Uniforms.SetGradientMap(dataDims, in.Textures->GetGradientTextureDimensions());
   return true;
 }
 
@@ -616,35 +485,14 @@ void vtkMultiMaterialVolumeMapper::UpdateShading(
     variant.Environment = in.Reflection->GetEnvironmentKind();
     variant.ReflectionVisibility = in.Reflection->GetVisibility();
   }
-  if (variant != in.Variant || in.Pass->GetFragmentReplacements().empty())
+  if (variant != in.Uniforms.GetVariant() || in.Pass->GetFragmentReplacements().empty())
   {
     in.Pass->SetFragmentReplacements(mmv::RayCastReplacements(variant));
   }
-  in.Variant = variant;
-
-  int dims[3];
-  image->GetDimensions(dims);
-  mmv::WholeVolumeMaps(
-    image, in.PhysicalToWholeIndex, in.GradientToObject, in.WholeDimensions, in.DataSpacing);
-  if (in.ActiveGlobal())
-  {
-    this->MapPieceToGlobalIrradiance(image);
-  }
-  else
-  {
-    for (int a = 0; a < 3; ++a)
-    {
-      // Data point i sits at texture coordinate (i + 0.5) / N, irradiance
-      // voxel j at (j + 0.5) / M, and both grids span the same points.
-      mmv::SamePointsMap(dims[a],
-        this->IrradianceDimensions[a] > 0 ? this->IrradianceDimensions[a] : 1,
-        in.IrradianceScale[a], in.IrradianceBias[a]);
-    }
-  }
-  const double* spacing = image->GetSpacing();
-  const double smallestSpacing =
-    std::min({ std::abs(spacing[0]), std::abs(spacing[1]), std::abs(spacing[2]) });
-  in.GradientFade = static_cast<float>(mmv::FullShadingGradientPerVoxel / smallestSpacing);
+  in.Uniforms.SetVariant(variant);
+  in.Uniforms.SetLights(in.Lights);
+  in.Uniforms.SetGeometry(image, this->IrradianceDimensions, in.ActiveGlobal());
+  in.Uniforms.SetReflection(variant.Reflection ? in.Reflection.Get() : nullptr);
 }
 
 void vtkMultiMaterialVolumeMapper::UpdateReflection(vtkRenderer* ren, vtkMatrix4x4* worldToObject)
@@ -652,10 +500,10 @@ void vtkMultiMaterialVolumeMapper::UpdateReflection(vtkRenderer* ren, vtkMatrix4
   vtkInternals& in = *this->Internals;
   vtkNew<vtkMatrix4x4> objectToWorld;
   vtkMatrix4x4::Invert(worldToObject, objectToWorld);
-  const mmv::IrradianceGrid& grid = in.Cache->GetGrid();
+  const mmv::IrradianceGrid& grid = in.Irradiance.GetGrid();
   std::vector<std::string> problems;
   in.Reflection->Update(ren, objectToWorld, this->ReflectionSource, this->ReflectionVisibility,
-    in.Lights.empty() ? nullptr : in.Irradiance.Get(), grid, this->PreIntegrationTableSize,
+    in.Lights.empty() ? nullptr : in.Irradiance.GetPass(), grid, this->PreIntegrationTableSize,
     std::min({ grid.Spacing.x, grid.Spacing.y, grid.Spacing.z }), &problems);
   for (const std::string& problem : problems)
   {
@@ -663,208 +511,9 @@ void vtkMultiMaterialVolumeMapper::UpdateReflection(vtkRenderer* ren, vtkMatrix4
   }
 }
 
-void vtkMultiMaterialVolumeMapper::MapPieceToGlobalIrradiance(vtkImageData* piece)
-{
-  vtkInternals& in = *this->Internals;
-  vtkGlobalPrefilteredVolume* global = in.ActiveGlobal();
-  const glm::dvec3 offset = global->PieceOffset(piece);
-  const double o[3] = { offset[0], offset[1], offset[2] };
-  int dims[3];
-  piece->GetDimensions(dims);
-  mmv::PieceToGlobalIrradianceMap(
-    global->GetGrid(), o, dims, in.IrradianceScale, in.IrradianceBias);
-}
-
-mmv::IrradianceResolution vtkMultiMaterialVolumeMapper::ChooseIrradianceGrid(
-  vtkRenderer* ren, vtkVolume* vol, vtkImageData* image)
-{
-  int dataDims[3];
-  image->GetDimensions(dataDims);
-  // The screen only matters when the resolution is automatic.
-  std::string scaleProblem;
-  const double scale = mmv::ValidIrradianceScale(this->IrradianceScale, &scaleProblem);
-  if (!scaleProblem.empty())
-  {
-    this->WarnOnce(scaleProblem);
-  }
-  const double pixelsPerVoxel = scale > 0.0 ? 0.0 : mmv::ProjectedPixelsPerVoxel(ren, vol, image);
-  mmv::IrradianceResolution resolution;
-  if (vtkGlobalPrefilteredVolume* global = this->Internals->ActiveGlobal())
-  {
-    global->GetIrradianceDimensions(resolution.Dimensions);
-    resolution.Reason = "the global grid of a volume in pieces";
-    return resolution;
-  }
-  resolution = mmv::ChooseIrradianceResolution(dataDims,
-    static_cast<int>(this->Internals->Lights.size()), this->IrradianceMemoryMB, scale,
-    pixelsPerVoxel);
-  // The irradiance is one 3D texture: no axis longer than the largest one
-  // (a long volume is drawn in bricks, its irradiance spans it whole).
-  const int largest = vtkTextureObject::GetMaximumTextureSize3D(
-    vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow()));
-  for (int a = 0; a < 3 && largest > 1; ++a)
-  {
-    resolution.Dimensions[a] = std::min(resolution.Dimensions[a], largest);
-  }
-  return resolution;
-}
-
-bool vtkMultiMaterialVolumeMapper::UpdateIrradiance(vtkRenderer* ren, vtkVolume* vol,
-  vtkImageData* image, vtkDataArray* scalars, const double pieceRange[2])
-{
-  vtkInternals& in = *this->Internals;
-  // A piece of a larger volume is lit from the whole volume's pre-filtered
-  // data, on its grid and over its range.
-  vtkGlobalPrefilteredVolume* global = in.ActiveGlobal();
-  const double* range = global ? global->GetScalarRange() : pieceRange;
-  this->NumberOfUpdatedLights = 0;
-
-  const mmv::IrradianceResolution resolution = this->ChooseIrradianceGrid(ren, vol, image);
-  const int* dims = resolution.Dimensions;
-  in.Cache->SampleMaterials(in.Materials, range, this->PreIntegrationTableSize);
-  const vtkMTimeType dataTime =
-    global ? global->GetMTime() : std::max(image->GetMTime(), scalars->GetMTime());
-  // What cropping and clipping remove casts no shadow: part of the key, so a
-  // moved crop box or plane updates the irradiance.
-  vtkNew<vtkMatrix4x4> worldToObject;
-  vtkMatrix4x4::Invert(vol->GetMatrix(), worldToObject);
-  int droppedPlanes = 0;
-  const mmv::Cutaway cutaway = mmv::MakeCutaway(this, worldToObject, &droppedPlanes);
-  if (droppedPlanes > 0)
-  {
-    this->WarnOnce("more than " + std::to_string(mmv::MaxCutPlanes) +
-      " clipping planes: the shadow rays ignore the others");
-  }
-  const vtkIrradianceInputCache::VolumeKey volumeKey = MakeVolumeKey(this, vol->GetProperty(),
-    dataTime, in.Cache->GetMaterialVersion(), static_cast<int>(in.Lights.size()), range, cutaway);
-  std::vector<mmv::LightSource> sources;
-  for (const auto& light : in.Lights)
-  {
-    sources.push_back(light.Source);
-  }
-  const bool computed = in.Irradiance->GetNumberOfIrradianceTextures() > 0;
-  const double tolerance = mmv::LightToleranceRadians(this->LightDirectionTolerance);
-  if (computed && in.Cache->IsCurrent(volumeKey, sources, dims, tolerance))
-  {
-    return true;
-  }
-  // Interactive frames keep the last irradiance while only the lights or the
-  // screen-chosen grid moved; the still frame after them updates it.
-  if (computed && this->LastRenderInteractive &&
-    this->InteractiveIrradiance == ReuseWhileInteracting && in.Cache->SameVolume(volumeKey))
-  {
-    ++this->DeferredIrradianceCount;
-    return true;
-  }
-  // A real update (seconds on a software GPU): VTK progress events, which
-  // ParaView's progress bar shows, mark its start and end (issue 12).
-  this->SetProgressText("Irradiance volume");
-  this->UpdateProgress(0.0);
-
-  // Pre-filtered data: only when the data or the grid changed.
-  if (in.Cache->UpdatePrefiltered(image, scalars, global, dims, dataTime, range))
-  {
-    this->WarnOnce("the scalars contain NaN or Inf: lit as empty (NaN) or as the ends of the "
-                   "finite range (Inf)");
-  }
-  if (!this->ComputeIrradiance(ren, vol, range, cutaway, sources))
-  {
-    return false;
-  }
-  in.Cache->Store(volumeKey, in.Irradiance->GetComputedLights(), dims);
-  this->UpdateProgress(1.0);
-  // The mapper's own pipeline progress (its input's update) is not this.
-  this->SetProgressText(nullptr);
-  this->RecordIrradianceUpdate(resolution);
-  return true;
-}
-
-bool vtkMultiMaterialVolumeMapper::ComputeIrradiance(vtkRenderer* ren, vtkVolume* vol,
-  const double range[2], const mmv::Cutaway& cutaway,
-  const std::vector<mmv::LightSource>& sources)
-{
-  vtkInternals& in = *this->Internals;
-  vtkPiecewiseFunction* opacity = vol->GetProperty()->GetScalarOpacity(0);
-  const int n = this->PreIntegrationTableSize;
-  // Shadow rays step one irradiance voxel, with their own pre-integrated table.
-  const mmv::IrradianceGrid& grid = in.Cache->GetGrid();
-  const double shadowStep = std::min({ grid.Spacing.x, grid.Spacing.y, grid.Spacing.z });
-  vtkPreIntegrationTable* shadow = in.ShadowTable;
-  shadow->SetScalarOpacity(opacity);
-  shadow->SetMaterialTransferFunction(in.Materials);
-  shadow->SetScalarOpacityUnitDistance(vol->GetProperty()->GetScalarOpacityUnitDistance(0));
-  shadow->SetTableSize(n);
-  shadow->SetScalarRange(range[0], range[1]);
-  shadow->SetStepLength(shadowStep);
-  if (!shadow->Update())
-  {
-    this->SetProgressText(nullptr);
-    return false;
-  }
-
-  std::vector<float> opacityTable(n);
-  for (int i = 0; i < n; ++i)
-  {
-    opacityTable[i] =
-      static_cast<float>(opacity->GetValue(range[0] + (range[1] - range[0]) * i / (n - 1)));
-  }
-  const std::vector<float> scatteringTable =
-    this->MultipleScattering ? in.Cache->GetScattering() : std::vector<float>(n, 0.0f);
-
-  vtkIrradianceVolumePass* pass = in.Irradiance;
-  pass->SetMultipleScattering(this->MultipleScattering);
-  pass->SetShadowEstimation(this->ShadowEstimation);
-  pass->SetPiecewiseShadowSlices(this->PiecewiseShadowSlices);
-  pass->SetExponentialDiffusion(this->ExponentialDiffusion);
-  pass->SetLightDirectionTolerance(this->LightDirectionTolerance);
-  pass->SetCutaway(cutaway);
-  pass->SetInputs(grid, in.Cache->GetPrefiltered(), n, shadow->GetShadowOpacityTable(),
-    shadowStep, opacityTable.data(), scatteringTable.data(), sources,
-    in.Cache->GetPrefilteredVersion());
-  if (!pass->Render(vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow())))
-  {
-    vtkErrorMacro("the irradiance volume could not be computed on the GPU");
-    in.Cache->Invalidate();
-    this->SetProgressText(nullptr);
-    return false;
-  }
-  return true;
-}
-
-void vtkMultiMaterialVolumeMapper::RecordIrradianceUpdate(
-  const mmv::IrradianceResolution& resolution)
-{
-  vtkInternals& in = *this->Internals;
-  vtkIrradianceVolumePass* pass = in.Irradiance;
-  const int* dims = resolution.Dimensions;
-  std::copy(dims, dims + 3, this->IrradianceDimensions);
-  this->NumberOfUpdatedLights = pass->GetNumberOfUpdatedLights();
-  if (this->NumberOfUpdatedLights > 0)
-  {
-    ++this->IrradianceUpdateCount;
-    this->DiffusionPassCount += pass->GetDiffusionPasses();
-    this->LastIrradianceSeconds = pass->GetLastRenderSeconds();
-  }
-  int coarse[3];
-  pass->GetDiffusionGridDimensions(coarse);
-  std::ostringstream reason;
-  reason << dims[0] << "x" << dims[1] << "x" << dims[2] << " (" << resolution.Reason << ")";
-  if (pass->GetDiffusionLength() > 0.0 && this->MultipleScattering)
-  {
-    reason << "; diffusion on " << coarse[0] << "x" << coarse[1] << "x" << coarse[2]
-           << " (diffusion length " << pass->GetDiffusionLength() << " data voxels, "
-           << pass->GetDiffusionSubSteps() << " sub-steps x " << pass->GetDiffusionSweepsPerStep()
-           << " sweeps)";
-  }
-  in.ResolutionReason = reason.str();
-  vtkDebugMacro(<< "irradiance " << in.ResolutionReason << ", " << this->NumberOfUpdatedLights
-                << " of " << in.Lights.size() << " lights updated in "
-                << this->LastIrradianceSeconds << " s");
-}
-
 const char* vtkMultiMaterialVolumeMapper::GetIrradianceResolutionReason()
 {
-  return this->Internals->ResolutionReason.c_str();
+  return this->Internals->Irradiance.GetResolutionReason().c_str();
 }
 
 void vtkMultiMaterialVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
@@ -889,7 +538,8 @@ void vtkMultiMaterialVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
      << (this->InteractiveIrradiance == ReuseWhileInteracting ? "ReuseWhileInteracting"
                                                               : "UpdateAlways")
      << "\n";
-  os << indent << "IrradianceResolution: " << this->Internals->ResolutionReason << "\n";
+  os << indent << "IrradianceResolution: " << this->Internals->Irradiance.GetResolutionReason()
+     << "\n";
   os << indent << "DeferredIrradianceCount: " << this->DeferredIrradianceCount << "\n";
   os << indent << "IrradianceDimensions: " << this->IrradianceDimensions[0] << " "
      << this->IrradianceDimensions[1] << " " << this->IrradianceDimensions[2] << "\n";

@@ -51,12 +51,6 @@ class vtkMaterialTransferFunction;
 class vtkMatrix4x4;
 class vtkOpenGLRenderWindow;
 class vtkVolumeProperty;
-namespace mmv
-{
-struct Cutaway;
-struct IrradianceResolution;
-struct LightSource;
-}
 
 class VTKMULTIMATERIALVOLUME_EXPORT vtkMultiMaterialVolumeMapper
   : public vtkOpenGLGPUVolumeRayCastMapper
@@ -331,18 +325,8 @@ private:
   bool UpdateGradient(vtkOpenGLRenderWindow* context, vtkImageData* image,
     vtkDataArray* scalars, const double range[2]);
   void CollectShadedLights(vtkRenderer* ren, vtkMatrix4x4* worldToObject);
-  bool UpdateIrradiance(vtkRenderer* ren, vtkVolume* vol, vtkImageData* image,
-    vtkDataArray* scalars, const double pieceRange[2]);
-  bool ComputeIrradiance(vtkRenderer* ren, vtkVolume* vol, const double range[2],
-    const mmv::Cutaway& cutaway, const std::vector<mmv::LightSource>& sources);
-  mmv::IrradianceResolution ChooseIrradianceGrid(
-    vtkRenderer* ren, vtkVolume* vol, vtkImageData* image);
-  void RecordIrradianceUpdate(const mmv::IrradianceResolution& resolution);
   void UpdateShading(vtkRenderer* ren, vtkImageData* image, vtkMatrix4x4* worldToObject);
   void UpdateReflection(vtkRenderer* ren, vtkMatrix4x4* worldToObject);
-  // The irradiance texture coordinates of the input, a piece of the global
-  // pre-filtered volume.
-  void MapPieceToGlobalIrradiance(vtkImageData* piece);
   void WarnOnce(const std::string& message);
   // Partitions the texture so that every brick fits the context's largest
   // 3D texture; false (with an error) when nothing fits.
@@ -350,6 +334,8 @@ private:
 
   class vtkInternals;
   vtkInternals* Internals;
+  // The irradiance step reads the settings and keeps the counters above.
+  friend class vtkMultiMaterialIrradianceStage;
 };
 
 #endif

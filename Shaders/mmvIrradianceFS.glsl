@@ -2,7 +2,9 @@
 // per voxel of z slice `slice`, up to four lights per output texture. Mirrors
 // ShadowTransmittance() of Filters/vtkIrradianceVolumeFilter.cxx line for
 // line. Prepended by the pass: the material prelude, the shadow-ray constants
-// of mmv::ShadowRayGLSLPrelude(), mmvLightModel.glsl and mmvShadowRay.glsl.
+// of mmv::ShadowRayGLSLPrelude(), the light uniforms of
+// mmv::LightUniformDeclarations() (vtkMultiMaterialLightUniforms.h, the
+// ray cast's layout), mmvLightModel.glsl and mmvShadowRay.glsl.
 
 uniform sampler3D classes;     // s per voxel, < 0 where the voxel is empty
 uniform vec3 origin;
@@ -11,22 +13,15 @@ uniform mat3 worldToIndex;
 uniform int numberOfLights;
 uniform bool computeEmptyVoxels; // off (default): empty voxels cost nothing
 uniform int lightMask; // bit k: light k needs its irradiance (the others keep theirs)
-uniform int lightKind[4];
-uniform vec3 lightPosition[4];
-uniform vec3 lightToLight[4];
-uniform vec3 lightSpotAxis[4];
-uniform float lightCosCone[4];
-uniform float lightSpotExponent[4];
-uniform vec3 lightAttenuation[4];
-uniform float lightRadius[4];
+// The lights: mmv::LightUniformDeclarations(), prepended by the pass.
 
 // Transmittance from voxel `start` toward the light: a full shadow ray, to the
 // boundary (or the light).
 float mmvShadowTransmittance(int light, vec3 start, vec3 x, float startValue)
 {
   float lightDistance;
-  vec3 dir = mmvDirectionToLight(lightKind[light], lightPosition[light], lightToLight[light], x,
-    lightDistance);
+  vec3 dir = mmvDirectionToLight(mmv_lightKind[light], mmv_lightPosition[light],
+    mmv_lightToLight[light], x, lightDistance);
   vec3 indexDir = worldToIndex * dir;
   float end = mmvExitDistance(start, indexDir);
   if (lightDistance >= 0.0)
@@ -51,9 +46,9 @@ void mmvVoxelMain()
       {
         continue;
       }
-      float geometry = mmvLightGeometryTerm(lightKind[light], lightPosition[light],
-        lightSpotAxis[light], lightCosCone[light], lightSpotExponent[light],
-        lightAttenuation[light], lightRadius[light], x);
+      float geometry = mmvLightGeometryTerm(mmv_lightKind[light], mmv_lightPosition[light],
+        mmv_lightSpotAxis[light], mmv_lightCosCone[light], mmv_lightSpotExponent[light],
+        mmv_lightAttenuation[light], mmv_lightRadius[light], x);
       if (geometry > 0.0) // outside a spot light's cone: no ray
       {
         irradiance[light] = geometry * mmvShadowTransmittance(light, start, x, startValue);

@@ -1,7 +1,8 @@
 // Light-source terms (eqs. 11-14 with VTK's light conventions). Mirrors
 // Rendering/vtkMultiMaterialLightModel.h function for function; see there
-// for the conventions. Light kinds: 0 directional, 1 point, 2 spot (cone
-// half-angle, as vtkLight). Prepended after the prelude that defines
+// for the conventions. Light kinds: MMV_DIRECTIONAL_LIGHT, MMV_POINT_LIGHT,
+// MMV_SPOT_LIGHT (cone half-angle, as vtkLight). Prepended after the prelude
+// (mmv::MaterialGLSLPrelude) that defines them and
 // MMV_MIN_ATTENUATION_DENOMINATOR.
 
 // eq. 12: epsilon^2 / max(epsilon^2, d^2).
@@ -53,7 +54,7 @@ float mmvSpotVisibility(vec3 lightToPoint, vec3 axis, float cosCone)
 // directional lights (infinitely far).
 vec3 mmvDirectionToLight(int kind, vec3 lightPosition, vec3 toLight, vec3 x, out float lightDistance)
 {
-  if (kind == 0)
+  if (kind == MMV_DIRECTIONAL_LIGHT)
   {
     lightDistance = -1.0;
     return toLight;
@@ -67,13 +68,13 @@ vec3 mmvDirectionToLight(int kind, vec3 lightPosition, vec3 toLight, vec3 x, out
 float mmvLightGeometryTerm(int kind, vec3 lightPosition, vec3 spotAxis, float cosCone,
   float spotExponent, vec3 attenuation, float radius, vec3 x)
 {
-  if (kind == 0)
+  if (kind == MMV_DIRECTIONAL_LIGHT)
   {
     return 1.0;
   }
   vec3 lightToPoint = x - lightPosition;
   float term = mmvDistanceFalloff(radius, attenuation, dot(lightToPoint, lightToPoint));
-  if (kind == 2)
+  if (kind == MMV_SPOT_LIGHT)
   {
     term *= mmvSpotFactor(lightToPoint, spotAxis, cosCone, spotExponent);
   }

@@ -1,16 +1,18 @@
 // Multi-material volume shading inside VTK's ray caster: declarations.
-// Inserted before //VTK::Shading::Dec. The C++ side prepends the defines
-// MMV_NUMBER_OF_LIGHTS, MMV_IRRADIANCE_TEXTURES, MMV_USE_REFLECTION,
-// MMV_USE_PREINTEGRATION, MMV_USE_ANISOTROPY and MMV_USE_EMISSION, and
-// mmvShading.glsl (with mmvPhaseFunction.glsl, mmvEmission.glsl and
-// mmvReflection.glsl when those are on).
+// Inserted before //VTK::Shading::Dec. The C++ side
+// (vtkMultiMaterialShaderAssembly.cxx) prepends the prelude (texel layout,
+// light kinds), the defines MMV_NUMBER_OF_LIGHTS, MMV_IRRADIANCE_TEXTURES,
+// MMV_USE_REFLECTION, MMV_USE_PREINTEGRATION, MMV_USE_ANISOTROPY and
+// MMV_USE_EMISSION, the light uniforms (vtkMultiMaterialLightUniforms.h),
+// mmvLightModel.glsl, mmvPhaseFunction.glsl, mmvEmission.glsl and
+// mmvReflection.glsl when those are on, and mmvShading.glsl.
 //
 // Data values are normalised to [0, 1] over the scalar range, the coordinate
 // of every table below.
 
 uniform sampler2D mmv_preintColor;  // (t1, t2) -> I_c (rgb, opacity-weighted), I_alpha
 uniform sampler2D mmv_preintBeta;   // (t1, t2) -> I_beta, shading position in the segment
-uniform sampler2D mmv_material;     // (t, row 0) -> ka kd ks ke; row 1 -> r c_t s g; row 2 -> e
+uniform sampler2D mmv_material;     // (t, row) -> parameters, as mmv::MaterialTexelLayout
 uniform float mmv_tableSize;        // entries per table axis
 uniform float mmv_tableStep;        // segment length the tables were built for (object units)
 uniform float mmv_gradientFade;     // |gradient| (normalised value per object unit) of full surface shading
@@ -32,9 +34,6 @@ uniform sampler3D mmv_irradiance0;  // lights 0-3, one per channel
 #if MMV_IRRADIANCE_TEXTURES > 1
 uniform sampler3D mmv_irradiance1;  // lights 4-7
 #endif
-uniform int mmv_lightKind[MMV_NUMBER_OF_LIGHTS];       // 0 directional, 1 point, 2 spot
-uniform vec3 mmv_lightVector[MMV_NUMBER_OF_LIGHTS];    // toward the light, or its position (object space)
-uniform vec3 mmv_lightRadiance[MMV_NUMBER_OF_LIGHTS];  // colour * intensity
 #endif
 
 // The back end of the previous segment.
@@ -85,6 +84,13 @@ float mmvMaterialRow(int r)
   return (float(r) + 0.5) / float(MMV_MATERIAL_ROWS);
 }
 
+// One parameter at table coordinate tc: its texel's (MMV_<NAME>_ROW) channel
+// (MMV_<NAME>_CHANNEL).
+float mmvMaterialParameter(float tc, int row, int channel)
+{
+  return texture2D(mmv_material, vec2(tc, mmvMaterialRow(row)))[channel];
+}
+
 float mmvTableCoord(float t)
 {
   return (clamp(t, 0.0, 1.0) * (mmv_tableSize - 1.0) + 0.5) / mmv_tableSize;
@@ -100,11 +106,12 @@ vec3 mmvGradient(vec3 texPos)
   return mmv_gradientToObject * g;
 }
 
-// eqs. 16-17 at shading position texPos with value t for one segment.
+// eqs. 16-17 at shading position texPos with value t for one segment: reads
+// the textures, then mmvShadeSample() (mmvShading.glsl) does the arithmetic.
 vec3 mmvShadeSegment(vec3 texPos, float t, vec4 segment)
 {
   float tc = mmvTableCoord(t);
-  vec4 material = texture2D(mmv_material, vec2(tc, mmvMaterialRow(0)));
+  vec4 material = texture2D(mmv_material, vec2(tc, mmvMaterialRow(MMV_BLINN_PHONG_ROW)));
   vec3 position = (in_textureDatasetMatrix[0] * vec4(texPos, 1.0)).xyz;
   vec3 v = -normalize((in_textureDatasetMatrix[0] * vec4(g_dirStep, 0.0)).xyz);
   vec3 gradient = mmvGradient(texPos);
@@ -114,59 +121,34 @@ vec3 mmvShadeSegment(vec3 texPos, float t, vec4 segment)
   // Normal-based terms fade out where the gradient vanishes (noise there).
   float directional = clamp(gradientLength / mmv_gradientFade, 0.0, 1.0);
 
-  vec3 radiance = vec3(0.0);
+  vec4 irradiance0 = vec4(0.0);
+  vec4 irradiance1 = vec4(0.0);
 #if MMV_NUMBER_OF_LIGHTS > 0
   vec3 irradianceCoord = mmvWholeTexCoord(texPos) * mmv_irradianceScale + mmv_irradianceBias;
-  vec4 irradiance0 = texture(mmv_irradiance0, irradianceCoord);
-#if MMV_USE_ANISOTROPY
-  float anisotropy = texture2D(mmv_material, vec2(tc, mmvMaterialRow(1))).w;
-#endif
+  irradiance0 = texture(mmv_irradiance0, irradianceCoord);
 #if MMV_IRRADIANCE_TEXTURES > 1
-  vec4 irradiance1 = texture(mmv_irradiance1, irradianceCoord);
+  irradiance1 = texture(mmv_irradiance1, irradianceCoord);
 #endif
-  for (int k = 0; k < MMV_NUMBER_OF_LIGHTS; ++k)
-  {
-#if MMV_IRRADIANCE_TEXTURES > 1
-    float irradiance = k < 4 ? irradiance0[k] : irradiance1[k - 4];
-#else
-    float irradiance = irradiance0[k];
 #endif
-    if (irradiance <= 0.0)
-    {
-      continue;
-    }
-    vec3 l = mmv_lightVector[k];
-    if (mmv_lightKind[k] != 0)
-    {
-      vec3 toLight = mmv_lightVector[k] - position;
-      float distance = length(toLight);
-      l = distance > 0.0 ? toLight / distance : n;
-    }
+  float anisotropy = 0.0;
 #if MMV_USE_ANISOTROPY
-    // The particle (ambient) term in-scatters by the phase function.
-    vec4 lit = material;
-    lit.x *= mmvHenyeyGreensteinRelative(anisotropy, -dot(v, l));
-#else
-    vec4 lit = material;
+  anisotropy = mmvMaterialParameter(tc, MMV_ANISOTROPY_ROW, MMV_ANISOTROPY_CHANNEL);
 #endif
-    radiance +=
-      irradiance * mmv_lightRadiance[k] * mmvBlinnPhong(lit, segment, n, v, l, directional);
-  }
-#else
-  // No active light: ambient emission only, so the volume stays visible.
-  radiance = material.x * segment.rgb;
-#endif
+  float reflection = 0.0;
+  vec3 environment = vec3(0.0);
 #if MMV_USE_REFLECTION
-  float reflection = texture2D(mmv_material, vec2(tc, mmvMaterialRow(1))).x;
+  reflection = mmvMaterialParameter(tc, MMV_REFLECTION_ROW, MMV_REFLECTION_CHANNEL);
   if (reflection > 0.0)
   {
-    radiance += directional * reflection * segment.a * mmvReflectedRadiance(position, n, v);
+    environment = mmvReflectedRadiance(position, n, v);
   }
 #endif
+  float emission = 0.0;
 #if MMV_USE_EMISSION
-  radiance += mmvEmission(texture2D(mmv_material, vec2(tc, mmvMaterialRow(2))).x, segment);
+  emission = mmvMaterialParameter(tc, MMV_EMISSION_ROW, MMV_EMISSION_CHANNEL);
 #endif
-  return radiance;
+  return mmvShadeSample(material, anisotropy, reflection, emission, segment, position, n, v,
+    directional, irradiance0, irradiance1, environment);
 }
 
 // Integrates the segment x1 -> x2 (texture coordinates) with values t1, t2 and

@@ -3,7 +3,14 @@
 // float framebuffer and compared with the CPU function of the same name.
 #include "mmvTestWindow.h"
 #include "vtkMultiMaterialLightModel.h"
+#include "vtkMultiMaterialLightUniforms.h"
 #include "vtkMultiMaterialParameters.h"
+#include "vtkIrradianceDiffusion.h"
+#include "vtkMaterialTransferFunction.h"
+#include "vtkMultiMaterialShaderAssembly.h"
+#include "vtkMultiMaterialTextures.h"
+#include "vtkTextureObject.h"
+#include "mmvDiffusionFS.h"
 #include "mmvEmission.h"
 #include "mmvLightModel.h"
 #include "mmvPhaseFunction.h"
@@ -26,12 +33,23 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <iostream>
 #include <string>
 #include <vector>
 
 namespace
 {
 constexpr int Size = 48;
+
+mmv::ShaderVariant FullVariant(int lights = mmv::MaxLights)
+{
+  mmv::ShaderVariant variant;
+  variant.NumberOfLights = lights;
+  variant.Reflection = true;
+  variant.Anisotropy = lights > 0;
+  variant.Emission = true;
+  return variant;
+}
 
 /// Draws a full-screen quad with `body` as the fragment shader's main() into a
 /// Size x Size RGBA32F target and returns the pixels.
@@ -49,16 +67,23 @@ public:
     }
   }
 
+  /// The shaders are composed as the ray cast composes them
+  /// (vtkMultiMaterialShaderAssembly.cxx), for `variant`: by default every
+  /// optional term and MaxLights lights in two irradiance textures.
   bool Run(const std::string& body, const std::function<void(vtkShaderProgram*)>& setUniforms,
-    std::vector<float>& pixels)
+    std::vector<float>& pixels, const mmv::ShaderVariant& variant = FullVariant())
   {
     if (!this->GL)
     {
       return false;
     }
     this->GL->MakeCurrent();
-    const std::string fs = std::string("//VTK::System::Dec\n") + mmv::MaterialGLSLPrelude() +
-      mmvLightModel + mmvShading + mmvPhaseFunction + mmvEmission +
+    std::string fs = std::string("//VTK::System::Dec\n") + mmv::VariantDefines(variant);
+    if (variant.NumberOfLights > 0)
+    {
+      fs += mmv::LightUniformDeclarations("MMV_NUMBER_OF_LIGHTS");
+    }
+    fs += std::string(mmvLightModel) + mmvPhaseFunction + mmvEmission + mmvShading +
       "\nin vec2 texCoord;\n//VTK::Output::Dec\n" + body;
     vtkNew<vtkOpenGLFramebufferObject> fbo;
     fbo->SetContext(this->GL);
@@ -137,8 +162,8 @@ void main()
   vec3 x = vec3(-2.0 + 4.0 * texCoord, 0.0);
   gl_FragData[0] = vec4(mmvLightGeometryTerm(kind, lightPosition, spotAxis, cosCone,
     spotExponent, attenuation, radius, x),
-    mmvSpotFactor(x - lightPosition, spotAxis, cosCone, spotExponent), float(MMV_SCATTERING),
-    float(MMV_MATERIAL_PARAMETER_COUNT));
+    mmvSpotFactor(x - lightPosition, spotAxis, cosCone, spotExponent),
+    float(4 * MMV_ANISOTROPY_ROW + MMV_ANISOTROPY_CHANNEL), float(MMV_SPOT_LIGHT));
 }
 )";
 }
@@ -188,8 +213,10 @@ TEST(ShaderMirror, LightGeometryTermMatchesCPU)
           << "kind " << kind << " falloff " << falloff << " pixel " << i << "," << j;
         ASSERT_NEAR(px[1],
           mmv::mmvSpotFactor(toPoint, light.SpotAxis, light.CosCone, light.SpotExponent), 1e-5);
-        ASSERT_EQ(px[2], float(mmv::Scattering));
-        ASSERT_EQ(px[3], float(mmv::MaterialParameterCount));
+        // The prelude's generated names carry the C++ contract's values.
+        const mmv::MaterialTexel texel = mmv::MaterialTexelLayout[mmv::Anisotropy];
+        ASSERT_EQ(px[2], float(4 * texel.Row + texel.Channel));
+        ASSERT_EQ(px[3], float(mmv::SpotLight));
         ++compared;
       }
     }
@@ -457,4 +484,393 @@ TEST(ShaderMirror, HenyeyGreensteinAndEmissionMatchCPU)
   }
   // The sweep reaches the forward peak (7.1 at g = 0.969, cos = 0.979).
   EXPECT_GT(largest, 5.0);
+}
+
+namespace
+{
+// Lights of every kind and falloff, given to the shaders through the one
+// light layout (mmv::SetLightUniforms) as the ray cast and the irradiance
+// pass give them.
+std::vector<mmv::LightSource> EveryKindOfLight()
+{
+  std::vector<mmv::LightSource> lights;
+  mmv::LightSource directional = TestLight(mmv::DirectionalLight);
+  lights.push_back(directional);
+  mmv::LightSource point = TestLight(mmv::PointLight, 1); // attenuation (1, 0.5, 2)
+  lights.push_back(point);
+  mmv::LightSource spot = TestLight(mmv::SpotLight, 1); // cone 30 deg, exponent 7.5
+  lights.push_back(spot);
+  mmv::LightSource paperPoint = TestLight(mmv::PointLight, 0); // eq. 12, radius 0.5
+  paperPoint.Position = { -0.6, 0.4, 0.3 };
+  lights.push_back(paperPoint);
+  mmv::LightSource paperSpot = TestLight(mmv::SpotLight, 0); // eq. 12, hard cone
+  paperSpot.SpotExponent = 2.0;
+  paperSpot.CosCone = std::cos(45.0 * M_PI / 180.0);
+  lights.push_back(paperSpot);
+  mmv::LightSource hardSpot = TestLight(mmv::SpotLight, 2); // (0, 0, 1), hard cone
+  hardSpot.Position = { -0.5, -0.5, 0.8 };
+  hardSpot.CosCone = std::cos(50.0 * M_PI / 180.0);
+  hardSpot.SpotAxis = glm::normalize(glm::dvec3(0.3, 0.4, -1.0));
+  lights.push_back(hardSpot);
+  mmv::LightSource linearPoint = TestLight(mmv::PointLight, 2); // (0, 0, 1) at the plane
+  linearPoint.Attenuation = { 0.0, 1.0, 0.0 };
+  linearPoint.Position = { 0.9, 0.9, 0.05 };
+  lights.push_back(linearPoint);
+  mmv::LightSource skew = TestLight(mmv::DirectionalLight);
+  skew.ToLight = glm::normalize(glm::dvec3(0.7, -0.1, 0.2));
+  lights.push_back(skew);
+  return lights;
+}
+
+// Light `LIGHT`'s geometry term and direction at x, read from the uniforms.
+const char* LightUniformsBody = R"(
+void main()
+{
+  vec3 x = vec3(-2.0 + 4.0 * texCoord, 0.0);
+  float geometry = mmvLightGeometryTerm(mmv_lightKind[LIGHT], mmv_lightPosition[LIGHT],
+    mmv_lightSpotAxis[LIGHT], mmv_lightCosCone[LIGHT], mmv_lightSpotExponent[LIGHT],
+    mmv_lightAttenuation[LIGHT], mmv_lightRadius[LIGHT], x);
+  float lightDistance;
+  vec3 l = mmvDirectionToLight(mmv_lightKind[LIGHT], mmv_lightPosition[LIGHT],
+    mmv_lightToLight[LIGHT], x, lightDistance);
+  gl_FragData[0] = vec4(geometry, dot(l, vec3(0.3, 0.5, 0.8)), lightDistance,
+    float(mmv_lightKind[LIGHT]));
+}
+)";
+}
+
+TEST(ShaderMirror, LightModelOfEveryLightTypeThroughTheLightUniforms)
+{
+  ShaderRunner runner;
+  ASSERT_NE(runner.GL, nullptr);
+  const std::vector<mmv::LightSource> lights = EveryKindOfLight();
+  ASSERT_EQ(static_cast<int>(lights.size()), mmv::MaxLights);
+  int kinds[3] = { 0, 0, 0 };
+  double worst = 0.0;
+  for (int k = 0; k < mmv::MaxLights; ++k)
+  {
+    const mmv::LightSource& light = lights[k];
+    ++kinds[light.Kind];
+    std::vector<float> pixels;
+    const std::string body = "#define LIGHT " + std::to_string(k) + "\n" + LightUniformsBody;
+    ASSERT_TRUE(runner.Run(body,
+      [&](vtkShaderProgram* p) {
+        mmv::SetLightUniforms(p, lights.data(), nullptr, mmv::MaxLights, mmv::MaxLights);
+      },
+      pixels));
+    int lit = 0;
+    int unlit = 0;
+    for (int j = 0; j < Size; ++j)
+    {
+      for (int i = 0; i < Size; ++i)
+      {
+        const float* px = &pixels[4 * (j * Size + i)];
+        const glm::dvec3 x = PixelPoint(i, j);
+        ASSERT_EQ(px[3], float(light.Kind)) << "light " << k;
+        // float and double disagree right on a cone's edge; skip a thin band.
+        const glm::dvec3 toPoint = x - light.Position;
+        if (light.Kind == mmv::SpotLight &&
+          std::abs(glm::dot(glm::normalize(toPoint), light.SpotAxis) - light.CosCone) < 1e-4)
+        {
+          continue;
+        }
+        const double cpu = mmv::mmvLightGeometryTerm(light, x);
+        // float against double: relative rounding of the falloff and the
+        // spot's pow(cos, exponent) (exponent 7.5: ~1e-6), far below any
+        // change of the model (a different kind, falloff or cone).
+        ASSERT_NEAR(px[0], cpu, 1e-5 * std::max(1.0, cpu)) << "light " << k << " at " << i << "," << j;
+        worst = std::max(worst, std::abs(px[0] - cpu) / std::max(1.0, cpu));
+        double distance = 0.0;
+        const glm::dvec3 l = mmv::mmvDirectionToLight(light, x, distance);
+        ASSERT_NEAR(px[1], glm::dot(l, glm::dvec3(0.3, 0.5, 0.8)), 1e-5) << "light " << k;
+        ASSERT_NEAR(px[2], distance, 1e-5 * std::max(1.0, distance)) << "light " << k;
+        (cpu > 0.0 ? lit : unlit) += 1;
+      }
+    }
+    EXPECT_GT(lit, Size * Size / 20) << "light " << k;
+    if (light.Kind == mmv::SpotLight)
+    {
+      EXPECT_GT(unlit, Size * Size / 20) << "spot light " << k << " lights everything";
+    }
+  }
+  std::cout << "largest |GPU - CPU| / max(1, CPU) of the geometry term: " << worst << "\n";
+  EXPECT_GT(kinds[mmv::DirectionalLight], 0);
+  EXPECT_GT(kinds[mmv::PointLight], 0);
+  EXPECT_GT(kinds[mmv::SpotLight], 0);
+}
+
+namespace
+{
+// Materials of the segment-shading test: (ka, kd, ks, ke) and (g, r, e).
+const glm::dvec4 Phong[6] = { { 0.2, 0.7, 0.2, 20.0 }, { 0.0, 0.5, 0.9, 120.0 },
+  { 1.0, 0.0, 0.0, 0.0 }, { 0.3, 0.3, 0.6, 5.0 }, { 0.1, 0.9, 0.4, 60.0 },
+  { 0.5, 0.2, 0.0, 1.0 } };
+const glm::dvec3 Optics[6] = { { 0.0, 0.0, 0.0 }, { 0.6, 0.5, 0.0 }, { -0.5, 0.0, 2.0 },
+  { 0.9, 1.0, 0.3 }, { -0.9, 0.2, 0.0 }, { 0.3, 0.0, 0.7 } };
+
+// The inputs of pixel (i, j), as the shader below derives them: material
+// i % 6, a normal sweeping the sphere (none in every seventh row), the
+// directional weight, a position in the lights' plane, each light's
+// irradiance (0 for some) and an environment colour.
+struct SegmentInputs
+{
+  int Material;
+  glm::dvec4 Segment;
+  glm::dvec3 Position, N, V, Environment;
+  double Directional;
+  double Irradiance[mmv::MaxLights];
+};
+
+SegmentInputs PixelInputs(int i, int j)
+{
+  SegmentInputs in;
+  in.Material = i % 6;
+  const double theta = M_PI * (j + 0.5) / Size;
+  const double phi = 2.0 * M_PI * (i + 0.5) / Size;
+  in.N = j % 7 == 0 ? glm::dvec3(0.0)
+                    : glm::dvec3(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
+                        std::cos(theta));
+  in.V = glm::normalize(glm::dvec3(0.3, -0.2, 1.0));
+  in.Directional = (j % 5) / 4.0;
+  in.Position = PixelPoint(i, j);
+  in.Segment = glm::dvec4(0.3 + 0.1 * (i % 3), 0.2, 0.1 + 0.05 * (j % 4), 0.6);
+  for (int k = 0; k < mmv::MaxLights; ++k)
+  {
+    in.Irradiance[k] = (i + j + k) % 4 == 0 ? 0.0 : ((i * 7 + j * 3 + k * 5) % 11) / 10.0;
+  }
+  in.Environment = glm::dvec3(0.2, 0.5, 0.9) * (1.0 + (j % 2));
+  return in;
+}
+
+const char* SegmentShadingBody = R"(
+uniform vec4 phong[6];
+uniform vec3 optics[6];
+void main()
+{
+  int i = int(gl_FragCoord.x);
+  int j = int(gl_FragCoord.y);
+  int m = i % 6;
+  float theta = 3.14159265358979 * (float(j) + 0.5) / float(SIZE);
+  float phi = 6.28318530717959 * (float(i) + 0.5) / float(SIZE);
+  vec3 n = j % 7 == 0 ? vec3(0.0)
+                      : vec3(sin(theta) * cos(phi), sin(theta) * sin(phi), cos(theta));
+  vec3 v = normalize(vec3(0.3, -0.2, 1.0));
+  float directional = float(j % 5) / 4.0;
+  vec3 position = vec3(-2.0 + 4.0 * texCoord, 0.0);
+  vec4 segment = vec4(0.3 + 0.1 * float(i % 3), 0.2, 0.1 + 0.05 * float(j % 4), 0.6);
+  float irradiance[8];
+  for (int k = 0; k < 8; ++k)
+  {
+    irradiance[k] = (i + j + k) % 4 == 0 ? 0.0 : float((i * 7 + j * 3 + k * 5) % 11) / 10.0;
+  }
+  vec3 environment = vec3(0.2, 0.5, 0.9) * (1.0 + float(j % 2));
+  vec3 c = mmvShadeSample(phong[m], optics[m].x, optics[m].y, optics[m].z, segment, position,
+    n, v, directional, vec4(irradiance[0], irradiance[1], irradiance[2], irradiance[3]),
+    vec4(irradiance[4], irradiance[5], irradiance[6], irradiance[7]), environment);
+  gl_FragData[0] = vec4(c, texCoord.x);
+}
+)";
+}
+
+TEST(ShaderMirror, SegmentShadingMatchesTheReferenceRenderersFunction)
+{
+  // mmvShadeSample (what the ray cast's mmvShadeSegment computes once it has
+  // read its textures) against the CPU function the reference renderer
+  // shades with: six materials (ambient only, sharp highlights, g = +-0.9,
+  // reflection, emission), the lights of every kind through the light
+  // uniforms, with no light (ambient only), three lights (one irradiance
+  // texture) and MaxLights (two).
+  ShaderRunner runner;
+  ASSERT_NE(runner.GL, nullptr);
+  std::vector<mmv::LightSource> lights = EveryKindOfLight();
+  std::vector<glm::dvec3> radiance;
+  for (int k = 0; k < mmv::MaxLights; ++k)
+  {
+    radiance.emplace_back(1.0 - 0.1 * k, 0.5 + 0.05 * k, 0.8);
+  }
+  float phong[6][4];
+  float optics[6][3];
+  for (int m = 0; m < 6; ++m)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      phong[m][c] = static_cast<float>(Phong[m][c]);
+    }
+    for (int c = 0; c < 3; ++c)
+    {
+      optics[m][c] = static_cast<float>(Optics[m][c]);
+    }
+  }
+  const std::string body = "#define SIZE " + std::to_string(Size) + "\n" + SegmentShadingBody;
+  for (int count : { 0, 3, mmv::MaxLights })
+  {
+    std::vector<float> pixels;
+    ASSERT_TRUE(runner.Run(body,
+      [&](vtkShaderProgram* p) {
+        p->SetUniform4fv("phong", 6, phong);
+        p->SetUniform3fv("optics", 6, optics);
+        mmv::SetLightUniforms(p, lights.data(), radiance.data(), count, count);
+      },
+      pixels, FullVariant(count)))
+      << count << " lights";
+    double largest = 0.0;
+    double worst = 0.0;
+    int reflecting = 0;
+    for (int j = 0; j < Size; ++j)
+    {
+      for (int i = 0; i < Size; ++i)
+      {
+        const float* px = &pixels[4 * (j * Size + i)];
+        // The quad's coordinate: the pixel was drawn, where PixelPoint says.
+        ASSERT_NEAR(px[3], (i + 0.5) / Size, 1e-6) << "pixel " << i << "," << j;
+        const SegmentInputs in = PixelInputs(i, j);
+        const glm::dvec3& optic = Optics[in.Material];
+        const glm::dvec3 cpu = mmv::mmvShadeSample(Phong[in.Material], optic.x, optic.y,
+          optic.z, in.Segment, in.Position, in.N, in.V, in.Directional, lights.data(),
+          radiance.data(), in.Irradiance, count, in.Environment);
+        for (int c = 0; c < 3; ++c)
+        {
+          // float against double: the inputs' own rounding (~1e-7), pow() of
+          // shininess up to 120 and the phase function at g = 0.9 (up to 19x
+          // its value at g = 0) amplify it to ~1e-5 relative; a change of the
+          // model (a term, a light, a sign) moves the result by > 1e-2.
+          ASSERT_NEAR(px[c], cpu[c], 1e-4 * std::max(1.0, std::abs(cpu[c])))
+            << count << " lights, material " << in.Material << ", pixel " << i << "," << j
+            << ", channel " << c;
+          largest = std::max(largest, cpu[c]);
+          worst = std::max(worst, std::abs(px[c] - cpu[c]) / std::max(1.0, std::abs(cpu[c])));
+        }
+        reflecting += Optics[in.Material].y > 0.0 && in.Directional > 0.0 &&
+            glm::length(in.N) > 0.0 ? 1 : 0;
+      }
+    }
+    std::cout << count << " lights: largest |GPU - CPU| / max(1, CPU) " << worst << "\n";
+    EXPECT_GT(largest, 0.5) << count << " lights";
+    EXPECT_GT(reflecting, Size * Size / 10);
+  }
+}
+
+namespace
+{
+// Parameter PARAMETER of table entry i (pixel column i), read as the ray
+// cast reads it: the generated texel macros of its name.
+const char* MaterialTexelBody = R"(
+uniform sampler2D material;
+void main()
+{
+  float row = (float(PARAMETER_ROW) + 0.5) / float(MMV_MATERIAL_ROWS);
+  gl_FragData[0] = vec4(texture(material, vec2(texCoord.x, row))[PARAMETER_CHANNEL], 0.0, 0.0, 1.0);
+}
+)";
+}
+
+TEST(ShaderMirror, MaterialTexturePackingMatchesTheGeneratedTexelNames)
+{
+  // The C++ packing (vtkMultiMaterialTextures, mmv::PackMaterialTexels) and
+  // the GLSL reading (MMV_<NAME>_ROW / _CHANNEL) of every parameter agree:
+  // each entry's texel centre holds the parameter.
+  ShaderRunner runner;
+  ASSERT_NE(runner.GL, nullptr);
+  vtkNew<vtkMaterialTransferFunction> materials;
+  materials->AddNode(0.0, 0.1, 0.2, 0.3, 10.0, 0.5, 1.0, 0.25, -0.5, 2.0);
+  materials->AddNode(1.0, 0.9, 0.8, 0.7, 90.0, 1.5, 7.0, 0.75, 0.5, 6.0);
+  const double range[2] = { 0.0, 1.0 };
+  vtkNew<vtkMultiMaterialTextures> textures;
+  runner.GL->MakeCurrent();
+  textures->UpdateMaterialTable(runner.GL, materials, range, Size);
+  std::vector<float> table(static_cast<size_t>(Size) * mmv::MaterialParameterCount);
+  materials->GetTable(range[0], range[1], Size, table.data());
+  int read = 0;
+  for (int p = 0; p < mmv::MaterialParameterCount; ++p)
+  {
+    const std::string name = mmv::MaterialParameterTable[p].GLSLName;
+    const mmv::MaterialTexel texel = mmv::MaterialTexelLayout[p];
+    if (texel.Row < 0)
+    {
+      continue; // in no texel: no shader reads it
+    }
+    // (ka, kd, ks, ke) are read as one texel, the vec4 mmvBlinnPhong takes.
+    const std::string row = texel.Row == mmv::BlinnPhongRow ? "MMV_BLINN_PHONG_ROW" : name + "_ROW";
+    const std::string channel = texel.Row == mmv::BlinnPhongRow
+      ? std::to_string(p - mmv::Ambient)
+      : name + "_CHANNEL";
+    const std::string body = "#define PARAMETER_ROW " + row + "\n#define PARAMETER_CHANNEL " +
+      channel + "\n" + MaterialTexelBody;
+    ++read;
+    std::vector<float> pixels;
+    ASSERT_TRUE(runner.Run(body,
+      [&](vtkShaderProgram* program) {
+        textures->GetMaterialTexture()->Activate();
+        program->SetUniformi("material", textures->GetMaterialTexture()->GetTextureUnit());
+      },
+      pixels));
+    textures->GetMaterialTexture()->Deactivate();
+    for (int i = 0; i < Size; ++i)
+    {
+      const float expected = table[static_cast<size_t>(i) * mmv::MaterialParameterCount + p];
+      // At the texel's centre the linear filter's weight is 1 up to float
+      // rounding of the coordinate (neighbouring entries differ by < 2).
+      ASSERT_NEAR(pixels[4 * (7 * Size + i)], expected, 1e-4 * std::max(1.0f, std::abs(expected)))
+        << name << " entry " << i;
+    }
+    // The parameter varies over the table: a wrong texel would show.
+    EXPECT_NE(table[p], table[static_cast<size_t>(Size - 1) * mmv::MaterialParameterCount + p])
+      << name;
+  }
+  EXPECT_EQ(read, 7); // all but c_t and s
+  textures->ReleaseGraphicsResources(runner.Window);
+}
+
+namespace
+{
+// The definition of GLSL function `signature` in `source`, up to the brace
+// that closes it at the start of a line: the diffusion shader's helpers
+// cannot be compiled without its voxel-pass framework.
+std::string GLSLFunction(const std::string& source, const std::string& signature)
+{
+  const size_t begin = source.find(signature);
+  const size_t end = begin == std::string::npos ? begin : source.find("\n}\n", begin);
+  return end == std::string::npos ? std::string() : source.substr(begin, end + 3 - begin);
+}
+
+// Column block -> a in {0, 0.5, 2, 20}, row -> b from -0.5 to 23 (0 and
+// negative strengths included: they block the flux).
+const char* HarmonicMeanBody = R"(
+void main()
+{
+  float a = float[4](0.0, 0.5, 2.0, 20.0)[int(floor(texCoord.x * 4.0))];
+  float b = -0.5 + 0.5 * floor(texCoord.y * float(SIZE));
+  gl_FragData[0] = vec4(mmvHarmonicMean(a, b), a, b, 0.0);
+}
+)";
+}
+
+TEST(ShaderMirror, DiffusionFaceStrengthMatchesCPU)
+{
+  // mmvHarmonicMean of Shaders/mmvDiffusionFS.glsl against
+  // mmv::DiffusionFaceStrength, the CPU diffusion's face coefficient.
+  const std::string harmonicMean = GLSLFunction(mmvDiffusionFS, "float mmvHarmonicMean(");
+  ASSERT_FALSE(harmonicMean.empty()) << "mmvHarmonicMean not found in mmvDiffusionFS.glsl";
+  ShaderRunner runner;
+  ASSERT_NE(runner.GL, nullptr);
+  std::vector<float> pixels;
+  const std::string body =
+    "#define SIZE " + std::to_string(Size) + "\n" + harmonicMean + HarmonicMeanBody;
+  ASSERT_TRUE(runner.Run(body, [](vtkShaderProgram*) {}, pixels));
+  int blocked = 0;
+  for (int j = 0; j < Size; ++j)
+  {
+    for (int i = 0; i < Size; ++i)
+    {
+      const float* px = &pixels[4 * (j * Size + i)];
+      const double a = px[1];
+      const double b = px[2];
+      ASSERT_EQ(b, -0.5 + 0.5 * j);
+      const double cpu = mmv::DiffusionFaceStrength(a, b);
+      // float against double: one rounding of 2ab / (a + b).
+      ASSERT_NEAR(px[0], cpu, 1e-6 * std::max(1.0, cpu)) << "a " << a << " b " << b;
+      blocked += cpu == 0.0 ? 1 : 0;
+    }
+  }
+  EXPECT_GT(blocked, Size); // a = 0 column block, b <= 0 rows
 }

@@ -1,0 +1,243 @@
+#include "vtkMultiMaterialIrradianceStage.h"
+
+#include "vtkDataArray.h"
+#include "vtkGlobalPrefilteredVolume.h"
+#include "vtkImageData.h"
+#include "vtkMaterialTransferFunction.h"
+#include "vtkMatrix4x4.h"
+#include "vtkMultiMaterialLightTolerance.h"
+#include "vtkMultiMaterialVolumeGeometry.h"
+#include "vtkMultiMaterialVolumeMapper.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkPiecewiseFunction.h"
+#include "vtkRenderer.h"
+#include "vtkTextureObject.h"
+#include "vtkVolume.h"
+#include "vtkVolumeProperty.h"
+
+#include <algorithm>
+#include <sstream>
+
+namespace
+{
+/// What the whole irradiance volume depends on besides the lights and the grid.
+vtkIrradianceInputCache::VolumeKey MakeVolumeKey(vtkMultiMaterialVolumeMapper* mapper,
+  vtkVolumeProperty* property, vtkMTimeType dataTime, int materialVersion, int lights,
+  const double range[2], const mmv::Cutaway& cutaway)
+{
+  vtkIrradianceInputCache::VolumeKey key;
+  key.DataTime = dataTime;
+  key.OpacityTime = property->GetScalarOpacity(0)->GetMTime();
+  key.MaterialVersion = materialVersion;
+  key.UnitDistance = property->GetScalarOpacityUnitDistance(0);
+  key.Range[0] = range[0];
+  key.Range[1] = range[1];
+  key.MultipleScattering = mapper->GetMultipleScattering();
+  key.TableSize = mapper->GetPreIntegrationTableSize();
+  key.NumberOfLights = lights;
+  key.ShadowEstimation = mapper->GetShadowEstimation();
+  key.PiecewiseShadowSlices = mapper->GetPiecewiseShadowSlices();
+  key.ExponentialDiffusion = mapper->GetExponentialDiffusion();
+  key.Cut = cutaway.Key();
+  return key;
+}
+}
+
+vtkMultiMaterialIrradianceStage::vtkMultiMaterialIrradianceStage() = default;
+vtkMultiMaterialIrradianceStage::~vtkMultiMaterialIrradianceStage() = default;
+
+void vtkMultiMaterialIrradianceStage::ReleaseGraphicsResources(vtkWindow* window)
+{
+  this->Pass->ReleaseGraphicsResources(window);
+  this->Cache->Invalidate();
+}
+
+mmv::IrradianceResolution vtkMultiMaterialIrradianceStage::ChooseGrid(
+  vtkRenderer* ren, vtkVolume* vol, vtkImageData* image)
+{
+  int dataDims[3];
+  image->GetDimensions(dataDims);
+  // The screen only matters when the resolution is automatic.
+  std::string scaleProblem;
+  const double scale = mmv::ValidIrradianceScale(this->Mapper->IrradianceScale, &scaleProblem);
+  if (!scaleProblem.empty())
+  {
+    this->Mapper->WarnOnce(scaleProblem);
+  }
+  const double pixelsPerVoxel = scale > 0.0 ? 0.0 : mmv::ProjectedPixelsPerVoxel(ren, vol, image);
+  mmv::IrradianceResolution resolution;
+  if (vtkGlobalPrefilteredVolume* global = this->Global)
+  {
+    global->GetIrradianceDimensions(resolution.Dimensions);
+    resolution.Reason = "the global grid of a volume in pieces";
+    return resolution;
+  }
+  resolution = mmv::ChooseIrradianceResolution(dataDims, static_cast<int>(this->Lights->size()),
+    this->Mapper->IrradianceMemoryMB, scale, pixelsPerVoxel);
+  // The irradiance is one 3D texture: no axis longer than the largest one
+  // (a long volume is drawn in bricks, its irradiance spans it whole).
+  const int largest = vtkTextureObject::GetMaximumTextureSize3D(
+    vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow()));
+  for (int a = 0; a < 3 && largest > 1; ++a)
+  {
+    resolution.Dimensions[a] = std::min(resolution.Dimensions[a], largest);
+  }
+  return resolution;
+}
+
+bool vtkMultiMaterialIrradianceStage::Update(vtkMultiMaterialVolumeMapper* mapper, vtkRenderer* ren,
+  vtkVolume* vol, vtkImageData* image, vtkDataArray* scalars, const double pieceRange[2],
+  vtkGlobalPrefilteredVolume* global, vtkMaterialTransferFunction* materials,
+  const std::vector<mmv::ShadingLight>& lights)
+{
+  this->Mapper = mapper;
+  this->Global = global;
+  this->Materials = materials;
+  this->Lights = &lights;
+  // A piece of a larger volume is lit from the whole volume's pre-filtered
+  // data, on its grid and over its range.
+  const double* range = global ? global->GetScalarRange() : pieceRange;
+  this->Mapper->NumberOfUpdatedLights = 0;
+
+  const mmv::IrradianceResolution resolution = this->ChooseGrid(ren, vol, image);
+  const int* dims = resolution.Dimensions;
+  this->Cache->SampleMaterials(this->Materials, range, this->Mapper->PreIntegrationTableSize);
+  const vtkMTimeType dataTime =
+    global ? global->GetMTime() : std::max(image->GetMTime(), scalars->GetMTime());
+  // What cropping and clipping remove casts no shadow: part of the key, so a
+  // moved crop box or plane updates the irradiance.
+  vtkNew<vtkMatrix4x4> worldToObject;
+  vtkMatrix4x4::Invert(vol->GetMatrix(), worldToObject);
+  int droppedPlanes = 0;
+  const mmv::Cutaway cutaway = mmv::MakeCutaway(this->Mapper, worldToObject, &droppedPlanes);
+  if (droppedPlanes > 0)
+  {
+    this->Mapper->WarnOnce("more than " + std::to_string(mmv::MaxCutPlanes) +
+      " clipping planes: the shadow rays ignore the others");
+  }
+  const vtkIrradianceInputCache::VolumeKey volumeKey =
+    MakeVolumeKey(this->Mapper, vol->GetProperty(), dataTime, this->Cache->GetMaterialVersion(),
+      static_cast<int>(this->Lights->size()), range, cutaway);
+  std::vector<mmv::LightSource> sources;
+  for (const auto& light : *this->Lights)
+  {
+    sources.push_back(light.Source);
+  }
+  const bool computed = this->Pass->GetNumberOfIrradianceTextures() > 0;
+  const double tolerance = mmv::LightToleranceRadians(this->Mapper->LightDirectionTolerance);
+  if (computed && this->Cache->IsCurrent(volumeKey, sources, dims, tolerance))
+  {
+    return true;
+  }
+  // Interactive frames keep the last irradiance while only the lights or the
+  // screen-chosen grid moved; the still frame after them updates it.
+  if (computed && this->Mapper->LastRenderInteractive &&
+    this->Mapper->InteractiveIrradiance == vtkMultiMaterialVolumeMapper::ReuseWhileInteracting &&
+    this->Cache->SameVolume(volumeKey))
+  {
+    ++this->Mapper->DeferredIrradianceCount;
+    return true;
+  }
+  // A real update (seconds on a software GPU): VTK progress events, which
+  // ParaView's progress bar shows, mark its start and end (issue 12).
+  this->Mapper->SetProgressText("Irradiance volume");
+  this->Mapper->UpdateProgress(0.0);
+
+  // Pre-filtered data: only when the data or the grid changed.
+  if (this->Cache->UpdatePrefiltered(image, scalars, global, dims, dataTime, range))
+  {
+    this->Mapper->WarnOnce(
+      "the scalars contain NaN or Inf: lit as empty (NaN) or as the ends of the "
+      "finite range (Inf)");
+  }
+  if (!this->Compute(ren, vol, range, cutaway, sources))
+  {
+    return false;
+  }
+  this->Cache->Store(volumeKey, this->Pass->GetComputedLights(), dims);
+  this->Mapper->UpdateProgress(1.0);
+  // The mapper's own pipeline progress (its input's update) is not this.
+  this->Mapper->SetProgressText(nullptr);
+  this->Record(resolution);
+  return true;
+}
+
+bool vtkMultiMaterialIrradianceStage::Compute(vtkRenderer* ren, vtkVolume* vol,
+  const double range[2], const mmv::Cutaway& cutaway, const std::vector<mmv::LightSource>& sources)
+{
+  vtkPiecewiseFunction* opacity = vol->GetProperty()->GetScalarOpacity(0);
+  const int n = this->Mapper->PreIntegrationTableSize;
+  // Shadow rays step one irradiance voxel, with their own pre-integrated table.
+  const mmv::IrradianceGrid& grid = this->Cache->GetGrid();
+  const double shadowStep = std::min({ grid.Spacing.x, grid.Spacing.y, grid.Spacing.z });
+  vtkPreIntegrationTable* shadow = this->ShadowTable;
+  shadow->SetScalarOpacity(opacity);
+  shadow->SetMaterialTransferFunction(this->Materials);
+  shadow->SetScalarOpacityUnitDistance(vol->GetProperty()->GetScalarOpacityUnitDistance(0));
+  shadow->SetTableSize(n);
+  shadow->SetScalarRange(range[0], range[1]);
+  shadow->SetStepLength(shadowStep);
+  if (!shadow->Update())
+  {
+    this->Mapper->SetProgressText(nullptr);
+    return false;
+  }
+
+  std::vector<float> opacityTable(n);
+  for (int i = 0; i < n; ++i)
+  {
+    opacityTable[i] =
+      static_cast<float>(opacity->GetValue(range[0] + (range[1] - range[0]) * i / (n - 1)));
+  }
+  const std::vector<float> scatteringTable =
+    this->Mapper->MultipleScattering ? this->Cache->GetScattering() : std::vector<float>(n, 0.0f);
+
+  vtkIrradianceVolumePass* pass = this->Pass;
+  pass->SetMultipleScattering(this->Mapper->MultipleScattering);
+  pass->SetShadowEstimation(this->Mapper->ShadowEstimation);
+  pass->SetPiecewiseShadowSlices(this->Mapper->PiecewiseShadowSlices);
+  pass->SetExponentialDiffusion(this->Mapper->ExponentialDiffusion);
+  pass->SetLightDirectionTolerance(this->Mapper->LightDirectionTolerance);
+  pass->SetCutaway(cutaway);
+  pass->SetInputs(grid, this->Cache->GetPrefiltered(), n, shadow->GetShadowOpacityTable(),
+    shadowStep, opacityTable.data(), scatteringTable.data(), sources,
+    this->Cache->GetPrefilteredVersion());
+  if (!pass->Render(vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow())))
+  {
+    vtkErrorWithObjectMacro(this->Mapper, "the irradiance volume could not be computed on the GPU");
+    this->Cache->Invalidate();
+    this->Mapper->SetProgressText(nullptr);
+    return false;
+  }
+  return true;
+}
+
+void vtkMultiMaterialIrradianceStage::Record(const mmv::IrradianceResolution& resolution)
+{
+  vtkIrradianceVolumePass* pass = this->Pass;
+  const int* dims = resolution.Dimensions;
+  std::copy(dims, dims + 3, this->Mapper->IrradianceDimensions);
+  this->Mapper->NumberOfUpdatedLights = pass->GetNumberOfUpdatedLights();
+  if (this->Mapper->NumberOfUpdatedLights > 0)
+  {
+    ++this->Mapper->IrradianceUpdateCount;
+    this->Mapper->DiffusionPassCount += pass->GetDiffusionPasses();
+    this->Mapper->LastIrradianceSeconds = pass->GetLastRenderSeconds();
+  }
+  int coarse[3];
+  pass->GetDiffusionGridDimensions(coarse);
+  std::ostringstream reason;
+  reason << dims[0] << "x" << dims[1] << "x" << dims[2] << " (" << resolution.Reason << ")";
+  if (pass->GetDiffusionLength() > 0.0 && this->Mapper->MultipleScattering)
+  {
+    reason << "; diffusion on " << coarse[0] << "x" << coarse[1] << "x" << coarse[2]
+           << " (diffusion length " << pass->GetDiffusionLength() << " data voxels, "
+           << pass->GetDiffusionSubSteps() << " sub-steps x " << pass->GetDiffusionSweepsPerStep()
+           << " sweeps)";
+  }
+  this->ResolutionReason = reason.str();
+  vtkDebugWithObjectMacro(this->Mapper, << "irradiance " << this->ResolutionReason << ", "
+                                        << this->Mapper->NumberOfUpdatedLights << " of "
+                                        << this->Lights->size() << " lights updated in "
+                                        << this->Mapper->LastIrradianceSeconds << " s");
+}

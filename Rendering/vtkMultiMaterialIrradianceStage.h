@@ -1,0 +1,87 @@
+/**
+ * @class   vtkMultiMaterialIrradianceStage
+ * @brief   The irradiance step of vtkMultiMaterialVolumeMapper's frame (the
+ *          paper's Algorithm 1).
+ *
+ * Chooses the irradiance grid (screen, budget, user scale or the global grid
+ * of a volume in pieces), tells from the input cache's keys whether the
+ * irradiance volume is current, keeps it while interacting when only the
+ * lights moved (InteractiveIrradiance), and otherwise has
+ * vtkIrradianceVolumePass recompute what changed, with VTK progress events.
+ * It reads the mapper's settings and updates its counters (IrradianceDimensions,
+ * IrradianceUpdateCount, ...), as the mapper's own step did. Not a vtkObject:
+ * plain state owned by the mapper.
+ */
+#ifndef vtkMultiMaterialIrradianceStage_h
+#define vtkMultiMaterialIrradianceStage_h
+
+#include "vtkIrradianceGrid.h"            // IrradianceResolution
+#include "vtkIrradianceInputCache.h"      // vtkNew
+#include "vtkIrradianceVolumePass.h"      // vtkNew
+#include "vtkMultiMaterialCutaway.h"      // Cutaway
+#include "vtkMultiMaterialLights.h"       // ShadingLight
+#include "vtkMultiMaterialVolumeModule.h" // export macro
+#include "vtkNew.h"
+#include "vtkPreIntegrationTable.h"       // vtkNew
+
+#include <string>
+#include <vector>
+
+class vtkDataArray;
+class vtkGlobalPrefilteredVolume;
+class vtkImageData;
+class vtkMaterialTransferFunction;
+class vtkMultiMaterialVolumeMapper;
+class vtkRenderer;
+class vtkVolume;
+class vtkWindow;
+
+class VTKMULTIMATERIALVOLUME_EXPORT vtkMultiMaterialIrradianceStage
+{
+public:
+  vtkMultiMaterialIrradianceStage();
+  ~vtkMultiMaterialIrradianceStage();
+
+  /// Brings the irradiance of `lights` up to date for `mapper`'s input
+  /// `image` (scalars, its finite range `pieceRange`), or for the whole
+  /// volume `global` when it is a piece of one (null: none). False: the GPU
+  /// could not compute it (reported).
+  bool Update(vtkMultiMaterialVolumeMapper* mapper, vtkRenderer* ren, vtkVolume* vol,
+    vtkImageData* image, vtkDataArray* scalars, const double pieceRange[2],
+    vtkGlobalPrefilteredVolume* global, vtkMaterialTransferFunction* materials,
+    const std::vector<mmv::ShadingLight>& lights);
+
+  vtkIrradianceVolumePass* GetPass() { return this->Pass; }
+
+  /// The irradiance grid of the pre-filtered data.
+  const mmv::IrradianceGrid& GetGrid() const { return this->Cache->GetGrid(); }
+
+  /// The grid in use and why it was chosen.
+  const std::string& GetResolutionReason() const { return this->ResolutionReason; }
+
+  void ReleaseGraphicsResources(vtkWindow* window);
+
+private:
+  vtkMultiMaterialIrradianceStage(const vtkMultiMaterialIrradianceStage&) = delete;
+  void operator=(const vtkMultiMaterialIrradianceStage&) = delete;
+
+  mmv::IrradianceResolution ChooseGrid(vtkRenderer* ren, vtkVolume* vol, vtkImageData* image);
+  bool Compute(vtkRenderer* ren, vtkVolume* vol, const double range[2],
+    const mmv::Cutaway& cutaway, const std::vector<mmv::LightSource>& sources);
+  void Record(const mmv::IrradianceResolution& resolution);
+
+  // What the irradiance volume was computed from, and the pass's inputs
+  // kept between frames (pre-filtered data, material samples).
+  vtkNew<vtkIrradianceInputCache> Cache;
+  vtkNew<vtkPreIntegrationTable> ShadowTable;
+  vtkNew<vtkIrradianceVolumePass> Pass;
+  std::string ResolutionReason;
+
+  // The current Update()'s arguments.
+  vtkMultiMaterialVolumeMapper* Mapper = nullptr;
+  vtkGlobalPrefilteredVolume* Global = nullptr;
+  vtkMaterialTransferFunction* Materials = nullptr;
+  const std::vector<mmv::ShadingLight>* Lights = nullptr;
+};
+
+#endif
