@@ -7,6 +7,9 @@
 //    with --anisotropy G every node (truth and ours) has g = G, and ours is
 //    measured twice per setting: "ours" shading with HG(G) (optical model
 //    v2) and "ours-v1" with g = 0 (the isotropic particle term);
+//  - with --mapped, "ours-mapped": every node's parameters from
+//    mmv::PhysicalMediumToMaterial, with the node's mean colour as the
+//    albedo, its g, and the extinction per voxel its opacity implies;
 //  - VTK Phong (vtkOpenGLGPUVolumeRayCastMapper, shading on, mmv default
 //    material);
 //  - VTK volumetric scattering: VolumetricScatteringBlending x
@@ -15,7 +18,7 @@
 //   mmvPhysicalCalibration --out DIR [--size 128] [--truth-spp 1024] [--frames 3]
 //                          [--scenes synthetic,headsq,orbital,ct] [--head FILE.vti]
 //                          [--s-scales 1,0,0.5,2,4,8,16] [--ct-scales 1,0.5,2,4] [--no-vtk]
-//                          [--anisotropy G] [--back-light]
+//                          [--anisotropy G] [--back-light] [--mapped]
 //
 // Same camera, key light and gradient background as mmvBenchmark
 // (mmvbench::FrameScene); --back-light turns the key light to the opposite
@@ -40,6 +43,7 @@
 #include "vtkMaterialTransferFunction.h"
 #include "vtkMultiMaterialParameters.h"
 #include "vtkMultiMaterialPathTracer.h"
+#include "vtkMultiMaterialPhysicalMedium.h"
 #include "vtkMultiMaterialVolumeMapper.h"
 #include "vtkNew.h"
 #include "vtkOpenGLGPUVolumeRayCastMapper.h"
@@ -85,6 +89,7 @@ struct Options
   bool VTK = true;
   double Anisotropy = 0.0; // every node's g, truth and ours; 0: the scene's
   bool BackLight = false;
+  bool Mapped = false;
 };
 
 std::vector<double> Numbers(const std::string& text)
@@ -147,6 +152,10 @@ bool Parse(int argc, char* argv[], Options& o)
     {
       o.BackLight = true;
     }
+    else if (a == "--mapped")
+    {
+      o.Mapped = true;
+    }
     else
     {
       return false;
@@ -171,6 +180,34 @@ struct Row
   vtkSmartPointer<vtkImageData> Image;
 };
 
+
+// Every node of the scene's materials replaced by the mapping of the medium
+// it describes: albedo = the node's mean colour, its g, extinction per voxel
+// = -ln(1 - opacity) / u x the smallest spacing.
+bool MapMaterials(const mmvbench::SceneSpec& scene, vtkMaterialTransferFunction* target)
+{
+  const int stride = vtkMaterialTransferFunction::NodeStride;
+  std::vector<double> nodes(static_cast<size_t>(scene.Materials->GetSize()) * stride);
+  scene.Materials->GetNodes(nodes.data());
+  const double* spacing = scene.Image->GetSpacing();
+  const double voxel = std::min({ spacing[0], spacing[1], spacing[2] });
+  for (size_t n = 0; n < nodes.size(); n += stride)
+  {
+    double rgb[3];
+    scene.Color->GetColor(nodes[n], rgb);
+    const double albedo = (rgb[0] + rgb[1] + rgb[2]) / 3.0;
+    const double extinction =
+      voxel * mmv::ExtinctionFromOpacity(scene.Opacity->GetValue(nodes[n]), scene.UnitDistance);
+    std::string why;
+    if (!mmv::PhysicalMediumToMaterial(albedo, nodes[n + 1 + mmv::Anisotropy],
+          std::max(extinction, 1e-6), &nodes[n + 1], &why))
+    {
+      std::cerr << "node at " << nodes[n] << ": " << why << "\n";
+      return false;
+    }
+  }
+  return target->SetNodes(static_cast<int>(nodes.size()), nodes.data());
+}
 }
 
 int main(int argc, char* argv[])
@@ -181,7 +218,8 @@ int main(int argc, char* argv[])
     std::cerr << "usage: " << argv[0]
               << " --out DIR [--size N] [--truth-spp N] [--frames N]"
                  " [--scenes synthetic,headsq,orbital,ct] [--head FILE.vti]"
-                 " [--s-scales LIST] [--ct-scales LIST] [--no-vtk] [--anisotropy G] [--back-light]\n";
+                 " [--s-scales LIST] [--ct-scales LIST] [--no-vtk] [--anisotropy G] [--back-light]"
+                 " [--mapped]\n";
     return 2;
   }
   vtkSMPTools::SetBackend("STDThread");
@@ -285,6 +323,14 @@ int main(int argc, char* argv[])
           measure("ours-v1", Setting({ { "s_scale", s }, { "ct_scale", ct } }), oursWindow);
         }
       }
+    }
+    if (opt.Mapped)
+    {
+      if (!MapMaterials(scene, materials))
+      {
+        return 1;
+      }
+      measure("ours-mapped", "PhysicalMediumToMaterial", oursWindow);
     }
     if (opt.VTK)
     {
