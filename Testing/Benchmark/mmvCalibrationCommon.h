@@ -29,6 +29,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -37,6 +38,17 @@
 namespace mmvcal
 {
 using Clock = std::chrono::steady_clock;
+
+/// The numbers of a comma-separated command-line list ("1,0.5,2").
+inline std::vector<double> Numbers(const std::string& text)
+{
+  std::vector<double> values;
+  for (const std::string& item : mmvbench::SplitList(text))
+  {
+    values.push_back(std::atof(item.c_str()));
+  }
+  return values;
+}
 
 inline double Median(std::vector<double> v)
 {

@@ -56,6 +56,7 @@
 namespace
 {
 using mmvcal::GainCompensated;
+using mmvcal::Numbers;
 using mmvcal::Setting;
 using mmvcal::Window;
 
@@ -81,16 +82,6 @@ struct Options
   bool VTK = true;
   bool Mapped = true;
 };
-
-std::vector<double> Numbers(const std::string& text)
-{
-  std::vector<double> values;
-  for (const std::string& item : mmvbench::SplitList(text))
-  {
-    values.push_back(std::atof(item.c_str()));
-  }
-  return values;
-}
 
 bool Parse(int argc, char* argv[], Options& o)
 {

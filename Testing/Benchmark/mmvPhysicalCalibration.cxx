@@ -9,7 +9,9 @@
 //    v2) and "ours-v1" with g = 0 (the isotropic particle term);
 //  - with --mapped, "ours-mapped": every node's parameters from
 //    mmv::PhysicalMediumToMaterial, with the node's mean colour as the
-//    albedo, its g, and the extinction per voxel its opacity implies;
+//    albedo, its g, and the extinction per voxel its opacity implies; and
+//    "ours-mapped-surface": the same but the scene's surface terms (kd, ks,
+//    shininess, r) kept;
 //  - VTK Phong (vtkOpenGLGPUVolumeRayCastMapper, shading on, mmv default
 //    material);
 //  - VTK volumetric scattering: VolumetricScatteringBlending x
@@ -72,6 +74,7 @@
 namespace
 {
 using mmvcal::GainCompensated;
+using mmvcal::Numbers;
 using mmvcal::ScaleMaterials;
 using mmvcal::Setting;
 using mmvcal::Window;
@@ -91,16 +94,6 @@ struct Options
   bool BackLight = false;
   bool Mapped = false;
 };
-
-std::vector<double> Numbers(const std::string& text)
-{
-  std::vector<double> values;
-  for (const std::string& item : mmvbench::SplitList(text))
-  {
-    values.push_back(std::atof(item.c_str()));
-  }
-  return values;
-}
 
 bool Parse(int argc, char* argv[], Options& o)
 {
@@ -182,29 +175,50 @@ struct Row
 
 
 // Every node of the scene's materials replaced by the mapping of the medium
-// it describes: albedo = the node's mean colour, its g, extinction per voxel
-// = -ln(1 - opacity) / u x the smallest spacing.
-bool MapMaterials(const mmvbench::SceneSpec& scene, vtkMaterialTransferFunction* target)
+// it describes: albedo = the node's mean colour, its g, and the extinction
+// per voxel of the densest value the node governs (halfway to its
+// neighbours: a band's end nodes often sit where the opacity is still 0).
+bool MapMaterials(
+  const mmvbench::SceneSpec& scene, vtkMaterialTransferFunction* target, bool keepSurface)
 {
   const int stride = vtkMaterialTransferFunction::NodeStride;
   std::vector<double> nodes(static_cast<size_t>(scene.Materials->GetSize()) * stride);
   scene.Materials->GetNodes(nodes.data());
   const double* spacing = scene.Image->GetSpacing();
   const double voxel = std::min({ spacing[0], spacing[1], spacing[2] });
-  for (size_t n = 0; n < nodes.size(); n += stride)
+  double range[2];
+  scene.Image->GetPointData()->GetScalars()->GetRange(range);
+  const size_t count = nodes.size() / stride;
+  for (size_t i = 0; i < count; ++i)
   {
-    double rgb[3];
-    scene.Color->GetColor(nodes[n], rgb);
-    const double albedo = (rgb[0] + rgb[1] + rgb[2]) / 3.0;
-    const double extinction =
-      voxel * mmv::ExtinctionFromOpacity(scene.Opacity->GetValue(nodes[n]), scene.UnitDistance);
-    std::string why;
-    if (!mmv::PhysicalMediumToMaterial(albedo, nodes[n + 1 + mmv::Anisotropy],
-          std::max(extinction, 1e-6), &nodes[n + 1], &why))
+    double* node = &nodes[i * stride];
+    const double lo = i > 0 ? 0.5 * (nodes[(i - 1) * stride] + node[0]) : range[0];
+    const double hi = i + 1 < count ? 0.5 * (node[0] + nodes[(i + 1) * stride]) : range[1];
+    double opacity = 0.0;
+    for (int k = 0; k <= 64; ++k)
     {
-      std::cerr << "node at " << nodes[n] << ": " << why << "\n";
+      opacity = std::max(opacity, scene.Opacity->GetValue(lo + (hi - lo) * k / 64.0));
+    }
+    double rgb[3];
+    scene.Color->GetColor(node[0], rgb);
+    const double albedo = (rgb[0] + rgb[1] + rgb[2]) / 3.0;
+    const double extinction = voxel * mmv::ExtinctionFromOpacity(opacity, scene.UnitDistance);
+    std::string why;
+    double surface[mmv::MaterialParameterCount];
+    std::copy(node + 1, node + 1 + mmv::MaterialParameterCount, surface);
+    if (!mmv::PhysicalMediumToMaterial(albedo, node[1 + mmv::Anisotropy],
+          std::max(extinction, 1e-3), node + 1, &why))
+    {
+      std::cerr << "node at " << node[0] << ": " << why << "\n";
       return false;
     }
+    for (int p : { mmv::Diffuse, mmv::Specular, mmv::Shininess, mmv::Reflection })
+    {
+      node[1 + p] = keepSurface ? surface[p] : node[1 + p];
+    }
+    std::cout << "  mapped node " << node[0] << ": albedo " << albedo << ", extinction/voxel "
+              << extinction << " -> ka " << node[1 + mmv::Ambient] << ", c_t "
+              << node[1 + mmv::Attenuation] << ", s " << node[1 + mmv::Scattering] << "\n";
   }
   return target->SetNodes(static_cast<int>(nodes.size()), nodes.data());
 }
@@ -326,11 +340,16 @@ int main(int argc, char* argv[])
     }
     if (opt.Mapped)
     {
-      if (!MapMaterials(scene, materials))
+      if (!MapMaterials(scene, materials, false))
       {
         return 1;
       }
       measure("ours-mapped", "PhysicalMediumToMaterial", oursWindow);
+      if (!MapMaterials(scene, materials, true))
+      {
+        return 1;
+      }
+      measure("ours-mapped-surface", "PhysicalMediumToMaterial with the scene's kd ks ke r", oursWindow);
     }
     if (opt.VTK)
     {

@@ -7,7 +7,7 @@ errors.png: per medium (albedo a, g, optical depth tau of the ball's radius),
 the RMSE over the medium's pixels (0-255) of ours at the defaults, ours with
 the mapping, ours' best fit and VTK's best-fit volumetric scattering against
 the path tracer, with the truth's noise floor. images.png: truth, ours
-default, ours mapped and VTK for a few media (the PNGs the program wrote).
+default, ours mapped, ours best fit and VTK for eight media (the PNGs the program wrote).
 """
 import csv
 import os
@@ -61,13 +61,14 @@ def errors_chart(media, out):
         ax.set_ylabel("RMSE on the medium (0-255)")
         ax.set_title("optical depth of the radius tau = {:g}".format(depth))
         ax.grid(axis="y", alpha=0.3)
-    axes[0, 0].legend(fontsize=8, ncol=5, loc="upper left")
-    fig.tight_layout()
+    handles, labels = axes[0, 0].get_legend_handles_labels()
+    fig.legend(handles, labels, fontsize=8, ncol=5, loc="upper center")
+    fig.tight_layout(rect=(0, 0, 1, 0.97))
     fig.savefig(out, dpi=90)
 
 
 def images_chart(media, image_dir, out):
-    chosen = [k for k in sorted(media) if k[2] in (0.6, 0.99) and k[1] in (0.0, 0.6)]
+    chosen = [k for k in sorted(media) if k[2] in (0.6, 0.99) and k[1] in (0.0, 0.8) and k[0] in (4.0, 16.0)]
     columns = [("truth", "truth")] + [(f, label) for f, label, _ in FAMILIES]
     fig, axes = plt.subplots(len(chosen), len(columns), figsize=(2.2 * len(columns), 2.2 * len(chosen)),
                              squeeze=False)

@@ -24,8 +24,8 @@ constexpr int P = mmv::MaterialParameterCount;
 // The residual docs/benchmark.md states: on the medium's pixels the mapped
 // parameters err at most this factor times the best fit of the grid, plus
 // this much (0-255).
-constexpr double MappedErrorFactor = 2.0;
-constexpr double MappedErrorSlack = 2.0;
+constexpr double MappedErrorFactor = 3.0;
+constexpr double MappedErrorSlack = 5.0;
 
 std::vector<double> Map(double albedo, double g, double extinction)
 {
