@@ -3,7 +3,7 @@ to our parameters").
 
   pvpython plot_medium_calibration.py medium_calibration.csv errors.png [IMAGE_DIR images.png]
 
-errors.png: per medium (albedo a, g, optical depth tau of the ball's radius),
+errors.png: per medium (albedo a, g, optical depth T of the ball's radius),
 the RMSE over the medium's pixels (0-255) of ours at the defaults, ours with
 the mapping, ours' best fit and VTK's best-fit volumetric scattering against
 the path tracer, with the truth's noise floor. images.png: truth, ours
@@ -59,7 +59,7 @@ def errors_chart(media, out):
         ax.set_xticklabels(["a={:g}\ng={:g}".format(k[2], k[1]) for k in keys], fontsize=8)
         ax.set_yscale("log")
         ax.set_ylabel("RMSE on the medium (0-255)")
-        ax.set_title("optical depth of the radius tau = {:g}".format(depth))
+        ax.set_title("optical depth of the radius T = {:g}".format(depth))
         ax.grid(axis="y", alpha=0.3)
     handles, labels = axes[0, 0].get_legend_handles_labels()
     fig.legend(handles, labels, fontsize=8, ncol=5, loc="upper center")
@@ -82,7 +82,7 @@ def images_chart(media, image_dir, out):
             if r == 0:
                 ax.set_title(label, fontsize=8)
             if c == 0:
-                ax.text(-0.05, 0.5, "a={:g} g={:g}\ntau={:g}".format(k[2], k[1], k[0]), fontsize=8,
+                ax.text(-0.05, 0.5, "a={:g} g={:g}\nT={:g}".format(k[2], k[1], k[0]), fontsize=8,
                         transform=ax.transAxes, ha="right", va="center")
     fig.tight_layout()
     fig.savefig(out, dpi=90)
