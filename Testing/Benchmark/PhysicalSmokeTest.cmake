@@ -1,4 +1,5 @@
 # Runs mmvPathTracerBenchmark and mmvPhysicalCalibration on one small scene
+# (and mmvMediumCalibration on one medium, below)
 # and checks that each CSV has its header and the expected rows: one per
 # scene, and one per swept setting (1 of ours, VTK Phong, 4 x 3 x 3 VTK
 # scattering). Timings and errors are not checked.
@@ -29,4 +30,31 @@ endif ()
 list(GET lines 0 header)
 if (NOT header MATCHES "^scene,family,setting,frame_ms,rmse,")
   message(FATAL_ERROR "unexpected CSV header: ${header}")
+endif ()
+# mmvMediumCalibration on one medium and a 2 x 1 grid: a header and one row
+# per family (default, fit, mapped, VTK) and per grid point; a second run
+# reads the cached truth.
+foreach (pass IN ITEMS render cached)
+  execute_process(
+    COMMAND "${MEDIUM}" --out "${OUT}/medium" --size 16 --truth-spp 4 --frames 1 --albedos 0.6
+      --anisotropies 0.3 --depths 4 --s-values 0,4 --ct-values 1
+    RESULT_VARIABLE result)
+  if (NOT result EQUAL 0)
+    message(FATAL_ERROR "mmvMediumCalibration (${pass}) exited with ${result}")
+  endif ()
+endforeach ()
+file(GLOB cached "${OUT}/medium/truth-cache/*.vti")
+list(LENGTH cached count)
+if (NOT count EQUAL 1)
+  message(FATAL_ERROR "expected 1 cached truth, found ${count}")
+endif ()
+file(STRINGS "${OUT}/medium/medium_calibration.csv" lines)
+list(LENGTH lines count)
+if (NOT count EQUAL 5)
+  message(FATAL_ERROR "expected a header and 4 rows in medium_calibration.csv, got ${count} lines")
+endif ()
+file(STRINGS "${OUT}/medium/medium_fit_grid.csv" lines)
+list(LENGTH lines count)
+if (NOT count EQUAL 3)
+  message(FATAL_ERROR "expected a header and 2 rows in medium_fit_grid.csv, got ${count} lines")
 endif ()

@@ -7,6 +7,11 @@
 //    with --anisotropy G every node (truth and ours) has g = G, and ours is
 //    measured twice per setting: "ours" shading with HG(G) (optical model
 //    v2) and "ours-v1" with g = 0 (the isotropic particle term);
+//  - with --mapped, "ours-mapped": every node's parameters from
+//    mmv::PhysicalMediumToMaterial, with the node's mean colour as the
+//    albedo, its g, and the extinction per voxel its opacity implies; and
+//    "ours-mapped-surface": the same but the scene's surface terms (kd, ks,
+//    shininess, r) kept;
 //  - VTK Phong (vtkOpenGLGPUVolumeRayCastMapper, shading on, mmv default
 //    material);
 //  - VTK volumetric scattering: VolumetricScatteringBlending x
@@ -15,7 +20,7 @@
 //   mmvPhysicalCalibration --out DIR [--size 128] [--truth-spp 1024] [--frames 3]
 //                          [--scenes synthetic,headsq,orbital,ct] [--head FILE.vti]
 //                          [--s-scales 1,0,0.5,2,4,8,16] [--ct-scales 1,0.5,2,4] [--no-vtk]
-//                          [--anisotropy G] [--back-light]
+//                          [--anisotropy G] [--back-light] [--mapped]
 //
 // Same camera, key light and gradient background as mmvBenchmark
 // (mmvbench::FrameScene); --back-light turns the key light to the opposite
@@ -29,6 +34,7 @@
 // Writes DIR/physical_calibration.csv and, per scene, the truth and the
 // best-fitting images of each family. Not a test: it asserts nothing.
 #include "mmvBenchmarkScenes.h"
+#include "mmvCalibrationCommon.h"
 #include "mmvTestWindow.h"
 
 #include "vtkCamera.h"
@@ -39,6 +45,7 @@
 #include "vtkMaterialTransferFunction.h"
 #include "vtkMultiMaterialParameters.h"
 #include "vtkMultiMaterialPathTracer.h"
+#include "vtkMultiMaterialPhysicalMedium.h"
 #include "vtkMultiMaterialVolumeMapper.h"
 #include "vtkNew.h"
 #include "vtkOpenGLGPUVolumeRayCastMapper.h"
@@ -66,7 +73,11 @@
 
 namespace
 {
-using Clock = std::chrono::steady_clock;
+using mmvcal::GainCompensated;
+using mmvcal::Numbers;
+using mmvcal::ScaleMaterials;
+using mmvcal::Setting;
+using mmvcal::Window;
 
 struct Options
 {
@@ -81,17 +92,8 @@ struct Options
   bool VTK = true;
   double Anisotropy = 0.0; // every node's g, truth and ours; 0: the scene's
   bool BackLight = false;
+  bool Mapped = false;
 };
-
-std::vector<double> Numbers(const std::string& text)
-{
-  std::vector<double> values;
-  for (const std::string& item : mmvbench::SplitList(text))
-  {
-    values.push_back(std::atof(item.c_str()));
-  }
-  return values;
-}
 
 bool Parse(int argc, char* argv[], Options& o)
 {
@@ -143,6 +145,10 @@ bool Parse(int argc, char* argv[], Options& o)
     {
       o.BackLight = true;
     }
+    else if (a == "--mapped")
+    {
+      o.Mapped = true;
+    }
     else
     {
       return false;
@@ -152,89 +158,6 @@ bool Parse(int argc, char* argv[], Options& o)
     !o.ScatteringScales.empty() && !o.AttenuationScales.empty();
 }
 
-
-double Median(std::vector<double> v)
-{
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
-// The scene's materials with every node's s and c_t scaled, and g set
-// (NaN: kept).
-void ScaleMaterials(vtkMaterialTransferFunction* source, double scattering, double attenuation,
-  vtkMaterialTransferFunction* target, double anisotropy = std::nan(""))
-{
-  const int stride = vtkMaterialTransferFunction::NodeStride;
-  std::vector<double> nodes(static_cast<size_t>(source->GetSize()) * stride);
-  source->GetNodes(nodes.data());
-  for (size_t n = 0; n < nodes.size(); n += stride)
-  {
-    nodes[n + 1 + mmv::Scattering] *= scattering;
-    nodes[n + 1 + mmv::Attenuation] *= attenuation;
-    if (!std::isnan(anisotropy))
-    {
-      nodes[n + 1 + mmv::Anisotropy] = anisotropy;
-    }
-  }
-  target->SetNodes(static_cast<int>(nodes.size()), nodes.data());
-}
-
-// One offscreen window rendering the scene with one mapper.
-struct Window
-{
-  vtkSmartPointer<vtkRenderWindow> RenderWindow = mmvtest::NewRenderWindow();
-  vtkNew<vtkRenderer> Renderer;
-  vtkNew<vtkVolume> Volume;
-  vtkNew<vtkVolumeProperty> Property;
-
-  Window(const mmvbench::SceneSpec& scene, vtkCamera* camera, vtkLight* light, int size,
-    vtkOpenGLGPUVolumeRayCastMapper* mapper)
-  {
-    this->RenderWindow->SetOffScreenRendering(1);
-    this->RenderWindow->SetSize(size, size);
-    this->RenderWindow->SetMultiSamples(0);
-    this->RenderWindow->AddRenderer(this->Renderer);
-    this->Renderer->SetBackground(const_cast<double*>(scene.Background));
-    this->Renderer->SetBackground2(const_cast<double*>(scene.Background2));
-    this->Renderer->GradientBackgroundOn();
-    this->Renderer->AutomaticLightCreationOff();
-    this->Renderer->AddLight(light);
-    this->Renderer->SetActiveCamera(camera);
-    this->Property->SetColor(scene.Color);
-    this->Property->SetScalarOpacity(scene.Opacity);
-    this->Property->SetScalarOpacityUnitDistance(scene.UnitDistance);
-    this->Property->SetInterpolationTypeToLinear();
-    const double* spacing = scene.Image->GetSpacing();
-    mapper->SetInputData(scene.Image);
-    mapper->AutoAdjustSampleDistancesOff();
-    mapper->LockSampleDistanceToInputSpacingOff();
-    mapper->SetSampleDistance(static_cast<float>(std::min({ spacing[0], spacing[1], spacing[2] })));
-    this->Volume->SetMapper(mapper);
-    this->Volume->SetProperty(this->Property);
-    this->Renderer->AddVolume(this->Volume);
-  }
-
-  // Median frame time after one untimed frame; the image of the last one.
-  double Frames(int frames, vtkImageData* image)
-  {
-    this->RenderWindow->Render();
-    std::vector<double> times;
-    for (int f = 0; f < frames; ++f)
-    {
-      const auto start = Clock::now();
-      this->RenderWindow->Render();
-      this->RenderWindow->WaitForCompletion();
-      times.push_back(std::chrono::duration<double>(Clock::now() - start).count());
-    }
-    const int* size = this->RenderWindow->GetSize();
-    vtkNew<vtkUnsignedCharArray> rgb;
-    this->RenderWindow->GetPixelData(0, 0, size[0] - 1, size[1] - 1, 0, rgb);
-    image->SetDimensions(size[0], size[1], 1);
-    image->GetPointData()->SetScalars(rgb);
-    return Median(times);
-  }
-};
 
 struct Row
 {
@@ -250,51 +173,54 @@ struct Row
   vtkSmartPointer<vtkImageData> Image;
 };
 
-// Over the volume's pixels (`mask`: the truth's paths met the medium there),
-// the RMSE (0-255) of test against truth as is (`raw`), and after the
-// least-squares brightness factor k (returned).
-double GainCompensated(vtkImageData* test, vtkImageData* truth, const std::vector<bool>& mask,
-  double& k, double& raw)
-{
-  vtkDataArray* a = test->GetPointData()->GetScalars();
-  vtkDataArray* b = truth->GetPointData()->GetScalars();
-  const vtkIdType n = std::min(a->GetNumberOfTuples(), b->GetNumberOfTuples());
-  double ab = 0.0, aa = 0.0, e0 = 0.0;
-  long long count = 0;
-  for (vtkIdType i = 0; i < n; ++i)
-  {
-    for (int c = 0; mask[i] && c < 3; ++c)
-    {
-      const double x = a->GetComponent(i, c);
-      const double y = b->GetComponent(i, c);
-      ab += x * y;
-      aa += x * x;
-      e0 += (x - y) * (x - y);
-      ++count;
-    }
-  }
-  k = aa > 0.0 ? ab / aa : 1.0;
-  double e = 0.0;
-  for (vtkIdType i = 0; i < n; ++i)
-  {
-    for (int c = 0; mask[i] && c < 3; ++c)
-    {
-      const double d = k * a->GetComponent(i, c) - b->GetComponent(i, c);
-      e += d * d;
-    }
-  }
-  raw = count ? std::sqrt(e0 / count) : 0.0;
-  return count ? std::sqrt(e / count) : 0.0;
-}
 
-std::string Setting(const std::vector<std::pair<std::string, double>>& values)
+// Every node of the scene's materials replaced by the mapping of the medium
+// it describes: albedo = the node's mean colour, its g, and the extinction
+// per voxel of the densest value the node governs (halfway to its
+// neighbours: a band's end nodes often sit where the opacity is still 0).
+bool MapMaterials(
+  const mmvbench::SceneSpec& scene, vtkMaterialTransferFunction* target, bool keepSurface)
 {
-  std::ostringstream s;
-  for (size_t i = 0; i < values.size(); ++i)
+  const int stride = vtkMaterialTransferFunction::NodeStride;
+  std::vector<double> nodes(static_cast<size_t>(scene.Materials->GetSize()) * stride);
+  scene.Materials->GetNodes(nodes.data());
+  const double* spacing = scene.Image->GetSpacing();
+  const double voxel = std::min({ spacing[0], spacing[1], spacing[2] });
+  double range[2];
+  scene.Image->GetPointData()->GetScalars()->GetRange(range);
+  const size_t count = nodes.size() / stride;
+  for (size_t i = 0; i < count; ++i)
   {
-    s << (i ? " " : "") << values[i].first << "=" << values[i].second;
+    double* node = &nodes[i * stride];
+    const double lo = i > 0 ? 0.5 * (nodes[(i - 1) * stride] + node[0]) : range[0];
+    const double hi = i + 1 < count ? 0.5 * (node[0] + nodes[(i + 1) * stride]) : range[1];
+    double opacity = 0.0;
+    for (int k = 0; k <= 64; ++k)
+    {
+      opacity = std::max(opacity, scene.Opacity->GetValue(lo + (hi - lo) * k / 64.0));
+    }
+    double rgb[3];
+    scene.Color->GetColor(node[0], rgb);
+    const double albedo = (rgb[0] + rgb[1] + rgb[2]) / 3.0;
+    const double extinction = voxel * mmv::ExtinctionFromOpacity(opacity, scene.UnitDistance);
+    std::string why;
+    double surface[mmv::MaterialParameterCount];
+    std::copy(node + 1, node + 1 + mmv::MaterialParameterCount, surface);
+    if (!mmv::PhysicalMediumToMaterial(albedo, node[1 + mmv::Anisotropy],
+          std::max(extinction, 1e-3), node + 1, &why))
+    {
+      std::cerr << "node at " << node[0] << ": " << why << "\n";
+      return false;
+    }
+    for (int p : { mmv::Diffuse, mmv::Specular, mmv::Shininess, mmv::Reflection })
+    {
+      node[1 + p] = keepSurface ? surface[p] : node[1 + p];
+    }
+    std::cout << "  mapped node " << node[0] << ": albedo " << albedo << ", extinction/voxel "
+              << extinction << " -> ka " << node[1 + mmv::Ambient] << ", c_t "
+              << node[1 + mmv::Attenuation] << ", s " << node[1 + mmv::Scattering] << "\n";
   }
-  return s.str();
+  return target->SetNodes(static_cast<int>(nodes.size()), nodes.data());
 }
 }
 
@@ -306,7 +232,8 @@ int main(int argc, char* argv[])
     std::cerr << "usage: " << argv[0]
               << " --out DIR [--size N] [--truth-spp N] [--frames N]"
                  " [--scenes synthetic,headsq,orbital,ct] [--head FILE.vti]"
-                 " [--s-scales LIST] [--ct-scales LIST] [--no-vtk] [--anisotropy G] [--back-light]\n";
+                 " [--s-scales LIST] [--ct-scales LIST] [--no-vtk] [--anisotropy G] [--back-light]"
+                 " [--mapped]\n";
     return 2;
   }
   vtkSMPTools::SetBackend("STDThread");
@@ -410,6 +337,19 @@ int main(int argc, char* argv[])
           measure("ours-v1", Setting({ { "s_scale", s }, { "ct_scale", ct } }), oursWindow);
         }
       }
+    }
+    if (opt.Mapped)
+    {
+      if (!MapMaterials(scene, materials, false))
+      {
+        return 1;
+      }
+      measure("ours-mapped", "PhysicalMediumToMaterial", oursWindow);
+      if (!MapMaterials(scene, materials, true))
+      {
+        return 1;
+      }
+      measure("ours-mapped-surface", "PhysicalMediumToMaterial with the scene's kd ks ke r", oursWindow);
     }
     if (opt.VTK)
     {

@@ -24,7 +24,7 @@ namespace
 {
 constexpr int P = mmv::MaterialParameterCount;
 const char* const BuiltinNames[] = { "plastic", "metal", "skin", "bone", "glass", "leaf", "matte",
-  "smoke", "glow" };
+  "smoke", "glow", "fog", "tissue", "soot" };
 
 std::vector<double> PresetOf(vtkMaterialLibrary* library, const char* name)
 {
@@ -105,7 +105,7 @@ std::vector<double> ColorInFile(const std::string& text)
 TEST(MaterialLibrary, AllBuiltinsArePresent)
 {
   vtkNew<vtkMaterialLibrary> library;
-  EXPECT_EQ(library->GetNumberOfPresets(), 9);
+  EXPECT_EQ(library->GetNumberOfPresets(), 12);
   for (const char* name : BuiltinNames)
   {
     EXPECT_TRUE(library->HasPreset(name)) << name;
@@ -170,7 +170,7 @@ TEST(MaterialLibrary, EveryBuiltinIsValidAndLoadsWithoutErrors)
   mmvtest::ErrorCounter errors(library);
   library->ResetToBuiltins(); // reloads with the observer in place
   EXPECT_EQ(errors.Errors(), 0) << errors.LastMessage();
-  ASSERT_EQ(library->GetNumberOfPresets(), 9);
+  ASSERT_EQ(library->GetNumberOfPresets(), 12);
   for (int i = 0; i < library->GetNumberOfPresets(); ++i)
   {
     const char* name = library->GetPresetName(i);
@@ -198,9 +198,10 @@ TEST(MaterialLibrary, PresetNamesAndUnknownLookups)
   // Built-ins are embedded in file-name order.
   EXPECT_EQ(NamesOf(library),
     (std::vector<std::string>{
-      "bone", "glass", "glow", "leaf", "matte", "metal", "plastic", "skin", "smoke" }));
+      "bone", "fog", "glass", "glow", "leaf", "matte", "metal", "plastic", "skin", "smoke", "soot",
+      "tissue" }));
   EXPECT_EQ(library->GetPresetName(-1), nullptr);
-  EXPECT_EQ(library->GetPresetName(9), nullptr);
+  EXPECT_EQ(library->GetPresetName(12), nullptr);
 
   mmvtest::ErrorCounter errors(library);
   double parameters[P] = { -5 };
@@ -220,31 +221,32 @@ TEST(MaterialLibrary, AddReplaceRemove)
   const double chrome[P] = { 0.05, 0.1, 1.0, 300.0, 1.0, 0.0, 0.9 };
   const double chromeColor[3] = { 0.9, 0.9, 0.95 };
   ASSERT_TRUE(library->AddPreset("chrome", chrome, chromeColor));
-  EXPECT_EQ(library->GetNumberOfPresets(), 10);
-  EXPECT_STREQ(library->GetPresetName(9), "chrome");
+  EXPECT_EQ(library->GetNumberOfPresets(), 13);
+  EXPECT_STREQ(library->GetPresetName(12), "chrome");
   EXPECT_EQ(PresetOf(library, "chrome"), std::vector<double>(chrome, chrome + P));
   EXPECT_EQ(ColorOf(library, "chrome"), std::vector<double>(chromeColor, chromeColor + 3));
 
   // Replacing keeps the position; without a colour the preset is white.
   const double softMetal[P] = { 0.2, 0.4, 0.5, 30.0, 1.0, 0.5, 0.2 };
   ASSERT_TRUE(library->AddPreset("metal", softMetal));
-  EXPECT_EQ(library->GetNumberOfPresets(), 10);
-  EXPECT_STREQ(library->GetPresetName(5), "metal");
+  EXPECT_EQ(library->GetNumberOfPresets(), 13);
+  EXPECT_STREQ(library->GetPresetName(6), "metal");
   EXPECT_EQ(PresetOf(library, "metal"), std::vector<double>(softMetal, softMetal + P));
   EXPECT_EQ(ColorOf(library, "metal"), (std::vector<double>{ 1.0, 1.0, 1.0 }));
 
   EXPECT_TRUE(library->RemovePreset("glass"));
   EXPECT_FALSE(library->HasPreset("glass"));
-  EXPECT_EQ(library->GetNumberOfPresets(), 9);
+  EXPECT_EQ(library->GetNumberOfPresets(), 12);
   EXPECT_EQ(NamesOf(library),
     (std::vector<std::string>{
-      "bone", "glow", "leaf", "matte", "metal", "plastic", "skin", "smoke", "chrome" }));
+      "bone", "fog", "glow", "leaf", "matte", "metal", "plastic", "skin", "smoke", "soot", "tissue",
+      "chrome" }));
   EXPECT_FALSE(library->RemovePreset("glass"));
   EXPECT_FALSE(library->RemovePreset(nullptr));
   EXPECT_EQ(errors.Errors(), 0);
 
   library->ResetToBuiltins();
-  EXPECT_EQ(library->GetNumberOfPresets(), 9);
+  EXPECT_EQ(library->GetNumberOfPresets(), 12);
   EXPECT_FALSE(library->HasPreset("chrome"));
   EXPECT_TRUE(library->HasPreset("glass"));
   EXPECT_EQ(PresetOf(library, "metal")[mmv::Shininess], 120.0);
@@ -327,7 +329,7 @@ TEST(MaterialLibrary, AddPresetRejectsInvalidInput)
   EXPECT_FALSE(library->AddPreset(nullptr, good));
   EXPECT_FALSE(library->AddPreset("x", nullptr));
   EXPECT_EQ(errors.Errors(), 2);
-  EXPECT_EQ(library->GetNumberOfPresets(), 9);
+  EXPECT_EQ(library->GetNumberOfPresets(), 12);
 }
 
 TEST(MaterialLibrary, JSONRoundTrip)
@@ -384,7 +386,7 @@ TEST(MaterialLibrary, ReadsASinglePresetFile)
   WriteFile(path, R"({"name": "wax", "description": "candle", "scattering": 12, "ambient": 0.4})");
   vtkNew<vtkMaterialLibrary> library;
   ASSERT_TRUE(library->ReadJSONFile(path.c_str()));
-  EXPECT_EQ(library->GetNumberOfPresets(), 10);
+  EXPECT_EQ(library->GetNumberOfPresets(), 13);
   // Missing keys take the table defaults; a missing colour is white.
   EXPECT_EQ(PresetOf(library, "wax"), (std::vector<double>{ 0.4, 0.7, 0.2, 20.0, 1.0, 12.0, 0.0, 0.0, 0.0 }));
   EXPECT_EQ(ColorOf(library, "wax"), (std::vector<double>{ 1.0, 1.0, 1.0 }));
@@ -439,10 +441,10 @@ TEST(MaterialLibrary, ArrayIsAllOrNothing)
       {"name": "first", "ambient": 0.5},
       {"name": "metal", "shininess": 1}
     ])"));
-  EXPECT_EQ(library->GetNumberOfPresets(), 10);
+  EXPECT_EQ(library->GetNumberOfPresets(), 13);
   EXPECT_EQ(PresetOf(library, "first")[mmv::Ambient], 0.5);
   EXPECT_EQ(PresetOf(library, "metal")[mmv::Shininess], 1.0);
-  EXPECT_STREQ(library->GetPresetName(5), "metal");
+  EXPECT_STREQ(library->GetPresetName(6), "metal");
   EXPECT_EQ(errors.Errors(), 1);
 }
 
@@ -498,7 +500,7 @@ TEST(MaterialLibrary, EmptyArrayIsAcceptedAndChangesNothing)
   vtkNew<vtkMaterialLibrary> library;
   const vtkMTimeType mtime = library->GetMTime();
   EXPECT_TRUE(library->AddPresetsFromJSON("[]"));
-  EXPECT_EQ(library->GetNumberOfPresets(), 9);
+  EXPECT_EQ(library->GetNumberOfPresets(), 12);
   EXPECT_EQ(library->GetMTime(), mtime);
 }
 
@@ -508,7 +510,7 @@ TEST(MaterialLibrary, PrintSelfListsPresets)
   std::ostringstream os;
   library->Print(os);
   const std::string text = os.str();
-  EXPECT_NE(text.find("Presets: 9"), std::string::npos) << text;
+  EXPECT_NE(text.find("Presets: 12"), std::string::npos) << text;
   EXPECT_NE(text.find("metal"), std::string::npos) << text;
   EXPECT_NE(text.find("shininess=120"), std::string::npos) << text;
 }

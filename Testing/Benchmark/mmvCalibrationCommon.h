@@ -1,0 +1,189 @@
+/**
+ * What the calibration programs against the physical reference share
+ * (mmvPhysicalCalibration, mmvMediumCalibration): an offscreen window that
+ * renders a benchmark scene with one mapper and times it, the scaling of a
+ * scene's materials, and the error after the best brightness factor.
+ */
+#ifndef mmvCalibrationCommon_h
+#define mmvCalibrationCommon_h
+
+#include "mmvBenchmarkScenes.h"
+#include "mmvTestWindow.h"
+
+#include "vtkCamera.h"
+#include "vtkDataArray.h"
+#include "vtkImageData.h"
+#include "vtkLight.h"
+#include "vtkMaterialTransferFunction.h"
+#include "vtkMultiMaterialParameters.h"
+#include "vtkNew.h"
+#include "vtkOpenGLGPUVolumeRayCastMapper.h"
+#include "vtkPointData.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
+#include "vtkSmartPointer.h"
+#include "vtkUnsignedCharArray.h"
+#include "vtkVolume.h"
+#include "vtkVolumeProperty.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace mmvcal
+{
+using Clock = std::chrono::steady_clock;
+
+/// The numbers of a comma-separated command-line list ("1,0.5,2").
+inline std::vector<double> Numbers(const std::string& text)
+{
+  std::vector<double> values;
+  for (const std::string& item : mmvbench::SplitList(text))
+  {
+    values.push_back(std::atof(item.c_str()));
+  }
+  return values;
+}
+
+inline double Median(std::vector<double> v)
+{
+  if (v.empty())
+  {
+    return 0.0;
+  }
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+// The scene's materials with every node's s and c_t scaled, and g set
+// (NaN: kept).
+inline void ScaleMaterials(vtkMaterialTransferFunction* source, double scattering, double attenuation,
+  vtkMaterialTransferFunction* target, double anisotropy = std::nan(""))
+{
+  const int stride = vtkMaterialTransferFunction::NodeStride;
+  std::vector<double> nodes(static_cast<size_t>(source->GetSize()) * stride);
+  source->GetNodes(nodes.data());
+  for (size_t n = 0; n < nodes.size(); n += stride)
+  {
+    nodes[n + 1 + mmv::Scattering] *= scattering;
+    nodes[n + 1 + mmv::Attenuation] *= attenuation;
+    if (!std::isnan(anisotropy))
+    {
+      nodes[n + 1 + mmv::Anisotropy] = anisotropy;
+    }
+  }
+  target->SetNodes(static_cast<int>(nodes.size()), nodes.data());
+}
+
+// One offscreen window rendering the scene with one mapper.
+struct Window
+{
+  vtkSmartPointer<vtkRenderWindow> RenderWindow = mmvtest::NewRenderWindow();
+  vtkNew<vtkRenderer> Renderer;
+  vtkNew<vtkVolume> Volume;
+  vtkNew<vtkVolumeProperty> Property;
+
+  Window(const mmvbench::SceneSpec& scene, vtkCamera* camera, vtkLight* light, int size,
+    vtkOpenGLGPUVolumeRayCastMapper* mapper)
+  {
+    this->RenderWindow->SetOffScreenRendering(1);
+    this->RenderWindow->SetSize(size, size);
+    this->RenderWindow->SetMultiSamples(0);
+    this->RenderWindow->AddRenderer(this->Renderer);
+    this->Renderer->SetBackground(const_cast<double*>(scene.Background));
+    this->Renderer->SetBackground2(const_cast<double*>(scene.Background2));
+    this->Renderer->GradientBackgroundOn();
+    this->Renderer->AutomaticLightCreationOff();
+    this->Renderer->AddLight(light);
+    this->Renderer->SetActiveCamera(camera);
+    this->Property->SetColor(scene.Color);
+    this->Property->SetScalarOpacity(scene.Opacity);
+    this->Property->SetScalarOpacityUnitDistance(scene.UnitDistance);
+    this->Property->SetInterpolationTypeToLinear();
+    const double* spacing = scene.Image->GetSpacing();
+    mapper->SetInputData(scene.Image);
+    mapper->AutoAdjustSampleDistancesOff();
+    mapper->LockSampleDistanceToInputSpacingOff();
+    mapper->SetSampleDistance(static_cast<float>(std::min({ spacing[0], spacing[1], spacing[2] })));
+    this->Volume->SetMapper(mapper);
+    this->Volume->SetProperty(this->Property);
+    this->Renderer->AddVolume(this->Volume);
+  }
+
+  // Median frame time after one untimed frame (0 with frames = 0); the image
+  // of the last one.
+  double Frames(int frames, vtkImageData* image)
+  {
+    this->RenderWindow->Render();
+    std::vector<double> times;
+    for (int f = 0; f < frames; ++f)
+    {
+      const auto start = Clock::now();
+      this->RenderWindow->Render();
+      this->RenderWindow->WaitForCompletion();
+      times.push_back(std::chrono::duration<double>(Clock::now() - start).count());
+    }
+    const int* size = this->RenderWindow->GetSize();
+    vtkNew<vtkUnsignedCharArray> rgb;
+    this->RenderWindow->GetPixelData(0, 0, size[0] - 1, size[1] - 1, 0, rgb);
+    image->SetDimensions(size[0], size[1], 1);
+    image->GetPointData()->SetScalars(rgb);
+    return Median(times);
+  }
+};
+
+// Over the volume's pixels (`mask`: the truth's paths met the medium there),
+// the RMSE (0-255) of test against truth as is (`raw`), and after the
+// least-squares brightness factor k (returned).
+inline double GainCompensated(vtkImageData* test, vtkImageData* truth, const std::vector<bool>& mask,
+  double& k, double& raw)
+{
+  vtkDataArray* a = test->GetPointData()->GetScalars();
+  vtkDataArray* b = truth->GetPointData()->GetScalars();
+  const vtkIdType n = std::min(a->GetNumberOfTuples(), b->GetNumberOfTuples());
+  double ab = 0.0, aa = 0.0, e0 = 0.0;
+  long long count = 0;
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    for (int c = 0; mask[i] && c < 3; ++c)
+    {
+      const double x = a->GetComponent(i, c);
+      const double y = b->GetComponent(i, c);
+      ab += x * y;
+      aa += x * x;
+      e0 += (x - y) * (x - y);
+      ++count;
+    }
+  }
+  k = aa > 0.0 ? ab / aa : 1.0;
+  double e = 0.0;
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    for (int c = 0; mask[i] && c < 3; ++c)
+    {
+      const double d = k * a->GetComponent(i, c) - b->GetComponent(i, c);
+      e += d * d;
+    }
+  }
+  raw = count ? std::sqrt(e0 / count) : 0.0;
+  return count ? std::sqrt(e / count) : 0.0;
+}
+
+inline std::string Setting(const std::vector<std::pair<std::string, double>>& values)
+{
+  std::ostringstream s;
+  for (size_t i = 0; i < values.size(); ++i)
+  {
+    s << (i ? " " : "") << values[i].first << "=" << values[i].second;
+  }
+  return s.str();
+}
+} // namespace mmvcal
+
+#endif
