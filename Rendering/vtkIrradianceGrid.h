@@ -55,6 +55,12 @@ struct IrradianceGrid
       glm::dmat3(glm::dvec3(this->Spacing[0], 0.0, 0.0), glm::dvec3(0.0, this->Spacing[1], 0.0),
         glm::dvec3(0.0, 0.0, this->Spacing[2]));
   }
+  /// Physical position of the grid's centre.
+  glm::dvec3 Center() const
+  {
+    return this->IndexToPhysical(
+      0.5 * (glm::dvec3(this->Dimensions[0], this->Dimensions[1], this->Dimensions[2]) - 1.0));
+  }
   /// Its inverse: a true inverse, since VTK allows non-orthonormal directions.
   glm::dmat3 PhysicalToIndexMatrix() const { return glm::inverse(this->IndexToPhysicalMatrix()); }
   glm::dvec3 IndexToPhysical(const glm::dvec3& ijk) const

@@ -129,9 +129,7 @@ bool vtkIrradianceInputCache::IsCurrent(const VolumeKey& volume,
   {
     return false;
   }
-  const mmv::IrradianceGrid& g = this->Grid;
-  const glm::dvec3 centre = g.IndexToPhysical(
-    0.5 * (glm::dvec3(g.Dimensions[0], g.Dimensions[1], g.Dimensions[2]) - 1.0));
+  const glm::dvec3 centre = this->Grid.Center();
   for (size_t k = 0; k < lights.size(); ++k)
   {
     if (!mmv::LightWithinTolerance(this->Lights[k], lights[k], toleranceRadians, centre))

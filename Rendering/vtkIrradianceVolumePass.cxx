@@ -1206,9 +1206,7 @@ bool vtkIrradianceVolumePass::Render(vtkOpenGLRenderWindow* context)
     const bool all = internals.VolumeChanged || reallocated;
     std::vector<bool> updated(internals.Lights.size(), false);
     const double tolerance = mmv::LightToleranceRadians(this->LightDirectionTolerance);
-    const glm::dvec3 centre = internals.Grid.IndexToPhysical(
-      0.5 * (glm::dvec3(internals.Grid.Dimensions[0], internals.Grid.Dimensions[1],
-               internals.Grid.Dimensions[2]) - 1.0));
+    const glm::dvec3 centre = internals.Grid.Center();
     // A new light, or one beyond the tolerance of what its channel holds;
     // the others keep the placement they were computed for.
     std::vector<mmv::LightSource>& held = internals.ComputedLights;
