@@ -14,7 +14,7 @@
 #ifndef vtkIrradianceGrid_h
 #define vtkIrradianceGrid_h
 
-#include "vtkMultiMaterialVolumeModule.h" // export macro
+#include "vtkMultiMaterialVolumeFiltersModule.h" // export macro
 #include "vtkType.h"                      // vtkIdType
 
 #include <glm/glm.hpp>
@@ -73,13 +73,13 @@ struct IrradianceGrid
  * numberOfLights * IrradianceBytesPerVoxelPerLight bytes per voxel fit
  * `budgetMB`. Axes never exceed the data's and never drop below min(2, data).
  */
-VTKMULTIMATERIALVOLUME_EXPORT void ComputeIrradianceDimensions(const int dataDims[3],
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT void ComputeIrradianceDimensions(const int dataDims[3],
   int numberOfLights, double budgetMB, double scale, int irradianceDims[3]);
 
 /// Checks an IrradianceScale (0: automatic; (0, 1]: that fraction of the
 /// data's resolution): above 1 returns 1, negative or NaN returns 0, and
 /// `why` (if given) says so; valid values come back unchanged.
-VTKMULTIMATERIALVOLUME_EXPORT double ValidIrradianceScale(double scale, std::string* why);
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT double ValidIrradianceScale(double scale, std::string* why);
 
 /// The irradiance resolution a frame uses, and why (for logs and the UI).
 struct IrradianceResolution
@@ -100,12 +100,12 @@ struct IrradianceResolution
  *    that small zooms keep the grid. pixelsPerDataVoxel <= 0 (unknown, e.g.
  *    no camera) leaves the budget alone in charge.
  */
-VTKMULTIMATERIALVOLUME_EXPORT IrradianceResolution ChooseIrradianceResolution(
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT IrradianceResolution ChooseIrradianceResolution(
   const int dataDims[3], int numberOfLights, double budgetMB, double userScale,
   double pixelsPerDataVoxel);
 
 /// The grid of `irradianceDims` spanning `image`'s points.
-VTKMULTIMATERIALVOLUME_EXPORT IrradianceGrid MakeIrradianceGrid(
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT IrradianceGrid MakeIrradianceGrid(
   vtkImageData* image, const int irradianceDims[3]);
 
 /**
@@ -113,7 +113,7 @@ VTKMULTIMATERIALVOLUME_EXPORT IrradianceGrid MakeIrradianceGrid(
  * data exists): `direction` is row-major like vtkImageData's; null means
  * identity.
  */
-VTKMULTIMATERIALVOLUME_EXPORT IrradianceGrid MakeIrradianceGrid(const int extent[6],
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT IrradianceGrid MakeIrradianceGrid(const int extent[6],
   const double origin[3], const double spacing[3], const double* direction,
   const int irradianceDims[3]);
 
@@ -123,11 +123,11 @@ VTKMULTIMATERIALVOLUME_EXPORT IrradianceGrid MakeIrradianceGrid(const int extent
  * data this way and the CPU shadow rays sample the prefiltered values; the
  * GPU pass gets the same from a linear 3D texture.
  */
-VTKMULTIMATERIALVOLUME_EXPORT double SampleTrilinear(
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT double SampleTrilinear(
   const IrradianceGrid& grid, const float* values, const glm::dvec3& index);
 
 /// One component of the scalars as floats (one virtual call per value, once).
-VTKMULTIMATERIALVOLUME_EXPORT std::vector<float> CopyComponent(vtkDataArray* scalars, int component);
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT std::vector<float> CopyComponent(vtkDataArray* scalars, int component);
 
 /**
  * Where PrefilterScalars samples the data: voxel j's footprint is centred on
@@ -140,11 +140,11 @@ struct FootprintLayout
   double Ratio[3] = { 0.0, 0.0, 0.0 }; // data points per irradiance voxel
   int Samples[3] = { 1, 1, 1 };
 };
-VTKMULTIMATERIALVOLUME_EXPORT FootprintLayout MakeFootprintLayout(
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT FootprintLayout MakeFootprintLayout(
   const int dataDims[3], const int gridDims[3]);
 /// Sample q (0 <= q[a] < Samples[a]) of the footprint of the voxel at
 /// integer index `voxel`, as a continuous data index (not clamped).
-VTKMULTIMATERIALVOLUME_EXPORT glm::dvec3 FootprintSample(
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT glm::dvec3 FootprintSample(
   const FootprintLayout& layout, const glm::dvec3& voxel, const int q[3]);
 
 /**
@@ -153,7 +153,7 @@ VTKMULTIMATERIALVOLUME_EXPORT glm::dvec3 FootprintSample(
  * clamped to the data bounds); an exact copy when the grid equals the data
  * grid. Values stay in data units. Multithreaded (vtkSMPTools).
  */
-VTKMULTIMATERIALVOLUME_EXPORT void PrefilterScalars(vtkImageData* image, vtkDataArray* scalars,
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT void PrefilterScalars(vtkImageData* image, vtkDataArray* scalars,
   int component, const IrradianceGrid& grid, std::vector<float>& prefiltered);
 
 } // namespace mmv

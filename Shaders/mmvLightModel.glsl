@@ -1,5 +1,5 @@
 // Light-source terms (eqs. 11-14 with VTK's light conventions). Mirrors
-// Rendering/vtkMultiMaterialLightModel.h function for function; see there
+// Filters/vtkMultiMaterialLightModel.h function for function; see there
 // for the conventions. Light kinds: 0 directional, 1 point, 2 spot (cone
 // half-angle, as vtkLight). Prepended after the prelude that defines
 // MMV_MIN_ATTENUATION_DENOMINATOR.
