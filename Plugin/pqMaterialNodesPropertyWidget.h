@@ -24,6 +24,10 @@
  * "materialPreset" Qt properties), so they take part in ParaView's
  * apply/undo/redo, Python trace and state files like any other property.
  *
+ * The nodes and every edit of them are a mmv::MaterialNodeModel (no Qt); the
+ * track is a pqMaterialNodesTrack; this class is the property plumbing and
+ * the editors.
+ *
  * Set PARAVIEW_LOG_APPLICATION_VERBOSITY=INFO to have the widget log its
  * creation and edits (the GUI test relies on this).
  */
