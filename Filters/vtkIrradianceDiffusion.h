@@ -16,7 +16,7 @@
 #ifndef vtkIrradianceDiffusion_h
 #define vtkIrradianceDiffusion_h
 
-#include "vtkMultiMaterialVolumeModule.h" // export macro
+#include "vtkMultiMaterialVolumeFiltersModule.h" // export macro
 #include "vtkType.h"                      // vtkIdType
 
 #include <vector> // restriction
@@ -88,7 +88,7 @@ struct DiffusionReport
  * only partly filled with scattering voxels their share; null means 1.
  * Multithreaded with vtkSMPTools. Returns a report of what was done.
  */
-VTKMULTIMATERIALVOLUME_EXPORT DiffusionReport DiffuseIrradiance(const int dims[3],
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT DiffusionReport DiffuseIrradiance(const int dims[3],
   const double spacing[3], const float* strength, float* irradiance,
   const DiffusionSettings& settings = DiffusionSettings(), const float* capacity = nullptr);
 
@@ -102,22 +102,22 @@ inline double DiffusionFaceStrength(double a, double b)
 
 /// The largest row sum of the diffusion operator over the capacity (a
 /// Gershgorin bound of its rates), in 1 / unit time; 0 when nothing can move.
-VTKMULTIMATERIALVOLUME_EXPORT double MaxDiffusionRate(const int dims[3], const double spacing[3],
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT double MaxDiffusionRate(const int dims[3], const double spacing[3],
   const float* strength, const float* capacity = nullptr);
 
 /// Backward-Euler sub-steps to reach `settings.Time` on a grid whose largest
 /// rate is `maxRate`: as many as an explicit scheme would need, capped.
-VTKMULTIMATERIALVOLUME_EXPORT int DiffusionSubSteps(
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT int DiffusionSubSteps(
   double maxRate, const DiffusionSettings& settings = DiffusionSettings());
 
 /// The spectral radius bound of the Jacobi iteration of one sub-step of
 /// length dt: with r = dt * maxRate, each row of the iteration matrix sums
 /// to at most rho = r / (1 + r).
-VTKMULTIMATERIALVOLUME_EXPORT double JacobiSpectralRadius(double dtTimesMaxRate);
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT double JacobiSpectralRadius(double dtTimesMaxRate);
 
 /// Plain Jacobi sweeps that bring the error below settings.SweepTolerance:
 /// ln(tol) / ln(rho). For comparison only; the GPU accelerates them.
-VTKMULTIMATERIALVOLUME_EXPORT int JacobiSweeps(
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT int JacobiSweeps(
   double dtTimesMaxRate, const DiffusionSettings& settings = DiffusionSettings());
 
 /**
@@ -128,7 +128,7 @@ VTKMULTIMATERIALVOLUME_EXPORT int JacobiSweeps(
  * c = rho / (1 + sqrt(1 - rho^2)), about the square root of plain Jacobi's
  * count for stiff systems. At least 1.
  */
-VTKMULTIMATERIALVOLUME_EXPORT int ChebyshevSweeps(
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT int ChebyshevSweeps(
   double dtTimesMaxRate, const DiffusionSettings& settings = DiffusionSettings());
 
 /**
@@ -142,11 +142,11 @@ VTKMULTIMATERIALVOLUME_EXPORT int ChebyshevSweeps(
  * largest irradiance). The degree grows as sqrt(a), not as a: a = 21 (the
  * CT's `skin`) needs n = 17 at 1e-3. Empty when a is not > 0.
  */
-VTKMULTIMATERIALVOLUME_EXPORT std::vector<double> ExponentialChebyshevCoefficients(
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT std::vector<double> ExponentialChebyshevCoefficients(
   double a, double tolerance);
 
 /// The weight omega_k (k >= 1) of sweep k of a sub-step.
-VTKMULTIMATERIALVOLUME_EXPORT double ChebyshevWeight(int k, double rho);
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT double ChebyshevWeight(int k, double rho);
 
 /**
  * The grid the diffusion's change is computed on: the irradiance grid of
@@ -176,7 +176,7 @@ struct DiffusionGrid
   }
 };
 
-VTKMULTIMATERIALVOLUME_EXPORT DiffusionGrid PlanDiffusionGrid(const int dims[3],
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT DiffusionGrid PlanDiffusionGrid(const int dims[3],
   const double spacing[3], double maxStrength,
   const DiffusionSettings& settings = DiffusionSettings());
 
@@ -188,7 +188,7 @@ VTKMULTIMATERIALVOLUME_EXPORT DiffusionGrid PlanDiffusionGrid(const int dims[3],
  * voxels (0 when none), so partly filled blocks do not look darker than they
  * are. Any output may be null.
  */
-VTKMULTIMATERIALVOLUME_EXPORT void RestrictToDiffusionGrid(const int dims[3],
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT void RestrictToDiffusionGrid(const int dims[3],
   const DiffusionGrid& coarse, const float* strength, const float* fine,
   std::vector<float>* coarseStrength, std::vector<float>* coarseIrradiance,
   std::vector<float>* coarseCapacity = nullptr);
@@ -210,7 +210,7 @@ VTKMULTIMATERIALVOLUME_EXPORT void RestrictToDiffusionGrid(const int dims[3],
  * scenes against the reference renderer, which adds its change to each
  * sample's own direct light the same way. The change it is.
  */
-VTKMULTIMATERIALVOLUME_EXPORT DiffusionReport DiffuseIrradianceOnDiffusionGrid(const int dims[3],
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT DiffusionReport DiffuseIrradianceOnDiffusionGrid(const int dims[3],
   const double spacing[3], const float* strength, float* irradiance,
   const DiffusionSettings& settings = DiffusionSettings(), DiffusionGrid* usedGrid = nullptr);
 

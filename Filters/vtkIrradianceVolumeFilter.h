@@ -48,7 +48,7 @@
 #include "vtkMultiMaterialCutaway.h"    // mmv::Cutaway
 #endif
 #include "vtkMultiMaterialParameters.h" // ShadowEstimation
-#include "vtkMultiMaterialVolumeModule.h" // export macro
+#include "vtkMultiMaterialVolumeFiltersModule.h" // export macro
 
 class vtkLight;
 class vtkLightCollection;
@@ -57,7 +57,7 @@ class vtkPlaneCollection;
 class vtkVolumeMapper;
 class vtkPiecewiseFunction;
 
-class VTKMULTIMATERIALVOLUME_EXPORT vtkIrradianceVolumeFilter : public vtkImageAlgorithm
+class VTKMULTIMATERIALVOLUMEFILTERS_EXPORT vtkIrradianceVolumeFilter : public vtkImageAlgorithm
 {
 public:
   static vtkIrradianceVolumeFilter* New();

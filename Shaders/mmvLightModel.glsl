@@ -1,5 +1,5 @@
 // Light-source terms (eqs. 11-14 with VTK's light conventions). Mirrors
-// Rendering/vtkMultiMaterialLightModel.h function for function; see there
+// Filters/vtkMultiMaterialLightModel.h function for function; see there
 // for the conventions. Light kinds: MMV_DIRECTIONAL_LIGHT, MMV_POINT_LIGHT,
 // MMV_SPOT_LIGHT (cone half-angle, as vtkLight). Prepended after the prelude
 // (mmv::MaterialGLSLPrelude) that defines them and

@@ -5,10 +5,13 @@ set -euo pipefail
 MMV_ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 MMV_BUILD=${MMV_BUILD_DIR:-$MMV_ROOT/build}
 
-# paraview-dev plus what its CMake package needs on Debian 12, GLM, GoogleTest,
-# an X server for headless OpenGL (Mesa llvmpipe), and the build tools.
+# paraview-dev plus what its CMake package needs on Debian 12 (Qt5's OpenGL
+# module, LibXml2 and Boost: ParaView's Qt libraries name their targets, see
+# the top-level CMakeLists.txt), GLM, GoogleTest, an X server for headless
+# OpenGL (Mesa llvmpipe), and the build tools.
 MMV_PACKAGES=(
   paraview-dev qtbase5-dev qttools5-dev libqt5svg5-dev libutfcpp-dev libopenmpi-dev
+  libqt5opengl5-dev libxml2-dev libboost-dev
   libglew-dev python3-dev liblz4-dev libdouble-conversion-dev libtiff-dev
   libglm-dev libgtest-dev xvfb xauth cmake g++ ninja-build ccache
 )

@@ -8,7 +8,7 @@ DOCS_DIR: benchmark.csv (a copy), benchmark_pareto.png (error vs frame time),
 benchmark_sample_distance.png (paper Fig. 9), benchmark_irradiance.png
 (paper Fig. 6), benchmark_images.png (images and error maps) and
 benchmark_tables.md (stage times and targets). Needs numpy and matplotlib
-(Debian's /usr/bin/python3 or pvpython).
+(pvpython has both; so may python3).
 """
 import csv
 import math

@@ -6,7 +6,7 @@ with the targets drawn as marks.
 
     plot_lightkit_orbit.py OUT/lightkit_orbit.csv [OUT/lightkit_orbit.png]
 
-Needs matplotlib (Debian's /usr/bin/python3 or pvpython).
+Needs matplotlib (pvpython has it; so may python3).
 """
 import csv
 import os

@@ -1,4 +1,4 @@
-// Links against MultiMaterialVolume::Core found by find_package and checks a
+// Links against MultiMaterialVolume::Rendering found by find_package and checks a
 // closed-form case: a built-in preset applied to a material transfer function
 // evaluates to the preset's parameters anywhere in the range.
 #include "vtkMaterialLibrary.h"

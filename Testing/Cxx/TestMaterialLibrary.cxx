@@ -122,7 +122,7 @@ TEST(MaterialLibrary, BuiltinsMatchTheirJSONFiles)
   {
     SCOPED_TRACE(name);
     const std::string text =
-      ReadFile(std::string(MMV_SOURCE_DIR) + "/Rendering/Materials/" + name + ".json");
+      ReadFile(std::string(MMV_SOURCE_DIR) + "/Filters/Materials/" + name + ".json");
     ASSERT_FALSE(text.empty());
     const std::vector<double> parameters = PresetOf(library, name);
     for (int p = 0; p < P; ++p)
@@ -146,7 +146,7 @@ TEST(MaterialLibrary, BuiltinsMatchTheirJSONFiles)
 
 TEST(MaterialLibrary, BuiltinSpotValues)
 {
-  // Numbers copied from Rendering/Materials/*.json: a change there is caught.
+  // Numbers copied from Filters/Materials/*.json: a change there is caught.
   vtkNew<vtkMaterialLibrary> library;
   EXPECT_EQ(PresetOf(library, "metal"),
     (std::vector<double>{ 0.1, 0.3, 0.9, 120.0, 1.0, 0.0, 0.6, 0.0, 0.0 }));

@@ -633,7 +633,7 @@ TEST(MaterialTransferFunction, ApplyPresetMatchesLibrary)
     }
     EXPECT_EQ(errors.Errors(), 0);
   }
-  // A concrete number from Rendering/Materials/metal.json.
+  // A concrete number from Filters/Materials/metal.json.
   vtkNew<vtkMaterialTransferFunction> tf;
   tf->ApplyPreset("metal", 0.0, 1.0);
   EXPECT_EQ(tf->EvaluateParameter(0.5, mmv::Shininess), 120.0);

@@ -1,6 +1,7 @@
 """`import multimaterialvolume` gives the project's classes, from this build,
 as VTK objects of the right types."""
 
+import importlib
 import os
 import unittest
 
@@ -20,6 +21,30 @@ CLASSES = [
     "vtkMultiMaterialVolumeMapper",
 ]
 
+# Every wrapped class, by the module (library) that holds it: the CPU module
+# (Filters/, no OpenGL) and the OpenGL rendering module (Rendering/).
+MODULE_CLASSES = {
+    "vtkMultiMaterialVolumeFilters": [
+        "vtkGlobalPrefilteredVolume",
+        "vtkImageErrorMetrics",
+        "vtkIrradianceVolumeFilter",
+        "vtkMaterialLibrary",
+        "vtkMaterialTransferFunction",
+        "vtkMultiMaterialLiveObjects",
+        "vtkMultiMaterialPathTracer",
+        "vtkMultiMaterialReferenceRenderer",
+        "vtkMultiMaterialVolumeScene",
+        "vtkPreIntegrationTable",
+    ],
+    "vtkMultiMaterialVolume": [
+        "vtkIrradianceComputeProgram",
+        "vtkIrradianceVolumePass",
+        "vtkMultiMaterialRenderPass",
+        "vtkMultiMaterialTextures",
+        "vtkMultiMaterialVolumeMapper",
+    ],
+}
+
 
 class PackageTest(unittest.TestCase):
     def test_package_comes_from_this_build(self):
@@ -27,6 +52,14 @@ class PackageTest(unittest.TestCase):
         self.assertIsNotNone(expected, "MMV_PYTHON_PACKAGE_DIR is not set")
         self.assertEqual(os.path.realpath(os.path.dirname(os.path.dirname(m.__file__))),
                          os.path.realpath(expected))
+
+    def test_both_modules_wrap_all_their_classes(self):
+        for module_name, names in MODULE_CLASSES.items():
+            module = importlib.import_module("multimaterialvolume." + module_name)
+            for name in names:
+                with self.subTest(module=module_name, name=name):
+                    self.assertTrue(hasattr(module, name))
+                    self.assertIs(getattr(m, name), getattr(module, name))
 
     def test_every_class_constructs(self):
         for name in CLASSES:

@@ -11,19 +11,21 @@
 #ifndef vtkMultiMaterialVolumeScene_h
 #define vtkMultiMaterialVolumeScene_h
 
-#include "vtkMultiMaterialVolumeModule.h" // export macro
+#include "vtkMultiMaterialMapperSettings.h"       // mmv::MapperSettings
+#include "vtkMultiMaterialVolumeFiltersModule.h" // export macro
 #include "vtkObject.h"
 #include "vtkSmartPointer.h" // members
+
+#include <optional> // AdoptVolume
 
 class vtkImageData;
 class vtkMaterialTransferFunction;
 class vtkMatrix4x4;
-class vtkMultiMaterialVolumeMapper;
 class vtkRenderer;
 class vtkVolume;
 class vtkVolumeProperty;
 
-class VTKMULTIMATERIALVOLUME_EXPORT vtkMultiMaterialVolumeScene : public vtkObject
+class VTKMULTIMATERIALVOLUMEFILTERS_EXPORT vtkMultiMaterialVolumeScene : public vtkObject
 {
 public:
   vtkTypeMacro(vtkMultiMaterialVolumeScene, vtkObject);
@@ -48,9 +50,10 @@ protected:
   ~vtkMultiMaterialVolumeScene() override;
 
   /// The volume's data, property and matrix, and the materials of its mapper
-  /// when that is a vtkMultiMaterialVolumeMapper (returned, else null). False
-  /// (with an error) when the volume has no mapper.
-  bool AdoptVolume(vtkVolume* volume, vtkMultiMaterialVolumeMapper** mmvMapper);
+  /// when that is a vtkMultiMaterialVolumeMapper (whose settings are returned
+  /// in `mmvMapper`, else it is empty). False (with an error) when the volume
+  /// has no mapper.
+  bool AdoptVolume(vtkVolume* volume, std::optional<mmv::MapperSettings>& mmvMapper);
 
   /// Render()'s common checks: a renderer with a camera, a positive size,
   /// input data and a property with a scalar opacity (an error otherwise).

@@ -20,7 +20,7 @@
 
 #include "vtkIrradianceGrid.h"            // mmv::IrradianceGrid
 #include "vtkMultiMaterialLightModel.h"   // mmv::LightSource
-#include "vtkMultiMaterialVolumeModule.h" // export macro
+#include "vtkMultiMaterialVolumeFiltersModule.h" // export macro
 #include "vtkObject.h"
 
 #include <vector> // keys, samples
@@ -30,7 +30,7 @@ class vtkGlobalPrefilteredVolume;
 class vtkImageData;
 class vtkMaterialTransferFunction;
 
-class VTKMULTIMATERIALVOLUME_EXPORT vtkIrradianceInputCache : public vtkObject
+class VTKMULTIMATERIALVOLUMEFILTERS_EXPORT vtkIrradianceInputCache : public vtkObject
 {
 public:
   static vtkIrradianceInputCache* New();

@@ -14,7 +14,7 @@
 #ifndef vtkIrradianceGrid_h
 #define vtkIrradianceGrid_h
 
-#include "vtkMultiMaterialVolumeModule.h" // export macro
+#include "vtkMultiMaterialVolumeFiltersModule.h" // export macro
 #include "vtkType.h"                      // vtkIdType
 
 #include <glm/glm.hpp>
@@ -79,13 +79,13 @@ constexpr int IrradianceLightsPerTexture = 4;
 /// Channels of the 16-bit irradiance texture that holds `lights` (1-4)
 /// lights: R16, RG16, else RGBA16 (RGB16 is not colour-renderable in core
 /// OpenGL, so three lights take four channels).
-VTKMULTIMATERIALVOLUME_EXPORT int IrradianceTextureChannels(int lights);
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT int IrradianceTextureChannels(int lights);
 
 /// Bytes per voxel that the irradiance textures of `numberOfLights` lights
 /// hold: four lights to a texture, the last with IrradianceTextureChannels
 /// of the rest, IrradianceBytesPerVoxelPerLight per channel (the GPU's
 /// memory, what the budget counts).
-VTKMULTIMATERIALVOLUME_EXPORT double IrradianceBytesPerVoxel(int numberOfLights);
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT double IrradianceBytesPerVoxel(int numberOfLights);
 
 /**
  * Irradiance dimensions for data of `dataDims` points: `scale` in (0, 1]
@@ -93,13 +93,13 @@ VTKMULTIMATERIALVOLUME_EXPORT double IrradianceBytesPerVoxel(int numberOfLights)
  * IrradianceBytesPerVoxel(numberOfLights) fit `budgetMB`. Axes never exceed
  * the data's and never drop below min(2, data).
  */
-VTKMULTIMATERIALVOLUME_EXPORT void ComputeIrradianceDimensions(const int dataDims[3],
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT void ComputeIrradianceDimensions(const int dataDims[3],
   int numberOfLights, double budgetMB, double scale, int irradianceDims[3]);
 
 /// Checks an IrradianceScale (0: automatic; (0, 1]: that fraction of the
 /// data's resolution): above 1 returns 1, negative or NaN returns 0, and
 /// `why` (if given) says so; valid values come back unchanged.
-VTKMULTIMATERIALVOLUME_EXPORT double ValidIrradianceScale(double scale, std::string* why);
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT double ValidIrradianceScale(double scale, std::string* why);
 
 /// The irradiance resolution a frame uses, and why (for logs and the UI).
 struct IrradianceResolution
@@ -120,12 +120,12 @@ struct IrradianceResolution
  *    that small zooms keep the grid. pixelsPerDataVoxel <= 0 (unknown, e.g.
  *    no camera) leaves the budget alone in charge.
  */
-VTKMULTIMATERIALVOLUME_EXPORT IrradianceResolution ChooseIrradianceResolution(
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT IrradianceResolution ChooseIrradianceResolution(
   const int dataDims[3], int numberOfLights, double budgetMB, double userScale,
   double pixelsPerDataVoxel);
 
 /// The grid of `irradianceDims` spanning `image`'s points.
-VTKMULTIMATERIALVOLUME_EXPORT IrradianceGrid MakeIrradianceGrid(
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT IrradianceGrid MakeIrradianceGrid(
   vtkImageData* image, const int irradianceDims[3]);
 
 /**
@@ -133,7 +133,7 @@ VTKMULTIMATERIALVOLUME_EXPORT IrradianceGrid MakeIrradianceGrid(
  * data exists): `direction` is row-major like vtkImageData's; null means
  * identity.
  */
-VTKMULTIMATERIALVOLUME_EXPORT IrradianceGrid MakeIrradianceGrid(const int extent[6],
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT IrradianceGrid MakeIrradianceGrid(const int extent[6],
   const double origin[3], const double spacing[3], const double* direction,
   const int irradianceDims[3]);
 
@@ -143,11 +143,11 @@ VTKMULTIMATERIALVOLUME_EXPORT IrradianceGrid MakeIrradianceGrid(const int extent
  * data this way and the CPU shadow rays sample the prefiltered values; the
  * GPU pass gets the same from a linear 3D texture.
  */
-VTKMULTIMATERIALVOLUME_EXPORT double SampleTrilinear(
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT double SampleTrilinear(
   const IrradianceGrid& grid, const float* values, const glm::dvec3& index);
 
 /// One component of the scalars as floats (one virtual call per value, once).
-VTKMULTIMATERIALVOLUME_EXPORT std::vector<float> CopyComponent(vtkDataArray* scalars, int component);
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT std::vector<float> CopyComponent(vtkDataArray* scalars, int component);
 
 /**
  * Where PrefilterScalars samples the data: voxel j's footprint is centred on
@@ -160,11 +160,11 @@ struct FootprintLayout
   double Ratio[3] = { 0.0, 0.0, 0.0 }; // data points per irradiance voxel
   int Samples[3] = { 1, 1, 1 };
 };
-VTKMULTIMATERIALVOLUME_EXPORT FootprintLayout MakeFootprintLayout(
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT FootprintLayout MakeFootprintLayout(
   const int dataDims[3], const int gridDims[3]);
 /// Sample q (0 <= q[a] < Samples[a]) of the footprint of the voxel at
 /// integer index `voxel`, as a continuous data index (not clamped).
-VTKMULTIMATERIALVOLUME_EXPORT glm::dvec3 FootprintSample(
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT glm::dvec3 FootprintSample(
   const FootprintLayout& layout, const glm::dvec3& voxel, const int q[3]);
 
 /**
@@ -173,7 +173,7 @@ VTKMULTIMATERIALVOLUME_EXPORT glm::dvec3 FootprintSample(
  * clamped to the data bounds); an exact copy when the grid equals the data
  * grid. Values stay in data units. Multithreaded (vtkSMPTools).
  */
-VTKMULTIMATERIALVOLUME_EXPORT void PrefilterScalars(vtkImageData* image, vtkDataArray* scalars,
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT void PrefilterScalars(vtkImageData* image, vtkDataArray* scalars,
   int component, const IrradianceGrid& grid, std::vector<float>& prefiltered);
 
 } // namespace mmv

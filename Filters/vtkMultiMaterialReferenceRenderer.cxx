@@ -19,7 +19,6 @@
 #include "vtkMultiMaterialParameters.h"
 #include "vtkMultiMaterialPhaseFunction.h"
 #include "vtkMultiMaterialShading.h"
-#include "vtkMultiMaterialVolumeMapper.h"
 #include "vtkMultiMaterialVolumeSampling.h"
 #include "vtkObjectFactory.h"
 #include "vtkPiecewiseFunction.h"
@@ -335,18 +334,18 @@ vtkImageData* vtkMultiMaterialReferenceRenderer::RenderToImage(vtkRenderer* ren,
     vtkErrorMacro("RenderToImage needs a renderer and a volume with a mapper");
     return nullptr;
   }
-  vtkMultiMaterialVolumeMapper* mmvMapper = nullptr;
-  if (!this->AdoptVolume(volume, &mmvMapper))
+  std::optional<mmv::MapperSettings> mmvMapper;
+  if (!this->AdoptVolume(volume, mmvMapper))
   {
     return nullptr;
   }
   this->SetCutawayMapper(vtkVolumeMapper::SafeDownCast(volume->GetMapper()));
   if (mmvMapper)
   {
-    this->SetMultipleScattering(mmvMapper->GetMultipleScattering());
-    this->SetPointLightRadius(mmvMapper->GetPointLightRadius());
-    this->SetReflectionSource(mmvMapper->GetReflectionSource());
-    this->SetReflectionVisibility(mmvMapper->GetReflectionVisibility());
+    this->SetMultipleScattering(mmvMapper->MultipleScattering);
+    this->SetPointLightRadius(mmvMapper->PointLightRadius);
+    this->SetReflectionSource(mmvMapper->ReflectionSource);
+    this->SetReflectionVisibility(mmvMapper->ReflectionVisibility);
   }
   const int* size = ren->GetSize();
   return this->Render(ren, size[0], size[1]);

@@ -49,7 +49,7 @@
 #ifndef vtkMultiMaterialPathTracer_h
 #define vtkMultiMaterialPathTracer_h
 
-#include "vtkMultiMaterialVolumeModule.h" // export macro
+#include "vtkMultiMaterialVolumeFiltersModule.h" // export macro
 #include "vtkMultiMaterialVolumeScene.h"
 #include "vtkSmartPointer.h" // members
 
@@ -60,7 +60,7 @@ class vtkRenderer;
 class vtkVolume;
 class vtkVolumeProperty;
 
-class VTKMULTIMATERIALVOLUME_EXPORT vtkMultiMaterialPathTracer
+class VTKMULTIMATERIALVOLUMEFILTERS_EXPORT vtkMultiMaterialPathTracer
   : public vtkMultiMaterialVolumeScene
 {
 public:

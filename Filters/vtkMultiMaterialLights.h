@@ -11,7 +11,7 @@
 #define vtkMultiMaterialLights_h
 
 #include "vtkMultiMaterialLightModel.h"
-#include "vtkMultiMaterialVolumeModule.h" // export macro
+#include "vtkMultiMaterialVolumeFiltersModule.h" // export macro
 
 #include <string>
 #include <vector>
@@ -33,7 +33,7 @@ struct ShadingLight
 
 /// True when the light contributes at all (switched on, intensity > 0,
 /// non-black colour). Such lights cost nothing anywhere.
-VTKMULTIMATERIALVOLUME_EXPORT bool IsLightActive(vtkLight* light);
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT bool IsLightActive(vtkLight* light);
 
 /**
  * The light's geometry in object space. `radius` is epsilon of eq. 12 (0:
@@ -47,7 +47,7 @@ VTKMULTIMATERIALVOLUME_EXPORT bool IsLightActive(vtkLight* light);
  * NaN, <= 0 or >= 180 -> a point light (VTK: > 90 means no cone); a negative
  * or NaN Exponent -> 1 (vtkLight's default).
  */
-VTKMULTIMATERIALVOLUME_EXPORT LightSource MakeLightSource(vtkLight* light,
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT LightSource MakeLightSource(vtkLight* light,
   const vtkMatrix4x4* worldToObject, double radius, std::vector<std::string>* problems = nullptr);
 
 /**
@@ -55,13 +55,13 @@ VTKMULTIMATERIALVOLUME_EXPORT LightSource MakeLightSource(vtkLight* light,
  * `maxLights` of them, only the strongest (intensity times brightest colour
  * channel) are kept and `dropped` (if given) receives how many were left out.
  */
-VTKMULTIMATERIALVOLUME_EXPORT std::vector<ShadingLight> CollectLights(vtkLightCollection* lights,
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT std::vector<ShadingLight> CollectLights(vtkLightCollection* lights,
   const vtkMatrix4x4* worldToObject, double radius, int maxLights, int* dropped = nullptr,
   std::vector<std::string>* problems = nullptr);
 
 /// Checks a PointLightRadius (eq. 12's epsilon; 0 selects VTK's attenuation):
 /// a negative or non-finite radius returns 0 and describes why in `why`.
-VTKMULTIMATERIALVOLUME_EXPORT double ValidPointLightRadius(double radius, std::string* why);
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT double ValidPointLightRadius(double radius, std::string* why);
 
 } // namespace mmv
 

@@ -1,6 +1,6 @@
 /**
  * @file  vtkMaterialLibraryBuiltins.h
- * @brief The built-in material presets: the JSON files of Rendering/Materials/,
+ * @brief The built-in material presets: the JSON files of Filters/Materials/,
  *        embedded at build time. The table ends with a {nullptr, nullptr} entry.
  */
 #ifndef vtkMaterialLibraryBuiltins_h

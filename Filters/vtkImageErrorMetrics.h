@@ -25,13 +25,13 @@
 #ifndef vtkImageErrorMetrics_h
 #define vtkImageErrorMetrics_h
 
-#include "vtkMultiMaterialVolumeModule.h" // export macro
+#include "vtkMultiMaterialVolumeFiltersModule.h" // export macro
 #include "vtkObject.h"
 #include "vtkSmartPointer.h" // return type
 
 class vtkImageData;
 
-class VTKMULTIMATERIALVOLUME_EXPORT vtkImageErrorMetrics : public vtkObject
+class VTKMULTIMATERIALVOLUMEFILTERS_EXPORT vtkImageErrorMetrics : public vtkObject
 {
 public:
   static vtkImageErrorMetrics* New();

@@ -20,7 +20,7 @@
 #ifndef vtkValueGradient_h
 #define vtkValueGradient_h
 
-#include "vtkMultiMaterialVolumeModule.h" // export macro
+#include "vtkMultiMaterialVolumeFiltersModule.h" // export macro
 #include "vtkType.h"
 
 #include <string>
@@ -37,7 +37,7 @@ namespace mmv
  * differences give 0 along that axis: NaN must not reach the shading.
  * Multithreaded (vtkSMPTools).
  */
-VTKMULTIMATERIALVOLUME_EXPORT void ComputeValueGradients(vtkDataArray* scalars, int component,
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT void ComputeValueGradients(vtkDataArray* scalars, int component,
   const int dims[3], const double range[2], std::vector<float>& gradients);
 
 /**
@@ -48,8 +48,8 @@ VTKMULTIMATERIALVOLUME_EXPORT void ComputeValueGradients(vtkDataArray* scalars, 
  * MaxGradientSmoothing it is clamped, with a reason.
  */
 constexpr double MaxGradientSmoothing = 4.0;
-VTKMULTIMATERIALVOLUME_EXPORT double ValidGradientSmoothing(double sigma, std::string* why);
-VTKMULTIMATERIALVOLUME_EXPORT void GradientSmoothingVoxels(
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT double ValidGradientSmoothing(double sigma, std::string* why);
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT void GradientSmoothingVoxels(
   double sigma, const double spacing[3], double voxels[3]);
 
 /**
@@ -60,7 +60,7 @@ VTKMULTIMATERIALVOLUME_EXPORT void GradientSmoothingVoxels(
  * in x and y) turns at every voxel face; in the image that shows as stripes
  * at the voxel spacing (docs/banding.md), which a sigma of one voxel removes.
  */
-VTKMULTIMATERIALVOLUME_EXPORT void SmoothVectors(
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT void SmoothVectors(
   std::vector<float>& values, int components, const int dims[3], const double sigma[3]);
 
 /**
@@ -68,7 +68,7 @@ VTKMULTIMATERIALVOLUME_EXPORT void SmoothVectors(
  * resampled trilinearly to a `newDims` grid spanning the same points (point j
  * of an axis at old point j (dims - 1) / (newDims - 1)).
  */
-VTKMULTIMATERIALVOLUME_EXPORT std::vector<float> ResampleVectors(const std::vector<float>& values,
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT std::vector<float> ResampleVectors(const std::vector<float>& values,
   int components, const int dims[3], const int newDims[3]);
 
 } // namespace mmv

@@ -19,7 +19,7 @@
 #define vtkMultiMaterialCutaway_h
 
 #include "vtkIrradianceGrid.h"
-#include "vtkMultiMaterialVolumeModule.h" // export macro
+#include "vtkMultiMaterialVolumeFiltersModule.h" // export macro
 
 #include <glm/glm.hpp>
 
@@ -68,16 +68,16 @@ struct IndexCutaway
 /// The mapper's cropping and clipping planes in object space (worldToObject:
 /// the inverse of the volume's matrix). Planes beyond MaxCutPlanes are
 /// dropped and counted in `dropped` (if given).
-VTKMULTIMATERIALVOLUME_EXPORT Cutaway MakeCutaway(
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT Cutaway MakeCutaway(
   vtkVolumeMapper* mapper, const vtkMatrix4x4* worldToObject, int* dropped = nullptr);
 
 /// The same from the settings themselves (the CPU filter's), planes in world
 /// coordinates (worldToObject null: identity).
-VTKMULTIMATERIALVOLUME_EXPORT Cutaway MakeCutaway(bool cropping, const double croppingPlanes[6],
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT Cutaway MakeCutaway(bool cropping, const double croppingPlanes[6],
   int croppingFlags, vtkPlaneCollection* planes, const vtkMatrix4x4* worldToObject,
   int* dropped = nullptr);
 
-VTKMULTIMATERIALVOLUME_EXPORT IndexCutaway ToIndexSpace(
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT IndexCutaway ToIndexSpace(
   const Cutaway& cutaway, const IrradianceGrid& grid);
 
 /// True where the cutaway removes the point at continuous index `index`.
@@ -110,7 +110,7 @@ inline bool mmvIsCut(const IndexCutaway& c, const glm::dvec3& index)
 }
 
 /// The GLSL `#define` of MaxCutPlanes (MMV_MAX_CUT_PLANES).
-VTKMULTIMATERIALVOLUME_EXPORT std::string CutawayGLSLPrelude();
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT std::string CutawayGLSLPrelude();
 
 } // namespace mmv
 

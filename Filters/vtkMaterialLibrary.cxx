@@ -286,7 +286,7 @@ void vtkMaterialLibrary::ResetToBuiltins()
     std::vector<Preset> presets;
     std::string why;
     // The builtins are checked like user files; a failure is a bug in
-    // Rendering/Materials/, so it is reported rather than hidden.
+    // Filters/Materials/, so it is reported rather than hidden.
     if (!ParsePresets(builtin->JSON, presets, why))
     {
       vtkErrorMacro("Built-in material \"" << builtin->Name << "\" is invalid: " << why << ".");

@@ -13,10 +13,10 @@
 #ifndef vtkMultiMaterialLiveObjects_h
 #define vtkMultiMaterialLiveObjects_h
 
-#include "vtkMultiMaterialVolumeModule.h" // export macro
+#include "vtkMultiMaterialVolumeFiltersModule.h" // export macro
 #include "vtkObject.h"
 
-class VTKMULTIMATERIALVOLUME_EXPORT vtkMultiMaterialLiveObjects : public vtkObject
+class VTKMULTIMATERIALVOLUMEFILTERS_EXPORT vtkMultiMaterialLiveObjects : public vtkObject
 {
 public:
   static vtkMultiMaterialLiveObjects* New();

@@ -1,9 +1,9 @@
 #include "vtkMultiMaterialVolumeScene.h"
 
+#include "vtkAbstractVolumeMapper.h"
 #include "vtkImageData.h"
 #include "vtkMaterialTransferFunction.h"
 #include "vtkMatrix4x4.h"
-#include "vtkMultiMaterialVolumeMapper.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkRenderer.h"
 #include "vtkVolume.h"
@@ -68,9 +68,9 @@ vtkMatrix4x4* vtkMultiMaterialVolumeScene::GetVolumeMatrix()
 }
 
 bool vtkMultiMaterialVolumeScene::AdoptVolume(
-  vtkVolume* volume, vtkMultiMaterialVolumeMapper** mmvMapper)
+  vtkVolume* volume, std::optional<mmv::MapperSettings>& mmvMapper)
 {
-  *mmvMapper = nullptr;
+  mmvMapper.reset();
   if (!volume || !volume->GetMapper())
   {
     vtkErrorMacro("RenderToImage needs a renderer and a volume with a mapper");
@@ -80,10 +80,11 @@ bool vtkMultiMaterialVolumeScene::AdoptVolume(
   this->SetInputData(vtkImageData::SafeDownCast(mapper->GetDataSetInput()));
   this->SetVolumeProperty(volume->GetProperty());
   this->SetVolumeMatrix(volume->GetMatrix());
-  *mmvMapper = vtkMultiMaterialVolumeMapper::SafeDownCast(mapper);
-  if (*mmvMapper)
+  mmv::MapperSettings settings;
+  if (mmv::ReadMapperSettings(mapper, settings))
   {
-    this->SetMaterialTransferFunction((*mmvMapper)->GetMaterialTransferFunction());
+    mmvMapper = settings;
+    this->SetMaterialTransferFunction(settings.Materials);
   }
   return true;
 }

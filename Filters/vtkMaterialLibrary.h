@@ -4,7 +4,7 @@
  *
  * A preset is one set of the material parameters plus a display colour
  * for swatches. The built-in presets are the JSON files of
- * Rendering/Materials/, embedded in the library at build time; more can be
+ * Filters/Materials/, embedded in the library at build time; more can be
  * read from files and written back.
  *
  * JSON form of one preset:
@@ -16,12 +16,12 @@
 #ifndef vtkMaterialLibrary_h
 #define vtkMaterialLibrary_h
 
-#include "vtkMultiMaterialVolumeModule.h" // export macro
+#include "vtkMultiMaterialVolumeFiltersModule.h" // export macro
 #include "vtkObject.h"
 
 #include <string> // for JSON strings
 
-class VTKMULTIMATERIALVOLUME_EXPORT vtkMaterialLibrary : public vtkObject
+class VTKMULTIMATERIALVOLUMEFILTERS_EXPORT vtkMaterialLibrary : public vtkObject
 {
 public:
   /// A new library holding the built-in presets.

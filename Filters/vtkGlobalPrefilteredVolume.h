@@ -31,7 +31,7 @@
 #ifndef __VTK_WRAP__
 #include "vtkIrradianceGrid.h" // IrradianceGrid
 #endif
-#include "vtkMultiMaterialVolumeModule.h" // export macro
+#include "vtkMultiMaterialVolumeFiltersModule.h" // export macro
 #include "vtkObject.h"
 
 #include <string> // error text
@@ -40,7 +40,7 @@
 class vtkDataArray;
 class vtkImageData;
 
-class VTKMULTIMATERIALVOLUME_EXPORT vtkGlobalPrefilteredVolume : public vtkObject
+class VTKMULTIMATERIALVOLUMEFILTERS_EXPORT vtkGlobalPrefilteredVolume : public vtkObject
 {
 public:
   static vtkGlobalPrefilteredVolume* New();

@@ -60,7 +60,7 @@
 #ifndef vtkMultiMaterialReferenceRenderer_h
 #define vtkMultiMaterialReferenceRenderer_h
 
-#include "vtkMultiMaterialVolumeModule.h" // export macro
+#include "vtkMultiMaterialVolumeFiltersModule.h" // export macro
 #include "vtkMultiMaterialVolumeScene.h"
 #include "vtkSmartPointer.h" // members
 
@@ -72,7 +72,7 @@ class vtkRenderer;
 class vtkVolume;
 class vtkVolumeProperty;
 
-class VTKMULTIMATERIALVOLUME_EXPORT vtkMultiMaterialReferenceRenderer
+class VTKMULTIMATERIALVOLUMEFILTERS_EXPORT vtkMultiMaterialReferenceRenderer
   : public vtkMultiMaterialVolumeScene
 {
 public:

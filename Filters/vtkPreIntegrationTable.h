@@ -45,7 +45,7 @@
 #ifndef vtkPreIntegrationTable_h
 #define vtkPreIntegrationTable_h
 
-#include "vtkMultiMaterialVolumeModule.h" // export macro
+#include "vtkMultiMaterialVolumeFiltersModule.h" // export macro
 #include "vtkObject.h"
 #include "vtkSmartPointer.h" // members
 
@@ -53,7 +53,7 @@ class vtkColorTransferFunction;
 class vtkPiecewiseFunction;
 class vtkMaterialTransferFunction;
 
-class VTKMULTIMATERIALVOLUME_EXPORT vtkPreIntegrationTable : public vtkObject
+class VTKMULTIMATERIALVOLUMEFILTERS_EXPORT vtkPreIntegrationTable : public vtkObject
 {
 public:
   static vtkPreIntegrationTable* New();

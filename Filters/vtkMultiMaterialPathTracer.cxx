@@ -11,7 +11,6 @@
 #include "vtkMultiMaterialParameters.h"
 #include "vtkMultiMaterialPhaseFunction.h"
 #include "vtkMultiMaterialShading.h"
-#include "vtkMultiMaterialVolumeMapper.h"
 #include "vtkMultiMaterialVolumeSampling.h"
 #include "vtkObjectFactory.h"
 #include "vtkPiecewiseFunction.h"
@@ -551,14 +550,14 @@ vtkImageData* vtkMultiMaterialPathTracer::RenderToImage(vtkRenderer* ren, vtkVol
     vtkErrorMacro("RenderToImage needs a renderer and a volume with a mapper");
     return nullptr;
   }
-  vtkMultiMaterialVolumeMapper* mmvMapper = nullptr;
-  if (!this->AdoptVolume(volume, &mmvMapper))
+  std::optional<mmv::MapperSettings> mmvMapper;
+  if (!this->AdoptVolume(volume, mmvMapper))
   {
     return nullptr;
   }
   if (mmvMapper)
   {
-    this->SetPointLightRadius(mmvMapper->GetPointLightRadius());
+    this->SetPointLightRadius(mmvMapper->PointLightRadius);
   }
   const int* size = ren->GetSize();
   return this->Render(ren, size[0], size[1]);

@@ -19,12 +19,12 @@
 #ifndef vtkMaterialTransferFunction_h
 #define vtkMaterialTransferFunction_h
 
-#include "vtkMultiMaterialVolumeModule.h" // export macro
+#include "vtkMultiMaterialVolumeFiltersModule.h" // export macro
 #include "vtkObject.h"
 
 #include <string> // for JSON strings
 
-class VTKMULTIMATERIALVOLUME_EXPORT vtkMaterialTransferFunction : public vtkObject
+class VTKMULTIMATERIALVOLUMEFILTERS_EXPORT vtkMaterialTransferFunction : public vtkObject
 {
 public:
   static vtkMaterialTransferFunction* New();
