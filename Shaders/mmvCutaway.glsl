@@ -1,6 +1,6 @@
 // What the mapper's cropping region and clipping planes remove, in the
 // irradiance grid's index space: the shadow rays see it as empty. Mirrors
-// mmvIsCut() of Rendering/vtkMultiMaterialCutaway.h line for line. Needs
+// mmvIsCut() of Filters/vtkMultiMaterialCutaway.h line for line. Needs
 // MMV_MAX_CUT_PLANES (mmv::CutawayGLSLPrelude()). Without MMV_CUTAWAY (the
 // pass defines it only while something is cut) nothing is cut and the test
 // compiles away: it ran at every shadow-ray step and cost a third of the

@@ -1,7 +1,7 @@
 // The Henyey-Greenstein phase function relative to isotropic scattering,
 // 4 pi HG(g, cos) = (1 - g^2) / (1 + g^2 - 2 g cos)^1.5: 1 at g = 0 (exactly,
 // in float), so the particle term of the isotropic model is its g = 0 case.
-// Mirrors mmvHenyeyGreensteinRelative in Rendering/vtkMultiMaterialPhaseFunction.h;
+// Mirrors mmvHenyeyGreensteinRelative in Filters/vtkMultiMaterialPhaseFunction.h;
 // TestShaderMirror runs both. Compiled in only when some material has g != 0
 // (MMV_USE_ANISOTROPY).
 //

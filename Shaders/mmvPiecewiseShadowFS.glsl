@@ -1,4 +1,4 @@
-// Piecewise shadow rays of one directional light (Rendering/vtkShadowSweep.h),
+// Piecewise shadow rays of one directional light (Filters/vtkShadowSweep.h),
 // one fragment per voxel of the chunk being drawn: the ray runs toward the
 // light up to slice `sweepPlane` of axis `sweepAxis`, where it takes the
 // transmittance an earlier chunk wrote into this same texture (a texture

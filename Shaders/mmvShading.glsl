@@ -1,6 +1,6 @@
 // Shading of one ray segment: Zhang & Ma eq. 16 (Blinn-Phong with the ambient
 // term inside the per-light sum, so occlusion darkens it too) and the
-// environment term of eq. 17. Mirrors Rendering/vtkMultiMaterialShading.h.
+// environment term of eq. 17. Mirrors Filters/vtkMultiMaterialShading.h.
 // Prepended after the variant's defines, the light uniforms, mmvLightModel.glsl
 // and (when the variant uses them) mmvPhaseFunction.glsl and mmvEmission.glsl.
 //

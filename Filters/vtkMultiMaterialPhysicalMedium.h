@@ -17,7 +17,7 @@
 #define vtkMultiMaterialPhysicalMedium_h
 
 #include "vtkMultiMaterialParameters.h"
-#include "vtkMultiMaterialVolumeModule.h" // export macro
+#include "vtkMultiMaterialVolumeFiltersModule.h" // export macro
 
 #include <string>
 
@@ -64,7 +64,7 @@ constexpr PhysicalMediumFit PhysicalMediumCoefficients = { 2.47, 0.364, 0.244, 0
   4.6, 1.34, 1.87, 3.8, 0.88 };
 
 /// A physically derived preset of the material library
-/// (Rendering/Materials/<Name>.json): PhysicalMediumToMaterial of these
+/// (Filters/Materials/<Name>.json): PhysicalMediumToMaterial of these
 /// values, rounded to 6 digits (TestPhysicalMedium checks that they agree).
 struct PhysicalPreset
 {
@@ -91,7 +91,7 @@ constexpr PhysicalPreset PhysicalPresets[] = {
  * Returns false and explains in `why` (parameters untouched) for input
  * outside that domain or not finite.
  */
-VTKMULTIMATERIALVOLUME_EXPORT bool PhysicalMediumToMaterial(double albedo, double g,
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT bool PhysicalMediumToMaterial(double albedo, double g,
   double extinctionPerVoxel, double parameters[MaterialParameterCount],
   std::string* why = nullptr);
 
