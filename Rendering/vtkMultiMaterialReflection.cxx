@@ -3,6 +3,7 @@
 #include "vtkIrradianceGrid.h"
 #include "vtkIrradianceVolumePass.h"
 #include "vtkMultiMaterialEnvironment.h"
+#include "vtkMultiMaterialEnvironmentTexture.h"
 #include "vtkObjectFactory.h"
 #include "vtkShaderProgram.h"
 #include "vtkTextureObject.h"
@@ -16,12 +17,12 @@ vtkMultiMaterialReflection::~vtkMultiMaterialReflection() = default;
 
 vtkMultiMaterialEnvironment* vtkMultiMaterialReflection::GetEnvironment()
 {
-  return this->Environment;
+  return this->Environment->GetEnvironment();
 }
 
 int vtkMultiMaterialReflection::GetEnvironmentKind() const
 {
-  return this->Environment->GetKind();
+  return this->Environment->GetEnvironment()->GetKind();
 }
 
 void vtkMultiMaterialReflection::Update(vtkRenderer* ren, vtkMatrix4x4* objectToWorld,

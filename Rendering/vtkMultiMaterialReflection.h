@@ -3,8 +3,8 @@
  * @brief   The environment reflection of Zhang & Ma eq. 17 for the GPU ray
  *          caster: where c_r comes from and how I(x, w_r) is estimated.
  *
- * Consumer of two producers: the environment (vtkMultiMaterialEnvironment,
- * from the renderer) and the pre-filtered extinction of the irradiance pass
+ * Consumer of two producers: the environment (vtkMultiMaterialEnvironment
+ * from the renderer, bound by vtkMultiMaterialEnvironmentTexture) and the pre-filtered extinction of the irradiance pass
  * (vtkIrradianceVolumePass: its scalars and shadow-opacity table, marched as
  * its shadow rays march them). Gives the shader variant its
  * MMV_ENVIRONMENT and MMV_REFLECTION_VISIBILITY, binds the textures and sets
@@ -27,6 +27,7 @@
 class vtkIrradianceVolumePass;
 class vtkMatrix4x4;
 class vtkMultiMaterialEnvironment;
+class vtkMultiMaterialEnvironmentTexture;
 class vtkRenderer;
 class vtkShaderProgram;
 namespace mmv
@@ -72,7 +73,7 @@ private:
   vtkMultiMaterialReflection(const vtkMultiMaterialReflection&) = delete;
   void operator=(const vtkMultiMaterialReflection&) = delete;
 
-  vtkNew<vtkMultiMaterialEnvironment> Environment;
+  vtkNew<vtkMultiMaterialEnvironmentTexture> Environment;
   int Visibility = 0;
   vtkIrradianceVolumePass* Pass = nullptr; // not owned
   float ToIndex[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };

@@ -14,6 +14,7 @@
 #include "vtkTexture.h"
 #include "vtkUnsignedCharArray.h"
 
+#include "mmvTestEnvironments.h"
 #include "mmvTestScenes.h"
 #include "mmvTestUtilities.h"
 
@@ -26,7 +27,9 @@
 
 namespace
 {
-using Colour = std::function<glm::dvec3(const glm::dvec3&)>;
+using mmvtest::MakeCubeMap;
+using mmvtest::MakeEquirectangular;
+using mmvtest::MakeImage;
 
 // Two colours split by the plane z = 0 of the environment's frame: red
 // toward -z of the frame (world +z with the default frame: the camera's
@@ -36,75 +39,6 @@ const glm::dvec3 Blue(0.0, 0.0, 1.0);
 glm::dvec3 TwoColours(const glm::dvec3& e)
 {
   return e.z < 0.0 ? Red : Blue;
-}
-
-vtkSmartPointer<vtkImageData> MakeImage(
-  int width, int height, const std::function<glm::dvec3(double, double)>& colour)
-{
-  auto image = vtkSmartPointer<vtkImageData>::New();
-  image->SetDimensions(width, height, 1);
-  vtkNew<vtkUnsignedCharArray> rgb;
-  rgb->SetNumberOfComponents(3);
-  rgb->SetNumberOfTuples(static_cast<vtkIdType>(width) * height);
-  for (int j = 0; j < height; ++j)
-  {
-    for (int i = 0; i < width; ++i)
-    {
-      const glm::dvec3 c = colour((i + 0.5) / width, (j + 0.5) / height);
-      for (int k = 0; k < 3; ++k)
-      {
-        rgb->SetValue(3 * (static_cast<vtkIdType>(j) * width + i) + k,
-          static_cast<unsigned char>(std::lround(255.0 * glm::clamp(c[k], 0.0, 1.0))));
-      }
-    }
-  }
-  image->GetPointData()->SetScalars(rgb);
-  return image;
-}
-
-// The frame direction of texel (s, t) of cube face `face` (OpenGL's table,
-// inverted): the faces a CPU would write for colour(direction).
-glm::dvec3 CubeFaceDirection(int face, double s, double t)
-{
-  const double sc = 2.0 * s - 1.0;
-  const double tc = 2.0 * t - 1.0;
-  switch (face)
-  {
-    case 0: return glm::dvec3(1.0, -tc, -sc);
-    case 1: return glm::dvec3(-1.0, -tc, sc);
-    case 2: return glm::dvec3(sc, 1.0, tc);
-    case 3: return glm::dvec3(sc, -1.0, -tc);
-    case 4: return glm::dvec3(sc, -tc, 1.0);
-    default: return glm::dvec3(-sc, -tc, -1.0);
-  }
-}
-
-vtkSmartPointer<vtkTexture> MakeCubeMap(const Colour& colour, int size = 16)
-{
-  auto texture = vtkSmartPointer<vtkTexture>::New();
-  texture->CubeMapOn();
-  texture->InterpolateOff();
-  for (int face = 0; face < 6; ++face)
-  {
-    texture->SetInputData(face, MakeImage(size, size, [&](double s, double t) {
-      return colour(CubeFaceDirection(face, s, t));
-    }));
-  }
-  return texture;
-}
-
-vtkSmartPointer<vtkTexture> MakeEquirectangular(const Colour& colour, int width = 64)
-{
-  auto texture = vtkSmartPointer<vtkTexture>::New();
-  texture->InterpolateOff();
-  const double pi = 3.14159265358979323846;
-  texture->SetInputData(MakeImage(width, width / 2, [&](double u, double v) {
-    const double longitude = (u - 0.5) * 2.0 * pi;
-    const double latitude = (v - 0.5) * pi;
-    return colour(glm::dvec3(std::cos(latitude) * std::sin(longitude), std::sin(latitude),
-      std::cos(latitude) * std::cos(longitude)));
-  }));
-  return texture;
 }
 
 // A mirror sphere: the signed distance R - |p - c| (opaque inside), r = 1

@@ -16,17 +16,20 @@
  * texture whose input is not a 2D image (a 3D image, a cube map without six
  * equal 2D faces) or an empty image (no points, no scalars).
  *
- * CPU (Lookup(), for the reference renderer) and GPU (Activate(),
- * SetUniforms(), for Shaders/mmvReflection.glsl) read the same texels: the
- * CPU samples the images as OpenGL does (nearest or bilinear as the
- * texture's Interpolate, repeat or clamp as its Repeat, sRGB decoded when the
- * texture says so; 8-bit values / 255, others as they are).
+ * This is the CPU side (no OpenGL): Update() reads the texture's input
+ * images (vtkImageData, not the GL texture) and Lookup() samples them as
+ * OpenGL does (nearest or bilinear as the texture's Interpolate, repeat or
+ * clamp as its Repeat, sRGB decoded when the texture says so; 8-bit values /
+ * 255, others as they are), for the reference renderer. The GPU side,
+ * vtkMultiMaterialEnvironmentTexture (Rendering/), binds the same texture and
+ * sets the uniforms of Shaders/mmvReflection.glsl from the frame and colours
+ * read here, so both read the same texels.
  */
 #ifndef vtkMultiMaterialEnvironment_h
 #define vtkMultiMaterialEnvironment_h
 
-#include "vtkMultiMaterialEnvironmentLookup.h" // mmv::ReflectionSource, EnvironmentKind
-#include "vtkMultiMaterialVolumeModule.h"      // export macro
+#include "vtkMultiMaterialEnvironmentLookup.h"    // mmv::ReflectionSource, EnvironmentKind
+#include "vtkMultiMaterialVolumeFiltersModule.h" // export macro
 #include "vtkObject.h"
 #include "vtkSmartPointer.h" // images
 
@@ -37,10 +40,9 @@
 class vtkImageData;
 class vtkMatrix4x4;
 class vtkRenderer;
-class vtkShaderProgram;
 class vtkTexture;
 
-class VTKMULTIMATERIALVOLUME_EXPORT vtkMultiMaterialEnvironment : public vtkObject
+class VTKMULTIMATERIALVOLUMEFILTERS_EXPORT vtkMultiMaterialEnvironment : public vtkObject
 {
 public:
   static vtkMultiMaterialEnvironment* New();
@@ -62,12 +64,18 @@ public:
   glm::dvec3 Lookup(const glm::dvec3& d) const;
 
   ///@{
-  /// GPU: uploads (if needed) and binds the texture, sets the uniforms of
-  /// Shaders/mmvReflection.glsl, unbinds. Between Activate() and Deactivate()
-  /// the renderer of the last Update() must be current.
-  void Activate();
-  void Deactivate();
-  void SetUniforms(vtkShaderProgram* program) const;
+  /// What the GPU side uploads and binds: the renderer's texture (null for
+  /// the background), whether its images are grey (one or two components),
+  /// the texture's frame in object space (right, up, front) and the
+  /// background gradient (object-space view-up, bottom and top colours).
+  vtkTexture* GetTexture() const;
+  bool GetGrey() const;
+  const glm::dvec3& GetFrameRight() const { return this->Right; }
+  const glm::dvec3& GetFrameUp() const { return this->Up; }
+  const glm::dvec3& GetFrameFront() const { return this->Front; }
+  const glm::dvec3& GetViewUp() const { return this->ViewUp; }
+  const glm::dvec3& GetBackgroundBottom() const { return this->Bottom; }
+  const glm::dvec3& GetBackgroundTop() const { return this->Top; }
   ///@}
 
 protected:
@@ -85,13 +93,11 @@ private:
   glm::dvec3 Texel(int image, int i, int j) const;
 
   int Kind = mmv::BackgroundEnvironment;
-  vtkRenderer* Renderer = nullptr; // of the last Update(), not owned
   vtkSmartPointer<vtkTexture> Texture;
   std::vector<vtkSmartPointer<vtkImageData>> Images;
   bool Interpolate = false;
   bool Repeat = true;
   bool SRGB = false;
-  bool Active = false;
   // The frame in object space (world axes pulled back by objectToWorld).
   glm::dvec3 Right{ 1.0, 0.0, 0.0 };
   glm::dvec3 Up{ 0.0, 1.0, 0.0 };

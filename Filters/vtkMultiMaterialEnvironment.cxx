@@ -6,14 +6,13 @@
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
 #include "vtkMatrix4x4.h"
+#include "vtkNew.h"
 #include "vtkMultiMaterialShading.h"
 #include "vtkMultiMaterialVolumeSampling.h"
 #include "vtkObjectFactory.h"
-#include "vtkOpenGLTexture.h"
 #include "vtkPointData.h"
 #include "vtkRenderer.h"
-#include "vtkShaderProgram.h"
-#include "vtkTextureObject.h"
+#include "vtkTexture.h"
 
 #include <algorithm>
 #include <cmath>
@@ -49,7 +48,6 @@ glm::dvec3 Cross(const double* a, const double* b)
 void vtkMultiMaterialEnvironment::Update(vtkRenderer* ren, vtkMatrix4x4* objectToWorld,
   int source, std::vector<std::string>* problems)
 {
-  this->Renderer = ren;
   vtkNew<vtkMatrix4x4> worldToObject;
   vtkMatrix4x4::Invert(objectToWorld, worldToObject);
   this->ViewUp = mmv::ViewUpInObject(ren->GetActiveCamera(), worldToObject);
@@ -217,51 +215,15 @@ glm::dvec3 vtkMultiMaterialEnvironment::Lookup(const glm::dvec3& d) const
   return this->SampleImage(face, st, false);
 }
 
-//------------------------------------------------------------------------------
-void vtkMultiMaterialEnvironment::Activate()
+vtkTexture* vtkMultiMaterialEnvironment::GetTexture() const
 {
-  auto* texture = vtkOpenGLTexture::SafeDownCast(this->Texture);
-  if (this->Kind == mmv::BackgroundEnvironment || !texture || !this->Renderer)
-  {
-    return;
-  }
-  // Uploads when the images changed, and binds a free texture unit.
-  texture->Load(this->Renderer);
-  this->Active = texture->GetTextureObject() != nullptr;
+  return this->Texture;
 }
 
-void vtkMultiMaterialEnvironment::Deactivate()
+bool vtkMultiMaterialEnvironment::GetGrey() const
 {
-  if (this->Active)
-  {
-    vtkOpenGLTexture::SafeDownCast(this->Texture)->PostRender(this->Renderer);
-    this->Active = false;
-  }
-}
-
-void vtkMultiMaterialEnvironment::SetUniforms(vtkShaderProgram* program) const
-{
-  auto vec = [](const glm::dvec3& v) {
-    return std::vector<float>{ static_cast<float>(v.x), static_cast<float>(v.y),
-      static_cast<float>(v.z) };
-  };
-  program->SetUniform3f("mmv_environmentUp", vec(this->ViewUp).data());
-  program->SetUniform3f("mmv_environmentBottom", vec(this->Bottom).data());
-  program->SetUniform3f("mmv_environmentTop", vec(this->Top).data());
-  if (this->Kind == mmv::BackgroundEnvironment)
-  {
-    return;
-  }
-  program->SetUniform3f("mmv_environmentFrameRight", vec(this->Right).data());
-  program->SetUniform3f("mmv_environmentFrameUp", vec(this->Up).data());
-  program->SetUniform3f("mmv_environmentFrameFront", vec(this->Front).data());
-  vtkDataArray* scalars = this->Images[0]->GetPointData()->GetScalars();
-  program->SetUniformi("mmv_environmentGrey", scalars->GetNumberOfComponents() < 3 ? 1 : 0);
-  auto* texture = vtkOpenGLTexture::SafeDownCast(this->Texture);
-  if (this->Active && texture)
-  {
-    program->SetUniformi("mmv_environmentTexture", texture->GetTextureObject()->GetTextureUnit());
-  }
+  return !this->Images.empty() &&
+    this->Images[0]->GetPointData()->GetScalars()->GetNumberOfComponents() < 3;
 }
 
 //------------------------------------------------------------------------------
