@@ -66,8 +66,8 @@ std::vector<glm::dvec3> RandomDirections(int count)
 // The largest colour difference between Lookup(d) and DirectionColour of d's
 // frame direction, for a renderer whose environment up is world +z and
 // right world +x (front = up x right = world +y): e = (w.x, w.z, w.y) for the
-// world direction w of the object direction d.
-double LargestLookupError(vtkTexture* texture)
+// world direction w of the object direction d. The texture must give `kind`.
+double LargestLookupError(vtkTexture* texture, int kind)
 {
   vtkNew<vtkRenderer> renderer;
   renderer->SetEnvironmentTexture(texture);
@@ -80,6 +80,8 @@ double LargestLookupError(vtkTexture* texture)
   environment->Update(renderer, objectToWorld, mmv::ReflectEnvironmentTexture, &problems);
   EXPECT_TRUE(problems.empty()) << problems.front();
   EXPECT_EQ(environment->GetTexture(), texture);
+  EXPECT_EQ(environment->GetKind(), kind);
+  EXPECT_FALSE(environment->GetGrey());
   double largest = 0.0;
   for (const glm::dvec3& d : RandomDirections(2000))
   {
@@ -97,18 +99,11 @@ TEST(Environment, CubeMapLookupIsTheColourOfTheDirectionInTheRenderersFrame)
 {
   constexpr int size = 64;
   auto texture = mmvtest::MakeCubeMap(DirectionColour, size);
-  vtkNew<vtkRenderer> renderer;
-  renderer->SetEnvironmentTexture(texture);
-  vtkNew<vtkMultiMaterialEnvironment> environment;
-  vtkNew<vtkMatrix4x4> identity;
-  environment->Update(renderer, identity, mmv::ReflectEnvironmentTexture, nullptr);
-  EXPECT_EQ(environment->GetKind(), mmv::CubeMapEnvironment);
-  EXPECT_FALSE(environment->GetGrey());
 
   // Nearest texel: the direction is off by at most half a texel diagonal,
   // about sqrt(2) / size, and the colour by half of that, plus 8-bit
   // rounding (0.5 / 255 per channel).
-  const double largest = LargestLookupError(texture);
+  const double largest = LargestLookupError(texture, mmv::CubeMapEnvironment);
   std::cout << "cube map " << size << "^2: largest colour error " << largest << "\n";
   EXPECT_LT(largest, 0.5 * std::sqrt(2.0) / size + std::sqrt(3.0) * 0.5 / 255.0);
 }
@@ -117,18 +112,12 @@ TEST(Environment, EquirectangularLookupIsTheColourOfTheDirectionInTheRenderersFr
 {
   constexpr int width = 128;
   auto texture = mmvtest::MakeEquirectangular(DirectionColour, width);
-  vtkNew<vtkRenderer> renderer;
-  renderer->SetEnvironmentTexture(texture);
-  vtkNew<vtkMultiMaterialEnvironment> environment;
-  vtkNew<vtkMatrix4x4> identity;
-  environment->Update(renderer, identity, mmv::ReflectEnvironmentTexture, nullptr);
-  EXPECT_EQ(environment->GetKind(), mmv::EquirectangularEnvironment);
 
   // A texel spans 2 pi / width in longitude and latitude: the direction is
   // off by at most pi / width * sqrt(2), the colour by half of that, plus
   // 8-bit rounding.
   const double pi = 3.14159265358979323846;
-  const double largest = LargestLookupError(texture);
+  const double largest = LargestLookupError(texture, mmv::EquirectangularEnvironment);
   std::cout << "equirectangular " << width << " x " << width / 2 << ": largest colour error "
             << largest << "\n";
   EXPECT_LT(largest, 0.5 * std::sqrt(2.0) * pi / width + std::sqrt(3.0) * 0.5 / 255.0);
