@@ -290,4 +290,21 @@ double ValidIrradianceScale(double scale, std::string* why)
   return above ? 1.0 : 0.0;
 }
 
+double ValidIrradianceErrorBound(double bound, std::string* why)
+{
+  if (bound >= 0.0 && bound <= MaxIrradianceErrorBoundDB)
+  {
+    return bound;
+  }
+  const bool above = bound > MaxIrradianceErrorBoundDB;
+  if (why)
+  {
+    *why = "IrradianceErrorBound " + std::to_string(bound) +
+      (above ? " dB is above " + std::to_string(MaxIrradianceErrorBoundDB) +
+          " (no coarser grid can reach it); using that"
+             : " must be >= 0 dB; using 0 (no error probe)");
+  }
+  return above ? MaxIrradianceErrorBoundDB : 0.0;
+}
+
 } // namespace mmv

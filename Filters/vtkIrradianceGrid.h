@@ -101,6 +101,11 @@ VTKMULTIMATERIALVOLUMEFILTERS_EXPORT void ComputeIrradianceDimensions(const int 
 /// `why` (if given) says so; valid values come back unchanged.
 VTKMULTIMATERIALVOLUMEFILTERS_EXPORT double ValidIrradianceScale(double scale, std::string* why);
 
+/// Checks an IrradianceErrorBound (dB; 0: no error probe): NaN or negative
+/// returns 0, above mmv::MaxIrradianceErrorBoundDB returns that maximum, and
+/// `why` (if given) says so; valid values come back unchanged.
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT double ValidIrradianceErrorBound(double bound, std::string* why);
+
 /// The irradiance resolution a frame uses, and why (for logs and the UI).
 struct IrradianceResolution
 {

@@ -1363,30 +1363,55 @@ const std::vector<mmv::LightSource>& vtkIrradianceVolumePass::GetComputedLights(
 bool vtkIrradianceVolumePass::ReadBack(
   vtkOpenGLRenderWindow* context, int light, std::vector<float>& values)
 {
-  vtkInternals& internals = *this->Internals;
-  vtkTextureObject* texture = this->GetIrradianceTexture(light / LightsPerTexture);
-  if (!context || !texture || !internals.Framebuffer || light < 0 ||
-    light >= static_cast<int>(internals.Lights.size()))
+  std::vector<std::vector<float>> lights;
+  if (!this->ReadBackLights(context, light, light + 1, lights))
   {
-    vtkErrorMacro("No irradiance of light " << light << " to read back.");
+    return false;
+  }
+  values.swap(lights[0]);
+  return true;
+}
+
+bool vtkIrradianceVolumePass::ReadBackLights(vtkOpenGLRenderWindow* context, int first, int last,
+  std::vector<std::vector<float>>& values)
+{
+  vtkInternals& internals = *this->Internals;
+  const int computed = static_cast<int>(internals.Lights.size());
+  if (!context || !internals.Framebuffer || first < 0 || last > computed || first >= last)
+  {
+    vtkErrorMacro("No irradiance of lights " << first << " to " << last - 1 << " to read back.");
     return false;
   }
   const int* d = internals.Grid.Dimensions;
   const vtkIdType sliceSize = static_cast<vtkIdType>(d[0]) * d[1];
   std::vector<float> rgba(4 * sliceSize);
-  values.resize(sliceSize * d[2]);
+  values.assign(last - first, std::vector<float>(sliceSize * d[2]));
   vtkOpenGLState* state = context->GetState();
   state->PushFramebufferBindings();
   internals.Framebuffer->Bind();
-  for (int z = 0; z < d[2]; ++z)
+  // Each texture is read once for all the lights it holds.
+  for (int t = first / LightsPerTexture; t * LightsPerTexture < last; ++t)
   {
-    internals.Framebuffer->RemoveColorAttachment(0);
-    internals.Framebuffer->AddColorAttachment(0, texture, z);
-    internals.Framebuffer->ActivateReadBuffer(0);
-    glReadPixels(0, 0, d[0], d[1], GL_RGBA, GL_FLOAT, rgba.data());
-    for (vtkIdType p = 0; p < sliceSize; ++p)
+    vtkTextureObject* texture = this->GetIrradianceTexture(t);
+    for (int z = 0; texture && z < d[2]; ++z)
     {
-      values[z * sliceSize + p] = rgba[4 * p + light % LightsPerTexture];
+      internals.Framebuffer->RemoveColorAttachment(0);
+      internals.Framebuffer->AddColorAttachment(0, texture, z);
+      internals.Framebuffer->ActivateReadBuffer(0);
+      glReadPixels(0, 0, d[0], d[1], GL_RGBA, GL_FLOAT, rgba.data());
+      for (int c = 0; c < LightsPerTexture; ++c)
+      {
+        const int light = t * LightsPerTexture + c;
+        if (light < first || light >= last)
+        {
+          continue;
+        }
+        float* out = values[light - first].data() + z * sliceSize;
+        for (vtkIdType p = 0; p < sliceSize; ++p)
+        {
+          out[p] = rgba[4 * p + c];
+        }
+      }
     }
   }
   internals.Framebuffer->RemoveColorAttachment(0);

@@ -182,8 +182,14 @@ public:
   vtkTextureObject* GetShadowTableTexture() const;
   int GetNumberOfIrradianceTextures() const;
 
-  /// Test hook: light k's irradiance, GetNumberOfVoxels() floats, x fastest.
+  /// Light k's irradiance, GetNumberOfVoxels() floats, x fastest.
   bool ReadBack(vtkOpenGLRenderWindow* context, int light, std::vector<float>& values);
+#ifndef __VTK_WRAP__
+  /// Lights first to last - 1, one vector each, reading each texture once
+  /// (vtkIrradianceResolutionProbe compares whole fields).
+  bool ReadBackLights(vtkOpenGLRenderWindow* context, int first, int last,
+    std::vector<std::vector<float>>& values);
+#endif
 
   ///@{
   /// What the last Render() did.

@@ -41,6 +41,18 @@ vtkIrradianceInputCache::VolumeKey MakeVolumeKey(vtkMultiMaterialVolumeMapper* m
   key.Cut = cutaway.Key();
   return key;
 }
+
+/// The scalar opacity at `n` points over `range` (> 0 marks a voxel
+/// non-empty for the pass; the probe's weights).
+std::vector<float> SampleOpacityTable(vtkPiecewiseFunction* opacity, const double range[2], int n)
+{
+  std::vector<float> table(n);
+  for (int i = 0; i < n; ++i)
+  {
+    table[i] = static_cast<float>(opacity->GetValue(range[0] + (range[1] - range[0]) * i / (n - 1)));
+  }
+  return table;
+}
 }
 
 vtkMultiMaterialIrradianceStage::vtkMultiMaterialIrradianceStage() = default;
@@ -49,11 +61,13 @@ vtkMultiMaterialIrradianceStage::~vtkMultiMaterialIrradianceStage() = default;
 void vtkMultiMaterialIrradianceStage::ReleaseGraphicsResources(vtkWindow* window)
 {
   this->Pass->ReleaseGraphicsResources(window);
+  this->Probe->ReleaseGraphicsResources(window);
   this->Cache->Invalidate();
 }
 
-mmv::IrradianceResolution vtkMultiMaterialIrradianceStage::ChooseGrid(
-  vtkRenderer* ren, vtkVolume* vol, vtkImageData* image)
+mmv::IrradianceResolution vtkMultiMaterialIrradianceStage::ChooseGrid(vtkRenderer* ren,
+  vtkVolume* vol, vtkImageData* image, vtkDataArray* scalars, const double range[2],
+  const vtkIrradianceInputCache::VolumeKey& volumeKey, const mmv::Cutaway& cutaway)
 {
   int dataDims[3];
   image->GetDimensions(dataDims);
@@ -72,8 +86,20 @@ mmv::IrradianceResolution vtkMultiMaterialIrradianceStage::ChooseGrid(
     resolution.Reason = "the global grid of a volume in pieces";
     return resolution;
   }
-  resolution = mmv::ChooseIrradianceResolution(dataDims, static_cast<int>(this->Lights->size()),
-    this->Mapper->IrradianceMemoryMB, scale, pixelsPerVoxel);
+  const int lights = static_cast<int>(this->Lights->size());
+  resolution = mmv::ChooseIrradianceResolution(
+    dataDims, lights, this->Mapper->IrradianceMemoryMB, scale, pixelsPerVoxel);
+  std::string boundProblem;
+  const double bound =
+    mmv::ValidIrradianceErrorBound(this->Mapper->IrradianceErrorBound, &boundProblem);
+  if (!boundProblem.empty())
+  {
+    this->Mapper->WarnOnce(boundProblem);
+  }
+  if (scale <= 0.0 && bound > 0.0)
+  {
+    this->ApplyProbe(ren, vol, image, scalars, range, volumeKey, cutaway, bound, resolution);
+  }
   // The irradiance is one 3D texture: no axis longer than the largest one
   // (a long volume is drawn in bricks, its irradiance spans it whole).
   const int largest = vtkTextureObject::GetMaximumTextureSize3D(
@@ -83,6 +109,40 @@ mmv::IrradianceResolution vtkMultiMaterialIrradianceStage::ChooseGrid(
     resolution.Dimensions[a] = std::min(resolution.Dimensions[a], largest);
   }
   return resolution;
+}
+
+void vtkMultiMaterialIrradianceStage::ApplyProbe(vtkRenderer* ren, vtkVolume* vol,
+  vtkImageData* image, vtkDataArray* scalars, const double range[2],
+  const vtkIrradianceInputCache::VolumeKey& volumeKey, const mmv::Cutaway& cutaway, double bound,
+  mmv::IrradianceResolution& resolution)
+{
+  auto* window = vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow());
+  const int n = this->Mapper->PreIntegrationTableSize;
+  const std::vector<float> opacityTable =
+    SampleOpacityTable(vol->GetProperty()->GetScalarOpacity(0), range, n);
+  const int before = this->Probe->GetNumberOfProbes();
+  const double probed = this->Probe->Choose(window, volumeKey, image, scalars, range,
+    this->Mapper->IrradianceMemoryMB, bound, opacityTable,
+    [&](vtkIrradianceVolumePass* pass, const mmv::IrradianceGrid& grid,
+      const std::vector<float>& prefiltered, unsigned long version,
+      const std::vector<mmv::LightSource>& lights) {
+      return this->ComputeOn(
+        pass, window, vol, range, cutaway, grid, prefiltered, version, lights, false);
+    });
+  if (this->Probe->GetNumberOfProbes() != before)
+  {
+    vtkDebugWithObjectMacro(this->Mapper, << this->Probe->GetSummary() << " in "
+                                          << this->Probe->GetLastProbeSeconds() << " s");
+  }
+  if (probed < resolution.Scale)
+  {
+    int dataDims[3];
+    image->GetDimensions(dataDims);
+    resolution.Scale = probed;
+    mmv::ComputeIrradianceDimensions(dataDims, static_cast<int>(this->Lights->size()),
+      this->Mapper->IrradianceMemoryMB, probed, resolution.Dimensions);
+    resolution.Reason = this->Probe->GetSummary();
+  }
 }
 
 bool vtkMultiMaterialIrradianceStage::Update(vtkMultiMaterialVolumeMapper* mapper, vtkRenderer* ren,
@@ -99,8 +159,6 @@ bool vtkMultiMaterialIrradianceStage::Update(vtkMultiMaterialVolumeMapper* mappe
   const double* range = global ? global->GetScalarRange() : pieceRange;
   this->Mapper->NumberOfUpdatedLights = 0;
 
-  const mmv::IrradianceResolution resolution = this->ChooseGrid(ren, vol, image);
-  const int* dims = resolution.Dimensions;
   this->Cache->SampleMaterials(this->Materials, range, this->Mapper->PreIntegrationTableSize);
   const vtkMTimeType dataTime =
     global ? global->GetMTime() : std::max(image->GetMTime(), scalars->GetMTime());
@@ -118,6 +176,9 @@ bool vtkMultiMaterialIrradianceStage::Update(vtkMultiMaterialVolumeMapper* mappe
   const vtkIrradianceInputCache::VolumeKey volumeKey =
     MakeVolumeKey(this->Mapper, vol->GetProperty(), dataTime, this->Cache->GetMaterialVersion(),
       static_cast<int>(this->Lights->size()), range, cutaway);
+  const mmv::IrradianceResolution resolution =
+    this->ChooseGrid(ren, vol, image, scalars, range, volumeKey, cutaway);
+  const int* dims = resolution.Dimensions;
   std::vector<mmv::LightSource> sources;
   for (const auto& light : *this->Lights)
   {
@@ -150,8 +211,12 @@ bool vtkMultiMaterialIrradianceStage::Update(vtkMultiMaterialVolumeMapper* mappe
       "the scalars contain NaN or Inf: lit as empty (NaN) or as the ends of the "
       "finite range (Inf)");
   }
-  if (!this->Compute(ren, vol, range, cutaway, sources))
+  if (!this->ComputeOn(this->Pass, vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow()),
+        vol, range, cutaway, this->Cache->GetGrid(), this->Cache->GetPrefiltered(),
+        this->Cache->GetPrefilteredVersion(), sources, this->Mapper->MultipleScattering))
   {
+    this->Cache->Invalidate();
+    this->Mapper->SetProgressText(nullptr);
     return false;
   }
   this->Cache->Store(volumeKey, this->Pass->GetComputedLights(), dims);
@@ -162,13 +227,15 @@ bool vtkMultiMaterialIrradianceStage::Update(vtkMultiMaterialVolumeMapper* mappe
   return true;
 }
 
-bool vtkMultiMaterialIrradianceStage::Compute(vtkRenderer* ren, vtkVolume* vol,
-  const double range[2], const mmv::Cutaway& cutaway, const std::vector<mmv::LightSource>& sources)
+bool vtkMultiMaterialIrradianceStage::ComputeOn(vtkIrradianceVolumePass* pass,
+  vtkOpenGLRenderWindow* window, vtkVolume* vol, const double range[2],
+  const mmv::Cutaway& cutaway, const mmv::IrradianceGrid& grid,
+  const std::vector<float>& prefiltered, unsigned long version,
+  const std::vector<mmv::LightSource>& sources, bool scattering)
 {
   vtkPiecewiseFunction* opacity = vol->GetProperty()->GetScalarOpacity(0);
   const int n = this->Mapper->PreIntegrationTableSize;
   // Shadow rays step one irradiance voxel, with their own pre-integrated table.
-  const mmv::IrradianceGrid& grid = this->Cache->GetGrid();
   const double shadowStep = std::min({ grid.Spacing.x, grid.Spacing.y, grid.Spacing.z });
   vtkPreIntegrationTable* shadow = this->ShadowTable;
   shadow->SetScalarOpacity(opacity);
@@ -179,34 +246,24 @@ bool vtkMultiMaterialIrradianceStage::Compute(vtkRenderer* ren, vtkVolume* vol,
   shadow->SetStepLength(shadowStep);
   if (!shadow->Update())
   {
-    this->Mapper->SetProgressText(nullptr);
     return false;
   }
 
-  std::vector<float> opacityTable(n);
-  for (int i = 0; i < n; ++i)
-  {
-    opacityTable[i] =
-      static_cast<float>(opacity->GetValue(range[0] + (range[1] - range[0]) * i / (n - 1)));
-  }
+  const std::vector<float> opacityTable = SampleOpacityTable(opacity, range, n);
   const std::vector<float> scatteringTable =
-    this->Mapper->MultipleScattering ? this->Cache->GetScattering() : std::vector<float>(n, 0.0f);
+    scattering ? this->Cache->GetScattering() : std::vector<float>(n, 0.0f);
 
-  vtkIrradianceVolumePass* pass = this->Pass;
-  pass->SetMultipleScattering(this->Mapper->MultipleScattering);
+  pass->SetMultipleScattering(scattering);
   pass->SetShadowEstimation(this->Mapper->ShadowEstimation);
   pass->SetPiecewiseShadowSlices(this->Mapper->PiecewiseShadowSlices);
   pass->SetExponentialDiffusion(this->Mapper->ExponentialDiffusion);
   pass->SetLightDirectionTolerance(this->Mapper->LightDirectionTolerance);
   pass->SetCutaway(cutaway);
-  pass->SetInputs(grid, this->Cache->GetPrefiltered(), n, shadow->GetShadowOpacityTable(),
-    shadowStep, opacityTable.data(), scatteringTable.data(), sources,
-    this->Cache->GetPrefilteredVersion());
-  if (!pass->Render(vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow())))
+  pass->SetInputs(grid, prefiltered, n, shadow->GetShadowOpacityTable(), shadowStep,
+    opacityTable.data(), scatteringTable.data(), sources, version);
+  if (!pass->Render(window))
   {
     vtkErrorWithObjectMacro(this->Mapper, "the irradiance volume could not be computed on the GPU");
-    this->Cache->Invalidate();
-    this->Mapper->SetProgressText(nullptr);
     return false;
   }
   return true;

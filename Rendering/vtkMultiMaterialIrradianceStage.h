@@ -17,6 +17,7 @@
 
 #include "vtkIrradianceGrid.h"            // IrradianceResolution
 #include "vtkIrradianceInputCache.h"      // vtkNew
+#include "vtkIrradianceResolutionProbe.h" // vtkNew
 #include "vtkIrradianceVolumePass.h"      // vtkNew
 #include "vtkMultiMaterialCutaway.h"      // Cutaway
 #include "vtkMultiMaterialLights.h"       // ShadingLight
@@ -32,6 +33,7 @@ class vtkGlobalPrefilteredVolume;
 class vtkImageData;
 class vtkMaterialTransferFunction;
 class vtkMultiMaterialVolumeMapper;
+class vtkOpenGLRenderWindow;
 class vtkRenderer;
 class vtkVolume;
 class vtkWindow;
@@ -52,6 +54,7 @@ public:
     const std::vector<mmv::ShadingLight>& lights);
 
   vtkIrradianceVolumePass* GetPass() { return this->Pass; }
+  vtkIrradianceResolutionProbe* GetProbe() { return this->Probe; }
 
   /// The irradiance grid of the pre-filtered data.
   const mmv::IrradianceGrid& GetGrid() const { return this->Cache->GetGrid(); }
@@ -65,9 +68,19 @@ private:
   vtkMultiMaterialIrradianceStage(const vtkMultiMaterialIrradianceStage&) = delete;
   void operator=(const vtkMultiMaterialIrradianceStage&) = delete;
 
-  mmv::IrradianceResolution ChooseGrid(vtkRenderer* ren, vtkVolume* vol, vtkImageData* image);
-  bool Compute(vtkRenderer* ren, vtkVolume* vol, const double range[2],
-    const mmv::Cutaway& cutaway, const std::vector<mmv::LightSource>& sources);
+  mmv::IrradianceResolution ChooseGrid(vtkRenderer* ren, vtkVolume* vol, vtkImageData* image,
+    vtkDataArray* scalars, const double range[2],
+    const vtkIrradianceInputCache::VolumeKey& volumeKey, const mmv::Cutaway& cutaway);
+  /// Coarsens an automatic `resolution` to the error probe's scale.
+  void ApplyProbe(vtkRenderer* ren, vtkVolume* vol, vtkImageData* image, vtkDataArray* scalars,
+    const double range[2], const vtkIrradianceInputCache::VolumeKey& volumeKey,
+    const mmv::Cutaway& cutaway, double bound, mmv::IrradianceResolution& resolution);
+  /// Estimates `sources` on `grid` into `pass` (the frame's pass, or the
+  /// probe's without scattering).
+  bool ComputeOn(vtkIrradianceVolumePass* pass, vtkOpenGLRenderWindow* window, vtkVolume* vol,
+    const double range[2], const mmv::Cutaway& cutaway, const mmv::IrradianceGrid& grid,
+    const std::vector<float>& prefiltered, unsigned long version,
+    const std::vector<mmv::LightSource>& sources, bool scattering);
   void Record(const mmv::IrradianceResolution& resolution);
 
   // What the irradiance volume was computed from, and the pass's inputs
@@ -75,6 +88,7 @@ private:
   vtkNew<vtkIrradianceInputCache> Cache;
   vtkNew<vtkPreIntegrationTable> ShadowTable;
   vtkNew<vtkIrradianceVolumePass> Pass;
+  vtkNew<vtkIrradianceResolutionProbe> Probe;
   std::string ResolutionReason;
 
   // The current Update()'s arguments.

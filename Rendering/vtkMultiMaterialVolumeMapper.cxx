@@ -516,12 +516,23 @@ const char* vtkMultiMaterialVolumeMapper::GetIrradianceResolutionReason()
   return this->Internals->Irradiance.GetResolutionReason().c_str();
 }
 
+int vtkMultiMaterialVolumeMapper::GetNumberOfIrradianceProbes()
+{
+  return this->Internals->Irradiance.GetProbe()->GetNumberOfProbes();
+}
+
+vtkIrradianceResolutionProbe* vtkMultiMaterialVolumeMapper::GetIrradianceResolutionProbe()
+{
+  return this->Internals->Irradiance.GetProbe();
+}
+
 void vtkMultiMaterialVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "IrradianceMemoryMB: " << this->IrradianceMemoryMB << "\n";
   os << indent << "MaxBrickMB: " << this->MaxBrickMB << "\n";
   os << indent << "IrradianceScale: " << this->IrradianceScale << "\n";
+  os << indent << "IrradianceErrorBound: " << this->IrradianceErrorBound << "\n";
   os << indent << "GradientSmoothing: " << this->GradientSmoothing << "\n";
   os << indent << "LightDirectionTolerance: " << this->LightDirectionTolerance << "\n";
   os << indent << "MultipleScattering: " << this->MultipleScattering << "\n";

@@ -47,6 +47,7 @@ class vtkDataArray;
 class vtkGlobalPrefilteredVolume;
 class vtkImageData;
 class vtkIrradianceVolumePass;
+class vtkIrradianceResolutionProbe;
 class vtkMaterialTransferFunction;
 class vtkMatrix4x4;
 class vtkOpenGLRenderWindow;
@@ -69,11 +70,33 @@ public:
   vtkGetMacro(IrradianceMemoryMB, double);
 
   /// Irradiance resolution as a fraction of the data's (0 < x <= 1); 0 (the
-  /// default) chooses it from the memory budget.
+  /// default) chooses it from the memory budget, the screen and the error
+  /// probe (IrradianceErrorBound).
   /// Values above 1 are reported (warning) and used as 1; negative or NaN
   /// ones as 0.
   vtkSetMacro(IrradianceScale, double);
   vtkGetMacro(IrradianceScale, double);
+
+  /**
+   * With an automatic resolution (IrradianceScale 0): the error the
+   * irradiance may lose to a coarser grid, in dB (default
+   * mmv::DefaultIrradianceErrorBoundDB). Once per data or transfer-function
+   * change, vtkIrradianceResolutionProbe measures the opacity-weighted
+   * PSNR of coarser grids against the budget's and keeps the coarsest
+   * within this bound (smooth data gets a coarse grid, thin shells keep a
+   * fine one; camera and light moves never re-measure). 0: no probe, the
+   * budget and the screen alone choose. Negative or NaN: 0, above
+   * mmv::MaxIrradianceErrorBoundDB: that maximum (both reported).
+   */
+  vtkSetMacro(IrradianceErrorBound, double);
+  vtkGetMacro(IrradianceErrorBound, double);
+
+  /// The error probe's measurements so far (a camera move adds none).
+  int GetNumberOfIrradianceProbes();
+#ifndef __VTK_WRAP__
+  /// The error probe itself (its last measurement's candidates).
+  vtkIrradianceResolutionProbe* GetIrradianceResolutionProbe();
+#endif
 
   /// Smooths the shading normal: the gradient volume is blurred by a Gaussian
   /// whose standard deviation is this many times the largest data spacing
@@ -279,6 +302,7 @@ protected:
 
   double IrradianceMemoryMB = mmv::DefaultIrradianceBudgetMB;
   double IrradianceScale = 0.0;
+  double IrradianceErrorBound = mmv::DefaultIrradianceErrorBoundDB;
   double GradientSmoothing = 0.0;
   bool MultipleScattering = true;
   int ShadowEstimation = mmv::PiecewiseShadowRays;

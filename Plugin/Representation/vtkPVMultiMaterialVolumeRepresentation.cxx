@@ -171,6 +171,7 @@ void vtkPVMultiMaterialVolumeRepresentation::UpdateMapperParameters()
   // these every frame costs nothing.
   mapper->SetIrradianceMemoryMB(this->IrradianceMemoryMB);
   mapper->SetIrradianceScale(this->IrradianceScale);
+  mapper->SetIrradianceErrorBound(this->IrradianceErrorBound);
   mapper->SetGradientSmoothing(this->GradientSmoothing);
   mapper->SetMultipleScattering(this->MultipleScattering);
   mapper->SetPreIntegration(this->PreIntegration);
@@ -208,6 +209,7 @@ void vtkPVMultiMaterialVolumeRepresentation::UpdateMapperParameters()
   }
 vtkPVMMVSetter(IrradianceMemoryMB, double);
 vtkPVMMVSetter(IrradianceScale, double);
+vtkPVMMVSetter(IrradianceErrorBound, double);
 vtkPVMMVSetter(GradientSmoothing, double);
 vtkPVMMVSetter(MultipleScattering, bool);
 vtkPVMMVSetter(PreIntegration, bool);
@@ -374,6 +376,7 @@ void vtkPVMultiMaterialVolumeRepresentation::PrintSelf(ostream& os, vtkIndent in
   os << indent << "MaterialNodes: " << this->CustomMaterials->GetSize() << " nodes\n";
   os << indent << "IrradianceMemoryMB: " << this->IrradianceMemoryMB << "\n";
   os << indent << "IrradianceScale: " << this->IrradianceScale << "\n";
+  os << indent << "IrradianceErrorBound: " << this->IrradianceErrorBound << "\n";
   os << indent << "GradientSmoothing: " << this->GradientSmoothing << "\n";
   os << indent << "MultipleScattering: " << this->MultipleScattering << "\n";
   os << indent << "PreIntegration: " << this->PreIntegration << "\n";

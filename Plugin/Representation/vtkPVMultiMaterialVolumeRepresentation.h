@@ -82,6 +82,7 @@ public:
   /// Forwarded to vtkMultiMaterialVolumeMapper.
   void SetIrradianceMemoryMB(double megabytes);
   void SetIrradianceScale(double scale);
+  void SetIrradianceErrorBound(double decibels);
   void SetGradientSmoothing(double sigma);
   void SetMultipleScattering(bool enabled);
   void SetPreIntegration(bool enabled);
@@ -157,6 +158,7 @@ private:
 
   double IrradianceMemoryMB = mmv::DefaultIrradianceBudgetMB;
   double IrradianceScale = 0.0;
+  double IrradianceErrorBound = mmv::DefaultIrradianceErrorBoundDB;
   double GradientSmoothing = 0.0;
   bool MultipleScattering = true;
   bool PreIntegration = true;

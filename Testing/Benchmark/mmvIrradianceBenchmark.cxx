@@ -29,6 +29,7 @@
 #include "vtkImageData.h"
 #include "vtkImageErrorMetrics.h"
 #include "vtkWindowToImageFilter.h"
+#include "vtkIrradianceResolutionProbe.h"
 #include "vtkIrradianceVolumePass.h"
 #include "vtkLight.h"
 #include "vtkLightKit.h"
@@ -313,6 +314,102 @@ int RunLightTolerance(const mmvbench::SceneSpec& scene, int size, const std::str
   return 0;
 }
 
+/// A window of `scene` as the accuracy benchmark frames it (mmvBenchmark's
+/// camera and key light) or, for the CT, as the orbit does (light kit).
+std::unique_ptr<Bench> ProbeBench(const mmvbench::SceneSpec& scene, int size, bool kit)
+{
+  auto bench = std::unique_ptr<Bench>(new Bench(scene, size, true));
+  bench->Ours->TimeStagesOff();
+  bench->Window->SetDesiredUpdateRate(0.0001); // still renders only
+  if (kit)
+  {
+    UseLightKit(*bench);
+  }
+  else
+  {
+    vtkNew<vtkLight> light;
+    double radius = 0.0;
+    mmvbench::FrameScene(scene, bench->Renderer->GetActiveCamera(), light, radius);
+    bench->Renderer->AddLight(light);
+  }
+  return bench;
+}
+
+/// The error probe (IrradianceErrorBound): per scene, the probe's PSNR of
+/// each grid it measured against the image PSNR of that grid, both against
+/// the probe's reference grid, and what the default bound chooses, with the
+/// probe's time and a still frame's. Writes OUT/error_probe.csv.
+int RunErrorProbe(const std::string& head, int ctSize, int smallSize, const std::string& out,
+  double bound, const std::string& scenes)
+{
+  std::ofstream csv(out + "/error_probe.csv");
+  csv << "scene,image_px,scale,dimensions,probe_psnr_db,image_psnr_db_vs_reference,chosen,"
+         "probe_s,still_frame_s,resolution_reason\n";
+  std::printf("scene      px   scale  dimensions     probe dB  image dB  chosen\n");
+  std::stringstream list(scenes);
+  std::string name;
+  while (std::getline(list, name, ','))
+  {
+    const mmvbench::SceneSpec scene = mmvbench::MakeScene(name, head);
+    if (!scene.Image)
+    {
+      std::cerr << "unknown scene " << name << "\n";
+      return 2;
+    }
+    const bool kit = name == "ct";
+    const int size = kit ? ctSize : smallSize;
+    auto automatic = ProbeBench(scene, size, kit);
+    if (bound >= 0.0)
+    {
+      automatic->Ours->SetIrradianceErrorBound(bound);
+    }
+    automatic->Window->Render();
+    vtkIrradianceResolutionProbe* probe = automatic->Ours->GetIrradianceResolutionProbe();
+    const double probeSeconds = probe->GetLastProbeSeconds();
+    const std::string reason = automatic->Ours->GetIrradianceResolutionReason();
+    const int* chosen = automatic->Ours->GetIrradianceDimensions();
+    // A still frame after a camera move (the kit's lights move with it).
+    automatic->Renderer->GetActiveCamera()->Azimuth(10.0);
+    const auto start = std::chrono::steady_clock::now();
+    automatic->Window->Render();
+    const double still =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    automatic->Renderer->GetActiveCamera()->Azimuth(-10.0);
+    const std::vector<vtkIrradianceResolutionProbe::Candidate> candidates =
+      probe->GetCandidates();
+    vtkSmartPointer<vtkImageData> reference;
+    for (const auto& candidate : candidates)
+    {
+      auto fixed = ProbeBench(scene, size, kit);
+      fixed->Ours->SetIrradianceScale(candidate.Scale);
+      fixed->Window->Render();
+      vtkSmartPointer<vtkImageData> image = Grab(fixed->Window);
+      double psnr = std::numeric_limits<double>::infinity();
+      if (!reference)
+      {
+        reference = image;
+      }
+      else
+      {
+        vtkNew<vtkImageErrorMetrics> metrics;
+        metrics->Compute(image, reference);
+        psnr = metrics->GetPSNR();
+      }
+      const int* d = candidate.Dimensions;
+      const bool isChosen = d[0] == chosen[0] && d[1] == chosen[1] && d[2] == chosen[2];
+      csv << name << "," << size << "," << candidate.Scale << "," << Join(d) << ","
+          << candidate.PSNR << "," << psnr << "," << (isChosen ? 1 : 0) << "," << probeSeconds
+          << "," << still << ",\"" << reason << "\"\n";
+      std::printf("%-9s %4d %7.3f  %-13s %8.1f %9.1f  %s\n", name.c_str(), size, candidate.Scale,
+        Join(d).c_str(), candidate.PSNR, psnr, isChosen ? "yes" : "");
+    }
+    std::printf("  %s: probe %.2f s, still frame %.2f s; %s\n", name.c_str(), probeSeconds, still,
+      reason.c_str());
+  }
+  std::cout << "== wrote " << out << "/error_probe.csv" << std::endl;
+  return 0;
+}
+
 /// ParaView's default lighting in C++: a light kit (key, fill, two back
 /// lights and the head light, all following the camera), a camera orbit of
 /// `steps` steps, each of `interactive` frames with a small allocated render
@@ -465,6 +562,8 @@ int main(int argc, char* argv[])
   int raycastLights = 5;            // raycast: scene lights
   int orbitSteps = 6;               // orbit: camera steps of 10 degrees
   int orbitInteractive = 8;         // orbit: interactive frames per step
+  double probeBound = -1.0;         // probe: IrradianceErrorBound (< 0: the default)
+  std::string probeScenes = "synthetic,headsq,orbital,ct";
   for (int i = 1; i < argc; ++i)
   {
     const std::string arg = argv[i];
@@ -504,6 +603,14 @@ int main(int argc, char* argv[])
     else if (arg == "--orbit-interactive-frames")
     {
       orbitInteractive = std::max(1, std::atoi(next().c_str()));
+    }
+    else if (arg == "--probe-bound")
+    {
+      probeBound = std::atof(next().c_str());
+    }
+    else if (arg == "--probe-scenes")
+    {
+      probeScenes = next();
     }
     else if (arg == "--image-sample-distance")
     {
@@ -553,6 +660,10 @@ int main(int argc, char* argv[])
     configs.push_back({ "fragment", 5, s, 0.5, true, true, false });
   }
 
+  if (Wanted(only, "probe") && !only.empty()) // alone: windows of its own
+  {
+    return RunErrorProbe(head, size, 128, out, probeBound, probeScenes);
+  }
   if (Wanted(only, "tolerance") && !only.empty()) // alone: windows of its own
   {
     return RunLightTolerance(scene, size, out);
