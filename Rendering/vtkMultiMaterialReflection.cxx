@@ -30,6 +30,7 @@ void vtkMultiMaterialReflection::Update(vtkRenderer* ren, vtkMatrix4x4* objectTo
 {
   this->Environment->Update(ren, objectToWorld, source, problems);
   this->Visibility = mmv::UnoccludedReflections;
+  this->Cutaway = false;
   this->Pass = nullptr;
   if (visibility != mmv::MarchedReflectionVisibility)
   {
@@ -46,6 +47,9 @@ void vtkMultiMaterialReflection::Update(vtkRenderer* ren, vtkMatrix4x4* objectTo
   }
   this->Visibility = mmv::MarchedReflectionVisibility;
   this->Pass = pass;
+  // The pass's cutaway is the mapper's of this frame (or, while its
+  // irradiance is kept during interaction, of the irradiance shown).
+  this->Cutaway = !pass->GetCutaway().IsEmpty();
   const glm::dmat3 toIndex = grid.PhysicalToIndexMatrix();
   for (int c = 0; c < 3; ++c)
   {
@@ -98,6 +102,7 @@ void vtkMultiMaterialReflection::SetUniforms(vtkShaderProgram* program) const
   program->SetUniformMatrix3x3("mmv_visibilityToIndex", const_cast<float*>(this->ToIndex));
   program->SetUniform3f("mmv_visibilityOrigin", this->Origin);
   program->SetUniformf("mmv_visibilityOffset", this->Offset);
+  this->Pass->SetCutawayUniforms(program);
 }
 
 void vtkMultiMaterialReflection::PrintSelf(ostream& os, vtkIndent indent)

@@ -55,6 +55,9 @@ public:
   /// mmv::EnvironmentKind and mmv::ReflectionVisibility in effect.
   int GetEnvironmentKind() const;
   int GetVisibility() const { return this->Visibility; }
+  /// Whether the marched visibility honours a cutaway (the pass's cropping
+  /// region and clipping planes: what they remove does not occlude).
+  bool GetCutaway() const { return this->Cutaway; }
   vtkMultiMaterialEnvironment* GetEnvironment();
 
   ///@{
@@ -74,6 +77,7 @@ private:
 
   vtkNew<vtkMultiMaterialEnvironment> Environment;
   int Visibility = 0;
+  bool Cutaway = false;
   vtkIrradianceVolumePass* Pass = nullptr; // not owned
   float ToIndex[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
   float Origin[3] = { 0, 0, 0 };

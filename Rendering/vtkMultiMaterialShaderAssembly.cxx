@@ -62,8 +62,9 @@ std::vector<std::pair<std::string, std::string>> RayCastReplacements(const Shade
   {
     if (variant.ReflectionVisibility != 0)
     {
-      // The irradiance pass's shadow-ray march (nothing cut: MMV_CUTAWAY unset).
-      declarations += ShadowRayGLSLPrelude() + CutawayGLSLPrelude() + mmvCutaway + mmvShadowRay;
+      // The irradiance pass's shadow-ray march, with its cutaway.
+      declarations += ShadowRayGLSLPrelude() + CutawayGLSLPrelude() +
+        (variant.ReflectionCutaway ? CutawayGLSLDefine : "") + mmvCutaway + mmvShadowRay;
     }
     declarations += mmvReflection;
   }

@@ -32,13 +32,17 @@ struct ShaderVariant
   // With Reflection: mmv::EnvironmentKind and mmv::ReflectionVisibility.
   int Environment = 0;
   int ReflectionVisibility = 0;
+  // With a visibility march: the irradiance pass's cutaway is not empty, and
+  // the march treats what it removes as empty (MMV_CUTAWAY).
+  bool ReflectionCutaway = false;
 
   bool operator==(const ShaderVariant& o) const
   {
     return this->NumberOfLights == o.NumberOfLights && this->Reflection == o.Reflection &&
       this->PreIntegration == o.PreIntegration && this->Anisotropy == o.Anisotropy &&
       this->Emission == o.Emission && this->Environment == o.Environment &&
-      this->ReflectionVisibility == o.ReflectionVisibility;
+      this->ReflectionVisibility == o.ReflectionVisibility &&
+      this->ReflectionCutaway == o.ReflectionCutaway;
   }
   bool operator!=(const ShaderVariant& o) const { return !(*this == o); }
 };

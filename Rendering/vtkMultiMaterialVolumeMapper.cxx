@@ -484,6 +484,7 @@ void vtkMultiMaterialVolumeMapper::UpdateShading(
     this->UpdateReflection(ren, worldToObject);
     variant.Environment = in.Reflection->GetEnvironmentKind();
     variant.ReflectionVisibility = in.Reflection->GetVisibility();
+    variant.ReflectionCutaway = in.Reflection->GetCutaway();
   }
   if (variant != in.Uniforms.GetVariant() || in.Pass->GetFragmentReplacements().empty())
   {
