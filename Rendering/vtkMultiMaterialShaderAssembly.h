@@ -50,6 +50,11 @@ struct ShaderVariant
 /// The `#define` lines of a variant (the material layout prelude included).
 VTKMULTIMATERIALVOLUME_EXPORT std::string VariantDefines(const ShaderVariant& variant);
 
+/// The `#define` lines the reflections' visibility march needs (the shadow
+/// rays' constants, the cutaway's, MMV_CUTAWAY with `cutaway`): in the ray
+/// cast (mmv::MarchedReflectionVisibility) and in vtkReflectionVisibilityPass.
+VTKMULTIMATERIALVOLUME_EXPORT std::string ReflectionMarchDefines(bool cutaway);
+
 /// Fragment-shader replacements (tag, text) for composite ray casting.
 VTKMULTIMATERIALVOLUME_EXPORT std::vector<std::pair<std::string, std::string>>
 RayCastReplacements(const ShaderVariant& variant);

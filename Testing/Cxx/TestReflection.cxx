@@ -266,7 +266,9 @@ TEST(Reflection, MirrorSphereReflectsEquirectangularImageWhereClosedFormSays)
   ExpectMirrorSphereInTwoColours(MakeEquirectangular(TwoColours));
 }
 
-TEST(Reflection, OccluderDimsReflectionByItsTransmittance)
+namespace
+{
+void ExpectOccluderDimsByItsTransmittance(int visibility)
 {
   // A white environment: the ratio of the image with the slab to the image
   // without it is I(x, w_r), exp(-sigma L) with L the mirror ray's length in
@@ -275,6 +277,7 @@ TEST(Reflection, OccluderDimsReflectionByItsTransmittance)
   auto white = MakeCubeMap([](const glm::dvec3&) { return glm::dvec3(1.0); });
   auto render = [&](bool slab) {
     MirrorScene scene(slab);
+    scene.Mapper->SetReflectionVisibility(visibility);
     scene.Scene.Renderer->SetEnvironmentTexture(white);
     scene.Scene.Window->Render();
     EXPECT_TRUE(scene.Mapper->GetMultiMaterialActive());
@@ -346,7 +349,7 @@ TEST(Reflection, OccluderDimsReflectionByItsTransmittance)
   ASSERT_GT(clear, 100);
   std::sort(behindErrors.begin(), behindErrors.end());
   const double p95 = behindErrors[behindErrors.size() * 95 / 100];
-  std::cout << behind << " pixels behind the slab: mean |I - exp(-sigma L)| "
+  std::cout << "visibility " << visibility << ": " << behind << " pixels behind the slab: mean |I - exp(-sigma L)| "
             << behindError / behind << ", 95th percentile " << p95 << ", largest "
             << behindErrors.back() << "; " << clear
             << " clear pixels: mean |I - 1| " << clearError / clear << "\n";
@@ -357,6 +360,17 @@ TEST(Reflection, OccluderDimsReflectionByItsTransmittance)
   EXPECT_LT(behindError / behind, 0.04);
   EXPECT_LT(p95, 0.08);
   EXPECT_LT(clearError / clear, 0.02);
+}
+}
+
+TEST(Reflection, OccluderDimsReflectionByItsTransmittance)
+{
+  ExpectOccluderDimsByItsTransmittance(mmv::MarchedReflectionVisibility);
+}
+
+TEST(Reflection, OccluderDimsReflectionByItsTransmittanceViewDependent)
+{
+  ExpectOccluderDimsByItsTransmittance(mmv::ViewDependentReflectionVisibility);
 }
 
 namespace
@@ -377,10 +391,12 @@ vtkSmartPointer<vtkImageData> ToImage(const std::vector<unsigned char>& pixels)
 // A lit reflective ball in a smooth cube map with the slab beside it:
 // shading, reflection and its visibility together, GPU against the
 // reference renderer after `cut` (may be empty) changes the mapper.
-void ExpectReferenceAgreesWithGPU(const std::function<void(vtkVolumeMapper*)>& cut)
+void ExpectReferenceAgreesWithGPU(
+  int visibility, const std::function<void(vtkVolumeMapper*)>& cut)
 {
   vtkSMPTools::SetBackend("STDThread");
   MirrorScene scene(true);
+  scene.Mapper->SetReflectionVisibility(visibility);
   scene.Materials->RemoveAllNodes();
   scene.Materials->AddNode(-100.0, 0.2, 0.5, 0.0, 1.0, 1.0, 0.0, 0.0);
   scene.Materials->AddNode(-50.0, 0.2, 0.5, 0.0, 1.0, 1.0, 0.0, 0.0);
@@ -405,7 +421,7 @@ void ExpectReferenceAgreesWithGPU(const std::function<void(vtkVolumeMapper*)>& c
   ASSERT_NE(truth, nullptr);
   vtkNew<vtkImageErrorMetrics> metrics;
   ASSERT_TRUE(metrics->Compute(gpu, truth));
-  std::cout << "reflective scene" << (cut ? " with a cut" : "") << ", GPU vs reference: PSNR "
+  std::cout << "visibility " << visibility << ", reflective scene" << (cut ? " with a cut" : "") << ", GPU vs reference: PSNR "
             << metrics->GetPSNR() << " dB, SSIM " << metrics->GetSSIM() << ", max error "
             << metrics->GetMaximumError() << "/255\n";
   EXPECT_GT(metrics->GetPSNR(), 35.0);
@@ -423,12 +439,13 @@ vtkSmartPointer<vtkPlane> KeepBelowX(double x0)
 
 // The slab cut away by `cut` against the scene built without it, in a white
 // environment: the march must see the cut slab as empty.
-void ExpectCutOccluderLeavesReflection(const std::function<void(vtkVolumeMapper*)>& cut,
-  const char* what)
+void ExpectCutOccluderLeavesReflection(
+  int visibility, const std::function<void(vtkVolumeMapper*)>& cut, const char* what)
 {
   auto white = MakeCubeMap([](const glm::dvec3&) { return glm::dvec3(1.0); });
   auto render = [&](bool slab, bool cutting) {
     MirrorScene scene(slab, true);
+    scene.Mapper->SetReflectionVisibility(visibility);
     scene.Scene.Renderer->SetEnvironmentTexture(white);
     if (cutting)
     {
@@ -436,9 +453,12 @@ void ExpectCutOccluderLeavesReflection(const std::function<void(vtkVolumeMapper*
     }
     scene.Scene.Window->Render();
     EXPECT_TRUE(scene.Mapper->GetMultiMaterialActive());
-    EXPECT_EQ(scene.Mapper->GetLastFragmentShaderSource().find("#define MMV_CUTAWAY") !=
-        std::string::npos,
-      cutting);
+    if (visibility == mmv::MarchedReflectionVisibility)
+    {
+      EXPECT_EQ(scene.Mapper->GetLastFragmentShaderSource().find("#define MMV_CUTAWAY") !=
+          std::string::npos,
+        cutting);
+    }
     return scene.Scene.Pixels();
   };
   const std::vector<unsigned char> without = render(false, false);
@@ -471,7 +491,7 @@ void ExpectCutOccluderLeavesReflection(const std::function<void(vtkVolumeMapper*
   vtkNew<vtkImageErrorMetrics> metrics;
   ASSERT_TRUE(metrics->Compute(ToImage(cutAway), ToImage(without)));
   const double psnr = metrics->GetPSNR();
-  std::cout << what << ": " << count << " pixels reflecting toward the slab, mean dimming "
+  std::cout << "visibility " << visibility << ", " << what << ": " << count << " pixels reflecting toward the slab, mean dimming "
             << dimmedUncut / count << " with the slab, " << dimmedCut / count << " (largest "
             << largestCut << ") with it cut away; PSNR " << psnr
             << " dB against the scene without it\n";
@@ -486,32 +506,153 @@ void ExpectCutOccluderLeavesReflection(const std::function<void(vtkVolumeMapper*
 }
 }
 
+namespace
+{
+// The cuts keep x <= 42, short of the slab (x >= 43.5).
+void Crop(vtkVolumeMapper* m)
+{
+  m->CroppingOn();
+  m->SetCroppingRegionPlanes(-1.0, 42.0, -1.0, NYZ, -1.0, NYZ);
+  m->SetCroppingRegionFlagsToSubVolume();
+}
+
+void Clip(vtkVolumeMapper* m)
+{
+  m->AddClippingPlane(KeepBelowX(42.0));
+}
+
+// The plane halves the slab: the reflections toward it see half of it.
+void HalveTheSlab(vtkVolumeMapper* m)
+{
+  m->AddClippingPlane(KeepBelowX(48.0));
+}
+}
+
 TEST(Reflection, ReferenceRendererAgreesWithGPU)
 {
-  ExpectReferenceAgreesWithGPU(nullptr);
+  ExpectReferenceAgreesWithGPU(mmv::MarchedReflectionVisibility, nullptr);
+}
+
+TEST(Reflection, ReferenceRendererAgreesWithGPUViewDependent)
+{
+  ExpectReferenceAgreesWithGPU(mmv::ViewDependentReflectionVisibility, nullptr);
 }
 
 TEST(Reflection, ReferenceRendererAgreesWithGPUWithACut)
 {
-  // The plane halves the slab: the reflections toward it see half of it.
-  ExpectReferenceAgreesWithGPU([](vtkVolumeMapper* m) { m->AddClippingPlane(KeepBelowX(48.0)); });
+  ExpectReferenceAgreesWithGPU(mmv::MarchedReflectionVisibility, HalveTheSlab);
+}
+
+TEST(Reflection, ReferenceRendererAgreesWithGPUWithACutViewDependent)
+{
+  ExpectReferenceAgreesWithGPU(mmv::ViewDependentReflectionVisibility, HalveTheSlab);
 }
 
 TEST(Reflection, CroppedOccluderDoesNotDimReflection)
 {
-  ExpectCutOccluderLeavesReflection(
-    [](vtkVolumeMapper* m) {
-      m->CroppingOn();
-      m->SetCroppingRegionPlanes(-1.0, 42.0, -1.0, NYZ, -1.0, NYZ);
-      m->SetCroppingRegionFlagsToSubVolume();
-    },
-    "cropped slab");
+  ExpectCutOccluderLeavesReflection(mmv::MarchedReflectionVisibility, Crop, "cropped slab");
 }
 
 TEST(Reflection, ClippedOccluderDoesNotDimReflection)
 {
-  ExpectCutOccluderLeavesReflection(
-    [](vtkVolumeMapper* m) { m->AddClippingPlane(KeepBelowX(42.0)); }, "clipped slab");
+  ExpectCutOccluderLeavesReflection(mmv::MarchedReflectionVisibility, Clip, "clipped slab");
+}
+
+TEST(Reflection, CroppedOccluderDoesNotDimReflectionViewDependent)
+{
+  ExpectCutOccluderLeavesReflection(mmv::ViewDependentReflectionVisibility, Crop, "cropped slab");
+}
+
+TEST(Reflection, ClippedOccluderDoesNotDimReflectionViewDependent)
+{
+  ExpectCutOccluderLeavesReflection(mmv::ViewDependentReflectionVisibility, Clip, "clipped slab");
+}
+
+TEST(Reflection, ViewDependentVisibilityIsRecomputedOnlyWhenCameraOrVolumeChange)
+{
+  auto white = MakeCubeMap([](const glm::dvec3&) { return glm::dvec3(1.0); });
+  MirrorScene scene(true);
+  scene.Mapper->SetReflectionVisibility(mmv::ViewDependentReflectionVisibility);
+  scene.Scene.Renderer->SetEnvironmentTexture(white);
+  scene.Scene.Window->Render();
+  const std::string source = scene.Mapper->GetLastFragmentShaderSource();
+  EXPECT_NE(source.find("#define MMV_REFLECTION_VISIBILITY 2"), std::string::npos);
+  EXPECT_EQ(source.find("float mmvMarchTransmittance("), std::string::npos);
+  EXPECT_EQ(scene.Mapper->GetReflectionVisibilityUpdateCount(), 1);
+  scene.Scene.Window->Render(); // nothing changed
+  EXPECT_EQ(scene.Mapper->GetReflectionVisibilityUpdateCount(), 1);
+  vtkCamera* camera = scene.Scene.Renderer->GetActiveCamera();
+  camera->Azimuth(25.0);
+  camera->Elevation(10.0);
+  scene.Scene.Window->Render(); // the camera moved
+  EXPECT_EQ(scene.Mapper->GetReflectionVisibilityUpdateCount(), 2);
+  const std::vector<unsigned char> moved = scene.Scene.Pixels();
+  scene.Mapper->AddClippingPlane(KeepBelowX(48.0)); // the cutaway changed
+  scene.Scene.Window->Render();
+  EXPECT_EQ(scene.Mapper->GetReflectionVisibilityUpdateCount(), 3);
+  scene.Mapper->RemoveAllClippingPlanes();
+  scene.Scene.Window->Render();
+  EXPECT_EQ(scene.Mapper->GetReflectionVisibilityUpdateCount(), 4);
+
+  // What the moved camera showed is what a fresh render there shows.
+  MirrorScene fresh(true);
+  fresh.Mapper->SetReflectionVisibility(mmv::ViewDependentReflectionVisibility);
+  // Its own texture: a texture's GL object lives in one window's context.
+  fresh.Scene.Renderer->SetEnvironmentTexture(
+    MakeCubeMap([](const glm::dvec3&) { return glm::dvec3(1.0); }));
+  fresh.Scene.Renderer->GetActiveCamera()->Azimuth(25.0);
+  fresh.Scene.Renderer->GetActiveCamera()->Elevation(10.0);
+  fresh.Scene.Window->Render();
+  EXPECT_EQ(moved, fresh.Scene.Pixels());
+}
+
+TEST(Reflection, InteractiveFramesKeepTheVisibilityAndTheStillFrameIsExact)
+{
+  // While the camera moves (interactive frames, InteractiveIrradiance
+  // ReuseWhileInteracting) the view-dependent visibility of the first camera
+  // stays; the still frame after them recomputes it and equals a fresh
+  // render pixel for pixel.
+  auto white = MakeCubeMap([](const glm::dvec3&) { return glm::dvec3(1.0); });
+  MirrorScene scene(true);
+  scene.Mapper->SetReflectionVisibility(mmv::ViewDependentReflectionVisibility);
+  scene.Scene.Renderer->SetEnvironmentTexture(white);
+  scene.Scene.Window->SetDesiredUpdateRate(0.0001); // a still render
+  scene.Scene.Window->Render();
+  EXPECT_EQ(scene.Mapper->GetReflectionVisibilityUpdateCount(), 1);
+  vtkCamera* camera = scene.Scene.Renderer->GetActiveCamera();
+  scene.Scene.Window->SetDesiredUpdateRate(30.0);
+  for (int frame = 0; frame < 3; ++frame)
+  {
+    camera->Azimuth(10.0);
+    scene.Scene.Window->Render();
+    EXPECT_TRUE(scene.Mapper->GetLastRenderInteractive());
+  }
+  EXPECT_EQ(scene.Mapper->GetReflectionVisibilityUpdateCount(), 1);
+  const std::vector<unsigned char> interactive = scene.Scene.Pixels();
+  scene.Scene.Window->SetDesiredUpdateRate(0.0001);
+  scene.Scene.Window->Render();
+  EXPECT_FALSE(scene.Mapper->GetLastRenderInteractive());
+  EXPECT_EQ(scene.Mapper->GetReflectionVisibilityUpdateCount(), 2);
+  const std::vector<unsigned char> still = scene.Scene.Pixels();
+
+  MirrorScene fresh(true);
+  fresh.Mapper->SetReflectionVisibility(mmv::ViewDependentReflectionVisibility);
+  // Its own texture: a texture's GL object lives in one window's context.
+  fresh.Scene.Renderer->SetEnvironmentTexture(
+    MakeCubeMap([](const glm::dvec3&) { return glm::dvec3(1.0); }));
+  fresh.Scene.Renderer->GetActiveCamera()->Azimuth(30.0);
+  fresh.Scene.Window->SetDesiredUpdateRate(0.0001);
+  fresh.Scene.Window->Render();
+  EXPECT_EQ(still, fresh.Scene.Pixels());
+  // The stale frame differed (the slab's shadow seen from the old camera).
+  EXPECT_NE(interactive, still);
+
+  // UpdateAlways: every interactive frame recomputes it.
+  scene.Mapper->SetInteractiveIrradiance(vtkMultiMaterialVolumeMapper::UpdateAlways);
+  scene.Scene.Window->SetDesiredUpdateRate(30.0);
+  camera->Azimuth(10.0);
+  scene.Scene.Window->Render();
+  EXPECT_EQ(scene.Mapper->GetReflectionVisibilityUpdateCount(), 3);
 }
 
 TEST(Reflection, BadEnvironmentTexturesWarnAndReflectTheBackground)
@@ -593,6 +734,13 @@ TEST(Reflection, ShaderCarriesOnlyTheEnvironmentInUse)
   std::string source = scene.Mapper->GetLastFragmentShaderSource();
   EXPECT_NE(source.find("#define MMV_USE_REFLECTION 1"), std::string::npos);
   EXPECT_NE(source.find("#define MMV_ENVIRONMENT 0"), std::string::npos);
+  // The default: the view-dependent pass, no march in the ray cast.
+  EXPECT_EQ(scene.Mapper->GetReflectionVisibility(), mmv::ViewDependentReflectionVisibility);
+  EXPECT_NE(source.find("#define MMV_REFLECTION_VISIBILITY 2"), std::string::npos);
+  EXPECT_EQ(source.find("float mmvMarchTransmittance("), std::string::npos);
+  scene.Mapper->SetReflectionVisibility(mmv::MarchedReflectionVisibility);
+  scene.Scene.Window->Render();
+  source = scene.Mapper->GetLastFragmentShaderSource();
   EXPECT_NE(source.find("#define MMV_REFLECTION_VISIBILITY 1"), std::string::npos);
   EXPECT_NE(source.find("float mmvMarchTransmittance("), std::string::npos);
   scene.Scene.Renderer->SetEnvironmentTexture(MakeCubeMap(TwoColours));
@@ -603,6 +751,12 @@ TEST(Reflection, ShaderCarriesOnlyTheEnvironmentInUse)
   scene.Scene.Window->Render();
   source = scene.Mapper->GetLastFragmentShaderSource();
   EXPECT_NE(source.find("#define MMV_ENVIRONMENT 2"), std::string::npos);
+  scene.Mapper->SetReflectionVisibility(mmv::ViewDependentReflectionVisibility);
+  scene.Scene.Window->Render();
+  source = scene.Mapper->GetLastFragmentShaderSource();
+  EXPECT_NE(source.find("#define MMV_REFLECTION_VISIBILITY 2"), std::string::npos);
+  EXPECT_NE(source.find("uniform sampler3D mmv_reflectionVisibility"), std::string::npos);
+  EXPECT_EQ(source.find("float mmvMarchTransmittance("), std::string::npos);
   // No visibility: no march in the source.
   scene.Mapper->SetReflectionVisibility(mmv::UnoccludedReflections);
   scene.Scene.Window->Render();
