@@ -12,9 +12,37 @@
 uniform mat3 mmv_visibilityToObject; // grid index -> object space (inverse of ToIndex)
 uniform vec4 mmv_eye; // object space: the camera's position (w = 1) or, parallel, toward it (w = 0)
 
+// Whether the ray cast can shade a sample whose interpolation reaches this
+// voxel: some segment from it to one of its 26 neighbours has extinction
+// (pre-integrated, so a thin opaque value range between the two counts).
+bool mmvNearMaterial(vec3 index)
+{
+  float centre = mmvSampleScalar(index);
+  for (int k = -1; k <= 1; ++k)
+  {
+    for (int j = -1; j <= 1; ++j)
+    {
+      for (int i = -1; i <= 1; ++i)
+      {
+        if (mmvShadowOpacity(centre, mmvSampleScalar(index + vec3(i, j, k))) > 0.0)
+        {
+          return true;
+        }
+      }
+    }
+  }
+  return false;
+}
+
 void mmvVoxelMain()
 {
   vec3 index = vec3(floor(texCoord * vec2(dims[0], dims[1])), float(slice));
+  if (!mmvNearMaterial(index))
+  {
+    // Empty space: no sample is shaded with it; the march is skipped.
+    mmvWrite(vec4(1.0));
+    return;
+  }
   vec3 x = mmv_visibilityOrigin + mmv_visibilityToObject * index;
   vec3 gradientIndex = 0.5 * vec3(
     mmvSampleScalar(index + vec3(1.0, 0.0, 0.0)) - mmvSampleScalar(index - vec3(1.0, 0.0, 0.0)),
