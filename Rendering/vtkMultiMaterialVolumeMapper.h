@@ -163,8 +163,9 @@ public:
   /// pre-filtered extinction once per irradiance voxel when the camera or the
   /// volume changes, interpolated by the ray cast; 1
   /// (mmv::MarchedReflectionVisibility), the same march from every shaded
-  /// sample with r > 0 (2.3x the frame time of 2 on llvmpipe while the
-  /// camera turns, docs/benchmark.md); 0 (mmv::UnoccludedReflections), none. Both marches honour the cropping
+  /// sample with r > 0 (while the camera turns on llvmpipe, 1.3-2.3x the
+  /// process CPU of 2 at 400x400 and 1.7-2.9x at 800x800, docs/benchmark.md);
+  /// 0 (mmv::UnoccludedReflections), none. Both marches honour the cropping
   /// region and clipping planes (cut material does not occlude). Needs a
   /// light (the pre-filtered volume comes with the irradiance): without one,
   /// unoccluded (warning).

@@ -1,8 +1,12 @@
 // Environment reflection of Zhang & Ma eq. 17 on the GPU: c_r from the
 // renderer's environment texture (cube map, equirectangular image) or its
-// background, and the visibility I(x, w_r) through the volume. Closed forms
-// on a mirror sphere (r = 1, no other term), the reference renderer on a
-// lit reflective scene, and bad environment textures.
+// background, and the visibility I(x, w_r) through the volume, marched per
+// sample (ReflectionVisibility 1) or per irradiance voxel by the
+// view-dependent pass (2, the default). Closed forms on a mirror sphere
+// (r = 1, no other term), the reference renderer on a lit reflective scene
+// (with and without a clipping plane), occluders removed by cropping or a
+// clipping plane, when the view-dependent pass recomputes (camera, cutaway;
+// kept during interaction, exact at rest), and bad environment textures.
 #include "vtkImageData.h"
 #include "vtkImageErrorMetrics.h"
 #include "vtkMaterialTransferFunction.h"
@@ -353,7 +357,9 @@ void ExpectOccluderDimsByItsTransmittance(int visibility)
             << behindError / behind << ", 95th percentile " << p95 << ", largest "
             << behindErrors.back() << "; " << clear
             << " clear pixels: mean |I - 1| " << clearError / clear << "\n";
-  // Measured (llvmpipe): mean 0.020, 95th percentile 0.06, largest 0.15
+  // Measured (llvmpipe): per sample (1) mean 0.020, 95th percentile 0.059,
+  // largest 0.15; view-dependent pass (2) mean 0.022, 95th percentile
+  // 0.062, largest 0.15
   // (where the mirror ray leaves the box through the slab's top or bottom,
   // its start a voxel off the ideal sphere moves the exit). Unoccluded
   // (ReflectionVisibility 0) the mean is the slab's opacity, 0.4-0.7.
