@@ -103,11 +103,6 @@ vtkTextureObject* vtkReflectionVisibilityPass::GetVisibilityTexture() const
   return this->Internals->Key.empty() ? nullptr : this->Internals->Texture.Get();
 }
 
-void vtkReflectionVisibilityPass::Invalidate()
-{
-  this->Internals->Key.clear();
-}
-
 bool vtkReflectionVisibilityPass::Update(vtkOpenGLRenderWindow* context, const int dims[3],
   const std::string& defines, const std::vector<double>& key,
   const std::function<void(vtkShaderProgram*)>& setUniforms)

@@ -52,9 +52,6 @@ public:
   /// Textures computed so far (a test hook: only camera or volume changes count).
   vtkGetMacro(UpdateCount, vtkIdType);
 
-  /// Forgets the texture: the next Update() recomputes it.
-  void Invalidate();
-
   void ReleaseGraphicsResources(vtkWindow* window);
 
 protected:
