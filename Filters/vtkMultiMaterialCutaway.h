@@ -112,6 +112,11 @@ inline bool mmvIsCut(const IndexCutaway& c, const glm::dvec3& index)
 /// The GLSL `#define` of MaxCutPlanes (MMV_MAX_CUT_PLANES).
 VTKMULTIMATERIALVOLUMEFILTERS_EXPORT std::string CutawayGLSLPrelude();
 
+/// The GLSL `#define` that turns Shaders/mmvCutaway.glsl's test on, in the
+/// shaders marching a volume while something is cut (without it the test
+/// compiles away).
+constexpr const char* CutawayGLSLDefine = "#define MMV_CUTAWAY\n";
+
 } // namespace mmv
 
 #endif

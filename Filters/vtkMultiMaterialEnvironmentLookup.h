@@ -36,8 +36,12 @@ enum ReflectionVisibility
   /// I = 1: reflections see the environment through the volume.
   UnoccludedReflections = 0,
   /// From each shaded sample, a march along w_r through the pre-filtered
-  /// extinction the irradiance pass uses (default).
-  MarchedReflectionVisibility = 1
+  /// extinction the irradiance pass uses.
+  MarchedReflectionVisibility = 1,
+  /// The same march once per irradiance voxel, when the camera or the volume
+  /// changes (vtkReflectionVisibilityPass), interpolated by the ray cast
+  /// (default: the cheaper of the two, docs/benchmark.md).
+  ViewDependentReflectionVisibility = 2
 };
 
 /// The visibility march starts this many voxels (of the grid it marches:

@@ -673,7 +673,7 @@ void vtkIrradianceVolumePass::vtkInternals::SetTransferUniforms(vtkShaderProgram
 // it the cutaway test compiles away (Shaders/mmvCutaway.glsl).
 std::string vtkIrradianceVolumePass::vtkInternals::ShadowRayDefines() const
 {
-  return mmv::ShadowRayGLSLPrelude() + (this->Cut.IsEmpty() ? "" : "#define MMV_CUTAWAY\n");
+  return mmv::ShadowRayGLSLPrelude() + (this->Cut.IsEmpty() ? "" : mmv::CutawayGLSLDefine);
 }
 
 //------------------------------------------------------------------------------
@@ -691,7 +691,7 @@ void vtkIrradianceVolumePass::vtkInternals::SetShadowRayUniforms(vtkShaderProgra
   program->SetUniformf("stepLength", static_cast<float>(this->StepLength));
   if (!this->Cut.IsEmpty())
   {
-    SetCutawayUniforms(program, mmv::ToIndexSpace(this->Cut, this->Grid));
+    ::SetCutawayUniforms(program, mmv::ToIndexSpace(this->Cut, this->Grid));
   }
 }
 
@@ -1119,6 +1119,19 @@ void vtkIrradianceVolumePass::SetCutaway(const mmv::Cutaway& cutaway)
     internals.Cut = cutaway;
     internals.VolumeChanged = true;
     this->Modified();
+  }
+}
+
+const mmv::Cutaway& vtkIrradianceVolumePass::GetCutaway() const
+{
+  return this->Internals->Cut;
+}
+
+void vtkIrradianceVolumePass::SetCutawayUniforms(vtkShaderProgram* program) const
+{
+  if (!this->Internals->Cut.IsEmpty())
+  {
+    ::SetCutawayUniforms(program, mmv::ToIndexSpace(this->Internals->Cut, this->Internals->Grid));
   }
 }
 

@@ -59,6 +59,7 @@
 #include <vector> // inputs
 
 class vtkOpenGLRenderWindow;
+class vtkShaderProgram;
 class vtkTextureObject;
 class vtkWindow;
 
@@ -93,7 +94,13 @@ public:
   /// What the shadow rays treat as empty (object space); a change recomputes
   /// every light.
   void SetCutaway(const mmv::Cutaway& cutaway);
+  const mmv::Cutaway& GetCutaway() const;
 #endif
+
+  /// The uniforms of Shaders/mmvCutaway.glsl for the pass's cutaway on its
+  /// grid, for other marches through the pre-filtered volume (the
+  /// reflections' visibility); nothing while nothing is cut.
+  void SetCutawayUniforms(vtkShaderProgram* program) const;
 
   /// Diffusion for multiple scattering (default on); time T of eq. 15.
   vtkSetMacro(MultipleScattering, bool);

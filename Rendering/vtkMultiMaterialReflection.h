@@ -10,7 +10,11 @@
  * MMV_ENVIRONMENT and MMV_REFLECTION_VISIBILITY, binds the textures and sets
  * the uniforms of Shaders/mmvReflection.glsl.
  *
- * The visibility needs the pre-filtered volume, which the irradiance pass
+ * The visibility is marched from each shaded sample
+ * (mmv::MarchedReflectionVisibility) or from each irradiance voxel by
+ * vtkReflectionVisibilityPass when the camera or the volume changed
+ * (mmv::ViewDependentReflectionVisibility). Either needs the pre-filtered
+ * volume, which the irradiance pass
  * builds only when there is a light: without one, reflections are unoccluded
  * (with a warning); the reference renderer does the same.
  */
@@ -28,8 +32,10 @@ class vtkIrradianceVolumePass;
 class vtkMatrix4x4;
 class vtkMultiMaterialEnvironment;
 class vtkMultiMaterialEnvironmentTexture;
+class vtkReflectionVisibilityPass;
 class vtkRenderer;
 class vtkShaderProgram;
+class vtkWindow;
 namespace mmv
 {
 struct IrradianceGrid;
@@ -47,16 +53,25 @@ public:
    * `visibility` (mmv::ReflectionVisibility), the pass's pre-filtered volume
    * on `grid` with its table of `tableSize` entries built for `stepLength`
    * (object units); `pass` may be null (no light). What cannot be honoured
-   * is appended to `problems`.
+   * is appended to `problems`. With `keepWhileCameraMoves` (an interactive
+   * frame), the view-dependent visibility of an earlier camera is kept as
+   * long as the volume is the same; the next frame without it recomputes.
    */
   void Update(vtkRenderer* ren, vtkMatrix4x4* objectToWorld, int source, int visibility,
     vtkIrradianceVolumePass* pass, const mmv::IrradianceGrid& grid, int tableSize,
-    double stepLength, std::vector<std::string>* problems);
+    double stepLength, std::vector<std::string>* problems, bool keepWhileCameraMoves = false);
 
   /// mmv::EnvironmentKind and mmv::ReflectionVisibility in effect.
   int GetEnvironmentKind() const;
   int GetVisibility() const { return this->Visibility; }
+  /// Whether the marched visibility honours a cutaway (the pass's cropping
+  /// region and clipping planes: what they remove does not occlude).
+  bool GetCutaway() const { return this->Cutaway; }
   vtkMultiMaterialEnvironment* GetEnvironment();
+  /// The view-dependent pass (its UpdateCount: how often it was recomputed).
+  vtkReflectionVisibilityPass* GetVisibilityPass();
+
+  void ReleaseGraphicsResources(vtkWindow* window);
 
   ///@{
   /// Binds / unbinds the textures; the uniforms of mmvReflection.glsl.
@@ -73,10 +88,19 @@ private:
   vtkMultiMaterialReflection(const vtkMultiMaterialReflection&) = delete;
   void operator=(const vtkMultiMaterialReflection&) = delete;
 
+  bool UpdateVisibilityPass(vtkRenderer* ren, vtkMatrix4x4* objectToWorld,
+    const mmv::IrradianceGrid& grid, bool keepWhileCameraMoves, std::vector<std::string>* problems);
+  void SetMarchUniforms(vtkShaderProgram* program) const;
+
   vtkNew<vtkMultiMaterialEnvironmentTexture> Environment;
+  vtkNew<vtkReflectionVisibilityPass> VisibilityPass;
   int Visibility = 0;
+  bool Cutaway = false;
   vtkIrradianceVolumePass* Pass = nullptr; // not owned
   float ToIndex[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
+  float ToObject[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
+  float Eye[4] = { 0, 0, 1, 0 };
+  std::vector<double> VolumeKey; // of the view-dependent visibility held
   float Origin[3] = { 0, 0, 0 };
   int Dimensions[3] = { 1, 1, 1 };
   float Offset = 0.0f;

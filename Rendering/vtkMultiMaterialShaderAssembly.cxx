@@ -4,6 +4,7 @@
 #include "vtkMultiMaterialParameters.h"
 
 #include "vtkMultiMaterialCutaway.h"
+#include "vtkMultiMaterialEnvironmentLookup.h"
 
 #include "mmvCutaway.h"
 #include "mmvEmission.h"
@@ -14,6 +15,7 @@
 #include "mmvRayCastImpl.h"
 #include "mmvRayCastInit.h"
 #include "mmvReflection.h"
+#include "mmvReflectionMarch.h"
 #include "mmvShading.h"
 #include "mmvShadowRay.h"
 
@@ -33,6 +35,11 @@ std::string VariantDefines(const ShaderVariant& variant)
   s += "#define MMV_ENVIRONMENT " + std::to_string(variant.Environment) + "\n";
   s += "#define MMV_REFLECTION_VISIBILITY " + std::to_string(variant.ReflectionVisibility) + "\n";
   return s;
+}
+
+std::string ReflectionMarchDefines(bool cutaway)
+{
+  return ShadowRayGLSLPrelude() + CutawayGLSLPrelude() + (cutaway ? CutawayGLSLDefine : "");
 }
 
 std::vector<std::pair<std::string, std::string>> RayCastReplacements(const ShaderVariant& variant)
@@ -60,10 +67,11 @@ std::vector<std::pair<std::string, std::string>> RayCastReplacements(const Shade
   declarations += mmvShading;
   if (variant.Reflection)
   {
-    if (variant.ReflectionVisibility != 0)
+    if (variant.ReflectionVisibility == MarchedReflectionVisibility)
     {
-      // The irradiance pass's shadow-ray march (nothing cut: MMV_CUTAWAY unset).
-      declarations += ShadowRayGLSLPrelude() + CutawayGLSLPrelude() + mmvCutaway + mmvShadowRay;
+      // The irradiance pass's shadow-ray march, with its cutaway.
+      declarations += ReflectionMarchDefines(variant.ReflectionCutaway) + mmvCutaway +
+        mmvShadowRay + mmvReflectionMarch;
     }
     declarations += mmvReflection;
   }

@@ -32,19 +32,28 @@ struct ShaderVariant
   // With Reflection: mmv::EnvironmentKind and mmv::ReflectionVisibility.
   int Environment = 0;
   int ReflectionVisibility = 0;
+  // With a visibility march: the irradiance pass's cutaway is not empty, and
+  // the march treats what it removes as empty (MMV_CUTAWAY).
+  bool ReflectionCutaway = false;
 
   bool operator==(const ShaderVariant& o) const
   {
     return this->NumberOfLights == o.NumberOfLights && this->Reflection == o.Reflection &&
       this->PreIntegration == o.PreIntegration && this->Anisotropy == o.Anisotropy &&
       this->Emission == o.Emission && this->Environment == o.Environment &&
-      this->ReflectionVisibility == o.ReflectionVisibility;
+      this->ReflectionVisibility == o.ReflectionVisibility &&
+      this->ReflectionCutaway == o.ReflectionCutaway;
   }
   bool operator!=(const ShaderVariant& o) const { return !(*this == o); }
 };
 
 /// The `#define` lines of a variant (the material layout prelude included).
 VTKMULTIMATERIALVOLUME_EXPORT std::string VariantDefines(const ShaderVariant& variant);
+
+/// The `#define` lines the reflections' visibility march needs (the shadow
+/// rays' constants, the cutaway's, MMV_CUTAWAY with `cutaway`): in the ray
+/// cast (mmv::MarchedReflectionVisibility) and in vtkReflectionVisibilityPass.
+VTKMULTIMATERIALVOLUME_EXPORT std::string ReflectionMarchDefines(bool cutaway);
 
 /// Fragment-shader replacements (tag, text) for composite ray casting.
 VTKMULTIMATERIALVOLUME_EXPORT std::vector<std::pair<std::string, std::string>>

@@ -15,6 +15,7 @@
 #include "vtkMultiMaterialLiveObjects.h"
 #include "vtkMultiMaterialParameters.h"
 #include "vtkMultiMaterialReflection.h"
+#include "vtkReflectionVisibilityPass.h"
 #include "vtkMultiMaterialRenderPass.h"
 #include "vtkMultiMaterialShaderAssembly.h"
 #include "vtkMultiMaterialShadingUniforms.h"
@@ -193,6 +194,7 @@ void vtkMultiMaterialVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
 {
   this->Internals->Textures->ReleaseGraphicsResources(window);
   this->Internals->Irradiance.ReleaseGraphicsResources(window);
+  this->Internals->Reflection->ReleaseGraphicsResources(window);
   this->Superclass::ReleaseGraphicsResources(window);
 }
 
@@ -484,6 +486,7 @@ void vtkMultiMaterialVolumeMapper::UpdateShading(
     this->UpdateReflection(ren, worldToObject);
     variant.Environment = in.Reflection->GetEnvironmentKind();
     variant.ReflectionVisibility = in.Reflection->GetVisibility();
+    variant.ReflectionCutaway = in.Reflection->GetCutaway();
   }
   if (variant != in.Uniforms.GetVariant() || in.Pass->GetFragmentReplacements().empty())
   {
@@ -504,11 +507,17 @@ void vtkMultiMaterialVolumeMapper::UpdateReflection(vtkRenderer* ren, vtkMatrix4
   std::vector<std::string> problems;
   in.Reflection->Update(ren, objectToWorld, this->ReflectionSource, this->ReflectionVisibility,
     in.Lights.empty() ? nullptr : in.Irradiance.GetPass(), grid, this->PreIntegrationTableSize,
-    std::min({ grid.Spacing.x, grid.Spacing.y, grid.Spacing.z }), &problems);
+    std::min({ grid.Spacing.x, grid.Spacing.y, grid.Spacing.z }), &problems,
+    this->LastRenderInteractive && this->InteractiveIrradiance == ReuseWhileInteracting);
   for (const std::string& problem : problems)
   {
     this->WarnOnce(problem);
   }
+}
+
+vtkIdType vtkMultiMaterialVolumeMapper::GetReflectionVisibilityUpdateCount()
+{
+  return this->Internals->Reflection->GetVisibilityPass()->GetUpdateCount();
 }
 
 const char* vtkMultiMaterialVolumeMapper::GetIrradianceResolutionReason()

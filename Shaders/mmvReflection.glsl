@@ -7,10 +7,12 @@
 // MMV_ENVIRONMENT (mmv::EnvironmentKind) selects c_r: 0, the background's
 // vertical gradient around the view-up; 1, the renderer's cube map; 2, its
 // equirectangular image, both in the frame VTK's skybox uses.
-// MMV_REFLECTION_VISIBILITY selects I: 0, 1 (unoccluded); 1, a march
-// through the pre-filtered extinction of the irradiance pass along w_r from
-// each shaded sample (Algorithm 1 lines 10-11 done per sample); it needs
-// mmvShadowRay.glsl (and its prelude and mmvCutaway.glsl) before this file.
+// MMV_REFLECTION_VISIBILITY (mmv::ReflectionVisibility) selects I: 0, 1
+// (unoccluded); 1, mmvReflectionVisibility() (mmvReflectionMarch.glsl, with
+// mmvShadowRay.glsl, its prelude and mmvCutaway.glsl, before this file) from
+// each shaded sample (Algorithm 1 lines 10-11 done per sample); 2, the same
+// march done once per irradiance voxel when the camera or the volume
+// changes (vtkReflectionVisibilityPass), interpolated here.
 
 uniform vec3 mmv_environmentUp; // object space
 uniform vec3 mmv_environmentBottom;
@@ -28,10 +30,11 @@ uniform samplerCube mmv_environmentTexture;
 uniform sampler2D mmv_environmentTexture;
 #endif
 #endif
-#if MMV_REFLECTION_VISIBILITY == 1
-uniform mat3 mmv_visibilityToIndex; // object space -> pre-filtered grid index
-uniform vec3 mmv_visibilityOrigin;  // object position of grid index (0, 0, 0)
-uniform float mmv_visibilityOffset; // object units along the normal (self-occlusion)
+#if MMV_REFLECTION_VISIBILITY == 2
+uniform sampler3D mmv_reflectionVisibility; // I per irradiance voxel, linear
+uniform mat3 mmv_visibilityToIndex;         // object space -> irradiance grid index
+uniform vec3 mmv_visibilityOrigin;          // object position of grid index (0, 0, 0)
+uniform vec3 mmv_visibilityDims;
 #endif
 
 // c_r along object-space direction d (not zero).
@@ -55,39 +58,6 @@ vec3 mmvEnvironmentColor(vec3 d)
 #endif
 }
 
-#if MMV_REFLECTION_VISIBILITY == 1
-// I(x, w_r): transmittance from object point x, moved off its surface along
-// n, to the pre-filtered grid's boundary along w.
-float mmvReflectionVisibility(vec3 x, vec3 n, vec3 w)
-{
-  vec3 start = mmv_visibilityToIndex * (x + mmv_visibilityOffset * n - mmv_visibilityOrigin);
-  vec3 indexDir = mmv_visibilityToIndex * w;
-  // Clip to the grid: a start outside it may still look back through it.
-  vec3 hi = vec3(float(dims[0] - 1), float(dims[1] - 1), float(dims[2] - 1));
-  float t0 = 0.0;
-  float t1 = 3.0e38;
-  for (int a = 0; a < 3; ++a)
-  {
-    if (indexDir[a] != 0.0)
-    {
-      float ta = (0.0 - start[a]) / indexDir[a];
-      float tb = (hi[a] - start[a]) / indexDir[a];
-      t0 = max(t0, min(ta, tb));
-      t1 = min(t1, max(ta, tb));
-    }
-    else if (start[a] < 0.0 || start[a] > hi[a])
-    {
-      return 1.0;
-    }
-  }
-  if (t1 <= t0)
-  {
-    return 1.0;
-  }
-  vec3 entry = start + t0 * indexDir;
-  return mmvMarchTransmittance(entry, indexDir, t1 - t0, mmvSampleScalar(entry), 1.0);
-}
-#endif
 
 // r I c_r without r: the reflected radiance reaching object point x along
 // the mirror direction of view vector v about n (unit, facing v, or zero).
@@ -97,6 +67,9 @@ vec3 mmvReflectedRadiance(vec3 x, vec3 n, vec3 v)
   vec3 c = mmvEnvironmentColor(mirrored);
 #if MMV_REFLECTION_VISIBILITY == 1
   c *= mmvReflectionVisibility(x, n, mirrored);
+#elif MMV_REFLECTION_VISIBILITY == 2
+  vec3 index = mmv_visibilityToIndex * (x - mmv_visibilityOrigin);
+  c *= texture(mmv_reflectionVisibility, (index + 0.5) / mmv_visibilityDims).r;
 #endif
   return c;
 }

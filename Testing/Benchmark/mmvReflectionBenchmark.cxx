@@ -5,9 +5,12 @@
 //                    reflection code in the shader
 //   r=0.5 unoccluded r = 0.5 on every node, ReflectionVisibility 0 (I = 1):
 //                    the environment lookup alone
-//   r=0.5 marched    r = 0.5, ReflectionVisibility 1 (default): each
-//                    reflecting sample marches its mirror ray through the
-//                    pre-filtered extinction
+//   r=0.5 marched    r = 0.5, ReflectionVisibility 1: each reflecting
+//                    sample marches its mirror ray through the pre-filtered
+//                    extinction
+//   r=0.5 view pass  r = 0.5, ReflectionVisibility 2: the same march once
+//                    per irradiance voxel (vtkReflectionVisibilityPass), on
+//                    every frame here since the camera turns every frame
 //
 //   mmvReflectionBenchmark --out DIR [--size N] [--frames N]
 //                          [--scenes synthetic,headsq,ct] [--head FILE.vti]
@@ -76,6 +79,7 @@ const Variant Variants[] = {
   { "r=0", 0.0, 1 },
   { "r=0.5 unoccluded", 0.5, 0 },
   { "r=0.5 marched", 0.5, 1 },
+  { "r=0.5 view pass", 0.5, 2 },
 };
 
 /// The scene's nodes with r replaced on every node.
@@ -214,7 +218,8 @@ int main(int argc, char* argv[])
   }
   std::ofstream csv(opt.Out + "/reflection.csv");
   csv << "scene,size,variant,reflection,visibility,frames,median_ms,p25_ms,p75_ms,"
-         "ratio_to_r0,cpu_median_ms,cpu_p25_ms,cpu_p75_ms,cpu_ratio_to_r0,renderer\n";
+         "ratio_to_r0,cpu_median_ms,cpu_p25_ms,cpu_p75_ms,cpu_ratio_to_r0,"
+         "irradiance_dims,visibility_pass_updates,renderer\n";
 
   for (const std::string& name : opt.Scenes)
   {
@@ -282,16 +287,22 @@ int main(int argc, char* argv[])
       const double cpu = Quantile(in->CPUSeconds, 0.5);
       const double cpu25 = Quantile(in->CPUSeconds, 0.25);
       const double cpu75 = Quantile(in->CPUSeconds, 0.75);
+      const int* d = in->Mapper->GetIrradianceDimensions();
+      const std::string dims =
+        std::to_string(d[0]) + "x" + std::to_string(d[1]) + "x" + std::to_string(d[2]);
       std::cout << std::setw(10) << name << std::setw(18) << in->Spec->Name << "  wall "
                 << std::fixed << std::setprecision(1) << 1e3 * median << " ms (" << 1e3 * p25
                 << "-" << 1e3 * p75 << ") x" << std::setprecision(3) << median / base
                 << "  cpu " << std::setprecision(1) << 1e3 * cpu << " ms (" << 1e3 * cpu25 << "-"
-                << 1e3 * cpu75 << ") x" << std::setprecision(3) << cpu / cpuBase << "\n";
+                << 1e3 * cpu75 << ") x" << std::setprecision(3) << cpu / cpuBase << "  irradiance "
+                << dims << ", visibility pass updates "
+                << in->Mapper->GetReflectionVisibilityUpdateCount() << "\n";
       csv << name << "," << opt.Size << "," << in->Spec->Name << "," << in->Spec->Reflection
           << "," << in->Spec->Visibility << ","
           << in->Seconds.size() << "," << std::setprecision(4) << 1e3 * median << ","
           << 1e3 * p25 << "," << 1e3 * p75 << "," << median / base << "," << 1e3 * cpu << ","
-          << 1e3 * cpu25 << "," << 1e3 * cpu75 << "," << cpu / cpuBase << ",\"" << renderer
+          << 1e3 * cpu25 << "," << 1e3 * cpu75 << "," << cpu / cpuBase << "," << dims << ","
+          << in->Mapper->GetReflectionVisibilityUpdateCount() << ",\"" << renderer
           << "\"\n";
     }
     csv.flush();
