@@ -6,6 +6,7 @@
 #include "vtkOpenGLRenderWindow.h"
 
 #include <chrono>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -48,8 +49,8 @@ std::vector<mmv::LightSource> vtkIrradianceResolutionProbe::ProbeLights()
 
 double vtkIrradianceResolutionProbe::Choose(vtkOpenGLRenderWindow* context,
   const vtkIrradianceInputCache::VolumeKey& key, vtkImageData* image, vtkDataArray* scalars,
-  const double range[2], double budgetMB, double boundDB, const std::vector<float>& opacityTable,
-  const ComputeFunction& compute)
+  const double range[2], double budgetMB, int maxAxis, double boundDB,
+  const std::vector<float>& opacityTable, const ComputeFunction& compute)
 {
   Key wanted;
   wanted.Volume = key;
@@ -69,7 +70,8 @@ double vtkIrradianceResolutionProbe::Choose(vtkOpenGLRenderWindow* context,
   this->Measured = wanted;
   this->HasResult = true;
   if (!this->Measure(
-        context, image, scalars, key.DataTime, range, budgetMB, boundDB, opacityTable, compute))
+        context, image, scalars, key.DataTime, range, budgetMB, maxAxis, boundDB, opacityTable,
+        compute))
   {
     // Keep the reference: the frame's own computation reports the failure.
     this->Scale = this->Candidates.empty() ? 1.0 : this->Candidates.front().Scale;
@@ -83,7 +85,8 @@ double vtkIrradianceResolutionProbe::Choose(vtkOpenGLRenderWindow* context,
 }
 
 bool vtkIrradianceResolutionProbe::Measure(vtkOpenGLRenderWindow* context, vtkImageData* image,
-  vtkDataArray* scalars, vtkMTimeType dataTime, const double range[2], double budgetMB, double boundDB,
+  vtkDataArray* scalars, vtkMTimeType dataTime, const double range[2], double budgetMB,
+  int maxAxis, double boundDB,
   const std::vector<float>& opacityTable, const ComputeFunction& compute)
 {
   this->Candidates.clear();
@@ -108,7 +111,12 @@ bool vtkIrradianceResolutionProbe::Measure(vtkOpenGLRenderWindow* context, vtkIm
   this->Candidates.push_back(reference);
   this->Scale = reference.Scale;
 
-  auto estimate = [&](const int dims[3], std::vector<std::vector<float>>& values) {
+  auto estimate = [&](const int wanted[3], std::vector<std::vector<float>>& values) {
+    int dims[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      dims[a] = maxAxis > 1 ? std::min(wanted[a], maxAxis) : wanted[a];
+    }
     this->Prefilter->UpdatePrefiltered(image, scalars, nullptr, dims, dataTime, range);
     return compute(this->Pass, this->Prefilter->GetGrid(), this->Prefilter->GetPrefiltered(),
              this->Prefilter->GetPrefilteredVersion(), lights) &&

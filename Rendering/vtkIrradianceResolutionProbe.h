@@ -70,12 +70,13 @@ public:
    * when `key` (the irradiance's volume key; its light count and scattering
    * switch are ignored), the data's dimensions, the budget or the bound
    * changed. `opacityTable` (over the normalised range) weighs the voxels.
-   * On failure returns the reference scale.
+   * No grid axis exceeds `maxAxis` (the largest 3D texture). On failure
+   * returns the reference scale.
    */
   double Choose(vtkOpenGLRenderWindow* context, const vtkIrradianceInputCache::VolumeKey& key,
-    vtkImageData* image,
-    vtkDataArray* scalars, const double range[2], double budgetMB, double boundDB,
-    const std::vector<float>& opacityTable, const ComputeFunction& compute);
+    vtkImageData* image, vtkDataArray* scalars, const double range[2], double budgetMB,
+    int maxAxis, double boundDB, const std::vector<float>& opacityTable,
+    const ComputeFunction& compute);
 #endif
 
   /// The probe's light (object space).
@@ -112,7 +113,7 @@ private:
     bool operator==(const Key& o) const;
   };
   bool Measure(vtkOpenGLRenderWindow* context, vtkImageData* image, vtkDataArray* scalars,
-    vtkMTimeType dataTime, const double range[2], double budgetMB, double boundDB, const std::vector<float>& opacityTable,
+    vtkMTimeType dataTime, const double range[2], double budgetMB, int maxAxis, double boundDB, const std::vector<float>& opacityTable,
     const ComputeFunction& compute);
 
   vtkNew<vtkIrradianceInputCache> Prefilter;

@@ -96,14 +96,15 @@ mmv::IrradianceResolution vtkMultiMaterialIrradianceStage::ChooseGrid(vtkRendere
   {
     this->Mapper->WarnOnce(boundProblem);
   }
-  if (scale <= 0.0 && bound > 0.0)
-  {
-    this->ApplyProbe(ren, vol, image, scalars, range, volumeKey, cutaway, bound, resolution);
-  }
   // The irradiance is one 3D texture: no axis longer than the largest one
   // (a long volume is drawn in bricks, its irradiance spans it whole).
   const int largest = vtkTextureObject::GetMaximumTextureSize3D(
     vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow()));
+  if (scale <= 0.0 && bound > 0.0)
+  {
+    this->ApplyProbe(
+      ren, vol, image, scalars, range, volumeKey, cutaway, bound, largest, resolution);
+  }
   for (int a = 0; a < 3 && largest > 1; ++a)
   {
     resolution.Dimensions[a] = std::min(resolution.Dimensions[a], largest);
@@ -114,7 +115,7 @@ mmv::IrradianceResolution vtkMultiMaterialIrradianceStage::ChooseGrid(vtkRendere
 void vtkMultiMaterialIrradianceStage::ApplyProbe(vtkRenderer* ren, vtkVolume* vol,
   vtkImageData* image, vtkDataArray* scalars, const double range[2],
   const vtkIrradianceInputCache::VolumeKey& volumeKey, const mmv::Cutaway& cutaway, double bound,
-  mmv::IrradianceResolution& resolution)
+  int maxAxis, mmv::IrradianceResolution& resolution)
 {
   auto* window = vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow());
   const int n = this->Mapper->PreIntegrationTableSize;
@@ -122,7 +123,7 @@ void vtkMultiMaterialIrradianceStage::ApplyProbe(vtkRenderer* ren, vtkVolume* vo
     SampleOpacityTable(vol->GetProperty()->GetScalarOpacity(0), range, n);
   const int before = this->Probe->GetNumberOfProbes();
   const double probed = this->Probe->Choose(window, volumeKey, image, scalars, range,
-    this->Mapper->IrradianceMemoryMB, bound, opacityTable,
+    this->Mapper->IrradianceMemoryMB, maxAxis, bound, opacityTable,
     [&](vtkIrradianceVolumePass* pass, const mmv::IrradianceGrid& grid,
       const std::vector<float>& prefiltered, unsigned long version,
       const std::vector<mmv::LightSource>& lights) {

@@ -74,7 +74,7 @@ private:
   /// Coarsens an automatic `resolution` to the error probe's scale.
   void ApplyProbe(vtkRenderer* ren, vtkVolume* vol, vtkImageData* image, vtkDataArray* scalars,
     const double range[2], const vtkIrradianceInputCache::VolumeKey& volumeKey,
-    const mmv::Cutaway& cutaway, double bound, mmv::IrradianceResolution& resolution);
+    const mmv::Cutaway& cutaway, double bound, int maxAxis, mmv::IrradianceResolution& resolution);
   /// Estimates `sources` on `grid` into `pass` (the frame's pass, or the
   /// probe's without scattering).
   bool ComputeOn(vtkIrradianceVolumePass* pass, vtkOpenGLRenderWindow* window, vtkVolume* vol,

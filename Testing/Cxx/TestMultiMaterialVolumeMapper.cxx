@@ -4,6 +4,7 @@
 #include "mmvTestScenes.h"
 
 #include "vtkIrradianceGrid.h"
+#include "vtkIrradianceResolutionProbe.h"
 #include "vtkIrradianceVolumeFilter.h"
 #include "vtkMaterialTransferFunction.h"
 #include "vtkMath.h"
@@ -26,6 +27,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <initializer_list>
 #include <string>
 #include <utility>
@@ -546,6 +548,8 @@ TEST(MultiMaterialVolumeMapper, ReportsTheChosenIrradianceResolution)
   // Automatic, zoomed out: the 64-pixel view spans 128 units (0.5 pixel
   // per data voxel), so the screen rule picks 0.5 / PixelsPerIrradianceVoxel.
   scene.Mapper->SetIrradianceScale(0.0);
+  // The error probe would coarsen this homogeneous cube further (below).
+  scene.Mapper->SetIrradianceErrorBound(0.0);
   scene.Renderer->GetActiveCamera()->SetParallelScale(64.0);
   scene.Window->Render();
   const std::string reason = scene.Mapper->GetIrradianceResolutionReason();
@@ -561,6 +565,142 @@ TEST(MultiMaterialVolumeMapper, ReportsTheChosenIrradianceResolution)
   scene.Window->Render();
   scene.Mapper->GetIrradianceDimensions(dims);
   EXPECT_EQ(dims[0], Dims) << scene.Mapper->GetIrradianceResolutionReason();
+  // With the probe (the default): a constant field loses nothing on the
+  // coarsest grid it tries, a quarter of the reference's.
+  scene.Mapper->SetIrradianceErrorBound(mmv::DefaultIrradianceErrorBoundDB);
+  scene.Window->Render();
+  scene.Mapper->GetIrradianceDimensions(dims);
+  const std::string probed = scene.Mapper->GetIrradianceResolutionReason();
+  EXPECT_NE(probed.find("error probe"), std::string::npos) << probed;
+  EXPECT_EQ(dims[0], 8) << probed;
+}
+
+namespace
+{
+/// Diffusely lit data of `Dims`^3 points from `value`, the light kit's key
+/// light on it, an automatic irradiance resolution.
+struct ProbeScene : mmvtest::Scene
+{
+  vtkNew<vtkMultiMaterialVolumeMapper> Mapper;
+  vtkNew<vtkMaterialTransferFunction> Materials;
+  vtkSmartPointer<vtkImageData> Image;
+
+  explicit ProbeScene(const std::function<float(int, int, int)>& value, double opacity)
+  {
+    this->Image = mmvtest::MakeVolume(Dims, value);
+    this->Color->AddRGBPoint(0.0, 1.0, 0.9, 0.8);
+    this->Color->AddRGBPoint(1.0, 1.0, 0.9, 0.8);
+    this->Opacity->AddPoint(0.0, 0.0);
+    this->Opacity->AddPoint(1.0, opacity);
+    this->Property->SetScalarOpacityUnitDistance(1.0);
+    this->Materials->AddNode(0.0, 0.1, 0.9, 0.0, 1.0, 1.0, 0.0, 0.0);
+    this->Materials->AddNode(1.0, 0.1, 0.9, 0.0, 1.0, 1.0, 0.0, 0.0);
+    this->Mapper->SetInputData(this->Image);
+    this->Mapper->SetMaterialTransferFunction(this->Materials);
+    this->Mapper->MultipleScatteringOff();
+    this->Volume->SetMapper(this->Mapper);
+    this->FrameBounds(this->Image->GetBounds());
+    vtkNew<vtkLightKit> kit;
+    kit->AddLightsToRenderer(this->Renderer);
+  }
+};
+
+/// A smooth blob: its lighting needs no fine grid.
+float SmoothBlob(int i, int j, int k)
+{
+  const double r2 = (i - 16.0) * (i - 16.0) + (j - 16.0) * (j - 16.0) + (k - 16.0) * (k - 16.0);
+  return static_cast<float>(std::exp(-r2 / (2.0 * 9.0 * 9.0)));
+}
+
+/// A spherical shell one voxel thick: its self-shadowing needs every voxel.
+float ThinShell(int i, int j, int k)
+{
+  const double r = std::sqrt((i - 16.0) * (i - 16.0) + (j - 16.0) * (j - 16.0) + (k - 16.0) * (k - 16.0));
+  return std::abs(r - 12.0) < 0.75 ? 1.0f : 0.0f;
+}
+
+double ImagePSNR(const std::vector<unsigned char>& a, const std::vector<unsigned char>& b)
+{
+  double sum = 0.0;
+  for (size_t p = 0; p < a.size(); ++p)
+  {
+    const double d = static_cast<double>(a[p]) - b[p];
+    sum += d * d;
+  }
+  return sum == 0.0 ? INFINITY : 10.0 * std::log10(255.0 * 255.0 * a.size() / sum);
+}
+}
+
+TEST(MultiMaterialVolumeMapper, ErrorProbeCoarsensSmoothDataWithinItsBound)
+{
+  ProbeScene probed(SmoothBlob, 0.3);
+  probed.Window->Render();
+  int dims[3];
+  probed.Mapper->GetIrradianceDimensions(dims);
+  const std::string reason = probed.Mapper->GetIrradianceResolutionReason();
+  EXPECT_LT(dims[0], Dims) << reason;
+  EXPECT_NE(reason.find("error probe"), std::string::npos) << reason;
+  EXPECT_EQ(probed.Mapper->GetNumberOfIrradianceProbes(), 1);
+  // The image it gives against the full grid's: no worse than the bound.
+  ProbeScene full(SmoothBlob, 0.3);
+  full.Mapper->SetIrradianceScale(1.0);
+  full.Window->Render();
+  const double psnr = ImagePSNR(probed.Pixels(), full.Pixels());
+  EXPECT_GE(psnr, mmv::DefaultIrradianceErrorBoundDB) << reason;
+  std::printf("smooth blob: %s; image %.1f dB against the full grid\n", reason.c_str(), psnr);
+
+  // No probe: the screen and the budget keep the full grid here.
+  ProbeScene unprobed(SmoothBlob, 0.3);
+  unprobed.Mapper->SetIrradianceErrorBound(0.0);
+  unprobed.Window->Render();
+  unprobed.Mapper->GetIrradianceDimensions(dims);
+  EXPECT_EQ(dims[0], Dims) << unprobed.Mapper->GetIrradianceResolutionReason();
+  EXPECT_EQ(unprobed.Mapper->GetNumberOfIrradianceProbes(), 0);
+}
+
+TEST(MultiMaterialVolumeMapper, ErrorProbeKeepsTheGridOfThinShells)
+{
+  ProbeScene scene(ThinShell, 0.9);
+  scene.Window->Render();
+  int dims[3];
+  scene.Mapper->GetIrradianceDimensions(dims);
+  EXPECT_EQ(dims[0], Dims) << scene.Mapper->GetIrradianceResolutionReason();
+  const auto& candidates = scene.Mapper->GetIrradianceResolutionProbe()->GetCandidates();
+  ASSERT_GE(candidates.size(), 2u);
+  EXPECT_LT(candidates[1].PSNR, mmv::DefaultIrradianceErrorBoundDB);
+}
+
+TEST(MultiMaterialVolumeMapper, ErrorProbeRunsOncePerTransferFunctionNotPerCamera)
+{
+  ProbeScene scene(SmoothBlob, 0.3);
+  scene.Window->Render();
+  int first[3];
+  scene.Mapper->GetIrradianceDimensions(first);
+  // An orbit: the kit's lights follow the camera, the probe light does not.
+  for (int step = 0; step < 3; ++step)
+  {
+    scene.Renderer->GetActiveCamera()->Azimuth(25.0);
+    scene.Renderer->GetActiveCamera()->Elevation(10.0);
+    scene.Renderer->ResetCameraClippingRange();
+    scene.Window->Render();
+  }
+  EXPECT_EQ(scene.Mapper->GetNumberOfIrradianceProbes(), 1);
+  EXPECT_GT(scene.Mapper->GetIrradianceUpdateCount(), 1);
+  int after[3];
+  scene.Mapper->GetIrradianceDimensions(after);
+  EXPECT_EQ(after[0], first[0]);
+  // The image at rest equals a fresh render of that camera.
+  ProbeScene fresh(SmoothBlob, 0.3);
+  fresh.Renderer->GetActiveCamera()->DeepCopy(scene.Renderer->GetActiveCamera());
+  fresh.Renderer->ResetCameraClippingRange();
+  scene.Renderer->ResetCameraClippingRange();
+  fresh.Window->Render();
+  scene.Window->Render();
+  EXPECT_EQ(ImagePSNR(scene.Pixels(), fresh.Pixels()), INFINITY);
+  // A transfer-function change measures again.
+  scene.Opacity->AddPoint(1.0, 0.6);
+  scene.Window->Render();
+  EXPECT_EQ(scene.Mapper->GetNumberOfIrradianceProbes(), 2);
 }
 
 namespace
@@ -705,9 +845,9 @@ TEST(MultiMaterialVolumeMapper, MappersVolumesAndPassesAreFreed)
 namespace
 {
 // The counted classes a rendered mapper brings to life: itself, its render
-// pass, its two pre-integration tables (segments, shadows) and its
-// irradiance input cache.
-constexpr int ObjectsPerMapper = 5;
+// pass, its two pre-integration tables (segments, shadows), its irradiance
+// input cache and the error probe's.
+constexpr int ObjectsPerMapper = 6;
 
 // Renders a lit multi-material scene once, so that the mapper makes its GL
 // resources (tables, gradient, irradiance volume, shader) and installs its
