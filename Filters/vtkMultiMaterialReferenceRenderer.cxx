@@ -351,43 +351,13 @@ vtkImageData* vtkMultiMaterialReferenceRenderer::RenderToImage(vtkRenderer* ren,
   return this->Render(ren, size[0], size[1]);
 }
 
-vtkImageData* vtkMultiMaterialReferenceRenderer::Render(vtkRenderer* ren, int width, int height)
+namespace
 {
-  const auto start = std::chrono::steady_clock::now();
-  vtkImageData* image = this->Input;
-  vtkVolumeProperty* property = this->Property;
-  if (!this->CheckRenderInputs(ren, width, height))
-  {
-    return nullptr;
-  }
-  Scene scene;
-  std::vector<double> values;
-  double range[2];
-  const std::string why =
-    mmv::LoadScalarField(image, values, scene.Data, range, scene.Origin, scene.IndexToObject);
-  if (!why.empty())
-  {
-    vtkErrorMacro(<< why);
-    return nullptr;
-  }
-  const vtkIdType count = image->GetNumberOfPoints();
-  scene.RangeMin = range[0];
-  scene.InverseRange = 1.0 / (range[1] - range[0]);
-  const double* spacing = image->GetSpacing();
-  scene.ObjectToIndex = glm::inverse(scene.IndexToObject);
-  scene.GradientToObject = glm::transpose(scene.ObjectToIndex);
-  const double smallestSpacing =
-    std::min({ std::abs(spacing[0]), std::abs(spacing[1]), std::abs(spacing[2]) });
-  scene.PrimaryStep = this->SampleDistance > 0.0 ? this->SampleDistance : smallestSpacing / 8.0;
-  scene.ShadowStep =
-    this->ShadowSampleDistance > 0.0 ? this->ShadowSampleDistance : smallestSpacing / 8.0;
-  scene.GradientFade = mmv::FullShadingGradientPerVoxel / smallestSpacing;
-  const double minTransmittance = this->MinimumTransmittance;
-  scene.MaxOpticalDepth = minTransmittance > 0.0 ? -std::log(minTransmittance)
-                                                 : std::numeric_limits<double>::infinity();
-
-  // Transfer functions.
-  TransferTables& tables = scene.Tables;
+/// The transfer functions at TableSize values over `range`: colour,
+/// extinction, attenuated extinction and every material parameter.
+void TabulateTransferFunctions(vtkVolumeProperty* property,
+  vtkMaterialTransferFunction* materials, const double range[2], TransferTables& tables)
+{
   tables.Min = range[0];
   tables.Scale = (TableSize - 1) / (range[1] - range[0]);
   mmv::TabulateColor(property, range, TableSize, tables.Color);
@@ -397,7 +367,6 @@ vtkImageData* vtkMultiMaterialReferenceRenderer::Render(vtkRenderer* ren, int wi
   tables.Mu.resize(TableSize);
   tables.Sigma.resize(TableSize);
   tables.Material.resize(static_cast<size_t>(mmv::MaterialParameterCount) * TableSize);
-  vtkMaterialTransferFunction* materials = this->Materials;
   for (int i = 0; i < TableSize; ++i)
   {
     const double s = range[0] + (range[1] - range[0]) * i / (TableSize - 1.0);
@@ -416,139 +385,123 @@ vtkImageData* vtkMultiMaterialReferenceRenderer::Render(vtkRenderer* ren, int wi
     tables.Mu[i] = mmv::ExtinctionFromOpacity(alpha[i], unitDistance);
     tables.Sigma[i] = m[mmv::Attenuation] * tables.Mu[i];
   }
+}
 
-  // Lights and environment in object space.
-  vtkNew<vtkMatrix4x4> objectToWorld;
-  if (this->Matrix)
-  {
-    objectToWorld->DeepCopy(this->Matrix);
-  }
-  vtkNew<vtkMatrix4x4> worldToObject;
-  vtkMatrix4x4::Invert(objectToWorld, worldToObject);
-  std::string radiusProblem;
-  const double radius = mmv::ValidPointLightRadius(this->PointLightRadius, &radiusProblem);
-  if (!radiusProblem.empty())
-  {
-    vtkWarningMacro(<< radiusProblem);
-  }
-  {
-    int dims[3];
-    image->GetDimensions(dims);
-    scene.Cut = mmv::ToIndexSpace(
-      mmv::MakeCutaway(this->CutawayMapper, worldToObject), mmv::MakeIrradianceGrid(image, dims));
-  }
-  std::vector<std::string> problems;
+/// Sampling steps and ray-termination depth, from the data's spacing.
+void SetUpSampling(Scene& scene, const double range[2], const double spacing[3],
+  double sampleDistance, double shadowSampleDistance, double minTransmittance)
+{
+  scene.RangeMin = range[0];
+  scene.InverseRange = 1.0 / (range[1] - range[0]);
+  scene.ObjectToIndex = glm::inverse(scene.IndexToObject);
+  scene.GradientToObject = glm::transpose(scene.ObjectToIndex);
+  const double smallestSpacing =
+    std::min({ std::abs(spacing[0]), std::abs(spacing[1]), std::abs(spacing[2]) });
+  scene.PrimaryStep = sampleDistance > 0.0 ? sampleDistance : smallestSpacing / 8.0;
+  scene.ShadowStep = shadowSampleDistance > 0.0 ? shadowSampleDistance : smallestSpacing / 8.0;
+  scene.GradientFade = mmv::FullShadingGradientPerVoxel / smallestSpacing;
+  scene.MaxOpticalDepth =
+    minTransmittance > 0.0 ? -std::log(minTransmittance) : std::numeric_limits<double>::infinity();
+  scene.ReflectionOffset = mmv::ReflectionVisibilityOffsetVoxels * smallestSpacing;
+}
+
+/// The renderer's lights and the mapper's cut in object space; what had to
+/// be replaced goes to `problems`.
+void PlaceLights(Scene& scene, vtkRenderer* ren, vtkMatrix4x4* worldToObject, vtkImageData* input,
+  vtkVolumeMapper* cutawayMapper, double radius, std::vector<std::string>& problems)
+{
+  int dims[3];
+  input->GetDimensions(dims);
+  scene.Cut = mmv::ToIndexSpace(
+    mmv::MakeCutaway(cutawayMapper, worldToObject), mmv::MakeIrradianceGrid(input, dims));
   scene.Lights = mmv::CollectLights(
     ren->GetLights(), worldToObject, radius, mmv::MaxLights, nullptr, &problems);
-  for (const std::string& problem : problems)
-  {
-    vtkWarningMacro(<< problem);
-  }
   for (const mmv::ShadingLight& light : scene.Lights)
   {
     scene.Sources.push_back(light.Source);
     scene.Radiances.push_back(light.Radiance);
   }
-  vtkCamera* camera = ren->GetActiveCamera();
-  scene.Reflection =
-    materials && materials->GetSize() > 0 && materials->GetMaximum(mmv::Reflection) > 0.0;
-  vtkNew<vtkMultiMaterialEnvironment> environment;
-  if (scene.Reflection)
-  {
-    std::vector<std::string> environmentProblems;
-    environment->Update(ren, objectToWorld, this->ReflectionSource, &environmentProblems);
-    for (const std::string& problem : environmentProblems)
-    {
-      vtkWarningMacro(<< problem);
-    }
-    scene.Environment = environment;
-    // As the GPU: the visibility marches the pre-filtered volume, which
-    // only exists with a light.
-    scene.ReflectionVisibility =
-      this->ReflectionVisibility == mmv::MarchedReflectionVisibility && !scene.Lights.empty();
-    scene.ReflectionOffset = mmv::ReflectionVisibilityOffsetVoxels * smallestSpacing;
-  }
+}
 
-  // Multiple scattering: diffuse the direct irradiance of every voxel.
-  this->ScatteringApplied = false;
-  this->LastScatteringSeconds = 0.0;
-  std::atomic<vtkIdType> shadowRays(0);
-  const bool scatters =
-    this->MultipleScattering && materials && materials->GetMaximum(mmv::Scattering) > 0.0;
-  if (scatters && !scene.Lights.empty())
+/// c_r of eq. 17 from the renderer's environment, and whether I(x, w_r) is
+/// estimated: as the GPU, per sample or per irradiance voxel alike (the same
+/// transmittance along w_r), and only with a light (the GPU marches the
+/// irradiance pass's pre-filtered volume).
+void PlaceEnvironment(Scene& scene, vtkRenderer* ren, vtkMatrix4x4* objectToWorld,
+  vtkMultiMaterialEnvironment* environment, int source, int visibility,
+  std::vector<std::string>& problems)
+{
+  environment->Update(ren, objectToWorld, source, &problems);
+  scene.Environment = environment;
+  scene.ReflectionVisibility = visibility != mmv::UnoccludedReflections && !scene.Lights.empty();
+}
+
+/// Multiple scattering: per light, the diffused minus the direct irradiance
+/// of every voxel (the reference renderer adds it back). False: nothing
+/// scatters.
+bool ComputeScatteringDeltas(Scene& scene, const std::vector<double>& values,
+  std::atomic<vtkIdType>& shadowRays)
+{
+  const vtkIdType count = static_cast<vtkIdType>(values.size());
+  std::vector<float> strength(count, 0.0f);
+  bool any = false;
+  for (vtkIdType v = 0; v < count; ++v)
   {
-    const auto scatterStart = std::chrono::steady_clock::now();
-    std::vector<float> strength(count, 0.0f);
-    bool any = false;
+    int i;
+    double w;
+    if (scene.Extinction(values[v], i, w) > 0.0)
+    {
+      strength[v] = static_cast<float>(TransferTables::Lerp(
+        scene.Tables.Material, mmv::MaterialParameterCount, mmv::Scattering, i, w));
+      any = any || strength[v] > 0.0f;
+    }
+  }
+  if (!any)
+  {
+    return false;
+  }
+  const int* dims = scene.Data.Dims;
+  const double voxel[3] = { 1.0, 1.0, 1.0 };
+  for (const mmv::ShadingLight& light : scene.Lights)
+  {
+    std::vector<float> direct(count);
+    vtkSMPTools::For(0, count, [&](vtkIdType first, vtkIdType last) {
+      for (vtkIdType v = first; v < last; ++v)
+      {
+        const dvec3 p(v % dims[0], (v / dims[0]) % dims[1], v / (vtkIdType(dims[0]) * dims[1]));
+        direct[v] = static_cast<float>(
+          scene.DirectIrradiance(light.Source, scene.Origin + scene.IndexToObject * p));
+      }
+      shadowRays += last - first;
+    });
+    std::vector<float> diffused = direct;
+    mmv::DiffuseIrradiance(dims, voxel, strength.data(), diffused.data());
     for (vtkIdType v = 0; v < count; ++v)
     {
-      int i;
-      double w;
-      if (scene.Extinction(values[v], i, w) > 0.0)
-      {
-        strength[v] = static_cast<float>(
-          TransferTables::Lerp(tables.Material, mmv::MaterialParameterCount, mmv::Scattering, i, w));
-        any = any || strength[v] > 0.0f;
-      }
+      diffused[v] -= direct[v];
     }
-    if (any)
-    {
-      const int* dims = scene.Data.Dims;
-      const double voxel[3] = { 1.0, 1.0, 1.0 };
-      for (const mmv::ShadingLight& light : scene.Lights)
-      {
-        std::vector<float> direct(count);
-        vtkSMPTools::For(0, count, [&](vtkIdType first, vtkIdType last) {
-          for (vtkIdType v = first; v < last; ++v)
-          {
-            const dvec3 p(v % dims[0], (v / dims[0]) % dims[1], v / (vtkIdType(dims[0]) * dims[1]));
-            direct[v] = static_cast<float>(
-              scene.DirectIrradiance(light.Source, scene.Origin + scene.IndexToObject * p));
-          }
-          shadowRays += last - first;
-        });
-        std::vector<float> diffused = direct;
-        mmv::DiffuseIrradiance(dims, voxel, strength.data(), diffused.data());
-        for (vtkIdType v = 0; v < count; ++v)
-        {
-          diffused[v] -= direct[v];
-        }
-        scene.ScatteringDelta.push_back(std::move(diffused));
-      }
-      this->ScatteringApplied = true;
-    }
-    this->LastScatteringSeconds = Seconds(scatterStart);
+    scene.ScatteringDelta.push_back(std::move(diffused));
   }
+  return true;
+}
 
-  // Camera: unproject each pixel centre from the near to the far plane.
-  vtkNew<vtkMatrix4x4> ndcToObject;
-  mmv::NDCToObject(camera, width, height, worldToObject, ndcToObject);
-
+/// One ray per pixel centre (rows in parallel): radiance over the
+/// renderer's background (gradient bottom to top, as VTK draws it) into
+/// `out` (RGB doubles) and `bytes` (clamped RGB bytes).
+void TracePixels(const Scene& scene, vtkRenderer* ren, vtkMatrix4x4* ndcToObject, int width,
+  int height, double minTransmittance, double* out, unsigned char* bytes,
+  std::atomic<vtkIdType>& samples, std::atomic<vtkIdType>& shadowRays)
+{
   const double* bg1 = ren->GetBackground();
   const double* bg2 = ren->GetGradientBackground() ? ren->GetBackground2() : bg1;
   const dvec3 background1(bg1[0], bg1[1], bg1[2]);
   const dvec3 background2(bg2[0], bg2[1], bg2[2]);
-
-  const vtkIdType pixels = static_cast<vtkIdType>(width) * height;
-  vtkNew<vtkDoubleArray> radiance;
-  radiance->SetName("Radiance");
-  radiance->SetNumberOfComponents(3);
-  radiance->SetNumberOfTuples(pixels);
-  vtkNew<vtkUnsignedCharArray> colors;
-  colors->SetName("Colors");
-  colors->SetNumberOfComponents(3);
-  colors->SetNumberOfTuples(pixels);
-  double* out = radiance->GetPointer(0);
-  unsigned char* bytes = colors->GetPointer(0);
-
-  std::atomic<vtkIdType> samples(0);
   vtkSMPTools::For(0, height, 1, [&](vtkIdType firstRow, vtkIdType lastRow) {
     vtkIdType localSamples = 0;
     vtkIdType localShadowRays = 0;
     for (vtkIdType j = firstRow; j < lastRow; ++j)
     {
       const double y = (j + 0.5) / height * 2.0 - 1.0;
-      // VTK draws the gradient background bottom (Background) to top.
       const dvec3 background = glm::mix(background1, background2, (j + 0.5) / height);
       for (int i = 0; i < width; ++i)
       {
@@ -575,6 +528,86 @@ vtkImageData* vtkMultiMaterialReferenceRenderer::Render(vtkRenderer* ren, int wi
     samples += localSamples;
     shadowRays += localShadowRays;
   });
+}
+}
+
+vtkImageData* vtkMultiMaterialReferenceRenderer::Render(vtkRenderer* ren, int width, int height)
+{
+  const auto start = std::chrono::steady_clock::now();
+  vtkImageData* image = this->Input;
+  if (!this->CheckRenderInputs(ren, width, height))
+  {
+    return nullptr;
+  }
+  Scene scene;
+  std::vector<double> values;
+  double range[2];
+  const std::string why =
+    mmv::LoadScalarField(image, values, scene.Data, range, scene.Origin, scene.IndexToObject);
+  if (!why.empty())
+  {
+    vtkErrorMacro(<< why);
+    return nullptr;
+  }
+  SetUpSampling(scene, range, image->GetSpacing(), this->SampleDistance,
+    this->ShadowSampleDistance, this->MinimumTransmittance);
+  vtkMaterialTransferFunction* materials = this->Materials;
+  TabulateTransferFunctions(this->Property, materials, range, scene.Tables);
+
+  // Lights, cut and environment in object space.
+  vtkNew<vtkMatrix4x4> objectToWorld;
+  if (this->Matrix)
+  {
+    objectToWorld->DeepCopy(this->Matrix);
+  }
+  vtkNew<vtkMatrix4x4> worldToObject;
+  vtkMatrix4x4::Invert(objectToWorld, worldToObject);
+  std::vector<std::string> problems;
+  const double radius = mmv::ValidPointLightRadius(this->PointLightRadius, &problems.emplace_back());
+  PlaceLights(scene, ren, worldToObject, image, this->CutawayMapper, radius, problems);
+  vtkNew<vtkMultiMaterialEnvironment> environment;
+  scene.Reflection =
+    materials && materials->GetSize() > 0 && materials->GetMaximum(mmv::Reflection) > 0.0;
+  if (scene.Reflection)
+  {
+    PlaceEnvironment(scene, ren, objectToWorld, environment, this->ReflectionSource,
+      this->ReflectionVisibility, problems);
+  }
+  for (const std::string& problem : problems)
+  {
+    if (!problem.empty())
+    {
+      vtkWarningMacro(<< problem);
+    }
+  }
+
+  // Multiple scattering: diffuse the direct irradiance of every voxel.
+  this->ScatteringApplied = false;
+  this->LastScatteringSeconds = 0.0;
+  std::atomic<vtkIdType> shadowRays(0);
+  if (this->MultipleScattering && materials && materials->GetMaximum(mmv::Scattering) > 0.0 &&
+    !scene.Lights.empty())
+  {
+    const auto scatterStart = std::chrono::steady_clock::now();
+    this->ScatteringApplied = ComputeScatteringDeltas(scene, values, shadowRays);
+    this->LastScatteringSeconds = Seconds(scatterStart);
+  }
+
+  // Camera: unproject each pixel centre from the near to the far plane.
+  vtkNew<vtkMatrix4x4> ndcToObject;
+  mmv::NDCToObject(ren->GetActiveCamera(), width, height, worldToObject, ndcToObject);
+  const vtkIdType pixels = static_cast<vtkIdType>(width) * height;
+  vtkNew<vtkDoubleArray> radiance;
+  radiance->SetName("Radiance");
+  radiance->SetNumberOfComponents(3);
+  radiance->SetNumberOfTuples(pixels);
+  vtkNew<vtkUnsignedCharArray> colors;
+  colors->SetName("Colors");
+  colors->SetNumberOfComponents(3);
+  colors->SetNumberOfTuples(pixels);
+  std::atomic<vtkIdType> samples(0);
+  TracePixels(scene, ren, ndcToObject, width, height, this->MinimumTransmittance,
+    radiance->GetPointer(0), colors->GetPointer(0), samples, shadowRays);
 
   this->Output = vtkSmartPointer<vtkImageData>::New();
   this->Output->SetDimensions(width, height, 1);
