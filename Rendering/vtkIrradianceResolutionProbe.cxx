@@ -34,6 +34,28 @@ bool vtkIrradianceResolutionProbe::Key::operator==(const Key& o) const
     this->BoundDB == o.BoundDB;
 }
 
+vtkIrradianceResolutionProbe::Key vtkIrradianceResolutionProbe::MakeKey(
+  const vtkIrradianceInputCache::VolumeKey& key, vtkImageData* image, double budgetMB,
+  double boundDB)
+{
+  Key made;
+  made.Volume = key;
+  // The probe has its own light and no scattering.
+  made.Volume.NumberOfLights = 0;
+  made.Volume.MultipleScattering = false;
+  made.Volume.ExponentialDiffusion = false;
+  image->GetDimensions(made.DataDimensions);
+  made.BudgetMB = budgetMB;
+  made.BoundDB = boundDB;
+  return made;
+}
+
+bool vtkIrradianceResolutionProbe::NeedsMeasurement(const vtkIrradianceInputCache::VolumeKey& key,
+  vtkImageData* image, double budgetMB, double boundDB) const
+{
+  return !this->HasResult || !(MakeKey(key, image, budgetMB, boundDB) == this->Measured);
+}
+
 std::vector<mmv::LightSource> vtkIrradianceResolutionProbe::ProbeLights()
 {
   // Oblique to every axis, so no axis-aligned feature is seen edge-on.
@@ -52,15 +74,7 @@ double vtkIrradianceResolutionProbe::Choose(vtkOpenGLRenderWindow* context,
   const double range[2], double budgetMB, int maxAxis, double boundDB,
   const std::vector<float>& opacityTable, const ComputeFunction& compute)
 {
-  Key wanted;
-  wanted.Volume = key;
-  // The probe has its own lights and no scattering.
-  wanted.Volume.NumberOfLights = 0;
-  wanted.Volume.MultipleScattering = false;
-  wanted.Volume.ExponentialDiffusion = false;
-  image->GetDimensions(wanted.DataDimensions);
-  wanted.BudgetMB = budgetMB;
-  wanted.BoundDB = boundDB;
+  const Key wanted = MakeKey(key, image, budgetMB, boundDB);
   if (this->HasResult && wanted == this->Measured)
   {
     return this->Scale;

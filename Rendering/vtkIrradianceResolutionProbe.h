@@ -79,6 +79,13 @@ public:
     const ComputeFunction& compute);
 #endif
 
+  /// Whether Choose() with these arguments would measure (rather than
+  /// return the kept result): the caller can report progress first.
+  bool NeedsMeasurement(const vtkIrradianceInputCache::VolumeKey& key, vtkImageData* image,
+    double budgetMB, double boundDB) const;
+#endif
+
+#ifndef __VTK_WRAP__
   /// The probe's light (object space).
 #ifndef __VTK_WRAP__
   static std::vector<mmv::LightSource> ProbeLights();
@@ -112,6 +119,8 @@ private:
     double BoundDB = 0.0;
     bool operator==(const Key& o) const;
   };
+  static Key MakeKey(const vtkIrradianceInputCache::VolumeKey& key, vtkImageData* image,
+    double budgetMB, double boundDB);
   bool Measure(vtkOpenGLRenderWindow* context, vtkImageData* image, vtkDataArray* scalars,
     vtkMTimeType dataTime, const double range[2], double budgetMB, int maxAxis, double boundDB, const std::vector<float>& opacityTable,
     const ComputeFunction& compute);

@@ -121,7 +121,15 @@ void vtkMultiMaterialIrradianceStage::ApplyProbe(vtkRenderer* ren, vtkVolume* vo
   const int n = this->Mapper->PreIntegrationTableSize;
   const std::vector<float> opacityTable =
     SampleOpacityTable(vol->GetProperty()->GetScalarOpacity(0), range, n);
-  const int before = this->Probe->GetNumberOfProbes();
+  // A measurement takes seconds on a software GPU: ParaView's progress bar
+  // shows it, as it shows the update that follows (issue 12).
+  const bool measures = this->Probe->NeedsMeasurement(
+    volumeKey, image, this->Mapper->IrradianceMemoryMB, bound);
+  if (measures)
+  {
+    this->Mapper->SetProgressText("Irradiance resolution probe");
+    this->Mapper->UpdateProgress(0.0);
+  }
   const double probed = this->Probe->Choose(window, volumeKey, image, scalars, range,
     this->Mapper->IrradianceMemoryMB, maxAxis, bound, opacityTable,
     [&](vtkIrradianceVolumePass* pass, const mmv::IrradianceGrid& grid,
@@ -130,8 +138,10 @@ void vtkMultiMaterialIrradianceStage::ApplyProbe(vtkRenderer* ren, vtkVolume* vo
       return this->ComputeOn(
         pass, window, vol, range, cutaway, grid, prefiltered, version, lights, false);
     });
-  if (this->Probe->GetNumberOfProbes() != before)
+  if (measures)
   {
+    this->Mapper->UpdateProgress(1.0);
+    this->Mapper->SetProgressText(nullptr);
     vtkDebugWithObjectMacro(this->Mapper, << this->Probe->GetSummary() << " in "
                                           << this->Probe->GetLastProbeSeconds() << " s");
   }

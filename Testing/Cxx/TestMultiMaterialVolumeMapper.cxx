@@ -208,6 +208,22 @@ TEST(MultiMaterialVolumeMapper, IrradianceUpdatesReportProgress)
   EXPECT_EQ(scene.Mapper->GetIrradianceUpdateCount(), 2);
   EXPECT_EQ(events, startEnd);
   EXPECT_EQ(scene.Mapper->GetProgressText(), nullptr) << "the text is cleared after an update";
+
+  // With an automatic resolution, the error probe's measurement reports its
+  // own start and end before the update's; a camera move reports nothing.
+  events.clear();
+  scene.Mapper->SetIrradianceScale(0.0);
+  scene.Window->Render();
+  const std::vector<std::pair<double, std::string>> probeThenUpdate = {
+    { 0.0, "Irradiance resolution probe" }, { 1.0, "Irradiance resolution probe" },
+    { 0.0, "Irradiance volume" }, { 1.0, "Irradiance volume" }
+  };
+  EXPECT_EQ(events, probeThenUpdate);
+  EXPECT_EQ(scene.Mapper->GetNumberOfIrradianceProbes(), 1);
+  events.clear();
+  scene.Renderer->GetActiveCamera()->Azimuth(20.0);
+  scene.Window->Render();
+  EXPECT_TRUE(events.empty()) << events.size() << " events for a camera move";
 }
 
 TEST(MultiMaterialVolumeMapper, ColourOnlyMaterialEditsKeepTheIrradiance)
