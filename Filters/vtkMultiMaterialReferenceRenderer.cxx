@@ -563,7 +563,8 @@ vtkImageData* vtkMultiMaterialReferenceRenderer::Render(vtkRenderer* ren, int wi
   vtkNew<vtkMatrix4x4> worldToObject;
   vtkMatrix4x4::Invert(objectToWorld, worldToObject);
   std::vector<std::string> problems;
-  const double radius = mmv::ValidPointLightRadius(this->PointLightRadius, &problems.emplace_back());
+  problems.emplace_back(); // the radius's, if any
+  const double radius = mmv::ValidPointLightRadius(this->PointLightRadius, &problems.back());
   PlaceLights(scene, ren, worldToObject, image, this->CutawayMapper, radius, problems);
   vtkNew<vtkMultiMaterialEnvironment> environment;
   scene.Reflection =

@@ -64,7 +64,8 @@ std::vector<mmv::LightSource> vtkIrradianceResolutionProbe::ProbeLights()
   for (int l = 0; l < ProbeLightCount; ++l)
   {
     lights[l].Kind = mmv::DirectionalLight;
-    lights[l].ToLight = glm::normalize(glm::dvec3(directions[l][0], directions[l][1], directions[l][2]));
+    const double* d = directions[l];
+    lights[l].ToLight = glm::normalize(glm::dvec3(d[0], d[1], d[2]));
   }
   return lights;
 }
@@ -100,8 +101,8 @@ double vtkIrradianceResolutionProbe::Choose(vtkOpenGLRenderWindow* context,
 
 bool vtkIrradianceResolutionProbe::Measure(vtkOpenGLRenderWindow* context, vtkImageData* image,
   vtkDataArray* scalars, vtkMTimeType dataTime, const double range[2], double budgetMB,
-  int maxAxis, double boundDB,
-  const std::vector<float>& opacityTable, const ComputeFunction& compute)
+  int maxAxis, double boundDB, const std::vector<float>& opacityTable,
+  const ComputeFunction& compute)
 {
   this->Candidates.clear();
   const std::vector<mmv::LightSource> lights = ProbeLights();

@@ -122,7 +122,8 @@ private:
   static Key MakeKey(const vtkIrradianceInputCache::VolumeKey& key, vtkImageData* image,
     double budgetMB, double boundDB);
   bool Measure(vtkOpenGLRenderWindow* context, vtkImageData* image, vtkDataArray* scalars,
-    vtkMTimeType dataTime, const double range[2], double budgetMB, int maxAxis, double boundDB, const std::vector<float>& opacityTable,
+    vtkMTimeType dataTime, const double range[2], double budgetMB, int maxAxis, double boundDB,
+    const std::vector<float>& opacityTable,
     const ComputeFunction& compute);
 
   vtkNew<vtkIrradianceInputCache> Prefilter;

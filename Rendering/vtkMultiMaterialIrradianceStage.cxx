@@ -49,7 +49,8 @@ std::vector<float> SampleOpacityTable(vtkPiecewiseFunction* opacity, const doubl
   std::vector<float> table(n);
   for (int i = 0; i < n; ++i)
   {
-    table[i] = static_cast<float>(opacity->GetValue(range[0] + (range[1] - range[0]) * i / (n - 1)));
+    const double value = range[0] + (range[1] - range[0]) * i / (n - 1);
+    table[i] = static_cast<float>(opacity->GetValue(value));
   }
   return table;
 }

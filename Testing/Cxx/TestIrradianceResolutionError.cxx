@@ -24,7 +24,8 @@ mmv::IrradianceGrid UnitGrid(int n)
   return grid;
 }
 
-std::vector<float> Sample(const mmv::IrradianceGrid& grid, const std::function<double(glm::dvec3)>& f)
+std::vector<float> Sample(
+  const mmv::IrradianceGrid& grid, const std::function<double(glm::dvec3)>& f)
 {
   std::vector<float> values(grid.GetNumberOfVoxels());
   for (vtkIdType v = 0; v < grid.GetNumberOfVoxels(); ++v)
