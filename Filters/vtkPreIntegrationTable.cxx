@@ -333,7 +333,9 @@ struct TransferFunctions
   std::vector<double> Breaks() const
   {
     std::vector<double> breaks;
-    double node[8];
+    // Room for the largest node: a material node (value and every
+    // parameter), a colour node (6) or an opacity node (4).
+    double node[std::max(vtkMaterialTransferFunction::NodeStride, 6)];
     for (int k = 0; k < this->Opacity->GetSize(); ++k)
     {
       this->Opacity->GetNodeValue(k, node);

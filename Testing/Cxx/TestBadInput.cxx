@@ -524,7 +524,7 @@ TEST(BadInput, MalformedMaterialNodes)
     EXPECT_EQ(materials->GetSize(), 1) << c.What;
     EXPECT_EQ(materials->GetMTime(), time) << c.What << " must leave the function unchanged";
   }
-  double node[8];
+  double node[vtkMaterialTransferFunction::NodeStride];
   ASSERT_TRUE(materials->GetNode(0, node));
   for (int i = 0; i < 8; ++i)
   {

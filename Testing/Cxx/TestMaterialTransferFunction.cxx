@@ -326,7 +326,11 @@ TEST(MaterialTransferFunction, AddNodeRejectsInvalidInput)
     mmvtest::ErrorCounter errors(tf);
     const std::vector<double>& n = c.second;
     EXPECT_EQ(tf->AddNode(n[0], n[1], n[2], n[3], n[4], n[5], n[6], n[7], n[8]), -1);
-    EXPECT_EQ(tf->AddNode(n[0], n.data() + 1), -1);
+    // The array form reads every parameter (emission included): pad the
+    // legacy-sized case with the default 0.
+    std::vector<double> full = n;
+    full.resize(vtkMaterialTransferFunction::NodeStride, 0.0);
+    EXPECT_EQ(tf->AddNode(full[0], full.data() + 1), -1);
     EXPECT_EQ(AllNodes(tf), before);
     EXPECT_EQ(errors.Errors(), 2);
     EXPECT_EQ(tf->GetMTime(), mtime);
