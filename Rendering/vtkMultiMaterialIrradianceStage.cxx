@@ -119,15 +119,16 @@ void vtkMultiMaterialIrradianceStage::ApplyProbe(vtkRenderer* ren, vtkVolume* vo
   int maxAxis, mmv::IrradianceResolution& resolution)
 {
   auto* window = vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow());
-  const int n = this->Mapper->PreIntegrationTableSize;
-  const std::vector<float> opacityTable =
-    SampleOpacityTable(vol->GetProperty()->GetScalarOpacity(0), range, n);
   // A measurement takes seconds on a software GPU: ParaView's progress bar
   // shows it, as it shows the update that follows (issue 12).
   const bool measures = this->Probe->NeedsMeasurement(
     volumeKey, image, this->Mapper->IrradianceMemoryMB, bound);
+  // The weights only matter to a measurement: no table on the per-frame path.
+  std::vector<float> opacityTable;
   if (measures)
   {
+    opacityTable = SampleOpacityTable(
+      vol->GetProperty()->GetScalarOpacity(0), range, this->Mapper->PreIntegrationTableSize);
     this->Mapper->SetProgressText("Irradiance resolution probe");
     this->Mapper->UpdateProgress(0.0);
   }
