@@ -20,6 +20,7 @@
 
 #include "vtkIrradianceGrid.h"            // mmv::IrradianceGrid
 #include "vtkMultiMaterialLightModel.h"   // mmv::LightSource
+#include "vtkMultiMaterialParameters.h"   // DefaultExponentialDiffusion
 #include "vtkMultiMaterialVolumeFiltersModule.h" // export macro
 #include "vtkObject.h"
 
@@ -51,7 +52,7 @@ public:
     int NumberOfLights = 0;
     int ShadowEstimation = 0;
     int PiecewiseShadowSlices = 0;
-    bool ExponentialDiffusion = false;
+    bool ExponentialDiffusion = mmv::DefaultExponentialDiffusion;
     /// mmv::Cutaway::Key(): what cropping and clipping remove casts no shadow.
     std::vector<double> Cut;
 

@@ -144,8 +144,9 @@ public:
   vtkBooleanMacro(MultipleScattering, bool);
 
   /// The diffusion's time integration (mmv::DiffusionSettings::Exponential):
-  /// off (default), backward-Euler sub-steps solved by conjugate gradients;
-  /// on, the exponential's Chebyshev series.
+  /// on (default, mmv::DefaultExponentialDiffusion, as the mapper), the
+  /// exponential's Chebyshev series; off, backward-Euler sub-steps solved by
+  /// conjugate gradients.
   vtkSetMacro(ExponentialDiffusion, bool);
   vtkGetMacro(ExponentialDiffusion, bool);
   vtkBooleanMacro(ExponentialDiffusion, bool);
@@ -200,7 +201,7 @@ protected:
   int ShadowEstimation = mmv::PiecewiseShadowRays;
   int PiecewiseShadowSlices = mmv::DefaultPiecewiseShadowSlices;
   bool MultipleScattering = true;
-  bool ExponentialDiffusion = false;
+  bool ExponentialDiffusion = mmv::DefaultExponentialDiffusion;
   bool FillEmptyNeighbors = true;
 
   vtkIdType NumberOfComputedVoxels = 0;

@@ -440,7 +440,7 @@ void PlaceEnvironment(Scene& scene, vtkRenderer* ren, vtkMatrix4x4* objectToWorl
 /// of every voxel (the reference renderer adds it back). False: nothing
 /// scatters.
 bool ComputeScatteringDeltas(Scene& scene, const std::vector<double>& values,
-  std::atomic<vtkIdType>& shadowRays)
+  bool exponential, std::atomic<vtkIdType>& shadowRays)
 {
   const vtkIdType count = static_cast<vtkIdType>(values.size());
   std::vector<float> strength(count, 0.0f);
@@ -475,7 +475,9 @@ bool ComputeScatteringDeltas(Scene& scene, const std::vector<double>& values,
       shadowRays += last - first;
     });
     std::vector<float> diffused = direct;
-    mmv::DiffuseIrradiance(dims, voxel, strength.data(), diffused.data());
+    mmv::DiffusionSettings settings;
+    settings.Exponential = exponential;
+    mmv::DiffuseIrradiance(dims, voxel, strength.data(), diffused.data(), settings);
     for (vtkIdType v = 0; v < count; ++v)
     {
       diffused[v] -= direct[v];
@@ -590,7 +592,8 @@ vtkImageData* vtkMultiMaterialReferenceRenderer::Render(vtkRenderer* ren, int wi
     !scene.Lights.empty())
   {
     const auto scatterStart = std::chrono::steady_clock::now();
-    this->ScatteringApplied = ComputeScatteringDeltas(scene, values, shadowRays);
+    this->ScatteringApplied =
+      ComputeScatteringDeltas(scene, values, this->ExponentialDiffusion, shadowRays);
     this->LastScatteringSeconds = Seconds(scatterStart);
   }
 
@@ -627,6 +630,7 @@ void vtkMultiMaterialReferenceRenderer::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ShadowSampleDistance: " << this->ShadowSampleDistance << "\n";
   os << indent << "PointLightRadius: " << this->PointLightRadius << "\n";
   os << indent << "MultipleScattering: " << this->MultipleScattering << "\n";
+  os << indent << "ExponentialDiffusion: " << this->ExponentialDiffusion << "\n";
   os << indent << "MinimumTransmittance: " << this->MinimumTransmittance << "\n";
   os << indent << "ReflectionSource: " << this->ReflectionSource << "\n";
   os << indent << "ReflectionVisibility: " << this->ReflectionVisibility << "\n";

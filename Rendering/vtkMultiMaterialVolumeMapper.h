@@ -129,11 +129,10 @@ public:
   vtkSetClampMacro(PiecewiseShadowSlices, int, 1, 4096);
   vtkGetMacro(PiecewiseShadowSlices, int);
 
-  /// The diffusion's time integration (vtkIrradianceVolumePass): off
-  /// (default), backward-Euler sub-steps; on, the exponential's Chebyshev
-  /// series, exact in time and 4-5x fewer passes (a `skin` light update on
-  /// the CT 1.7x cheaper on llvmpipe), at 0.11 dB of the head's accuracy
-  /// against the same-model reference (docs/benchmark.md).
+  /// The diffusion's time integration (vtkIrradianceVolumePass): on
+  /// (default, mmv::DefaultExponentialDiffusion), the exponential's
+  /// Chebyshev series, exact in time, 4-5x fewer passes than off,
+  /// backward-Euler sub-steps (docs/benchmark.md).
   vtkSetMacro(ExponentialDiffusion, bool);
   vtkGetMacro(ExponentialDiffusion, bool);
   vtkBooleanMacro(ExponentialDiffusion, bool);
@@ -321,7 +320,7 @@ protected:
   bool MultipleScattering = true;
   int ShadowEstimation = mmv::PiecewiseShadowRays;
   int PiecewiseShadowSlices = mmv::DefaultPiecewiseShadowSlices;
-  bool ExponentialDiffusion = false;
+  bool ExponentialDiffusion = mmv::DefaultExponentialDiffusion;
   bool PreIntegration = true;
   double PointLightRadius = 0.0;
   int InteractiveIrradiance = ReuseWhileInteracting;

@@ -4,6 +4,8 @@
 //
 //   mmvBenchmark --out DIR [--size N] [--frames N] [--light-frames N]
 //                [--scenes synthetic,headsq,orbital] [--head FILE.vti] [--quick]
+//                [--reference-exponential]  (the ground truth's diffusion exact in time;
+//                                            default: 8 backward-Euler steps)
 //
 // Every (scene, method) pair gets its own offscreen window; all windows share
 // one camera and one light. Frames are timed interleaved, method after method
@@ -74,6 +76,7 @@ struct MethodSpec
   double SampleVoxels = 1.0;    // sample distance in smallest-spacing units
   bool PreIntegration = true;
   bool Scattering = true;
+  bool BackwardEuler = false; // ours: the diffusion's former default integrator
   double Blending = 0.0; // VTK volumetric scattering
   double Reach = 0.0;
 };
@@ -146,6 +149,9 @@ std::vector<std::vector<MethodSpec>> MakeMethods(bool quick)
     MethodSpec noScatter{ "ours no-scattering", "ours" };
     noScatter.Scattering = false;
     windows.push_back({ noScatter });
+    MethodSpec euler{ "ours backward-euler", "ours" };
+    euler.BackwardEuler = true;
+    windows.push_back({ euler });
   }
   windows.push_back({ { "vtk phong", "vtk-phong" } });
   if (!quick)
@@ -221,6 +227,7 @@ struct Options
   std::vector<std::string> Scenes = { "synthetic", "headsq", "orbital" };
   std::string Head = MMV_HEADSQ_PATH;
   bool Quick = false;
+  bool ReferenceExponential = false; // the ground truth's diffusion integrated exactly
 };
 
 bool Parse(int argc, char* argv[], Options& o)
@@ -256,6 +263,10 @@ bool Parse(int argc, char* argv[], Options& o)
     else if (a == "--quick")
     {
       o.Quick = true;
+    }
+    else if (a == "--reference-exponential")
+    {
+      o.ReferenceExponential = true;
     }
     else
     {
@@ -349,6 +360,7 @@ void SetUpInstance(Instance& in, const mmvbench::SceneSpec& scene, vtkCamera* ca
     ours->SetIrradianceScale(m.IrradianceScale);
     ours->SetPreIntegration(m.PreIntegration);
     ours->SetMultipleScattering(m.Scattering);
+    ours->SetExponentialDiffusion(!m.BackwardEuler);
     ours->TimeStagesOn();
     in.Ours = ours;
     in.Mapper = ours;
@@ -448,6 +460,7 @@ int main(int argc, char* argv[])
     reference->SetInputData(scene.Image);
     reference->SetVolumeProperty(instances.front()->Property);
     reference->SetMaterialTransferFunction(scene.Materials);
+    reference->SetExponentialDiffusion(opt.ReferenceExponential);
     vtkSmartPointer<vtkImageData> truth =
       reference->Render(instances.front()->Renderer, opt.Size, opt.Size);
     if (!truth)

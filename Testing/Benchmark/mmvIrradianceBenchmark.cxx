@@ -723,8 +723,8 @@ int main(int argc, char* argv[])
     // backward Euler at the same lights.
     Bench euler(scene, size, true);
     Bench* benches[2] = { &ours, &euler };
-    ours.Ours->GetIrradianceVolumePass()->SetExponentialDiffusion(true);
-    euler.Ours->GetIrradianceVolumePass()->SetExponentialDiffusion(false);
+    ours.Ours->SetExponentialDiffusion(true);
+    euler.Ours->SetExponentialDiffusion(false);
     std::ofstream csv(out + "/diffusion_integrators.csv");
     csv << "scattering,irradiance_scale,diffusion_grid,exponential_passes,backward_euler_passes,"
            "exponential_update_s,backward_euler_update_s,backward_euler_over_exponential,"

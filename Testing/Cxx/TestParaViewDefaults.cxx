@@ -55,6 +55,9 @@ TEST(ParaViewDefaults, ProxyDefaultsAreTheCppConstants)
   const std::vector<double> tolerance = Defaults(xml, "LightDirectionTolerance");
   ASSERT_EQ(tolerance.size(), 1u);
   EXPECT_EQ(tolerance[0], mmv::DefaultLightDirectionToleranceDegrees);
+  const std::vector<double> exponential = Defaults(xml, "ExponentialDiffusion");
+  ASSERT_EQ(exponential.size(), 1u);
+  EXPECT_EQ(exponential[0], mmv::DefaultExponentialDiffusion ? 1.0 : 0.0);
   const std::vector<double> bound = Defaults(xml, "IrradianceErrorBound");
   ASSERT_EQ(bound.size(), 1u);
   EXPECT_EQ(bound[0], mmv::DefaultIrradianceErrorBoundDB);
