@@ -3,6 +3,7 @@
 #include "vtkMaterialJSON.h"
 #include "vtkMaterialLibrary.h"
 #include "vtkMultiMaterialParameters.h"
+#include "vtkMultiMaterialPhysicalMedium.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 
@@ -220,6 +221,29 @@ int vtkMaterialTransferFunction::AddNode(
   }
   this->Modified();
   return static_cast<int>(it - nodes.begin());
+}
+
+int vtkMaterialTransferFunction::AddPhysicalMediumNode(
+  double value, double albedo, double anisotropy, double extinctionPerVoxel)
+{
+  double parameters[NumberOfParameters];
+  std::string why;
+  if (!mmv::PhysicalMediumToMaterial(albedo, anisotropy, extinctionPerVoxel, parameters, &why))
+  {
+    vtkErrorMacro("AddPhysicalMediumNode: " << why);
+    return -1;
+  }
+  return this->AddNode(value, parameters);
+}
+
+std::string vtkMaterialTransferFunction::PhysicalMediumDomainError(
+  double albedo, double anisotropy, double extinctionPerVoxel)
+{
+  double parameters[NumberOfParameters];
+  std::string why;
+  return mmv::PhysicalMediumToMaterial(albedo, anisotropy, extinctionPerVoxel, parameters, &why)
+    ? std::string()
+    : why;
 }
 
 int vtkMaterialTransferFunction::RemoveNode(double value)

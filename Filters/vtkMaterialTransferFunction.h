@@ -54,6 +54,22 @@ public:
     double attenuation, double scattering, double reflection, double anisotropy, double emission);
   int AddNode(double value, const double parameters[NumberOfParameters]);
 
+  /**
+   * Adds a node (as AddNode) whose parameters model a participating medium
+   * of known physics: single-scattering albedo in [0, 0.999],
+   * Henyey-Greenstein anisotropy in [0, 0.9] and extinction per voxel > 0
+   * (sigma_t times the voxel size: -ln(1 - alpha) for opacity alpha per
+   * voxel). The mapping is mmv::PhysicalMediumToMaterial, fitted to the
+   * Monte Carlo truth (docs/benchmark.md, "Mapping physical media to our
+   * parameters"). Returns the node's index, or -1 with an error saying why
+   * (PhysicalMediumDomainError) outside that domain; nothing is added then.
+   */
+  int AddPhysicalMediumNode(
+    double value, double albedo, double anisotropy, double extinctionPerVoxel);
+  /// Why AddPhysicalMediumNode would refuse these values; empty when valid.
+  static std::string PhysicalMediumDomainError(
+    double albedo, double anisotropy, double extinctionPerVoxel);
+
   /// Removes the node at exactly `value`; returns its former index or -1.
   int RemoveNode(double value);
   void RemoveAllNodes();

@@ -2,7 +2,9 @@
 // table it was derived from (docs/medium_calibration.csv, written by
 // mmvMediumCalibration), its limits, the domain checks, and the physically
 // derived presets of the material library.
+#include "mmvTestUtilities.h"
 #include "vtkMaterialLibrary.h"
+#include "vtkMaterialTransferFunction.h"
 #include "vtkMultiMaterialParameters.h"
 #include "vtkMultiMaterialPhysicalMedium.h"
 #include "vtkNew.h"
@@ -159,6 +161,35 @@ TEST(PhysicalMedium, RejectsInputOutsideTheDomain)
     // Without a `why` it still answers false.
     EXPECT_FALSE(mmv::PhysicalMediumToMaterial(c.Albedo, c.G, c.Extinction, p.data()));
   }
+}
+
+// The entry point for C++ and Python users (physical_medium_node in the
+// package): the node holds the formula's parameters; outside the domain it
+// adds nothing and reports the formula's reason.
+TEST(PhysicalMedium, TransferFunctionNodeIsTheFormulasOutput)
+{
+  vtkNew<vtkMaterialTransferFunction> function;
+  mmvtest::ErrorCounter errors(function);
+  EXPECT_EQ(function->AddPhysicalMediumNode(1300.0, 0.3, 0.6, 0.5), 0);
+  EXPECT_EQ(function->AddPhysicalMediumNode(600.0, 0.9, 0.8, 0.25), 0); // index in value order
+  EXPECT_EQ(errors.Errors(), 0) << errors.LastMessage();
+  ASSERT_EQ(function->GetSize(), 2);
+  double node[vtkMaterialTransferFunction::NodeStride];
+  ASSERT_TRUE(function->GetNode(0, node));
+  EXPECT_EQ(node[0], 600.0);
+  const std::vector<double> expected = Map(0.9, 0.8, 0.25);
+  for (int i = 0; i < P; ++i)
+  {
+    EXPECT_EQ(node[i + 1], expected[i]) << mmv::MaterialParameterTable[i].Key;
+  }
+  EXPECT_EQ(vtkMaterialTransferFunction::PhysicalMediumDomainError(0.9, 0.8, 0.25), "");
+
+  EXPECT_EQ(function->AddPhysicalMediumNode(900.0, 0.5, 0.95, 0.25), -1);
+  EXPECT_EQ(errors.Errors(), 1);
+  EXPECT_NE(errors.LastMessage().find("anisotropy"), std::string::npos) << errors.LastMessage();
+  EXPECT_EQ(function->GetSize(), 2);
+  const std::string why = vtkMaterialTransferFunction::PhysicalMediumDomainError(1.0, 0.0, 0.25);
+  EXPECT_NE(why.find("albedo"), std::string::npos) << why;
 }
 
 TEST(PhysicalMedium, PresetsAreTheFormulasOutput)

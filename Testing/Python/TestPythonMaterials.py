@@ -90,5 +90,40 @@ class MaterialLibraryTest(unittest.TestCase):
         self.assertFalse(library.HasPreset("python test"))
 
 
+class PhysicalMediumNodeTest(unittest.TestCase):
+    """physical_medium_node: the MaterialNodes numbers of a known medium."""
+
+    def test_node_is_the_library_preset_of_the_same_medium(self):
+        # The `tissue` preset is the mapping of albedo 0.9, g 0.8, extinction
+        # 0.25 per voxel (Filters/vtkMultiMaterialPhysicalMedium.h), stored
+        # with 6 significant digits.
+        node = m.physical_medium_node(600.0, 0.9, 0.8, 0.25)
+        self.assertEqual(len(node), 10)
+        self.assertEqual(node[0], 600.0)
+        preset = [0.0] * 9
+        self.assertTrue(m.vtkMaterialLibrary().GetPreset("tissue", preset))
+        for p in range(9):
+            self.assertAlmostEqual(node[p + 1], preset[p], delta=1e-5 * abs(preset[p]) + 1e-12,
+                                   msg="parameter %d" % p)
+
+    def test_nodes_load_as_material_nodes(self):
+        nodes = m.physical_medium_node(600.0, 0.9, 0.8, 0.25) + \
+            m.physical_medium_node(1300.0, 0.3, 0.6, 0.5)
+        f = m.vtkMaterialTransferFunction()
+        self.assertTrue(f.SetNodes(len(nodes), nodes))
+        self.assertEqual(f.GetSize(), 2)
+        self.assertEqual(f.EvaluateParameter(1300.0, 7), 0.6)  # anisotropy g
+
+    def test_outside_the_domain_raises_with_the_reason(self):
+        for albedo, g, extinction, word in ((1.0, 0.0, 0.25, "albedo"),
+                                            (0.5, -0.3, 0.25, "anisotropy"),
+                                            (0.5, 0.3, 0.0, "extinction"),
+                                            (0.5, 0.3, float("nan"), "extinction")):
+            with self.subTest(albedo=albedo, g=g, extinction=extinction):
+                with self.assertRaises(ValueError) as raised:
+                    m.physical_medium_node(600.0, albedo, g, extinction)
+                self.assertIn(word, str(raised.exception))
+
+
 if __name__ == "__main__":
     unittest.main()
