@@ -22,14 +22,17 @@
  *     partial last step, early termination;
  *  2. multiple scattering (only when some s > 0 and enabled), as
  *     mmv::DiffuseIrradianceOnDiffusionGrid does it on the CPU: restriction
- *     to the diffusion grid (coarsened to the diffusion length), backward-
- *     Euler sub-steps solved by Chebyshev-accelerated Jacobi sweeps, drawn
- *     only over the box of blocks that scatter; a long sub-step stops on its
- *     residual (an occlusion query counts the blocks whose Jacobi correction
- *     exceeds (1 - rho) mmv::DiffusionSettings::SweepTolerance, which bounds
- *     the error by the tolerance), every sub-step at the latest after the
- *     sweeps the Chebyshev error bound needs; then the change is prolonged
- *     trilinearly to the irradiance grid;
+ *     to the diffusion grid (coarsened to the diffusion length), then, drawn
+ *     only over the box of blocks that scatter, by default
+ *     (ExponentialDiffusion) the exponential's Chebyshev series, one pass
+ *     per term, cut where the remaining coefficients bound the error by the
+ *     tolerance; or backward-Euler sub-steps solved by Chebyshev-accelerated
+ *     Jacobi sweeps, a long sub-step stopping on its residual (an occlusion
+ *     query counts the blocks whose Jacobi correction exceeds (1 - rho)
+ *     mmv::DiffusionSettings::SweepTolerance, which bounds the error by the
+ *     tolerance), every sub-step at the latest after the sweeps the
+ *     Chebyshev error bound needs; then the change is prolonged trilinearly
+ *     to the irradiance grid;
  *  3. empty voxels bordering non-empty ones take the mean of those neighbours.
  *
  * Each light keeps its own channel: Render() recomputes only the lights that
