@@ -1,8 +1,8 @@
 // Multiple scattering of the irradiance volume (Zhang & Ma eq. 15), one
 // fragment per voxel of z slice `slice`, four lights at once (RGBA).
 //
-// Without a define (ExponentialDiffusion off): one Jacobi sweep, on the diffusion grid (vtkIrradianceDiffusion.h),
-// of a backward-Euler step (I + dt*A) x = b, A the
+// Without a define (ExponentialDiffusion off): one Jacobi sweep, on the
+// diffusion grid (vtkIrradianceDiffusion.h), of a backward-Euler step (I + dt*A) x = b, A the
 // flux-form operator of Filters/vtkIrradianceDiffusion.cxx (face coefficient
 // = harmonic mean of the two voxels' s over h^2, missing neighbours give the
 // zero-flux boundary):
