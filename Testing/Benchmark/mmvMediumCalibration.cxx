@@ -8,6 +8,7 @@
 //                        [--albedos 0.3,0.6,0.9,0.99] [--anisotropies 0,0.3,0.6]
 //                        [--depths 1,4,16] [--s-values LIST] [--ct-values LIST]
 //                        [--cache DIR] [--no-fit] [--no-vtk] [--no-mapped]
+//                        [--shape ball|cube]
 //
 // The controlled scene ("ball"): a homogeneous sphere of radius 18 voxels in a
 // 48^3 volume (a one-voxel edge ramp), colour = albedo (grey), extinction
@@ -18,6 +19,10 @@
 // phase function at every event (no surface scattering), up to 1000 events
 // per path. Truths are cached as .vti files under --cache (default
 // DIR/truth-cache), keyed by every input, so reruns only render ours.
+// --shape cube: the same medium in a cube of half-width 18 voxels instead
+// (flat faces, edges and corners: how the mapping, fitted on the ball,
+// transfers to another geometry); `depth` is then the optical depth of the
+// half-width.
 //
 // Per medium it writes to DIR/medium_calibration.csv:
 //  - ours-default: the default material (ka 0.2, kd 0.7, ks 0.2, ke 20,
@@ -64,6 +69,7 @@ constexpr int BallDimensions = 40;
 // Key light intensity: pi would make a white Lambertian surface 1; 3 uses the
 // 8 bits without saturating the truth.
 constexpr double LightIntensity = 3.0;
+// The ball's radius and the cube's half-width, in voxels.
 constexpr double BallRadius = 18.0;
 
 struct Options
@@ -81,6 +87,7 @@ struct Options
   bool Fit = true;
   bool VTK = true;
   bool Mapped = true;
+  std::string Shape = "ball"; // or "cube"
 };
 
 bool Parse(int argc, char* argv[], Options& o)
@@ -115,6 +122,8 @@ bool Parse(int argc, char* argv[], Options& o)
       o.VTK = false;
     else if (a == "--no-mapped")
       o.Mapped = false;
+    else if (a == "--shape")
+      o.Shape = next();
     else
       return false;
   }
@@ -123,6 +132,7 @@ bool Parse(int argc, char* argv[], Options& o)
     o.Cache = o.Out + "/truth-cache";
   }
   return o.Size >= 8 && o.TruthSamples >= 2 && o.Frames >= 1 && !o.Out.empty() &&
+    (o.Shape == "ball" || o.Shape == "cube") &&
     !o.Scattering.empty() && !o.Attenuation.empty();
 }
 
@@ -158,13 +168,17 @@ void DefaultMaterial(double g, double p[mmv::MaterialParameterCount])
   p[mmv::Anisotropy] = g;
 }
 
-mmvbench::SceneSpec MakeBall(const Medium& m)
+mmvbench::SceneSpec MakeMedium(const Medium& m, const std::string& shape)
 {
   mmvbench::SceneSpec s;
-  s.Name = "ball";
+  s.Name = shape;
   const double c = 0.5 * (BallDimensions - 1);
+  const bool cube = shape == "cube";
   s.Image = mmvtest::MakeVolume(BallDimensions, [&](double x, double y, double z) {
-    const double r = std::sqrt((x - c) * (x - c) + (y - c) * (y - c) + (z - c) * (z - c));
+    // Distance to the centre: Euclidean (ball) or the largest per axis (cube).
+    const double r = cube
+      ? std::max({ std::abs(x - c), std::abs(y - c), std::abs(z - c) })
+      : std::sqrt((x - c) * (x - c) + (y - c) * (y - c) + (z - c) * (z - c));
     return std::min(std::max(BallRadius - r + 0.5, 0.0), 1.0);
   });
   s.Color = vtkSmartPointer<vtkColorTransferFunction>::New();
@@ -196,7 +210,7 @@ vtkSmartPointer<vtkImageData> Truth(const Options& opt, const Medium& m, Window&
   const mmvbench::SceneSpec& scene, double& seconds)
 {
   std::ostringstream path;
-  path << opt.Cache << "/ball_" << m.Key() << "_size" << opt.Size << "_spp" << opt.TruthSamples
+  path << opt.Cache << "/" << opt.Shape << "_" << m.Key() << "_size" << opt.Size << "_spp" << opt.TruthSamples
        << ".vti";
   struct stat info;
   if (stat(path.str().c_str(), &info) == 0)
@@ -368,7 +382,7 @@ int main(int argc, char* argv[])
   std::ofstream csv(opt.Out + "/medium_calibration.csv");
   csv << "albedo,anisotropy,depth,extinction_per_voxel,family,setting,ka,kd,ks,ke,attenuation,"
          "scattering,frame_ms,rmse,volume_rmse,gain,volume_gain_rmse,truth_rmse_floor,truth_spp,"
-         "truth_s,size\n";
+         "truth_s,size,shape\n";
   std::ofstream grid(opt.Out + "/medium_fit_grid.csv");
   grid << "albedo,anisotropy,depth,extinction_per_voxel,scattering,attenuation,ka,kd,volume_rmse\n";
 
@@ -379,7 +393,7 @@ int main(int argc, char* argv[])
       for (double albedo : opt.Albedos)
       {
         const Medium medium{ albedo, g, depth };
-        mmvbench::SceneSpec scene = MakeBall(medium);
+        mmvbench::SceneSpec scene = MakeMedium(medium, opt.Shape);
         vtkNew<vtkCamera> camera;
         vtkNew<vtkLight> light;
         double radius = 0.0;
@@ -413,7 +427,7 @@ int main(int argc, char* argv[])
         const double floor = 255.0 * std::sqrt(floor2 / se->GetNumberOfValues());
         std::cout << " " << truthSeconds << " s, noise floor " << floor << "/255\n";
         vtkImageErrorMetrics::WritePNG(
-          (opt.Out + "/ball_" + medium.Key() + "_truth.png").c_str(), truth);
+          (opt.Out + "/" + opt.Shape + "_" + medium.Key() + "_truth.png").c_str(), truth);
 
         auto evaluate = [&](Result& r, Window& w, int frames) {
           r.Image = vtkSmartPointer<vtkImageData>::New();
@@ -429,14 +443,15 @@ int main(int argc, char* argv[])
               << p[mmv::Attenuation] << "," << p[mmv::Scattering] << "," << 1e3 * r.Seconds << ","
               << r.RMSE << "," << r.VolumeRMSE << "," << r.Gain << "," << r.GainRMSE << ","
               << floor << "," << opt.TruthSamples << "," << truthSeconds << "," << opt.Size
-              << "\n";
+              << "," << opt.Shape << "\n";
           csv.flush();
           std::cout << "  " << std::setw(15) << r.Family << " " << std::setw(40) << r.Setting
                     << std::setprecision(3) << " " << std::setw(7) << 1e3 * r.Seconds
                     << " ms  RMSE " << std::setw(6) << r.RMSE << "  volume " << r.VolumeRMSE
                     << ", x" << r.Gain << " -> " << r.GainRMSE << std::endl;
           vtkImageErrorMetrics::WritePNG(
-            (opt.Out + "/ball_" + medium.Key() + "_" + r.Family + ".png").c_str(), r.Image);
+            (opt.Out + "/" + opt.Shape + "_" + medium.Key() + "_" + r.Family + ".png").c_str(),
+            r.Image);
         };
         auto oursWith = [&](const std::string& family, const double p[mmv::MaterialParameterCount]) {
           Result r;

@@ -20,11 +20,14 @@
 //   mmvPhysicalCalibration --out DIR [--size 128] [--truth-spp 1024] [--frames 3]
 //                          [--scenes synthetic,headsq,orbital,ct] [--head FILE.vti]
 //                          [--s-scales 1,0,0.5,2,4,8,16] [--ct-scales 1,0.5,2,4] [--no-vtk]
-//                          [--anisotropy G] [--back-light] [--mapped]
+//                          [--anisotropy G] [--back-light] [--mapped] [--black-background]
 //
 // Same camera, key light and gradient background as mmvBenchmark
 // (mmvbench::FrameScene); --back-light turns the key light to the opposite
-// direction (the volume lit from behind, where forward scattering shows). Errors are over the 8-bit images, as displayed:
+// direction (the volume lit from behind, where forward scattering shows);
+// --black-background makes the background black for every method and the
+// truth, so the truth has no sky (its escaping paths gather nothing): what
+// remains is the light's transport alone, which sizes the sky's share. Errors are over the 8-bit images, as displayed:
 // RMSE (0-255), PSNR and SSIM over the whole image, and over the volume's
 // pixels (where the truth's paths met the medium) the RMSE as is and after the
 // best single brightness factor k (least squares, k = <M, T> / <M, M>), which
@@ -93,6 +96,7 @@ struct Options
   double Anisotropy = 0.0; // every node's g, truth and ours; 0: the scene's
   bool BackLight = false;
   bool Mapped = false;
+  bool BlackBackground = false; // no sky in the truth
 };
 
 bool Parse(int argc, char* argv[], Options& o)
@@ -144,6 +148,10 @@ bool Parse(int argc, char* argv[], Options& o)
     else if (a == "--back-light")
     {
       o.BackLight = true;
+    }
+    else if (a == "--black-background")
+    {
+      o.BlackBackground = true;
     }
     else if (a == "--mapped")
     {
@@ -233,7 +241,7 @@ int main(int argc, char* argv[])
               << " --out DIR [--size N] [--truth-spp N] [--frames N]"
                  " [--scenes synthetic,headsq,orbital,ct] [--head FILE.vti]"
                  " [--s-scales LIST] [--ct-scales LIST] [--no-vtk] [--anisotropy G] [--back-light]"
-                 " [--mapped]\n";
+                 " [--mapped] [--black-background]\n";
     return 2;
   }
   vtkSMPTools::SetBackend("STDThread");
@@ -259,6 +267,10 @@ int main(int argc, char* argv[])
     for (int a = 0; a < 3 && opt.BackLight; ++a)
     {
       scene.ToLight[a] = -scene.ToLight[a];
+    }
+    for (int a = 0; a < 3 && opt.BlackBackground; ++a)
+    {
+      scene.Background[a] = scene.Background2[a] = 0.0;
     }
     vtkNew<vtkCamera> camera;
     vtkNew<vtkLight> light;
