@@ -25,6 +25,8 @@ import matplotlib.pyplot as plt  # noqa: E402
 STYLE = {
     "ours": dict(color="tab:blue", marker="o", label="ours, s and c_t scaled"),
     "ours-default": dict(color="tab:blue", marker="*", label="ours at defaults"),
+    # mmvPhysicalCalibration --anisotropy G: ours above is v2 (HG(G)), this v1 (g = 0).
+    "ours-v1": dict(color="tab:orange", marker="x", label="ours v1 (isotropic), s and c_t scaled"),
     "vtk-phong": dict(color="tab:green", marker="s", label="VTK Phong"),
     "vtk-scattering": dict(color="tab:red", marker="^", label="VTK scattering (blending, reach, g)"),
 }
@@ -50,8 +52,9 @@ def main(path, out):
                 ax.scatter([float(r["frame_ms"]) for r in pts], [float(r[key]) for r in pts],
                            s=90 if family == "ours-default" else 30, alpha=0.8,
                            **{k: v for k, v in style.items()})
-            for family in ("ours", "vtk-scattering"):
-                pts = [r for r in sub if r["family"].startswith(family)]
+            for family in ("ours", "ours-v1", "vtk-scattering"):
+                pts = [r for r in sub if r["family"] == family or
+                       (family == "ours" and r["family"] == "ours-default")]
                 if pts:
                     best = min(pts, key=lambda r: float(r[key]))
                     ax.annotate(best["setting"].replace("_scale", "").replace("anisotropy", "g"),
@@ -97,14 +100,15 @@ def summary(path):
         ours = [r for r in sub if r["family"].startswith("ours")]
         default = [r for r in sub if r["family"] == "ours-default"][0]
         best_ours = min(ours, key=lambda r: float(r["rmse"]))
-        phong = [r for r in sub if r["family"] == "vtk-phong"][0]
+        phong = [r for r in sub if r["family"] == "vtk-phong"]
         vtk = [r for r in sub if r["family"] == "vtk-scattering"]
-        best_vtk = min(vtk, key=lambda r: float(r["rmse"]))
+        best_vtk = min(vtk, key=lambda r: float(r["rmse"])) if vtk else None
         budget = [r for r in vtk if float(r["frame_ms"]) <= float(best_ours["frame_ms"])]
         best_budget = min(budget, key=lambda r: float(r["rmse"])) if budget else None
         print("| %s | %.2f | %s | %s | %s | %s | %s |" % (
-            scene, float(sub[0]["truth_rmse_floor"]), cell(default), cell(best_ours), cell(phong),
-            cell(best_vtk), cell(best_budget) if best_budget else "none that fast"))
+            scene, float(sub[0]["truth_rmse_floor"]), cell(default), cell(best_ours),
+            cell(phong[0]) if phong else "not run", cell(best_vtk) if best_vtk else "not run",
+            cell(best_budget) if best_budget else ("none that fast" if vtk else "not run")))
 
 
 def images(image_dir, scenes, out):
