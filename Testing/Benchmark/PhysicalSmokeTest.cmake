@@ -1,8 +1,9 @@
 # Runs mmvPathTracerBenchmark and mmvPhysicalCalibration on one small scene
 # (and mmvMediumCalibration on one medium, below)
 # and checks that each CSV has its header and the expected rows: one per
-# scene, and one per swept setting (1 of ours, VTK Phong, 4 x 3 x 3 VTK
-# scattering). Timings and errors are not checked.
+# scene, and one per swept setting (1 of ours and 1 of ours with its
+# exposure fitted, VTK Phong, 4 x 3 x 3 VTK scattering; black background).
+# Timings and errors are not checked.
 file(REMOVE_RECURSE "${OUT}")
 execute_process(
   COMMAND "${PATHTRACER}" --out "${OUT}" --size 16 --spp 2 --scenes orbital --verify
@@ -17,15 +18,18 @@ if (NOT count EQUAL 2)
 endif ()
 execute_process(
   COMMAND "${CALIBRATION}" --out "${OUT}" --size 16 --truth-spp 4 --frames 1 --scenes orbital
-    --s-scales 1 --ct-scales 1
+    --s-scales 1 --ct-scales 1 --fit-exposure --black-background
   RESULT_VARIABLE result)
 if (NOT result EQUAL 0)
   message(FATAL_ERROR "mmvPhysicalCalibration exited with ${result}")
 endif ()
 file(STRINGS "${OUT}/physical_calibration.csv" lines)
 list(LENGTH lines count)
-if (NOT count EQUAL 39)
-  message(FATAL_ERROR "expected a header and 38 rows in physical_calibration.csv, got ${count} lines")
+if (NOT count EQUAL 40)
+  message(FATAL_ERROR "expected a header and 39 rows in physical_calibration.csv, got ${count} lines")
+endif ()
+if (NOT lines MATCHES ",ours-exposure,s_scale=1 ct_scale=1 ka_scale=")
+  message(FATAL_ERROR "no ours-exposure row in physical_calibration.csv")
 endif ()
 list(GET lines 0 header)
 if (NOT header MATCHES "^scene,family,setting,frame_ms,rmse,")
@@ -52,6 +56,19 @@ file(STRINGS "${OUT}/medium/medium_calibration.csv" lines)
 list(LENGTH lines count)
 if (NOT count EQUAL 5)
   message(FATAL_ERROR "expected a header and 4 rows in medium_calibration.csv, got ${count} lines")
+endif ()
+# The same medium in a cube (--shape): its own truth, four rows.
+execute_process(
+  COMMAND "${MEDIUM}" --out "${OUT}/cube" --size 16 --truth-spp 4 --frames 1 --albedos 0.6
+    --anisotropies 0.3 --depths 4 --s-values 0,4 --ct-values 1 --shape cube
+  RESULT_VARIABLE result)
+if (NOT result EQUAL 0)
+  message(FATAL_ERROR "mmvMediumCalibration --shape cube exited with ${result}")
+endif ()
+file(STRINGS "${OUT}/cube/medium_calibration.csv" lines)
+list(LENGTH lines count)
+if (NOT count EQUAL 5 OR NOT lines MATCHES ",cube")
+  message(FATAL_ERROR "expected a header and 4 cube rows, got ${count} lines")
 endif ()
 file(STRINGS "${OUT}/medium/medium_fit_grid.csv" lines)
 list(LENGTH lines count)

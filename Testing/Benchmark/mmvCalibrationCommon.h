@@ -175,6 +175,86 @@ inline double GainCompensated(vtkImageData* test, vtkImageData* truth, const std
   return count ? std::sqrt(e / count) : 0.0;
 }
 
+// The largest channel value of an image.
+inline double Brightest(vtkImageData* image)
+{
+  vtkDataArray* x = image->GetPointData()->GetScalars();
+  double largest = 0.0;
+  for (int c = 0; c < x->GetNumberOfComponents(); ++c)
+  {
+    largest = std::max(largest, x->GetRange(c)[1]);
+  }
+  return largest;
+}
+
+// The (x, y) >= 0 minimising |x (A - Z) + y (B - Z) - (T - Z)|^2 over all
+// pixels and channels; Z (`offset`, optional: 0) is what every image holds
+// whatever x and y (the background, terms not fitted).
+inline void NonNegativeLeastSquares(
+  vtkImageData* a, vtkImageData* b, vtkImageData* t, double& x, double& y, vtkImageData* offset = nullptr)
+{
+  vtkDataArray* A = a->GetPointData()->GetScalars();
+  vtkDataArray* B = b->GetPointData()->GetScalars();
+  vtkDataArray* T = t->GetPointData()->GetScalars();
+  vtkDataArray* Z = offset ? offset->GetPointData()->GetScalars() : nullptr;
+  double aa = 0, ab = 0, bb = 0, at = 0, bt = 0, tt = 0;
+  for (vtkIdType i = 0; i < A->GetNumberOfTuples(); ++i)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      const double z = Z ? Z->GetComponent(i, c) : 0.0;
+      const double u = A->GetComponent(i, c) - z, v = B->GetComponent(i, c) - z,
+                   w = T->GetComponent(i, c) - z;
+      aa += u * u;
+      ab += u * v;
+      bb += v * v;
+      at += u * w;
+      bt += v * w;
+      tt += w * w;
+    }
+  }
+  auto error = [&](double p, double q) {
+    return p * p * aa + q * q * bb + 2 * p * q * ab - 2 * p * at - 2 * q * bt + tt;
+  };
+  const double det = aa * bb - ab * ab;
+  x = y = 0.0;
+  if (det > 1e-12 * aa * bb)
+  {
+    x = (at * bb - bt * ab) / det;
+    y = (bt * aa - at * ab) / det;
+  }
+  if (!(x >= 0.0 && y >= 0.0))
+  {
+    const double xa = aa > 0 ? std::max(at / aa, 0.0) : 0.0; // y = 0
+    const double yb = bb > 0 ? std::max(bt / bb, 0.0) : 0.0; // x = 0
+    if (error(xa, 0.0) <= error(0.0, yb))
+    {
+      x = xa, y = 0.0;
+    }
+    else
+    {
+      x = 0.0, y = yb;
+    }
+  }
+}
+
+// Every node's ka and kd of `materials` multiplied (in place), within their
+// hard limits.
+inline void ScaleAmbientDiffuse(vtkMaterialTransferFunction* materials, double ambient, double diffuse)
+{
+  const int stride = vtkMaterialTransferFunction::NodeStride;
+  std::vector<double> nodes(static_cast<size_t>(materials->GetSize()) * stride);
+  materials->GetNodes(nodes.data());
+  for (size_t n = 0; n < nodes.size(); n += stride)
+  {
+    double& ka = nodes[n + 1 + mmv::Ambient];
+    double& kd = nodes[n + 1 + mmv::Diffuse];
+    ka = std::min(ka * ambient, mmv::MaterialParameterTable[mmv::Ambient].HardMax);
+    kd = std::min(kd * diffuse, mmv::MaterialParameterTable[mmv::Diffuse].HardMax);
+  }
+  materials->SetNodes(static_cast<int>(nodes.size()), nodes.data());
+}
+
 inline std::string Setting(const std::vector<std::pair<std::string, double>>& values)
 {
   std::ostringstream s;

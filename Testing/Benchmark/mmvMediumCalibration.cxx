@@ -63,6 +63,8 @@ namespace
 using mmvcal::GainCompensated;
 using mmvcal::Numbers;
 using mmvcal::Setting;
+using mmvcal::Brightest;
+using mmvcal::NonNegativeLeastSquares;
 using mmvcal::Window;
 
 constexpr int BallDimensions = 40;
@@ -267,63 +269,6 @@ double RMSE(vtkImageData* a, vtkImageData* b)
     }
   }
   return std::sqrt(e / (3.0 * n));
-}
-
-// The largest channel value of an image.
-double Brightest(vtkImageData* image)
-{
-  vtkDataArray* x = image->GetPointData()->GetScalars();
-  double largest = 0.0;
-  for (int c = 0; c < x->GetNumberOfComponents(); ++c)
-  {
-    largest = std::max(largest, x->GetRange(c)[1]);
-  }
-  return largest;
-}
-
-// The (x, y) >= 0 minimising |x A + y B - T|^2 over all pixels and channels.
-void NonNegativeLeastSquares(vtkImageData* a, vtkImageData* b, vtkImageData* t, double& x, double& y)
-{
-  vtkDataArray* A = a->GetPointData()->GetScalars();
-  vtkDataArray* B = b->GetPointData()->GetScalars();
-  vtkDataArray* T = t->GetPointData()->GetScalars();
-  double aa = 0, ab = 0, bb = 0, at = 0, bt = 0, tt = 0;
-  for (vtkIdType i = 0; i < A->GetNumberOfTuples(); ++i)
-  {
-    for (int c = 0; c < 3; ++c)
-    {
-      const double u = A->GetComponent(i, c), v = B->GetComponent(i, c), w = T->GetComponent(i, c);
-      aa += u * u;
-      ab += u * v;
-      bb += v * v;
-      at += u * w;
-      bt += v * w;
-      tt += w * w;
-    }
-  }
-  auto error = [&](double p, double q) {
-    return p * p * aa + q * q * bb + 2 * p * q * ab - 2 * p * at - 2 * q * bt + tt;
-  };
-  const double det = aa * bb - ab * ab;
-  x = y = 0.0;
-  if (det > 1e-12 * aa * bb)
-  {
-    x = (at * bb - bt * ab) / det;
-    y = (bt * aa - at * ab) / det;
-  }
-  if (!(x >= 0.0 && y >= 0.0))
-  {
-    const double xa = aa > 0 ? std::max(at / aa, 0.0) : 0.0; // y = 0
-    const double yb = bb > 0 ? std::max(bt / bb, 0.0) : 0.0; // x = 0
-    if (error(xa, 0.0) <= error(0.0, yb))
-    {
-      x = xa, y = 0.0;
-    }
-    else
-    {
-      x = 0.0, y = yb;
-    }
-  }
 }
 
 // The ka, kd >= 0 with which `window` (whose image is linear in them: the

@@ -12,6 +12,9 @@
 //    albedo, its g, and the extinction per voxel its opacity implies; and
 //    "ours-mapped-surface": the same but the scene's surface terms (kd, ks,
 //    shininess, r) kept;
+//  - with --fit-exposure, "ours-exposure": at every (s, c_t), every node's
+//    ka and kd also scaled, by the factors that fit the truth best (least
+//    squares: the image less the ka = kd = 0 one is linear in them);
 //  - VTK Phong (vtkOpenGLGPUVolumeRayCastMapper, shading on, mmv default
 //    material);
 //  - VTK volumetric scattering: VolumetricScatteringBlending x
@@ -21,6 +24,7 @@
 //                          [--scenes synthetic,headsq,orbital,ct] [--head FILE.vti]
 //                          [--s-scales 1,0,0.5,2,4,8,16] [--ct-scales 1,0.5,2,4] [--no-vtk]
 //                          [--anisotropy G] [--back-light] [--mapped] [--black-background]
+//                          [--fit-exposure]
 //
 // Same camera, key light and gradient background as mmvBenchmark
 // (mmvbench::FrameScene); --back-light turns the key light to the opposite
@@ -78,6 +82,9 @@ namespace
 {
 using mmvcal::GainCompensated;
 using mmvcal::Numbers;
+using mmvcal::Brightest;
+using mmvcal::NonNegativeLeastSquares;
+using mmvcal::ScaleAmbientDiffuse;
 using mmvcal::ScaleMaterials;
 using mmvcal::Setting;
 using mmvcal::Window;
@@ -97,6 +104,7 @@ struct Options
   bool BackLight = false;
   bool Mapped = false;
   bool BlackBackground = false; // no sky in the truth
+  bool FitExposure = false;     // ka and kd fitted at every (s, c_t)
 };
 
 bool Parse(int argc, char* argv[], Options& o)
@@ -152,6 +160,10 @@ bool Parse(int argc, char* argv[], Options& o)
     else if (a == "--black-background")
     {
       o.BlackBackground = true;
+    }
+    else if (a == "--fit-exposure")
+    {
+      o.FitExposure = true;
     }
     else if (a == "--mapped")
     {
@@ -241,7 +253,7 @@ int main(int argc, char* argv[])
               << " --out DIR [--size N] [--truth-spp N] [--frames N]"
                  " [--scenes synthetic,headsq,orbital,ct] [--head FILE.vti]"
                  " [--s-scales LIST] [--ct-scales LIST] [--no-vtk] [--anisotropy G] [--back-light]"
-                 " [--mapped] [--black-background]\n";
+                 " [--mapped] [--black-background] [--fit-exposure]\n";
     return 2;
   }
   vtkSMPTools::SetBackend("STDThread");
@@ -335,11 +347,47 @@ int main(int argc, char* argv[])
       rows.push_back(r);
     };
 
+    // Ours with every node's ka and kd scaled by the factors that fit the
+    // truth best at (s, c_t): basis renders at (k0, 0) and (0, k0), k0
+    // halved until neither saturates, less the (0, 0) render (background,
+    // specular), then least squares.
+    auto fitExposure = [&](double s, double ct) {
+      auto render = [&](double ambient, double diffuse, vtkImageData* image) {
+        ScaleMaterials(scene.Materials, s, ct, materials);
+        ScaleAmbientDiffuse(materials, ambient, diffuse);
+        oursWindow.Frames(0, image);
+      };
+      vtkNew<vtkImageData> zero, basisA, basisB;
+      render(0.0, 0.0, zero);
+      double k0 = 1.0;
+      for (int tries = 0; tries < 6; ++tries, k0 *= 0.5)
+      {
+        render(k0, 0.0, basisA);
+        render(0.0, k0, basisB);
+        if (std::max(Brightest(basisA), Brightest(basisB)) < 255.0)
+        {
+          break;
+        }
+      }
+      double x = 0.0, y = 0.0;
+      NonNegativeLeastSquares(basisA, basisB, truth, x, y, zero);
+      ScaleMaterials(scene.Materials, s, ct, materials);
+      ScaleAmbientDiffuse(materials, k0 * x, k0 * y);
+      measure("ours-exposure",
+        Setting({ { "s_scale", s }, { "ct_scale", ct }, { "ka_scale", k0 * x },
+          { "kd_scale", k0 * y } }),
+        oursWindow);
+    };
+
     // Ours: s and c_t scaled; (1, 1) is the default.
     for (double s : opt.ScatteringScales)
     {
       for (double ct : opt.AttenuationScales)
       {
+        if (opt.FitExposure)
+        {
+          fitExposure(s, ct);
+        }
         ScaleMaterials(scene.Materials, s, ct, materials);
         measure(s == 1.0 && ct == 1.0 ? "ours-default" : "ours",
           Setting({ { "s_scale", s }, { "ct_scale", ct } }), oursWindow);

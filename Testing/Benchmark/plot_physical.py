@@ -26,6 +26,8 @@ STYLE = {
     "ours": dict(color="tab:blue", marker="o", label="ours, s and c_t scaled"),
     "ours-default": dict(color="tab:blue", marker="*", label="ours at defaults"),
     # mmvPhysicalCalibration --anisotropy G: ours above is v2 (HG(G)), this v1 (g = 0).
+    # mmvPhysicalCalibration --fit-exposure: ka and kd fitted at each (s, c_t).
+    "ours-exposure": dict(color="tab:purple", marker="D", label="ours, s and c_t scaled, ka/kd fitted"),
     "ours-v1": dict(color="tab:orange", marker="x", label="ours v1 (isotropic), s and c_t scaled"),
     "vtk-phong": dict(color="tab:green", marker="s", label="VTK Phong"),
     "vtk-scattering": dict(color="tab:red", marker="^", label="VTK scattering (blending, reach, g)"),
@@ -52,7 +54,7 @@ def main(path, out):
                 ax.scatter([float(r["frame_ms"]) for r in pts], [float(r[key]) for r in pts],
                            s=90 if family == "ours-default" else 30, alpha=0.8,
                            **{k: v for k, v in style.items()})
-            for family in ("ours", "ours-v1", "vtk-scattering"):
+            for family in ("ours", "ours-exposure", "ours-v1", "vtk-scattering"):
                 pts = [r for r in sub if r["family"] == family or
                        (family == "ours" and r["family"] == "ours-default")]
                 if pts:
