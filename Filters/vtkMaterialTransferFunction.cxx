@@ -10,6 +10,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <iterator>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -464,6 +466,37 @@ bool vtkMaterialTransferFunction::HasNonZero(int parameter) const
   const std::vector<Node>& nodes = this->Internals->Nodes;
   return std::any_of(nodes.begin(), nodes.end(),
     [parameter](const Node& n) { return n.Parameters[parameter] != 0.0; });
+}
+
+bool vtkMaterialTransferFunction::GetNonZeroRange(int parameter, double range[2]) const
+{
+  if (parameter < 0 || parameter >= mmv::MaterialParameterCount)
+  {
+    vtkErrorMacro("GetNonZeroRange: unknown material parameter index " << parameter << ".");
+    return false;
+  }
+  const double infinity = std::numeric_limits<double>::infinity();
+  const std::vector<Node>& nodes = this->Internals->Nodes;
+  if (nodes.empty())
+  {
+    if (mmv::MaterialParameterTable[parameter].Default == 0.0)
+    {
+      return false;
+    }
+    range[0] = -infinity; // the default everywhere
+    range[1] = infinity;
+    return true;
+  }
+  auto nonZero = [parameter](const Node& n) { return n.Parameters[parameter] != 0.0; };
+  const auto first = std::find_if(nodes.begin(), nodes.end(), nonZero);
+  if (first == nodes.end())
+  {
+    return false;
+  }
+  const auto last = std::find_if(nodes.rbegin(), nodes.rend(), nonZero);
+  range[0] = first == nodes.begin() ? -infinity : std::prev(first)->Value;
+  range[1] = last == nodes.rbegin() ? infinity : std::prev(last)->Value;
+  return true;
 }
 
 void vtkMaterialTransferFunction::GetRange(double range[2]) const

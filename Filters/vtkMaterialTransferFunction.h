@@ -119,6 +119,16 @@ public:
   /// variant: no Henyey-Greenstein code for g = 0, no emission for e = 0.
   bool HasNonZero(int parameter) const;
 
+  /**
+   * The smallest value interval outside which `parameter` is 0 (linear
+   * between nodes, clamped outside them): from the node before the first
+   * non-zero one (-infinity when that is the first node) to the node after
+   * the last non-zero one (+infinity when that is the last). False, range
+   * untouched, when the parameter is 0 at every value. Lets a pass skip
+   * what cannot reflect (vtkReflectionVisibilityPass).
+   */
+  bool GetNonZeroRange(int parameter, double range[2]) const;
+
   /// Value range covered by the nodes (0,0 when empty).
   void GetRange(double range[2]) const;
 

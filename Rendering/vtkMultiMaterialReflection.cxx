@@ -2,6 +2,8 @@
 
 #include "vtkIrradianceGrid.h"
 #include "vtkIrradianceVolumePass.h"
+#include "vtkMaterialTransferFunction.h"
+#include "vtkMultiMaterialParameters.h"
 #include "vtkCamera.h"
 #include "vtkMatrix4x4.h"
 #include "vtkMultiMaterialEnvironment.h"
@@ -29,6 +31,28 @@ vtkMultiMaterialEnvironment* vtkMultiMaterialReflection::GetEnvironment()
 int vtkMultiMaterialReflection::GetEnvironmentKind() const
 {
   return this->Environment->GetEnvironment()->GetKind();
+}
+
+void vtkMultiMaterialReflection::SetReflectiveValues(
+  vtkMaterialTransferFunction* materials, const double scalarRange[2], int tableSize)
+{
+  double values[2];
+  const double width = scalarRange[1] - scalarRange[0];
+  if (!materials || !(width > 0.0) || tableSize < 2 ||
+    !materials->GetNonZeroRange(mmv::Reflection, values))
+  {
+    // Nothing reflects (the shader then has no reflection) or no range to
+    // map to: skip nothing.
+    this->ReflectiveRange[0] = 0.0f;
+    this->ReflectiveRange[1] = 1.0f;
+    return;
+  }
+  const double step = 1.0 / (tableSize - 1);
+  for (int i = 0; i < 2; ++i)
+  {
+    const double t = (values[i] - scalarRange[0]) / width + (i ? step : -step);
+    this->ReflectiveRange[i] = static_cast<float>(std::min(std::max(t, 0.0), 1.0));
+  }
 }
 
 void vtkMultiMaterialReflection::Update(vtkRenderer* ren, vtkMatrix4x4* objectToWorld,
@@ -124,7 +148,8 @@ bool vtkMultiMaterialReflection::UpdateVisibilityPass(vtkRenderer* ren,
   key.insert(key.end(), cut.begin(), cut.end());
   key.insert(key.end(), this->ToIndex, this->ToIndex + 9);
   key.insert(key.end(), this->Origin, this->Origin + 3);
-  key.insert(key.end(), { double(this->Offset), double(this->TableSize), double(this->StepLength) });
+  key.insert(key.end(), { double(this->Offset), double(this->TableSize), double(this->StepLength),
+                          double(this->ReflectiveRange[0]), double(this->ReflectiveRange[1]) });
   if (keepWhileCameraMoves && key == this->VolumeKey && this->VisibilityPass->GetVisibilityTexture())
   {
     return true; // an earlier camera's, until the interaction ends
@@ -139,6 +164,7 @@ bool vtkMultiMaterialReflection::UpdateVisibilityPass(vtkRenderer* ren,
       this->SetMarchUniforms(program);
       program->SetUniformMatrix3x3("mmv_visibilityToObject", const_cast<float*>(this->ToObject));
       program->SetUniform4f("mmv_eye", this->Eye);
+      program->SetUniform2f("mmv_reflectiveRange", this->ReflectiveRange);
     });
   this->Pass->GetScalarTexture()->Deactivate();
   this->Pass->GetShadowTableTexture()->Deactivate();

@@ -29,6 +29,7 @@
 #include <vector> // problems
 
 class vtkIrradianceVolumePass;
+class vtkMaterialTransferFunction;
 class vtkMatrix4x4;
 class vtkMultiMaterialEnvironment;
 class vtkMultiMaterialEnvironmentTexture;
@@ -60,6 +61,19 @@ public:
   void Update(vtkRenderer* ren, vtkMatrix4x4* objectToWorld, int source, int visibility,
     vtkIrradianceVolumePass* pass, const mmv::IrradianceGrid& grid, int tableSize,
     double stepLength, std::vector<std::string>* problems, bool keepWhileCameraMoves = false);
+
+  /**
+   * Where the materials can reflect, for the view-dependent pass to skip
+   * the voxels whose neighbourhood holds no such value: the interval of
+   * `materials`' GetNonZeroRange(mmv::Reflection) in the pass's normalised
+   * values over `scalarRange`, widened by one step of the material table
+   * (`tableSize` entries: the ray cast interpolates between them). Call
+   * before Update(); without materials the whole range counts.
+   */
+  void SetReflectiveValues(
+    vtkMaterialTransferFunction* materials, const double scalarRange[2], int tableSize);
+  /// The interval in the pass's normalised values (0..1: everything).
+  const float* GetReflectiveRange() const { return this->ReflectiveRange; }
 
   /// mmv::EnvironmentKind and mmv::ReflectionVisibility in effect.
   int GetEnvironmentKind() const;
@@ -106,6 +120,7 @@ private:
   float Offset = 0.0f;
   float TableSize = 1.0f;
   float StepLength = 1.0f;
+  float ReflectiveRange[2] = { 0.0f, 1.0f };
 };
 
 #endif

@@ -355,7 +355,7 @@ bool vtkMultiMaterialVolumeMapper::PrepareMultiMaterial(vtkRenderer* ren, vtkVol
   }
 
   // 4. The shader variant and the per-frame uniforms.
-  this->UpdateShading(ren, input.Image, worldToObject);
+  this->UpdateShading(ren, input.Image, worldToObject, range);
   return true;
 }
 
@@ -469,7 +469,7 @@ void vtkMultiMaterialVolumeMapper::CollectShadedLights(
 }
 
 void vtkMultiMaterialVolumeMapper::UpdateShading(
-  vtkRenderer* ren, vtkImageData* image, vtkMatrix4x4* worldToObject)
+  vtkRenderer* ren, vtkImageData* image, vtkMatrix4x4* worldToObject, const double range[2])
 {
   vtkInternals& in = *this->Internals;
   mmv::ShaderVariant variant;
@@ -483,7 +483,7 @@ void vtkMultiMaterialVolumeMapper::UpdateShading(
   variant.Emission = all || (in.Materials && in.Materials->HasNonZero(mmv::Emission));
   if (variant.Reflection)
   {
-    this->UpdateReflection(ren, worldToObject);
+    this->UpdateReflection(ren, worldToObject, range);
     variant.Environment = in.Reflection->GetEnvironmentKind();
     variant.ReflectionVisibility = in.Reflection->GetVisibility();
     variant.ReflectionCutaway = in.Reflection->GetCutaway();
@@ -498,9 +498,14 @@ void vtkMultiMaterialVolumeMapper::UpdateShading(
   in.Uniforms.SetReflection(variant.Reflection ? in.Reflection.Get() : nullptr);
 }
 
-void vtkMultiMaterialVolumeMapper::UpdateReflection(vtkRenderer* ren, vtkMatrix4x4* worldToObject)
+void vtkMultiMaterialVolumeMapper::UpdateReflection(
+  vtkRenderer* ren, vtkMatrix4x4* worldToObject, const double range[2])
 {
   vtkInternals& in = *this->Internals;
+  // The pass's values are normalised over the global range when there is one.
+  vtkGlobalPrefilteredVolume* global = in.ActiveGlobal();
+  in.Reflection->SetReflectiveValues(
+    in.Materials, global ? global->GetScalarRange() : range, this->PreIntegrationTableSize);
   vtkNew<vtkMatrix4x4> objectToWorld;
   vtkMatrix4x4::Invert(worldToObject, objectToWorld);
   const mmv::IrradianceGrid& grid = in.Irradiance.GetGrid();

@@ -362,8 +362,9 @@ private:
   bool UpdateGradient(vtkOpenGLRenderWindow* context, vtkImageData* image,
     vtkDataArray* scalars, const double range[2]);
   void CollectShadedLights(vtkRenderer* ren, vtkMatrix4x4* worldToObject);
-  void UpdateShading(vtkRenderer* ren, vtkImageData* image, vtkMatrix4x4* worldToObject);
-  void UpdateReflection(vtkRenderer* ren, vtkMatrix4x4* worldToObject);
+  void UpdateShading(
+    vtkRenderer* ren, vtkImageData* image, vtkMatrix4x4* worldToObject, const double range[2]);
+  void UpdateReflection(vtkRenderer* ren, vtkMatrix4x4* worldToObject, const double range[2]);
   void WarnOnce(const std::string& message);
   // Partitions the texture so that every brick fits the context's largest
   // 3D texture; false (with an error) when nothing fits.

@@ -11,11 +11,15 @@
 
 uniform mat3 mmv_visibilityToObject; // grid index -> object space (inverse of ToIndex)
 uniform vec4 mmv_eye; // object space: the camera's position (w = 1) or, parallel, toward it (w = 0)
+// Normalised values outside which no material reflects
+// (vtkMultiMaterialReflection::SetReflectiveValues; 0..1: all of them).
+uniform vec2 mmv_reflectiveRange;
 
-// Whether the ray cast can shade a sample whose interpolation reaches this
-// voxel: some segment from it to one of its 26 neighbours has extinction
-// (pre-integrated, so a thin opaque value range between the two counts).
-bool mmvNearMaterial(vec3 index)
+// Whether the ray cast can shade a reflecting sample whose interpolation
+// reaches this voxel: some segment from it to one of its 26 neighbours has
+// extinction (pre-integrated, so a thin opaque value range between the two
+// counts) and spans a value that reflects.
+bool mmvNearReflectiveMaterial(vec3 index)
 {
   float centre = mmvSampleScalar(index);
   for (int k = -1; k <= 1; ++k)
@@ -24,7 +28,10 @@ bool mmvNearMaterial(vec3 index)
     {
       for (int i = -1; i <= 1; ++i)
       {
-        if (mmvShadowOpacity(centre, mmvSampleScalar(index + vec3(i, j, k))) > 0.0)
+        float neighbour = mmvSampleScalar(index + vec3(i, j, k));
+        if (max(centre, neighbour) >= mmv_reflectiveRange.x &&
+          min(centre, neighbour) <= mmv_reflectiveRange.y &&
+          mmvShadowOpacity(centre, neighbour) > 0.0)
         {
           return true;
         }
@@ -37,9 +44,10 @@ bool mmvNearMaterial(vec3 index)
 void mmvVoxelMain()
 {
   vec3 index = vec3(floor(texCoord * vec2(dims[0], dims[1])), float(slice));
-  if (!mmvNearMaterial(index))
+  if (!mmvNearReflectiveMaterial(index))
   {
-    // Empty space: no sample is shaded with it; the march is skipped.
+    // Empty or not reflecting: no reflection is shaded with it; the march
+    // is skipped.
     mmvWrite(vec4(1.0));
     return;
   }

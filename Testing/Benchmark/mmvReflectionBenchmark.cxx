@@ -11,6 +11,11 @@
 //   r=0.5 view pass  r = 0.5, ReflectionVisibility 2: the same march once
 //                    per irradiance voxel (vtkReflectionVisibilityPass), on
 //                    every frame here since the camera turns every frame
+//   r=0.5 last node, view pass
+//                    r = 0.5 on the densest material only: the pass skips
+//                    voxels where nothing can reflect
+//   r=0.5 last node, others 1e-6, view pass
+//                    the same image, but r = 1e-6 elsewhere: nothing skipped
 //
 //   mmvReflectionBenchmark --out DIR [--size N] [--frames N]
 //                          [--scenes synthetic,headsq,ct] [--head FILE.vti]
@@ -73,6 +78,10 @@ struct Variant
   std::string Name;
   double Reflection;
   int Visibility;
+  /// >= 0: the reflection on the last (densest) node only, this on the
+  /// others (a tiny value changes no pixel but keeps every voxel from the
+  /// view pass's skip of what cannot reflect).
+  double Others = -1.0;
 };
 
 const Variant Variants[] = {
@@ -80,18 +89,21 @@ const Variant Variants[] = {
   { "r=0.5 unoccluded", 0.5, 0 },
   { "r=0.5 marched", 0.5, 1 },
   { "r=0.5 view pass", 0.5, 2 },
+  { "r=0.5 last node, view pass", 0.5, 2, 0.0 },
+  { "r=0.5 last node, others 1e-6, view pass", 0.5, 2, 1e-6 },
 };
 
-/// The scene's nodes with r replaced on every node.
+/// The scene's nodes with r replaced on every node, or (others >= 0) on the
+/// last node and `others` on the rest.
 vtkSmartPointer<vtkMaterialTransferFunction> WithReflection(
-  vtkMaterialTransferFunction* materials, double r)
+  vtkMaterialTransferFunction* materials, double r, double others)
 {
   constexpr int Stride = vtkMaterialTransferFunction::NodeStride;
   std::vector<double> nodes(static_cast<size_t>(materials->GetSize()) * Stride);
   materials->GetNodes(nodes.data());
   for (size_t i = 0; i < nodes.size(); i += Stride)
   {
-    nodes[i + 1 + mmv::Reflection] = r;
+    nodes[i + 1 + mmv::Reflection] = others < 0.0 || i + Stride == nodes.size() ? r : others;
   }
   auto out = vtkSmartPointer<vtkMaterialTransferFunction>::New();
   out->SetNodes(static_cast<int>(nodes.size()), nodes.data());
@@ -254,7 +266,7 @@ int main(int argc, char* argv[])
       in->Property->SetScalarOpacity(scene.Opacity);
       in->Property->SetScalarOpacityUnitDistance(scene.UnitDistance);
       in->Property->SetInterpolationTypeToLinear();
-      in->Materials = WithReflection(scene.Materials, v.Reflection);
+      in->Materials = WithReflection(scene.Materials, v.Reflection, v.Others);
       in->Mapper->SetInputData(scene.Image);
       in->Mapper->SetMaterialTransferFunction(in->Materials);
       in->Mapper->SetReflectionVisibility(v.Visibility);

@@ -457,6 +457,42 @@ TEST(MaterialTransferFunction, GetTableRejectsBadArguments)
   EXPECT_EQ(table[0], -7.0f);
 }
 
+// The value interval outside which a parameter is 0, in closed form:
+// linear between nodes, so it reaches from the node before the first
+// non-zero one to the node after the last; clamped outside the nodes, so an
+// end node that is non-zero reaches infinity.
+TEST(MaterialTransferFunction, GetNonZeroRangeSpansTheNeighbouringNodes)
+{
+  const double infinity = std::numeric_limits<double>::infinity();
+  vtkNew<vtkMaterialTransferFunction> tf;
+  double range[2] = { -7.0, -7.0 };
+  EXPECT_FALSE(tf->GetNonZeroRange(mmv::Reflection, range)); // default r = 0
+  EXPECT_TRUE(tf->GetNonZeroRange(mmv::Diffuse, range));     // default kd > 0
+  EXPECT_EQ(range[0], -infinity);
+  EXPECT_EQ(range[1], infinity);
+  for (double value : { 0.0, 10.0, 20.0, 30.0, 40.0 })
+  {
+    const double r = value == 20.0 || value == 30.0 ? 0.5 : 0.0;
+    tf->AddNode(value, 0.1, 0.7, 0.2, 20.0, 1.0, 0.0, r);
+  }
+  ASSERT_TRUE(tf->GetNonZeroRange(mmv::Reflection, range));
+  EXPECT_EQ(range[0], 10.0);
+  EXPECT_EQ(range[1], 40.0);
+  EXPECT_EQ(tf->EvaluateParameter(10.0, mmv::Reflection), 0.0); // the interval is tight
+  EXPECT_GT(tf->EvaluateParameter(10.5, mmv::Reflection), 0.0);
+  EXPECT_GT(tf->EvaluateParameter(39.5, mmv::Reflection), 0.0);
+  EXPECT_EQ(tf->EvaluateParameter(40.0, mmv::Reflection), 0.0);
+  tf->AddNode(0.0, 0.1, 0.7, 0.2, 20.0, 1.0, 0.0, 0.3); // the first node reflects
+  ASSERT_TRUE(tf->GetNonZeroRange(mmv::Reflection, range));
+  EXPECT_EQ(range[0], -infinity);
+  EXPECT_EQ(range[1], 40.0);
+  EXPECT_FALSE(tf->GetNonZeroRange(mmv::Scattering, range)); // s = 0 everywhere
+  EXPECT_EQ(range[0], -infinity);                              // untouched
+  mmvtest::ErrorCounter errors(tf);
+  EXPECT_FALSE(tf->GetNonZeroRange(P, range));
+  EXPECT_EQ(errors.Errors(), 1);
+}
+
 TEST(MaterialTransferFunction, GetMaximum)
 {
   vtkNew<vtkMaterialTransferFunction> tf;

@@ -11,6 +11,7 @@
 #include "vtkImageErrorMetrics.h"
 #include "vtkMaterialTransferFunction.h"
 #include "vtkMultiMaterialEnvironmentLookup.h"
+#include "vtkMultiMaterialReflection.h"
 #include "vtkMultiMaterialReferenceRenderer.h"
 #include "vtkMultiMaterialVolumeMapper.h"
 #include "vtkNew.h"
@@ -554,6 +555,53 @@ TEST(Reflection, ViewDependentDimsAsPerSampleInPerspective)
   // (the view direction of the ball's centre for every voxel) 0.044.
   EXPECT_GT(dimmed, 200); // the slab is seen in the reflections
   EXPECT_LT(difference / count, 0.02);
+}
+
+TEST(Reflection, ViewDependentPassSkipsOnlyWhatCannotReflect)
+{
+  // The mirror scene's slab reflects nothing (r = 0 up to the node at -50,
+  // r = 1 from -45): the pass marches only the voxels near values above -50,
+  // normalised over the scalar range and widened by one table step.
+  MirrorScene skipped(true);
+  const double range[2] = { SlabValue, Radius };
+  vtkNew<vtkMultiMaterialReflection> reflection;
+  reflection->SetReflectiveValues(skipped.Materials, range, 256);
+  const double lower = (-50.0 - SlabValue) / (Radius - SlabValue) - 1.0 / 255.0;
+  EXPECT_NEAR(reflection->GetReflectiveRange()[0], lower, 1e-6);
+  EXPECT_EQ(reflection->GetReflectiveRange()[1], 1.0f);
+  reflection->SetReflectiveValues(nullptr, range, 256); // no materials: skip nothing
+  EXPECT_EQ(reflection->GetReflectiveRange()[0], 0.0f);
+  EXPECT_EQ(reflection->GetReflectiveRange()[1], 1.0f);
+
+  // The image with the skip against the same scene where the slab reflects
+  // 1e-6 (invisible, but nothing skipped): the skipped voxels were never
+  // read by a reflecting sample.
+  auto render = [](MirrorScene& scene) {
+    scene.Mapper->SetReflectionVisibility(mmv::ViewDependentReflectionVisibility);
+    scene.Scene.Renderer->SetEnvironmentTexture(
+      MakeCubeMap([](const glm::dvec3&) { return glm::dvec3(1.0); }));
+    scene.Scene.Window->Render();
+    EXPECT_TRUE(scene.Mapper->GetMultiMaterialActive());
+    return scene.Scene.Pixels();
+  };
+  MirrorScene everything(true);
+  everything.Materials->AddNode(-100.0, 0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 1e-6);
+  everything.Materials->AddNode(-50.0, 0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 1e-6);
+  const std::vector<unsigned char> a = render(skipped);
+  const std::vector<unsigned char> b = render(everything);
+  ASSERT_EQ(a.size(), b.size());
+  int largest = 0;
+  size_t differing = 0;
+  for (size_t i = 0; i < a.size(); ++i)
+  {
+    const int d = std::abs(int(a[i]) - int(b[i]));
+    largest = std::max(largest, d);
+    differing += d > 0 ? 1 : 0;
+  }
+  std::cout << differing << " of " << a.size() << " bytes differ, by " << largest
+            << " at most\n";
+  // r = 1e-6 of a white environment adds less than 1/255 anywhere.
+  EXPECT_LE(largest, 1);
 }
 
 TEST(Reflection, ReferenceRendererAgreesWithGPUWithACut)
