@@ -39,10 +39,23 @@ enum ReflectionVisibility
   /// extinction the irradiance pass uses.
   MarchedReflectionVisibility = 1,
   /// The same march once per irradiance voxel, when the camera or the volume
-  /// changes (vtkReflectionVisibilityPass), interpolated by the ray cast
-  /// (default: the cheaper of the two, docs/benchmark.md).
-  ViewDependentReflectionVisibility = 2
+  /// changes (vtkReflectionVisibilityPass), interpolated by the ray cast.
+  ViewDependentReflectionVisibility = 2,
+  /// Per frame, the cheaper of the two (the default): per sample while the
+  /// view has fewer pixels than PerSampleMarchPixelsPerVoxel times the
+  /// irradiance grid's voxels, else the view-dependent pass.
+  AutomaticReflectionVisibility = 3
 };
+
+/// Where the per-sample march and the view-dependent pass cost the same, in
+/// view pixels per irradiance voxel. The march costs per shaded pixel, the
+/// pass per voxel, whatever the view. Measured on llvmpipe (wall clock, the
+/// camera turning every frame, docs/benchmark.md): at 128 x 128 the march
+/// is 2.8x (synthetic, 64^3 grid) and 2.0x (headsq, 64 x 64 x 93) cheaper,
+/// at 400 x 400 the pass 1.3x and 2.3x; per pixel the march costs 2-7 us, per
+/// voxel the pass 0.5-0.7 us, which puts the crossover at 0.1-0.26 pixels
+/// per voxel.
+constexpr double PerSampleMarchPixelsPerVoxel = 0.15;
 
 /// The visibility march starts this many voxels (of the grid it marches:
 /// the irradiance grid on the GPU, the data in the reference) off the

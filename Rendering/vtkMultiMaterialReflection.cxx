@@ -60,6 +60,16 @@ void vtkMultiMaterialReflection::Update(vtkRenderer* ren, vtkMatrix4x4* objectTo
   int tableSize, double stepLength, std::vector<std::string>* problems, bool keepWhileCameraMoves)
 {
   this->Environment->Update(ren, objectToWorld, source, problems);
+  if (visibility == mmv::AutomaticReflectionVisibility)
+  {
+    const int* size = ren->GetSize();
+    const double pixels = static_cast<double>(size[0]) * size[1];
+    const double voxels =
+      static_cast<double>(grid.Dimensions[0]) * grid.Dimensions[1] * grid.Dimensions[2];
+    visibility = pixels < mmv::PerSampleMarchPixelsPerVoxel * voxels
+      ? mmv::MarchedReflectionVisibility
+      : mmv::ViewDependentReflectionVisibility;
+  }
   this->Visibility = mmv::UnoccludedReflections;
   this->Cutaway = false;
   this->Pass = nullptr;

@@ -51,7 +51,9 @@ public:
 
   /**
    * Reads the environment (`source`: mmv::ReflectionSource) and, for
-   * `visibility` (mmv::ReflectionVisibility), the pass's pre-filtered volume
+   * `visibility` (mmv::ReflectionVisibility; Automatic resolves to the
+   * per-sample march or the pass from the renderer's size and the grid's
+   * voxels, mmv::PerSampleMarchPixelsPerVoxel), the pass's pre-filtered volume
    * on `grid` with its table of `tableSize` entries built for `stepLength`
    * (object units); `pass` may be null (no light). What cannot be honoured
    * is appended to `problems`. With `keepWhileCameraMoves` (an interactive

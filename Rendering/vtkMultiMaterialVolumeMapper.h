@@ -180,8 +180,10 @@ public:
   vtkSetClampMacro(ReflectionSource, int, 0, 1);
   vtkGetMacro(ReflectionSource, int);
 
-  /// The visibility I(x, w_r) of reflections (eq. 17): 2
-  /// (mmv::ViewDependentReflectionVisibility, default), a march through the
+  /// The visibility I(x, w_r) of reflections (eq. 17): 3
+  /// (mmv::AutomaticReflectionVisibility, default), per frame the cheaper of
+  /// 1 and 2 for the view's size (mmv::PerSampleMarchPixelsPerVoxel); 2
+  /// (mmv::ViewDependentReflectionVisibility), a march through the
   /// pre-filtered extinction once per irradiance voxel when the camera or the
   /// volume changes, interpolated by the ray cast; 1
   /// (mmv::MarchedReflectionVisibility), the same march from every shaded
@@ -191,7 +193,7 @@ public:
   /// region and clipping planes (cut material does not occlude). Needs a
   /// light (the pre-filtered volume comes with the irradiance): without one,
   /// unoccluded (warning).
-  vtkSetClampMacro(ReflectionVisibility, int, 0, 2);
+  vtkSetClampMacro(ReflectionVisibility, int, 0, 3);
   vtkGetMacro(ReflectionVisibility, int);
 
   /// Pre-integration table size n (n x n). Default 256.
@@ -329,7 +331,7 @@ protected:
   bool TimeStages = false;
   bool CompileUnusedOpticalTerms = false;
   int ReflectionSource = 0;     // mmv::ReflectEnvironmentTexture
-  int ReflectionVisibility = 2; // mmv::ViewDependentReflectionVisibility
+  int ReflectionVisibility = 3; // mmv::AutomaticReflectionVisibility
 
   int PreIntegrationCount = 0;
   int IrradianceUpdateCount = 0;

@@ -169,10 +169,10 @@ private:
   int InteractiveIrradiance = 1; // vtkMultiMaterialVolumeMapper::ReuseWhileInteracting
   int ShadowEstimation = mmv::PiecewiseShadowRays;
   int PiecewiseShadowSlices = mmv::DefaultPiecewiseShadowSlices;
-  bool ExponentialDiffusion = false;
+  bool ExponentialDiffusion = mmv::DefaultExponentialDiffusion;
   double LightDirectionTolerance = mmv::DefaultLightDirectionToleranceDegrees;
   int ReflectionSource = 0;     // mmv::ReflectEnvironmentTexture
-  int ReflectionVisibility = 1; // mmv::MarchedReflectionVisibility
+  int ReflectionVisibility = 3; // mmv::AutomaticReflectionVisibility (the proxy's default)
   int LightFalloff = 0;
   bool WarnedZeroRadius = false;
 

@@ -800,10 +800,21 @@ TEST(Reflection, ShaderCarriesOnlyTheEnvironmentInUse)
   std::string source = scene.Mapper->GetLastFragmentShaderSource();
   EXPECT_NE(source.find("#define MMV_USE_REFLECTION 1"), std::string::npos);
   EXPECT_NE(source.find("#define MMV_ENVIRONMENT 0"), std::string::npos);
-  // The default: the view-dependent pass, no march in the ray cast.
-  EXPECT_EQ(scene.Mapper->GetReflectionVisibility(), mmv::ViewDependentReflectionVisibility);
+  // The default, automatic: this 96 x 96 view has 0.06 pixels per voxel of
+  // the 64 x 48 x 48 grid (below mmv::PerSampleMarchPixelsPerVoxel), so
+  // the ray cast marches per sample and the pass does not run ...
+  EXPECT_EQ(scene.Mapper->GetReflectionVisibility(), mmv::AutomaticReflectionVisibility);
+  EXPECT_NE(source.find("#define MMV_REFLECTION_VISIBILITY 1"), std::string::npos);
+  EXPECT_NE(source.find("float mmvMarchTransmittance("), std::string::npos);
+  EXPECT_EQ(scene.Mapper->GetReflectionVisibilityUpdateCount(), 0);
+  // ... and a 256 x 256 view (0.44 per voxel) takes the view-dependent pass.
+  scene.Scene.Window->SetSize(256, 256);
+  scene.Scene.Window->Render();
+  source = scene.Mapper->GetLastFragmentShaderSource();
   EXPECT_NE(source.find("#define MMV_REFLECTION_VISIBILITY 2"), std::string::npos);
   EXPECT_EQ(source.find("float mmvMarchTransmittance("), std::string::npos);
+  EXPECT_EQ(scene.Mapper->GetReflectionVisibilityUpdateCount(), 1);
+  scene.Scene.Window->SetSize(ImageSize, ImageSize);
   scene.Mapper->SetReflectionVisibility(mmv::MarchedReflectionVisibility);
   scene.Scene.Window->Render();
   source = scene.Mapper->GetLastFragmentShaderSource();
