@@ -67,6 +67,13 @@ public:
   {
     return this->Global && this->Global->GetValid() ? this->Global.Get() : nullptr;
   }
+  // The value range the pass's and the gradient's normalisation use: the
+  // global one when the input is one piece of a volume, else the piece's.
+  const double* ValueRange(const double pieceRange[2]) const
+  {
+    vtkGlobalPrefilteredVolume* global = this->ActiveGlobal();
+    return global ? global->GetScalarRange() : pieceRange;
+  }
   vtkNew<vtkPreIntegrationTable> SegmentTable;
   vtkNew<vtkMultiMaterialTextures> Textures;
   vtkMultiMaterialIrradianceStage Irradiance;
@@ -415,8 +422,7 @@ bool vtkMultiMaterialVolumeMapper::UpdateGradient(vtkOpenGLRenderWindow* context
   vtkInternals& in = *this->Internals;
   // Pieces of one volume share the gradient's normalisation (and so its
   // shading fade) when they share a global range.
-  vtkGlobalPrefilteredVolume* global = in.ActiveGlobal();
-  const double* gradientRange = global ? global->GetScalarRange() : range;
+  const double* gradientRange = in.ValueRange(range);
   int dataDims[3];
   image->GetDimensions(dataDims);
   std::string smoothingProblem;
@@ -502,10 +508,8 @@ void vtkMultiMaterialVolumeMapper::UpdateReflection(
   vtkRenderer* ren, vtkMatrix4x4* worldToObject, const double range[2])
 {
   vtkInternals& in = *this->Internals;
-  // The pass's values are normalised over the global range when there is one.
-  vtkGlobalPrefilteredVolume* global = in.ActiveGlobal();
   in.Reflection->SetReflectiveValues(
-    in.Materials, global ? global->GetScalarRange() : range, this->PreIntegrationTableSize);
+    in.Materials, in.ValueRange(range), this->PreIntegrationTableSize);
   vtkNew<vtkMatrix4x4> objectToWorld;
   vtkMatrix4x4::Invert(worldToObject, objectToWorld);
   const mmv::IrradianceGrid& grid = in.Irradiance.GetGrid();

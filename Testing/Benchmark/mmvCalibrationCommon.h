@@ -30,6 +30,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <functional>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -236,6 +237,35 @@ inline void NonNegativeLeastSquares(
       x = 0.0, y = yb;
     }
   }
+}
+
+// The (a, b) >= 0 with which `render(a, b, image)` best fits `truth`, the
+// image being linear in a and b: basis renders at (k0, 0) and (0, k0), k0
+// halved from `k0` until neither saturates, then least squares; with
+// `offset`, less the (0, 0) render (what a and b do not scale: background,
+// terms not fitted).
+inline void FitTwoScales(const std::function<void(double, double, vtkImageData*)>& render,
+  vtkImageData* truth, double k0, bool offset, double& a, double& b)
+{
+  vtkNew<vtkImageData> zero, basisA, basisB;
+  if (offset)
+  {
+    render(0.0, 0.0, zero);
+  }
+  for (int tries = 0; tries < 6; ++tries)
+  {
+    render(k0, 0.0, basisA);
+    render(0.0, k0, basisB);
+    if (std::max(Brightest(basisA), Brightest(basisB)) < 255.0 || tries == 5)
+    {
+      break; // k0 is the basis renders' scale
+    }
+    k0 *= 0.5;
+  }
+  double x = 0.0, y = 0.0;
+  NonNegativeLeastSquares(basisA, basisB, truth, x, y, offset ? zero.Get() : nullptr);
+  a = k0 * x;
+  b = k0 * y;
 }
 
 // Every node's ka and kd of `materials` multiplied (in place), within their

@@ -63,8 +63,6 @@ namespace
 using mmvcal::GainCompensated;
 using mmvcal::Numbers;
 using mmvcal::Setting;
-using mmvcal::Brightest;
-using mmvcal::NonNegativeLeastSquares;
 using mmvcal::Window;
 
 constexpr int BallDimensions = 40;
@@ -277,23 +275,14 @@ double RMSE(vtkImageData* a, vtkImageData* b)
 void FitAmbientDiffuse(const std::function<void(double, double)>& set, Window& window,
   vtkImageData* truth, double& ka, double& kd)
 {
-  double k0 = 0.25;
-  vtkNew<vtkImageData> basisA, basisB;
-  for (int tries = 0; tries < 6; ++tries, k0 *= 0.5)
-  {
-    set(k0, 0.0);
-    window.Frames(0, basisA);
-    set(0.0, k0);
-    window.Frames(0, basisB);
-    if (std::max(Brightest(basisA), Brightest(basisB)) < 255.0)
-    {
-      break;
-    }
-  }
-  double x = 0.0, y = 0.0;
-  NonNegativeLeastSquares(basisA, basisB, truth, x, y);
-  ka = std::min(k0 * x, mmv::MaterialParameterTable[mmv::Ambient].HardMax);
-  kd = std::min(k0 * y, mmv::MaterialParameterTable[mmv::Diffuse].HardMax);
+  mmvcal::FitTwoScales(
+    [&](double a, double b, vtkImageData* image) {
+      set(a, b);
+      window.Frames(0, image);
+    },
+    truth, 0.25, false, ka, kd);
+  ka = std::min(ka, mmv::MaterialParameterTable[mmv::Ambient].HardMax);
+  kd = std::min(kd, mmv::MaterialParameterTable[mmv::Diffuse].HardMax);
   set(ka, kd);
 }
 

@@ -82,8 +82,6 @@ namespace
 {
 using mmvcal::GainCompensated;
 using mmvcal::Numbers;
-using mmvcal::Brightest;
-using mmvcal::NonNegativeLeastSquares;
 using mmvcal::ScaleAmbientDiffuse;
 using mmvcal::ScaleMaterials;
 using mmvcal::Setting;
@@ -348,34 +346,20 @@ int main(int argc, char* argv[])
     };
 
     // Ours with every node's ka and kd scaled by the factors that fit the
-    // truth best at (s, c_t): basis renders at (k0, 0) and (0, k0), k0
-    // halved until neither saturates, less the (0, 0) render (background,
-    // specular), then least squares.
+    // truth best at (s, c_t), less the (0, 0) render (background, specular).
     auto fitExposure = [&](double s, double ct) {
       auto render = [&](double ambient, double diffuse, vtkImageData* image) {
         ScaleMaterials(scene.Materials, s, ct, materials);
         ScaleAmbientDiffuse(materials, ambient, diffuse);
         oursWindow.Frames(0, image);
       };
-      vtkNew<vtkImageData> zero, basisA, basisB;
-      render(0.0, 0.0, zero);
-      double k0 = 1.0;
-      for (int tries = 0; tries < 6; ++tries, k0 *= 0.5)
-      {
-        render(k0, 0.0, basisA);
-        render(0.0, k0, basisB);
-        if (std::max(Brightest(basisA), Brightest(basisB)) < 255.0)
-        {
-          break;
-        }
-      }
-      double x = 0.0, y = 0.0;
-      NonNegativeLeastSquares(basisA, basisB, truth, x, y, zero);
+      double ambient = 1.0, diffuse = 1.0;
+      mmvcal::FitTwoScales(render, truth, 1.0, true, ambient, diffuse);
       ScaleMaterials(scene.Materials, s, ct, materials);
-      ScaleAmbientDiffuse(materials, k0 * x, k0 * y);
+      ScaleAmbientDiffuse(materials, ambient, diffuse);
       measure("ours-exposure",
-        Setting({ { "s_scale", s }, { "ct_scale", ct }, { "ka_scale", k0 * x },
-          { "kd_scale", k0 * y } }),
+        Setting({ { "s_scale", s }, { "ct_scale", ct }, { "ka_scale", ambient },
+          { "kd_scale", diffuse } }),
         oursWindow);
     };
 
