@@ -37,9 +37,10 @@
  * the scattering angle (0 isotropic, > 0 forward); |g| < 1 (HardMin and
  * HardMax are +-0.99: g = +-1 is a delta, not a phase function). The path
  * tracer scatters with it; the ray caster and the reference renderer weight
- * the particle (ambient) term of each light by 4 pi HG(g) between the light's
- * and the view's directions (vtkMultiMaterialPhaseFunction.h), which is 1 at
- * g = 0, so g = 0 renders exactly as the isotropic model did.
+ * the particles' share of the ambient term of each light (the hybrid model,
+ * mmvSurfaceShare) by 4 pi HG(g) between the light's and the view's
+ * directions (vtkMultiMaterialPhaseFunction.h), which is 1 at g = 0, so
+ * g = 0 renders exactly as the isotropic model did.
  * Emission: Yang et al. eq. 27. Emitted radiance per unit length is
  * e * colour * sigma_t (the emitting particles are the ones that absorb), so
  * a segment of opacity alpha adds e * colour * alpha (= e * I_c) to the
@@ -178,11 +179,18 @@ constexpr double MinAttenuationDenominator = 1.0e-4;
 /// The CPU filter uses the same figure so both pick the same resolution.
 constexpr double IrradianceBytesPerVoxelPerLight = 2.0;
 
-/// Surface (normal-based) shading reaches full strength once the normalised
-/// value changes by this much per voxel; below, it fades to ambient shading,
-/// so homogeneous regions do not turn gradient noise into speckles. Read by
-/// the mapper (mmv_gradientFade) and the reference renderer.
-constexpr double FullShadingGradientPerVoxel = 0.005;
+/// The hybrid surface/particle model (Yang et al. eqs. 5-8, mmvSurfaceShare):
+/// the gradient of the normalised value, per voxel, at which surface elements
+/// and particles take equal shares of a segment's extinction. It is the
+/// paper's Delta v_std / Delta l_std (over all ray directions), with one
+/// opacity transfer function for both elements (its Fig. 4c). The paper's
+/// CT settings put it at 0.0008-0.0024 (Delta v_std 13-40 of 4096 per
+/// Delta l_std of 4 voxels): 0.002 keeps a one-voxel edge across 5 % of the
+/// range 96 % surface, and noise of 0.01 % of the range 5 %. Read by the mapper
+/// (mmv_surfaceEqualShare) and the reference renderer. The path tracer's
+/// surface events follow Kroes et al. instead
+/// (vtkMultiMaterialPathTracer::SurfaceGradientPerVoxel).
+constexpr double SurfaceEqualShareGradientPerVoxel = 0.002;
 
 /// With an automatic irradiance resolution, an irradiance voxel need not
 /// cover fewer pixels than this on screen (mmv::ChooseIrradianceResolution):

@@ -466,7 +466,7 @@ dvec3 Medium::Trace(const dvec3& x0, const dvec3& d0, double tMax, const dvec3& 
     {
       const dvec3 gradient = this->Gradient(event.P);
       const double length = glm::length(gradient);
-      const double perVoxel = length * this->SmallestSpacing / mmv::FullShadingGradientPerVoxel;
+      const double perVoxel = length * this->SmallestSpacing / vtkMultiMaterialPathTracer::SurfaceGradientPerVoxel;
       if (length > 0.0 && rng.Uniform() < -std::expm1(-perVoxel))
       {
         scatterer.Surface = true;

@@ -32,7 +32,7 @@
  *    camera's view-up (mmv::mmvEnvironment, as our reflection does).
  *  - Surface scattering (on by default; Kroes et al. §3.3): at an event, a
  *    BRDF instead of the phase function with probability
- *    1 - exp(-|grad| / FullShadingGradientPerVoxel), |grad| the normalised
+ *    1 - exp(-|grad| / SurfaceGradientPerVoxel), |grad| the normalised
  *    value's gradient per voxel. The BRDF is albedo * ((1 - ks) / pi +
  *    ks (e + 8) / (8 pi) cos^e(theta_h)), normalised Blinn-Phong from the
  *    material's ks and shininess e: it never reflects more than it receives.
@@ -69,6 +69,13 @@ public:
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   // The scene (data, property, materials, matrix): vtkMultiMaterialVolumeScene.
+
+  /// Surface events (Kroes et al.): the gradient of the normalised value per
+  /// voxel g0 in the probability 1 - exp(-|grad| / g0) of a BRDF event. The
+  /// ground truth's own definition, kept apart from the ray caster's hybrid
+  /// share (mmv::SurfaceEqualShareGradientPerVoxel) so the truth does not move
+  /// with the model it judges.
+  static constexpr double SurfaceGradientPerVoxel = 0.005;
 
   /// Paths per pixel (default 64). Render() rejects values below 1.
   vtkSetMacro(SamplesPerPixel, int);

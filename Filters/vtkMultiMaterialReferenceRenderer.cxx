@@ -88,7 +88,7 @@ struct Scene
   double PrimaryStep = 1.0;
   double ShadowStep = 1.0;
   double MaxOpticalDepth = 13.8;
-  double GradientFade = 1.0;
+  double SurfaceEqualShare = 1.0; // mmv::SurfaceEqualShareGradientPerVoxel per object unit
   std::vector<mmv::ShadingLight> Lights;
   // The same lights as mmvShadeSample takes them.
   std::vector<mmv::LightSource> Sources;
@@ -211,7 +211,7 @@ struct Scene
     const double gradientLength = glm::length(gradient);
     dvec3 n = gradientLength > 0.0 ? -gradient / gradientLength : dvec3(0.0);
     n = glm::dot(n, v) < 0.0 ? -n : n; // two-sided
-    const double directional = std::min(std::max(gradientLength / this->GradientFade, 0.0), 1.0);
+    const double surface = mmv::mmvSurfaceShare(gradientLength, this->SurfaceEqualShare);
 
     const int count = static_cast<int>(this->Lights.size());
     double irradiance[mmv::MaxLights] = {};
@@ -228,7 +228,7 @@ struct Scene
     const double reflection = this->Reflection ? m[mmv::Reflection] : 0.0;
     const dvec3 environment = reflection > 0.0 ? this->Reflected(x, n, v) : dvec3(0.0);
     return mmv::mmvShadeSample(material, m[mmv::Anisotropy], reflection, m[mmv::Emission],
-      segment, x, n, v, directional, this->Sources.data(), this->Radiances.data(), irradiance, count,
+      segment, x, n, v, surface, this->Sources.data(), this->Radiances.data(), irradiance, count,
       environment);
   }
 
@@ -399,7 +399,7 @@ void SetUpSampling(Scene& scene, const double range[2], const double spacing[3],
     std::min({ std::abs(spacing[0]), std::abs(spacing[1]), std::abs(spacing[2]) });
   scene.PrimaryStep = sampleDistance > 0.0 ? sampleDistance : smallestSpacing / 8.0;
   scene.ShadowStep = shadowSampleDistance > 0.0 ? shadowSampleDistance : smallestSpacing / 8.0;
-  scene.GradientFade = mmv::FullShadingGradientPerVoxel / smallestSpacing;
+  scene.SurfaceEqualShare = mmv::SurfaceEqualShareGradientPerVoxel / smallestSpacing;
   scene.MaxOpticalDepth =
     minTransmittance > 0.0 ? -std::log(minTransmittance) : std::numeric_limits<double>::infinity();
   scene.ReflectionOffset = mmv::ReflectionVisibilityOffsetVoxels * smallestSpacing;

@@ -34,15 +34,16 @@
  *  - Shading: per segment, the formulas of Shaders/mmvRayCastDec.glsl:
  *    mmv::mmvBlinnPhong per light with its colour * intensity, two-sided
  *    normal from central differences (+-1 voxel) of the normalised value,
- *    the directional fade |grad| / (0.005 / smallest spacing), and the
+ *    the hybrid model's surface share (mmv::mmvSurfaceShare, Yang et al.), and the
  *    environment reflection of eq. 17 when the material function has
  *    reflection: c_r from vtkMultiMaterialEnvironment (the renderer's
  *    environment texture or background, ReflectionSource), times the
  *    visibility I(x, w_r) (ReflectionVisibility, with a light): a shadow ray
  *    along w_r as above, from the sample moved
  *    mmv::ReflectionVisibilityOffsetVoxels smallest spacings along n.
- *    The ambient (particle) term of each light is weighted by
- *    mmv::mmvHenyeyGreensteinRelative(g, -v.l) (1 at g = 0), and every
+ *    The particles' share (1 - w) of the ambient term of each light is
+ *    weighted by mmv::mmvHenyeyGreensteinRelative(g, -v.l) (1 at g = 0),
+ *    and every
  *    segment adds its emission e * I_c (mmv::mmvEmission).
  *    No active light: ambient emission ka * I_c (plus e * I_c).
  *  - Background: the colour is composited over the renderer's background

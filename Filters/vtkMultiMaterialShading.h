@@ -18,7 +18,8 @@ namespace mmv
 {
 
 /// material: (ka, kd, ks, shininess); segment: (I_c rgb, I_alpha); n, v, l unit
-/// vectors (n facing the viewer or zero); directional in [0, 1].
+/// vectors (n facing the viewer or zero); directional in [0, 1]: the weight
+/// of the normal-based terms (the surface share).
 inline glm::dvec3 mmvBlinnPhong(const glm::dvec4& material, const glm::dvec4& segment,
   const glm::dvec3& n, const glm::dvec3& v, const glm::dvec3& l, double directional)
 {
@@ -30,6 +31,15 @@ inline glm::dvec3 mmvBlinnPhong(const glm::dvec4& material, const glm::dvec4& se
   const glm::dvec3 ambientDiffuse =
     (material.x + directional * material.y * ndotl) * glm::dvec3(segment);
   return ambientDiffuse + glm::dvec3(directional * material.z * highlight * segment.w);
+}
+
+/// The surface elements' share of a segment's extinction in the hybrid
+/// surface/particle model (Yang et al. eqs. 5-8; mmvSurfaceShare in
+/// Shaders/mmvShading.glsl, which says why): gradientLength |grad| and
+/// equalShare > 0 in normalised value per object unit.
+inline double mmvSurfaceShare(double gradientLength, double equalShare)
+{
+  return gradientLength / (gradientLength + equalShare);
 }
 
 /// Emission of a segment (Shaders/mmvEmission.glsl): e * I_c, the integral of
@@ -49,8 +59,11 @@ inline glm::dvec3 mmvEnvironment(const glm::dvec3& d, const glm::dvec3& up,
 /// The radiance of one segment (mmvShadeSample in Shaders/mmvShading.glsl,
 /// the arithmetic of the ray cast's mmvShadeSegment once it has read its
 /// textures): eq. 16 summed over the lights, eq. 17's environment term and
-/// emission. material: (ka, kd, ks, ke); position: the shading point (object
-/// space); n, v, directional: as mmvBlinnPhong; for k < count, light k's
+/// emission. The hybrid model mixes the surface's Blinn-Phong BRDF and the
+/// particles' phase function by the surface share w (mmvSurfaceShare): per
+/// light w (ka + kd n.l) I_c + w ks h I_a + (1 - w) ka 4 pi HG(g) I_c.
+/// material: (ka, kd, ks, ke); position: the shading point (object space);
+/// n, v: as mmvBlinnPhong; surface: the surface share w; for k < count, light k's
 /// geometry lights[k], its colour * intensity radiance[k] and its irradiance
 /// irradiance[k]; environment: the environment's radiance along the mirrored
 /// view direction. The GPU compiles the phase function, the reflection and
@@ -58,7 +71,7 @@ inline glm::dvec3 mmvEnvironment(const glm::dvec3& d, const glm::dvec3& up,
 /// they change nothing here either.
 inline glm::dvec3 mmvShadeSample(const glm::dvec4& material, double anisotropy, double reflection,
   double emission, const glm::dvec4& segment, const glm::dvec3& position, const glm::dvec3& n,
-  const glm::dvec3& v, double directional, const LightSource* lights, const glm::dvec3* radiance,
+  const glm::dvec3& v, double surface, const LightSource* lights, const glm::dvec3* radiance,
   const double* irradiance, int count, const glm::dvec3& environment)
 {
   glm::dvec3 result(0.0);
@@ -75,14 +88,15 @@ inline glm::dvec3 mmvShadeSample(const glm::dvec4& material, double anisotropy, 
     }
     double lightDistance = 0.0;
     const glm::dvec3 l = mmvDirectionToLight(lights[k], position, lightDistance);
-    // The particle (ambient) term in-scatters by the phase function.
+    // The particles' share in-scatters by the phase function; the surface's
+    // ambient is the BRDF's.
     glm::dvec4 lit = material;
-    lit.x *= mmvHenyeyGreensteinRelative(anisotropy, -glm::dot(v, l));
-    result += irradiance[k] * radiance[k] * mmvBlinnPhong(lit, segment, n, v, l, directional);
+    lit.x *= glm::mix(mmvHenyeyGreensteinRelative(anisotropy, -glm::dot(v, l)), 1.0, surface);
+    result += irradiance[k] * radiance[k] * mmvBlinnPhong(lit, segment, n, v, l, surface);
   }
   if (reflection > 0.0)
   {
-    result += directional * reflection * segment.w * environment;
+    result += surface * reflection * segment.w * environment;
   }
   return result + mmvEmission(emission, segment);
 }

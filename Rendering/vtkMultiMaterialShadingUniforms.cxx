@@ -57,7 +57,8 @@ void vtkMultiMaterialShadingUniforms::SetGeometry(
   const double* spacing = image->GetSpacing();
   const double smallestSpacing =
     std::min({ std::abs(spacing[0]), std::abs(spacing[1]), std::abs(spacing[2]) });
-  this->GradientFade = static_cast<float>(mmv::FullShadingGradientPerVoxel / smallestSpacing);
+  this->SurfaceEqualShare =
+    static_cast<float>(mmv::SurfaceEqualShareGradientPerVoxel / smallestSpacing);
 }
 
 void vtkMultiMaterialShadingUniforms::Apply(vtkShaderProgram* program,
@@ -69,7 +70,7 @@ void vtkMultiMaterialShadingUniforms::Apply(vtkShaderProgram* program,
   program->SetUniformi("mmv_material", textures->GetMaterialTexture()->GetTextureUnit());
   program->SetUniformf("mmv_tableSize", static_cast<float>(tableSize));
   program->SetUniformf("mmv_tableStep", this->TableStep);
-  program->SetUniformf("mmv_gradientFade", this->GradientFade);
+  program->SetUniformf("mmv_surfaceEqualShare", this->SurfaceEqualShare);
   program->SetUniformi("mmv_gradient", textures->GetGradientTexture()->GetTextureUnit());
   program->SetUniform3f("mmv_gradientScale", this->GradientScale);
   program->SetUniform3f("mmv_gradientTexScale", this->GradientTexScale);

@@ -73,7 +73,7 @@ private:
   float GradientToObject[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
   float WholeDimensions[3] = { 1.0f, 1.0f, 1.0f };
   float DataSpacing[3] = { 1.0f, 1.0f, 1.0f };
-  float GradientFade = 1.0f;
+  float SurfaceEqualShare = 1.0f; // mmv::SurfaceEqualShareGradientPerVoxel per object unit
   float GradientScale[3] = { 1.0f, 1.0f, 1.0f };
   float GradientTexScale[3] = { 1.0f, 1.0f, 1.0f };
   float GradientTexBias[3] = { 0.0f, 0.0f, 0.0f };

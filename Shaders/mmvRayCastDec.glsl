@@ -15,7 +15,7 @@ uniform sampler2D mmv_preintBeta;   // (t1, t2) -> I_beta, shading position in t
 uniform sampler2D mmv_material;     // (t, row) -> parameters, as mmv::MaterialTexelLayout
 uniform float mmv_tableSize;        // entries per table axis
 uniform float mmv_tableStep;        // segment length the tables were built for (object units)
-uniform float mmv_gradientFade;     // |gradient| (normalised value per object unit) of full surface shading
+uniform float mmv_surfaceEqualShare; // |gradient| (normalised value per object unit) of equal surface/particle shares
 uniform sampler3D mmv_gradient;     // per voxel: normalised-value gradient per index unit (vtkValueGradient.h)
 uniform vec3 mmv_gradientScale;     // index units per texture-coordinate unit (the data's dimensions)
 uniform vec3 mmv_gradientTexScale;  // data texture coordinate -> gradient texture coordinate
@@ -118,8 +118,7 @@ vec3 mmvShadeSegment(vec3 texPos, float t, vec4 segment)
   float gradientLength = length(gradient);
   vec3 n = gradientLength > 0.0 ? -gradient / gradientLength : vec3(0.0);
   n = dot(n, v) < 0.0 ? -n : n; // two-sided: surfaces face the viewer
-  // Normal-based terms fade out where the gradient vanishes (noise there).
-  float directional = clamp(gradientLength / mmv_gradientFade, 0.0, 1.0);
+  float surface = mmvSurfaceShare(gradientLength, mmv_surfaceEqualShare);
 
   vec4 irradiance0 = vec4(0.0);
   vec4 irradiance1 = vec4(0.0);
@@ -148,7 +147,7 @@ vec3 mmvShadeSegment(vec3 texPos, float t, vec4 segment)
   emission = mmvMaterialParameter(tc, MMV_EMISSION_ROW, MMV_EMISSION_CHANNEL);
 #endif
   return mmvShadeSample(material, anisotropy, reflection, emission, segment, position, n, v,
-    directional, irradiance0, irradiance1, environment);
+    surface, irradiance0, irradiance1, environment);
 }
 
 // Integrates the segment x1 -> x2 (texture coordinates) with values t1, t2 and

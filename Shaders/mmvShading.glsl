@@ -8,8 +8,7 @@
 // segment:  rgb = pre-integrated opacity-weighted colour I_c, a = I_alpha
 // n: unit normal facing the viewer (zero where there is no surface)
 // v: unit vector toward the viewer, l: unit vector toward the light
-// directional: 0..1 weight of the normal-based terms; it fades them out where
-// the gradient vanishes (homogeneous regions), leaving ambient shading.
+// directional: 0..1 weight of the normal-based terms (the surface share).
 
 vec3 mmvBlinnPhong(vec4 material, vec4 segment, vec3 n, vec3 v, vec3 l, float directional)
 {
@@ -24,6 +23,22 @@ vec3 mmvBlinnPhong(vec4 material, vec4 segment, vec3 n, vec3 v, vec3 l, float di
   return ambientDiffuse + vec3(directional * material.z * highlight * segment.a);
 }
 
+// The hybrid surface/particle model (Yang et al. eqs. 5-8): the share of a
+// segment's extinction that surface elements hold. With one opacity transfer
+// function for both elements (the paper's Fig. 4c), mu_s / mu_p =
+// |grad| / equalShare, where equalShare = Delta v_std / Delta l_std. Our
+// segment opacity is the transfer function's whatever the angle, so the share
+// is taken over all ray directions (|dv/dl| averages |grad| / 2 over them: the
+// 1/2 is part of equalShare), which keeps a sharp boundary plain Blinn-Phong
+// up to its silhouette. The share is 0 where the gradient is 0 (homogeneous
+// regions get no normal, by construction rather than by a threshold) and
+// tends to 1 across sharp boundaries.
+// gradientLength: |grad|; equalShare > 0 (both normalised value per object unit).
+float mmvSurfaceShare(float gradientLength, float equalShare)
+{
+  return gradientLength / (gradientLength + equalShare);
+}
+
 // Environment colour seen along unit direction d: a vertical gradient from
 // `bottom` to `top` around the unit `up` axis (the renderer's background
 // colours when it has no environment texture).
@@ -35,14 +50,18 @@ vec3 mmvEnvironment(vec3 d, vec3 up, vec3 bottom, vec3 top)
 // The radiance of one segment (the arithmetic of mmvShadeSegment() once it
 // has read the textures): eq. 16 summed over the lights, eq. 17's environment
 // term and emission. Mirrors mmvShadeSample in vtkMultiMaterialShading.h.
+// The hybrid model mixes the surface's Blinn-Phong BRDF and the particles'
+// phase function by the surface share w (mmvSurfaceShare): per light,
+// w (ka + kd n.l) I_c + w ks h I_a + (1 - w) ka 4 pi HG(g) I_c; ka is the
+// particles' albedo (inside the light sum, so shadows darken it too).
 // material: the Blinn-Phong texel (ka, kd, ks, ke); anisotropy, reflection,
-// emission: g, r, e; position: the shading point (object space); n, v,
-// directional: as mmvBlinnPhong; irradiance0/1: each light's irradiance
+// emission: g, r, e; position: the shading point (object space); n, v: as
+// mmvBlinnPhong; surface: the surface share w; irradiance0/1: each light's irradiance
 // (lights 0-3, 4-7), its geometry and radiance in the light uniforms
 // (vtkMultiMaterialLightUniforms.h); environment: the environment's radiance
 // along the mirrored view direction.
 vec3 mmvShadeSample(vec4 material, float anisotropy, float reflection, float emission,
-  vec4 segment, vec3 position, vec3 n, vec3 v, float directional, vec4 irradiance0,
+  vec4 segment, vec3 position, vec3 n, vec3 v, float surface, vec4 irradiance0,
   vec4 irradiance1, vec3 environment)
 {
   vec3 radiance = vec3(0.0);
@@ -63,11 +82,12 @@ vec3 mmvShadeSample(vec4 material, float anisotropy, float reflection, float emi
       mmv_lightKind[k], mmv_lightPosition[k], mmv_lightToLight[k], position, lightDistance);
     vec4 lit = material;
 #if MMV_USE_ANISOTROPY
-    // The particle (ambient) term in-scatters by the phase function.
-    lit.x *= mmvHenyeyGreensteinRelative(anisotropy, -dot(v, l));
+    // The particles' share in-scatters by the phase function; the surface's
+    // ambient is the BRDF's.
+    lit.x *= mix(mmvHenyeyGreensteinRelative(anisotropy, -dot(v, l)), 1.0, surface);
 #endif
     radiance +=
-      irradiance * mmv_lightRadiance[k] * mmvBlinnPhong(lit, segment, n, v, l, directional);
+      irradiance * mmv_lightRadiance[k] * mmvBlinnPhong(lit, segment, n, v, l, surface);
   }
 #else
   // No active light: ambient emission only, so the volume stays visible.
@@ -76,7 +96,7 @@ vec3 mmvShadeSample(vec4 material, float anisotropy, float reflection, float emi
 #if MMV_USE_REFLECTION
   if (reflection > 0.0)
   {
-    radiance += directional * reflection * segment.a * environment;
+    radiance += surface * reflection * segment.a * environment;
   }
 #endif
 #if MMV_USE_EMISSION

@@ -95,8 +95,9 @@ TEST(FailureCases, HomogeneousRegionFadesToAmbient)
   double ambientMean, ambientVar, fadedMean, fadedVar, noisyMean, noisyVar;
   render(1.0e-4, false, ambientMean, ambientVar);
   render(1.0e-4, true, fadedMean, fadedVar);
-  // Gradient noise well above mmv_gradientFade: directional terms switch on
-  // per sample, so this is what the fade protects against.
+  // Gradient noise well above mmv::SurfaceEqualShareGradientPerVoxel: the
+  // surface share nears 1 and normals turn per sample, which the hybrid
+  // model's share keeps out of homogeneous regions.
   render(3.0e-2, true, noisyMean, noisyVar);
   std::printf("homogeneous: ambient mean %.2f var %.3f; faded mean %.2f var %.3f; "
               "unfaded noise mean %.2f var %.3f (luminance^2, 0..255)\n",

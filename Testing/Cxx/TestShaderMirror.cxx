@@ -486,6 +486,38 @@ TEST(ShaderMirror, HenyeyGreensteinAndEmissionMatchCPU)
   EXPECT_GT(largest, 5.0);
 }
 
+const char* SurfaceShareBody = R"(
+void main()
+{
+  // x: |grad| over [0, 1] (squared, to dwell near 0); y: equalShare over (0, 0.1].
+  float gradientLength = texCoord.x * texCoord.x;
+  float equalShare = 0.1 * texCoord.y;
+  gl_FragData[0] = vec4(mmvSurfaceShare(gradientLength, equalShare),
+    mmvSurfaceShare(0.0, equalShare), mmvSurfaceShare(equalShare, equalShare), 0.0);
+}
+)";
+
+TEST(ShaderMirror, HybridSurfaceShareMatchesCPU)
+{
+  ShaderRunner runner;
+  ASSERT_NE(runner.GL, nullptr);
+  std::vector<float> pixels;
+  ASSERT_TRUE(runner.Run(SurfaceShareBody, [](vtkShaderProgram*) {}, pixels));
+  for (int j = 0; j < Size; ++j)
+  {
+    for (int i = 0; i < Size; ++i)
+    {
+      const float* px = &pixels[4 * (j * Size + i)];
+      const double u = (i + 0.5) / Size;
+      const double equalShare = 0.1 * (j + 0.5) / Size;
+      ASSERT_NEAR(px[0], mmv::mmvSurfaceShare(u * u, equalShare), 1e-6) << i << ", " << j;
+      // No gradient, no surface: exactly 0; at equalShare, exactly half.
+      ASSERT_EQ(px[1], 0.0f);
+      ASSERT_NEAR(px[2], 0.5, 1e-7);
+    }
+  }
+}
+
 namespace
 {
 // Lights of every kind and falloff, given to the shaders through the one
