@@ -29,6 +29,10 @@ STYLE = {
     # mmvPhysicalCalibration --fit-exposure: ka and kd fitted at each (s, c_t).
     "ours-exposure": dict(color="tab:purple", marker="D", label="ours, s and c_t scaled, ka/kd fitted"),
     "ours-v1": dict(color="tab:orange", marker="x", label="ours v1 (isotropic), s and c_t scaled"),
+    # Issue 14's hybrid model against the directional fade it replaced: rows of
+    # an earlier run, renamed (docs/optical_model_hybrid_*.csv).
+    "ours-fade": dict(color="tab:gray", marker="+", label="ours v2 before the hybrid model (fade)"),
+    "ours-fade-default": dict(color="tab:gray", marker="P", label="ours v2 before the hybrid, defaults"),
     "vtk-phong": dict(color="tab:green", marker="s", label="VTK Phong"),
     "vtk-scattering": dict(color="tab:red", marker="^", label="VTK scattering (blending, reach, g)"),
 }
@@ -52,11 +56,10 @@ def main(path, out):
                 if not pts:
                     continue
                 ax.scatter([float(r["frame_ms"]) for r in pts], [float(r[key]) for r in pts],
-                           s=90 if family == "ours-default" else 30, alpha=0.8,
+                           s=90 if family.endswith("default") else 30, alpha=0.8,
                            **{k: v for k, v in style.items()})
-            for family in ("ours", "ours-exposure", "ours-v1", "vtk-scattering"):
-                pts = [r for r in sub if r["family"] == family or
-                       (family == "ours" and r["family"] == "ours-default")]
+            for family in ("ours", "ours-exposure", "ours-v1", "ours-fade", "vtk-scattering"):
+                pts = [r for r in sub if r["family"] in (family, family + "-default")]
                 if pts:
                     best = min(pts, key=lambda r: float(r[key]))
                     ax.annotate(best["setting"].replace("_scale", "").replace("anisotropy", "g"),
@@ -99,7 +102,7 @@ def summary(path):
                                            float(r["frame_ms"]), label)
     for scene in scenes:
         sub = [r for r in rows if r["scene"] == scene]
-        ours = [r for r in sub if r["family"].startswith("ours")]
+        ours = [r for r in sub if r["family"].startswith("ours") and not r["family"].startswith("ours-fade")]
         default = [r for r in sub if r["family"] == "ours-default"][0]
         best_ours = min(ours, key=lambda r: float(r["rmse"]))
         phong = [r for r in sub if r["family"] == "vtk-phong"]
