@@ -2,9 +2,13 @@
 
 #include "vtkColorTransferFunction.h"
 #include "vtkDataObject.h"
+#include "vtkCompositeDataSet.h"
 #include "vtkGlobalPrefilterExchange.h"
+#include "vtkImageBlockMerge.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkMultiProcessController.h"
 #include "vtkPVView.h"
 #include "vtkMaterialLibrary.h"
@@ -283,11 +287,44 @@ int vtkPVMultiMaterialVolumeRepresentation::GetMultiMaterialActive()
 }
 
 //------------------------------------------------------------------------------
+int vtkPVMultiMaterialVolumeRepresentation::FillInputPortInformation(
+  int port, vtkInformation* info)
+{
+  this->Superclass::FillInputPortInformation(port, info);
+  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkMultiBlockDataSet");
+  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPartitionedDataSetCollection");
+  return 1;
+}
+
+//------------------------------------------------------------------------------
 int vtkPVMultiMaterialVolumeRepresentation::RequestData(
   vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   ++this->DataGeneration;
-  return this->Superclass::RequestData(request, inputVector, outputVector);
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  auto* blocks = vtkCompositeDataSet::SafeDownCast(
+    inInfo ? inInfo->Get(vtkDataObject::DATA_OBJECT()) : nullptr);
+  if (!blocks)
+  {
+    return this->Superclass::RequestData(request, inputVector, outputVector);
+  }
+  // The base class draws image data: hand it the blocks merged. An error
+  // leaves an empty image, so this rank still joins every collective call.
+  std::string error;
+  vtkSmartPointer<vtkImageData> merged = mmv::MergeImageBlocks(blocks, error);
+  if (!merged)
+  {
+    vtkErrorMacro("cannot draw these blocks as one volume: " << error);
+    merged = vtkSmartPointer<vtkImageData>::New();
+  }
+  vtkNew<vtkInformationVector> substitute;
+  substitute->SetNumberOfInformationObjects(1);
+  vtkInformation* info = substitute->GetInformationObject(0);
+  info->Copy(inInfo);
+  info->Set(vtkDataObject::DATA_OBJECT(), merged);
+  info->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), merged->GetExtent(), 6);
+  vtkInformationVector* inputs[1] = { substitute };
+  return this->Superclass::RequestData(request, inputs, outputVector);
 }
 
 //------------------------------------------------------------------------------

@@ -132,6 +132,11 @@ protected:
   ~vtkPVMultiMaterialVolumeRepresentation() override;
 
   void UpdateMapperParameters() override;
+  /// Image blocks (vtkMultiBlockDataSet, vtkPartitionedDataSet[Collection]
+  /// of vtkImageData) are merged into the box they tile on each rank
+  /// (mmv::MergeImageBlocks), then drawn as one image: the ray caster and
+  /// the global irradiance exchange take one image per rank.
+  int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
 private:
