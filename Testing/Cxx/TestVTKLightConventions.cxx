@@ -22,6 +22,8 @@
 
 #include "vtkLightCollection.h"
 #include "vtkMaterialTransferFunction.h"
+#include "vtkMultiMaterialParameters.h"
+#include "vtkMultiMaterialShading.h"
 #include "vtkMultiMaterialVolumeMapper.h"
 #include "vtkOpenGLGPUVolumeRayCastMapper.h"
 
@@ -54,6 +56,13 @@ vtkSmartPointer<vtkImageData> Ball()
       (j - Center[1]) * (j - Center[1]) + (k - Center[2]) * (k - Center[2]));
     return static_cast<float>(std::max(0.0, 16.0 - r));
   });
+}
+
+/// The surface share (mmv::mmvSurfaceShare) of the ball's shell: its value
+/// 16 - r changes by 1/16 of the range [0, 16] per voxel (spacing 1).
+double ShellSurfaceShare()
+{
+  return mmv::mmvSurfaceShare(1.0 / 16.0, mmv::SurfaceEqualShareGradientPerVoxel);
 }
 
 /// Differences over a set of pixels, in 8-bit levels.
@@ -117,7 +126,10 @@ std::vector<unsigned char> Render(vtkOpenGLGPUVolumeRayCastMapper* mapper,
   scene.Property->SetScalarOpacityUnitDistance(1.0);
   scene.Property->ShadeOn();
   scene.Property->SetAmbient(0.0);
-  scene.Property->SetDiffuse(Kd);
+  // Ours shades with the hybrid model's surface share w of the ball's
+  // shell, whose normalised gradient is 1/16 per voxel everywhere: VTK's
+  // diffuse gets the same factor, so the lights alone are compared.
+  scene.Property->SetDiffuse(Kd * ShellSurfaceShare());
   scene.Property->SetSpecular(0.0);
   mapper->SetInputData(image);
   mapper->AutoAdjustSampleDistancesOff();

@@ -33,7 +33,7 @@ checker.check(mmv.info(rep, "MultiMaterialActive") == 1, "rank 0 shaded with mat
 pieces = wavelet.GetDataInformation().DataInformation.GetNumberOfDataSets()
 checker.check(pieces >= 2, "the data has %d pieces" % pieces)
 # The serial baseline is the -np 1 image of this script (mean |difference|
-# 0.001). Measured on llvmpipe: -np 2 differs from it by 0.194 with global
+# 0.001). Measured on llvmpipe: -np 2 differs from it by 0.165 with global
 # shadows; lighting each piece alone (before issue 11) gave 0.98 (shadows and
 # scattering stopped at the rank boundary), and rendering only one half of the
 # volume 7.4 to 9.8. The bound 0.5 fails both.
