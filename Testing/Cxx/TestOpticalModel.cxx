@@ -479,24 +479,36 @@ TEST(OpticalModel, TermsCompiledInWithZeroValuesChangeNoPixel)
 
 TEST(OpticalModel, OlderNodeLayoutsLoadWithNewValuesAtDefaults)
 {
-  // 10 numbers a node now; 9 (before emission) and 8 (before anisotropy)
-  // still load, the missing values at their defaults (0).
+  // 13 numbers a node now; 10 (before the transmission colour), 9 (before
+  // emission) and 8 (before anisotropy) still load, the missing values at
+  // their defaults (T = 1: grey; g = e = 0).
   vtkNew<vtkMaterialTransferFunction> f;
   constexpr int Stride = vtkMaterialTransferFunction::NodeStride;
-  ASSERT_EQ(Stride, 10);
-  const std::vector<double> current = { 0.0, 0.2, 0.7, 0.2, 20.0, 1.0, 0.5, 0.1, 0.6, 2.0,
-    1.0, 0.3, 0.6, 0.1, 10.0, 2.0, 1.0, 0.0, -0.4, 0.5 };
-  ASSERT_TRUE(f->SetNodes(20, current.data()));
-  std::vector<double> back(20);
+  ASSERT_EQ(Stride, 13);
+  const std::vector<double> current = { 0.0, 0.2, 0.7, 0.2, 20.0, 1.0, 0.5, 0.1, 0.6, 2.0, 0.9,
+    0.5, 0.25, 1.0, 0.3, 0.6, 0.1, 10.0, 2.0, 1.0, 0.0, -0.4, 0.5, 0.0, 1.0, 0.5 };
+  ASSERT_TRUE(f->SetNodes(26, current.data()));
+  std::vector<double> back(26);
   f->GetNodes(back.data());
   EXPECT_EQ(back, current);
+
+  std::vector<double> expected = current;
+  for (int i : { 10, 11, 12, 23, 24, 25 })
+  {
+    expected[i] = 1.0;
+  }
+  const std::vector<double> ten = { 0.0, 0.2, 0.7, 0.2, 20.0, 1.0, 0.5, 0.1, 0.6, 2.0, 1.0, 0.3,
+    0.6, 0.1, 10.0, 2.0, 1.0, 0.0, -0.4, 0.5 };
+  ASSERT_TRUE(f->SetNodes(20, ten.data()));
+  f->GetNodes(back.data());
+  EXPECT_EQ(back, expected);
+  EXPECT_FALSE(f->HasChromaticTransmission());
 
   const std::vector<double> nine = { 0.0, 0.2, 0.7, 0.2, 20.0, 1.0, 0.5, 0.1, 0.6,
     1.0, 0.3, 0.6, 0.1, 10.0, 2.0, 1.0, 0.0, -0.4 };
   ASSERT_TRUE(f->SetNodes(18, nine.data()));
   f->GetNodes(back.data());
-  std::vector<double> expected = current;
-  expected[9] = expected[19] = 0.0;
+  expected[9] = expected[22] = 0.0;
   EXPECT_EQ(back, expected);
 
   // 40 numbers: 4 nodes of 10 or 5 nodes of 8. The legacy list's 9th number
@@ -516,14 +528,25 @@ TEST(OpticalModel, OlderNodeLayoutsLoadWithNewValuesAtDefaults)
   EXPECT_EQ(node[0], 40.0);
   EXPECT_EQ(node[1 + mmv::Anisotropy], 0.0);
   EXPECT_EQ(node[1 + mmv::Emission], 0.0);
-  // 90 numbers written by GetNodes (9 nodes of 10) stay 10 a node.
-  std::vector<double> ten;
-  for (int n = 0; n < 9; ++n)
+  EXPECT_EQ(node[1 + mmv::TransmissionR], 1.0);
+  EXPECT_EQ(node[1 + mmv::TransmissionB], 1.0);
+  // 130 numbers: 10 nodes of 13 or 13 nodes of 10. Written by GetNodes (13
+  // a node) they stay 13 a node; a 10-a-node list of 13 nodes reads as 10 (as
+  // 13 its 11th number, the next node's value 10, is an invalid T > 1).
+  std::vector<double> thirteen, tens;
+  for (int n = 0; n < 13; ++n)
   {
-    const std::vector<double> one = { 10.0 * n, 0.2, 0.7, 0.2, 20.0, 1.0, 0.5, 0.1, 0.3, 1.0 };
-    ten.insert(ten.end(), one.begin(), one.end());
+    const std::vector<double> one = { 10.0 * n, 0.2, 0.7, 0.2, 20.0, 1.0, 0.5, 0.1, 0.3, 1.0,
+      0.5, 0.5, 1.0 };
+    if (n < 10)
+    {
+      thirteen.insert(thirteen.end(), one.begin(), one.end());
+    }
+    tens.insert(tens.end(), one.begin(), one.begin() + 10);
   }
-  EXPECT_EQ(vtkMaterialTransferFunction::DetectNodeStride(90, ten.data()), Stride);
+  EXPECT_EQ(vtkMaterialTransferFunction::DetectNodeStride(130, thirteen.data()), Stride);
+  EXPECT_EQ(vtkMaterialTransferFunction::DetectNodeStride(130, tens.data()),
+    vtkMaterialTransferFunction::EmissionNodeStride);
   // The old AddNode overloads keep working, with the new values at 0.
   f->RemoveAllNodes();
   EXPECT_EQ(f->AddNode(5.0, 0.2, 0.7, 0.2, 20.0, 1.0, 0.5, 0.1), 0);
@@ -539,5 +562,9 @@ TEST(OpticalModel, OlderNodeLayoutsLoadWithNewValuesAtDefaults)
   EXPECT_EQ(errors.Errors(), 2);
   EXPECT_NE(errors.LastMessage().find("emission"), std::string::npos) << errors.LastMessage();
   EXPECT_EQ(f->GetSize(), 2);
+  // The 10-number AddNode is grey; the 13-number one takes a colour.
+  EXPECT_FALSE(f->HasChromaticTransmission());
+  EXPECT_EQ(f->AddNode(8.0, 0.2, 0.7, 0.2, 20.0, 1.0, 0.5, 0.1, 0.0, 0.0, 1.0, 0.5, 0.25), 2);
+  EXPECT_TRUE(f->HasChromaticTransmission());
 }
 } // namespace mmvtest
