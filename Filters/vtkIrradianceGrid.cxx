@@ -74,18 +74,18 @@ int IrradianceTextureChannels(int lights)
   return lights <= 2 ? std::max(1, lights) : 4;
 }
 
-double IrradianceBytesPerVoxel(int numberOfLights)
+double IrradianceBytesPerVoxel(int numberOfLights, bool tinted)
 {
   const int lights = std::max(1, numberOfLights);
   const int full = lights / IrradianceLightsPerTexture;
   const int rest = lights % IrradianceLightsPerTexture;
   const int channels =
     full * IrradianceLightsPerTexture + (rest > 0 ? IrradianceTextureChannels(rest) : 0);
-  return IrradianceBytesPerVoxelPerLight * channels;
+  return IrradianceBytesPerVoxelPerLight * channels + (tinted ? TintBytesPerVoxelPerLight * lights : 0.0);
 }
 
 void ComputeIrradianceDimensions(const int dataDims[3], int numberOfLights, double budgetMB,
-  double scale, int irradianceDims[3])
+  double scale, int irradianceDims[3], bool tinted)
 {
   int d[3];
   int lo[3];
@@ -108,7 +108,7 @@ void ComputeIrradianceDimensions(const int dataDims[3], int numberOfLights, doub
     apply(std::min(scale, 1.0));
     return;
   }
-  const double bytesPerVoxel = IrradianceBytesPerVoxel(numberOfLights);
+  const double bytesPerVoxel = IrradianceBytesPerVoxel(numberOfLights, tinted);
   const double budgetVoxels = std::max(0.0, budgetMB) * 1024.0 * 1024.0 / bytesPerVoxel;
   auto voxels = [&]() {
     return static_cast<double>(irradianceDims[0]) * irradianceDims[1] * irradianceDims[2];
