@@ -130,19 +130,20 @@ void ComputeIrradianceDimensions(const int dataDims[3], int numberOfLights, doub
 }
 
 IrradianceResolution ChooseIrradianceResolution(const int dataDims[3], int numberOfLights,
-  double budgetMB, double userScale, double pixelsPerDataVoxel)
+  double budgetMB, double userScale, double pixelsPerDataVoxel, bool tinted)
 {
   IrradianceResolution result;
   char text[256];
   if (userScale > 0.0)
   {
     result.Scale = std::min(userScale, 1.0);
-    ComputeIrradianceDimensions(dataDims, numberOfLights, budgetMB, result.Scale, result.Dimensions);
+    ComputeIrradianceDimensions(
+      dataDims, numberOfLights, budgetMB, result.Scale, result.Dimensions, tinted);
     std::snprintf(text, sizeof(text), "IrradianceScale %.3g (set by the user)", result.Scale);
     result.Reason = text;
     return result;
   }
-  ComputeIrradianceDimensions(dataDims, numberOfLights, budgetMB, 0.0, result.Dimensions);
+  ComputeIrradianceDimensions(dataDims, numberOfLights, budgetMB, 0.0, result.Dimensions, tinted);
   double budgetScale = 0.0;
   for (int a = 0; a < 3; ++a)
   {
@@ -163,7 +164,8 @@ IrradianceResolution ChooseIrradianceResolution(const int dataDims[3], int numbe
     if (screenScale < budgetScale)
     {
       result.Scale = screenScale;
-      ComputeIrradianceDimensions(dataDims, numberOfLights, budgetMB, screenScale, result.Dimensions);
+      ComputeIrradianceDimensions(
+        dataDims, numberOfLights, budgetMB, screenScale, result.Dimensions, tinted);
       std::snprintf(text, sizeof(text),
         "screen: %.3g px per data voxel, %.3g px per irradiance voxel: scale %.3g (the budget "
         "allows %.3g)",

@@ -130,7 +130,7 @@ struct IrradianceResolution
  */
 VTKMULTIMATERIALVOLUMEFILTERS_EXPORT IrradianceResolution ChooseIrradianceResolution(
   const int dataDims[3], int numberOfLights, double budgetMB, double userScale,
-  double pixelsPerDataVoxel);
+  double pixelsPerDataVoxel, bool tinted = false);
 
 /// The grid of `irradianceDims` spanning `image`'s points.
 VTKMULTIMATERIALVOLUMEFILTERS_EXPORT IrradianceGrid MakeIrradianceGrid(
