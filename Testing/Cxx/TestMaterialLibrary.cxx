@@ -156,6 +156,10 @@ TEST(MaterialLibrary, BuiltinSpotValues)
   EXPECT_EQ(PresetOf(library, "glow")[mmv::Emission], 2.0);
   EXPECT_EQ(PresetOf(library, "glass")[mmv::Shininess], 200.0);
   EXPECT_EQ(PresetOf(library, "glass")[mmv::Attenuation], 0.2);
+  // Glass casts shadows tinted by its transmission colour; the others grey.
+  EXPECT_EQ(PresetOf(library, "glass")[mmv::TransmissionR], 0.6);
+  EXPECT_EQ(PresetOf(library, "glass")[mmv::TransmissionB], 0.95);
+  EXPECT_EQ(PresetOf(library, "metal")[mmv::TransmissionG], 1.0);
   EXPECT_EQ(PresetOf(library, "leaf")[mmv::Scattering], 4.0);
   EXPECT_EQ(PresetOf(library, "bone")[mmv::Scattering], 1.0);
   EXPECT_EQ(PresetOf(library, "matte")[mmv::Specular], 0.0);
