@@ -141,6 +141,37 @@ inline bool IsChromaticTransmission(double r, double g, double b)
   return r < 1.0 || g < 1.0 || b < 1.0;
 }
 
+/**
+ * The RGB irradiance of a non-white transmission colour, stored compressed:
+ * E_lambda = E * K_lambda, E today's grey irradiance (extinction c_t mu, the
+ * full-resolution 16-bit texture, piecewise rays and diffusion as before)
+ * and K_lambda = exp(-int c_t mu (-ln T_lambda)) <= 1 the tint, the
+ * transmittance of the selective part alone (vtkPreIntegrationTable's
+ * I_tau), exact in the product because optical depths add. K is smooth
+ * where E has its detail (it only changes where tinted material lies
+ * between the voxel and the light), so it is stored at 1/TintResolutionDivisor
+ * of the irradiance resolution per axis (TintDimension; the grids share
+ * their end points), by full shadow rays from every tint voxel, and not
+ * diffused. GPU: one RGBA16F texture per light (alpha unused), so
+ * 8 bytes / 8 = 1 byte per irradiance voxel per light
+ * (TintBytesPerVoxelPerLight) on top of the 2 of E: 1.5x the grey memory.
+ */
+constexpr int TintResolutionDivisor = 2;
+constexpr double TintBytesPerVoxelPerLight =
+  8.0 / (TintResolutionDivisor * TintResolutionDivisor * TintResolutionDivisor);
+
+/// Tint grid points along an axis of `irradianceDim` irradiance points:
+/// every `divisor`-th irradiance point and the last one (end points shared).
+inline int TintDimension(int irradianceDim, int divisor = TintResolutionDivisor)
+{
+  if (irradianceDim <= 2 || divisor <= 1)
+  {
+    return irradianceDim;
+  }
+  const int n = (irradianceDim - 1 + divisor - 1) / divisor + 1;
+  return n < 2 ? 2 : n;
+}
+
 /// Rows of the ray caster's material texture (vtkMultiMaterialTextures.h):
 /// (ka, kd, ks, ke), (r, 0, 0, g), (e, 0, 0, 0). GLSL: MMV_MATERIAL_ROWS.
 constexpr int MaterialTextureRows = 3;
@@ -228,37 +259,6 @@ constexpr double MinAttenuationDenominator = 1.0e-4;
 /// Bytes one light costs per irradiance voxel on the GPU (16-bit storage).
 /// The CPU filter uses the same figure so both pick the same resolution.
 constexpr double IrradianceBytesPerVoxelPerLight = 2.0;
-
-/**
- * The RGB irradiance of a non-white transmission colour, stored compressed:
- * E_lambda = E * K_lambda, E today's grey irradiance (extinction c_t mu, the
- * full-resolution 16-bit texture, piecewise rays and diffusion as before)
- * and K_lambda = exp(-int c_t mu (-ln T_lambda)) <= 1 the tint, the
- * transmittance of the selective part alone (vtkPreIntegrationTable's
- * I_tau), exact in the product because optical depths add. K is smooth
- * where E has its detail (it only changes where tinted material lies
- * between the voxel and the light), so it is stored at 1/TintResolutionDivisor
- * of the irradiance resolution per axis (TintDimension; the grids share
- * their end points), by full shadow rays from every tint voxel, and not
- * diffused. GPU: one RGBA16F texture per light (alpha unused), so
- * 8 bytes / 8 = 1 byte per irradiance voxel per light
- * (TintBytesPerVoxelPerLight) on top of the 2 of E: 1.5x the grey memory.
- */
-constexpr int TintResolutionDivisor = 2;
-constexpr double TintBytesPerVoxelPerLight =
-  8.0 / (TintResolutionDivisor * TintResolutionDivisor * TintResolutionDivisor);
-
-/// Tint grid points along an axis of `irradianceDim` irradiance points:
-/// every `divisor`-th irradiance point and the last one (end points shared).
-inline int TintDimension(int irradianceDim, int divisor = TintResolutionDivisor)
-{
-  if (irradianceDim <= 2 || divisor <= 1)
-  {
-    return irradianceDim;
-  }
-  const int n = (irradianceDim - 1 + divisor - 1) / divisor + 1;
-  return n < 2 ? 2 : n;
-}
 
 /// Surface (normal-based) shading reaches full strength once the normalised
 /// value changes by this much per voxel; below, it fades to ambient shading,

@@ -249,9 +249,18 @@ struct Scene
     }
     const double reflection = this->Reflection ? m[mmv::Reflection] : 0.0;
     const dvec3 environment = reflection > 0.0 ? this->Reflected(x, n, v) : dvec3(0.0);
+    // A tinted light arrives with its radiance times its tint, as the ray
+    // cast's mmvFetchTints makes it (Shaders/mmvTint.glsl).
+    dvec3 arriving[mmv::MaxLights];
+    const bool tinted = !this->Tables.SigmaTint.empty();
+    for (int k = 0; tinted && k < count; ++k)
+    {
+      arriving[k] = this->Radiances[k] * tint[k];
+    }
+    const dvec3* radiances = tinted ? arriving : this->Radiances.data();
     return mmv::mmvShadeSample(material, m[mmv::Anisotropy], reflection, m[mmv::Emission],
-      segment, x, n, v, directional, this->Sources.data(), this->Radiances.data(), irradiance, count,
-      environment, this->Tables.SigmaTint.empty() ? nullptr : tint);
+      segment, x, n, v, directional, this->Sources.data(), radiances, irradiance, count,
+      environment);
   }
 
   // Eq. 17's I(x, w_r) c_r(w_r) (Shaders/mmvReflection.glsl): the

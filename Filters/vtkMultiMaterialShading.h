@@ -53,16 +53,13 @@ inline glm::dvec3 mmvEnvironment(const glm::dvec3& d, const glm::dvec3& up,
 /// space); n, v, directional: as mmvBlinnPhong; for k < count, light k's
 /// geometry lights[k], its colour * intensity radiance[k] and its irradiance
 /// irradiance[k]; environment: the environment's radiance along the mirrored
-/// view direction; tint (may be null: white): light k's tint K per channel
-/// (a non-white transmission colour, mmvTint.glsl). The GPU compiles the
-/// phase function, the reflection, the emission and the tint out when no
-/// material uses them; at g = 0, r = 0, e = 0 and K = 1 they change nothing
-/// here either.
+/// view direction. The GPU compiles the phase function, the reflection and
+/// the emission out when no material uses them; at g = 0, r = 0 and e = 0
+/// they change nothing here either.
 inline glm::dvec3 mmvShadeSample(const glm::dvec4& material, double anisotropy, double reflection,
   double emission, const glm::dvec4& segment, const glm::dvec3& position, const glm::dvec3& n,
   const glm::dvec3& v, double directional, const LightSource* lights, const glm::dvec3* radiance,
-  const double* irradiance, int count, const glm::dvec3& environment,
-  const glm::dvec3* tint = nullptr)
+  const double* irradiance, int count, const glm::dvec3& environment)
 {
   glm::dvec3 result(0.0);
   if (count == 0)
@@ -81,8 +78,7 @@ inline glm::dvec3 mmvShadeSample(const glm::dvec4& material, double anisotropy, 
     // The particle (ambient) term in-scatters by the phase function.
     glm::dvec4 lit = material;
     lit.x *= mmvHenyeyGreensteinRelative(anisotropy, -glm::dot(v, l));
-    const glm::dvec3 lightRadiance = tint ? radiance[k] * tint[k] : radiance[k];
-    result += irradiance[k] * lightRadiance * mmvBlinnPhong(lit, segment, n, v, l, directional);
+    result += irradiance[k] * radiance[k] * mmvBlinnPhong(lit, segment, n, v, l, directional);
   }
   if (reflection > 0.0)
   {

@@ -66,11 +66,8 @@ vec3 mmvShadeSample(vec4 material, float anisotropy, float reflection, float emi
     // The particle (ambient) term in-scatters by the phase function.
     lit.x *= mmvHenyeyGreensteinRelative(anisotropy, -dot(v, l));
 #endif
-    vec3 lightRadiance = mmv_lightRadiance[k];
-#if MMV_USE_RGB_IRRADIANCE
-    lightRadiance *= mmv_lightTint[k]; // selective absorption on the way (mmvTint.glsl)
-#endif
-    radiance += irradiance * lightRadiance * mmvBlinnPhong(lit, segment, n, v, l, directional);
+    radiance +=
+      irradiance * mmv_lightRadiance[k] * mmvBlinnPhong(lit, segment, n, v, l, directional);
   }
 #else
   // No active light: ambient emission only, so the volume stays visible.

@@ -673,7 +673,7 @@ void main()
   // Each light's tint, as mmvFetchTints would have read it.
   for (int k = 0; k < MMV_NUMBER_OF_LIGHTS; ++k)
   {
-    mmv_lightTint[k] = vec3(1.0, float((i + k) % 5) / 4.0, float((j + 2 * k) % 3) / 2.0);
+    mmvSetLightTint(k, vec3(1.0, float((i + k) % 5) / 4.0, float((j + 2 * k) % 3) / 2.0));
   }
 #endif
   vec3 c = mmvShadeSample(phong[m], optics[m].x, optics[m].y, optics[m].z, segment, position,
@@ -737,9 +737,15 @@ TEST(ShaderMirror, SegmentShadingMatchesTheReferenceRenderersFunction)
         ASSERT_NEAR(px[3], (i + 0.5) / Size, 1e-6) << "pixel " << i << "," << j;
         const SegmentInputs in = PixelInputs(i, j);
         const glm::dvec3& optic = Optics[in.Material];
+        // A tinted light arrives with its radiance times its tint.
+        glm::dvec3 arriving[mmv::MaxLights];
+        for (int k = 0; k < count; ++k)
+        {
+          arriving[k] = radiance[k] * in.Tint[k];
+        }
         const glm::dvec3 cpu = mmv::mmvShadeSample(Phong[in.Material], optic.x, optic.y,
           optic.z, in.Segment, in.Position, in.N, in.V, in.Directional, lights.data(),
-          radiance.data(), in.Irradiance, count, in.Environment, in.Tint);
+          arriving, in.Irradiance, count, in.Environment);
         for (int c = 0; c < 3; ++c)
         {
           // float against double: the inputs' own rounding (~1e-7), pow() of
