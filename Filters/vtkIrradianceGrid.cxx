@@ -74,18 +74,18 @@ int IrradianceTextureChannels(int lights)
   return lights <= 2 ? std::max(1, lights) : 4;
 }
 
-double IrradianceBytesPerVoxel(int numberOfLights)
+double IrradianceBytesPerVoxel(int numberOfLights, bool tinted)
 {
   const int lights = std::max(1, numberOfLights);
   const int full = lights / IrradianceLightsPerTexture;
   const int rest = lights % IrradianceLightsPerTexture;
   const int channels =
     full * IrradianceLightsPerTexture + (rest > 0 ? IrradianceTextureChannels(rest) : 0);
-  return IrradianceBytesPerVoxelPerLight * channels;
+  return IrradianceBytesPerVoxelPerLight * channels + (tinted ? TintBytesPerVoxelPerLight * lights : 0.0);
 }
 
 void ComputeIrradianceDimensions(const int dataDims[3], int numberOfLights, double budgetMB,
-  double scale, int irradianceDims[3])
+  double scale, int irradianceDims[3], bool tinted)
 {
   int d[3];
   int lo[3];
@@ -108,7 +108,7 @@ void ComputeIrradianceDimensions(const int dataDims[3], int numberOfLights, doub
     apply(std::min(scale, 1.0));
     return;
   }
-  const double bytesPerVoxel = IrradianceBytesPerVoxel(numberOfLights);
+  const double bytesPerVoxel = IrradianceBytesPerVoxel(numberOfLights, tinted);
   const double budgetVoxels = std::max(0.0, budgetMB) * 1024.0 * 1024.0 / bytesPerVoxel;
   auto voxels = [&]() {
     return static_cast<double>(irradianceDims[0]) * irradianceDims[1] * irradianceDims[2];
@@ -130,19 +130,20 @@ void ComputeIrradianceDimensions(const int dataDims[3], int numberOfLights, doub
 }
 
 IrradianceResolution ChooseIrradianceResolution(const int dataDims[3], int numberOfLights,
-  double budgetMB, double userScale, double pixelsPerDataVoxel)
+  double budgetMB, double userScale, double pixelsPerDataVoxel, bool tinted)
 {
   IrradianceResolution result;
   char text[256];
   if (userScale > 0.0)
   {
     result.Scale = std::min(userScale, 1.0);
-    ComputeIrradianceDimensions(dataDims, numberOfLights, budgetMB, result.Scale, result.Dimensions);
+    ComputeIrradianceDimensions(
+      dataDims, numberOfLights, budgetMB, result.Scale, result.Dimensions, tinted);
     std::snprintf(text, sizeof(text), "IrradianceScale %.3g (set by the user)", result.Scale);
     result.Reason = text;
     return result;
   }
-  ComputeIrradianceDimensions(dataDims, numberOfLights, budgetMB, 0.0, result.Dimensions);
+  ComputeIrradianceDimensions(dataDims, numberOfLights, budgetMB, 0.0, result.Dimensions, tinted);
   double budgetScale = 0.0;
   for (int a = 0; a < 3; ++a)
   {
@@ -163,7 +164,8 @@ IrradianceResolution ChooseIrradianceResolution(const int dataDims[3], int numbe
     if (screenScale < budgetScale)
     {
       result.Scale = screenScale;
-      ComputeIrradianceDimensions(dataDims, numberOfLights, budgetMB, screenScale, result.Dimensions);
+      ComputeIrradianceDimensions(
+        dataDims, numberOfLights, budgetMB, screenScale, result.Dimensions, tinted);
       std::snprintf(text, sizeof(text),
         "screen: %.3g px per data voxel, %.3g px per irradiance voxel: scale %.3g (the budget "
         "allows %.3g)",

@@ -85,7 +85,10 @@ VTKMULTIMATERIALVOLUMEFILTERS_EXPORT int IrradianceTextureChannels(int lights);
 /// hold: four lights to a texture, the last with IrradianceTextureChannels
 /// of the rest, IrradianceBytesPerVoxelPerLight per channel (the GPU's
 /// memory, what the budget counts).
-VTKMULTIMATERIALVOLUMEFILTERS_EXPORT double IrradianceBytesPerVoxel(int numberOfLights);
+/// `tinted`: plus each light's tint (a non-white transmission colour),
+/// mmv::TintBytesPerVoxelPerLight.
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT double IrradianceBytesPerVoxel(
+  int numberOfLights, bool tinted = false);
 
 /**
  * Irradiance dimensions for data of `dataDims` points: `scale` in (0, 1]
@@ -94,7 +97,7 @@ VTKMULTIMATERIALVOLUMEFILTERS_EXPORT double IrradianceBytesPerVoxel(int numberOf
  * the data's and never drop below min(2, data).
  */
 VTKMULTIMATERIALVOLUMEFILTERS_EXPORT void ComputeIrradianceDimensions(const int dataDims[3],
-  int numberOfLights, double budgetMB, double scale, int irradianceDims[3]);
+  int numberOfLights, double budgetMB, double scale, int irradianceDims[3], bool tinted = false);
 
 /// Checks an IrradianceScale (0: automatic; (0, 1]: that fraction of the
 /// data's resolution): above 1 returns 1, negative or NaN returns 0, and
@@ -127,7 +130,7 @@ struct IrradianceResolution
  */
 VTKMULTIMATERIALVOLUMEFILTERS_EXPORT IrradianceResolution ChooseIrradianceResolution(
   const int dataDims[3], int numberOfLights, double budgetMB, double userScale,
-  double pixelsPerDataVoxel);
+  double pixelsPerDataVoxel, bool tinted = false);
 
 /// The grid of `irradianceDims` spanning `image`'s points.
 VTKMULTIMATERIALVOLUMEFILTERS_EXPORT IrradianceGrid MakeIrradianceGrid(

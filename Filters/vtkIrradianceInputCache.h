@@ -61,7 +61,7 @@ public:
   };
 
   ///@{
-  /// Attenuation and scattering sampled at `tableSize` points over `range`
+  /// Attenuation, transmission colour and scattering sampled at `tableSize` points over `range`
   /// (materials null: attenuation 1, scattering 0), resampled only when the
   /// materials, the range or the size changed.
   void SampleMaterials(

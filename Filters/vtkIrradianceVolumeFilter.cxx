@@ -219,6 +219,123 @@ double ShadowTransmittance(const RayContext& ctx, const mmv::LightSource& light,
   return MarchTransmittance(ctx, start, indexDir, end, ctx.Prefiltered[v], 1.0);
 }
 
+/**
+ * The tint K (mmv::TintResolutionDivisor's comment): per channel, the
+ * transmittance of the selective extinction c_t mu (-ln T) over [0, end],
+ * marched as MarchTransmittance (same steps, same cutaway) with the tint
+ * table; stops once every channel is below mmv::MinShadowTransmittance.
+ * Mirrors mmvMarchTint of Shaders/mmvShadowRay.glsl.
+ */
+glm::dvec3 MarchTint(const RayContext& ctx, const glm::dvec3& start, const glm::dvec3& indexDir,
+  double end, double startValue)
+{
+  const mmv::IrradianceGrid& grid = *ctx.Irradiance;
+  const double h = ctx.Step;
+  const vtkIdType steps = static_cast<vtkIdType>(std::floor(end / h + mmv::ShadowStepTolerance));
+  const auto opacity = [&](double t1, double t2, const glm::dvec3& middle) {
+    double rgb[3] = { 0.0, 0.0, 0.0 };
+    if (!mmv::mmvIsCut(ctx.Cut, middle))
+    {
+      ctx.Table->LookupShadowTint(t1, t2, rgb);
+    }
+    return glm::dvec3(rgb[0], rgb[1], rgb[2]);
+  };
+  glm::dvec3 tint(1.0);
+  double previous = startValue;
+  for (vtkIdType n = 1; n <= steps; ++n)
+  {
+    if (std::max({ tint.r, tint.g, tint.b }) < mmv::MinShadowTransmittance)
+    {
+      return tint;
+    }
+    const double next =
+      mmv::SampleTrilinear(grid, ctx.Prefiltered, start + (static_cast<double>(n) * h) * indexDir);
+    tint *= 1.0 - opacity(previous, next, start + ((static_cast<double>(n) - 0.5) * h) * indexDir);
+    previous = next;
+  }
+  const double rest = end - static_cast<double>(steps) * h;
+  if (rest > mmv::ShadowRestTolerance * h &&
+    std::max({ tint.r, tint.g, tint.b }) >= mmv::MinShadowTransmittance)
+  {
+    const double next = mmv::SampleTrilinear(grid, ctx.Prefiltered, start + end * indexDir);
+    const glm::dvec3 alpha =
+      opacity(previous, next, start + (0.5 * (static_cast<double>(steps) * h + end)) * indexDir);
+    for (int c = 0; c < 3; ++c)
+    {
+      tint[c] *= std::pow(std::max(0.0, 1.0 - alpha[c]), rest / h);
+    }
+  }
+  return tint;
+}
+
+/// The grid of the tint: every `divisor`-th point of `grid` (end points shared).
+mmv::IrradianceGrid MakeTintGrid(const mmv::IrradianceGrid& grid, int divisor)
+{
+  mmv::IrradianceGrid tint = grid;
+  for (int a = 0; a < 3; ++a)
+  {
+    tint.Dimensions[a] = mmv::TintDimension(grid.Dimensions[a], divisor);
+    if (tint.Dimensions[a] > 1)
+    {
+      tint.Spacing[a] =
+        grid.Spacing[a] * (grid.Dimensions[a] - 1) / static_cast<double>(tint.Dimensions[a] - 1);
+    }
+  }
+  return tint;
+}
+
+/**
+ * The tint of one light at every voxel of the tint grid (full shadow rays
+ * through the irradiance grid's pre-filtered values), interpolated
+ * trilinearly to the irradiance grid: 3 components per irradiance voxel,
+ * what the ray cast reads from its tint texture.
+ */
+void ComputeTint(const RayContext& ctx, const mmv::LightSource& light, int divisor, float* out,
+  vtkIdType& rays)
+{
+  const mmv::IrradianceGrid& grid = *ctx.Irradiance;
+  const mmv::IrradianceGrid tintGrid = MakeTintGrid(grid, divisor);
+  const vtkIdType n = tintGrid.GetNumberOfVoxels();
+  std::vector<float> channels[3];
+  for (auto& channel : channels)
+  {
+    channel.assign(static_cast<std::size_t>(n), 1.0f);
+  }
+  vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
+    for (vtkIdType t = begin; t < end; ++t)
+    {
+      const glm::dvec3 x = tintGrid.IndexToPhysical(tintGrid.IndexOfVoxel(t));
+      const glm::dvec3 start = grid.PhysicalToIndex(x);
+      double lightDistance = 0.0;
+      const glm::dvec3 indexDir = ctx.PhysicalToIndex * mmv::mmvDirectionToLight(light, x, lightDistance);
+      double exit = ExitDistance(grid, start, indexDir);
+      if (lightDistance >= 0.0)
+      {
+        exit = std::min(exit, lightDistance);
+      }
+      const glm::dvec3 k = MarchTint(
+        ctx, start, indexDir, exit, mmv::SampleTrilinear(grid, ctx.Prefiltered, start));
+      for (int c = 0; c < 3; ++c)
+      {
+        channels[c][t] = static_cast<float>(k[c]);
+      }
+    }
+  });
+  rays += n;
+  const glm::dmat3 toTint = tintGrid.PhysicalToIndexMatrix() * grid.IndexToPhysicalMatrix();
+  vtkSMPTools::For(0, grid.GetNumberOfVoxels(), [&](vtkIdType begin, vtkIdType end) {
+    for (vtkIdType v = begin; v < end; ++v)
+    {
+      const glm::dvec3 index = toTint * grid.IndexOfVoxel(v);
+      for (int c = 0; c < 3; ++c)
+      {
+        out[3 * v + c] =
+          static_cast<float>(mmv::SampleTrilinear(tintGrid, channels[c].data(), index));
+      }
+    }
+  });
+}
+
 /// Bilinear value of `values` in slice `plane` of axis `axis` at the in-slice
 /// coordinates of index `q` (clamped to the slice). Not mmv::SampleTrilinear:
 /// that also reads the next slice (with weight 0), which this chunk's
@@ -631,8 +748,9 @@ int vtkIrradianceVolumeFilter::RequestInformation(
   const int dataDims[3] = { extent[1] - extent[0] + 1, extent[3] - extent[2] + 1,
     extent[5] - extent[4] + 1 };
   int dims[3];
-  ComputeIrradianceDimensions(dataDims, this->Internals->Lights->GetNumberOfItems(),
-    this->IrradianceMemoryMB, mmv::ValidIrradianceScale(this->IrradianceScale, nullptr), dims);
+  mmv::ComputeIrradianceDimensions(dataDims, this->Internals->Lights->GetNumberOfItems(),
+    this->IrradianceMemoryMB, mmv::ValidIrradianceScale(this->IrradianceScale, nullptr), dims,
+    this->IsTinted());
   const mmv::IrradianceGrid grid =
     mmv::MakeIrradianceGrid(extent, origin, spacing, direction, dims);
   const int outExtent[6] = { 0, dims[0] - 1, 0, dims[1] - 1, 0, dims[2] - 1 };
@@ -696,8 +814,8 @@ int vtkIrradianceVolumeFilter::RequestData(
   {
     vtkWarningMacro(<< scaleProblem);
   }
-  ComputeIrradianceDimensions(
-    dataDims, numberOfLights, this->IrradianceMemoryMB, scale, this->IrradianceDimensions);
+  mmv::ComputeIrradianceDimensions(dataDims, numberOfLights, this->IrradianceMemoryMB, scale,
+    this->IrradianceDimensions, this->IsTinted());
   const mmv::IrradianceGrid grid = mmv::MakeIrradianceGrid(input, this->IrradianceDimensions);
   output->SetExtent(0, grid.Dimensions[0] - 1, 0, grid.Dimensions[1] - 1, 0, grid.Dimensions[2] - 1);
   SetGridGeometry(grid, output);
@@ -793,6 +911,27 @@ int vtkIrradianceVolumeFilter::RequestData(
     }
   }
 
+  // The tint of a non-white transmission colour (grey materials: none, the
+  // output is what it always was).
+  std::vector<vtkSmartPointer<vtkFloatArray>> tints;
+  if (this->Internals->Table->GetShadowTintTable())
+  {
+    for (size_t l = 0; l < tasks.size(); ++l)
+    {
+      vtkNew<vtkFloatArray> tint;
+      tint->SetName(("IrradianceTint_" + std::to_string(l)).c_str());
+      tint->SetNumberOfComponents(3);
+      tint->SetNumberOfTuples(grid.GetNumberOfVoxels());
+      std::fill_n(tint->GetPointer(0), 3 * grid.GetNumberOfVoxels(), 1.0f);
+      if (tasks[l].Active)
+      {
+        ComputeTint(ctx, tasks[l].Source, this->TintResolutionDivisor, tint->GetPointer(0),
+          this->NumberOfShadowRays);
+      }
+      tints.emplace_back(tint);
+    }
+  }
+
   // Steps 4 and 5: multiple scattering, then the empty neighbours.
   if (this->MultipleScattering)
   {
@@ -808,9 +947,18 @@ int vtkIrradianceVolumeFilter::RequestData(
     }
     output->GetPointData()->AddArray(arrays[l]);
   }
+  for (const auto& tint : tints)
+  {
+    output->GetPointData()->AddArray(tint);
+  }
   output->GetPointData()->SetActiveScalars(arrays[0]->GetName());
   this->UpdateProgress(1.0);
   return 1;
+}
+
+bool vtkIrradianceVolumeFilter::IsTinted()
+{
+  return this->Internals->Material && this->Internals->Material->HasChromaticTransmission();
 }
 
 void vtkIrradianceVolumeFilter::PrintSelf(ostream& os, vtkIndent indent)
@@ -838,6 +986,7 @@ void vtkIrradianceVolumeFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MultipleScattering: " << this->MultipleScattering << "\n";
   os << indent << "ExponentialDiffusion: " << this->ExponentialDiffusion << "\n";
   os << indent << "FillEmptyNeighbors: " << this->FillEmptyNeighbors << "\n";
+  os << indent << "TintResolutionDivisor: " << this->TintResolutionDivisor << "\n";
   os << indent << "NumberOfComputedVoxels: " << this->NumberOfComputedVoxels << "\n";
   os << indent << "NumberOfShadowRays: " << this->NumberOfShadowRays << "\n";
   os << indent << "DiffusionIterations: " << this->DiffusionIterations << "\n";

@@ -38,6 +38,12 @@
  *
  * Lights are taken in world coordinates (vtkLight::GetTransformedPosition /
  * FocalPoint). The image's direction matrix is honoured.
+ * Transmission colour (vtkMultiMaterialParameters.h): when some material
+ * node's T is not white, each light also gets "IrradianceTint_<k>", 3
+ * components, the tint K per channel (full shadow rays of the selective
+ * extinction on the tint grid, TintResolutionDivisor, interpolated to the
+ * irradiance grid, not diffused): the RGB irradiance is Irradiance_<k> times
+ * it. Grey materials output no tint arrays.
  * Multithreaded with vtkSMPTools; reports progress and honours AbortExecute.
  */
 #ifndef vtkIrradianceVolumeFilter_h
@@ -151,6 +157,14 @@ public:
   vtkGetMacro(ExponentialDiffusion, bool);
   vtkBooleanMacro(ExponentialDiffusion, bool);
 
+  /**
+   * The tint grid of a non-white transmission colour is the irradiance grid
+   * divided by this per axis (mmv::TintDimension): 2 (default,
+   * mmv::TintResolutionDivisor) as the GPU stores it, 1 for the tint at full
+   * resolution (the uncompressed RGB irradiance).
+   */
+  vtkSetClampMacro(TintResolutionDivisor, int, 1, 16);
+  vtkGetMacro(TintResolutionDivisor, int);
   /// Fills empty voxels bordering computed ones (step 5; default on).
   vtkSetMacro(FillEmptyNeighbors, bool);
   vtkGetMacro(FillEmptyNeighbors, bool);
@@ -203,6 +217,10 @@ protected:
   bool MultipleScattering = true;
   bool ExponentialDiffusion = mmv::DefaultExponentialDiffusion;
   bool FillEmptyNeighbors = true;
+  int TintResolutionDivisor = mmv::TintResolutionDivisor;
+  // Some material node has a non-white transmission colour: the budget
+  // holds the tint too.
+  bool IsTinted();
 
   vtkIdType NumberOfComputedVoxels = 0;
   vtkIdType NumberOfShadowRays = 0;

@@ -114,12 +114,19 @@ inline bool ReadMaterialParameters(const Json& object, std::initializer_list<con
   return true;
 }
 
-/// Adds every material parameter to a JSON object under its table key.
+/// Adds every material parameter to a JSON object under its table key; the
+/// transmission colour only when it is not white, so a grey material writes
+/// the same JSON as before the colour existed (absent keys read as white).
 inline void WriteMaterialParameters(const double parameters[MaterialParameterCount], Json& object)
 {
+  const bool chromatic = IsChromaticTransmission(
+    parameters[TransmissionR], parameters[TransmissionG], parameters[TransmissionB]);
   for (int p = 0; p < MaterialParameterCount; ++p)
   {
-    object[MaterialParameterTable[p].Key] = parameters[p];
+    if (chromatic || p < TransmissionR || p > TransmissionB)
+    {
+      object[MaterialParameterTable[p].Key] = parameters[p];
+    }
   }
 }
 

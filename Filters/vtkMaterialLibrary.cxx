@@ -12,7 +12,7 @@
 #include <vector>
 
 // The wrapped API spells the size out (VTK's wrappers read a literal).
-static_assert(mmv::MaterialParameterCount == 9, "vtkMaterialLibrary.h: parameters[9]");
+static_assert(mmv::MaterialParameterCount == 12, "vtkMaterialLibrary.h: parameters[12]");
 
 namespace
 {

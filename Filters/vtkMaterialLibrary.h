@@ -34,14 +34,14 @@ public:
   const char* GetPresetName(int i) const;
   bool HasPreset(const char* name) const;
 
-  /// The 9 parameters of a preset (mmv::MaterialParameterCount); false
+  /// The 12 parameters of a preset (mmv::MaterialParameterCount); false
   /// (with an error) for unknown names.
-  bool GetPreset(const char* name, double parameters[9]) const;
+  bool GetPreset(const char* name, double parameters[12]) const;
   /// Display colour (RGB in 0..1) of a preset.
   bool GetPresetColor(const char* name, double rgb[3]) const;
 
   /// Adds or replaces a preset; false (with an error) on invalid values.
-  bool AddPreset(const char* name, const double parameters[9], const double rgb[3] = nullptr);
+  bool AddPreset(const char* name, const double parameters[12], const double rgb[3] = nullptr);
   bool RemovePreset(const char* name);
   /// Drops user changes and reloads the built-in presets.
   void ResetToBuiltins();

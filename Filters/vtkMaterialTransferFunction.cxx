@@ -17,6 +17,8 @@
 
 static_assert(vtkMaterialTransferFunction::NodeStride == 1 + mmv::MaterialParameterCount,
   "a flat node is its value followed by every material parameter");
+static_assert(vtkMaterialTransferFunction::EmissionNodeStride == 1 + mmv::TransmissionR,
+  "the flat node before the transmission colour ends just before it");
 static_assert(vtkMaterialTransferFunction::AnisotropyNodeStride == 1 + mmv::Emission,
   "the flat node before emission ends just before emission");
 static_assert(vtkMaterialTransferFunction::LegacyNodeStride == 1 + mmv::Anisotropy,
@@ -188,8 +190,19 @@ int vtkMaterialTransferFunction::AddNode(double value, double ambient, double di
   double specular, double shininess, double attenuation, double scattering, double reflection,
   double anisotropy, double emission)
 {
+  const double white = mmv::MaterialParameterTable[mmv::TransmissionR].Default;
+  return this->AddNode(value, ambient, diffuse, specular, shininess, attenuation, scattering,
+    reflection, anisotropy, emission, white, white, white);
+}
+
+int vtkMaterialTransferFunction::AddNode(double value, double ambient, double diffuse,
+  double specular, double shininess, double attenuation, double scattering, double reflection,
+  double anisotropy, double emission, double transmissionR, double transmissionG,
+  double transmissionB)
+{
   const double parameters[mmv::MaterialParameterCount] = { ambient, diffuse, specular, shininess,
-    attenuation, scattering, reflection, anisotropy, emission };
+    attenuation, scattering, reflection, anisotropy, emission, transmissionR, transmissionG,
+    transmissionB };
   return this->AddNode(value, parameters);
 }
 
@@ -290,7 +303,8 @@ int vtkMaterialTransferFunction::DetectNodeStride(int count, const double* nodes
 {
   // Newest first: of several layouts that fit, the newest one that reads as
   // valid, sorted nodes wins, else the oldest that fits.
-  constexpr int Strides[3] = { NodeStride, AnisotropyNodeStride, LegacyNodeStride };
+  constexpr int Strides[4] = { NodeStride, EmissionNodeStride, AnisotropyNodeStride,
+    LegacyNodeStride };
   std::vector<int> fitting;
   for (int stride : Strides)
   {
@@ -324,8 +338,9 @@ bool vtkMaterialTransferFunction::SetNodes(int count, const double* nodes)
   {
     vtkErrorMacro("SetNodes: " << count << " numbers do not make whole nodes of " << NodeStride
                                << " (value + " << mmv::MaterialParameterCount
-                               << " parameters) nor of the older " << AnisotropyNodeStride
-                               << " or " << LegacyNodeStride << "; the function is unchanged.");
+                               << " parameters) nor of the older " << EmissionNodeStride << ", "
+                               << AnisotropyNodeStride << " or " << LegacyNodeStride
+                               << "; the function is unchanged.");
     return false;
   }
   if (count > 0 && !nodes)
@@ -466,6 +481,15 @@ bool vtkMaterialTransferFunction::HasNonZero(int parameter) const
   const std::vector<Node>& nodes = this->Internals->Nodes;
   return std::any_of(nodes.begin(), nodes.end(),
     [parameter](const Node& n) { return n.Parameters[parameter] != 0.0; });
+}
+
+bool vtkMaterialTransferFunction::HasChromaticTransmission() const
+{
+  const std::vector<Node>& nodes = this->Internals->Nodes;
+  return std::any_of(nodes.begin(), nodes.end(), [](const Node& n) {
+    return mmv::IsChromaticTransmission(n.Parameters[mmv::TransmissionR],
+      n.Parameters[mmv::TransmissionG], n.Parameters[mmv::TransmissionB]);
+  });
 }
 
 bool vtkMaterialTransferFunction::GetNonZeroRange(int parameter, double range[2]) const

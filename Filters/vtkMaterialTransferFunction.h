@@ -31,8 +31,11 @@ public:
   vtkTypeMacro(vtkMaterialTransferFunction, vtkObject);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-  /// Number of numbers per node in flat arrays: value + 9 parameters.
-  static constexpr int NodeStride = 10;
+  /// Number of numbers per node in flat arrays: value + 12 parameters.
+  static constexpr int NodeStride = 13;
+  /// The flat layout before the transmission colour: value + 9 parameters
+  /// (T = (1, 1, 1), grey).
+  static constexpr int EmissionNodeStride = 10;
   /// The flat layout before emission: value + 8 parameters (e = 0).
   static constexpr int AnisotropyNodeStride = 9;
   /// The flat layout before anisotropy: value + 7 parameters (g = 0, e = 0).
@@ -44,7 +47,8 @@ public:
    * Adds a node; a node already at `value` is replaced. Returns the node's
    * index in value order, or -1 (with an error) if any argument is invalid.
    * Without `anisotropy` the node scatters isotropically (g = 0); without
-   * `emission` it does not glow (e = 0).
+   * `emission` it does not glow (e = 0); without a transmission colour its
+   * shadows are grey (T = (1, 1, 1)).
    */
   int AddNode(double value, double ambient, double diffuse, double specular, double shininess,
     double attenuation, double scattering, double reflection);
@@ -52,6 +56,9 @@ public:
     double attenuation, double scattering, double reflection, double anisotropy);
   int AddNode(double value, double ambient, double diffuse, double specular, double shininess,
     double attenuation, double scattering, double reflection, double anisotropy, double emission);
+  int AddNode(double value, double ambient, double diffuse, double specular, double shininess,
+    double attenuation, double scattering, double reflection, double anisotropy, double emission,
+    double transmissionR, double transmissionG, double transmissionB);
   int AddNode(double value, const double parameters[NumberOfParameters]);
 
   /**
@@ -75,38 +82,40 @@ public:
   void RemoveAllNodes();
   int GetSize() const;
 
-  /// Node i as value + 9 parameters (false if i is out of range).
+  /// Node i as value + 12 parameters (false if i is out of range).
   bool GetNode(int i, double node[NodeStride]) const;
 
   /**
-   * Replaces all nodes from a flat array of `count` numbers, 10 per node
+   * Replaces all nodes from a flat array of `count` numbers, 13 per node
    * (value, ka, kd, ks, shininess, attenuation, scattering, reflection,
-   * anisotropy, emission), the layout of ParaView's MaterialNodes property.
-   * The older layouts still load: 9 per node before emission (e = 0) and 8
-   * before anisotropy (g = 0, e = 0); see DetectNodeStride(). Rejects the
+   * anisotropy, emission, transmission r, g, b), the layout of ParaView's
+   * MaterialNodes property. The older layouts still load: 10 per node before
+   * the transmission colour (T = (1, 1, 1), grey), 9 before emission (e = 0)
+   * and 8 before anisotropy (g = 0, e = 0); see DetectNodeStride(). Rejects the
    * whole array (and keeps the current nodes)
    * if `count` makes no whole nodes or any number is invalid. Returns success.
    */
   bool SetNodes(int count, const double* nodes);
-  /// Writes GetSize()*10 numbers in the SetNodes() layout.
+  /// Writes GetSize()*13 numbers in the SetNodes() layout.
   void GetNodes(double* nodes) const;
 
   /**
-   * The layout of a flat node list: NodeStride, AnisotropyNodeStride,
-   * LegacyNodeStride, or 0 when `count` is a multiple of none. A count that
-   * is a multiple of several (40, 72, 90, ...) is read with the newest of
+   * The layout of a flat node list: NodeStride, EmissionNodeStride,
+   * AnisotropyNodeStride, LegacyNodeStride, or 0 when `count` is a multiple
+   * of none. A count that is a multiple of several (40, 72, 90, 130, ...) is
+   * read with the newest of
    * them that makes valid nodes with non-decreasing values (what GetNodes()
    * writes), else with the oldest.
    */
   static int DetectNodeStride(int count, const double* nodes);
 
-  /// The 9 parameters at `value` (interpolated, clamped outside the nodes).
+  /// The 12 parameters at `value` (interpolated, clamped outside the nodes).
   void Evaluate(double value, double parameters[NumberOfParameters]) const;
   double EvaluateParameter(double value, int parameter) const;
 
   /**
    * Samples `size` values evenly from xStart to xEnd (inclusive) into
-   * `table`, 9 floats per sample: table[i*9 + p]. Used for GPU textures.
+   * `table`, 12 floats per sample: table[i*12 + p]. Used for GPU textures.
    */
   void GetTable(double xStart, double xEnd, int size, float* table) const;
 
@@ -118,6 +127,11 @@ public:
   /// empty: every default the shader can leave out is 0). Chooses the shader
   /// variant: no Henyey-Greenstein code for g = 0, no emission for e = 0.
   bool HasNonZero(int parameter) const;
+
+  /// True when some node's transmission colour is not white (a channel
+  /// below 1): shadows are tinted and the shaders need the RGB irradiance
+  /// (MMV_USE_RGB_IRRADIANCE); false when empty (grey).
+  bool HasChromaticTransmission() const;
 
   /**
    * The smallest value interval outside which `parameter` is 0 (linear

@@ -27,6 +27,9 @@
  * | 6     | reflection    | r      | -                | 0       | 0 .. 1      |
  * | 7     | anisotropy    | g      | mean cosine      | 0       | -0.9 .. 0.9 |
  * | 8     | emission      | e      | x colour         | 0       | 0 .. 10     |
+ * | 9     | transmission_r| T_r    | -                | 1       | 0 .. 1      |
+ * | 10    | transmission_g| T_g    | -                | 1       | 0 .. 1      |
+ * | 11    | transmission_b| T_b    | -                | 1       | 0 .. 1      |
  *
  * Attenuation: the extinction seen by shadow rays is sigma = c_t * mu, where
  * mu = -ln(1 - alpha) / u is the extinction implied by the scalar opacity
@@ -46,6 +49,20 @@
  * a segment of opacity alpha adds e * colour * alpha (= e * I_c) to the
  * radiance, whatever the lights and shadows; a homogeneous slab of optical
  * depth tau glows with e * colour * (1 - exp(-tau)).
+ * Transmission (selective absorption, Yang et al. eq. 26, issue 14 item 3):
+ * the colour T = (T_r, T_g, T_b) filters the light that crosses the medium,
+ * on top of the grey attenuation: channel lambda's shadow extinction is
+ *   sigma_lambda = c_t * mu * w_lambda,  w_lambda = 1 - ln(max(T_lambda, T_min))
+ * (mmv::TransmissionWeight, T_min = MinTransmission), so light crossing a grey
+ * optical depth tau = int c_t mu ds of a homogeneous medium arrives as
+ *   exp(-tau_lambda) = exp(-tau) * T_lambda^tau:
+ * every unit of grey depth tints it by T once more. T = (1, 1, 1), the
+ * default, gives w = 1: exactly the grey attenuation of before (a node, a
+ * JSON file or a MaterialNodes list without T is grey). Yang's
+ * alpha_lambda = alpha (1 - c_lambda) makes white transparent instead; ours
+ * keeps c_t the one control of the shadow's strength. Only shadows are
+ * tinted (irradiance, mmv::IrradianceTint); the colour seen through the
+ * medium stays the colour map's.
  */
 #ifndef vtkMultiMaterialParameters_h
 #define vtkMultiMaterialParameters_h
@@ -68,6 +85,9 @@ enum MaterialParameter : int
   Reflection,
   Anisotropy,
   Emission,
+  TransmissionR,
+  TransmissionG,
+  TransmissionB,
   MaterialParameterCount
 };
 
@@ -92,7 +112,66 @@ constexpr MaterialParameterInfo MaterialParameterTable[MaterialParameterCount] =
   { "reflection", "MMV_REFLECTION", 0.0, 0.0, 1.0, 1.0e3 },
   { "anisotropy", "MMV_ANISOTROPY", 0.0, -0.9, 0.9, 0.99, -0.99 },
   { "emission", "MMV_EMISSION", 0.0, 0.0, 10.0, 1.0e4 },
+  { "transmission_r", "MMV_TRANSMISSION_R", 1.0, 0.0, 1.0, 1.0 },
+  { "transmission_g", "MMV_TRANSMISSION_G", 1.0, 0.0, 1.0, 1.0 },
+  { "transmission_b", "MMV_TRANSMISSION_B", 1.0, 0.0, 1.0, 1.0 },
 };
+
+/// Smallest transmission used: T = 0 would make the extinction infinite
+/// (w = 1 - ln T); 1e-3 gives w = 7.9, black after a few units of depth.
+constexpr double MinTransmission = 1.0e-3;
+
+/// The factor w_lambda of channel lambda's shadow extinction (table comment):
+/// 1 for T = 1 (grey).
+inline double TransmissionWeight(double transmission)
+{
+  return 1.0 - std::log(transmission > MinTransmission ? transmission : MinTransmission);
+}
+
+/// The selective part of the extinction factor, w_lambda - 1 = -ln T >= 0:
+/// what the tint pass integrates (its shadow table, GetShadowTintTable).
+inline double SelectiveAbsorption(double transmission)
+{
+  return TransmissionWeight(transmission) - 1.0;
+}
+
+/// True when the colour filters (some channel below 1): the shaders then
+/// need the RGB irradiance (variant MMV_USE_RGB_IRRADIANCE).
+inline bool IsChromaticTransmission(double r, double g, double b)
+{
+  return r < 1.0 || g < 1.0 || b < 1.0;
+}
+
+/**
+ * The RGB irradiance of a non-white transmission colour, stored compressed:
+ * E_lambda = E * K_lambda, E today's grey irradiance (extinction c_t mu, the
+ * full-resolution 16-bit texture, piecewise rays and diffusion as before)
+ * and K_lambda = exp(-int c_t mu (-ln T_lambda)) <= 1 the tint, the
+ * transmittance of the selective part alone (vtkPreIntegrationTable's
+ * I_tau), exact in the product because optical depths add. K is smooth
+ * where E has its detail (it only changes where tinted material lies
+ * between the voxel and the light), so it is stored at 1/TintResolutionDivisor
+ * of the irradiance resolution per axis (TintDimension; the grids share
+ * their end points), by full shadow rays from every tint voxel, and not
+ * diffused. GPU: one RGBA16F texture per light (alpha unused), so
+ * 8 bytes / 8 = 1 byte per irradiance voxel per light
+ * (TintBytesPerVoxelPerLight) on top of the 2 of E: 1.5x the grey memory.
+ */
+constexpr int TintResolutionDivisor = 2;
+constexpr double TintBytesPerVoxelPerLight =
+  8.0 / (TintResolutionDivisor * TintResolutionDivisor * TintResolutionDivisor);
+
+/// Tint grid points along an axis of `irradianceDim` irradiance points:
+/// every `divisor`-th irradiance point and the last one (end points shared).
+inline int TintDimension(int irradianceDim, int divisor = TintResolutionDivisor)
+{
+  if (irradianceDim <= 2 || divisor <= 1)
+  {
+    return irradianceDim;
+  }
+  const int n = (irradianceDim - 1 + divisor - 1) / divisor + 1;
+  return n < 2 ? 2 : n;
+}
 
 /// Rows of the ray caster's material texture (vtkMultiMaterialTextures.h):
 /// (ka, kd, ks, ke), (r, 0, 0, g), (e, 0, 0, 0). GLSL: MMV_MATERIAL_ROWS.
@@ -122,6 +201,9 @@ constexpr MaterialTexel MaterialTexelLayout[MaterialParameterCount] = {
   { 1, 0 },  // reflection
   { 1, 3 },  // anisotropy
   { 2, 0 },  // emission
+  { -1, 0 }, // transmission_r: the shadow table's, not the ray cast's
+  { -1, 0 }, // transmission_g
+  { -1, 0 }, // transmission_b
 };
 
 /// The Blinn-Phong coefficients are read as one texel (ka, kd, ks, ke), the

@@ -66,6 +66,8 @@ bool PhysicalMediumToMaterial(double albedo, double g, double extinctionPerVoxel
   parameters[Reflection] = 0.0;
   parameters[Anisotropy] = g;
   parameters[Emission] = 0.0;
+  // A grey medium: its albedo is one number.
+  parameters[TransmissionR] = parameters[TransmissionG] = parameters[TransmissionB] = 1.0;
   return true;
 }
 

@@ -57,6 +57,9 @@ struct TransferTables
   std::vector<double> Color;    // rgb
   std::vector<double> Mu;       // extinction per object unit
   std::vector<double> Sigma;    // shadow extinction, attenuation * mu
+  // The selective extinction c_t mu (-ln T) per channel, 3 per value; empty
+  // when every transmission colour is white (grey shadows).
+  std::vector<double> SigmaTint;
   std::vector<double> Material; // the material parameters
 
   // Entry index and weight of data value s.
@@ -140,8 +143,16 @@ struct Scene
 
   // Light k's transmittance from object point x (eqs. 9-10 by midpoint rule),
   // times its geometry term; 0 outside a spot cone.
-  double DirectIrradiance(const mmv::LightSource& light, const dvec3& x) const
+  // With `tint`: also the tint K per channel of a non-white transmission
+  // colour (vtkMultiMaterialParameters.h), per sample like the grey part,
+  // at full resolution (the GPU stores it at half: the compression the
+  // comparisons measure); (1, 1, 1) when grey.
+  double DirectIrradiance(const mmv::LightSource& light, const dvec3& x, dvec3* tint = nullptr) const
   {
+    if (tint)
+    {
+      *tint = dvec3(1.0);
+    }
     const double geometry = mmv::mmvLightGeometryTerm(light, x);
     if (geometry <= 0.0)
     {
@@ -164,6 +175,8 @@ struct Scene
     const dvec3 p0 = this->ToIndex(x);
     const dvec3 q = this->ObjectToIndex * dir;
     double depth = 0.0;
+    dvec3 tintDepth(0.0);
+    const bool tinted = tint && !this->Tables.SigmaTint.empty();
     for (int m = 0; m < n && depth < this->MaxOpticalDepth; ++m)
     {
       const dvec3 pm = p0 + (t0 + (m + 0.5) * h) * q;
@@ -176,6 +189,14 @@ struct Scene
       double w;
       this->Tables.Locate(s, i, w);
       depth += h * TransferTables::Lerp(this->Tables.Sigma, 1, 0, i, w);
+      for (int c = 0; tinted && c < 3; ++c)
+      {
+        tintDepth[c] += h * TransferTables::Lerp(this->Tables.SigmaTint, 3, c, i, w);
+      }
+    }
+    if (tinted)
+    {
+      *tint = glm::exp(-tintDepth);
     }
     return geometry * std::exp(-depth);
   }
@@ -215,9 +236,10 @@ struct Scene
 
     const int count = static_cast<int>(this->Lights.size());
     double irradiance[mmv::MaxLights] = {};
+    dvec3 tint[mmv::MaxLights];
     for (int k = 0; k < count; ++k)
     {
-      irradiance[k] = this->DirectIrradiance(this->Sources[k], x);
+      irradiance[k] = this->DirectIrradiance(this->Sources[k], x, &tint[k]);
       ++shadowRays;
       if (!this->ScatteringDelta.empty())
       {
@@ -227,8 +249,17 @@ struct Scene
     }
     const double reflection = this->Reflection ? m[mmv::Reflection] : 0.0;
     const dvec3 environment = reflection > 0.0 ? this->Reflected(x, n, v) : dvec3(0.0);
+    // A tinted light arrives with its radiance times its tint, as the ray
+    // cast's mmvFetchTints makes it (Shaders/mmvTint.glsl).
+    dvec3 arriving[mmv::MaxLights];
+    const bool tinted = !this->Tables.SigmaTint.empty();
+    for (int k = 0; tinted && k < count; ++k)
+    {
+      arriving[k] = this->Radiances[k] * tint[k];
+    }
+    const dvec3* radiances = tinted ? arriving : this->Radiances.data();
     return mmv::mmvShadeSample(material, m[mmv::Anisotropy], reflection, m[mmv::Emission],
-      segment, x, n, v, surface, this->Sources.data(), this->Radiances.data(), irradiance, count,
+      segment, x, n, v, surface, this->Sources.data(), radiances, irradiance, count,
       environment);
   }
 
@@ -366,6 +397,8 @@ void TabulateTransferFunctions(vtkVolumeProperty* property,
   const double unitDistance = property->GetScalarOpacityUnitDistance(0);
   tables.Mu.resize(TableSize);
   tables.Sigma.resize(TableSize);
+  const bool tinted = materials && materials->HasChromaticTransmission();
+  tables.SigmaTint.assign(tinted ? 3 * TableSize : 0, 0.0);
   tables.Material.resize(static_cast<size_t>(mmv::MaterialParameterCount) * TableSize);
   for (int i = 0; i < TableSize; ++i)
   {
@@ -384,6 +417,11 @@ void TabulateTransferFunctions(vtkVolumeProperty* property,
     }
     tables.Mu[i] = mmv::ExtinctionFromOpacity(alpha[i], unitDistance);
     tables.Sigma[i] = m[mmv::Attenuation] * tables.Mu[i];
+    for (int c = 0; tinted && c < 3; ++c)
+    {
+      tables.SigmaTint[3 * i + c] =
+        tables.Sigma[i] * mmv::SelectiveAbsorption(m[mmv::TransmissionR + c]);
+    }
   }
 }
 

@@ -80,6 +80,9 @@ struct CellData
   double D = 1.0; // table spacing in data units
   // Per table node k (n entries).
   std::vector<double> NodeMu, NodeSigma, NodeRGB; // NodeRGB: 3 per node
+  // The selective (tint) extinction c_t mu (-ln T) per channel: 3 per node,
+  // 3 per prefix sum; empty when the material's transmission is white.
+  std::vector<double> NodeTint, PrefixTint;
   std::vector<char> NodeOpaque;                   // alpha(t_k) > 0
   std::vector<double> Up;   // first non-zero opacity at or above t_k (data units), +inf if none
   std::vector<double> Down; // first non-zero opacity at or below t_k going down, -inf if none
@@ -103,6 +106,7 @@ struct DiagonalFiller
   float* ColorOpacity;
   float* Position;
   float* Shadow;
+  float* Tint; // 4 per entry (rgb, 0); null without a tint table
 
   void operator()(vtkIdType begin, vtkIdType end) const
   {
@@ -189,6 +193,11 @@ struct DiagonalFiller
       this->ColorOpacity[4 * idx + 3] = static_cast<float>(alpha);
       this->Position[idx] = this->C.NodeOpaque[i] ? 0.0f : 1.0f;
       this->Shadow[idx] = static_cast<float>(-std::expm1(-this->C.L * this->C.NodeSigma[i]));
+      for (int c = 0; this->Tint && c < 3; ++c)
+      {
+        this->Tint[4 * idx + c] =
+          static_cast<float>(-std::expm1(-this->C.L * this->C.NodeTint[3 * i + c]));
+      }
     }
   }
 
@@ -211,6 +220,13 @@ struct DiagonalFiller
       this->ColorOpacity[4 * down + 3] = static_cast<float>(alpha);
       this->Shadow[up] = static_cast<float>(sigma);
       this->Shadow[down] = static_cast<float>(sigma);
+      for (int c = 0; this->Tint && c < 3; ++c)
+      {
+        const double tint = -std::expm1(
+          -scale * (this->C.PrefixTint[3 * hi + c] - this->C.PrefixTint[3 * lo + c]));
+        this->Tint[4 * up + c] = static_cast<float>(tint);
+        this->Tint[4 * down + c] = static_cast<float>(tint);
+      }
 
       const double tLo = lo * this->C.D;
       const double tHi = hi * this->C.D;
@@ -310,12 +326,23 @@ struct TransferFunctions
   vtkColorTransferFunction* Color;       // null: white
   vtkMaterialTransferFunction* Material; // null: c_t = 1
   double UnitDistance;
+  bool Tinted; // some transmission colour is not white: build the tint table
 
-  void Sample(double t, double& alpha, double& mu, double& sigma, double rgb[3]) const
+  // tint: the selective extinction per channel, written only when Tinted.
+  void Sample(
+    double t, double& alpha, double& mu, double& sigma, double rgb[3], double tint[3]) const
   {
     alpha = this->Opacity->GetValue(t);
     mu = mmv::ExtinctionFromOpacity(alpha, this->UnitDistance);
     sigma = this->Material ? mu * this->Material->EvaluateParameter(t, mmv::Attenuation) : mu;
+    if (this->Tinted)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        tint[c] = sigma *
+          mmv::SelectiveAbsorption(this->Material->EvaluateParameter(t, mmv::TransmissionR + c));
+      }
+    }
     if (this->Color)
     {
       this->Color->GetColor(t, rgb);
@@ -364,11 +391,16 @@ void SampleNodes(const TransferFunctions& tf, double first, CellData& cells)
   cells.NodeSigma.resize(n);
   cells.NodeRGB.resize(3 * n);
   cells.NodeOpaque.resize(n);
+  cells.NodeTint.assign(tf.Tinted ? 3 * n : 0, 0.0);
   for (int k = 0; k < n; ++k)
   {
-    double alpha;
-    tf.Sample(
-      first + k * cells.D, alpha, cells.NodeMu[k], cells.NodeSigma[k], &cells.NodeRGB[3 * k]);
+    double alpha, tint[3];
+    tf.Sample(first + k * cells.D, alpha, cells.NodeMu[k], cells.NodeSigma[k],
+      &cells.NodeRGB[3 * k], tint);
+    for (int c = 0; tf.Tinted && c < 3; ++c)
+    {
+      cells.NodeTint[3 * k + c] = tint[c];
+    }
     cells.NodeOpaque[k] = alpha > 0.0;
   }
 }
@@ -435,20 +467,21 @@ void AppendPiece(double depth, const PieceMoments& m, CellData& cells)
 // Integrates the piece [a, b] (no TF node inside): appends its depth and
 // colour fit to `cells`, adds its shadow depth to `cellSigma`, and returns
 // its depth (data units); `nonZero` tells whether any of it is not empty.
-double IntegratePiece(
-  const TransferFunctions& tf, double a, double b, CellData& cells, double& cellSigma, bool& nonZero)
+double IntegratePiece(const TransferFunctions& tf, double a, double b, CellData& cells,
+  double& cellSigma, double cellTint[3], bool& nonZero)
 {
   const double half = 0.5 * (b - a);
   PieceDepth pieceDepth{ tf.Opacity, tf.UnitDistance, a, b, tf.Opacity->GetValue(a),
     tf.Opacity->GetValue(b), true };
-  double x[GaussOrder], mu[GaussOrder], sigma[GaussOrder], rgb[GaussOrder][3];
+  double x[GaussOrder], mu[GaussOrder], sigma[GaussOrder], rgb[GaussOrder][3],
+    tint[GaussOrder][3];
   double muGauss = 0.0;
   nonZero = false;
   for (int g = 0; g < GaussOrder; ++g)
   {
     double alpha;
     x[g] = a + half * (1.0 + GaussX[g]);
-    tf.Sample(x[g], alpha, mu[g], sigma[g], rgb[g]);
+    tf.Sample(x[g], alpha, mu[g], sigma[g], rgb[g], tint[g]);
     muGauss += GaussW[g] * half * mu[g];
     const double lerp =
       pieceDepth.AlphaA + 0.5 * (pieceDepth.AlphaB - pieceDepth.AlphaA) * (1.0 + GaussX[g]);
@@ -462,9 +495,9 @@ double IntegratePiece(
   PieceMoments m;
   {
     // The colour range over the whole piece, ends included.
-    double alpha, muEnd, sigmaEnd, rgbA[3], rgbB[3];
-    tf.Sample(a, alpha, muEnd, sigmaEnd, rgbA);
-    tf.Sample(b, alpha, muEnd, sigmaEnd, rgbB);
+    double alpha, muEnd, sigmaEnd, rgbA[3], rgbB[3], tintEnd[3];
+    tf.Sample(a, alpha, muEnd, sigmaEnd, rgbA, tintEnd);
+    tf.Sample(b, alpha, muEnd, sigmaEnd, rgbB, tintEnd);
     for (int c = 0; c < 3; ++c)
     {
       m.Min[c] = std::min(rgbA[c], rgbB[c]);
@@ -480,6 +513,10 @@ double IntegratePiece(
     const double w = GaussW[g] * half * scale;
     const double q = pieceDepth(x[g]);
     cellSigma += w * sigma[g];
+    for (int c = 0; tf.Tinted && c < 3; ++c)
+    {
+      cellTint[c] += w * tint[g][c];
+    }
     m.W0 += w * mu[g];
     m.W1 += w * mu[g] * q;
     for (int c = 0; c < 3; ++c)
@@ -504,6 +541,7 @@ void IntegrateCells(
   cells.CellMu.resize(n - 1);
   cells.PrefixMu.assign(n, 0.0);
   cells.PrefixSigma.assign(n, 0.0);
+  cells.PrefixTint.assign(tf.Tinted ? 3 * n : 0, 0.0);
   cells.PieceStart.assign(1, 0);
   std::vector<double> firstNonZero(n - 1, inf), lastNonZero(n - 1, -inf);
   auto nextBreak = breaks.begin();
@@ -511,7 +549,7 @@ void IntegrateCells(
   {
     const double cellLo = first + k * cells.D;
     const double cellHi = first + (k + 1) * cells.D;
-    double cellDepth = 0.0, cellSigma = 0.0;
+    double cellDepth = 0.0, cellSigma = 0.0, cellTint[3] = { 0.0, 0.0, 0.0 };
     double a = cellLo;
     while (a < cellHi)
     {
@@ -521,7 +559,7 @@ void IntegrateCells(
       }
       const double b = (nextBreak != breaks.end() && *nextBreak < cellHi) ? *nextBreak : cellHi;
       bool nonZero = false;
-      cellDepth += IntegratePiece(tf, a, b, cells, cellSigma, nonZero);
+      cellDepth += IntegratePiece(tf, a, b, cells, cellSigma, cellTint, nonZero);
       if (nonZero)
       {
         firstNonZero[k] = std::min(firstNonZero[k], a - first);
@@ -533,6 +571,10 @@ void IntegrateCells(
     cells.CellMu[k] = cellDepth / cells.D;
     cells.PrefixMu[k + 1] = cells.PrefixMu[k] + cellDepth / cells.D;
     cells.PrefixSigma[k + 1] = cells.PrefixSigma[k] + cellSigma / cells.D;
+    for (int c = 0; tf.Tinted && c < 3; ++c)
+    {
+      cells.PrefixTint[3 * (k + 1) + c] = cells.PrefixTint[3 * k + c] + cellTint[c] / cells.D;
+    }
   }
 
   cells.Up.assign(n, inf);
@@ -563,6 +605,7 @@ public:
   std::vector<float> ColorOpacity;
   std::vector<float> Position;
   std::vector<float> Shadow;
+  std::vector<float> Tint; // empty: grey shadows
 
   // Bilinear interpolation of channel `c` of a table with `stride` floats per
   // entry, clamped to the table range.
@@ -729,7 +772,8 @@ bool vtkPreIntegrationTable::Update()
   // O(n) samples and integrals of the TFs, then the O(n^2) fill.
   const int n = this->TableSize;
   const TransferFunctions tf{ internals.Opacity, internals.Color, internals.Material,
-    this->ScalarOpacityUnitDistance };
+    this->ScalarOpacityUnitDistance,
+    internals.Material && internals.Material->HasChromaticTransmission() };
   CellData cells;
   cells.N = n;
   cells.L = this->StepLength;
@@ -739,12 +783,15 @@ bool vtkPreIntegrationTable::Update()
 
   const std::size_t entries = static_cast<std::size_t>(n) * n;
   std::vector<float> colorOpacity(4 * entries), position(entries), shadow(entries);
-  DiagonalFiller filler{ cells, colorOpacity.data(), position.data(), shadow.data() };
+  std::vector<float> tint(tf.Tinted ? 4 * entries : 0, 0.0f);
+  DiagonalFiller filler{ cells, colorOpacity.data(), position.data(), shadow.data(),
+    tf.Tinted ? tint.data() : nullptr };
   vtkSMPTools::For(0, n, 1, filler);
 
   internals.ColorOpacity.swap(colorOpacity);
   internals.Position.swap(position);
   internals.Shadow.swap(shadow);
+  internals.Tint.swap(tint);
   internals.N = n;
   internals.Range[0] = range[0];
   internals.Range[1] = range[1];
@@ -779,6 +826,12 @@ const float* vtkPreIntegrationTable::GetShadowOpacityTable() const
   return this->Internals->Built ? this->Internals->Shadow.data() : nullptr;
 }
 
+const float* vtkPreIntegrationTable::GetShadowTintTable() const
+{
+  return this->Internals->Built && !this->Internals->Tint.empty() ? this->Internals->Tint.data()
+                                                                  : nullptr;
+}
+
 //------------------------------------------------------------------------------
 double vtkPreIntegrationTable::LookupOpacity(double t1, double t2) const
 {
@@ -790,6 +843,17 @@ double vtkPreIntegrationTable::LookupShadowOpacity(double t1, double t2) const
 {
   const vtkInternals& internals = *this->Internals;
   return internals.Built ? internals.Lookup(internals.Shadow, 1, 0, t1, t2) : 0.0;
+}
+
+void vtkPreIntegrationTable::LookupShadowTint(double t1, double t2, double rgb[3]) const
+{
+  const vtkInternals& internals = *this->Internals;
+  for (int c = 0; c < 3; ++c)
+  {
+    rgb[c] = internals.Built && !internals.Tint.empty()
+      ? internals.Lookup(internals.Tint, 4, c, t1, t2)
+      : 0.0;
+  }
 }
 
 double vtkPreIntegrationTable::LookupShadingPosition(double t1, double t2) const

@@ -12,6 +12,11 @@
  *   I_c(t1,t2)     = int_0^L c mu exp(-int_0^x mu) dx  (opacity-weighted) (eq. 5)
  *   I_beta(t1,t2)  = fraction of the segment before the first non-zero opacity (eq. 7)
  *   I_sigma(t1,t2) = 1 - exp(-int_0^L c_t mu dx)   (shadow opacity, c_t = attenuation)
+ *   I_tau(t1,t2)   = 1 - exp(-int_0^L c_t mu (-ln T_lambda) dx), per channel lambda:
+ *                    the tint opacity, the selective part of the shadow's
+ *                    extinction (T the transmission colour,
+ *                    vtkMultiMaterialParameters.h); built only when some
+ *                    node's T is not white
  *
  * Tables are TableSize x TableSize over the table range (GetTableRange());
  * entry (i, j) has front value t1 = range[0] + i*d and back value
@@ -108,6 +113,9 @@ public:
   const float* GetShadingPositionTable() const;
   /// 1 float per entry: I_sigma, the shadow-ray opacity.
   const float* GetShadowOpacityTable() const;
+  /// 4 floats per entry: I_tau per channel (r, g, b) and 0; nullptr when
+  /// every transmission colour is white (grey shadows: no tint to compute).
+  const float* GetShadowTintTable() const;
   ///@}
 
   ///@{
@@ -115,6 +123,8 @@ public:
   /// users; 0 before the first successful build.
   double LookupOpacity(double t1, double t2) const;
   double LookupShadowOpacity(double t1, double t2) const;
+  /// I_tau per channel; 0 without a tint table.
+  void LookupShadowTint(double t1, double t2, double rgb[3]) const;
   double LookupShadingPosition(double t1, double t2) const;
   void LookupColor(double t1, double t2, double rgba[4]) const;
   ///@}

@@ -4,8 +4,8 @@
  *         pqMaterialNodesPropertyWidget edits and pqMaterialNodesTrack draws.
  *
  * The MaterialNodes property is a flat list, vtkMaterialTransferFunction's
- * SetNodes() layout (10 numbers a node: the data value, then the 9 material
- * parameters of mmv::MaterialParameterTable; 9 or 8 in older states). The
+ * SetNodes() layout (13 numbers a node: the data value, then the 12 material
+ * parameters of mmv::MaterialParameterTable; 10, 9 or 8 in older states). The
  * model holds it as sorted nodes with distinct values and one selection, and
  * does every edit the editor offers: add (parameters interpolated as the
  * renderer does), remove, move (kept between its neighbours), set one
@@ -30,7 +30,7 @@ namespace mmv
 class MaterialNodeModel
 {
 public:
-  static constexpr int Stride = vtkMaterialTransferFunction::NodeStride; // value + 9 parameters
+  static constexpr int Stride = vtkMaterialTransferFunction::NodeStride; // value + 12 parameters
   static constexpr int ParameterCount = MaterialParameterCount;
   static_assert(Stride == ParameterCount + 1, "MaterialNodes layout: value + parameters");
   using Node = std::array<double, Stride>;

@@ -51,7 +51,8 @@ QString parameterLabel(int p)
 {
   QString key = QString::fromLatin1(mmv::MaterialParameterTable[p].Key);
   key[0] = key[0].toUpper();
-  return key;
+  // transmission_r reads "Transmission r".
+  return key.replace(QLatin1Char('_'), QLatin1Char(' '));
 }
 
 // The editor's row label. ParaView's Volume representation shows its own

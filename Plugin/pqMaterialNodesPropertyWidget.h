@@ -3,7 +3,7 @@
  * @brief   Properties-panel editor for the "MaterialNodes" property of the
  *          Multi-Material Volume representation.
  *
- * MaterialNodes is a flat list, 10 numbers per node: the data value followed
+ * MaterialNodes is a flat list, 13 numbers per node: the data value followed
  * by the 9 material parameters of mmv::MaterialParameterTable (lists of 9,
  * from before emission, are read with e = 0; lists of 8, from before
  * anisotropy, with g = 0 and e = 0). The widget shows
@@ -62,7 +62,7 @@ public:
     vtkSMProxy* proxy, vtkSMProperty* property, QWidget* parent = nullptr);
   ~pqMaterialNodesPropertyWidget() override;
 
-  /// The nodes in the property's flat layout (10 numbers per node, sorted by value).
+  /// The nodes in the property's flat layout (13 numbers per node, sorted by value).
   QList<QVariant> materialNodes() const;
   /// Value of the proxy's MaterialPreset property as last set through the widget.
   QString materialPreset() const;

@@ -21,6 +21,7 @@
 #include "mmvDiffusionFS.h"
 #include "mmvDiffusionGridFS.h"
 #include "mmvIrradianceFS.h"
+#include "mmvIrradianceTintFS.h"
 #include "mmvLayerGS.h"
 #include "mmvLayerVS.h"
 #include "mmvCutaway.h"
@@ -269,6 +270,21 @@ public:
   vtkSmartPointer<vtkTextureObject> TableTexture;
   vtkSmartPointer<vtkTextureObject> CoarseStrengthTexture;
   std::vector<vtkSmartPointer<vtkTextureObject>> Irradiance;
+  // The tint of a non-white transmission colour: its table (4 floats per
+  // entry; empty when grey), and one RGBA16F texture per light on the tint
+  // grid (mmv::TintDimension).
+  std::vector<float> TintTable;
+  vtkSmartPointer<vtkTextureObject> TintTableTexture;
+  std::vector<vtkSmartPointer<vtkTextureObject>> Tint;
+  VoxelPass TintQuad;
+  void TintDimensions(int dims[3]) const
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      dims[a] = mmv::TintDimension(this->Grid.Dimensions[a]);
+    }
+  }
+  bool TintPass(vtkOpenGLRenderWindow* context, int light, bool layered);
   // Irradiance grid: [0] shadow rays, [1] after the diffusion. Diffusion
   // grid: [0] restricted, [1..4] rotate through the sweeps (right-hand side,
   // previous, current and next iterate).
@@ -423,6 +439,13 @@ bool vtkIrradianceVolumePass::vtkInternals::Upload(vtkOpenGLRenderWindow* contex
       this->TableSize, this->TableSize, 1, VTK_FLOAT, this->ShadowTable.data()) &&
     this->CoarseStrengthTexture->Create3DFromRaw(
       c[0], c[1], c[2], 2, VTK_FLOAT, this->CoarseStrength.data());
+  this->TintTableTexture = nullptr;
+  if (this->Uploaded && !this->TintTable.empty())
+  {
+    this->TintTableTexture = NewTexture(context, GL_RGBA32F, GL_RGBA, GL_FLOAT, true);
+    this->Uploaded = this->TintTableTexture->Create2DFromRaw(
+      this->TableSize, this->TableSize, 4, VTK_FLOAT, this->TintTable.data());
+  }
   return this->Uploaded;
 }
 
@@ -455,6 +478,27 @@ bool vtkIrradianceVolumePass::vtkInternals::AllocateTargets(
       std::vector<unsigned short> zeros(channels * static_cast<size_t>(d[0]) * d[1] * d[2], 0);
       ok = ok &&
         texture->Create3DFromRaw(d[0], d[1], d[2], channels, VTK_UNSIGNED_SHORT, zeros.data());
+      reallocated = true;
+    }
+  }
+  // The tint: one texture per light, only while some colour is not white.
+  const size_t tints = this->TintTable.empty() ? 0 : this->Lights.size();
+  for (size_t t = tints; t < this->Tint.size(); ++t)
+  {
+    this->Tint[t]->ReleaseGraphicsResources(context);
+  }
+  reallocated = reallocated || this->Tint.size() != tints;
+  this->Tint.resize(tints);
+  int tintDims[3];
+  this->TintDimensions(tintDims);
+  for (auto& texture : this->Tint)
+  {
+    if (!HasSize(texture, tintDims))
+    {
+      // Half floats: K in [0, 1] with 11 bits of mantissa also where it is
+      // small (deep tinted shadow), linear for the ray cast's lookups.
+      texture = NewTexture(context, GL_RGBA16F, GL_RGBA, GL_FLOAT, true);
+      ok = ok && texture->Allocate3D(tintDims[0], tintDims[1], tintDims[2], 4, VTK_FLOAT);
       reallocated = true;
     }
   }
@@ -714,6 +758,43 @@ bool vtkIrradianceVolumePass::vtkInternals::ShadowPass(
   program->SetUniformi("computeEmptyVoxels", skipEmpty ? 0 : 1);
   SetLightUniforms(program, this->Lights, group * LightsPerTexture, mask);
   this->DrawLayers(context, this->ShadowQuad, this->FineScratch[0], layered);
+  return true;
+}
+
+//------------------------------------------------------------------------------
+// The tint of light `light` into its tint texture (mmvIrradianceTintFS.glsl):
+// full shadow rays of the selective extinction from every tint voxel.
+bool vtkIrradianceVolumePass::vtkInternals::TintPass(
+  vtkOpenGLRenderWindow* context, int light, bool layered)
+{
+  vtkShaderProgram* program = this->Ready(context, this->TintQuad,
+    std::string(mmvShadowRay) + mmvIrradianceTintFS, this->ShadowRayDefines() + "#define MMV_TINT\n",
+    true);
+  if (!program)
+  {
+    return false;
+  }
+  int tintDims[3];
+  this->TintDimensions(tintDims);
+  float tintToIndex[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    tintToIndex[a] = tintDims[a] > 1
+      ? static_cast<float>(this->Grid.Dimensions[a] - 1) / static_cast<float>(tintDims[a] - 1)
+      : 0.0f;
+  }
+  glm::mat3 toWorld(this->Grid.IndexToPhysicalMatrix());
+  const glm::vec3 origin(this->Grid.Origin);
+  ScopedTextures bound{ this->ScalarTexture, this->ClassTexture, this->TableTexture,
+    this->TintTableTexture };
+  this->SetShadowRayUniforms(program);
+  program->SetUniformi("tintTable", this->TintTableTexture->GetTextureUnit());
+  program->SetUniform1iv("tintDims", 3, tintDims);
+  program->SetUniform3f("tintToIndex", tintToIndex);
+  program->SetUniform3f("origin", glm::value_ptr(origin));
+  program->SetUniformMatrix3x3("indexToWorld", glm::value_ptr(toWorld));
+  SetLightUniforms(program, this->Lights, light, 1);
+  this->DrawLayers(context, this->TintQuad, this->Tint[light], layered);
   return true;
 }
 
@@ -1005,6 +1086,16 @@ void vtkIrradianceVolumePass::vtkInternals::Release(vtkWindow* window)
     texture->ReleaseGraphicsResources(window);
   }
   this->Irradiance.clear();
+  for (auto& texture : this->Tint)
+  {
+    texture->ReleaseGraphicsResources(window);
+  }
+  this->Tint.clear();
+  if (this->TintTableTexture)
+  {
+    this->TintTableTexture->ReleaseGraphicsResources(window);
+    this->TintTableTexture = nullptr;
+  }
   this->ComputedLights.clear();
   if (this->ResidualQuery)
   {
@@ -1303,6 +1394,17 @@ bool vtkIrradianceVolumePass::Render(vtkOpenGLRenderWindow* context)
         this->LastDiffusionSeconds += elapsed();
       }
       ok = ok && internals.FillPass(context, result, group, mask, this->LayeredRendering);
+      for (int l = 0; ok && !internals.Tint.empty() && l < LightsPerTexture; ++l)
+      {
+        if ((mask & (1 << l)) != 0)
+        {
+          ok = internals.TintPass(context, group * LightsPerTexture + l, this->LayeredRendering);
+        }
+      }
+      if (!internals.Tint.empty())
+      {
+        this->LastEstimationSeconds += elapsed();
+      }
     }
     internals.ReleaseScratch(context);
   }
@@ -1446,7 +1548,83 @@ vtkIdType vtkIrradianceVolumePass::GetTextureMemoryBytes() const
     bytes += static_cast<vtkIdType>(texture->GetWidth()) * texture->GetHeight() *
       texture->GetDepth() * texture->GetComponents() * sizeof(unsigned short);
   }
+  for (const auto& texture : this->Internals->Tint)
+  {
+    // RGBA16F: 4 channels of 2 bytes.
+    bytes += static_cast<vtkIdType>(texture->GetWidth()) * texture->GetHeight() *
+      texture->GetDepth() * 4 * 2;
+  }
   return bytes;
+}
+
+//------------------------------------------------------------------------------
+void vtkIrradianceVolumePass::SetTintTable(const float* tintTable)
+{
+  vtkInternals& internals = *this->Internals;
+  std::vector<float> table;
+  if (tintTable && internals.TableSize > 0)
+  {
+    table.assign(tintTable, tintTable + 4 * static_cast<size_t>(internals.TableSize) * internals.TableSize);
+  }
+  if (table != internals.TintTable)
+  {
+    internals.TintTable.swap(table);
+    internals.Uploaded = false;
+    internals.VolumeChanged = true;
+  }
+}
+
+bool vtkIrradianceVolumePass::IsTinted() const
+{
+  return !this->Internals->TintTable.empty();
+}
+
+vtkTextureObject* vtkIrradianceVolumePass::GetTintTexture(int light) const
+{
+  const auto& tint = this->Internals->Tint;
+  return light >= 0 && light < static_cast<int>(tint.size()) ? tint[light].Get() : nullptr;
+}
+
+void vtkIrradianceVolumePass::GetTintDimensions(int dims[3]) const
+{
+  this->Internals->TintDimensions(dims);
+}
+
+bool vtkIrradianceVolumePass::ReadBackTint(
+  vtkOpenGLRenderWindow* context, int light, std::vector<float>& rgb)
+{
+  vtkInternals& internals = *this->Internals;
+  vtkTextureObject* texture = this->GetTintTexture(light);
+  if (!context || !texture || !internals.Framebuffer)
+  {
+    vtkErrorMacro("No tint of light " << light << " to read back.");
+    return false;
+  }
+  int d[3];
+  internals.TintDimensions(d);
+  const vtkIdType sliceSize = static_cast<vtkIdType>(d[0]) * d[1];
+  std::vector<float> rgba(4 * sliceSize);
+  rgb.assign(3 * sliceSize * d[2], 0.0f);
+  vtkOpenGLState* state = context->GetState();
+  state->PushFramebufferBindings();
+  internals.Framebuffer->Bind();
+  for (int z = 0; z < d[2]; ++z)
+  {
+    internals.Framebuffer->RemoveColorAttachment(0);
+    internals.Framebuffer->AddColorAttachment(0, texture, z);
+    internals.Framebuffer->ActivateReadBuffer(0);
+    glReadPixels(0, 0, d[0], d[1], GL_RGBA, GL_FLOAT, rgba.data());
+    for (vtkIdType p = 0; p < sliceSize; ++p)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        rgb[3 * (z * sliceSize + p) + c] = rgba[4 * p + c];
+      }
+    }
+  }
+  internals.Framebuffer->RemoveColorAttachment(0);
+  state->PopFramebufferBindings();
+  return true;
 }
 
 //------------------------------------------------------------------------------

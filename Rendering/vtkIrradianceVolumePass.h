@@ -180,6 +180,24 @@ public:
   /// first Render() or after a failed one).
   const std::vector<mmv::LightSource>& GetComputedLights() const;
 
+  /**
+   * The tint table of a non-white transmission colour
+   * (vtkPreIntegrationTable::GetShadowTintTable, 4 floats per entry, the
+   * shadow table's size and range; call after SetInputs), or nullptr for
+   * grey materials (the default): no tint textures, no tint passes. A change
+   * recomputes every light. With a table, each light also gets its tint K
+   * (vtkMultiMaterialParameters.h) in an RGBA16F texture on the tint grid
+   * (mmv::TintDimension of the irradiance grid), by full shadow rays of the
+   * selective extinction (Shaders/mmvIrradianceTintFS.glsl), not diffused.
+   */
+  void SetTintTable(const float* tintTable);
+  bool IsTinted() const;
+  /// Light k's tint texture (nullptr when grey or before Render()).
+  vtkTextureObject* GetTintTexture(int light) const;
+  void GetTintDimensions(int dims[3]) const;
+  /// Light k's tint, 3 floats (r, g, b) per tint voxel, x fastest.
+  bool ReadBackTint(vtkOpenGLRenderWindow* context, int light, std::vector<float>& rgb);
+
   /// Runs the passes. Needs the context current. False (with an error) if
   /// inputs are missing or the context lacks what the passes need.
   bool Render(vtkOpenGLRenderWindow* context);

@@ -88,8 +88,10 @@ mmv::IrradianceResolution vtkMultiMaterialIrradianceStage::ChooseGrid(vtkRendere
     return resolution;
   }
   const int lights = static_cast<int>(this->Lights->size());
+  // A non-white transmission colour adds each light's tint to the budget.
+  const bool tinted = this->Materials && this->Materials->HasChromaticTransmission();
   resolution = mmv::ChooseIrradianceResolution(
-    dataDims, lights, this->Mapper->IrradianceMemoryMB, scale, pixelsPerVoxel);
+    dataDims, lights, this->Mapper->IrradianceMemoryMB, scale, pixelsPerVoxel, tinted);
   std::string boundProblem;
   const double bound =
     mmv::ValidIrradianceErrorBound(this->Mapper->IrradianceErrorBound, &boundProblem);
@@ -153,7 +155,8 @@ void vtkMultiMaterialIrradianceStage::ApplyProbe(vtkRenderer* ren, vtkVolume* vo
     image->GetDimensions(dataDims);
     resolution.Scale = probed;
     mmv::ComputeIrradianceDimensions(dataDims, static_cast<int>(this->Lights->size()),
-      this->Mapper->IrradianceMemoryMB, probed, resolution.Dimensions);
+      this->Mapper->IrradianceMemoryMB, probed, resolution.Dimensions,
+      this->Materials && this->Materials->HasChromaticTransmission());
     resolution.Reason = this->Probe->GetSummary();
   }
 }
@@ -274,6 +277,7 @@ bool vtkMultiMaterialIrradianceStage::ComputeOn(vtkIrradianceVolumePass* pass,
   pass->SetCutaway(cutaway);
   pass->SetInputs(grid, prefiltered, n, shadow->GetShadowOpacityTable(), shadowStep,
     opacityTable.data(), scatteringTable.data(), sources, version);
+  pass->SetTintTable(shadow->GetShadowTintTable()); // nullptr: grey, no tints
   if (!pass->Render(window))
   {
     vtkErrorWithObjectMacro(this->Mapper, "the irradiance volume could not be computed on the GPU");

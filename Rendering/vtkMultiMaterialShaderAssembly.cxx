@@ -18,6 +18,7 @@
 #include "mmvReflectionMarch.h"
 #include "mmvShading.h"
 #include "mmvShadowRay.h"
+#include "mmvTint.h"
 
 namespace mmv
 {
@@ -32,6 +33,7 @@ std::string VariantDefines(const ShaderVariant& variant)
   s += "#define MMV_USE_PREINTEGRATION " + std::string(variant.PreIntegration ? "1" : "0") + "\n";
   s += "#define MMV_USE_ANISOTROPY " + std::string(variant.Anisotropy ? "1" : "0") + "\n";
   s += "#define MMV_USE_EMISSION " + std::string(variant.Emission ? "1" : "0") + "\n";
+  s += "#define MMV_USE_RGB_IRRADIANCE " + std::string(variant.RGBIrradiance ? "1" : "0") + "\n";
   s += "#define MMV_ENVIRONMENT " + std::to_string(variant.Environment) + "\n";
   s += "#define MMV_REFLECTION_VISIBILITY " + std::to_string(variant.ReflectionVisibility) + "\n";
   return s;
@@ -61,6 +63,10 @@ std::vector<std::pair<std::string, std::string>> RayCastReplacements(const Shade
   if (variant.Emission)
   {
     declarations += mmvEmission;
+  }
+  if (variant.RGBIrradiance && variant.NumberOfLights > 0)
+  {
+    declarations += mmvTint;
   }
   // Before the reflection: mmvReflection.glsl draws the background gradient
   // with mmvShading.glsl's mmvEnvironment.

@@ -7,8 +7,9 @@
  * so a scene gets no code it does not need: no light loop without lights, no
  * environment lookup when every reflection coefficient is 0, no segment
  * tables' second fetch without pre-integration, no Henyey-Greenstein code
- * when every anisotropy g is 0 and no emission term when every emission is 0
- * (at those values both terms would leave the image unchanged).
+ * when every anisotropy g is 0, no emission term when every emission is 0
+ * and no RGB irradiance (tints) when every transmission colour is white (at
+ * those values the terms would leave the image unchanged).
  */
 #ifndef vtkMultiMaterialShaderAssembly_h
 #define vtkMultiMaterialShaderAssembly_h
@@ -29,6 +30,9 @@ struct ShaderVariant
   bool PreIntegration = true;
   bool Anisotropy = false; // some material has g != 0 (and there is a light)
   bool Emission = false;   // some material has e != 0
+  // Some material's transmission colour is not white (and there is a light):
+  // per-light tints (mmvTint.glsl, MMV_USE_RGB_IRRADIANCE).
+  bool RGBIrradiance = false;
   // With Reflection: mmv::EnvironmentKind and mmv::ReflectionVisibility.
   int Environment = 0;
   int ReflectionVisibility = 0;
@@ -40,7 +44,8 @@ struct ShaderVariant
   {
     return this->NumberOfLights == o.NumberOfLights && this->Reflection == o.Reflection &&
       this->PreIntegration == o.PreIntegration && this->Anisotropy == o.Anisotropy &&
-      this->Emission == o.Emission && this->Environment == o.Environment &&
+      this->Emission == o.Emission && this->RGBIrradiance == o.RGBIrradiance &&
+      this->Environment == o.Environment &&
       this->ReflectionVisibility == o.ReflectionVisibility &&
       this->ReflectionCutaway == o.ReflectionCutaway;
   }

@@ -17,6 +17,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 void vtkMultiMaterialShadingUniforms::SetGradientMap(
   const int dataDims[3], const int gradientTexels[3])
@@ -102,6 +103,32 @@ void vtkMultiMaterialShadingUniforms::Apply(vtkShaderProgram* program,
       radiance[k] = this->Lights[k].Radiance;
     }
     mmv::SetLightUniforms(program, sources.data(), radiance.data(), count, count);
+    if (this->Variant.RGBIrradiance)
+    {
+      // The tint grid shares the irradiance grid's end points: irradiance
+      // coordinate (j + 0.5) / M of point j = u (M - 1) goes to
+      // (u (M' - 1) + 0.5) / M' on the tint texture of M' points.
+      vtkTextureObject* grey = irradiance->GetIrradianceTexture(0);
+      vtkTextureObject* tint = irradiance->GetTintTexture(0);
+      const double m[3] = { static_cast<double>(grey->GetWidth()),
+        static_cast<double>(grey->GetHeight()), static_cast<double>(grey->GetDepth()) };
+      const double t[3] = { static_cast<double>(tint->GetWidth()),
+        static_cast<double>(tint->GetHeight()), static_cast<double>(tint->GetDepth()) };
+      float scale[3], bias[3];
+      for (int a = 0; a < 3; ++a)
+      {
+        const double r = m[a] > 1.0 ? (t[a] - 1.0) / (m[a] - 1.0) : 0.0;
+        scale[a] = static_cast<float>(m[a] > 1.0 ? m[a] * r / t[a] : 1.0);
+        bias[a] = static_cast<float>(m[a] > 1.0 ? (0.5 - 0.5 * r) / t[a] : 0.0);
+      }
+      program->SetUniform3f("mmv_tintScale", scale);
+      program->SetUniform3f("mmv_tintBias", bias);
+      for (int k = 0; k < count; ++k)
+      {
+        program->SetUniformi(("mmv_tint" + std::to_string(k)).c_str(),
+          irradiance->GetTintTexture(k)->GetTextureUnit());
+      }
+    }
   }
   if (this->Variant.Reflection && this->Reflection)
   {
@@ -138,5 +165,10 @@ void vtkMultiMaterialShadingUniforms::ActivateTextures(
     {
       texture->Deactivate();
     }
+  }
+  for (int k = 0; this->Variant.RGBIrradiance && k < this->Variant.NumberOfLights; ++k)
+  {
+    vtkTextureObject* tint = irradiance->GetTintTexture(k);
+    on ? tint->Activate() : tint->Deactivate();
   }
 }

@@ -487,6 +487,13 @@ void vtkMultiMaterialVolumeMapper::UpdateShading(
   variant.Anisotropy = variant.NumberOfLights > 0 &&
     (all || (in.Materials && in.Materials->HasNonZero(mmv::Anisotropy)));
   variant.Emission = all || (in.Materials && in.Materials->HasNonZero(mmv::Emission));
+  // Tints only where the pass computed them (a non-white transmission
+  // colour); not forced by CompileUnusedOpticalTerms: without the pass's
+  // tint textures there is nothing to bind.
+  vtkIrradianceVolumePass* pass = in.Irradiance.GetPass();
+  variant.RGBIrradiance = variant.NumberOfLights > 0 && in.Materials &&
+    in.Materials->HasChromaticTransmission() && pass &&
+    pass->GetTintTexture(variant.NumberOfLights - 1) != nullptr;
   if (variant.Reflection)
   {
     this->UpdateReflection(ren, worldToObject, range);

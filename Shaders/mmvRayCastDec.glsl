@@ -3,9 +3,10 @@
 // (vtkMultiMaterialShaderAssembly.cxx) prepends the prelude (texel layout,
 // light kinds), the defines MMV_NUMBER_OF_LIGHTS, MMV_IRRADIANCE_TEXTURES,
 // MMV_USE_REFLECTION, MMV_USE_PREINTEGRATION, MMV_USE_ANISOTROPY and
-// MMV_USE_EMISSION, the light uniforms (vtkMultiMaterialLightUniforms.h),
-// mmvLightModel.glsl, mmvPhaseFunction.glsl, mmvEmission.glsl and
-// mmvReflection.glsl when those are on, and mmvShading.glsl.
+// MMV_USE_EMISSION, MMV_USE_RGB_IRRADIANCE, the light uniforms
+// (vtkMultiMaterialLightUniforms.h), mmvLightModel.glsl, mmvPhaseFunction.glsl,
+// mmvEmission.glsl, mmvTint.glsl and mmvReflection.glsl when those are on,
+// and mmvShading.glsl.
 //
 // Data values are normalised to [0, 1] over the scalar range, the coordinate
 // of every table below.
@@ -127,6 +128,9 @@ vec3 mmvShadeSegment(vec3 texPos, float t, vec4 segment)
   irradiance0 = texture(mmv_irradiance0, irradianceCoord);
 #if MMV_IRRADIANCE_TEXTURES > 1
   irradiance1 = texture(mmv_irradiance1, irradianceCoord);
+#endif
+#if MMV_USE_RGB_IRRADIANCE
+  mmvFetchTints(irradianceCoord);
 #endif
 #endif
   float anisotropy = 0.0;

@@ -74,3 +74,47 @@ float mmvMarchTransmittance(vec3 start, vec3 indexDir, float end, float startVal
   }
   return transmittance;
 }
+
+#ifdef MMV_TINT
+uniform sampler2D tintTable; // I_tau per channel (rgb) of (t1, t2), bilinear
+
+vec3 mmvTintOpacity(float t1, float t2)
+{
+  vec2 x = clamp(vec2(t1, t2), 0.0, 1.0) * (tableSize - 1.0);
+  return texture(tintTable, (x + 0.5) / tableSize).rgb;
+}
+
+// The tint K over [0, end] (vtkMultiMaterialParameters.h): per channel the
+// transmittance of the selective extinction alone, marched as
+// mmvMarchTransmittance; stops once every channel is below
+// MMV_MIN_TRANSMITTANCE. Mirrors MarchTint() of
+// Filters/vtkIrradianceVolumeFilter.cxx.
+vec3 mmvMarchTint(vec3 start, vec3 indexDir, float end, float startValue)
+{
+  float h = stepLength;
+  int steps = int(floor(end / h + MMV_STEP_TOLERANCE));
+  float previous = startValue;
+  vec3 tint = vec3(1.0);
+  for (int n = 1; n <= steps; ++n)
+  {
+    if (max(tint.r, max(tint.g, tint.b)) < MMV_MIN_TRANSMITTANCE)
+    {
+      return tint;
+    }
+    float next = mmvSampleScalar(start + (float(n) * h) * indexDir);
+    vec3 alpha = mmvIsCut(start + ((float(n) - 0.5) * h) * indexDir)
+      ? vec3(0.0) : mmvTintOpacity(previous, next);
+    tint *= 1.0 - alpha;
+    previous = next;
+  }
+  float rest = end - float(steps) * h;
+  if (rest > MMV_REST_TOLERANCE * h && max(tint.r, max(tint.g, tint.b)) >= MMV_MIN_TRANSMITTANCE)
+  {
+    float next = mmvSampleScalar(start + end * indexDir);
+    vec3 alpha = mmvIsCut(start + (0.5 * (float(steps) * h + end)) * indexDir)
+      ? vec3(0.0) : mmvTintOpacity(previous, next);
+    tint *= pow(max(vec3(0.0), 1.0 - alpha), vec3(rest / h));
+  }
+  return tint;
+}
+#endif

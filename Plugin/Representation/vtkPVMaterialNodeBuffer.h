@@ -51,7 +51,9 @@ public:
         "MaterialNodes needs " << vtkMaterialTransferFunction::NodeStride
                                << " numbers per node (value, ambient, diffuse, specular, "
                                   "shininess, attenuation, scattering, reflection, anisotropy, "
-                                  "emission; or the older "
+                                  "emission, transmission r, g, b; or the older "
+                               << vtkMaterialTransferFunction::EmissionNodeStride
+                               << " without transmission, "
                                << vtkMaterialTransferFunction::AnisotropyNodeStride
                                << " without emission or "
                                << vtkMaterialTransferFunction::LegacyNodeStride

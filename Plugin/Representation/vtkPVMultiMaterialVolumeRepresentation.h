@@ -10,7 +10,7 @@
  * this class forwards the multi-material and sampling settings itself, in
  * UpdateMapperParameters().
  *
- * Materials: MaterialNodes (10 numbers per node, see
+ * Materials: MaterialNodes (13 numbers per node, see
  * vtkMaterialTransferFunction::SetNodes) or, when MaterialPreset names a
  * preset of vtkMaterialLibrary, that preset spread over the colour map's
  * range (the range ParaView keeps consistent on every rank). Invalid nodes
@@ -63,7 +63,7 @@ public:
   void SetMaterialNodeValue(int index, double value);
   ///@}
 
-  /// The nodes in use (10 numbers per node), presets included.
+  /// The nodes in use (13 numbers per node), presets included.
   vtkDoubleArray* GetAppliedMaterialNodes();
 
   ///@{

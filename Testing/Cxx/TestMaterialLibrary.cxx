@@ -149,13 +149,17 @@ TEST(MaterialLibrary, BuiltinSpotValues)
   // Numbers copied from Filters/Materials/*.json: a change there is caught.
   vtkNew<vtkMaterialLibrary> library;
   EXPECT_EQ(PresetOf(library, "metal"),
-    (std::vector<double>{ 0.1, 0.3, 0.9, 120.0, 1.0, 0.0, 0.6, 0.0, 0.0 }));
+    (std::vector<double>{ 0.1, 0.3, 0.9, 120.0, 1.0, 0.0, 0.6, 0.0, 0.0, 1.0, 1.0, 1.0 }));
   EXPECT_EQ(PresetOf(library, "skin"),
-    (std::vector<double>{ 0.25, 0.7, 0.3, 15.0, 0.5, 8.0, 0.0, 0.0, 0.0 }));
+    (std::vector<double>{ 0.25, 0.7, 0.3, 15.0, 0.5, 8.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0 }));
   EXPECT_EQ(PresetOf(library, "smoke")[mmv::Anisotropy], 0.6);
   EXPECT_EQ(PresetOf(library, "glow")[mmv::Emission], 2.0);
   EXPECT_EQ(PresetOf(library, "glass")[mmv::Shininess], 200.0);
   EXPECT_EQ(PresetOf(library, "glass")[mmv::Attenuation], 0.2);
+  // Glass casts shadows tinted by its transmission colour; the others grey.
+  EXPECT_EQ(PresetOf(library, "glass")[mmv::TransmissionR], 0.6);
+  EXPECT_EQ(PresetOf(library, "glass")[mmv::TransmissionB], 0.95);
+  EXPECT_EQ(PresetOf(library, "metal")[mmv::TransmissionG], 1.0);
   EXPECT_EQ(PresetOf(library, "leaf")[mmv::Scattering], 4.0);
   EXPECT_EQ(PresetOf(library, "bone")[mmv::Scattering], 1.0);
   EXPECT_EQ(PresetOf(library, "matte")[mmv::Specular], 0.0);
@@ -388,7 +392,7 @@ TEST(MaterialLibrary, ReadsASinglePresetFile)
   ASSERT_TRUE(library->ReadJSONFile(path.c_str()));
   EXPECT_EQ(library->GetNumberOfPresets(), 13);
   // Missing keys take the table defaults; a missing colour is white.
-  EXPECT_EQ(PresetOf(library, "wax"), (std::vector<double>{ 0.4, 0.7, 0.2, 20.0, 1.0, 12.0, 0.0, 0.0, 0.0 }));
+  EXPECT_EQ(PresetOf(library, "wax"), (std::vector<double>{ 0.4, 0.7, 0.2, 20.0, 1.0, 12.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0 }));
   EXPECT_EQ(ColorOf(library, "wax"), (std::vector<double>{ 1.0, 1.0, 1.0 }));
   std::remove(path.c_str());
 }

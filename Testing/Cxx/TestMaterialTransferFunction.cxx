@@ -44,8 +44,8 @@ std::vector<double> Evaluated(vtkMaterialTransferFunction* tf, double x)
 /// interpolated values can be compared exactly.
 void AddTwoNodes(vtkMaterialTransferFunction* tf)
 {
-  ASSERT_EQ(tf->AddNode(0.0, 0.0, 0.5, 1.0, 10.0, 0.0, 2.0, 0.25, -0.5, 1.0), 0);
-  ASSERT_EQ(tf->AddNode(10.0, 1.0, 0.25, 0.0, 50.0, 2.0, 6.0, 0.75, 0.5, 3.0), 1);
+  ASSERT_EQ(tf->AddNode(0.0, 0.0, 0.5, 1.0, 10.0, 0.0, 2.0, 0.25, -0.5, 1.0, 1.0, 0.5, 0.25), 0);
+  ASSERT_EQ(tf->AddNode(10.0, 1.0, 0.25, 0.0, 50.0, 2.0, 6.0, 0.75, 0.5, 3.0, 0.5, 1.0, 0.75), 1);
 }
 
 std::string TempPath(const std::string& name)
@@ -80,13 +80,15 @@ TEST(MaterialTransferFunction, InterpolatesLinearlyBetweenNodes)
   vtkNew<vtkMaterialTransferFunction> tf;
   AddTwoNodes(tf);
   const std::vector<double> mid = Evaluated(tf, 5.0);
-  const std::vector<double> expectedMid = { 0.5, 0.375, 0.5, 30.0, 1.0, 4.0, 0.5, 0.0, 2.0 };
+  const std::vector<double> expectedMid = { 0.5, 0.375, 0.5, 30.0, 1.0, 4.0, 0.5, 0.0, 2.0,
+    0.75, 0.75, 0.5 };
   for (int p = 0; p < P; ++p)
   {
     EXPECT_EQ(mid[p], expectedMid[p]) << "parameter " << mmv::MaterialParameterTable[p].Key;
   }
   const std::vector<double> quarter = Evaluated(tf, 2.5);
-  const std::vector<double> expectedQuarter = { 0.25, 0.4375, 0.75, 20.0, 0.5, 3.0, 0.375, -0.25, 1.5 };
+  const std::vector<double> expectedQuarter = { 0.25, 0.4375, 0.75, 20.0, 0.5, 3.0, 0.375, -0.25, 1.5,
+    0.875, 0.625, 0.375 };
   for (int p = 0; p < P; ++p)
   {
     EXPECT_EQ(quarter[p], expectedQuarter[p]) << "parameter " << mmv::MaterialParameterTable[p].Key;
@@ -114,8 +116,10 @@ TEST(MaterialTransferFunction, ClampsOutsideTheNodes)
 {
   vtkNew<vtkMaterialTransferFunction> tf;
   AddTwoNodes(tf);
-  const std::vector<double> first = { 0.0, 0.5, 1.0, 10.0, 0.0, 2.0, 0.25, -0.5, 1.0 };
-  const std::vector<double> last = { 1.0, 0.25, 0.0, 50.0, 2.0, 6.0, 0.75, 0.5, 3.0 };
+  const std::vector<double> first = { 0.0, 0.5, 1.0, 10.0, 0.0, 2.0, 0.25, -0.5, 1.0, 1.0, 0.5,
+    0.25 };
+  const std::vector<double> last = { 1.0, 0.25, 0.0, 50.0, 2.0, 6.0, 0.75, 0.5, 3.0, 0.5, 1.0,
+    0.75 };
   EXPECT_EQ(Evaluated(tf, -0.001), first);
   EXPECT_EQ(Evaluated(tf, -1.0e30), first);
   EXPECT_EQ(Evaluated(tf, -Inf), first);
@@ -130,8 +134,10 @@ TEST(MaterialTransferFunction, SingleNodeIsConstant)
 {
   vtkNew<vtkMaterialTransferFunction> tf;
   tf->AddNode(4.0, 0.1, 0.2, 0.3, 40.0, 0.5, 6.0, 0.7);
-  // The 8-argument AddNode scatters isotropically and does not glow: g = e = 0.
-  const std::vector<double> node = { 0.1, 0.2, 0.3, 40.0, 0.5, 6.0, 0.7, 0.0, 0.0 };
+  // The 8-argument AddNode scatters isotropically, does not glow and casts
+  // grey shadows: g = e = 0, T = (1, 1, 1).
+  const std::vector<double> node = { 0.1, 0.2, 0.3, 40.0, 0.5, 6.0, 0.7, 0.0, 0.0, 1.0, 1.0,
+    1.0 };
   EXPECT_EQ(Evaluated(tf, -100.0), node);
   EXPECT_EQ(Evaluated(tf, 4.0), node);
   EXPECT_EQ(Evaluated(tf, 100.0), node);
@@ -211,16 +217,16 @@ TEST(MaterialTransferFunction, SetNodesGetNodesRoundTrip)
   vtkNew<vtkMaterialTransferFunction> tf;
   // Out of order on purpose: SetNodes sorts.
   const std::vector<double> input = {
-    7.0, 0.7, 0.6, 0.5, 70.0, 1.7, 7.0, 0.07, 0.7, 7.5, //
-    -2.0, 0.2, 0.3, 0.4, 2.0, 0.2, 0.5, 0.02, -0.2, 0.0, //
-    3.0, 0.3, 0.4, 0.6, 30.0, 1.3, 3.0, 0.03, 0.3, 0.25, //
+    7.0, 0.7, 0.6, 0.5, 70.0, 1.7, 7.0, 0.07, 0.7, 7.5, 0.9, 0.8, 0.7, //
+    -2.0, 0.2, 0.3, 0.4, 2.0, 0.2, 0.5, 0.02, -0.2, 0.0, 1.0, 1.0, 1.0, //
+    3.0, 0.3, 0.4, 0.6, 30.0, 1.3, 3.0, 0.03, 0.3, 0.25, 0.0, 0.5, 1.0, //
   };
   ASSERT_TRUE(tf->SetNodes(static_cast<int>(input.size()), input.data()));
   ASSERT_EQ(tf->GetSize(), 3);
   const std::vector<double> expected = {
-    -2.0, 0.2, 0.3, 0.4, 2.0, 0.2, 0.5, 0.02, -0.2, 0.0, //
-    3.0, 0.3, 0.4, 0.6, 30.0, 1.3, 3.0, 0.03, 0.3, 0.25, //
-    7.0, 0.7, 0.6, 0.5, 70.0, 1.7, 7.0, 0.07, 0.7, 7.5, //
+    -2.0, 0.2, 0.3, 0.4, 2.0, 0.2, 0.5, 0.02, -0.2, 0.0, 1.0, 1.0, 1.0, //
+    3.0, 0.3, 0.4, 0.6, 30.0, 1.3, 3.0, 0.03, 0.3, 0.25, 0.0, 0.5, 1.0, //
+    7.0, 0.7, 0.6, 0.5, 70.0, 1.7, 7.0, 0.07, 0.7, 7.5, 0.9, 0.8, 0.7, //
   };
   EXPECT_EQ(AllNodes(tf), expected);
   for (int i = 0; i < 3; ++i)
@@ -244,8 +250,8 @@ TEST(MaterialTransferFunction, SetNodesDuplicateValuesLastWins)
 {
   vtkNew<vtkMaterialTransferFunction> tf;
   const std::vector<double> input = {
-    1.0, 0.1, 0.1, 0.1, 1.0, 0.1, 0.1, 0.1, 0.1, 0.1, //
-    1.0, 0.9, 0.9, 0.9, 9.0, 0.9, 0.9, 0.9, 0.9, 0.9, //
+    1.0, 0.1, 0.1, 0.1, 1.0, 0.1, 0.1, 0.1, 0.1, 0.1, 0.1, 0.1, 0.1, //
+    1.0, 0.9, 0.9, 0.9, 9.0, 0.9, 0.9, 0.9, 0.9, 0.9, 0.9, 0.9, 0.9, //
   };
   ASSERT_TRUE(tf->SetNodes(static_cast<int>(input.size()), input.data()));
   EXPECT_EQ(AllNodes(tf), std::vector<double>(input.begin() + Stride, input.end()));
@@ -272,7 +278,7 @@ TEST(MaterialTransferFunction, SetNodesRejectsInvalidInput)
   };
   for (int p = 0; p < P; ++p)
   {
-    std::vector<double> node = { 1, 0.1, 0.1, 0.1, 1, 0.1, 0.1, 0.1, 0.1, 0.1 };
+    std::vector<double> node = { 1, 0.1, 0.1, 0.1, 1, 0.1, 0.1, 0.1, 0.1, 0.1, 0.5, 0.5, 0.5 };
     node[1 + p] = std::nextafter(mmv::MaterialParameterTable[p].HardMax, Inf);
     cases.emplace_back(std::string(mmv::MaterialParameterTable[p].Key) + " above HardMax", node);
   }
@@ -406,7 +412,7 @@ TEST(MaterialTransferFunction, MTimeUnchangedByRejectedEditsAndQueries)
   // Queries do not count as edits either.
   double parameters[P];
   tf->Evaluate(3.0, parameters);
-  float table[7 * 4];
+  float table[P * 4];
   tf->GetTable(0.0, 1.0, 4, table);
   tf->ToJSON();
   EXPECT_EQ(tf->GetMTime(), mtime);
@@ -502,7 +508,7 @@ TEST(MaterialTransferFunction, GetMaximum)
   }
   AddTwoNodes(tf);
   tf->AddNode(4.0, 0.3, 0.9, 0.2, 100.0, 1.0, 12.0, 0.5);
-  const double expected[P] = { 1.0, 0.9, 1.0, 100.0, 2.0, 12.0, 0.75, 0.5, 3.0 };
+  const double expected[P] = { 1.0, 0.9, 1.0, 100.0, 2.0, 12.0, 0.75, 0.5, 3.0, 1.0, 1.0, 1.0 };
   for (int p = 0; p < P; ++p)
   {
     EXPECT_EQ(tf->GetMaximum(p), expected[p]) << mmv::MaterialParameterTable[p].Key;
@@ -525,7 +531,7 @@ TEST(MaterialTransferFunction, JSONRoundTripIsExact)
   // Values without short decimal forms: the round trip must not round them.
   tf->AddNode(0.1, 1.0 / 3.0, 0.7, 0.2, 20.0 / 7.0, 1.0, 0.0, 1.0e-300);
   tf->AddNode(-1234.5678, 0.0, 1.0 / 7.0, 999.9999999999, 1.0e4, 2.0 / 3.0, 0.1 + 0.2, 0.0);
-  tf->AddNode(1.0e12, 5e-324, 0.5, 0.5, 0.0, 1.0e3, 1.0e4, 0.125);
+  tf->AddNode(1.0e12, 5e-324, 0.5, 0.5, 0.0, 1.0e3, 1.0e4, 0.125, 0.0, 0.0, 1.0 / 3.0, 0.1, 1.0);
   const std::string json = tf->ToJSON();
   for (int p = 0; p < P; ++p)
   {
@@ -554,8 +560,8 @@ TEST(MaterialTransferFunction, JSONMissingParametersTakeDefaultsAndNodesAreSorte
     ]})"));
   ASSERT_EQ(tf->GetSize(), 2);
   const std::vector<double> expected = {
-    -1.0, 0.0, 0.7, 0.2, 80.0, 1.0, 0.0, 0.0, 0.0, 0.0, //
-    5.0, 0.2, 0.7, 0.2, 20.0, 1.0, 3.0, 0.0, 0.0, 0.0,  //
+    -1.0, 0.0, 0.7, 0.2, 80.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, //
+    5.0, 0.2, 0.7, 0.2, 20.0, 1.0, 3.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0,  //
   };
   EXPECT_EQ(AllNodes(tf), expected);
   // Integers are accepted as numbers.
@@ -749,8 +755,8 @@ TEST(MaterialTransferFunction, LegacyEightNumberNodesLoadWithIsotropicScattering
   mmvtest::ErrorCounter errors(tf);
   ASSERT_TRUE(tf->SetNodes(static_cast<int>(legacy.size()), legacy.data()));
   const std::vector<double> expected = {
-    -2.0, 0.2, 0.3, 0.4, 2.0, 0.2, 0.5, 0.02, 0.0, 0.0, //
-    3.0, 0.3, 0.4, 0.6, 30.0, 1.3, 3.0, 0.03, 0.0, 0.0, //
+    -2.0, 0.2, 0.3, 0.4, 2.0, 0.2, 0.5, 0.02, 0.0, 0.0, 1.0, 1.0, 1.0, //
+    3.0, 0.3, 0.4, 0.6, 30.0, 1.3, 3.0, 0.03, 0.0, 0.0, 1.0, 1.0, 1.0, //
   };
   EXPECT_EQ(AllNodes(tf), expected);
   EXPECT_EQ(errors.Errors(), 0);

@@ -477,26 +477,111 @@ TEST(OpticalModel, TermsCompiledInWithZeroValuesChangeNoPixel)
   EXPECT_GT(lit, static_cast<int>(with.size() / 10)) << "the ball must cover the image";
 }
 
+// Item 5's shortcut for selective absorption: no RGB irradiance while every
+// transmission colour is white. The tint declarations and fetches enter the
+// shader only with a non-white T and leave again; grey nodes written as 10
+// numbers or as 13 with T = (1, 1, 1) render the same bytes.
+TEST(OpticalModel, WhiteTransmissionComposesNoRGBIrradianceCode)
+{
+  CubeScene scene;
+  const std::string fetch = "void mmvFetchTints(";
+  scene.LightFrom(-1000.0);
+  const double ten[10] = { 1.0, 1.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 0.0, 0.0 };
+  ASSERT_TRUE(scene.Materials->SetNodes(10, ten));
+  vtkSmartPointer<vtkImageData> grey = scene.GPUImage();
+  std::string source = scene.Mapper->GetLastFragmentShaderSource();
+  ASSERT_TRUE(Has(source, "mmvShadeSegment")) << "not our shader";
+  EXPECT_TRUE(Has(source, "#define MMV_USE_RGB_IRRADIANCE 0"));
+  EXPECT_FALSE(Has(source, fetch));
+
+  scene.Materials->AddNode(1.0, 1.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0);
+  vtkSmartPointer<vtkImageData> white = scene.GPUImage();
+  EXPECT_FALSE(Has(scene.Mapper->GetLastFragmentShaderSource(), fetch));
+  EXPECT_EQ(MaxByteDifference(grey, white), 0);
+
+  scene.Materials->AddNode(1.0, 1.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.6, 0.3);
+  vtkSmartPointer<vtkImageData> tinted = scene.GPUImage();
+  source = scene.Mapper->GetLastFragmentShaderSource();
+  EXPECT_TRUE(Has(source, "#define MMV_USE_RGB_IRRADIANCE 1"));
+  EXPECT_TRUE(Has(source, fetch));
+  EXPECT_GT(MaxByteDifference(grey, tinted), 10) << "the tint must show";
+
+  scene.Materials->AddNode(1.0, 1.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0);
+  vtkSmartPointer<vtkImageData> again = scene.GPUImage();
+  EXPECT_FALSE(Has(scene.Mapper->GetLastFragmentShaderSource(), fetch));
+  EXPECT_EQ(MaxByteDifference(grey, again), 0);
+}
+
+// Selective absorption in the image: the cube lit from behind with ka = 1,
+// c_t = 1 and transmission colour T; channel lambda's extinction toward the
+// light is mu w_lambda (w = 1 - ln T), toward the camera mu, so the centre
+// pixel is c (exp(-mu D) - exp(-mu D w)) / (w - 1) (c mu D exp(-mu D) at
+// w = 1). The reference renderer (tint per sample) within 0.5 %, the GPU
+// (tint on every second irradiance point) within 2/255 + 2 %.
+TEST(OpticalModel, TintedBackLitCubeMatchesTheClosedForm)
+{
+  const double transmission[3] = { 1.0, 0.5, 0.2 };
+  CubeScene scene;
+  scene.Materials->AddNode(1.0, 1.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 0.0, 0.0, transmission[0],
+    transmission[1], transmission[2]);
+  scene.LightFrom(-1000.0);
+  double expected[3];
+  for (int c = 0; c < 3; ++c)
+  {
+    const double w = mmv::TransmissionWeight(transmission[c]);
+    expected[c] = CubeColor[c] *
+      (w > 1.0 ? (std::exp(-Mu * D) - std::exp(-Mu * D * w)) / (w - 1.0) : BackLit());
+  }
+  vtkNew<vtkMultiMaterialReferenceRenderer> reference;
+  vtkImageData* truth = reference->RenderToImage(scene.Renderer, scene.Volume);
+  ASSERT_NE(truth, nullptr);
+  const std::vector<double> r = Center(truth, "Radiance");
+  vtkSmartPointer<vtkImageData> gpu = scene.GPUImage();
+  ASSERT_TRUE(Has(scene.Mapper->GetLastFragmentShaderSource(), "#define MMV_USE_RGB_IRRADIANCE 1"));
+  const std::vector<double> p = Center(gpu);
+  for (int c = 0; c < 3; ++c)
+  {
+    std::cout << "tinted back-lit channel " << c << ": closed form " << expected[c]
+              << ", reference " << r[c] << ", GPU " << p[c] << "\n";
+    EXPECT_NEAR(r[c], expected[c], 0.005 * expected[c]) << "channel " << c;
+    EXPECT_NEAR(p[c], expected[c], 2.0 / 255.0 + 0.02 * expected[c]) << "channel " << c;
+  }
+  // The blue shadow is visibly deeper than the grey one (0.6 of it at most).
+  EXPECT_LT(expected[2] / CubeColor[2], 0.6 * BackLit());
+}
+
 TEST(OpticalModel, OlderNodeLayoutsLoadWithNewValuesAtDefaults)
 {
-  // 10 numbers a node now; 9 (before emission) and 8 (before anisotropy)
-  // still load, the missing values at their defaults (0).
+  // 13 numbers a node now; 10 (before the transmission colour), 9 (before
+  // emission) and 8 (before anisotropy) still load, the missing values at
+  // their defaults (T = 1: grey; g = e = 0).
   vtkNew<vtkMaterialTransferFunction> f;
   constexpr int Stride = vtkMaterialTransferFunction::NodeStride;
-  ASSERT_EQ(Stride, 10);
-  const std::vector<double> current = { 0.0, 0.2, 0.7, 0.2, 20.0, 1.0, 0.5, 0.1, 0.6, 2.0,
-    1.0, 0.3, 0.6, 0.1, 10.0, 2.0, 1.0, 0.0, -0.4, 0.5 };
-  ASSERT_TRUE(f->SetNodes(20, current.data()));
-  std::vector<double> back(20);
+  ASSERT_EQ(Stride, 13);
+  const std::vector<double> current = { 0.0, 0.2, 0.7, 0.2, 20.0, 1.0, 0.5, 0.1, 0.6, 2.0, 0.9,
+    0.5, 0.25, 1.0, 0.3, 0.6, 0.1, 10.0, 2.0, 1.0, 0.0, -0.4, 0.5, 0.0, 1.0, 0.5 };
+  ASSERT_TRUE(f->SetNodes(26, current.data()));
+  std::vector<double> back(26);
   f->GetNodes(back.data());
   EXPECT_EQ(back, current);
+
+  std::vector<double> expected = current;
+  for (int i : { 10, 11, 12, 23, 24, 25 })
+  {
+    expected[i] = 1.0;
+  }
+  const std::vector<double> ten = { 0.0, 0.2, 0.7, 0.2, 20.0, 1.0, 0.5, 0.1, 0.6, 2.0, 1.0, 0.3,
+    0.6, 0.1, 10.0, 2.0, 1.0, 0.0, -0.4, 0.5 };
+  ASSERT_TRUE(f->SetNodes(20, ten.data()));
+  f->GetNodes(back.data());
+  EXPECT_EQ(back, expected);
+  EXPECT_FALSE(f->HasChromaticTransmission());
 
   const std::vector<double> nine = { 0.0, 0.2, 0.7, 0.2, 20.0, 1.0, 0.5, 0.1, 0.6,
     1.0, 0.3, 0.6, 0.1, 10.0, 2.0, 1.0, 0.0, -0.4 };
   ASSERT_TRUE(f->SetNodes(18, nine.data()));
   f->GetNodes(back.data());
-  std::vector<double> expected = current;
-  expected[9] = expected[19] = 0.0;
+  expected[9] = expected[22] = 0.0;
   EXPECT_EQ(back, expected);
 
   // 40 numbers: 4 nodes of 10 or 5 nodes of 8. The legacy list's 9th number
@@ -516,14 +601,25 @@ TEST(OpticalModel, OlderNodeLayoutsLoadWithNewValuesAtDefaults)
   EXPECT_EQ(node[0], 40.0);
   EXPECT_EQ(node[1 + mmv::Anisotropy], 0.0);
   EXPECT_EQ(node[1 + mmv::Emission], 0.0);
-  // 90 numbers written by GetNodes (9 nodes of 10) stay 10 a node.
-  std::vector<double> ten;
-  for (int n = 0; n < 9; ++n)
+  EXPECT_EQ(node[1 + mmv::TransmissionR], 1.0);
+  EXPECT_EQ(node[1 + mmv::TransmissionB], 1.0);
+  // 130 numbers: 10 nodes of 13 or 13 nodes of 10. Written by GetNodes (13
+  // a node) they stay 13 a node; a 10-a-node list of 13 nodes reads as 10 (as
+  // 13 its 11th number, the next node's value 10, is an invalid T > 1).
+  std::vector<double> thirteen, tens;
+  for (int n = 0; n < 13; ++n)
   {
-    const std::vector<double> one = { 10.0 * n, 0.2, 0.7, 0.2, 20.0, 1.0, 0.5, 0.1, 0.3, 1.0 };
-    ten.insert(ten.end(), one.begin(), one.end());
+    const std::vector<double> one = { 10.0 * n, 0.2, 0.7, 0.2, 20.0, 1.0, 0.5, 0.1, 0.3, 1.0,
+      0.5, 0.5, 1.0 };
+    if (n < 10)
+    {
+      thirteen.insert(thirteen.end(), one.begin(), one.end());
+    }
+    tens.insert(tens.end(), one.begin(), one.begin() + 10);
   }
-  EXPECT_EQ(vtkMaterialTransferFunction::DetectNodeStride(90, ten.data()), Stride);
+  EXPECT_EQ(vtkMaterialTransferFunction::DetectNodeStride(130, thirteen.data()), Stride);
+  EXPECT_EQ(vtkMaterialTransferFunction::DetectNodeStride(130, tens.data()),
+    vtkMaterialTransferFunction::EmissionNodeStride);
   // The old AddNode overloads keep working, with the new values at 0.
   f->RemoveAllNodes();
   EXPECT_EQ(f->AddNode(5.0, 0.2, 0.7, 0.2, 20.0, 1.0, 0.5, 0.1), 0);
@@ -539,5 +635,9 @@ TEST(OpticalModel, OlderNodeLayoutsLoadWithNewValuesAtDefaults)
   EXPECT_EQ(errors.Errors(), 2);
   EXPECT_NE(errors.LastMessage().find("emission"), std::string::npos) << errors.LastMessage();
   EXPECT_EQ(f->GetSize(), 2);
+  // The 10-number AddNode is grey; the 13-number one takes a colour.
+  EXPECT_FALSE(f->HasChromaticTransmission());
+  EXPECT_EQ(f->AddNode(8.0, 0.2, 0.7, 0.2, 20.0, 1.0, 0.5, 0.1, 0.0, 0.0, 1.0, 0.5, 0.25), 2);
+  EXPECT_TRUE(f->HasChromaticTransmission());
 }
 } // namespace mmvtest

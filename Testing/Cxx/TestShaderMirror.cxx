@@ -15,6 +15,7 @@
 #include "mmvLightModel.h"
 #include "mmvPhaseFunction.h"
 #include "mmvShading.h"
+#include "mmvTint.h"
 #include "vtkMultiMaterialPhaseFunction.h"
 #include "vtkMultiMaterialShading.h"
 
@@ -48,6 +49,7 @@ mmv::ShaderVariant FullVariant(int lights = mmv::MaxLights)
   variant.Reflection = true;
   variant.Anisotropy = lights > 0;
   variant.Emission = true;
+  variant.RGBIrradiance = lights > 0;
   return variant;
 }
 
@@ -83,7 +85,8 @@ public:
     {
       fs += mmv::LightUniformDeclarations("MMV_NUMBER_OF_LIGHTS");
     }
-    fs += std::string(mmvLightModel) + mmvPhaseFunction + mmvEmission + mmvShading +
+    fs += std::string(mmvLightModel) + mmvPhaseFunction + mmvEmission +
+      (variant.RGBIrradiance && variant.NumberOfLights > 0 ? mmvTint : "") + mmvShading +
       "\nin vec2 texCoord;\n//VTK::Output::Dec\n" + body;
     vtkNew<vtkOpenGLFramebufferObject> fbo;
     fbo->SetContext(this->GL);
@@ -651,6 +654,7 @@ struct SegmentInputs
   glm::dvec3 Position, N, V, Environment;
   double Directional;
   double Irradiance[mmv::MaxLights];
+  glm::dvec3 Tint[mmv::MaxLights]; // each light's tint (mmvTint.glsl)
 };
 
 SegmentInputs PixelInputs(int i, int j)
@@ -669,6 +673,7 @@ SegmentInputs PixelInputs(int i, int j)
   for (int k = 0; k < mmv::MaxLights; ++k)
   {
     in.Irradiance[k] = (i + j + k) % 4 == 0 ? 0.0 : ((i * 7 + j * 3 + k * 5) % 11) / 10.0;
+    in.Tint[k] = glm::dvec3(1.0, ((i + k) % 5) / 4.0, ((j + 2 * k) % 3) / 2.0);
   }
   in.Environment = glm::dvec3(0.2, 0.5, 0.9) * (1.0 + (j % 2));
   return in;
@@ -696,6 +701,13 @@ void main()
     irradiance[k] = (i + j + k) % 4 == 0 ? 0.0 : float((i * 7 + j * 3 + k * 5) % 11) / 10.0;
   }
   vec3 environment = vec3(0.2, 0.5, 0.9) * (1.0 + float(j % 2));
+#if MMV_USE_RGB_IRRADIANCE
+  // Each light's tint, as mmvFetchTints would have read it.
+  for (int k = 0; k < MMV_NUMBER_OF_LIGHTS; ++k)
+  {
+    mmvSetLightTint(k, vec3(1.0, float((i + k) % 5) / 4.0, float((j + 2 * k) % 3) / 2.0));
+  }
+#endif
   vec3 c = mmvShadeSample(phong[m], optics[m].x, optics[m].y, optics[m].z, segment, position,
     n, v, directional, vec4(irradiance[0], irradiance[1], irradiance[2], irradiance[3]),
     vec4(irradiance[4], irradiance[5], irradiance[6], irradiance[7]), environment);
@@ -710,8 +722,8 @@ TEST(ShaderMirror, SegmentShadingMatchesTheReferenceRenderersFunction)
   // read its textures) against the CPU function the reference renderer
   // shades with: six materials (ambient only, sharp highlights, g = +-0.9,
   // reflection, emission), the lights of every kind through the light
-  // uniforms, with no light (ambient only), three lights (one irradiance
-  // texture) and MaxLights (two).
+  // uniforms, each tinted (RGB irradiance, mmvTint.glsl), with no light
+  // (ambient only), three lights (one irradiance texture) and MaxLights (two).
   ShaderRunner runner;
   ASSERT_NE(runner.GL, nullptr);
   std::vector<mmv::LightSource> lights = EveryKindOfLight();
@@ -757,9 +769,15 @@ TEST(ShaderMirror, SegmentShadingMatchesTheReferenceRenderersFunction)
         ASSERT_NEAR(px[3], (i + 0.5) / Size, 1e-6) << "pixel " << i << "," << j;
         const SegmentInputs in = PixelInputs(i, j);
         const glm::dvec3& optic = Optics[in.Material];
+        // A tinted light arrives with its radiance times its tint.
+        glm::dvec3 arriving[mmv::MaxLights];
+        for (int k = 0; k < count; ++k)
+        {
+          arriving[k] = radiance[k] * in.Tint[k];
+        }
         const glm::dvec3 cpu = mmv::mmvShadeSample(Phong[in.Material], optic.x, optic.y,
           optic.z, in.Segment, in.Position, in.N, in.V, in.Directional, lights.data(),
-          radiance.data(), in.Irradiance, count, in.Environment);
+          arriving, in.Irradiance, count, in.Environment);
         for (int c = 0; c < 3; ++c)
         {
           // float against double: the inputs' own rounding (~1e-7), pow() of

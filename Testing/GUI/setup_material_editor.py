@@ -37,7 +37,7 @@ def check_nodes(expected_count, preset_node=None, preset="metal", preset_expecte
     problems = []
     if display.MaterialPreset != material_preset:
         problems.append("MaterialPreset is %r, not %r" % (display.MaterialPreset, material_preset))
-    stride = 10  # value + 9 parameters
+    stride = 13  # value + 12 parameters
     if len(nodes) != stride * expected_count:
         problems.append("expected %d nodes, property holds %d numbers" % (expected_count, len(nodes)))
     values = nodes[0::stride]
@@ -140,7 +140,7 @@ def check_preset_add():
     import numpy
     display = GetDisplayProperties(wavelet, view)
     nodes = list(display.MaterialNodes)
-    stride = 10  # value + 9 parameters
+    stride = 13  # value + 12 parameters
     problems = []
     if display.MaterialPreset != "Custom":
         problems.append("MaterialPreset is %r, not Custom" % display.MaterialPreset)
@@ -192,9 +192,9 @@ def check_nan_edit(final=False):
     import math
     display = GetDisplayProperties(wavelet, view)
     nodes = list(display.MaterialNodes)
-    # Written back in today's layout: 10 numbers a node, emission 0.
-    expected = [60.0, 0.2, 0.5, 0.2, 20.0, 1.0, 0.0, 0.0, 0.0, 0.0,
-                200.0, 0.1, 0.3, 0.9, 120.0, 1.0, 0.0, 0.6, 0.0, 0.0]
+    # Written back in today's layout: 13 numbers a node, emission 0, grey.
+    expected = [60.0, 0.2, 0.5, 0.2, 20.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0,
+                200.0, 0.1, 0.3, 0.9, 120.0, 1.0, 0.0, 0.6, 0.0, 0.0, 1.0, 1.0, 1.0]
     problems = []
     if any(math.isnan(v) for v in nodes):
         problems.append("a NaN was written back")

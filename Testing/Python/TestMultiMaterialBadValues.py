@@ -15,8 +15,8 @@ mmv.load_plugin(args)
 checker = mmv.Checker()
 errors = mmv.ErrorCapture()
 
-GOOD = [37.0, 0.1, 0.8, 0.3, 20.0, 1.0, 0.5, 0.0, 0.0, 0.0,
-        277.0, 0.1, 0.8, 0.3, 20.0, 1.0, 0.5, 0.0, 0.0, 0.0]
+GOOD = [37.0, 0.1, 0.8, 0.3, 20.0, 1.0, 0.5, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0,
+        277.0, 0.1, 0.8, 0.3, 20.0, 1.0, 0.5, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0]
 
 view = mmv.make_view()
 rep = mmv.show_volume(mmv.make_volume(), view, preset="Custom")
@@ -36,7 +36,7 @@ def expect_rejected(what, message_part):
 
 
 rep.MaterialNodes = GOOD[:-1]
-expect_rejected("19 numbers", "10 numbers per node")
+expect_rejected("25 numbers", "13 numbers per node")
 
 too_anisotropic = list(GOOD)
 too_anisotropic[8] = 1.0
@@ -53,23 +53,40 @@ negative[5] = -1.0
 rep.MaterialNodes = negative
 expect_rejected("negative attenuation", "ERROR")
 
+for channel in (10, 11, 12):
+    for bad, what in ((1.5, "above 1"), (-0.25, "negative")):
+        tinted = list(GOOD)
+        tinted[channel] = bad
+        rep.MaterialNodes = tinted
+        expect_rejected("transmission %d %s" % (channel - 10, what), "transmission_")
+
 rep.MaterialPreset = "unobtainium"
 expect_rejected("unknown preset", "Unknown material preset")
 
 # A good list afterwards is taken again.
-rep.MaterialNodes = GOOD[:10]
+rep.MaterialNodes = GOOD[:13]
 mmv.render_image(view, os.path.join(args.temp_dir, "bad_recovered.png"))
-checker.check(mmv.info(rep, "AppliedMaterialNodes") == GOOD[:10], "a valid list is accepted again")
+checker.check(mmv.info(rep, "AppliedMaterialNodes") == GOOD[:13], "a valid list is accepted again")
 
 # The layout before anisotropy (8 numbers a node) still loads, with g = 0, e = 0.
-rep.MaterialNodes = GOOD[:8] + GOOD[10:18]
+rep.MaterialNodes = GOOD[:8] + GOOD[13:21]
 mmv.render_image(view, os.path.join(args.temp_dir, "bad_legacy.png"))
 checker.check(mmv.info(rep, "AppliedMaterialNodes") == GOOD, "8-number nodes load with g = 0")
 
 # The layout before emission (9 numbers a node) still loads, with e = 0.
-rep.MaterialNodes = GOOD[:9] + GOOD[10:19]
+rep.MaterialNodes = GOOD[:9] + GOOD[13:22]
 mmv.render_image(view, os.path.join(args.temp_dir, "bad_legacy9.png"))
 checker.check(mmv.info(rep, "AppliedMaterialNodes") == GOOD, "9-number nodes load with e = 0")
+
+# The layout before the transmission colour (10 numbers a node) still loads,
+# grey (T = 1, 1, 1), and renders exactly as the 13-number list.
+rep.MaterialNodes = GOOD[:10] + GOOD[13:23]
+legacy10 = mmv.render_image(view, os.path.join(args.temp_dir, "bad_legacy10.png"))
+checker.check(mmv.info(rep, "AppliedMaterialNodes") == GOOD, "10-number nodes load grey")
+rep.MaterialNodes = GOOD
+current = mmv.render_image(view, os.path.join(args.temp_dir, "bad_current13.png"))
+checker.check(mmv.mean_difference(legacy10, current) == 0.0,
+              "10- and 13-number grey nodes render the same image")
 checker.check(errors.take_errors() == "", "no further errors")
 
 # Out-of-range light and resolution values typed into the panel (issue 12):

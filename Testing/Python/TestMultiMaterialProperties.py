@@ -89,8 +89,8 @@ changed(base, metal, "MaterialPreset bone -> metal")
 rep.MaterialPreset = "bone"
 
 # MaterialNodes (used once the preset is "Custom").
-rep.MaterialNodes = [37.0, 0.1, 0.9, 0.0, 10.0, 1.0, 0.0, 0.0, 0.0, 0.0,
-                     277.0, 0.1, 0.9, 0.0, 10.0, 1.0, 0.0, 0.0, 0.5, 0.0]
+rep.MaterialNodes = [37.0, 0.1, 0.9, 0.0, 10.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0,
+                     277.0, 0.1, 0.9, 0.0, 10.0, 1.0, 0.0, 0.0, 0.5, 0.0, 1.0, 1.0, 1.0]
 rep.MaterialPreset = "Custom"
 custom = render()
 changed(base, custom, "MaterialNodes")

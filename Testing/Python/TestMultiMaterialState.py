@@ -11,9 +11,9 @@ args = mmv.parse_args()
 mmv.load_plugin(args)
 checker = mmv.Checker()
 
-NODES = [40.0, 0.15, 0.7, 0.35, 42.0, 0.9, 0.25, 0.05, -0.25, 0.0,
-         123.456789012345, 0.2, 0.6, 0.1, 7.5, 1.25, 0.5, 0.0, 0.0, 0.375,
-         277.0, 0.05, 0.95, 0.6, 80.0, 2.0, 0.0, 0.3, 0.75, 0.0]
+NODES = [40.0, 0.15, 0.7, 0.35, 42.0, 0.9, 0.25, 0.05, -0.25, 0.0, 1.0, 1.0, 1.0,
+         123.456789012345, 0.2, 0.6, 0.1, 7.5, 1.25, 0.5, 0.0, 0.0, 0.375, 1.0, 1.0, 1.0,
+         277.0, 0.05, 0.95, 0.6, 80.0, 2.0, 0.0, 0.3, 0.75, 0.0, 1.0, 1.0, 1.0]
 SETTINGS = {"MaterialPreset": "Custom", "IrradianceMemoryMB": 12.5, "IrradianceScale": 0.5,
             "MultipleScattering": 0, "PreIntegration": 0, "PointLightRadius": 2.5,
             "AutoAdjustSampleDistances": 0, "SampleDistance": 0.75}

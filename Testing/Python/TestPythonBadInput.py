@@ -37,7 +37,7 @@ class BadInputTest(unittest.TestCase):
         self.assertEqual(len(errors.take()), 4)
         self.assertEqual(f.GetSize(), 1)
         self.assertEqual(f.GetMTime(), mtime)
-        self.assertFalse(f.GetNode(7, [0.0] * 10))
+        self.assertFalse(f.GetNode(7, [0.0] * 13))
 
     def test_mismatched_images_are_errors(self):
         metrics = m.vtkImageErrorMetrics()

@@ -7,21 +7,22 @@ import unittest
 import multimaterialvolume as m
 
 # value, ka, kd, ks, shininess, attenuation, scattering, reflection, anisotropy,
-# emission
-LOW = [10.0, 0.1, 0.8, 0.2, 20.0, 1.0, 0.5, 0.3, 0.2, 0.0]
-HIGH = [30.0, 0.3, 0.4, 0.6, 40.0, 2.0, 1.5, 0.1, -0.2, 2.5]
+# emission, transmission r, g, b
+LOW = [10.0, 0.1, 0.8, 0.2, 20.0, 1.0, 0.5, 0.3, 0.2, 0.0, 1.0, 1.0, 1.0]
+HIGH = [30.0, 0.3, 0.4, 0.6, 40.0, 2.0, 1.5, 0.1, -0.2, 2.5, 0.9, 0.5, 0.25]
 
 
 class MaterialTransferFunctionTest(unittest.TestCase):
     def setUp(self):
         self.f = m.vtkMaterialTransferFunction()
         self.assertEqual(self.f.AddNode(*HIGH), 0)
-        self.assertEqual(self.f.AddNode(*LOW), 0)  # index in value order
+        # The 10-number AddNode (before the transmission colour) makes a grey node.
+        self.assertEqual(self.f.AddNode(*LOW[:10]), 0)  # index in value order
 
     def test_nodes_read_back_as_set(self):
         self.assertEqual(self.f.GetSize(), 2)
         for index, expected in enumerate((LOW, HIGH)):
-            node = [0.0] * 10
+            node = [0.0] * 13
             self.assertTrue(self.f.GetNode(index, node))
             self.assertEqual(node, expected)
         value_range = [0.0, 0.0]
@@ -30,14 +31,14 @@ class MaterialTransferFunctionTest(unittest.TestCase):
 
     def test_evaluate_interpolates_linearly_and_clamps(self):
         for value, weight in ((10.0, 0.0), (15.0, 0.25), (20.0, 0.5), (30.0, 1.0)):
-            parameters = [0.0] * 9
+            parameters = [0.0] * 12
             self.f.Evaluate(value, parameters)
-            for p in range(9):
+            for p in range(12):
                 expected = (1.0 - weight) * LOW[p + 1] + weight * HIGH[p + 1]
                 self.assertAlmostEqual(parameters[p], expected, places=12,
                                        msg="value %g parameter %d" % (value, p))
                 self.assertAlmostEqual(self.f.EvaluateParameter(value, p), expected, places=12)
-        below, above = [0.0] * 9, [0.0] * 9
+        below, above = [0.0] * 12, [0.0] * 12
         self.f.Evaluate(-100.0, below)
         self.f.Evaluate(1000.0, above)
         self.assertEqual(below, LOW[1:])
@@ -47,7 +48,7 @@ class MaterialTransferFunctionTest(unittest.TestCase):
         copy = m.vtkMaterialTransferFunction()
         self.assertTrue(copy.FromJSON(self.f.ToJSON()))
         self.assertEqual(copy.GetSize(), 2)
-        node = [0.0] * 10
+        node = [0.0] * 13
         copy.GetNode(1, node)
         self.assertEqual(node, HIGH)
 
@@ -67,21 +68,21 @@ class MaterialLibraryTest(unittest.TestCase):
         for name in names:
             with self.subTest(preset=name):
                 self.assertTrue(library.HasPreset(name))
-                preset = [0.0] * 9
+                preset = [0.0] * 12
                 self.assertTrue(library.GetPreset(name, preset))
                 self.assertTrue(f.ApplyPreset(name, 0.0, 100.0))
                 for value in (0.0, 37.5, 100.0):
-                    parameters = [0.0] * 9
+                    parameters = [0.0] * 12
                     f.Evaluate(value, parameters)
                     self.assertEqual(parameters, preset)
 
     def test_added_preset_reads_back(self):
         library = m.vtkMaterialLibrary()
         count = library.GetNumberOfPresets()
-        parameters = [0.2, 0.6, 0.3, 12.0, 1.25, 0.5, 0.05, 0.1, 1.5]
+        parameters = [0.2, 0.6, 0.3, 12.0, 1.25, 0.5, 0.05, 0.1, 1.5, 0.5, 0.75, 1.0]
         self.assertTrue(library.AddPreset("python test", parameters, [0.25, 0.5, 0.75]))
         self.assertEqual(library.GetNumberOfPresets(), count + 1)
-        preset, rgb = [0.0] * 9, [0.0] * 3
+        preset, rgb = [0.0] * 12, [0.0] * 3
         self.assertTrue(library.GetPreset("python test", preset))
         self.assertTrue(library.GetPresetColor("python test", rgb))
         self.assertEqual(preset, parameters)
@@ -98,11 +99,11 @@ class PhysicalMediumNodeTest(unittest.TestCase):
         # 0.25 per voxel (Filters/vtkMultiMaterialPhysicalMedium.h), stored
         # with 6 significant digits.
         node = m.physical_medium_node(600.0, 0.9, 0.8, 0.25)
-        self.assertEqual(len(node), 10)
+        self.assertEqual(len(node), 13)
         self.assertEqual(node[0], 600.0)
-        preset = [0.0] * 9
+        preset = [0.0] * 12
         self.assertTrue(m.vtkMaterialLibrary().GetPreset("tissue", preset))
-        for p in range(9):
+        for p in range(12):
             self.assertAlmostEqual(node[p + 1], preset[p], delta=1e-5 * abs(preset[p]) + 1e-12,
                                    msg="parameter %d" % p)
 

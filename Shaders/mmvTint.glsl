@@ -1,0 +1,75 @@
+// The tint of each light's irradiance (a non-white transmission colour,
+// vtkMultiMaterialParameters.h): light k arrives at a sample with its grey
+// irradiance and the radiance mmv_lightRadiance[k] times its tint K (per
+// channel, from its RGBA16F texture on the tint grid). Only in the
+// MMV_USE_RGB_IRRADIANCE variant, before mmvShading.glsl; mmvShadeSegment
+// (mmvRayCastDec.glsl) fills the tinted radiances by mmvFetchTints before it
+// shades. The reference renderer passes the same product to mmvShadeSample
+// as the light's radiance.
+
+uniform vec3 mmv_tintScale; // irradiance texture coordinate -> tint texture coordinate
+uniform vec3 mmv_tintBias;
+uniform sampler3D mmv_tint0;
+#if MMV_NUMBER_OF_LIGHTS > 1
+uniform sampler3D mmv_tint1;
+#endif
+#if MMV_NUMBER_OF_LIGHTS > 2
+uniform sampler3D mmv_tint2;
+#endif
+#if MMV_NUMBER_OF_LIGHTS > 3
+uniform sampler3D mmv_tint3;
+#endif
+#if MMV_NUMBER_OF_LIGHTS > 4
+uniform sampler3D mmv_tint4;
+#endif
+#if MMV_NUMBER_OF_LIGHTS > 5
+uniform sampler3D mmv_tint5;
+#endif
+#if MMV_NUMBER_OF_LIGHTS > 6
+uniform sampler3D mmv_tint6;
+#endif
+#if MMV_NUMBER_OF_LIGHTS > 7
+uniform sampler3D mmv_tint7;
+#endif
+
+// Each light's radiance as it arrives at the current sample.
+vec3 mmv_tintedRadiance[MMV_NUMBER_OF_LIGHTS];
+
+void mmvSetLightTint(int k, vec3 tint)
+{
+  mmv_tintedRadiance[k] = mmv_lightRadiance[k] * tint;
+}
+
+// Separate samplers, not an array: GLSL 1.50 indexes sampler arrays only by
+// constant expressions.
+void mmvFetchTints(vec3 irradianceCoord)
+{
+  vec3 c = irradianceCoord * mmv_tintScale + mmv_tintBias;
+  mmvSetLightTint(0, texture(mmv_tint0, c).rgb);
+#if MMV_NUMBER_OF_LIGHTS > 1
+  mmvSetLightTint(1, texture(mmv_tint1, c).rgb);
+#endif
+#if MMV_NUMBER_OF_LIGHTS > 2
+  mmvSetLightTint(2, texture(mmv_tint2, c).rgb);
+#endif
+#if MMV_NUMBER_OF_LIGHTS > 3
+  mmvSetLightTint(3, texture(mmv_tint3, c).rgb);
+#endif
+#if MMV_NUMBER_OF_LIGHTS > 4
+  mmvSetLightTint(4, texture(mmv_tint4, c).rgb);
+#endif
+#if MMV_NUMBER_OF_LIGHTS > 5
+  mmvSetLightTint(5, texture(mmv_tint5, c).rgb);
+#endif
+#if MMV_NUMBER_OF_LIGHTS > 6
+  mmvSetLightTint(6, texture(mmv_tint6, c).rgb);
+#endif
+#if MMV_NUMBER_OF_LIGHTS > 7
+  mmvSetLightTint(7, texture(mmv_tint7, c).rgb);
+#endif
+}
+
+// From here on (mmvShading.glsl's light loop) a light's radiance is the one
+// that arrives through the tinted medium: mmvShading.glsl, shared by every
+// variant, needs no RGB code of its own.
+#define mmv_lightRadiance mmv_tintedRadiance
