@@ -253,6 +253,8 @@ struct Shaded
   int Warnings = 0;
   int Errors = 0;
   int Bricks[3] = { 0, 0, 0 };
+  std::string Source;      // the last fragment shader
+  std::string LastMessage; // the last warning or error
 };
 
 // Renders `input` (the plate and floor) lit from above, after `setup` had the
@@ -290,6 +292,8 @@ Shaded RenderPlateAndFloorWith(
   result.Active = mapper->GetMultiMaterialActive();
   result.Warnings = counter.Warnings();
   result.Errors = counter.Errors();
+  result.Source = mapper->GetLastFragmentShaderSource();
+  result.LastMessage = counter.LastMessage();
   return result;
 }
 
@@ -356,6 +360,54 @@ TEST(VolumeBricking, BrickBudgetBricksLargeTextures)
 }
 
 //------------------------------------------------------------------------------
+namespace
+{
+// The global volume of `image` as one piece (what mmv::ExchangeGlobalPrefilter
+// makes of one rank's data).
+vtkSmartPointer<vtkGlobalPrefilteredVolume> GlobalVolumeOf(vtkImageData* image)
+{
+  auto global = vtkSmartPointer<vtkGlobalPrefilteredVolume>::New();
+  double summary[vtkGlobalPrefilteredVolume::SummarySize];
+  vtkGlobalPrefilteredVolume::SummarizePiece(image, image->GetPointData()->GetScalars(), summary);
+  if (global->SetGeometry(summary, 64.0, 1, 1.0, 128 * 128 * 128))
+  {
+    std::vector<float> sums;
+    global->AccumulatePiece(image, image->GetPointData()->GetScalars(), sums);
+    global->SetReducedSums(sums);
+  }
+  return global;
+}
+}
+
+TEST(VolumeBricking, TintedShadowsAreGreyWithTheGlobalVolumeAndSaySo)
+{
+  // The global volume carries grey extinction only: with it, a transmission
+  // colour must not tint shadows from this piece's data alone (they would
+  // stop at the rank boundary), and the user is told once.
+  auto volume = mmvtest::MakeVolume(33, PlateAndFloor);
+  vtkSmartPointer<vtkGlobalPrefilteredVolume> global = GlobalVolumeOf(volume);
+  ASSERT_TRUE(global->GetValid());
+  auto tinted = [&](vtkGlobalPrefilteredVolume* g) {
+    return RenderPlateAndFloorWith(volume, [&](vtkMultiMaterialVolumeMapper* m) {
+      m->SetIrradianceScale(1.0);
+      m->GetMaterialTransferFunction()->RemoveAllNodes();
+      m->GetMaterialTransferFunction()->AddNode(
+        50.0, 0.2, 0.7, 0.3, 20.0, 1.0, 0.3, 0.0, 0.0, 0.0, 1.0, 0.6, 0.3);
+      m->SetGlobalPrefilteredVolume(g);
+    });
+  };
+  const Shaded alone = tinted(nullptr);
+  EXPECT_TRUE(alone.Active);
+  EXPECT_NE(alone.Source.find("#define MMV_USE_RGB_IRRADIANCE 1"), std::string::npos);
+  EXPECT_EQ(alone.Warnings, 0) << alone.LastMessage;
+  const Shaded pieces = tinted(global);
+  EXPECT_TRUE(pieces.Active);
+  EXPECT_NE(pieces.Source.find("#define MMV_USE_RGB_IRRADIANCE 0"), std::string::npos);
+  EXPECT_EQ(pieces.Warnings, 1);
+  EXPECT_NE(pieces.LastMessage.find("tinted shadows"), std::string::npos) << pieces.LastMessage;
+  EXPECT_EQ(pieces.Errors, 0);
+}
+
 TEST(VolumeBricking, PieceLitFromTheGlobalVolumeShowsTheOtherPiecesShadow)
 {
   // The plate and floor split as two MPI ranks would split them (y 0..14 and
@@ -420,16 +472,8 @@ TEST(VolumeBricking, PieceLitFromTheGlobalVolumeShowsTheOtherPiecesShadow)
   // The reference: the floor piece lit from a global volume made of the
   // whole volume as one piece. (The whole volume cropped to the floor piece
   // was the reference before cutaways: cropped parts now cast no shadow.)
-  vtkNew<vtkGlobalPrefilteredVolume> single;
-  {
-    double summary[vtkGlobalPrefilteredVolume::SummarySize];
-    vtkGlobalPrefilteredVolume::SummarizePiece(whole, whole->GetPointData()->GetScalars(), summary);
-    ASSERT_TRUE(single->SetGeometry(summary, 64.0, 1, 1.0, 128 * 128 * 128));
-    std::vector<float> sums;
-    single->AccumulatePiece(whole, whole->GetPointData()->GetScalars(), sums);
-    single->SetReducedSums(sums);
-    ASSERT_TRUE(single->GetValid());
-  }
+  vtkSmartPointer<vtkGlobalPrefilteredVolume> single = GlobalVolumeOf(whole);
+  ASSERT_TRUE(single->GetValid());
   const auto cropped = render(floorPiece, single);
   const auto withGlobal = render(floorPiece, global);
   const auto alone = render(floorPiece, nullptr);
