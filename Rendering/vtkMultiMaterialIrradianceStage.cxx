@@ -277,17 +277,9 @@ bool vtkMultiMaterialIrradianceStage::ComputeOn(vtkIrradianceVolumePass* pass,
   pass->SetCutaway(cutaway);
   pass->SetInputs(grid, prefiltered, n, shadow->GetShadowOpacityTable(), shadowStep,
     opacityTable.data(), scatteringTable.data(), sources, version);
-  // The global pre-filtered volume of a volume in pieces (MPI) carries grey
-  // extinction only, and the tint marches this rank's data: tinted shadows
-  // would stop at the rank boundary, so pieces keep grey shadows instead.
-  vtkPreIntegrationTable* tint = shadow->GetShadowTintTable() ? shadow : nullptr;
-  if (tint && this->Global)
-  {
-    this->Mapper->WarnOnce("tinted shadows (a transmission colour) are grey in a volume split "
-                           "over ranks: the global shadows carry no colour yet");
-    tint = nullptr;
-  }
-  pass->SetTintTable(tint ? tint->GetShadowTintTable() : nullptr); // nullptr: grey, no tints
+  // Under MPI the tint marches the global pre-filtered values, as the grey
+  // shadows do, so tinted shadows cross the ranks too.
+  pass->SetTintTable(shadow->GetShadowTintTable()); // nullptr: grey, no tints
   if (!pass->Render(window))
   {
     vtkErrorWithObjectMacro(this->Mapper, "the irradiance volume could not be computed on the GPU");

@@ -8,7 +8,8 @@ shadow disappeared.
 With --blocks, every rank's piece is split in two image partitions (a
 vtkPartitionedDataSet, as readers of multiblock image data produce): the
 representation merges them, and the image must equal the -np 1 reference of
-the plain pieces."""
+the plain pieces. With --tinted, the material has a transmission colour
+(tinted shadows): -np 1 writes its own reference, -np 3 must equal it."""
 
 import argparse
 import math
@@ -25,7 +26,10 @@ import mmv_testing as mmv
 args = mmv.parse_args()
 parser = argparse.ArgumentParser()
 parser.add_argument("--blocks", action="store_true")
-split_into_blocks = parser.parse_known_args()[0].blocks
+parser.add_argument("--tinted", action="store_true")
+options = parser.parse_known_args()[0]
+split_into_blocks = options.blocks
+tinted = options.tinted
 simple.LoadPlugin(args.plugin, remote=True)
 checker = mmv.Checker()
 errors = mmv.ErrorCapture()
@@ -102,7 +106,14 @@ def show(expression):
     lut.AutomaticRescaleRangeMode = "Never"
     pwf.AllowDuplicateScalars = 1
     rep.ScalarOpacityUnitDistance = 1.0
-    rep.MaterialPreset = "matte"
+    if tinted:
+        # matte's shading with a blue-green transmission colour (13 numbers a
+        # node: value, ka, kd, ks, shininess, c_t, s, r, g, e, T rgb).
+        rep.MaterialPreset = "Custom"
+        node = [0.2, 0.7, 0.1, 10.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.6, 0.85, 0.95]
+        rep.MaterialNodes = [0.0] + node + [200.0] + node
+    else:
+        rep.MaterialPreset = "matte"
     view.CameraPosition = [55.0, -70.0, 30.0]
     view.CameraFocalPoint = [0.0, 0.0, -4.0]
     view.CameraViewUp = [0.0, 0.0, 1.0]
@@ -111,8 +122,8 @@ def show(expression):
 
 
 rep = show("200*(%s+%s)" % (PLATE, FLOOR))
-path = os.path.join(args.temp_dir, "PVMultiMaterialMPIShadows%s_%d.png"
-                    % ("Blocks" if split_into_blocks else "", ranks))
+variant = "Blocks" if split_into_blocks else ("Tinted" if tinted else "")
+path = os.path.join(args.temp_dir, "PVMultiMaterialMPIShadows%s_%d.png" % (variant, ranks))
 image = mmv.render_image(view, path)
 checker.check(mmv.check_not_blank(image, "plate and floor"), "the volume is visible")
 checker.check(mmv.info(rep, "MultiMaterialActive") == 1, "rank 0 shaded with materials")
@@ -125,7 +136,8 @@ def psnr(a, b):
     return float("inf") if mse == 0.0 else 10.0 * math.log10(255.0 ** 2 / mse)
 
 
-reference = os.path.join(args.temp_dir, "PVMultiMaterialMPIShadows_1.png")
+reference = os.path.join(args.temp_dir, "PVMultiMaterialMPIShadows%s_1.png"
+                         % ("Tinted" if tinted else ""))
 if ranks == 1 and not split_into_blocks:
     # The shadow is there to be kept: without the plate the floor is brighter.
     show("200*(%s)" % FLOOR)
@@ -137,7 +149,7 @@ else:
     checker.check(os.path.exists(reference), "the -np 1 reference exists (%s)" % reference)
     if os.path.exists(reference):
         value = psnr(image, mmv.read_png(reference))
-        what = "-np %d%s" % (ranks, " in blocks" if split_into_blocks else "")
+        what = "-np %d%s" % (ranks, {"Blocks": " in blocks", "Tinted": " tinted"}.get(variant, ""))
         print("%s vs -np 1: PSNR %.2f dB" % (what, value))
         checker.check(value >= 40.0, "%s equals -np 1 (PSNR %.2f dB >= 40)" % (what, value))
 checker.check(errors.take_errors() == "", "no VTK errors on rank 0")
