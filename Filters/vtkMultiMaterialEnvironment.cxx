@@ -45,6 +45,19 @@ glm::dvec3 Cross(const double* a, const double* b)
 }
 
 //------------------------------------------------------------------------------
+void vtkMultiMaterialEnvironment::SetBackgroundOverride(const double bottom[3], const double top[3])
+{
+  this->Override = true;
+  this->OverrideBottom = glm::dvec3(bottom[0], bottom[1], bottom[2]);
+  this->OverrideTop = glm::dvec3(top[0], top[1], top[2]);
+}
+
+void vtkMultiMaterialEnvironment::ClearBackgroundOverride()
+{
+  this->Override = false;
+}
+
+//------------------------------------------------------------------------------
 void vtkMultiMaterialEnvironment::Update(vtkRenderer* ren, vtkMatrix4x4* objectToWorld,
   int source, std::vector<std::string>* problems)
 {
@@ -53,8 +66,8 @@ void vtkMultiMaterialEnvironment::Update(vtkRenderer* ren, vtkMatrix4x4* objectT
   this->ViewUp = mmv::ViewUpInObject(ren->GetActiveCamera(), worldToObject);
   const double* bottom = ren->GetBackground();
   const double* top = ren->GetGradientBackground() ? ren->GetBackground2() : bottom;
-  this->Bottom = glm::dvec3(bottom[0], bottom[1], bottom[2]);
-  this->Top = glm::dvec3(top[0], top[1], top[2]);
+  this->Bottom = this->Override ? this->OverrideBottom : glm::dvec3(bottom[0], bottom[1], bottom[2]);
+  this->Top = this->Override ? this->OverrideTop : glm::dvec3(top[0], top[1], top[2]);
 
   this->Kind = mmv::BackgroundEnvironment;
   this->Texture = nullptr;

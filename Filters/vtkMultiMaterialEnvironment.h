@@ -57,6 +57,16 @@ public:
   void Update(vtkRenderer* ren, vtkMatrix4x4* objectToWorld, int source,
     std::vector<std::string>* problems);
 
+  /**
+   * Pins the background gradient Update() reads (bottom and top colours)
+   * instead of the renderer's. ParaView clears the renderer's background to
+   * black while parallel ranks draw for compositing, so its representation
+   * pins the view's background before each render. Clear to read the
+   * renderer again.
+   */
+  void SetBackgroundOverride(const double bottom[3], const double top[3]);
+  void ClearBackgroundOverride();
+
   /// mmv::EnvironmentKind of the last Update().
   int GetKind() const { return this->Kind; }
 
@@ -106,6 +116,9 @@ private:
   glm::dvec3 ViewUp{ 0.0, 1.0, 0.0 };
   glm::dvec3 Bottom{ 0.0 };
   glm::dvec3 Top{ 0.0 };
+  bool Override = false;
+  glm::dvec3 OverrideBottom{ 0.0 };
+  glm::dvec3 OverrideTop{ 0.0 };
 };
 
 #endif

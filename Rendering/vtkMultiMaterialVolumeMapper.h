@@ -180,6 +180,13 @@ public:
   vtkSetClampMacro(ReflectionSource, int, 0, 1);
   vtkGetMacro(ReflectionSource, int);
 
+  /// Pins the background gradient reflections read (bottom and top colours)
+  /// instead of the renderer's at render time. ParaView's representation
+  /// pins its view's background before each render: under parallel
+  /// compositing the ranks draw over a background cleared to black.
+  void SetReflectionBackground(const double bottom[3], const double top[3]);
+  void ClearReflectionBackground();
+
   /// The visibility I(x, w_r) of reflections (eq. 17): 3
   /// (mmv::AutomaticReflectionVisibility, default), per frame the cheaper of
   /// 1 and 2 for the view's size (mmv::PerSampleMarchPixelsPerVoxel); 2
@@ -331,6 +338,8 @@ protected:
   bool TimeStages = false;
   bool CompileUnusedOpticalTerms = false;
   int ReflectionSource = 0;     // mmv::ReflectEnvironmentTexture
+  bool ReflectionBackgroundPinned = false;
+  double ReflectionBackground[6] = { 0.0, 0.0, 0.0, 0.0, 0.0, 0.0 }; // bottom, top
   int ReflectionVisibility = 3; // mmv::AutomaticReflectionVisibility
 
   int PreIntegrationCount = 0;

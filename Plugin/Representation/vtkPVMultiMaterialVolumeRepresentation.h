@@ -147,6 +147,8 @@ private:
   // Collective (every rank, same order): combines the pieces into
   // GlobalVolume when the data or the settings it depends on changed.
   void UpdateGlobalVolume();
+  // Hands the mapper the view's background for reflections (REQUEST_RENDER).
+  void PinReflectionBackground();
 
   // Nodes from MaterialNodes; kept apart from the mapper's function so that
   // switching a preset off brings them back.

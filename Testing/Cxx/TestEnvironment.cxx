@@ -180,3 +180,23 @@ TEST(Environment, SRGBTexturesAreDecodedAsTheGPUDecodesThem)
     1e-12);
   EXPECT_NEAR(linear, 0.2158605, 1e-6);
 }
+
+TEST(Environment, PinnedBackgroundOverridesTheRenderersUntilCleared)
+{
+  // ParaView clears the renderer's background to black while parallel ranks
+  // draw; the representation pins the view's background before the render.
+  vtkNew<vtkRenderer> renderer;
+  renderer->SetBackground(0.0, 0.0, 0.0);
+  vtkNew<vtkMatrix4x4> objectToWorld;
+  vtkNew<vtkMultiMaterialEnvironment> environment;
+  const double bottom[3] = { 0.1, 0.1, 0.15 };
+  const double top[3] = { 0.3, 0.4, 0.5 };
+  environment->SetBackgroundOverride(bottom, top);
+  environment->Update(renderer, objectToWorld, mmv::ReflectBackground, nullptr);
+  EXPECT_EQ(environment->GetBackgroundBottom(), glm::dvec3(0.1, 0.1, 0.15));
+  EXPECT_EQ(environment->GetBackgroundTop(), glm::dvec3(0.3, 0.4, 0.5));
+  environment->ClearBackgroundOverride();
+  environment->Update(renderer, objectToWorld, mmv::ReflectBackground, nullptr);
+  EXPECT_EQ(environment->GetBackgroundBottom(), glm::dvec3(0.0));
+  EXPECT_EQ(environment->GetBackgroundTop(), glm::dvec3(0.0));
+}

@@ -9,7 +9,9 @@ With --blocks, every rank's piece is split in two image partitions (a
 vtkPartitionedDataSet, as readers of multiblock image data produce): the
 representation merges them, and the image must equal the -np 1 reference of
 the plain pieces. With --tinted, the material has a transmission colour
-(tinted shadows): -np 1 writes its own reference, -np 3 must equal it."""
+(tinted shadows): -np 1 writes its own reference, -np 3 must equal it. With
+--reflective, the `metal` preset reflects the view's background, which the
+ranks must see as -np 1 does (before it was pinned: 32.7 dB)."""
 
 import argparse
 import math
@@ -27,9 +29,11 @@ args = mmv.parse_args()
 parser = argparse.ArgumentParser()
 parser.add_argument("--blocks", action="store_true")
 parser.add_argument("--tinted", action="store_true")
+parser.add_argument("--reflective", action="store_true")
 options = parser.parse_known_args()[0]
 split_into_blocks = options.blocks
 tinted = options.tinted
+reflective = options.reflective
 simple.LoadPlugin(args.plugin, remote=True)
 checker = mmv.Checker()
 errors = mmv.ErrorCapture()
@@ -113,7 +117,7 @@ def show(expression):
         node = [0.2, 0.7, 0.1, 10.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.6, 0.85, 0.95]
         rep.MaterialNodes = [0.0] + node + [200.0] + node
     else:
-        rep.MaterialPreset = "matte"
+        rep.MaterialPreset = "metal" if reflective else "matte"
     view.CameraPosition = [55.0, -70.0, 30.0]
     view.CameraFocalPoint = [0.0, 0.0, -4.0]
     view.CameraViewUp = [0.0, 0.0, 1.0]
@@ -122,7 +126,8 @@ def show(expression):
 
 
 rep = show("200*(%s+%s)" % (PLATE, FLOOR))
-variant = "Blocks" if split_into_blocks else ("Tinted" if tinted else "")
+variant = "Blocks" if split_into_blocks else (
+    "Tinted" if tinted else ("Reflective" if reflective else ""))
 path = os.path.join(args.temp_dir, "PVMultiMaterialMPIShadows%s_%d.png" % (variant, ranks))
 image = mmv.render_image(view, path)
 checker.check(mmv.check_not_blank(image, "plate and floor"), "the volume is visible")
@@ -137,7 +142,7 @@ def psnr(a, b):
 
 
 reference = os.path.join(args.temp_dir, "PVMultiMaterialMPIShadows%s_1.png"
-                         % ("Tinted" if tinted else ""))
+                         % ("" if split_into_blocks else variant))
 if ranks == 1 and not split_into_blocks:
     # The shadow is there to be kept: without the plate the floor is brighter.
     show("200*(%s)" % FLOOR)
@@ -149,7 +154,7 @@ else:
     checker.check(os.path.exists(reference), "the -np 1 reference exists (%s)" % reference)
     if os.path.exists(reference):
         value = psnr(image, mmv.read_png(reference))
-        what = "-np %d%s" % (ranks, {"Blocks": " in blocks", "Tinted": " tinted"}.get(variant, ""))
+        what = "-np %d%s" % (ranks, {"Blocks": " in blocks", "Tinted": " tinted", "Reflective": " reflective"}.get(variant, ""))
         print("%s vs -np 1: PSNR %.2f dB" % (what, value))
         checker.check(value >= 40.0, "%s equals -np 1 (PSNR %.2f dB >= 40)" % (what, value))
 checker.check(errors.take_errors() == "", "no VTK errors on rank 0")
