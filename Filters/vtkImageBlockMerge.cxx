@@ -56,9 +56,10 @@ std::vector<std::string> CommonArrays(const std::vector<vtkImageData*>& blocks)
 }
 
 // Copies `from`'s tuples (a block of extent `extent`, shifted by `shift` into
-// the merged lattice) into `to` (extent `whole`), a row at a time.
+// the merged lattice) into `to` (extent `whole`), a row at a time, and marks
+// the rows in `covered` (when given).
 void CopyBlock(vtkDataArray* from, const int extent[6], const int shift[3], vtkDataArray* to,
-  const int whole[6], std::vector<char>& covered)
+  const int whole[6], std::vector<char>* covered)
 {
   const vtkIdType nx = extent[1] - extent[0] + 1;
   const vtkIdType wx = whole[1] - whole[0] + 1;
@@ -86,7 +87,10 @@ void CopyBlock(vtkDataArray* from, const int extent[6], const int shift[3], vtkD
           to->SetTuple(target + i, source + i, from);
         }
       }
-      std::fill(covered.begin() + target, covered.begin() + target + nx, 1);
+      if (covered)
+      {
+        std::fill(covered->begin() + target, covered->begin() + target + nx, 1);
+      }
     }
   }
 }
@@ -206,10 +210,12 @@ vtkSmartPointer<vtkImageData> MergeImageBlocks(vtkDataObject* composite, std::st
     array->SetName(name.c_str());
     array->SetNumberOfComponents(model->GetNumberOfComponents());
     array->SetNumberOfTuples(points);
+    // Every array covers the same points: the first one marks them.
+    std::vector<char>* mark = name == names.front() ? &covered : nullptr;
     for (size_t b = 0; b < blocks.size(); ++b)
     {
       CopyBlock(blocks[b]->GetPointData()->GetArray(name.c_str()), blocks[b]->GetExtent(),
-        shifts[b].data(), array, whole, covered);
+        shifts[b].data(), array, whole, mark);
     }
     merged->GetPointData()->AddArray(array);
   }

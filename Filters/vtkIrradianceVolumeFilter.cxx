@@ -158,6 +158,56 @@ struct RayContext
   mmv::IndexCutaway Cut;      // removed by cropping and clipping: empty
 };
 
+/// The march of MarchTransmittance and MarchTint, for a grey (double) or a
+/// per-channel (glm::dvec3) transmittance T: `opacity(t1, t2)` is a
+/// segment's opacity, Largest(T) decides the early stop. One loop, so the
+/// grey and the tinted shadows step alike (the GLSL has the two as
+/// mmvMarchTransmittance and mmvMarchTint: no templates there).
+inline double Largest(double t)
+{
+  return t;
+}
+inline double Largest(const glm::dvec3& t)
+{
+  return std::max({ t.r, t.g, t.b });
+}
+
+template <typename T, typename Opacity>
+T March(const RayContext& ctx, const glm::dvec3& start, const glm::dvec3& indexDir, double end,
+  double startValue, T transmittance, const Opacity& opacity)
+{
+  const mmv::IrradianceGrid& grid = *ctx.Irradiance;
+  const double h = ctx.Step;
+  const vtkIdType steps = static_cast<vtkIdType>(std::floor(end / h + mmv::ShadowStepTolerance));
+  // A segment's opacity, 0 where its midpoint is cut away.
+  const auto alphaAt = [&](double t1, double t2, const glm::dvec3& middle) {
+    return mmv::mmvIsCut(ctx.Cut, middle) ? T(0.0) : opacity(t1, t2);
+  };
+  double previous = startValue;
+  for (vtkIdType n = 1; n <= steps; ++n)
+  {
+    if (Largest(transmittance) < mmv::MinShadowTransmittance)
+    {
+      return transmittance;
+    }
+    const double next =
+      mmv::SampleTrilinear(grid, ctx.Prefiltered, start + (static_cast<double>(n) * h) * indexDir);
+    transmittance *=
+      1.0 - alphaAt(previous, next, start + ((static_cast<double>(n) - 0.5) * h) * indexDir);
+    previous = next;
+  }
+  const double rest = end - static_cast<double>(steps) * h;
+  if (rest > mmv::ShadowRestTolerance * h && Largest(transmittance) >= mmv::MinShadowTransmittance)
+  {
+    const double next = mmv::SampleTrilinear(grid, ctx.Prefiltered, start + end * indexDir);
+    const T alpha =
+      alphaAt(previous, next, start + (0.5 * (static_cast<double>(steps) * h + end)) * indexDir);
+    // Optical depth is linear in the segment length for a linear value ramp.
+    transmittance *= glm::pow(glm::max(T(0.0), 1.0 - alpha), T(rest / h));
+  }
+  return transmittance;
+}
+
 /**
  * Transmittance over [0, end] (world units) of the ray from index `start`
  * along index-space direction `indexDir` (eqs. 9-10), by pre-integrated
@@ -168,37 +218,8 @@ struct RayContext
 double MarchTransmittance(const RayContext& ctx, const glm::dvec3& start,
   const glm::dvec3& indexDir, double end, double startValue, double transmittance)
 {
-  const mmv::IrradianceGrid& grid = *ctx.Irradiance;
-  const double h = ctx.Step;
-  const vtkIdType steps = static_cast<vtkIdType>(std::floor(end / h + mmv::ShadowStepTolerance));
-  double previous = startValue;
-  for (vtkIdType n = 1; n <= steps; ++n)
-  {
-    if (transmittance < mmv::MinShadowTransmittance)
-    {
-      return transmittance;
-    }
-    const double next =
-      mmv::SampleTrilinear(grid, ctx.Prefiltered, start + (static_cast<double>(n) * h) * indexDir);
-    const double alpha =
-      mmv::mmvIsCut(ctx.Cut, start + ((static_cast<double>(n) - 0.5) * h) * indexDir)
-      ? 0.0
-      : ctx.Table->LookupShadowOpacity(previous, next);
-    transmittance *= 1.0 - alpha;
-    previous = next;
-  }
-  const double rest = end - static_cast<double>(steps) * h;
-  if (rest > mmv::ShadowRestTolerance * h && transmittance >= mmv::MinShadowTransmittance)
-  {
-    const double next = mmv::SampleTrilinear(grid, ctx.Prefiltered, start + end * indexDir);
-    const double alpha =
-      mmv::mmvIsCut(ctx.Cut, start + (0.5 * (static_cast<double>(steps) * h + end)) * indexDir)
-      ? 0.0
-      : ctx.Table->LookupShadowOpacity(previous, next);
-    // Optical depth is linear in the segment length for a linear value ramp.
-    transmittance *= std::pow(std::max(0.0, 1.0 - alpha), rest / h);
-  }
-  return transmittance;
+  return March(ctx, start, indexDir, end, startValue, transmittance,
+    [&](double t1, double t2) { return ctx.Table->LookupShadowOpacity(t1, t2); });
 }
 
 /// Transmittance from irradiance voxel `v` toward the light: a full shadow
@@ -229,43 +250,11 @@ double ShadowTransmittance(const RayContext& ctx, const mmv::LightSource& light,
 glm::dvec3 MarchTint(const RayContext& ctx, const glm::dvec3& start, const glm::dvec3& indexDir,
   double end, double startValue)
 {
-  const mmv::IrradianceGrid& grid = *ctx.Irradiance;
-  const double h = ctx.Step;
-  const vtkIdType steps = static_cast<vtkIdType>(std::floor(end / h + mmv::ShadowStepTolerance));
-  const auto opacity = [&](double t1, double t2, const glm::dvec3& middle) {
+  return March(ctx, start, indexDir, end, startValue, glm::dvec3(1.0), [&](double t1, double t2) {
     double rgb[3] = { 0.0, 0.0, 0.0 };
-    if (!mmv::mmvIsCut(ctx.Cut, middle))
-    {
-      ctx.Table->LookupShadowTint(t1, t2, rgb);
-    }
+    ctx.Table->LookupShadowTint(t1, t2, rgb);
     return glm::dvec3(rgb[0], rgb[1], rgb[2]);
-  };
-  glm::dvec3 tint(1.0);
-  double previous = startValue;
-  for (vtkIdType n = 1; n <= steps; ++n)
-  {
-    if (std::max({ tint.r, tint.g, tint.b }) < mmv::MinShadowTransmittance)
-    {
-      return tint;
-    }
-    const double next =
-      mmv::SampleTrilinear(grid, ctx.Prefiltered, start + (static_cast<double>(n) * h) * indexDir);
-    tint *= 1.0 - opacity(previous, next, start + ((static_cast<double>(n) - 0.5) * h) * indexDir);
-    previous = next;
-  }
-  const double rest = end - static_cast<double>(steps) * h;
-  if (rest > mmv::ShadowRestTolerance * h &&
-    std::max({ tint.r, tint.g, tint.b }) >= mmv::MinShadowTransmittance)
-  {
-    const double next = mmv::SampleTrilinear(grid, ctx.Prefiltered, start + end * indexDir);
-    const glm::dvec3 alpha =
-      opacity(previous, next, start + (0.5 * (static_cast<double>(steps) * h + end)) * indexDir);
-    for (int c = 0; c < 3; ++c)
-    {
-      tint[c] *= std::pow(std::max(0.0, 1.0 - alpha[c]), rest / h);
-    }
-  }
-  return tint;
+  });
 }
 
 /// The grid of the tint: every `divisor`-th point of `grid` (end points shared).

@@ -45,16 +45,25 @@ glm::dvec3 Cross(const double* a, const double* b)
 }
 
 //------------------------------------------------------------------------------
-void vtkMultiMaterialEnvironment::SetBackgroundOverride(const double bottom[3], const double top[3])
+bool vtkMultiMaterialEnvironment::SetBackgroundOverride(const double bottom[3], const double top[3])
 {
+  const glm::dvec3 b(bottom[0], bottom[1], bottom[2]);
+  const glm::dvec3 t(top[0], top[1], top[2]);
+  if (this->Override && b == this->OverrideBottom && t == this->OverrideTop)
+  {
+    return false;
+  }
   this->Override = true;
-  this->OverrideBottom = glm::dvec3(bottom[0], bottom[1], bottom[2]);
-  this->OverrideTop = glm::dvec3(top[0], top[1], top[2]);
+  this->OverrideBottom = b;
+  this->OverrideTop = t;
+  return true;
 }
 
-void vtkMultiMaterialEnvironment::ClearBackgroundOverride()
+bool vtkMultiMaterialEnvironment::ClearBackgroundOverride()
 {
+  const bool changed = this->Override;
   this->Override = false;
+  return changed;
 }
 
 //------------------------------------------------------------------------------

@@ -62,10 +62,10 @@ public:
    * instead of the renderer's. ParaView clears the renderer's background to
    * black while parallel ranks draw for compositing, so its representation
    * pins the view's background before each render. Clear to read the
-   * renderer again.
+   * renderer again. Both return whether anything changed.
    */
-  void SetBackgroundOverride(const double bottom[3], const double top[3]);
-  void ClearBackgroundOverride();
+  bool SetBackgroundOverride(const double bottom[3], const double top[3]);
+  bool ClearBackgroundOverride();
 
   /// mmv::EnvironmentKind of the last Update().
   int GetKind() const { return this->Kind; }

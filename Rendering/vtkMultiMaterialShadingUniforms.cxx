@@ -105,21 +105,15 @@ void vtkMultiMaterialShadingUniforms::Apply(vtkShaderProgram* program,
     mmv::SetLightUniforms(program, sources.data(), radiance.data(), count, count);
     if (this->Variant.RGBIrradiance)
     {
-      // The tint grid shares the irradiance grid's end points: irradiance
-      // coordinate (j + 0.5) / M of point j = u (M - 1) goes to
-      // (u (M' - 1) + 0.5) / M' on the tint texture of M' points.
+      // The tint grid spans the irradiance grid's points (every second one).
       vtkTextureObject* grey = irradiance->GetIrradianceTexture(0);
       vtkTextureObject* tint = irradiance->GetTintTexture(0);
-      const double m[3] = { static_cast<double>(grey->GetWidth()),
-        static_cast<double>(grey->GetHeight()), static_cast<double>(grey->GetDepth()) };
-      const double t[3] = { static_cast<double>(tint->GetWidth()),
-        static_cast<double>(tint->GetHeight()), static_cast<double>(tint->GetDepth()) };
+      const unsigned int m[3] = { grey->GetWidth(), grey->GetHeight(), grey->GetDepth() };
+      const unsigned int t[3] = { tint->GetWidth(), tint->GetHeight(), tint->GetDepth() };
       float scale[3], bias[3];
       for (int a = 0; a < 3; ++a)
       {
-        const double r = m[a] > 1.0 ? (t[a] - 1.0) / (m[a] - 1.0) : 0.0;
-        scale[a] = static_cast<float>(m[a] > 1.0 ? m[a] * r / t[a] : 1.0);
-        bias[a] = static_cast<float>(m[a] > 1.0 ? (0.5 - 0.5 * r) / t[a] : 0.0);
+        mmv::SamePointsMap(m[a], t[a], scale[a], bias[a]);
       }
       program->SetUniform3f("mmv_tintScale", scale);
       program->SetUniform3f("mmv_tintBias", bias);

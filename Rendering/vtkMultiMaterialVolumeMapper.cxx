@@ -145,25 +145,21 @@ void vtkMultiMaterialVolumeMapper::SetGlobalPrefilteredVolume(vtkGlobalPrefilter
   }
 }
 
+// The reflection's environment keeps the pinned colours (it reads them in
+// every Update instead of the renderer's).
 void vtkMultiMaterialVolumeMapper::SetReflectionBackground(
   const double bottom[3], const double top[3])
 {
-  const double colours[6] = { bottom[0], bottom[1], bottom[2], top[0], top[1], top[2] };
-  if (this->ReflectionBackgroundPinned &&
-    std::equal(colours, colours + 6, this->ReflectionBackground))
+  if (this->Internals->Reflection->GetEnvironment()->SetBackgroundOverride(bottom, top))
   {
-    return;
+    this->Modified();
   }
-  std::copy(colours, colours + 6, this->ReflectionBackground);
-  this->ReflectionBackgroundPinned = true;
-  this->Modified();
 }
 
 void vtkMultiMaterialVolumeMapper::ClearReflectionBackground()
 {
-  if (this->ReflectionBackgroundPinned)
+  if (this->Internals->Reflection->GetEnvironment()->ClearBackgroundOverride())
   {
-    this->ReflectionBackgroundPinned = false;
     this->Modified();
   }
 }
@@ -545,15 +541,6 @@ void vtkMultiMaterialVolumeMapper::UpdateReflection(
   vtkMatrix4x4::Invert(worldToObject, objectToWorld);
   const mmv::IrradianceGrid& grid = in.Irradiance.GetGrid();
   std::vector<std::string> problems;
-  if (this->ReflectionBackgroundPinned)
-  {
-    in.Reflection->GetEnvironment()->SetBackgroundOverride(
-      this->ReflectionBackground, this->ReflectionBackground + 3);
-  }
-  else
-  {
-    in.Reflection->GetEnvironment()->ClearBackgroundOverride();
-  }
   in.Reflection->Update(ren, objectToWorld, this->ReflectionSource, this->ReflectionVisibility,
     in.Lights.empty() ? nullptr : in.Irradiance.GetPass(), grid, this->PreIntegrationTableSize,
     std::min({ grid.Spacing.x, grid.Spacing.y, grid.Spacing.z }), &problems,

@@ -338,8 +338,6 @@ protected:
   bool TimeStages = false;
   bool CompileUnusedOpticalTerms = false;
   int ReflectionSource = 0;     // mmv::ReflectEnvironmentTexture
-  bool ReflectionBackgroundPinned = false;
-  double ReflectionBackground[6] = { 0.0, 0.0, 0.0, 0.0, 0.0, 0.0 }; // bottom, top
   int ReflectionVisibility = 3; // mmv::AutomaticReflectionVisibility
 
   int PreIntegrationCount = 0;
