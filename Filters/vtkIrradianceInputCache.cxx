@@ -30,7 +30,8 @@ bool vtkIrradianceInputCache::VolumeKey::operator==(const VolumeKey& o) const
     this->MultipleScattering == o.MultipleScattering && this->TableSize == o.TableSize &&
     this->NumberOfLights == o.NumberOfLights && this->ShadowEstimation == o.ShadowEstimation &&
     this->PiecewiseShadowSlices == o.PiecewiseShadowSlices &&
-    this->ExponentialDiffusion == o.ExponentialDiffusion && this->Cut == o.Cut;
+    this->ExponentialDiffusion == o.ExponentialDiffusion && this->Cut == o.Cut &&
+    std::equal(this->Region, this->Region + 6, o.Region);
 }
 
 bool vtkIrradianceInputCache::MaterialKey::operator==(const MaterialKey& o) const

@@ -55,6 +55,8 @@ public:
     bool ExponentialDiffusion = mmv::DefaultExponentialDiffusion;
     /// mmv::Cutaway::Key(): what cropping and clipping remove casts no shadow.
     std::vector<double> Cut;
+    /// The irradiance voxels the pass estimates for (vtkIrradianceRegion.h).
+    int Region[6] = { 0, -1, 0, -1, 0, -1 };
 
     bool operator==(const VolumeKey& o) const;
     bool operator!=(const VolumeKey& o) const { return !(*this == o); }

@@ -21,6 +21,7 @@
 #ifndef vtkShadowSweep_h
 #define vtkShadowSweep_h
 
+#include "vtkIrradianceRegion.h"       // IndexBox
 #include "vtkMultiMaterialLightModel.h" // LightSource
 #include "vtkMultiMaterialParameters.h" // ShadowEstimation
 
@@ -28,6 +29,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <vector>
 
 namespace mmv
 {
@@ -89,6 +92,71 @@ inline ShadowSweep PlanShadowSweep(const int dims[3], const glm::dvec3& toLight,
   sweep.Slices = dims[sweep.Axis];
   sweep.SlicesPerChunk = std::max(1, slicesPerChunk);
   return sweep;
+}
+
+/**
+ * What each chunk of `sweep` must draw so that the voxels of `region` come
+ * out exactly as a sweep of the whole grid computes them (vtkIrradianceRegion.h):
+ * the region's voxels in the chunk, and the voxels of its read slice that
+ * the next chunk's draw interpolates. `toLight` is the index-space direction
+ * the sweep was planned with. Walks from the farthest chunk toward the
+ * light; a chunk upstream of the region draws a patch of one slice. An
+ * empty box: nothing to draw.
+ */
+inline std::vector<IndexBox> PlanSweepBoxes(
+  const ShadowSweep& sweep, const int dims[3], const glm::dvec3& toLight, const IndexBox& region)
+{
+  const int axis = sweep.Axis;
+  std::vector<IndexBox> boxes(sweep.GetNumberOfChunks());
+  IndexBox read; // of the chunk being planned's read slice, for the chunk after it
+  for (int chunk = sweep.GetNumberOfChunks() - 1; chunk >= 0; --chunk)
+  {
+    int first, last, plane;
+    sweep.GetChunk(chunk, first, last, plane);
+    IndexBox slab = IndexBox::Whole(dims);
+    slab.Bounds[2 * axis] = first;
+    slab.Bounds[2 * axis + 1] = last;
+    const IndexBox needed = region.Intersected(slab).United(read);
+    boxes[chunk] = needed;
+    read = IndexBox();
+    if (needed.IsEmpty() || plane < 0)
+    {
+      continue;
+    }
+    // A ray from voxel v reaches `plane` at in-slice coordinate
+    // v_e + (plane - v_axis) toLight_e / toLight_axis (linear in v: the
+    // box's corners bound it), where the shader reads the bilinear pair
+    // min(floor(clamped), n - 2) and one more (Shaders/mmvPiecewiseShadowFS.glsl);
+    // one voxel more on each side covers float rounding.
+    read.Bounds[2 * axis] = plane;
+    read.Bounds[2 * axis + 1] = plane;
+    for (int e = 0; e < 3; ++e)
+    {
+      if (e == axis)
+      {
+        continue;
+      }
+      const double slope = toLight[axis] != 0.0 ? toLight[e] / toLight[axis] : 0.0;
+      double lo = std::numeric_limits<double>::infinity();
+      double hi = -lo;
+      for (int s = 0; s < 2; ++s)
+      {
+        for (int t = 0; t < 2; ++t)
+        {
+          const double q =
+            needed.Bounds[2 * e + t] + (plane - needed.Bounds[2 * axis + s]) * slope;
+          lo = std::min(lo, q);
+          hi = std::max(hi, q);
+        }
+      }
+      const double top = dims[e] - 1;
+      lo = std::min(std::max(lo, 0.0), top);
+      hi = std::min(std::max(hi, 0.0), top);
+      read.Bounds[2 * e] = std::max(0, static_cast<int>(std::floor(lo)) - 1);
+      read.Bounds[2 * e + 1] = std::min(dims[e] - 1, static_cast<int>(std::floor(hi)) + 2);
+    }
+  }
+  return boxes;
 }
 
 /**

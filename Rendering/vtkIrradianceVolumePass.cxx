@@ -2,6 +2,7 @@
 
 #include "vtkIrradianceComputeProgram.h"
 #include "vtkIrradianceDiffusion.h"
+#include "vtkIrradianceRegion.h"
 #include "vtkMultiMaterialLightTolerance.h"
 #include "vtkMultiMaterialLightUniforms.h"
 #include "vtkMultiMaterialParameters.h"
@@ -172,6 +173,13 @@ void SetCutawayUniforms(vtkShaderProgram* program, const mmv::IndexCutaway& cut)
   program->SetUniformi("cropFlags", cut.CropFlags);
 }
 
+/// A draw's box (i0, i1, j0, j1, k0, k1) that holds no voxel; null is the
+/// whole target.
+bool IsEmptyBox(const int* box)
+{
+  return box && (box[0] > box[1] || box[2] > box[3] || box[4] > box[5]);
+}
+
 bool SameGrid(const mmv::IrradianceGrid& a, const mmv::IrradianceGrid& b)
 {
   return std::equal(a.Dimensions, a.Dimensions + 3, b.Dimensions) && a.Origin == b.Origin &&
@@ -261,8 +269,28 @@ public:
   int SweepsPerStep = 0;
   std::vector<double> ExponentialSeries; // c_k of the exponential integrator
   double SpectralRadius = 0.0; // of the Jacobi iteration, for the Chebyshev weights
-  int ScatteringBox[6] = { 0, 0, 0, 0, 0, 0 }; // diffusion-grid blocks with s > 0
+  mmv::IndexBox ScatteringBox; // diffusion-grid blocks with s > 0
   unsigned int ResidualQuery = 0; // occlusion query counting unconverged blocks
+
+  // The caller's region (SetRegion; the whole grid without one), the one
+  // the textures hold, and what this Render() draws for it.
+  bool HasRegion = false;
+  mmv::IndexBox RequestedRegion;
+  mmv::IndexBox RegionUsed;
+  mmv::IrradianceRegionPlan Plan;
+  vtkIdType EstimatedVoxels = 0; // of this Render(), all lights
+  mmv::IndexBox Region() const
+  {
+    const mmv::IndexBox whole = mmv::IndexBox::Whole(this->Grid.Dimensions);
+    return this->HasRegion ? this->RequestedRegion.Intersected(whole) : whole;
+  }
+  /// `box` for a draw into a grid of `dims`: nullptr when it is the whole
+  /// grid (the draws without a scissor, as before regions).
+  static const int* DrawBox(const mmv::IndexBox& box, const int dims[3])
+  {
+    return box == mmv::IndexBox::Whole(dims) ? nullptr : box.Bounds;
+  }
+  void PlanRegion(bool diffusion);
 
   // GPU resources.
   vtkSmartPointer<vtkTextureObject> ScalarTexture;
@@ -377,7 +405,7 @@ void vtkIrradianceVolumePass::vtkInternals::PlanDiffusion(double time, bool expo
   // that scatter, the only ones the sweeps change.
   this->CoarseStrength.resize(2 * coarseStrength.size());
   const int* cd = this->Coarse.Dimensions;
-  int* box = this->ScatteringBox;
+  int* box = this->ScatteringBox.Bounds;
   for (int a = 0; a < 3; ++a)
   {
     box[2 * a] = cd[a] - 1;
@@ -416,6 +444,19 @@ void vtkIrradianceVolumePass::vtkInternals::PlanDiffusion(double time, bool expo
   const double stiffness = this->CoarseMaxRate * time / this->SubSteps;
   this->SweepsPerStep = mmv::ChebyshevSweeps(stiffness, this->Diffusion);
   this->SpectralRadius = mmv::JacobiSpectralRadius(stiffness);
+}
+
+//------------------------------------------------------------------------------
+// What this Render() draws for the region; the diffusion's passes each read
+// their input's neighbours (every sweep of every sub-step for backward
+// Euler, which may stop earlier).
+void vtkIrradianceVolumePass::vtkInternals::PlanRegion(bool diffusion)
+{
+  const int passes = this->ExponentialSeries.empty()
+    ? this->SubSteps * this->SweepsPerStep
+    : static_cast<int>(this->ExponentialSeries.size());
+  this->Plan = mmv::PlanIrradianceRegion(
+    this->Region(), this->Grid.Dimensions, diffusion ? &this->Coarse : nullptr, passes);
 }
 
 //------------------------------------------------------------------------------
@@ -566,6 +607,10 @@ vtkShaderProgram* vtkIrradianceVolumePass::vtkInternals::Ready(vtkOpenGLRenderWi
 void vtkIrradianceVolumePass::vtkInternals::DrawLayers(vtkOpenGLRenderWindow* context,
   VoxelPass& pass, vtkTextureObject* target, bool layered, const int* box, int writeMask)
 {
+  if (IsEmptyBox(box))
+  {
+    return; // nothing of the region's depends on this draw
+  }
   if (this->Compute)
   {
     this->Dispatch(context, pass, target, box, writeMask, false);
@@ -685,6 +730,10 @@ unsigned int vtkIrradianceVolumePass::vtkInternals::CountWrites(vtkOpenGLRenderW
   VoxelPass& pass, vtkTextureObject* target, bool layered, const int* box)
 {
   GLuint written = 0;
+  if (IsEmptyBox(box))
+  {
+    return written;
+  }
   if (this->Compute)
   {
     this->Dispatch(context, pass, target, box, 0xF, true);
@@ -757,7 +806,13 @@ bool vtkIrradianceVolumePass::vtkInternals::ShadowPass(
   program->SetUniformMatrix3x3("indexToWorld", glm::value_ptr(toWorld));
   program->SetUniformi("computeEmptyVoxels", skipEmpty ? 0 : 1);
   SetLightUniforms(program, this->Lights, group * LightsPerTexture, mask);
-  this->DrawLayers(context, this->ShadowQuad, this->FineScratch[0], layered);
+  const mmv::IndexBox& box = this->Plan.Estimated;
+  this->DrawLayers(
+    context, this->ShadowQuad, this->FineScratch[0], layered, DrawBox(box, this->Grid.Dimensions));
+  for (int l = 0; l < LightsPerTexture; ++l)
+  {
+    this->EstimatedVoxels += (mask & (1 << l)) != 0 ? box.GetNumberOfVoxels() : 0;
+  }
   return true;
 }
 
@@ -794,7 +849,9 @@ bool vtkIrradianceVolumePass::vtkInternals::TintPass(
   program->SetUniform3f("origin", glm::value_ptr(origin));
   program->SetUniformMatrix3x3("indexToWorld", glm::value_ptr(toWorld));
   SetLightUniforms(program, this->Lights, light, 1);
-  this->DrawLayers(context, this->TintQuad, this->Tint[light], layered);
+  const mmv::IndexBox box =
+    mmv::ResampledBox(this->Plan.Region, this->Grid.Dimensions, tintDims);
+  this->DrawLayers(context, this->TintQuad, this->Tint[light], layered, DrawBox(box, tintDims));
   return true;
 }
 
@@ -814,8 +871,12 @@ bool vtkIrradianceVolumePass::vtkInternals::PiecewiseShadowPass(vtkOpenGLRenderW
   }
   const mmv::LightSource& source = this->Lights[light];
   const int* d = this->Grid.Dimensions;
-  const mmv::ShadowSweep sweep =
-    mmv::PlanShadowSweep(d, this->Grid.PhysicalToIndexMatrix() * source.ToLight, slicesPerChunk);
+  const glm::dvec3 toLightIndex = this->Grid.PhysicalToIndexMatrix() * source.ToLight;
+  const mmv::ShadowSweep sweep = mmv::PlanShadowSweep(d, toLightIndex, slicesPerChunk);
+  // Each chunk draws what the region's voxels depend on (its whole slab
+  // for the whole grid).
+  const std::vector<mmv::IndexBox> boxes =
+    mmv::PlanSweepBoxes(sweep, d, toLightIndex, this->Plan.Estimated);
   glm::vec3 toLight(source.ToLight);
   const int channel = light % LightsPerTexture;
   vtkTextureObject* target = this->FineScratch[0];
@@ -828,11 +889,14 @@ bool vtkIrradianceVolumePass::vtkInternals::PiecewiseShadowPass(vtkOpenGLRenderW
   program->SetUniformi("sweepAxis", sweep.Axis);
   for (int chunk = 0; chunk < sweep.GetNumberOfChunks(); ++chunk)
   {
+    const mmv::IndexBox& box = boxes[chunk];
+    if (box.IsEmpty())
+    {
+      continue;
+    }
     int first, last, plane;
     sweep.GetChunk(chunk, first, last, plane);
-    int box[6] = { 0, d[0] - 1, 0, d[1] - 1, 0, d[2] - 1 };
-    box[2 * sweep.Axis] = first;
-    box[2 * sweep.Axis + 1] = last;
+    this->EstimatedVoxels += box.GetNumberOfVoxels();
     program->SetUniformi("sweepPlane", plane);
     program->SetUniformi("readSlice", sweep.GetReadSlice(chunk));
     // The earlier chunks' writes become visible to this draw's fetches.
@@ -842,7 +906,7 @@ bool vtkIrradianceVolumePass::vtkInternals::PiecewiseShadowPass(vtkOpenGLRenderW
       glTextureBarrier();
     }
     // The write mask keeps the other lights' channels.
-    this->DrawLayers(context, this->PiecewiseQuad, target, layered, box, 1 << channel);
+    this->DrawLayers(context, this->PiecewiseQuad, target, layered, box.Bounds, 1 << channel);
   }
   return true;
 }
@@ -874,7 +938,8 @@ int vtkIrradianceVolumePass::vtkInternals::Diffuse(
     restriction->SetUniformi("fine", this->FineScratch[0]->GetTextureUnit());
     restriction->SetUniformi("classes", this->ClassTexture->GetTextureUnit());
     this->SetTransferUniforms(restriction);
-    this->DrawLayers(context, this->RestrictQuad, coarse[0], layered);
+    this->DrawLayers(context, this->RestrictQuad, coarse[0], layered,
+      DrawBox(this->Plan.Coarse, this->Coarse.Dimensions));
   }
 
   int current = 0;
@@ -890,7 +955,8 @@ int vtkIrradianceVolumePass::vtkInternals::Diffuse(
   prolong->SetUniformi("classes", this->ClassTexture->GetTextureUnit());
   prolong->SetUniformi("after", coarse[current]->GetTextureUnit());
   this->SetTransferUniforms(prolong);
-  this->DrawLayers(context, this->ProlongQuad, this->FineScratch[1], layered);
+  this->DrawLayers(context, this->ProlongQuad, this->FineScratch[1], layered,
+    DrawBox(this->Plan.Source, this->Grid.Dimensions));
   return sweeps;
 }
 
@@ -931,6 +997,9 @@ int vtkIrradianceVolumePass::vtkInternals::BackwardEulerSweeps(vtkOpenGLRenderWi
   const int residualChannels[4] = { (mask & 1) != 0, (mask & 2) != 0, (mask & 4) != 0,
     (mask & 8) != 0 };
   glUniform4iv(sweep->FindUniform("residualChannels"), 1, residualChannels);
+  // Blocks outside ScatteringBox never change and are never read; of the
+  // rest, those the region depends on.
+  const mmv::IndexBox box = this->ScatteringBox.Intersected(this->Plan.Coarse);
   int rhs = 0;
   current = 0;
   int sweeps = 0;
@@ -951,8 +1020,7 @@ int vtkIrradianceVolumePass::vtkInternals::BackwardEulerSweeps(vtkOpenGLRenderWi
         sweep->SetUniformi("previous", coarse[previous]->GetTextureUnit());
         sweep->SetUniformf(
           "omega", static_cast<float>(mmv::ChebyshevWeight(k, this->SpectralRadius)));
-        // Blocks outside ScatteringBox never change and are never read.
-        this->DrawLayers(context, this->SweepQuad, coarse[next], layered, this->ScatteringBox);
+        this->DrawLayers(context, this->SweepQuad, coarse[next], layered, box.Bounds);
       }
       ++sweeps;
       previous = current;
@@ -972,7 +1040,7 @@ int vtkIrradianceVolumePass::vtkInternals::BackwardEulerSweeps(vtkOpenGLRenderWi
         sweep->SetUniformi("previous", coarse[current]->GetTextureUnit());
         sweep->SetUniformf("residualThreshold", threshold);
         const unsigned int unconverged =
-          this->CountWrites(context, this->SweepQuad, coarse[scratch], layered, this->ScatteringBox);
+          this->CountWrites(context, this->SweepQuad, coarse[scratch], layered, box.Bounds);
         context->GetShaderCache()->ReadyShaderProgram(sweep);
         sweep->SetUniformf("residualThreshold", 0.0f);
         if (unconverged == 0)
@@ -1001,6 +1069,8 @@ int vtkIrradianceVolumePass::vtkInternals::ExponentialSweeps(vtkOpenGLRenderWind
   sweep->SetUniformf("invRate", static_cast<float>(1.0 / this->CoarseMaxRate));
   const std::vector<double>& c = this->ExponentialSeries;
   const int n = static_cast<int>(c.size()) - 1;
+  // As in BackwardEulerSweeps: the scattering blocks the region depends on.
+  const mmv::IndexBox box = this->ScatteringBox.Intersected(this->Plan.Coarse);
   // b_n+1 = b_n+2 = 0: their weights are 0 and texture 0 stands in for them.
   current = 0;
   int previous = 0;
@@ -1019,8 +1089,7 @@ int vtkIrradianceVolumePass::vtkInternals::ExponentialSweeps(vtkOpenGLRenderWind
     sweep->SetUniformf("alpha", static_cast<float>(c[k]));
     sweep->SetUniformf("beta", k == n ? 0.0f : (k == 0 ? 1.0f : 2.0f));
     sweep->SetUniformf("gammaWeight", k >= n - 1 ? 0.0f : -1.0f);
-    // Blocks outside ScatteringBox never change and are never read.
-    this->DrawLayers(context, this->ExponentialQuad, coarse[next], layered, this->ScatteringBox);
+    this->DrawLayers(context, this->ExponentialQuad, coarse[next], layered, box.Bounds);
     ++passes;
     previous = current;
     current = next;
@@ -1045,7 +1114,8 @@ bool vtkIrradianceVolumePass::vtkInternals::FillPass(vtkOpenGLRenderWindow* cont
   program->SetUniformi("classes", this->ClassTexture->GetTextureUnit());
   program->SetUniformi("current", source->GetTextureUnit());
   program->SetUniform1iv("dims", 3, this->Grid.Dimensions);
-  this->DrawLayers(context, this->FillQuad, this->Irradiance[group], layered, nullptr, mask);
+  this->DrawLayers(context, this->FillQuad, this->Irradiance[group], layered,
+    DrawBox(this->Plan.Region, this->Grid.Dimensions), mask);
   return true;
 }
 
@@ -1227,12 +1297,42 @@ void vtkIrradianceVolumePass::SetCutawayUniforms(vtkShaderProgram* program) cons
 }
 
 //------------------------------------------------------------------------------
+void vtkIrradianceVolumePass::SetRegion(const int bounds[6])
+{
+  vtkInternals& internals = *this->Internals;
+  mmv::IndexBox region;
+  std::copy(bounds, bounds + 6, region.Bounds);
+  if (!internals.HasRegion || region != internals.RequestedRegion)
+  {
+    internals.HasRegion = true;
+    internals.RequestedRegion = region;
+    this->Modified();
+  }
+}
+
+void vtkIrradianceVolumePass::ResetRegion()
+{
+  if (this->Internals->HasRegion)
+  {
+    this->Internals->HasRegion = false;
+    this->Modified();
+  }
+}
+
+void vtkIrradianceVolumePass::GetRegion(int bounds[6]) const
+{
+  const mmv::IndexBox region = this->Internals->Region();
+  std::copy(region.Bounds, region.Bounds + 6, bounds);
+}
+
+//------------------------------------------------------------------------------
 bool vtkIrradianceVolumePass::Render(vtkOpenGLRenderWindow* context)
 {
   vtkInternals& internals = *this->Internals;
   this->NumberOfComputedVoxels = 0;
   this->DiffusionPasses = 0;
   this->NumberOfUpdatedLights = 0;
+  this->LastEstimatedVoxels = 0;
   this->LastEstimationSeconds = 0.0;
   this->LastDiffusionSeconds = 0.0;
   if (!context || !internals.HasInputs)
@@ -1280,6 +1380,14 @@ bool vtkIrradianceVolumePass::Render(vtkOpenGLRenderWindow* context)
   }
   const bool diffusion = this->MultipleScattering && this->DiffusionTime > 0.0 &&
     internals.CoarseMaxRate > 0.0;
+  const mmv::IndexBox region = internals.Region();
+  if (region != internals.RegionUsed)
+  {
+    internals.RegionUsed = region;
+    internals.VolumeChanged = true;
+  }
+  internals.PlanRegion(diffusion);
+  internals.EstimatedVoxels = 0;
   glFinish();
   const auto start = std::chrono::steady_clock::now();
   vtkOpenGLState* state = context->GetState();
@@ -1420,6 +1528,7 @@ bool vtkIrradianceVolumePass::Render(vtkOpenGLRenderWindow* context)
   }
   internals.VolumeChanged = false;
   this->NumberOfComputedVoxels = internals.NonEmptyVoxels;
+  this->LastEstimatedVoxels = internals.EstimatedVoxels;
   return true;
 }
 
@@ -1655,6 +1764,11 @@ void vtkIrradianceVolumePass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "LightDirectionTolerance: " << this->LightDirectionTolerance << "\n";
   os << indent << "NumberOfUpdatedLights: " << this->NumberOfUpdatedLights << "\n";
   os << indent << "NumberOfComputedVoxels: " << this->NumberOfComputedVoxels << "\n";
+  const mmv::IndexBox region = internals.Region();
+  os << indent << "Region: " << region.Bounds[0] << " " << region.Bounds[1] << " "
+     << region.Bounds[2] << " " << region.Bounds[3] << " " << region.Bounds[4] << " "
+     << region.Bounds[5] << (internals.HasRegion ? "" : " (whole grid)") << "\n";
+  os << indent << "LastEstimatedVoxels: " << this->LastEstimatedVoxels << "\n";
   os << indent << "DiffusionPasses: " << this->DiffusionPasses << "\n";
   os << indent << "LastRenderSeconds: " << this->LastRenderSeconds << "\n";
   os << indent << "LastEstimationSeconds: " << this->LastEstimationSeconds << "\n";

@@ -35,6 +35,10 @@
  *     to the irradiance grid;
  *  3. empty voxels bordering non-empty ones take the mean of those neighbours.
  *
+ * A piece of a volume split across MPI ranks needs only the voxels around
+ * it (SetRegion): the passes then draw only what those voxels depend on
+ * (vtkIrradianceRegion.h), and the region comes out as the whole grid's.
+ *
  * Each light keeps its own channel: Render() recomputes only the lights that
  * changed since the last Render() (all of them when the volume, tables or
  * grid changed), writing their channels alone.
@@ -198,6 +202,20 @@ public:
   /// Light k's tint, 3 floats (r, g, b) per tint voxel, x fastest.
   bool ReadBackTint(vtkOpenGLRenderWindow* context, int light, std::vector<float>& rgb);
 
+  /**
+   * The voxels the caller will read, (i0, i1, j0, j1, k0, k1) inclusive in
+   * grid index (clamped to the grid): the passes estimate only what they
+   * depend on (the fill pass's neighbours, the diffusion's reach, the
+   * slices a directional light's sweep reads on the way), so they equal
+   * the whole grid's there: bit for bit with the default exponential
+   * diffusion, within the sweeps' tolerance with backward Euler. Voxels
+   * outside hold no meaningful value. A change recomputes every light.
+   * ResetRegion: the whole grid (the default).
+   */
+  void SetRegion(const int bounds[6]);
+  void ResetRegion();
+  void GetRegion(int bounds[6]) const;
+
   /// Runs the passes. Needs the context current. False (with an error) if
   /// inputs are missing or the context lacks what the passes need.
   bool Render(vtkOpenGLRenderWindow* context);
@@ -225,6 +243,9 @@ public:
   vtkGetMacro(NumberOfComputedVoxels, vtkIdType);
   vtkGetMacro(DiffusionPasses, int); // Jacobi sweeps drawn
   vtkGetMacro(NumberOfUpdatedLights, int);
+  /// Voxels its shadow rays were cast from, summed over the lights (a
+  /// light's whole grid, or what its region depends on).
+  vtkGetMacro(LastEstimatedVoxels, vtkIdType);
   vtkGetMacro(LastRenderSeconds, double);
   /// Its shadow rays and its diffusion (glFinish after each; the rest of
   /// LastRenderSeconds is the final write).
@@ -266,6 +287,7 @@ protected:
   vtkIdType NumberOfComputedVoxels = 0;
   int DiffusionPasses = 0;
   int NumberOfUpdatedLights = 0;
+  vtkIdType LastEstimatedVoxels = 0;
   double LastRenderSeconds = 0.0;
   double LastEstimationSeconds = 0.0;
   double LastDiffusionSeconds = 0.0;

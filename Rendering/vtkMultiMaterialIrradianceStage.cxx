@@ -3,6 +3,7 @@
 #include "vtkDataArray.h"
 #include "vtkGlobalPrefilteredVolume.h"
 #include "vtkImageData.h"
+#include "vtkIrradianceRegion.h"
 #include "vtkMaterialTransferFunction.h"
 #include "vtkMatrix4x4.h"
 #include "vtkMultiMaterialLightTolerance.h"
@@ -40,6 +41,24 @@ vtkIrradianceInputCache::VolumeKey MakeVolumeKey(vtkMultiMaterialVolumeMapper* m
   key.ExponentialDiffusion = mapper->GetExponentialDiffusion();
   key.Cut = cutaway.Key();
   return key;
+}
+
+/// The irradiance voxels `image` reads: around the piece in the global
+/// grid, or all of a grid of `dims`.
+mmv::IndexBox ReadRegion(
+  vtkImageData* image, vtkGlobalPrefilteredVolume* global, bool pieceOnly, const int dims[3])
+{
+  if (!global || !pieceOnly)
+  {
+    return mmv::IndexBox::Whole(dims);
+  }
+  int pieceDims[3];
+  image->GetDimensions(pieceDims);
+  const glm::dvec3 offset = global->PieceOffset(image);
+  const double o[3] = { offset[0], offset[1], offset[2] };
+  const glm::dvec3& r = global->GetGrid().DataVoxelsPerVoxel;
+  const double ratio[3] = { r[0], r[1], r[2] };
+  return mmv::PieceIrradianceBox(dims, ratio, o, pieceDims);
 }
 
 /// The scalar opacity at `n` points over `range` (> 0 marks a voxel
@@ -189,12 +208,15 @@ bool vtkMultiMaterialIrradianceStage::Update(vtkMultiMaterialVolumeMapper* mappe
     this->Mapper->WarnOnce("more than " + std::to_string(mmv::MaxCutPlanes) +
       " clipping planes: the shadow rays ignore the others");
   }
-  const vtkIrradianceInputCache::VolumeKey volumeKey =
+  vtkIrradianceInputCache::VolumeKey volumeKey =
     MakeVolumeKey(this->Mapper, vol->GetProperty(), dataTime, this->Cache->GetMaterialVersion(),
       static_cast<int>(this->Lights->size()), range, cutaway);
   const mmv::IrradianceResolution resolution =
     this->ChooseGrid(ren, vol, image, scalars, range, volumeKey, cutaway);
   const int* dims = resolution.Dimensions;
+  // A piece of a volume in pieces: only what its ray cast reads.
+  const mmv::IndexBox region = ReadRegion(image, global, this->Mapper->PieceIrradianceOnly, dims);
+  std::copy(region.Bounds, region.Bounds + 6, volumeKey.Region);
   std::vector<mmv::LightSource> sources;
   for (const auto& light : *this->Lights)
   {
@@ -227,6 +249,7 @@ bool vtkMultiMaterialIrradianceStage::Update(vtkMultiMaterialVolumeMapper* mappe
       "the scalars contain NaN or Inf: lit as empty (NaN) or as the ends of the "
       "finite range (Inf)");
   }
+  this->Pass->SetRegion(region.Bounds);
   if (!this->ComputeOn(this->Pass, vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow()),
         vol, range, cutaway, this->Cache->GetGrid(), this->Cache->GetPrefiltered(),
         this->Cache->GetPrefilteredVersion(), sources, this->Mapper->MultipleScattering))

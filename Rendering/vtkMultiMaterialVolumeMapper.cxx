@@ -582,6 +582,7 @@ void vtkMultiMaterialVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "LightDirectionTolerance: " << this->LightDirectionTolerance << "\n";
   os << indent << "MultipleScattering: " << this->MultipleScattering << "\n";
   os << indent << "ShadowEstimation: " << this->ShadowEstimation << "\n";
+  os << indent << "PieceIrradianceOnly: " << this->PieceIrradianceOnly << "\n";
   os << indent << "PiecewiseShadowSlices: " << this->PiecewiseShadowSlices << "\n";
   os << indent << "ExponentialDiffusion: " << this->ExponentialDiffusion << "\n";
   os << indent << "PreIntegration: " << this->PreIntegration << "\n";

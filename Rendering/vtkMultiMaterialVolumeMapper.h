@@ -302,6 +302,17 @@ public:
   void SetGlobalPrefilteredVolume(vtkGlobalPrefilteredVolume* volume);
   vtkGlobalPrefilteredVolume* GetGlobalPrefilteredVolume();
 
+  /**
+   * With a global pre-filtered volume: estimate only the irradiance this
+   * piece reads, and what that depends on (default on; the region equals
+   * the whole grid's there, vtkIrradianceRegion.h), so that each rank's
+   * share of the work falls with the number of ranks. Off: every rank
+   * estimates the whole global grid.
+   */
+  vtkSetMacro(PieceIrradianceOnly, bool);
+  vtkGetMacro(PieceIrradianceOnly, bool);
+  vtkBooleanMacro(PieceIrradianceOnly, bool);
+
   /// The partitions (bricks) of the last render: those of SetPartitions, or
   /// more where a brick would exceed the largest 3D texture of the context
   /// (mmv::ChooseBrickPartitions), so that long volumes render instead of
@@ -339,6 +350,7 @@ protected:
   bool CompileUnusedOpticalTerms = false;
   int ReflectionSource = 0;     // mmv::ReflectEnvironmentTexture
   int ReflectionVisibility = 3; // mmv::AutomaticReflectionVisibility
+  bool PieceIrradianceOnly = true;
 
   int PreIntegrationCount = 0;
   int IrradianceUpdateCount = 0;

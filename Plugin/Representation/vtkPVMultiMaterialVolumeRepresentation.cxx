@@ -15,6 +15,7 @@
 #include "vtkRenderer.h"
 #include "vtkMaterialLibrary.h"
 #include "vtkMultiMaterialLiveObjects.h"
+#include "vtkIrradianceVolumePass.h"
 #include "vtkMultiMaterialVolumeMapper.h"
 #include "vtkObjectFactory.h"
 #include "vtkVolumeProperty.h"
@@ -197,6 +198,7 @@ void vtkPVMultiMaterialVolumeRepresentation::UpdateMapperParameters()
   mapper->SetShadowEstimation(this->ShadowEstimation);
   mapper->SetPiecewiseShadowSlices(this->PiecewiseShadowSlices);
   mapper->SetExponentialDiffusion(this->ExponentialDiffusion);
+  mapper->SetPieceIrradianceOnly(this->PieceIrradianceOnly);
   mapper->SetLightDirectionTolerance(this->LightDirectionTolerance);
 }
 
@@ -227,6 +229,7 @@ vtkPVMMVSetter(InteractiveIrradiance, int);
 vtkPVMMVSetter(ShadowEstimation, int);
 vtkPVMMVSetter(PiecewiseShadowSlices, int);
 vtkPVMMVSetter(ExponentialDiffusion, bool);
+vtkPVMMVSetter(PieceIrradianceOnly, bool);
 vtkPVMMVSetter(LightDirectionTolerance, double);
 vtkPVMMVSetter(ReflectionSource, int);
 vtkPVMMVSetter(ReflectionVisibility, int);
@@ -274,6 +277,13 @@ double vtkPVMultiMaterialVolumeRepresentation::GetLastIrradianceSeconds()
 {
   auto* mapper = this->GetMultiMaterialMapper();
   return mapper ? mapper->GetLastIrradianceSeconds() : 0.0;
+}
+
+double vtkPVMultiMaterialVolumeRepresentation::GetLastEstimatedIrradianceVoxels()
+{
+  vtkMultiMaterialVolumeMapper* mapper = this->GetMultiMaterialMapper();
+  return mapper ? static_cast<double>(mapper->GetIrradianceVolumePass()->GetLastEstimatedVoxels())
+                : 0.0;
 }
 
 const char* vtkPVMultiMaterialVolumeRepresentation::GetIrradianceResolutionInfo()
@@ -448,6 +458,7 @@ void vtkPVMultiMaterialVolumeRepresentation::PrintSelf(ostream& os, vtkIndent in
      << "\n";
   os << indent << "InteractiveIrradiance: " << this->InteractiveIrradiance << "\n";
   os << indent << "ShadowEstimation: " << this->ShadowEstimation << "\n";
+  os << indent << "PieceIrradianceOnly: " << this->PieceIrradianceOnly << "\n";
   os << indent << "PiecewiseShadowSlices: " << this->PiecewiseShadowSlices << "\n";
   os << indent << "ExponentialDiffusion: " << this->ExponentialDiffusion << "\n";
   os << indent << "LightDirectionTolerance: " << this->LightDirectionTolerance << "\n";

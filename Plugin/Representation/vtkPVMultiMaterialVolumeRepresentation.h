@@ -94,6 +94,9 @@ public:
   void SetShadowEstimation(int estimation);
   void SetPiecewiseShadowSlices(int slices);
   void SetExponentialDiffusion(bool exponential);
+  /// Under MPI: each rank estimates only the irradiance its piece reads (on,
+  /// default), or the whole global grid (off), vtkMultiMaterialVolumeMapper.
+  void SetPieceIrradianceOnly(bool pieceOnly);
   void SetLightDirectionTolerance(double degrees);
   void SetReflectionSource(int source);
   void SetReflectionVisibility(int visibility);
@@ -114,6 +117,8 @@ public:
   int GetMultiMaterialActive();
   int GetDeferredIrradianceCount();
   double GetLastIrradianceSeconds();
+  /// Voxels x lights the last irradiance update cast shadow rays from.
+  double GetLastEstimatedIrradianceVoxels();
   const char* GetIrradianceResolutionInfo();
   /// Under MPI: the global grid, the bytes this rank contributed to its
   /// exchange and the seconds the exchange took ("" when not in use).
@@ -177,6 +182,7 @@ private:
   int ShadowEstimation = mmv::PiecewiseShadowRays;
   int PiecewiseShadowSlices = mmv::DefaultPiecewiseShadowSlices;
   bool ExponentialDiffusion = mmv::DefaultExponentialDiffusion;
+  bool PieceIrradianceOnly = true;
   double LightDirectionTolerance = mmv::DefaultLightDirectionToleranceDegrees;
   int ReflectionSource = 0;     // mmv::ReflectEnvironmentTexture
   int ReflectionVisibility = 3; // mmv::AutomaticReflectionVisibility (the proxy's default)

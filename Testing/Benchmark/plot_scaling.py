@@ -1,11 +1,14 @@
 """Charts of docs/scaling.md (issue 11) from the benchmarks' CSV files:
 
-    pvpython plot_scaling.py SCALING_MPI.csv SCALING_SIZE.csv OUT_MPI.png OUT_SIZE.png
+    pvpython plot_scaling.py SCALING_MPI.csv SCALING_SIZE.csv OUT_MPI.png OUT_SIZE.png \
+        [RANK_REGIONS.csv OUT_REGIONS.png]
 
 (pvpython has matplotlib; so does python3 where it is installed.)
 SCALING_MPI.csv: Testing/Benchmark/pv_mpi_scaling.py (rank 0's figures, one
-row per rank count and round). SCALING_SIZE.csv: mmvVolumeSizeBenchmark (one
-row per volume size). Every round is drawn as a point and the median as a
+row per rank count, round and mode: each rank its piece's region, or the
+whole grid). SCALING_SIZE.csv: mmvVolumeSizeBenchmark (one row per volume
+size). RANK_REGIONS.csv: mmvRankRegionBenchmark (each rank's share, ranks run
+one after the other). Every round is drawn as a point and the median as a
 line, so run-to-run spread on a shared machine stays visible.
 """
 import csv
@@ -29,23 +32,30 @@ def number(text):
 
 def plot_mpi(rows, out):
     ranks = sorted({int(r["ranks"]) for r in rows})
-    series = [
-        ("light_move_frame_s", "still frame after a light move", "C0"),
-        ("irradiance_update_s", "irradiance update (mapper timer)", "C1"),
-        ("still_frame_s", "frame, nothing changed", "C2"),
-        ("exchange_s", "exchange (pre-filter + all-reduce)", "C3"),
+    modes = {"piece": "each rank its piece", "whole": "each rank the whole grid"}
+    series = []
+    for mode, style in (("piece", "-"), ("whole", "--")):
+        series += [
+            ("light_move_frame_s", mode, "still frame after a light move, " + modes[mode], "C0", style),
+            ("irradiance_update_s", mode, "irradiance update, " + modes[mode], "C1", style),
+        ]
+    series += [
+        ("still_frame_s", "piece", "frame, nothing changed", "C2", "-"),
+        ("exchange_s", "piece", "exchange (pre-filter + all-reduce)", "C3", "-"),
     ]
     fig, (times, sent) = plt.subplots(1, 2, figsize=(11, 4.2))
-    for key, label, colour in series:
+    for key, mode, label, colour, style in series:
         medians = []
         for n in ranks:
-            values = [number(r[key]) for r in rows if int(r["ranks"]) == n]
+            values = [number(r[key]) for r in rows
+                      if int(r["ranks"]) == n and r.get("mode", "whole") == mode]
             values = [v for v in values if v is not None]
             times.scatter([n] * len(values), values, color=colour, alpha=0.5, s=18)
             medians.append(statistics.median(values) if values else None)
         shown = [(n, m) for n, m in zip(ranks, medians) if m is not None]
-        times.plot([n for n, _ in shown], [m for _, m in shown], color=colour, marker="o",
-                   label=label)
+        if shown:
+            times.plot([n for n, _ in shown], [m for _, m in shown], color=colour, marker="o",
+                       linestyle=style, label=label)
     times.set_xticks(ranks)
     times.set_xlabel("MPI ranks (2 and 4 oversubscribed on 2 cores)")
     times.set_ylabel("seconds (rank 0)")
@@ -103,12 +113,55 @@ def plot_size(rows, out):
     fig.savefig(out, dpi=100)
 
 
+def plot_regions(rows, out):
+    """Each rank's share (mmvRankRegionBenchmark): the slowest rank's update
+    and the largest rank's voxels against the ranks, its piece's region
+    against the whole grid, per split axis and with/without scattering."""
+    fig, (times, share) = plt.subplots(1, 2, figsize=(11, 4.4))
+    cases = sorted({(r["axis"], r["scattering"]) for r in rows if int(r["ranks"]) > 1})
+    colours = ["C0", "C1", "C2", "C3", "C4", "C5"]
+    for (axis, scattering), colour in zip(cases, colours):
+        for mode, style in (("piece", "-"), ("whole", "--")):
+            points = sorted(
+                (int(r["ranks"]), number(r["slowest_rank_update_s"]),
+                 number(r["largest_rank_voxels"]) / number(r["whole_grid_voxels"]))
+                for r in rows if r["mode"] == mode and r["scattering"] == scattering and
+                (r["axis"] == axis or int(r["ranks"]) == 1))
+            label = "split along %s, scattering %s" % (axis, scattering)
+            times.plot([p[0] for p in points], [p[1] for p in points], color=colour, marker="o",
+                       linestyle=style, label=label + (", whole grid" if mode == "whole" else ""))
+            if mode == "piece":
+                share.plot([p[0] for p in points], [100.0 * p[2] for p in points], color=colour,
+                           marker="o", label=label)
+    ranks = sorted({int(r["ranks"]) for r in rows})
+    share.plot(ranks, [100.0 / n for n in ranks], color="grey", linestyle=":", label="1 / ranks")
+    for axes in (times, share):
+        axes.set_xticks(ranks)
+        axes.set_xlabel("ranks (run one after the other in one process)")
+        axes.set_ylim(bottom=0)
+        axes.grid(alpha=0.3)
+    times.set_ylabel("seconds")
+    times.set_title("Slowest rank's irradiance update (dashed: whole grid)")
+    times.legend(fontsize=7, loc="center")
+    share.set_ylabel("% of the whole grid's voxels x lights")
+    share.set_title("Largest rank's estimated voxels (its region + halo)")
+    share.legend(fontsize=7)
+    fig.suptitle("CT-sized head, irradiance grid %s, light kit (5 lights), Mesa llvmpipe"
+                 % rows[0]["irradiance_grid"])
+    fig.tight_layout()
+    fig.savefig(out, dpi=100)
+
+
 def main(argv):
-    if len(argv) != 5:
+    if len(argv) not in (5, 7):
         sys.exit(__doc__)
     plot_mpi(read_rows(argv[1]), argv[3])
     plot_size(read_rows(argv[2]), argv[4])
-    print("wrote %s, %s" % (argv[3], argv[4]))
+    written = [argv[3], argv[4]]
+    if len(argv) == 7:
+        plot_regions(read_rows(argv[5]), argv[6])
+        written.append(argv[6])
+    print("wrote " + ", ".join(written))
 
 
 if __name__ == "__main__":

@@ -8,9 +8,11 @@ Multi-Material Volume with IrradianceScale 0.5 (the same grid on any number
 of ranks) and one directional scene light. Measured on rank 0, medians over
 R: the exchange that builds the global grid (forced again by nudging
 IrradianceMemoryMB, which changes nothing else) and the bytes it sends per
-rank; the irradiance update after a light move (the mapper's own timer) and
-that still frame's wall time; a frame with nothing changed. Appends one CSV
-line per run. Not a test."""
+rank; the irradiance update after a light move (the mapper's own timer), the
+voxels x lights it estimated and that still frame's wall time, with each rank
+estimating what its piece reads (PieceIrradianceOnly, default) and the whole
+grid, interleaved; a frame with nothing changed. Appends two CSV lines per
+run. Not a test."""
 
 import argparse
 import os
@@ -79,27 +81,38 @@ for r in range(args.reps):
     if match:
         sent = int(match.group(1))
         exchange.append(float(match.group(2)))
-irradiance, lightFrame, still = [], [], []
+# Each rank estimating what its piece reads (PieceIrradianceOnly, the
+# default) and the whole global grid, interleaved: a light move each time.
+modes = {1: "piece", 0: "whole"}
+irradiance = {m: [] for m in modes}
+voxels = {m: [] for m in modes}
+lightFrame = {m: [] for m in modes}
+still = []
 for r in range(args.reps):
-    light.Position = [10.0 + 5.0 * (r + 1), 20.0, 100.0]
-    start = time.perf_counter()
-    simple.Render(view)
-    lightFrame.append(time.perf_counter() - start)
-    irradiance.append(info(rep, "LastIrradianceSeconds"))
+    for mode in modes:
+        rep.PieceIrradianceOnly = mode
+        light.Position = [10.0 + 5.0 * (r + 1) + mode, 20.0, 100.0]
+        start = time.perf_counter()
+        simple.Render(view)
+        lightFrame[mode].append(time.perf_counter() - start)
+        irradiance[mode].append(info(rep, "LastIrradianceSeconds"))
+        voxels[mode].append(info(rep, "LastEstimatedIrradianceVoxels"))
     start = time.perf_counter()
     simple.Render(view)
     still.append(time.perf_counter() - start)
 
 grid = re.match(r"(\S+)", info(rep, "IrradianceResolutionInfo")).group(1)
-header = ("ranks,size,irradiance_grid,bytes_sent_per_rank,exchange_s,irradiance_update_s,"
-          "light_move_frame_s,still_frame_s,first_frame_s")
-line = "%d,%d,%s,%d,%s,%.3f,%.3f,%.3f,%.2f" % (
-    ranks, args.size, grid, sent, ("%.4f" % median(exchange)) if exchange else "",
-    median(irradiance), median(lightFrame), median(still), first)
+header = ("ranks,size,irradiance_grid,mode,rank0_estimated_voxels,bytes_sent_per_rank,exchange_s,"
+          "irradiance_update_s,light_move_frame_s,still_frame_s,first_frame_s")
 print(header)
-print(line)
 fresh = not os.path.exists(args.csv)
 with open(args.csv, "a") as f:
     if fresh:
         f.write(header + "\n")
-    f.write(line + "\n")
+    for mode, name in modes.items():
+        line = "%d,%d,%s,%s,%d,%d,%s,%.3f,%.3f,%.3f,%.2f" % (
+            ranks, args.size, grid, name, median(voxels[mode]), sent,
+            ("%.4f" % median(exchange)) if exchange else "", median(irradiance[mode]),
+            median(lightFrame[mode]), median(still), first)
+        print(line)
+        f.write(line + "\n")

@@ -7,6 +7,7 @@
 #include "mmvTestWindow.h"
 #include "vtkIrradianceDiffusion.h"
 #include "vtkIrradianceGrid.h"
+#include "vtkIrradianceRegion.h"
 #include "vtkIrradianceVolumeFilter.h"
 #include "vtkIrradianceVolumePass.h"
 #include "vtkMultiMaterialLights.h"
@@ -928,4 +929,115 @@ TEST(IrradianceVolumePass, LeavesTheRenderersStateAsItFoundIt)
   EXPECT_EQ(std::vector<GLint>(viewport, viewport + 4), std::vector<GLint>({ 1, 2, 50, 60 }));
   state->vtkglDisable(GL_SCISSOR_TEST);
   pass->ReleaseGraphicsResources(ctx.GL);
+}
+
+/// Largest |a - b| over the voxels of `box` in a grid of `dims` (`components`
+/// values per voxel).
+double MaxDifferenceIn(const std::vector<float>& a, const std::vector<float>& b,
+  const int dims[3], const int box[6], int components = 1)
+{
+  double diff = 0.0;
+  for (int k = box[4]; k <= box[5]; ++k)
+  {
+    for (int j = box[2]; j <= box[3]; ++j)
+    {
+      for (int i = box[0]; i <= box[1]; ++i)
+      {
+        const size_t v = i + static_cast<size_t>(dims[0]) * (j + static_cast<size_t>(dims[1]) * k);
+        for (int c = 0; c < components; ++c)
+        {
+          diff = std::max(diff,
+            std::abs(static_cast<double>(a[components * v + c]) - b[components * v + c]));
+        }
+      }
+    }
+  }
+  return diff;
+}
+
+// A region of the grid (SetRegion: what one MPI rank's piece reads) against
+// the whole grid, for a directional light (piecewise rays), a point and a
+// spot light (full rays), a transmission colour (the tint) and scattering:
+// bit for bit inside with the exponential diffusion (the default), within
+// the sweeps' tolerance with backward Euler; and fewer voxels estimated
+// where the diffusion's reach leaves some out.
+TEST(IrradianceVolumePass, ARegionEqualsTheWholeGridInsideIt)
+{
+  const Context& ctx = SharedContext();
+  ASSERT_NE(ctx.GL, nullptr);
+  const int regions[][6] = { { 0, 7, 0, 23, 0, 23 }, { 0, 23, 0, 23, 14, 23 },
+    { 0, 23, 6, 11, 0, 23 }, { 3, 9, 10, 20, 2, 8 } };
+  for (const double scattering : { 0.0, 1.0 })
+  {
+    for (const bool exponential : { true, false })
+    {
+      Scene scene = TwoBlocks(scattering);
+      // The second block tinted: its shadows get a colour.
+      scene.Material->AddNode(
+        2.0, 0.2, 0.7, 0.2, 20.0, 2.0, scattering, 0.0, 0.0, 0.0, 0.9, 0.5, 0.2);
+      vtkNew<vtkIrradianceVolumePass> whole;
+      SetPassInputs(scene, whole);
+      whole->SetExponentialDiffusion(exponential);
+      ASSERT_TRUE(whole->IsTinted());
+      ASSERT_TRUE(whole->Render(ctx.GL));
+      const mmv::IrradianceGrid grid = GridOf(scene);
+      int tintDims[3];
+      whole->GetTintDimensions(tintDims);
+      std::vector<std::vector<float>> expected(scene.Lights.size()), expectedTint(scene.Lights.size());
+      for (size_t l = 0; l < scene.Lights.size(); ++l)
+      {
+        ASSERT_TRUE(whole->ReadBack(ctx.GL, static_cast<int>(l), expected[l]));
+        ASSERT_TRUE(whole->ReadBackTint(ctx.GL, static_cast<int>(l), expectedTint[l]));
+      }
+      for (const auto& region : regions)
+      {
+        SCOPED_TRACE(::testing::Message()
+          << "s " << scattering << (exponential ? " exponential" : " backward Euler") << ", region "
+          << region[0] << "-" << region[1] << " " << region[2] << "-" << region[3] << " "
+          << region[4] << "-" << region[5]);
+        vtkNew<vtkIrradianceVolumePass> part;
+        SetPassInputs(scene, part);
+        part->SetExponentialDiffusion(exponential);
+        part->SetRegion(region);
+        ASSERT_TRUE(part->Render(ctx.GL));
+        mmv::IndexBox box;
+        std::copy(region, region + 6, box.Bounds);
+        const mmv::IndexBox tintBox = mmv::ResampledBox(box, grid.Dimensions, tintDims);
+        double worst = 0.0, worstTint = 0.0, largest = 0.0;
+        for (size_t l = 0; l < scene.Lights.size(); ++l)
+        {
+          std::vector<float> values, tint;
+          ASSERT_TRUE(part->ReadBack(ctx.GL, static_cast<int>(l), values));
+          ASSERT_TRUE(part->ReadBackTint(ctx.GL, static_cast<int>(l), tint));
+          worst = std::max(worst, MaxDifferenceIn(values, expected[l], grid.Dimensions, region));
+          worstTint = std::max(
+            worstTint, MaxDifferenceIn(tint, expectedTint[l], tintDims, tintBox.Bounds, 3));
+          largest = std::max(largest,
+            static_cast<double>(*std::max_element(expected[l].begin(), expected[l].end())));
+        }
+        std::cout << "region " << region[0] << "-" << region[1] << " " << region[2] << "-"
+                  << region[3] << " " << region[4] << "-" << region[5] << ", s " << scattering
+                  << (exponential ? " exponential" : " backward Euler") << ": max difference "
+                  << worst << " (tint " << worstTint << "), voxels estimated "
+                  << part->GetLastEstimatedVoxels() << " of " << whole->GetLastEstimatedVoxels()
+                  << "\n";
+        EXPECT_EQ(worstTint, 0.0);
+        if (exponential || scattering == 0.0)
+        {
+          EXPECT_EQ(worst, 0.0);
+        }
+        else
+        {
+          EXPECT_LE(worst, 2.0 * mmv::DiffusionSettings().SweepTolerance * largest);
+        }
+        EXPECT_LE(part->GetLastEstimatedVoxels(), whole->GetLastEstimatedVoxels());
+        if (scattering == 0.0)
+        {
+          EXPECT_LT(part->GetLastEstimatedVoxels(), whole->GetLastEstimatedVoxels() * 3 / 4);
+        }
+        part->ReleaseGraphicsResources(ctx.GL);
+      }
+      whole->ReleaseGraphicsResources(ctx.GL);
+    }
+  }
 }

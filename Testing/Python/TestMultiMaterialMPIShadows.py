@@ -11,7 +11,11 @@ representation merges them, and the image must equal the -np 1 reference of
 the plain pieces. With --tinted, the material has a transmission colour
 (tinted shadows): -np 1 writes its own reference, -np 3 must equal it. With
 --reflective, the `metal` preset reflects the view's background, which the
-ranks must see as -np 1 does (before it was pinned: 32.7 dB)."""
+ranks must see as -np 1 does (before it was pinned: 32.7 dB).
+
+Each rank estimates only the irradiance its piece reads (PieceIrradianceOnly):
+rank 0 must estimate a share of the global grid, and with the option off
+(every rank the whole grid) the image must be identical."""
 
 import argparse
 import math
@@ -133,7 +137,22 @@ image = mmv.render_image(view, path)
 checker.check(mmv.check_not_blank(image, "plate and floor"), "the volume is visible")
 checker.check(mmv.info(rep, "MultiMaterialActive") == 1, "rank 0 shaded with materials")
 print("global irradiance: %s" % mmv.info(rep, "GlobalIrradianceInfo"))
-print("irradiance: %s" % mmv.info(rep, "IrradianceResolutionInfo"))
+resolution = mmv.info(rep, "IrradianceResolutionInfo")
+print("irradiance: %s" % resolution)
+# Rank 0 estimates what its piece reads (PieceIrradianceOnly, the default):
+# the whole global grid alone, a share of it among ranks.
+grid = [int(n) for n in resolution.split(" ")[0].split("x")]
+whole = grid[0] * grid[1] * grid[2]  # one light
+estimated = mmv.info(rep, "LastEstimatedIrradianceVoxels")[0]
+print("rank 0 estimated %d of the global grid's %d voxels (%.0f %%)"
+      % (estimated, whole, 100.0 * estimated / whole))
+if ranks == 1:
+    checker.check(estimated == whole, "one rank estimates the whole grid (%d of %d)"
+                  % (estimated, whole))
+else:
+    checker.check(0 < estimated <= 0.75 * whole,
+                  "rank 0 estimates its share of the grid (%d of %d voxels <= 75 %%)"
+                  % (estimated, whole))
 
 
 def psnr(a, b):
@@ -157,5 +176,17 @@ else:
         what = "-np %d%s" % (ranks, {"Blocks": " in blocks", "Tinted": " tinted", "Reflective": " reflective"}.get(variant, ""))
         print("%s vs -np 1: PSNR %.2f dB" % (what, value))
         checker.check(value >= 40.0, "%s equals -np 1 (PSNR %.2f dB >= 40)" % (what, value))
+if ranks > 1 and not variant:
+    # Every rank estimating the whole grid instead draws the same pixels:
+    # the region's irradiance equals the whole grid's bit for bit.
+    rep.PieceIrradianceOnly = 0
+    wholeImage = mmv.render_image(
+        view, os.path.join(args.temp_dir, "PVMultiMaterialMPIShadowsWhole_%d.png" % ranks))
+    estimated = mmv.info(rep, "LastEstimatedIrradianceVoxels")[0]
+    checker.check(estimated == whole, "PieceIrradianceOnly off: rank 0 estimates the whole grid "
+                  "(%d of %d)" % (estimated, whole))
+    value = psnr(image, wholeImage)
+    print("piece regions vs whole grids at -np %d: PSNR %.2f dB" % (ranks, value))
+    checker.check(value == float("inf"), "piece regions draw the same pixels as whole grids")
 checker.check(errors.take_errors() == "", "no VTK errors on rank 0")
 checker.finish()

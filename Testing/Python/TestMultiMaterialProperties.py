@@ -242,6 +242,20 @@ checker.check(0.0 < d < 1.0,
               "backward Euler and the exponential differ a little (mean |difference| %.3f)" % d)
 rep.ExponentialDiffusion = 1
 
+# PieceIrradianceOnly (on by default) matters only to a piece of a volume in
+# parallel: in one process the region is the whole grid, so switching it
+# neither recomputes the irradiance nor changes the image.
+checker.check(rep.PieceIrradianceOnly == 1, "PieceIrradianceOnly defaults to on")
+render()
+before = counters()
+rep.PieceIrradianceOnly = 0
+whole = render()
+checker.check(counters()["IrradianceUpdateCount"] == before["IrradianceUpdateCount"],
+              "PieceIrradianceOnly off in one process keeps the irradiance")
+checker.check(mmv.mean_difference(whole, exact) < 1e-9,
+              "PieceIrradianceOnly off in one process draws the same image")
+rep.PieceIrradianceOnly = 1
+
 log = errors.take_errors()
 checker.check(log == "", "no VTK errors: %r" % log[:500])
 checker.finish()

@@ -1,0 +1,212 @@
+// What a region of the irradiance grid depends on (vtkIrradianceRegion.h,
+// mmv::PlanSweepBoxes of vtkShadowSweep.h): every voxel the piecewise
+// shadow sweep reads on the way to a region, found by following the
+// shader's reads one voxel at a time, lies in the box its chunk draws; and
+// the boxes stay small where the region allows. The GPU pass's region
+// equals its whole grid bit for bit (TestIrradianceVolumePass.cxx).
+#include "vtkIrradianceRegion.h"
+#include "vtkShadowSweep.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <random>
+#include <set>
+#include <vector>
+
+namespace
+{
+
+using Voxel = std::array<int, 3>;
+
+/// The slice voxels Shaders/mmvPiecewiseShadowFS.glsl's mmvSampleSlice
+/// fetches for a ray from `v` toward `toLight` that reaches slice `plane`
+/// (rays that leave the grid first read nothing: a superset is checked).
+void SliceReads(const int dims[3], int axis, int plane, const Voxel& v,
+  const glm::dvec3& toLight, std::set<Voxel>& reads)
+{
+  const double distance = (plane - v[axis]) / toLight[axis];
+  int low[3];
+  int count[3] = { 1, 1, 1 };
+  low[axis] = plane;
+  for (int e = 0; e < 3; ++e)
+  {
+    if (e == axis)
+    {
+      continue;
+    }
+    const double q = v[e] + distance * toLight[e];
+    const double x = std::min(std::max(q, 0.0), dims[e] - 1.0);
+    low[e] = std::min(static_cast<int>(x), std::max(dims[e] - 2, 0));
+    count[e] = dims[e] > 1 ? 2 : 1;
+  }
+  for (int i = 0; i < count[0]; ++i)
+  {
+    for (int j = 0; j < count[1]; ++j)
+    {
+      for (int k = 0; k < count[2]; ++k)
+      {
+        reads.insert({ low[0] + i, low[1] + j, low[2] + k });
+      }
+    }
+  }
+}
+
+/// Follows the reads from `region` chunk by chunk toward the light and
+/// checks that each needed voxel lies in its chunk's box. Returns the
+/// number of voxels the boxes draw.
+long long CheckSweepBoxes(const int dims[3], const glm::dvec3& toLight, int slicesPerChunk,
+  const mmv::IndexBox& region)
+{
+  const mmv::ShadowSweep sweep = mmv::PlanShadowSweep(dims, toLight, slicesPerChunk);
+  const std::vector<mmv::IndexBox> boxes = mmv::PlanSweepBoxes(sweep, dims, toLight, region);
+  EXPECT_EQ(static_cast<int>(boxes.size()), sweep.GetNumberOfChunks());
+  std::set<Voxel> needed;
+  for (int k = region.Bounds[4]; k <= region.Bounds[5]; ++k)
+  {
+    for (int j = region.Bounds[2]; j <= region.Bounds[3]; ++j)
+    {
+      for (int i = region.Bounds[0]; i <= region.Bounds[1]; ++i)
+      {
+        needed.insert({ i, j, k });
+      }
+    }
+  }
+  long long drawn = 0;
+  for (int chunk = sweep.GetNumberOfChunks() - 1; chunk >= 0; --chunk)
+  {
+    int first, last, plane;
+    sweep.GetChunk(chunk, first, last, plane);
+    drawn += boxes[chunk].GetNumberOfVoxels();
+    std::set<Voxel> reads;
+    for (const Voxel& v : needed)
+    {
+      if (v[sweep.Axis] < first || v[sweep.Axis] > last)
+      {
+        continue;
+      }
+      EXPECT_TRUE(boxes[chunk].Contains(v.data()))
+        << "chunk " << chunk << " misses voxel " << v[0] << " " << v[1] << " " << v[2];
+      if (plane >= 0)
+      {
+        SliceReads(dims, sweep.Axis, plane, v, toLight, reads);
+      }
+    }
+    needed.insert(reads.begin(), reads.end());
+  }
+  return drawn;
+}
+
+} // namespace
+
+TEST(IrradianceRegion, SweepBoxesHoldEveryVoxelTheRegionReadsOnTheWayToTheLight)
+{
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  const std::vector<std::array<int, 3>> grids = { { 17, 13, 11 }, { 9, 1, 12 }, { 24, 24, 24 } };
+  for (const auto& grid : grids)
+  {
+    for (int trial = 0; trial < 12; ++trial)
+    {
+      glm::dvec3 toLight(unit(random), unit(random), unit(random));
+      if (trial < 3)
+      {
+        toLight = glm::dvec3(0.0);
+        toLight[trial] = trial == 1 ? -1.0 : 1.0; // along an axis: no in-slice shift
+      }
+      mmv::IndexBox region;
+      for (int a = 0; a < 3; ++a)
+      {
+        std::uniform_int_distribution<int> index(0, grid[a] - 1);
+        const int p = index(random);
+        const int q = index(random);
+        region.Bounds[2 * a] = std::min(p, q);
+        region.Bounds[2 * a + 1] = std::max(p, q);
+      }
+      for (const int k : { 1, 3, 16 })
+      {
+        SCOPED_TRACE(::testing::Message() << "grid " << grid[0] << "x" << grid[1] << "x"
+                                          << grid[2] << ", trial " << trial << ", K " << k);
+        CheckSweepBoxes(grid.data(), toLight, k, region);
+      }
+    }
+  }
+}
+
+TEST(IrradianceRegion, SweepBoxesOfAWholeGridAreItsSlabs)
+{
+  const int dims[3] = { 10, 12, 14 };
+  const mmv::ShadowSweep sweep = mmv::PlanShadowSweep(dims, glm::dvec3(0.3, -0.2, 0.9), 4);
+  const auto boxes = mmv::PlanSweepBoxes(sweep, dims, glm::dvec3(0.3, -0.2, 0.9), mmv::IndexBox::Whole(dims));
+  ASSERT_EQ(boxes.size(), 4u);
+  for (int chunk = 0; chunk < 4; ++chunk)
+  {
+    int first, last, plane;
+    sweep.GetChunk(chunk, first, last, plane);
+    const int slab[6] = { 0, 9, 0, 11, first, last };
+    EXPECT_TRUE(std::equal(slab, slab + 6, boxes[chunk].Bounds)) << "chunk " << chunk;
+  }
+}
+
+// A quarter slab of a 64^3 grid: across the light, its chunks draw the slab
+// and a margin; along it, the chunks upstream draw one slice each.
+TEST(IrradianceRegion, ASlabAcrossOrAlongTheLightDrawsLittleMoreThanItself)
+{
+  const int dims[3] = { 64, 64, 64 };
+  const mmv::IndexBox slab{ { 0, 63, 0, 63, 32, 47 } };
+  const long long slabVoxels = slab.GetNumberOfVoxels();
+  const long long whole = 64LL * 64 * 64;
+  // Across: the light mostly along x, a little toward z.
+  const long long across = CheckSweepBoxes(dims, glm::dvec3(1.0, 0.2, 0.1), 16, slab);
+  EXPECT_LT(across, slabVoxels * 3 / 2);
+  // Along: the light along +z, the slab two chunks from it.
+  const long long along = CheckSweepBoxes(dims, glm::dvec3(0.1, 0.15, 1.0), 16, slab);
+  EXPECT_LE(along, slabVoxels + 64LL * 64);
+  EXPECT_LT(along, whole / 3);
+}
+
+TEST(IrradianceRegion, PieceBoxCoversItsPointsAndOneVoxelMore)
+{
+  const int grid[3] = { 33, 17, 9 };
+  const double ratio[3] = { 2.0, 4.0, 1.0 };
+  // Points 20..41 of x, 0..63 of y, 3..5 of z.
+  const double offset[3] = { 20.0, 0.0, 3.0 };
+  const int piece[3] = { 22, 65, 3 };
+  const mmv::IndexBox box = mmv::PieceIrradianceBox(grid, ratio, offset, piece);
+  const int expected[6] = { 9, 22, 0, 16, 2, 6 };
+  EXPECT_TRUE(std::equal(expected, expected + 6, box.Bounds))
+    << box.Bounds[0] << " " << box.Bounds[1] << " " << box.Bounds[2] << " " << box.Bounds[3]
+    << " " << box.Bounds[4] << " " << box.Bounds[5];
+}
+
+TEST(IrradianceRegion, DiffusionPlanReachesOneBlockFurtherPerPass)
+{
+  const int dims[3] = { 40, 40, 40 };
+  mmv::DiffusionGrid coarse;
+  for (int a = 0; a < 3; ++a)
+  {
+    coarse.Factor[a] = 4;
+    coarse.Dimensions[a] = 10;
+  }
+  const mmv::IndexBox region{ { 16, 23, 0, 39, 0, 39 } };
+  const mmv::IrradianceRegionPlan none = mmv::PlanIrradianceRegion(region, dims, nullptr, 0);
+  const int source[6] = { 15, 24, 0, 39, 0, 39 };
+  EXPECT_TRUE(std::equal(source, source + 6, none.Source.Bounds));
+  EXPECT_TRUE(none.Estimated == none.Source);
+  EXPECT_TRUE(none.Coarse.IsEmpty());
+  // Source x 15..24: coarse coordinates (15 - 1.5) / 4 = 3.375 .. 5.625,
+  // blocks 3..6 (floor and floor + 1), grown by the passes + 2.
+  const mmv::IrradianceRegionPlan one = mmv::PlanIrradianceRegion(region, dims, &coarse, 1);
+  EXPECT_EQ(one.Coarse.Bounds[0], 0);
+  EXPECT_EQ(one.Coarse.Bounds[1], 9);
+  const mmv::IrradianceRegionPlan zero = mmv::PlanIrradianceRegion(region, dims, &coarse, 0);
+  EXPECT_EQ(zero.Coarse.Bounds[0], 1);
+  EXPECT_EQ(zero.Coarse.Bounds[1], 8);
+  EXPECT_EQ(zero.Estimated.Bounds[0], 4);  // block 1 starts at voxel 4
+  EXPECT_EQ(zero.Estimated.Bounds[1], 35); // block 8 ends at voxel 35
+  // A long solve reaches the whole grid: the halo is then everything.
+  const mmv::IrradianceRegionPlan many = mmv::PlanIrradianceRegion(region, dims, &coarse, 40);
+  EXPECT_TRUE(many.Estimated == mmv::IndexBox::Whole(dims));
+}
