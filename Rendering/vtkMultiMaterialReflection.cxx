@@ -160,6 +160,10 @@ bool vtkMultiMaterialReflection::UpdateVisibilityPass(vtkRenderer* ren,
   key.insert(key.end(), this->Origin, this->Origin + 3);
   key.insert(key.end(), { double(this->Offset), double(this->TableSize), double(this->StepLength),
                           double(this->ReflectiveRange[0]), double(this->ReflectiveRange[1]) });
+  // A piece of a volume in parallel reads only the irradiance pass's region.
+  int region[6];
+  this->Pass->GetRegion(region);
+  key.insert(key.end(), region, region + 6);
   if (keepWhileCameraMoves && key == this->VolumeKey && this->VisibilityPass->GetVisibilityTexture())
   {
     return true; // an earlier camera's, until the interaction ends
@@ -169,7 +173,7 @@ bool vtkMultiMaterialReflection::UpdateVisibilityPass(vtkRenderer* ren,
   key.insert(key.end(), eye, eye + 4);
   this->Pass->GetScalarTexture()->Activate();
   this->Pass->GetShadowTableTexture()->Activate();
-  const bool ok = this->VisibilityPass->Update(context, grid.Dimensions,
+  const bool ok = this->VisibilityPass->Update(context, grid.Dimensions, region,
     mmv::ReflectionMarchDefines(this->Cutaway), key, [this](vtkShaderProgram* program) {
       this->SetMarchUniforms(program);
       program->SetUniformMatrix3x3("mmv_visibilityToObject", const_cast<float*>(this->ToObject));

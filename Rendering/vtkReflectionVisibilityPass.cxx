@@ -21,6 +21,7 @@
 #include "mmvVoxelPassDec.h"
 #include "mmvVoxelPassMain.h"
 
+#include <algorithm>
 #include <memory>
 
 vtkStandardNewMacro(vtkReflectionVisibilityPass);
@@ -104,7 +105,7 @@ vtkTextureObject* vtkReflectionVisibilityPass::GetVisibilityTexture() const
 }
 
 bool vtkReflectionVisibilityPass::Update(vtkOpenGLRenderWindow* context, const int dims[3],
-  const std::string& defines, const std::vector<double>& key,
+  const int* region, const std::string& defines, const std::vector<double>& key,
   const std::function<void(vtkShaderProgram*)>& setUniforms)
 {
   vtkInternals& in = *this->Internals;
@@ -133,19 +134,34 @@ bool vtkReflectionVisibilityPass::Update(vtkOpenGLRenderWindow* context, const i
     vtkOpenGLState::ScopedglEnableDisable depth(state, GL_DEPTH_TEST);
     vtkOpenGLState::ScopedglEnableDisable scissor(state, GL_SCISSOR_TEST);
     vtkOpenGLState::ScopedglColorMask colorMask(state);
+    vtkOpenGLState::ScopedglScissor scissorBox(state); // the region's, restored for the ray cast
     state->vtkglDisable(GL_BLEND);
     state->vtkglDisable(GL_DEPTH_TEST);
     state->vtkglDisable(GL_SCISSOR_TEST);
     state->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     state->vtkglViewport(0, 0, dims[0], dims[1]);
+    const int whole[6] = { 0, dims[0] - 1, 0, dims[1] - 1, 0, dims[2] - 1 };
+    int box[6];
+    for (int a = 0; a < 3; ++a)
+    {
+      box[2 * a] = region ? std::max(region[2 * a], 0) : whole[2 * a];
+      box[2 * a + 1] = region ? std::min(region[2 * a + 1], whole[2 * a + 1]) : whole[2 * a + 1];
+    }
+    const bool empty = box[0] > box[1] || box[2] > box[3] || box[4] > box[5];
+    if (region && !empty)
+    {
+      state->vtkglEnable(GL_SCISSOR_TEST);
+      state->vtkglScissor(box[0], box[2], box[1] - box[0] + 1, box[3] - box[2] + 1);
+    }
     setUniforms(program);
-    // Every slice in one instanced draw into the whole 3D texture.
+    // The region's slices (every slice without one) in one instanced draw
+    // into the whole 3D texture.
     in.Framebuffer->Bind();
     glFramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, in.Texture->GetHandle(), 0);
     in.Framebuffer->ActivateDrawBuffers(1);
-    program->SetUniformi("firstLayer", 0);
+    program->SetUniformi("firstLayer", box[4]);
     in.Quad->VAO->Bind();
-    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, dims[2]);
+    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, empty ? 0 : box[5] - box[4] + 1);
     in.Quad->VAO->Release();
     glFramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, 0, 0);
   }

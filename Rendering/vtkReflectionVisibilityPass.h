@@ -40,11 +40,16 @@ public:
    * computed one: the fragment shader is `defines` followed by the march
    * (mmvCutaway, mmvShadowRay, mmvReflectionMarch.glsl) and
    * mmvReflectionVisibilityFS.glsl; `setUniforms` sets its uniforms, with
-   * the textures it samples active. Needs the context current. False (with
-   * an error) when the context cannot draw it.
+   * the textures it samples active. `region` (i0, i1, j0, j1, k0, k1,
+   * inclusive), when given, limits the draw to the voxels a piece reads
+   * (vtkIrradianceVolumePass::GetRegion): each voxel is its own march, so
+   * they equal the whole texture's; the others keep what they held (it
+   * belongs in `key`). Needs the context current. False (with an error)
+   * when the context cannot draw it.
    */
-  bool Update(vtkOpenGLRenderWindow* context, const int dims[3], const std::string& defines,
-    const std::vector<double>& key, const std::function<void(vtkShaderProgram*)>& setUniforms);
+  bool Update(vtkOpenGLRenderWindow* context, const int dims[3], const int* region,
+    const std::string& defines, const std::vector<double>& key,
+    const std::function<void(vtkShaderProgram*)>& setUniforms);
 
   /// The visibility (R16, linear; nullptr before a successful Update()).
   vtkTextureObject* GetVisibilityTexture() const;

@@ -176,12 +176,13 @@ else:
         what = "-np %d%s" % (ranks, {"Blocks": " in blocks", "Tinted": " tinted", "Reflective": " reflective"}.get(variant, ""))
         print("%s vs -np 1: PSNR %.2f dB" % (what, value))
         checker.check(value >= 40.0, "%s equals -np 1 (PSNR %.2f dB >= 40)" % (what, value))
-if ranks > 1 and not variant:
+if ranks > 1 and variant in ("", "Reflective"):
     # Every rank estimating the whole grid instead draws the same pixels:
-    # the region's irradiance equals the whole grid's bit for bit.
+    # the region's irradiance (and reflection visibility) equals the whole
+    # grid's bit for bit.
     rep.PieceIrradianceOnly = 0
-    wholeImage = mmv.render_image(
-        view, os.path.join(args.temp_dir, "PVMultiMaterialMPIShadowsWhole_%d.png" % ranks))
+    wholeImage = mmv.render_image(view, os.path.join(
+        args.temp_dir, "PVMultiMaterialMPIShadows%sWhole_%d.png" % (variant, ranks)))
     estimated = mmv.info(rep, "LastEstimatedIrradianceVoxels")[0]
     checker.check(estimated == whole, "PieceIrradianceOnly off: rank 0 estimates the whole grid "
                   "(%d of %d)" % (estimated, whole))
