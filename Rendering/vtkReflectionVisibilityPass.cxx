@@ -1,5 +1,6 @@
 #include "vtkReflectionVisibilityPass.h"
 
+#include "vtkIrradianceRegion.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLFramebufferObject.h"
 #include "vtkOpenGLQuadHelper.h"
@@ -140,18 +141,18 @@ bool vtkReflectionVisibilityPass::Update(vtkOpenGLRenderWindow* context, const i
     state->vtkglDisable(GL_SCISSOR_TEST);
     state->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     state->vtkglViewport(0, 0, dims[0], dims[1]);
-    const int whole[6] = { 0, dims[0] - 1, 0, dims[1] - 1, 0, dims[2] - 1 };
-    int box[6];
-    for (int a = 0; a < 3; ++a)
+    mmv::IndexBox box = mmv::IndexBox::Whole(dims);
+    if (region)
     {
-      box[2 * a] = region ? std::max(region[2 * a], 0) : whole[2 * a];
-      box[2 * a + 1] = region ? std::min(region[2 * a + 1], whole[2 * a + 1]) : whole[2 * a + 1];
+      mmv::IndexBox requested;
+      std::copy(region, region + 6, requested.Bounds);
+      box = box.Intersected(requested);
     }
-    const bool empty = box[0] > box[1] || box[2] > box[3] || box[4] > box[5];
-    if (region && !empty)
+    const int* b = box.Bounds;
+    if (region && !box.IsEmpty())
     {
       state->vtkglEnable(GL_SCISSOR_TEST);
-      state->vtkglScissor(box[0], box[2], box[1] - box[0] + 1, box[3] - box[2] + 1);
+      state->vtkglScissor(b[0], b[2], b[1] - b[0] + 1, b[3] - b[2] + 1);
     }
     setUniforms(program);
     // The region's slices (every slice without one) in one instanced draw
@@ -159,9 +160,9 @@ bool vtkReflectionVisibilityPass::Update(vtkOpenGLRenderWindow* context, const i
     in.Framebuffer->Bind();
     glFramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, in.Texture->GetHandle(), 0);
     in.Framebuffer->ActivateDrawBuffers(1);
-    program->SetUniformi("firstLayer", box[4]);
+    program->SetUniformi("firstLayer", b[4]);
     in.Quad->VAO->Bind();
-    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, empty ? 0 : box[5] - box[4] + 1);
+    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, box.IsEmpty() ? 0 : b[5] - b[4] + 1);
     in.Quad->VAO->Release();
     glFramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, 0, 0);
   }
