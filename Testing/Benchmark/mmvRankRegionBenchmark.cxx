@@ -18,6 +18,7 @@
 // summed rank updates (medians over R), the largest rank's voxels and the
 // whole grid's. Not a test: it asserts nothing.
 #include "mmvBenchmarkScenes.h"
+#include "mmvTestGlobalVolume.h"
 #include "mmvTestWindow.h"
 
 #include "vtkCamera.h"
@@ -68,40 +69,6 @@ vtkSmartPointer<vtkImageData> Piece(vtkImageData* whole, int axis, int k, int p)
   return piece;
 }
 
-/// The global pre-filtered volume of `pieces`, reduced as
-/// mmv::ExchangeGlobalPrefilter reduces the ranks' contributions.
-vtkSmartPointer<vtkGlobalPrefilteredVolume> Combine(
-  const std::vector<vtkSmartPointer<vtkImageData>>& pieces, int lights)
-{
-  auto global = vtkSmartPointer<vtkGlobalPrefilteredVolume>::New();
-  std::vector<double> reduced(vtkGlobalPrefilteredVolume::SummarySize, 1e300);
-  for (const auto& p : pieces)
-  {
-    double summary[vtkGlobalPrefilteredVolume::SummarySize];
-    vtkGlobalPrefilteredVolume::SummarizePiece(p, p->GetPointData()->GetScalars(), summary);
-    for (int i = 0; i < vtkGlobalPrefilteredVolume::SummarySize; ++i)
-    {
-      reduced[i] = std::min(reduced[i], summary[i]);
-    }
-  }
-  if (!global->SetGeometry(reduced.data(), mmv::DefaultIrradianceBudgetMB, lights, 0.0,
-        128 * 128 * 128))
-  {
-    return nullptr;
-  }
-  std::vector<float> total(2 * global->GetNumberOfVoxels(), 0.0f);
-  for (const auto& p : pieces)
-  {
-    std::vector<float> sums;
-    global->AccumulatePiece(p, p->GetPointData()->GetScalars(), sums);
-    for (size_t i = 0; i < sums.size(); ++i)
-    {
-      total[i] += sums[i];
-    }
-  }
-  global->SetReducedSums(total);
-  return global;
-}
 } // namespace
 
 int main(int argc, char* argv[])
@@ -190,8 +157,9 @@ int main(int argc, char* argv[])
       {
         pieces.push_back(Piece(scene.Image, axis, k, p));
       }
-      auto global = Combine(pieces, lights);
-      if (!global || !global->GetValid())
+      // Combined as the ranks' exchange combines them (the default budget).
+      vtkNew<vtkGlobalPrefilteredVolume> global;
+      if (!mmvtest::CombinePieces(pieces, global, mmv::DefaultIrradianceBudgetMB, lights, 0.0))
       {
         std::cerr << "the pieces could not be combined\n";
         return 1;

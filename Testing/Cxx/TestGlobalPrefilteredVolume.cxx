@@ -3,6 +3,7 @@
 // cannot be combined are refused alike on every rank. The MPI exchange itself
 // is tested under mpiexec (Testing/Python/TestMultiMaterialMPIShadows.py);
 // here the reductions are done by hand, as that exchange does them.
+#include "mmvTestGlobalVolume.h"
 #include "mmvTestScenes.h"
 
 #include "vtkGlobalPrefilteredVolume.h"
@@ -53,33 +54,7 @@ vtkSmartPointer<vtkImageData> Piece(vtkImageData* whole, const int extent[6])
 bool Combine(const std::vector<vtkSmartPointer<vtkImageData>>& pieces, double scale,
   vtkGlobalPrefilteredVolume* global, vtkIdType maxVoxels = 128 * 128 * 128)
 {
-  std::vector<double> reduced(vtkGlobalPrefilteredVolume::SummarySize, DBL_MAX);
-  for (const auto& piece : pieces)
-  {
-    double summary[vtkGlobalPrefilteredVolume::SummarySize];
-    vtkGlobalPrefilteredVolume::SummarizePiece(
-      piece, piece ? piece->GetPointData()->GetScalars() : nullptr, summary);
-    for (int i = 0; i < vtkGlobalPrefilteredVolume::SummarySize; ++i)
-    {
-      reduced[i] = std::min(reduced[i], summary[i]);
-    }
-  }
-  if (!global->SetGeometry(reduced.data(), 64.0, 1, scale, maxVoxels))
-  {
-    return false;
-  }
-  std::vector<float> total(2 * global->GetNumberOfVoxels(), 0.0f);
-  for (const auto& piece : pieces)
-  {
-    std::vector<float> sums;
-    global->AccumulatePiece(piece, piece ? piece->GetPointData()->GetScalars() : nullptr, sums);
-    for (size_t i = 0; i < sums.size(); ++i)
-    {
-      total[i] += sums[i];
-    }
-  }
-  global->SetReducedSums(total);
-  return global->GetValid();
+  return mmvtest::CombinePieces(pieces, global, 64.0, 1, scale, maxVoxels);
 }
 } // namespace
 

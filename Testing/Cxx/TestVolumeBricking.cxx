@@ -2,6 +2,7 @@
 // into bricks instead of letting VTK's upload fail and assert in
 // vtkTextureObject::Bind. Runs under Xvfb with Mesa llvmpipe (3D textures of
 // at most 2048 texels); the long volume adapts to the context's limit.
+#include "mmvTestGlobalVolume.h"
 #include "mmvTestScenes.h"
 #include "mmvTestUtilities.h"
 
@@ -367,14 +368,7 @@ namespace
 vtkSmartPointer<vtkGlobalPrefilteredVolume> GlobalVolumeOf(vtkImageData* image)
 {
   auto global = vtkSmartPointer<vtkGlobalPrefilteredVolume>::New();
-  double summary[vtkGlobalPrefilteredVolume::SummarySize];
-  vtkGlobalPrefilteredVolume::SummarizePiece(image, image->GetPointData()->GetScalars(), summary);
-  if (global->SetGeometry(summary, 64.0, 1, 1.0, 128 * 128 * 128))
-  {
-    std::vector<float> sums;
-    global->AccumulatePiece(image, image->GetPointData()->GetScalars(), sums);
-    global->SetReducedSums(sums);
-  }
+  mmvtest::CombinePieces({ image }, global);
   return global;
 }
 }
@@ -458,29 +452,7 @@ TEST(VolumeBricking, PieceLitFromTheGlobalVolumeShowsTheOtherPiecesShadow)
   auto floorPiece = piece(0, 14);
   auto platePiece = piece(14, 32);
   vtkNew<vtkGlobalPrefilteredVolume> global;
-  std::vector<double> reduced(vtkGlobalPrefilteredVolume::SummarySize, 1e300);
-  for (vtkImageData* p : { floorPiece.Get(), platePiece.Get() })
-  {
-    double summary[vtkGlobalPrefilteredVolume::SummarySize];
-    vtkGlobalPrefilteredVolume::SummarizePiece(p, p->GetPointData()->GetScalars(), summary);
-    for (int i = 0; i < vtkGlobalPrefilteredVolume::SummarySize; ++i)
-    {
-      reduced[i] = std::min(reduced[i], summary[i]);
-    }
-  }
-  ASSERT_TRUE(global->SetGeometry(reduced.data(), 64.0, 1, 1.0, 128 * 128 * 128));
-  std::vector<float> total(2 * global->GetNumberOfVoxels(), 0.0f);
-  for (vtkImageData* p : { floorPiece.Get(), platePiece.Get() })
-  {
-    std::vector<float> sums;
-    global->AccumulatePiece(p, p->GetPointData()->GetScalars(), sums);
-    for (size_t i = 0; i < sums.size(); ++i)
-    {
-      total[i] += sums[i];
-    }
-  }
-  global->SetReducedSums(total);
-  ASSERT_TRUE(global->GetValid());
+  ASSERT_TRUE(mmvtest::CombinePieces({ floorPiece, platePiece }, global));
 
   auto render = [&](vtkImageData* input, vtkGlobalPrefilteredVolume* g) {
     const Shaded shaded = RenderPlateAndFloorWith(input, [&](vtkMultiMaterialVolumeMapper* m) {
