@@ -226,6 +226,34 @@ struct VoxelPass
   // cutaway appears) is rebuilt.
   std::string QuadSource;
   std::string ComputeSource;
+
+  /// The compute program is not the shader cache's own: when it was bound
+  /// last, the cache must forget it, or a new program that happens to get
+  /// its address would be taken for bound and dispatched unbound (seen with
+  /// passes released and created again in one context).
+  void ReleaseCompute(vtkWindow* window)
+  {
+    if (!this->Compute)
+    {
+      return;
+    }
+    auto* context = vtkOpenGLRenderWindow::SafeDownCast(window);
+    if (context && context->GetShaderCache()->GetLastShaderBound() == this->Compute)
+    {
+      context->GetShaderCache()->ReleaseCurrentShader();
+    }
+    this->Compute->ReleaseGraphicsResources(window);
+    this->Compute = nullptr;
+  }
+  void Release(vtkWindow* window)
+  {
+    if (this->Quad)
+    {
+      this->Quad->ReleaseGraphicsResources(window);
+      this->Quad.reset();
+    }
+    this->ReleaseCompute(window);
+  }
 };
 
 } // namespace
@@ -568,11 +596,7 @@ vtkShaderProgram* vtkIrradianceVolumePass::vtkInternals::Ready(vtkOpenGLRenderWi
   {
     if (!pass.Compute || pass.ComputeSource != source)
     {
-      if (pass.Compute)
-      {
-        pass.Compute->ReleaseGraphicsResources(context);
-        pass.Compute = nullptr;
-      }
+      pass.ReleaseCompute(context);
       pass.ComputeSource = source;
       auto program = vtkSmartPointer<vtkIrradianceComputeProgram>::New();
       if (!program->Build(source))
@@ -1183,18 +1207,10 @@ void vtkIrradianceVolumePass::vtkInternals::Release(vtkWindow* window)
     this->WriteCounter = 0;
   }
   for (VoxelPass* pass : { &this->ShadowQuad, &this->PiecewiseQuad, &this->RestrictQuad,
-         &this->SweepQuad, &this->ExponentialQuad, &this->ProlongQuad, &this->FillQuad })
+         &this->SweepQuad, &this->ExponentialQuad, &this->ProlongQuad, &this->FillQuad,
+         &this->TintQuad })
   {
-    if (pass->Quad)
-    {
-      pass->Quad->ReleaseGraphicsResources(window);
-      pass->Quad.reset();
-    }
-    if (pass->Compute)
-    {
-      pass->Compute->ReleaseGraphicsResources(window);
-      pass->Compute = nullptr;
-    }
+    pass->Release(window);
   }
   this->Uploaded = false;
 }

@@ -19,6 +19,7 @@
 #include "vtkMaterialTransferFunction.h"
 #include "vtkNew.h"
 #include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLShaderCache.h"
 #include "vtkOpenGLState.h"
 #include "vtkOutputWindow.h"
 #include "vtkPiecewiseFunction.h"
@@ -960,84 +961,134 @@ double MaxDifferenceIn(const std::vector<float>& a, const std::vector<float>& b,
 // spot light (full rays), a transmission colour (the tint) and scattering:
 // bit for bit inside with the exponential diffusion (the default), within
 // the sweeps' tolerance with backward Euler; and fewer voxels estimated
-// where the diffusion's reach leaves some out.
+// where the diffusion's reach leaves some out. As layered fragment draws
+// (llvmpipe's default) and as compute dispatches (a GPU's).
 TEST(IrradianceVolumePass, ARegionEqualsTheWholeGridInsideIt)
 {
   const Context& ctx = SharedContext();
   ASSERT_NE(ctx.GL, nullptr);
   const int regions[][6] = { { 0, 7, 0, 23, 0, 23 }, { 0, 23, 0, 23, 14, 23 },
     { 0, 23, 6, 11, 0, 23 }, { 3, 9, 10, 20, 2, 8 } };
+  const int modes[] = { vtkIrradianceVolumePass::FragmentDraws,
+    vtkIrradianceVolumePass::ComputeDispatches };
   for (const double scattering : { 0.0, 1.0 })
   {
     for (const bool exponential : { true, false })
     {
-      Scene scene = TwoBlocks(scattering);
-      // The second block tinted: its shadows get a colour.
-      scene.Material->AddNode(
-        2.0, 0.2, 0.7, 0.2, 20.0, 2.0, scattering, 0.0, 0.0, 0.0, 0.9, 0.5, 0.2);
-      vtkNew<vtkIrradianceVolumePass> whole;
-      SetPassInputs(scene, whole);
-      whole->SetExponentialDiffusion(exponential);
-      ASSERT_TRUE(whole->IsTinted());
-      ASSERT_TRUE(whole->Render(ctx.GL));
-      const mmv::IrradianceGrid grid = GridOf(scene);
-      int tintDims[3];
-      whole->GetTintDimensions(tintDims);
-      std::vector<std::vector<float>> expected(scene.Lights.size()), expectedTint(scene.Lights.size());
-      for (size_t l = 0; l < scene.Lights.size(); ++l)
+      for (const int compute : modes)
       {
-        ASSERT_TRUE(whole->ReadBack(ctx.GL, static_cast<int>(l), expected[l]));
-        ASSERT_TRUE(whole->ReadBackTint(ctx.GL, static_cast<int>(l), expectedTint[l]));
-      }
-      for (const auto& region : regions)
-      {
-        SCOPED_TRACE(::testing::Message()
-          << "s " << scattering << (exponential ? " exponential" : " backward Euler") << ", region "
-          << region[0] << "-" << region[1] << " " << region[2] << "-" << region[3] << " "
-          << region[4] << "-" << region[5]);
-        vtkNew<vtkIrradianceVolumePass> part;
-        SetPassInputs(scene, part);
-        part->SetExponentialDiffusion(exponential);
-        part->SetRegion(region);
-        ASSERT_TRUE(part->Render(ctx.GL));
-        mmv::IndexBox box;
-        std::copy(region, region + 6, box.Bounds);
-        const mmv::IndexBox tintBox = mmv::ResampledBox(box, grid.Dimensions, tintDims);
-        double worst = 0.0, worstTint = 0.0, largest = 0.0;
+        Scene scene = TwoBlocks(scattering);
+        // The second block tinted: its shadows get a colour.
+        scene.Material->AddNode(
+          2.0, 0.2, 0.7, 0.2, 20.0, 2.0, scattering, 0.0, 0.0, 0.0, 0.9, 0.5, 0.2);
+        vtkNew<vtkIrradianceVolumePass> whole;
+        SetPassInputs(scene, whole);
+        whole->SetExponentialDiffusion(exponential);
+        whole->SetComputeShaders(compute);
+        ASSERT_TRUE(whole->IsTinted());
+        ASSERT_TRUE(whole->Render(ctx.GL));
+        ASSERT_EQ(whole->GetComputeShadersUsed(), compute == vtkIrradianceVolumePass::ComputeDispatches);
+        const mmv::IrradianceGrid grid = GridOf(scene);
+        int tintDims[3];
+        whole->GetTintDimensions(tintDims);
+        std::vector<std::vector<float>> expected(scene.Lights.size()), expectedTint(scene.Lights.size());
         for (size_t l = 0; l < scene.Lights.size(); ++l)
         {
-          std::vector<float> values, tint;
-          ASSERT_TRUE(part->ReadBack(ctx.GL, static_cast<int>(l), values));
-          ASSERT_TRUE(part->ReadBackTint(ctx.GL, static_cast<int>(l), tint));
-          worst = std::max(worst, MaxDifferenceIn(values, expected[l], grid.Dimensions, region));
-          worstTint = std::max(
-            worstTint, MaxDifferenceIn(tint, expectedTint[l], tintDims, tintBox.Bounds, 3));
-          largest = std::max(largest,
-            static_cast<double>(*std::max_element(expected[l].begin(), expected[l].end())));
+          ASSERT_TRUE(whole->ReadBack(ctx.GL, static_cast<int>(l), expected[l]));
+          ASSERT_TRUE(whole->ReadBackTint(ctx.GL, static_cast<int>(l), expectedTint[l]));
         }
-        std::cout << "region " << region[0] << "-" << region[1] << " " << region[2] << "-"
-                  << region[3] << " " << region[4] << "-" << region[5] << ", s " << scattering
-                  << (exponential ? " exponential" : " backward Euler") << ": max difference "
-                  << worst << " (tint " << worstTint << "), voxels estimated "
-                  << part->GetLastEstimatedVoxels() << " of " << whole->GetLastEstimatedVoxels()
-                  << "\n";
-        EXPECT_EQ(worstTint, 0.0);
-        if (exponential || scattering == 0.0)
+        for (const auto& region : regions)
         {
-          EXPECT_EQ(worst, 0.0);
+          SCOPED_TRACE(::testing::Message()
+            << "s " << scattering << (exponential ? " exponential" : " backward Euler")
+            << (compute ? ", compute" : ", fragment") << ", region "
+            << region[0] << "-" << region[1] << " " << region[2] << "-" << region[3] << " "
+            << region[4] << "-" << region[5]);
+          vtkNew<vtkIrradianceVolumePass> part;
+          SetPassInputs(scene, part);
+          part->SetExponentialDiffusion(exponential);
+          part->SetComputeShaders(compute);
+          part->SetRegion(region);
+          ASSERT_TRUE(part->Render(ctx.GL));
+          mmv::IndexBox box;
+          std::copy(region, region + 6, box.Bounds);
+          const mmv::IndexBox tintBox = mmv::ResampledBox(box, grid.Dimensions, tintDims);
+          double worst = 0.0, worstTint = 0.0, largest = 0.0;
+          for (size_t l = 0; l < scene.Lights.size(); ++l)
+          {
+            std::vector<float> values, tint;
+            ASSERT_TRUE(part->ReadBack(ctx.GL, static_cast<int>(l), values));
+            ASSERT_TRUE(part->ReadBackTint(ctx.GL, static_cast<int>(l), tint));
+            worst = std::max(worst, MaxDifferenceIn(values, expected[l], grid.Dimensions, region));
+            worstTint = std::max(
+              worstTint, MaxDifferenceIn(tint, expectedTint[l], tintDims, tintBox.Bounds, 3));
+            largest = std::max(largest,
+              static_cast<double>(*std::max_element(expected[l].begin(), expected[l].end())));
+          }
+          std::cout << "region " << region[0] << "-" << region[1] << " " << region[2] << "-"
+                    << region[3] << " " << region[4] << "-" << region[5] << ", s " << scattering
+                    << (exponential ? " exponential" : " backward Euler")
+                    << (compute ? ", compute" : ", fragment") << ": max difference "
+                    << worst << " (tint " << worstTint << "), voxels estimated "
+                    << part->GetLastEstimatedVoxels() << " of " << whole->GetLastEstimatedVoxels()
+                    << "\n";
+          EXPECT_EQ(worstTint, 0.0);
+          if (exponential || scattering == 0.0)
+          {
+            EXPECT_EQ(worst, 0.0);
+          }
+          else
+          {
+            EXPECT_LE(worst, 2.0 * mmv::DiffusionSettings().SweepTolerance * largest);
+          }
+          EXPECT_LE(part->GetLastEstimatedVoxels(), whole->GetLastEstimatedVoxels());
+          if (scattering == 0.0)
+          {
+            EXPECT_LT(part->GetLastEstimatedVoxels(), whole->GetLastEstimatedVoxels() * 3 / 4);
+          }
+          part->ReleaseGraphicsResources(ctx.GL);
         }
-        else
-        {
-          EXPECT_LE(worst, 2.0 * mmv::DiffusionSettings().SweepTolerance * largest);
-        }
-        EXPECT_LE(part->GetLastEstimatedVoxels(), whole->GetLastEstimatedVoxels());
-        if (scattering == 0.0)
-        {
-          EXPECT_LT(part->GetLastEstimatedVoxels(), whole->GetLastEstimatedVoxels() * 3 / 4);
-        }
-        part->ReleaseGraphicsResources(ctx.GL);
+        whole->ReleaseGraphicsResources(ctx.GL);
       }
-      whole->ReleaseGraphicsResources(ctx.GL);
     }
+  }
+}
+
+// Passes released and created again in one context, as compute dispatches
+// (a GPU's default), with a transmission colour so that the tint pass's
+// program is the last one bound: the shader cache must not keep pointing at
+// it once released. The tint's program was not released, so the cache kept
+// a dangling pointer, a new program that got its address was taken for
+// bound and dispatched unbound, computing nothing (found by
+// ARegionEqualsTheWholeGridInsideIt).
+TEST(IrradianceVolumePass, ComputePassesCreatedAgainInOneContextStillCompute)
+{
+  const Context& ctx = SharedContext();
+  ASSERT_NE(ctx.GL, nullptr);
+  Scene scene = TwoBlocks(0.0);
+  scene.Material->AddNode(2.0, 0.2, 0.7, 0.2, 20.0, 2.0, 0.0, 0.0, 0.0, 0.0, 0.9, 0.5, 0.2);
+  std::vector<float> first;
+  for (int round = 0; round < 6; ++round)
+  {
+    vtkNew<vtkIrradianceVolumePass> pass;
+    SetPassInputs(scene, pass);
+    pass->SetComputeShaders(vtkIrradianceVolumePass::ComputeDispatches);
+    ASSERT_TRUE(pass->IsTinted());
+    ASSERT_TRUE(pass->Render(ctx.GL));
+    std::vector<float> values;
+    ASSERT_TRUE(pass->ReadBack(ctx.GL, 1, values)); // the point light's full rays
+    if (round == 0)
+    {
+      first = values;
+      EXPECT_GT(*std::max_element(first.begin(), first.end()), 0.1f);
+    }
+    EXPECT_EQ(MaxDifference(values, first, std::vector<bool>(values.size(), false)), 0.0)
+      << "round " << round;
+    // The last program bound was the pass's own; released, the cache must
+    // not keep pointing at it (compared as a pointer only).
+    vtkOpenGLShaderCache* cache = ctx.GL->GetShaderCache();
+    ASSERT_NE(cache->GetLastShaderBound(), nullptr);
+    pass->ReleaseGraphicsResources(ctx.GL);
+    EXPECT_EQ(cache->GetLastShaderBound(), nullptr) << "round " << round;
   }
 }
