@@ -142,7 +142,7 @@ def plot_regions(rows, out):
         axes.grid(alpha=0.3)
     times.set_ylabel("seconds")
     times.set_title("Slowest rank's irradiance update (dashed: whole grid)")
-    times.legend(fontsize=7, loc="center")
+    times.legend(fontsize=7, loc="center right", bbox_to_anchor=(1.0, 0.4))
     share.set_ylabel("% of the whole grid's voxels x lights")
     share.set_title("Largest rank's estimated voxels (its region + halo)")
     share.legend(fontsize=7)
