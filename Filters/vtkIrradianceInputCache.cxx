@@ -59,23 +59,24 @@ void vtkIrradianceInputCache::SampleMaterials(
   {
     return;
   }
-  // Attenuation then the transmission colour (the tint), n values each.
-  std::vector<float> attenuation(4 * static_cast<size_t>(n), 1.0f);
+  // What the shadows' extinction reads: the attenuation, then the
+  // transmission colour (the tint), n values each.
+  std::vector<float> extinction(4 * static_cast<size_t>(n), 1.0f);
   std::vector<float> scattering(n, 0.0f);
   for (int i = 0; materials && i < n; ++i)
   {
     const double t = range[0] + (range[1] - range[0]) * i / (n - 1);
-    attenuation[i] = static_cast<float>(materials->EvaluateParameter(t, mmv::Attenuation));
+    extinction[i] = static_cast<float>(materials->EvaluateParameter(t, mmv::Attenuation));
     scattering[i] = static_cast<float>(materials->EvaluateParameter(t, mmv::Scattering));
     for (int c = 0; c < 3; ++c)
     {
-      attenuation[(c + 1) * static_cast<size_t>(n) + i] =
+      extinction[(c + 1) * static_cast<size_t>(n) + i] =
         static_cast<float>(materials->EvaluateParameter(t, mmv::TransmissionR + c));
     }
   }
-  if (attenuation != this->Attenuation || scattering != this->Scattering)
+  if (extinction != this->Extinction || scattering != this->Scattering)
   {
-    this->Attenuation = attenuation;
+    this->Extinction = extinction;
     this->Scattering = scattering;
     ++this->MaterialVersion;
   }

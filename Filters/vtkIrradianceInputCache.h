@@ -133,7 +133,7 @@ private:
 
   bool HasMaterials = false;
   MaterialKey Materials;
-  std::vector<float> Attenuation;
+  std::vector<float> Extinction; // attenuation, then the transmission colour
   std::vector<float> Scattering;
   int MaterialVersion = 0;
 

@@ -21,6 +21,7 @@
 #define vtkIrradianceRegion_h
 
 #include "vtkIrradianceDiffusion.h" // DiffusionGrid
+#include "vtkIrradianceGrid.h"      // IrradianceGrid
 #include "vtkType.h"                // vtkIdType
 
 #include <algorithm>
@@ -36,6 +37,11 @@ struct IndexBox
 {
   int Bounds[6] = { 0, -1, 0, -1, 0, -1 };
 
+  /// Every voxel of any grid (Intersected with a grid's Whole: that).
+  static IndexBox Everything()
+  {
+    return IndexBox{ { 0, VTK_INT_MAX, 0, VTK_INT_MAX, 0, VTK_INT_MAX } };
+  }
   static IndexBox Whole(const int dims[3])
   {
     IndexBox box;
@@ -120,16 +126,19 @@ struct IndexBox
  * The irradiance voxels a piece's ray cast reads: the piece spans data
  * points [offset, offset + pieceDims - 1] of the whole volume, irradiance
  * index (offset + i) / r (r = grid.DataVoxelsPerVoxel), and trilinear
- * fetches read the voxels on both sides. One voxel more on each side covers
- * VTK's sampling just past a block face and float rounding.
+ * fetches read the voxels on both sides (the index that
+ * mmv::PieceToGlobalIrradianceMap maps the piece's texture coordinates to).
+ * One voxel more on each side covers VTK's sampling just past a block face
+ * and float rounding.
  */
 inline IndexBox PieceIrradianceBox(
-  const int gridDims[3], const double dataVoxelsPerVoxel[3], const double offset[3], const int pieceDims[3])
+  const IrradianceGrid& grid, const double offset[3], const int pieceDims[3])
 {
   IndexBox box;
+  const int* gridDims = grid.Dimensions;
   for (int a = 0; a < 3; ++a)
   {
-    const double r = dataVoxelsPerVoxel[a] > 0.0 ? dataVoxelsPerVoxel[a] : 1.0;
+    const double r = grid.DataVoxelsPerVoxel[a] > 0.0 ? grid.DataVoxelsPerVoxel[a] : 1.0;
     const double first = offset[a] / r;
     const double last = (offset[a] + std::max(pieceDims[a], 1) - 1) / r;
     box.Bounds[2 * a] = std::max(0, static_cast<int>(std::floor(first)) - 1);

@@ -300,17 +300,15 @@ public:
   mmv::IndexBox ScatteringBox; // diffusion-grid blocks with s > 0
   unsigned int ResidualQuery = 0; // occlusion query counting unconverged blocks
 
-  // The caller's region (SetRegion; the whole grid without one), the one
-  // the textures hold, and what this Render() draws for it.
-  bool HasRegion = false;
-  mmv::IndexBox RequestedRegion;
+  // The caller's region (SetRegion; every voxel until then or after
+  // ResetRegion), the one the textures hold, and what this Render() draws.
+  mmv::IndexBox RequestedRegion = mmv::IndexBox::Everything();
   mmv::IndexBox RegionUsed;
   mmv::IrradianceRegionPlan Plan;
   vtkIdType EstimatedVoxels = 0; // of this Render(), all lights
   mmv::IndexBox Region() const
   {
-    const mmv::IndexBox whole = mmv::IndexBox::Whole(this->Grid.Dimensions);
-    return this->HasRegion ? this->RequestedRegion.Intersected(whole) : whole;
+    return this->RequestedRegion.Intersected(mmv::IndexBox::Whole(this->Grid.Dimensions));
   }
   /// `box` for a draw into a grid of `dims`: nullptr when it is the whole
   /// grid (the draws without a scissor, as before regions).
@@ -1315,24 +1313,18 @@ void vtkIrradianceVolumePass::SetCutawayUniforms(vtkShaderProgram* program) cons
 //------------------------------------------------------------------------------
 void vtkIrradianceVolumePass::SetRegion(const int bounds[6])
 {
-  vtkInternals& internals = *this->Internals;
   mmv::IndexBox region;
   std::copy(bounds, bounds + 6, region.Bounds);
-  if (!internals.HasRegion || region != internals.RequestedRegion)
+  if (region != this->Internals->RequestedRegion)
   {
-    internals.HasRegion = true;
-    internals.RequestedRegion = region;
+    this->Internals->RequestedRegion = region;
     this->Modified();
   }
 }
 
 void vtkIrradianceVolumePass::ResetRegion()
 {
-  if (this->Internals->HasRegion)
-  {
-    this->Internals->HasRegion = false;
-    this->Modified();
-  }
+  this->SetRegion(mmv::IndexBox::Everything().Bounds);
 }
 
 void vtkIrradianceVolumePass::GetRegion(int bounds[6]) const
@@ -1783,7 +1775,7 @@ void vtkIrradianceVolumePass::PrintSelf(ostream& os, vtkIndent indent)
   const mmv::IndexBox region = internals.Region();
   os << indent << "Region: " << region.Bounds[0] << " " << region.Bounds[1] << " "
      << region.Bounds[2] << " " << region.Bounds[3] << " " << region.Bounds[4] << " "
-     << region.Bounds[5] << (internals.HasRegion ? "" : " (whole grid)") << "\n";
+     << region.Bounds[5] << "\n";
   os << indent << "LastEstimatedVoxels: " << this->LastEstimatedVoxels << "\n";
   os << indent << "DiffusionPasses: " << this->DiffusionPasses << "\n";
   os << indent << "LastRenderSeconds: " << this->LastRenderSeconds << "\n";

@@ -56,9 +56,7 @@ mmv::IndexBox ReadRegion(
   image->GetDimensions(pieceDims);
   const glm::dvec3 offset = global->PieceOffset(image);
   const double o[3] = { offset[0], offset[1], offset[2] };
-  const glm::dvec3& r = global->GetGrid().DataVoxelsPerVoxel;
-  const double ratio[3] = { r[0], r[1], r[2] };
-  return mmv::PieceIrradianceBox(dims, ratio, o, pieceDims);
+  return mmv::PieceIrradianceBox(global->GetGrid(), o, pieceDims);
 }
 
 /// The scalar opacity at `n` points over `range` (> 0 marks a voxel

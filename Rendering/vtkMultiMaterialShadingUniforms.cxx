@@ -17,7 +17,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <string>
+#include <vector>
 
 void vtkMultiMaterialShadingUniforms::SetGradientMap(
   const int dataDims[3], const int gradientTexels[3])
@@ -117,11 +117,12 @@ void vtkMultiMaterialShadingUniforms::Apply(vtkShaderProgram* program,
       }
       program->SetUniform3f("mmv_tintScale", scale);
       program->SetUniform3f("mmv_tintBias", bias);
+      std::vector<int> units(count);
       for (int k = 0; k < count; ++k)
       {
-        program->SetUniformi(("mmv_tint" + std::to_string(k)).c_str(),
-          irradiance->GetTintTexture(k)->GetTextureUnit());
+        units[k] = irradiance->GetTintTexture(k)->GetTextureUnit();
       }
+      program->SetUniform1iv("mmv_tint", count, units.data());
     }
   }
   if (this->Variant.Reflection && this->Reflection)

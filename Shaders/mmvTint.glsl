@@ -9,28 +9,7 @@
 
 uniform vec3 mmv_tintScale; // irradiance texture coordinate -> tint texture coordinate
 uniform vec3 mmv_tintBias;
-uniform sampler3D mmv_tint0;
-#if MMV_NUMBER_OF_LIGHTS > 1
-uniform sampler3D mmv_tint1;
-#endif
-#if MMV_NUMBER_OF_LIGHTS > 2
-uniform sampler3D mmv_tint2;
-#endif
-#if MMV_NUMBER_OF_LIGHTS > 3
-uniform sampler3D mmv_tint3;
-#endif
-#if MMV_NUMBER_OF_LIGHTS > 4
-uniform sampler3D mmv_tint4;
-#endif
-#if MMV_NUMBER_OF_LIGHTS > 5
-uniform sampler3D mmv_tint5;
-#endif
-#if MMV_NUMBER_OF_LIGHTS > 6
-uniform sampler3D mmv_tint6;
-#endif
-#if MMV_NUMBER_OF_LIGHTS > 7
-uniform sampler3D mmv_tint7;
-#endif
+uniform sampler3D mmv_tint[MMV_NUMBER_OF_LIGHTS]; // light k's tint texture
 
 // Each light's radiance as it arrives at the current sample.
 vec3 mmv_tintedRadiance[MMV_NUMBER_OF_LIGHTS];
@@ -40,32 +19,32 @@ void mmvSetLightTint(int k, vec3 tint)
   mmv_tintedRadiance[k] = mmv_lightRadiance[k] * tint;
 }
 
-// Separate samplers, not an array: GLSL 1.50 indexes sampler arrays only by
-// constant expressions.
+// One line per light: GLSL 1.50 indexes sampler arrays only by constant
+// expressions, not by a loop's index.
 void mmvFetchTints(vec3 irradianceCoord)
 {
   vec3 c = irradianceCoord * mmv_tintScale + mmv_tintBias;
-  mmvSetLightTint(0, texture(mmv_tint0, c).rgb);
+  mmvSetLightTint(0, texture(mmv_tint[0], c).rgb);
 #if MMV_NUMBER_OF_LIGHTS > 1
-  mmvSetLightTint(1, texture(mmv_tint1, c).rgb);
+  mmvSetLightTint(1, texture(mmv_tint[1], c).rgb);
 #endif
 #if MMV_NUMBER_OF_LIGHTS > 2
-  mmvSetLightTint(2, texture(mmv_tint2, c).rgb);
+  mmvSetLightTint(2, texture(mmv_tint[2], c).rgb);
 #endif
 #if MMV_NUMBER_OF_LIGHTS > 3
-  mmvSetLightTint(3, texture(mmv_tint3, c).rgb);
+  mmvSetLightTint(3, texture(mmv_tint[3], c).rgb);
 #endif
 #if MMV_NUMBER_OF_LIGHTS > 4
-  mmvSetLightTint(4, texture(mmv_tint4, c).rgb);
+  mmvSetLightTint(4, texture(mmv_tint[4], c).rgb);
 #endif
 #if MMV_NUMBER_OF_LIGHTS > 5
-  mmvSetLightTint(5, texture(mmv_tint5, c).rgb);
+  mmvSetLightTint(5, texture(mmv_tint[5], c).rgb);
 #endif
 #if MMV_NUMBER_OF_LIGHTS > 6
-  mmvSetLightTint(6, texture(mmv_tint6, c).rgb);
+  mmvSetLightTint(6, texture(mmv_tint[6], c).rgb);
 #endif
 #if MMV_NUMBER_OF_LIGHTS > 7
-  mmvSetLightTint(7, texture(mmv_tint7, c).rgb);
+  mmvSetLightTint(7, texture(mmv_tint[7], c).rgb);
 #endif
 }
 

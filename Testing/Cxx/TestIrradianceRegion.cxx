@@ -169,12 +169,14 @@ TEST(IrradianceRegion, ASlabAcrossOrAlongTheLightDrawsLittleMoreThanItself)
 
 TEST(IrradianceRegion, PieceBoxCoversItsPointsAndOneVoxelMore)
 {
-  const int grid[3] = { 33, 17, 9 };
-  const double ratio[3] = { 2.0, 4.0, 1.0 };
+  mmv::IrradianceGrid grid;
+  const int dims[3] = { 33, 17, 9 };
+  std::copy(dims, dims + 3, grid.Dimensions);
+  grid.DataVoxelsPerVoxel = glm::dvec3(2.0, 4.0, 1.0);
   // Points 20..41 of x, 0..63 of y, 3..5 of z.
   const double offset[3] = { 20.0, 0.0, 3.0 };
   const int piece[3] = { 22, 65, 3 };
-  const mmv::IndexBox box = mmv::PieceIrradianceBox(grid, ratio, offset, piece);
+  const mmv::IndexBox box = mmv::PieceIrradianceBox(grid, offset, piece);
   const int expected[6] = { 9, 22, 0, 16, 2, 6 };
   EXPECT_TRUE(std::equal(expected, expected + 6, box.Bounds))
     << box.Bounds[0] << " " << box.Bounds[1] << " " << box.Bounds[2] << " " << box.Bounds[3]
