@@ -28,32 +28,49 @@ vtkIrradianceResolutionProbe::~vtkIrradianceResolutionProbe() = default;
 
 bool vtkIrradianceResolutionProbe::Key::operator==(const Key& o) const
 {
-  return this->Volume == o.Volume && this->DataDimensions[0] == o.DataDimensions[0] &&
-    this->DataDimensions[1] == o.DataDimensions[1] &&
-    this->DataDimensions[2] == o.DataDimensions[2] && this->BudgetMB == o.BudgetMB &&
-    this->BoundDB == o.BoundDB;
+  return std::equal(this->DataDimensions, this->DataDimensions + 3, o.DataDimensions) &&
+    std::equal(this->DataSpacing, this->DataSpacing + 3, o.DataSpacing) &&
+    this->BudgetMB == o.BudgetMB && this->BoundDB == o.BoundDB &&
+    this->TableSize == o.TableSize && this->ShadowEstimation == o.ShadowEstimation &&
+    this->PiecewiseShadowSlices == o.PiecewiseShadowSlices && this->Cut == o.Cut;
 }
 
 vtkIrradianceResolutionProbe::Key vtkIrradianceResolutionProbe::MakeKey(
   const vtkIrradianceInputCache::VolumeKey& key, vtkImageData* image, double budgetMB,
   double boundDB)
 {
+  // The probe has its own light and no scattering; the data's values and the
+  // transfer functions are judged by the signature.
   Key made;
-  made.Volume = key;
-  // The probe has its own light and no scattering.
-  made.Volume.NumberOfLights = 0;
-  made.Volume.MultipleScattering = false;
-  made.Volume.ExponentialDiffusion = false;
   image->GetDimensions(made.DataDimensions);
+  image->GetSpacing(made.DataSpacing);
   made.BudgetMB = budgetMB;
   made.BoundDB = boundDB;
+  made.TableSize = key.TableSize;
+  made.ShadowEstimation = key.ShadowEstimation;
+  made.PiecewiseShadowSlices = key.PiecewiseShadowSlices;
+  made.Cut = key.Cut;
   return made;
 }
 
-bool vtkIrradianceResolutionProbe::NeedsMeasurement(const vtkIrradianceInputCache::VolumeKey& key,
-  vtkImageData* image, double budgetMB, double boundDB) const
+bool vtkIrradianceResolutionProbe::Holds(const vtkIrradianceInputCache::VolumeKey& key,
+  vtkImageData* image, double budgetMB, double boundDB, const SignatureFunction& signature)
 {
-  return !this->HasResult || !(MakeKey(key, image, budgetMB, boundDB) == this->Measured);
+  if (!this->HasResult || !(MakeKey(key, image, budgetMB, boundDB) == this->Measured))
+  {
+    return false;
+  }
+  if (key == this->Seen)
+  {
+    return true;
+  }
+  if (mmv::ProbeSignatureChanged(
+        this->MeasuredSignature, signature(), key.Range[1] - key.Range[0]))
+  {
+    return false;
+  }
+  this->Seen = key;
+  return true;
 }
 
 std::vector<mmv::LightSource> vtkIrradianceResolutionProbe::ProbeLights()
@@ -73,16 +90,18 @@ std::vector<mmv::LightSource> vtkIrradianceResolutionProbe::ProbeLights()
 double vtkIrradianceResolutionProbe::Choose(vtkOpenGLRenderWindow* context,
   const vtkIrradianceInputCache::VolumeKey& key, vtkImageData* image, vtkDataArray* scalars,
   const double range[2], double budgetMB, int maxAxis, double boundDB,
-  const std::vector<float>& opacityTable, const ComputeFunction& compute)
+  const std::vector<float>& opacityTable, const SignatureFunction& signature,
+  const ComputeFunction& compute)
 {
-  const Key wanted = MakeKey(key, image, budgetMB, boundDB);
-  if (this->HasResult && wanted == this->Measured)
+  if (this->Holds(key, image, budgetMB, boundDB, signature))
   {
     return this->Scale;
   }
   const auto start = std::chrono::steady_clock::now();
   ++this->NumberOfProbes;
-  this->Measured = wanted;
+  this->Measured = MakeKey(key, image, budgetMB, boundDB);
+  this->MeasuredSignature = signature();
+  this->Seen = key;
   this->HasResult = true;
   if (!this->Measure(
         context, image, scalars, key.DataTime, range, budgetMB, maxAxis, boundDB, opacityTable,

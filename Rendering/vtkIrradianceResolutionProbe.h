@@ -16,15 +16,18 @@
  * the data, the transfer functions and the budget: a camera move (and
  * ParaView's light kit with it) never re-probes, and a fresh render of any
  * camera chooses the same grid. Multiple scattering is left out, since the
- * diffusion smooths what it adds (with it, the probe cost 6x as much on the
- * CT and separated the scenes less). The result is kept until its key
- * changes.
+ * diffusion smooths what it adds. The result is kept while the grid's
+ * geometry, the budget, the bound and the shadow settings stay, and the
+ * transfer functions keep their support and sharpness
+ * (vtkIrradianceProbeRule.h): an opacity drag or a new time step on the same
+ * grid does not measure again.
  */
 #ifndef vtkIrradianceResolutionProbe_h
 #define vtkIrradianceResolutionProbe_h
 
 #include "vtkIrradianceGrid.h"            // IrradianceGrid
 #include "vtkIrradianceInputCache.h"      // VolumeKey
+#include "vtkIrradianceProbeRule.h"       // ProbeSignature
 #include "vtkIrradianceVolumePass.h"      // vtkNew
 #include "vtkMultiMaterialLightModel.h"   // LightSource
 #include "vtkMultiMaterialVolumeModule.h" // export macro
@@ -63,31 +66,36 @@ public:
     double PSNR = 0.0; // against the reference grid (dB); +inf for it
   };
 
+  /// The transfer functions' signature, asked for only when the volume key
+  /// differs from the last one seen (no sampling on the per-frame path).
+  using SignatureFunction = std::function<mmv::ProbeSignature()>;
+
   /**
    * The scale (a fraction of the data's resolution per axis) of the
    * coarsest grid within `boundDB` of the reference: the grid the memory
-   * budget `budgetMB` allows for the probe's light. Re-measured only
-   * when `key` (the irradiance's volume key; its light count and scattering
-   * switch are ignored), the data's dimensions, the budget or the bound
-   * changed. `opacityTable` (over the normalised range) weighs the voxels.
-   * No grid axis exceeds `maxAxis` (the largest 3D texture). On failure
-   * returns the reference scale.
+   * budget `budgetMB` allows for the probe's light. Measured again only
+   * when Holds() is false. `opacityTable` (over the normalised range)
+   * weighs the voxels. No grid axis exceeds `maxAxis` (the largest 3D
+   * texture). On failure returns the reference scale.
    */
   double Choose(vtkOpenGLRenderWindow* context, const vtkIrradianceInputCache::VolumeKey& key,
     vtkImageData* image, vtkDataArray* scalars, const double range[2], double budgetMB,
     int maxAxis, double boundDB, const std::vector<float>& opacityTable,
-    const ComputeFunction& compute);
-#endif
+    const SignatureFunction& signature, const ComputeFunction& compute);
 
-  /// Whether Choose() with these arguments would measure (rather than
-  /// return the kept result): the caller can report progress first.
-  bool NeedsMeasurement(const vtkIrradianceInputCache::VolumeKey& key, vtkImageData* image,
-    double budgetMB, double boundDB) const;
+  /**
+   * Whether the kept choice holds for these inputs (so Choose() returns it
+   * without measuring): same grid geometry (dimensions, spacing), budget,
+   * bound, shadow settings and cutaway, and a signature within the rule of
+   * vtkIrradianceProbeRule.h of the measured one. The data's values and
+   * modification time do not count: a time step on the same grid keeps it.
+   */
+  bool Holds(const vtkIrradianceInputCache::VolumeKey& key, vtkImageData* image, double budgetMB,
+    double boundDB, const SignatureFunction& signature);
 #endif
 
 #ifndef __VTK_WRAP__
   /// The probe's light (object space).
-#ifndef __VTK_WRAP__
   static std::vector<mmv::LightSource> ProbeLights();
   /// What the last measurement found, reference first.
   const std::vector<Candidate>& GetCandidates() const { return this->Candidates; }
@@ -111,12 +119,17 @@ private:
   vtkIrradianceResolutionProbe(const vtkIrradianceResolutionProbe&) = delete;
   void operator=(const vtkIrradianceResolutionProbe&) = delete;
 
+  /// What the choice depends on besides the transfer functions' signature.
   struct Key
   {
-    vtkIrradianceInputCache::VolumeKey Volume;
     int DataDimensions[3] = { 0, 0, 0 };
+    double DataSpacing[3] = { 0.0, 0.0, 0.0 };
     double BudgetMB = 0.0;
     double BoundDB = 0.0;
+    int TableSize = 0;
+    int ShadowEstimation = 0;
+    int PiecewiseShadowSlices = 0;
+    std::vector<double> Cut;
     bool operator==(const Key& o) const;
   };
   static Key MakeKey(const vtkIrradianceInputCache::VolumeKey& key, vtkImageData* image,
@@ -130,6 +143,9 @@ private:
   vtkNew<vtkIrradianceVolumePass> Pass;
   bool HasResult = false;
   Key Measured;
+  mmv::ProbeSignature MeasuredSignature;
+  // The last volume key the kept choice was found to hold for.
+  vtkIrradianceInputCache::VolumeKey Seen;
   double Scale = 1.0;
   std::vector<Candidate> Candidates;
   std::string Summary;

@@ -17,6 +17,8 @@
 #include "vtkVolumeProperty.h"
 
 #include <algorithm>
+#include <chrono>
+#include <cstdio>
 #include <sstream>
 
 namespace
@@ -61,6 +63,12 @@ mmv::IndexBox ReadRegion(
 
 /// The scalar opacity at `n` points over `range` (> 0 marks a voxel
 /// non-empty for the pass; the probe's weights).
+using Clock = std::chrono::steady_clock;
+double SecondsSince(Clock::time_point start)
+{
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
 std::vector<float> SampleOpacityTable(vtkPiecewiseFunction* opacity, const double range[2], int n)
 {
   std::vector<float> table(n);
@@ -138,21 +146,27 @@ void vtkMultiMaterialIrradianceStage::ApplyProbe(vtkRenderer* ren, vtkVolume* vo
   int maxAxis, mmv::IrradianceResolution& resolution)
 {
   auto* window = vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow());
+  vtkVolumeProperty* property = vol->GetProperty();
+  const int n = this->Mapper->PreIntegrationTableSize;
+  // Sampled only when the volume key changed (vtkIrradianceProbeRule.h).
+  const auto signature = [&]() {
+    return mmv::MakeProbeSignature(SampleOpacityTable(property->GetScalarOpacity(0), range, n),
+      this->Cache->GetAttenuation(), range, property->GetScalarOpacityUnitDistance(0));
+  };
   // A measurement takes seconds on a software GPU: ParaView's progress bar
-  // shows it, as it shows the update that follows (issue 12).
-  const bool measures = this->Probe->NeedsMeasurement(
-    volumeKey, image, this->Mapper->IrradianceMemoryMB, bound);
+  // shows it, as it shows the update that follows.
+  const double budget = this->Mapper->IrradianceMemoryMB;
+  const bool measures = !this->Probe->Holds(volumeKey, image, budget, bound, signature);
   // The weights only matter to a measurement: no table on the per-frame path.
   std::vector<float> opacityTable;
   if (measures)
   {
-    opacityTable = SampleOpacityTable(
-      vol->GetProperty()->GetScalarOpacity(0), range, this->Mapper->PreIntegrationTableSize);
+    opacityTable = SampleOpacityTable(property->GetScalarOpacity(0), range, n);
     this->Mapper->SetProgressText("Irradiance resolution probe");
     this->Mapper->UpdateProgress(0.0);
   }
-  const double probed = this->Probe->Choose(window, volumeKey, image, scalars, range,
-    this->Mapper->IrradianceMemoryMB, maxAxis, bound, opacityTable,
+  const double probed = this->Probe->Choose(window, volumeKey, image, scalars, range, budget,
+    maxAxis, bound, opacityTable, signature,
     [&](vtkIrradianceVolumePass* pass, const mmv::IrradianceGrid& grid,
       const std::vector<float>& prefiltered, unsigned long version,
       const std::vector<mmv::LightSource>& lights) {
@@ -187,6 +201,8 @@ bool vtkMultiMaterialIrradianceStage::Update(vtkMultiMaterialVolumeMapper* mappe
   this->Global = global;
   this->Materials = materials;
   this->Lights = &lights;
+  const Clock::time_point start = Clock::now();
+  const int probesBefore = this->Probe->GetNumberOfProbes();
   // A piece of a larger volume is lit from the whole volume's pre-filtered
   // data, on its grid and over its range.
   const double* range = global ? global->GetScalarRange() : pieceRange;
@@ -235,13 +251,32 @@ bool vtkMultiMaterialIrradianceStage::Update(vtkMultiMaterialVolumeMapper* mappe
     ++this->Mapper->DeferredIrradianceCount;
     return true;
   }
+  // No value of the data is visible (a time step outside the opacity):
+  // nothing casts a shadow or is drawn, so the last irradiance serves.
+  if (computed)
+  {
+    const std::vector<float> opacity = SampleOpacityTable(
+      vol->GetProperty()->GetScalarOpacity(0), range, this->Mapper->PreIntegrationTableSize);
+    if (std::all_of(opacity.begin(), opacity.end(), [](float a) { return !(a > 0.0f); }))
+    {
+      return true;
+    }
+  }
   // A real update (seconds on a software GPU): VTK progress events, which
-  // ParaView's progress bar shows, mark its start and end (issue 12).
+  // ParaView's progress bar shows, mark its start and end.
   this->Mapper->SetProgressText("Irradiance volume");
   this->Mapper->UpdateProgress(0.0);
 
   // Pre-filtered data: only when the data or the grid changed.
-  if (this->Cache->UpdatePrefiltered(image, scalars, global, dims, dataTime, range))
+  const Clock::time_point prefilterStart = Clock::now();
+  const bool nonFinite = this->Cache->UpdatePrefiltered(image, scalars, global, dims, dataTime, range);
+  mmv::IrradianceStageSeconds stages;
+  stages.Prefilter = SecondsSince(prefilterStart);
+  if (this->Probe->GetNumberOfProbes() != probesBefore)
+  {
+    stages.Probe = this->Probe->GetLastProbeSeconds();
+  }
+  if (nonFinite)
   {
     this->Mapper->WarnOnce(
       "the scalars contain NaN or Inf: lit as empty (NaN) or as the ends of the "
@@ -257,6 +292,12 @@ bool vtkMultiMaterialIrradianceStage::Update(vtkMultiMaterialVolumeMapper* mappe
     return false;
   }
   this->Cache->Store(volumeKey, this->Pass->GetComputedLights(), dims);
+  stages.Tables = this->TablesSeconds;
+  stages.Shadows = this->Pass->GetLastEstimationSeconds();
+  stages.Diffusion = this->Pass->GetLastDiffusionSeconds();
+  stages.Pass = this->Pass->GetLastRenderSeconds();
+  stages.Total = SecondsSince(start);
+  this->Stages = stages;
   this->Mapper->UpdateProgress(1.0);
   // The mapper's own pipeline progress (its input's update) is not this.
   this->Mapper->SetProgressText(nullptr);
@@ -281,10 +322,12 @@ bool vtkMultiMaterialIrradianceStage::ComputeOn(vtkIrradianceVolumePass* pass,
   shadow->SetTableSize(n);
   shadow->SetScalarRange(range[0], range[1]);
   shadow->SetStepLength(shadowStep);
+  const Clock::time_point tablesStart = Clock::now();
   if (!shadow->Update())
   {
     return false;
   }
+  this->TablesSeconds = SecondsSince(tablesStart);
 
   const std::vector<float> opacityTable = SampleOpacityTable(opacity, range, n);
   const std::vector<float> scatteringTable =
@@ -337,4 +380,15 @@ void vtkMultiMaterialIrradianceStage::Record(const mmv::IrradianceResolution& re
                                         << this->Mapper->NumberOfUpdatedLights << " of "
                                         << this->Lights->size() << " lights updated in "
                                         << this->Mapper->LastIrradianceSeconds << " s");
+}
+
+std::string mmv::IrradianceStageSeconds::Report() const
+{
+  char text[256];
+  std::snprintf(text, sizeof(text),
+    "probe %.3f s, prefilter %.3f s, shadow table %.3f s, shadows %.3f s, diffusion %.3f s, "
+    "pass %.3f s, total %.3f s",
+    this->Probe, this->Prefilter, this->Tables, this->Shadows, this->Diffusion, this->Pass,
+    this->Total);
+  return text;
 }

@@ -28,6 +28,25 @@
 #include <string>
 #include <vector>
 
+namespace mmv
+{
+/// Wall seconds of each stage of the last irradiance update (the probe and
+/// the pre-filter count only when they ran; the pass's own stages end with
+/// glFinish).
+struct VTKMULTIMATERIALVOLUME_EXPORT IrradianceStageSeconds
+{
+  double Probe = 0.0;
+  double Prefilter = 0.0;
+  double Tables = 0.0;    // the shadow rays' pre-integrated table
+  double Shadows = 0.0;   // the transmittance toward every updated light
+  double Diffusion = 0.0; // multiple scattering
+  double Pass = 0.0;      // the whole GPU pass (shadows, diffusion, final write)
+  double Total = 0.0;     // the whole update
+  /// "probe 0.000 s, prefilter 0.012 s, ...": the information property's text.
+  std::string Report() const;
+};
+}
+
 class vtkDataArray;
 class vtkGlobalPrefilteredVolume;
 class vtkImageData;
@@ -62,6 +81,9 @@ public:
   /// The grid in use and why it was chosen.
   const std::string& GetResolutionReason() const { return this->ResolutionReason; }
 
+  /// The stages of the last update that recomputed the irradiance.
+  const mmv::IrradianceStageSeconds& GetStageSeconds() const { return this->Stages; }
+
   void ReleaseGraphicsResources(vtkWindow* window);
 
 private:
@@ -90,6 +112,8 @@ private:
   vtkNew<vtkIrradianceVolumePass> Pass;
   vtkNew<vtkIrradianceResolutionProbe> Probe;
   std::string ResolutionReason;
+  mmv::IrradianceStageSeconds Stages;
+  double TablesSeconds = 0.0;
 
   // The current Update()'s arguments.
   vtkMultiMaterialVolumeMapper* Mapper = nullptr;

@@ -561,6 +561,11 @@ const char* vtkMultiMaterialVolumeMapper::GetIrradianceResolutionReason()
   return this->Internals->Irradiance.GetResolutionReason().c_str();
 }
 
+std::string vtkMultiMaterialVolumeMapper::GetLastIrradianceStages()
+{
+  return this->Internals->Irradiance.GetStageSeconds().Report();
+}
+
 int vtkMultiMaterialVolumeMapper::GetNumberOfIrradianceProbes()
 {
   return this->Internals->Irradiance.GetProbe()->GetNumberOfProbes();

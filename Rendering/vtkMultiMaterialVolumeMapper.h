@@ -257,6 +257,10 @@ public:
   vtkGetMacro(LastRenderInteractive, bool);
   /// The irradiance (and diffusion) resolution in use, and why it was chosen.
   const char* GetIrradianceResolutionReason();
+  /// Seconds of each stage of the last irradiance update: the error probe,
+  /// the pre-filter, the shadow table, the shadows, the diffusion, the pass
+  /// and the whole update.
+  std::string GetLastIrradianceStages();
 
   /// How often the view-dependent visibility of reflections
   /// (mmv::ViewDependentReflectionVisibility) was computed: only when the

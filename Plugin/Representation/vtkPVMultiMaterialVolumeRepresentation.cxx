@@ -292,6 +292,19 @@ const char* vtkPVMultiMaterialVolumeRepresentation::GetIrradianceResolutionInfo(
   return mapper ? mapper->GetIrradianceResolutionReason() : "";
 }
 
+const char* vtkPVMultiMaterialVolumeRepresentation::GetLastIrradianceStages()
+{
+  auto* mapper = this->GetMultiMaterialMapper();
+  this->StagesInfo = mapper ? mapper->GetLastIrradianceStages() : std::string();
+  return this->StagesInfo.c_str();
+}
+
+int vtkPVMultiMaterialVolumeRepresentation::GetIrradianceProbeCount()
+{
+  auto* mapper = this->GetMultiMaterialMapper();
+  return mapper ? mapper->GetNumberOfIrradianceProbes() : 0;
+}
+
 int vtkPVMultiMaterialVolumeRepresentation::GetMultiMaterialActive()
 {
   auto* mapper = this->GetMultiMaterialMapper();

@@ -120,6 +120,10 @@ public:
   /// Voxels x lights the last irradiance update cast shadow rays from.
   double GetLastEstimatedIrradianceVoxels();
   const char* GetIrradianceResolutionInfo();
+  /// Seconds of each stage of the last irradiance update.
+  const char* GetLastIrradianceStages();
+  /// Measurements of the irradiance error probe so far.
+  int GetIrradianceProbeCount();
   /// Under MPI: the global grid, the bytes this rank contributed to its
   /// exchange and the seconds the exchange took ("" when not in use).
   const char* GetGlobalIrradianceInfo();
@@ -196,6 +200,7 @@ private:
   std::vector<double> GlobalKey;
   std::string GlobalArray;
   std::string GlobalInfo;
+  std::string StagesInfo;
 };
 
 #endif

@@ -31,6 +31,7 @@
 #include <initializer_list>
 #include <string>
 #include <utility>
+#include <vector>
 
 namespace
 {
@@ -717,6 +718,129 @@ TEST(MultiMaterialVolumeMapper, ErrorProbeRunsOncePerTransferFunctionNotPerCamer
   scene.Opacity->AddPoint(1.0, 0.6);
   scene.Window->Render();
   EXPECT_EQ(scene.Mapper->GetNumberOfIrradianceProbes(), 2);
+}
+
+namespace
+{
+/// The smooth blob moved along x: the next step of a series on the same grid.
+float MovedBlob(int i, int j, int k)
+{
+  return SmoothBlob(i - 2, j, k);
+}
+
+/// Renders a fresh scene of `value` with `peak` opacity through `scene`'s
+/// camera: its image and grid against `scene`'s (which must equal them).
+void ExpectSameAsFresh(ProbeScene& scene, const std::function<float(int, int, int)>& value,
+  double peak, const char* what)
+{
+  ProbeScene fresh(value, peak);
+  fresh.Renderer->GetActiveCamera()->DeepCopy(scene.Renderer->GetActiveCamera());
+  fresh.Renderer->ResetCameraClippingRange();
+  scene.Renderer->ResetCameraClippingRange();
+  fresh.Window->Render();
+  scene.Window->Render();
+  int kept[3], chosen[3];
+  scene.Mapper->GetIrradianceDimensions(kept);
+  fresh.Mapper->GetIrradianceDimensions(chosen);
+  EXPECT_EQ(kept[0], chosen[0]) << what << ": " << fresh.Mapper->GetIrradianceResolutionReason();
+  EXPECT_EQ(ImagePSNR(scene.Pixels(), fresh.Pixels()), INFINITY) << what;
+}
+}
+
+TEST(MultiMaterialVolumeMapper, ErrorProbeKeepsItsChoiceThroughAnOpacityDrag)
+{
+  // One opacity point dragged within the support (vtkIrradianceProbeRule.h):
+  // every edit recomputes the irradiance, none measures again, and the grid
+  // kept is the one a fresh probe of the final transfer function chooses.
+  const struct
+  {
+    float (*Value)(int, int, int);
+    std::vector<double> Peaks;
+  } drags[] = { { SmoothBlob, { 0.3, 0.33, 0.36, 0.4 } }, { ThinShell, { 0.9, 0.85, 0.8, 0.75 } } };
+  for (const auto& drag : drags)
+  {
+    ProbeScene scene(drag.Value, drag.Peaks.front());
+    scene.Window->Render();
+    ASSERT_EQ(scene.Mapper->GetNumberOfIrradianceProbes(), 1);
+    for (size_t e = 1; e < drag.Peaks.size(); ++e)
+    {
+      const int updates = scene.Mapper->GetIrradianceUpdateCount();
+      scene.Opacity->AddPoint(1.0, drag.Peaks[e]);
+      scene.Window->Render();
+      EXPECT_EQ(scene.Mapper->GetIrradianceUpdateCount(), updates + 1) << drag.Peaks[e];
+    }
+    EXPECT_EQ(scene.Mapper->GetNumberOfIrradianceProbes(), 1);
+    ExpectSameAsFresh(scene, drag.Value, drag.Peaks.back(), "after the drag");
+    // Past the rule (optical depth more than doubled): measured again.
+    scene.Opacity->AddPoint(1.0, 1.0 - (1.0 - drag.Peaks.front()) * (1.0 - drag.Peaks.front()) * 0.8);
+    scene.Window->Render();
+    EXPECT_EQ(scene.Mapper->GetNumberOfIrradianceProbes(), 2);
+  }
+}
+
+TEST(MultiMaterialVolumeMapper, TimeStepsOnTheSameGridKeepTheProbesChoice)
+{
+  ProbeScene scene(SmoothBlob, 0.3);
+  scene.Window->Render();
+  int first[3];
+  scene.Mapper->GetIrradianceDimensions(first);
+  const int updates = scene.Mapper->GetIrradianceUpdateCount();
+  // The next step: new values on the same grid.
+  scene.Mapper->SetInputData(mmvtest::MakeVolume(Dims, MovedBlob));
+  scene.Window->Render();
+  EXPECT_EQ(scene.Mapper->GetNumberOfIrradianceProbes(), 1);
+  EXPECT_EQ(scene.Mapper->GetIrradianceUpdateCount(), updates + 1);
+  ExpectSameAsFresh(scene, MovedBlob, 0.3, "the next step");
+  // A step on another grid (dimensions, then spacing) measures again and
+  // re-allocates: the image equals a fresh render of it.
+  const int larger = Dims + 8;
+  scene.Mapper->SetInputData(mmvtest::MakeVolume(larger, SmoothBlob));
+  scene.Window->Render();
+  EXPECT_EQ(scene.Mapper->GetNumberOfIrradianceProbes(), 2);
+  {
+    ProbeScene fresh(SmoothBlob, 0.3);
+    fresh.Mapper->SetInputData(mmvtest::MakeVolume(larger, SmoothBlob));
+    fresh.Renderer->GetActiveCamera()->DeepCopy(scene.Renderer->GetActiveCamera());
+    fresh.Renderer->ResetCameraClippingRange();
+    fresh.Window->Render();
+    int dims[3], chosen[3];
+    scene.Mapper->GetIrradianceDimensions(dims);
+    fresh.Mapper->GetIrradianceDimensions(chosen);
+    EXPECT_EQ(dims[0], chosen[0]) << scene.Mapper->GetIrradianceResolutionReason();
+    EXPECT_NE(dims[0], first[0]) << scene.Mapper->GetIrradianceResolutionReason();
+    EXPECT_EQ(ImagePSNR(scene.Pixels(), fresh.Pixels()), INFINITY);
+  }
+  auto spaced = mmvtest::MakeVolume(larger, SmoothBlob);
+  spaced->SetSpacing(0.5, 0.5, 0.5);
+  scene.Mapper->SetInputData(spaced);
+  scene.Window->Render();
+  EXPECT_EQ(scene.Mapper->GetNumberOfIrradianceProbes(), 3);
+}
+
+TEST(MultiMaterialVolumeMapper, AStepOutsideTheOpacityDrawsTheBackgroundWithoutAnUpdate)
+{
+  // The opacity covers [0, 1]; the second step's values lie in [2, 3].
+  ProbeScene scene(SmoothBlob, 0.3);
+  scene.Opacity->AddPoint(1.5, 0.0);
+  scene.Window->Render();
+  const int updates = scene.Mapper->GetIrradianceUpdateCount();
+  ASSERT_GE(updates, 1);
+  scene.Mapper->SetInputData(
+    mmvtest::MakeVolume(Dims, [](int i, int j, int k) { return 2.0f + SmoothBlob(i, j, k); }));
+  scene.Window->Render();
+  EXPECT_EQ(scene.Mapper->GetIrradianceUpdateCount(), updates);
+  EXPECT_TRUE(scene.Mapper->GetMultiMaterialActive());
+  const std::vector<unsigned char> pixels = scene.Pixels();
+  size_t lit = 0;
+  for (unsigned char p : pixels)
+  {
+    lit += p != 0;
+  }
+  EXPECT_EQ(lit, 0u);
+  // Back inside: updated, and the image equals a fresh render.
+  scene.Mapper->SetInputData(mmvtest::MakeVolume(Dims, MovedBlob));
+  scene.Window->Render();
+  EXPECT_EQ(scene.Mapper->GetIrradianceUpdateCount(), updates + 1);
 }
 
 namespace
