@@ -2,7 +2,7 @@
 // (vtkMultiMaterialPathTracer) for media of known single-scattering albedo a,
 // Henyey-Greenstein anisotropy g and optical depth, the data behind the
 // mapping from physical parameters to ours (mmv::PhysicalMediumToMaterial,
-// docs/benchmark.md "Mapping physical media to our parameters").
+// docs/how-it-works.md and docs/performance.md, "Physical media").
 //
 //   mmvMediumCalibration --out DIR [--size 64] [--truth-spp 512] [--frames 3]
 //                        [--albedos 0.3,0.6,0.9,0.99] [--anisotropies 0,0.3,0.6]

@@ -1,4 +1,5 @@
-// Frame time of the optical model v2 shader variants (issue 14) against the
+// Frame time of the optical model's shader variants (docs/performance.md,
+// "Material terms: cost") against the
 // default variant, on the benchmark scenes:
 //
 //   default     the scene's materials (g = 0, e = 0): no HG, no emission code
@@ -8,7 +9,7 @@
 //   emission    every node e = 0.5
 //   hg+emission both
 //   rgb         every node transmission colour (1, 0.6, 0.3): the RGB
-//               irradiance variant (tints, issue 14 item 3)
+//               irradiance variant (tints)
 //
 //   mmvOpticalModelBenchmark --out DIR [--size N] [--frames N]
 //                            [--scenes synthetic,headsq,orbital] [--head FILE.vti]

@@ -1,4 +1,4 @@
-// Each MPI rank's share of the irradiance update (issue 11 §3, docs/scaling.md),
+// Each MPI rank's share of the irradiance update (docs/scaling.md, "Each rank estimates its own voxels"),
 // measured without MPI: the CT-sized head split into P slabs along one axis
 // as ParaView splits it among P ranks (pieces sharing their boundary
 // points), combined into the global pre-filtered volume as the ranks'

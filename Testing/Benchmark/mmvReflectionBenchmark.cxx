@@ -1,4 +1,4 @@
-// Frame time of the environment reflection (eq. 17, issue 12) on the
+// Frame time of the environment reflection (eq. 17; docs/performance.md, "Material terms: cost") on the
 // benchmark scenes, against the same scene without reflection:
 //
 //   r=0              the scene's materials, r = 0 on every node: no

@@ -3,7 +3,7 @@
 // the irradiance pass did) and as a compute dispatch with imageStore, for
 // RGBA32F and RGBA16F and three work-group shapes; EGL on the first device,
 // no VTK. The measurement behind vtkIrradianceVolumePass's compute
-// dispatches (docs/benchmark.md, "On a GPU").
+// dispatches (docs/performance.md, "On a GPU: NVIDIA H100").
 //   mmvSweepKernelProbe [NX NY NZ]   (default 128 128 64)
 #include <GL/glew.h>
 #include <EGL/egl.h>

@@ -1,6 +1,6 @@
 // The error of storing the tint of a non-white transmission colour at half
-// the irradiance resolution per axis (mmv::TintResolutionDivisor, issue 14
-// item 3), on the benchmark scenes with every node's T = (1, 0.6, 0.3):
+// the irradiance resolution per axis (mmv::TintResolutionDivisor;
+// docs/performance.md, "Material terms: cost"), on the benchmark scenes with every node's T = (1, 0.6, 0.3):
 // the CPU irradiance filter's RGB irradiance E * K with the tint on the
 // irradiance grid itself (divisor 1, uncompressed) against the stored one
 // (divisor 2), over the voxels that hold irradiance (E > 0), per channel:

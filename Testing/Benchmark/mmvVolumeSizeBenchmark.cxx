@@ -1,4 +1,4 @@
-// Memory and time against the volume's size (issue 11 §4, docs/scaling.md):
+// Memory and time against the volume's size (docs/scaling.md, "Large volumes on one machine"):
 // a generated N^3 float volume (nested shells and a plate, so that shadows
 // and materials have work to do) rendered by the multi-material mapper at
 // the default irradiance budget, one scene light, a 512 x 512 window.

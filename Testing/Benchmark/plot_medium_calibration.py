@@ -1,5 +1,5 @@
-"""Charts of mmvMediumCalibration (docs/benchmark.md, "Mapping physical media
-to our parameters").
+"""Charts of mmvMediumCalibration (docs/performance.md, "Physical media";
+the mapping in docs/how-it-works.md, "Physical media").
 
   pvpython plot_medium_calibration.py medium_calibration.csv errors.png [IMAGE_DIR images.png]
 

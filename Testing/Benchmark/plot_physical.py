@@ -29,8 +29,8 @@ STYLE = {
     # mmvPhysicalCalibration --fit-exposure: ka and kd fitted at each (s, c_t).
     "ours-exposure": dict(color="tab:purple", marker="D", label="ours, s and c_t scaled, ka/kd fitted"),
     "ours-v1": dict(color="tab:orange", marker="x", label="ours v1 (isotropic), s and c_t scaled"),
-    # Issue 14's hybrid model against the directional fade it replaced: rows of
-    # an earlier run, renamed (docs/optical_model_hybrid_*.csv).
+    # Rows of the directional-fade shading model (ours-fade), in CSVs that
+    # compare it with the hybrid model.
     "ours-fade": dict(color="tab:gray", marker="+", label="ours v2 before the hybrid model (fade)"),
     "ours-fade-default": dict(color="tab:gray", marker="P", label="ours v2 before the hybrid, defaults"),
     "vtk-phong": dict(color="tab:green", marker="s", label="VTK Phong"),

@@ -1,4 +1,4 @@
-"""Charts of docs/scaling.md (issue 11) from the benchmarks' CSV files:
+"""Charts of docs/scaling.md from the benchmarks' CSV files:
 
     pvpython plot_scaling.py SCALING_MPI.csv SCALING_SIZE.csv OUT_MPI.png OUT_SIZE.png \
         [RANK_REGIONS.csv OUT_REGIONS.png]

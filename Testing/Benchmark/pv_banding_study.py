@@ -1,4 +1,4 @@
-"""Banding study of the demo scene (issue 12): which setting removes the
+"""Banding study of the demo scene (docs/banding.md): which setting removes the
 stripes on the cheek and neck of docs/demo.png (run with scripts/pvpython).
 
     xvfb-run -a -s "-noreset -screen 0 1280x1024x24" \\

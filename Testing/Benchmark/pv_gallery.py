@@ -1,4 +1,4 @@
-"""The README's gallery, from real pvpython runs of the plugin (issue 12).
+"""The README's gallery, from real pvpython runs of the plugin.
 
     xvfb-run -a -s "-noreset -screen 0 1280x1024x24" \\
         scripts/pvpython Testing/Benchmark/pv_gallery.py [--out DIR]

@@ -1,5 +1,5 @@
 """Irradiance-update time and bytes exchanged against the number of MPI
-ranks (issue 11 §4, docs/scaling.md). Run under
+ranks (docs/scaling.md, "Time and bytes per update"). Run under
 `mpiexec --allow-run-as-root --oversubscribe -np N pvbatch pv_mpi_scaling.py
 --plugin PLUGIN --csv FILE [--size S] [--reps R]`.
 

@@ -1,6 +1,6 @@
 """A Light Inspector spot light on the CT-sized head: foreground luminance of
-ParaView's Volume and of Multi-Material Volume (issue 12's measured case; run
-with pvpython).
+ParaView's Volume and of Multi-Material Volume (the measured case of docs/paraview.md;
+run with pvpython).
 
     xvfb-run -a -s "-noreset -screen 0 1280x1024x24" \\
         pvpython Testing/Benchmark/pv_spot_light.py [--quick] [--out DIR]

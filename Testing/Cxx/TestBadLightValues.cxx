@@ -1,4 +1,4 @@
-// Bad light values (issue 12, "Bad input"): negative, NaN or all-zero
+// Bad light values (docs/stability.md, "Bad input"): negative, NaN or all-zero
 // attenuation, cone angles of 0, NaN or 180 and above, NaN spot exponents,
 // a negative or NaN PointLightRadius and an IrradianceScale outside [0, 1]. Each must give one clear warning and render exactly what
 // its documented fallback renders: never NaN, never a silently black image.

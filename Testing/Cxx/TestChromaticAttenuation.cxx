@@ -1,4 +1,4 @@
-// Selective absorption (issue 14 item 3): a transmission colour T tints the
+// Selective absorption: a transmission colour T tints the
 // shadows a material casts, sigma_lambda = c_t mu (1 - ln T_lambda)
 // (vtkMultiMaterialParameters.h). Closed forms on a homogeneous slab for the
 // CPU irradiance filter and the GPU pass, grey materials unchanged, and

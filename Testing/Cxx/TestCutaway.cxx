@@ -1,4 +1,4 @@
-// Cutaway views (issue 12): what the mapper's cropping region and clipping
+// Cutaway views: what the mapper's cropping region and clipping
 // planes remove casts no shadow. A plate above a floor, lit from above and
 // seen from above; removing the plate by cropping or by a clipping plane must
 // render as the scene built without the plate (PSNR >= 35 dB), a plane moving
@@ -23,7 +23,7 @@
 namespace
 {
 constexpr int Dims = 33;
-constexpr double Target = 35.0; // dB, issue 12
+constexpr double Target = 35.0; // dB
 
 /// Floor: z in [3, 6]; plate (unless `withPlate` is false): z in [20, 23],
 /// x and y in [8, 24]. Both of value 1 in empty space (0).

@@ -1,4 +1,4 @@
-// GradientSmoothing (issue 12, the demo's banding): the MR head's skin is a
+// GradientSmoothing (the demo's banding, docs/banding.md): the MR head's skin is a
 // thin shell sampled every 3.2 mm in x and y, and the gradient of its
 // trilinear reconstruction turns at every voxel face, which the shading
 // draws as stripes at the voxel spacing on the cheek and neck

@@ -1,4 +1,4 @@
-// Optical model v2 (issue 14): the hybrid surface/particle shading of Yang
+// Optical model: the hybrid surface/particle shading of Yang
 // et al. (mmvSurfaceShare). Its two limits in closed form (a sharp boundary
 // is plain Blinn-Phong, a homogeneous region is the particles' phase
 // function alone) on the GPU mapper and the reference renderer, and speckle

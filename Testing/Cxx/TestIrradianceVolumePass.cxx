@@ -437,7 +437,7 @@ TEST(IrradianceVolumePass, HomogeneousSlabFollowsBeerLambert)
   pass->ReleaseGraphicsResources(ctx.GL);
 }
 
-// Selective absorption on the GPU (issue 14 item 3): a grey light through a
+// Selective absorption on the GPU: a grey light through a
 // homogeneous slab of transmission colour T arrives per channel as
 // exp(-tau (1 - ln T_lambda)), tau the grey optical depth
 // (vtkMultiMaterialParameters.h). The pass's grey irradiance times its tint
@@ -560,8 +560,8 @@ TEST(IrradianceVolumePass, DiffusionKeepsMaximumPrinciple)
       EXPECT_NE(diffused, direct[l]) << "s " << s << " light " << l;
     }
     // The default integrator (the exponential's series, cut at a known error
-    // bound) agrees with the CPU's at every strength (round 1's fixed
-    // sweeps did so only for mild scattering). Measured on llvmpipe: 2.7e-4,
+    // bound) agrees with the CPU's at every strength (a fixed number
+    // of sweeps does so only for mild scattering). Measured on llvmpipe: 2.7e-4,
     // 1.3e-4 and 1.0e-4 for s = 1, 20, 1000 (backward Euler, sweeps stopped
     // on their residual, in DiffusionMatchesCPUSolverForEveryStrength:
     // 1.0e-4, 1.2e-4, 2.6e-5);

@@ -178,7 +178,7 @@ TEST(MultiMaterialVolumeMapper, IrradianceUpdatesReportProgress)
 {
   // An irradiance update (seconds on llvmpipe) reports VTK progress 0 when it
   // starts and 1 when it ends, with the text "Irradiance volume"; a frame
-  // that reuses the irradiance reports none (issue 12). The mapper's other
+  // that reuses the irradiance reports none. The mapper's other
   // progress (its input's update) carries no text.
   CubeScene scene(1.0);
   std::vector<std::pair<double, std::string>> events;

@@ -1,6 +1,6 @@
 // mmv::ParseNumberText, the parser behind the Multi-Material Editor's numeric
 // fields (Plugin/mmvNumberText.h): exponent notation parses to the exact
-// value (issue 12: "1e9" typed into Shininess became 19), out-of-range
+// value ("1e9" typed into Shininess must not become 19), out-of-range
 // numbers are told apart so the editor refuses them, and text that cannot
 // become a number is invalid.
 #include "mmvNumberText.h"

@@ -1,4 +1,4 @@
-// Optical model v2 (issue 14): Henyey-Greenstein in-scattering of the
+// Optical model: Henyey-Greenstein in-scattering of the
 // particle (ambient) term, emission (Yang et al. eq. 27), and shaders that
 // carry neither when no material uses them. Closed forms on a homogeneous
 // cube, the reference renderer and the path tracer against the GPU mapper.
@@ -279,7 +279,8 @@ TEST(OpticalModel, ForwardScatteringBrightensBackLitCubeAsPredicted)
       EXPECT_NEAR(r[c], CubeColor[c] * expected, 0.005 * CubeColor[c] * expected) << what;
     }
     ExpectColor(p, expected, 2.0 / 255.0 + 0.02 * expected, what);
-    // Measured with Mesa llvmpipe: see docs/benchmark.md (optical model v2).
+    // Measured with Mesa llvmpipe: see docs/performance.md ("Anisotropy and
+    // the hybrid shading").
     EXPECT_GT(metrics->GetPSNR(), 40.0) << what;
   }
 }

@@ -1,6 +1,6 @@
 // The ParaView proxies (Plugin/MultiMaterialVolume.xml) repeat the C++
 // defaults as text; this keeps every copy equal to the one constant
-// (issue 13: the 64 MB budget was written in several places).
+// (a default written in several places drifts).
 #include "vtkMultiMaterialParameters.h"
 
 #include <gtest/gtest.h>

@@ -23,7 +23,7 @@ namespace
 {
 constexpr int P = mmv::MaterialParameterCount;
 
-// The residual docs/benchmark.md states: on the medium's pixels the mapped
+// The residual docs/performance.md ("Physical media") states: on the medium's pixels the mapped
 // parameters err at most this factor times the best fit of the grid, plus
 // this much (0-255).
 constexpr double MappedErrorFactor = 3.0;
@@ -217,7 +217,8 @@ TEST(PhysicalMedium, PublishedTableWasMeasuredWithThisFormula)
   // mapped parameters it rendered and their error against the path tracer:
   // they must be this formula's output (a coefficient changed without a new
   // measurement fails here), and the mapped error must stay within the
-  // residual docs/benchmark.md states against the best fit of the grid.
+  // residual docs/performance.md ("Physical media") states against the best
+  // fit of the grid.
   const auto rows = ReadCSV(std::string(MMV_SOURCE_DIR) + "/docs/medium_calibration.csv");
   std::map<std::string, double> fitError;
   for (const auto& row : rows)

@@ -1,4 +1,4 @@
-// Volumes longer than the largest 3D texture (issue 11): the mapper cuts them
+// Volumes longer than the largest 3D texture (docs/scaling.md): the mapper cuts them
 // into bricks instead of letting VTK's upload fail and assert in
 // vtkTextureObject::Bind. Runs under Xvfb with Mesa llvmpipe (3D textures of
 // at most 2048 texels); the long volume adapts to the context's limit.

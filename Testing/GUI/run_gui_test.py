@@ -184,7 +184,7 @@ def main():
     failures += ["server manager check: " + line for line in lines if line.startswith("FAIL")]
     # The script sets one NaN list from Python: the renderer must report it
     # once, and editing afterwards must not write the NaN back (a second
-    # report; issue 12).
+    # report).
     nan_reports = [line for line in output.splitlines() if "SetNodes:" in line]
     if len(nan_reports) != 1:
         failures.append("expected the NaN MaterialNodes reported once, got %d:\n    %s"

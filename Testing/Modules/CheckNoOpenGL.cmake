@@ -1,5 +1,5 @@
-# The CPU module must not depend on OpenGL (issue 13: the folders say what
-# depends on what). Run with cmake -P:
+# The CPU module must not depend on OpenGL (the folders say what depends on
+# what). Run with cmake -P:
 #   -DLIBRARY=<libvtkMultiMaterialVolumeFilters.so>   must have no OpenGL
 #   -DCONTROL=<libvtkMultiMaterialVolume.so>          must have OpenGL (so the
 #                                                     check cannot pass vacuously)

@@ -89,7 +89,7 @@ checker.check(mmv.mean_difference(legacy10, current) == 0.0,
               "10- and 13-number grey nodes render the same image")
 checker.check(errors.take_errors() == "", "no further errors")
 
-# Out-of-range light and resolution values typed into the panel (issue 12):
+# Out-of-range light and resolution values typed into the panel:
 # one warning, then exactly what the fallback value renders, not black.
 rep.MaterialNodes = GOOD
 

@@ -1,7 +1,7 @@
 """Run with `mpiexec -np 2 pvbatch`: the Wavelet is split between the ranks,
 each rank renders its piece as a Multi-Material Volume and ParaView composites
 them. Every rank lights its piece from one global coarse copy of the whole
-volume (issue 11), so shadows cross the piece boundary and the image matches
+volume, so shadows cross the piece boundary and the image matches
 the serial one closely; it cannot if a piece is missing or lit alone."""
 
 import os
@@ -34,7 +34,7 @@ pieces = wavelet.GetDataInformation().DataInformation.GetNumberOfDataSets()
 checker.check(pieces >= 2, "the data has %d pieces" % pieces)
 # The serial baseline is the -np 1 image of this script (mean |difference|
 # 0.001). Measured on llvmpipe: -np 2 differs from it by 0.165 with global
-# shadows; lighting each piece alone (before issue 11) gave 0.98 (shadows and
+# shadows; lighting each piece alone gives 0.98 (shadows and
 # scattering stopped at the rank boundary), and rendering only one half of the
 # volume 7.4 to 9.8. The bound 0.5 fails both.
 baseline = mmv.read_png(os.path.join(args.baseline_dir, "PVMultiMaterialVolume.png"))

@@ -1,4 +1,4 @@
-"""Ranks without data must not hang the global-shadow exchange (issue 11):
+"""Ranks without data must not hang the global-shadow exchange:
 a volume of one cell (2 x 2 x 2 points) cannot be split, so under
 `mpiexec -np 3 pvbatch` two of the three ranks get an empty piece. Every rank
 still reaches every collective call: the script ends (ctest's timeout would

@@ -1,4 +1,4 @@
-"""Global shadows under MPI (issue 11): a plate casts a shadow on a floor
+"""Global shadows under MPI: a plate casts a shadow on a floor
 below it; the volume is split along z, so with 2, 3 or 4 ranks the plate and the
 floor sit on different ranks. Run with `mpiexec -np N pvbatch` after the
 `-np 1` run, which writes the reference image; every N must reproduce it

@@ -6,9 +6,9 @@ see is noticed (and the image is then regenerated on purpose).
         --data Testing/Data/headsq.vti --image docs/demo.png --temp-dir DIR
 
 docs/demo.png is what scripts/demo renders. llvmpipe renders it
-deterministically (two runs: mean |difference| 0.0); the gradient volume of
-round 2 changed it by 0.75 grey levels on average, which the threshold of
-0.3 would have caught.
+deterministically (two runs: mean |difference| 0.0); the threshold of 0.3
+catches a change of 0.75 grey levels on average (what switching the shading
+normal to the gradient volume makes).
 """
 
 import argparse
