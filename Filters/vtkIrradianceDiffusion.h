@@ -36,16 +36,15 @@ struct DiffusionSettings
   /// (in ratio) to a spacing of L / VoxelsPerDiffusionLength (never finer
   /// than the irradiance grid). This bounds the stiffness s dt / h^2 of the coarse
   /// system, so the solve costs the same for every s. 0 disables coarsening.
-  /// Measured (docs/benchmark.md): 2 keeps the three benchmark scenes within
-  /// 1 dB of the full-resolution diffusion (1 lost 5 dB on the head's thin
-  /// scattering skin) at a twentieth of its cost.
+  /// 2 still resolves thin scattering layers such as a head's skin, which 1
+  /// blurs, at a fraction of the full-resolution cost (docs/performance.md,
+  /// "Diffusion: exponential series against backward Euler").
   double VoxelsPerDiffusionLength = 2.0;
   /// The diffusion grid keeps at least this many voxels per axis (where the
   /// irradiance grid has them): coarser, the change is interpolated between
   /// so few blocks that the direct light's curvature inside a block shows
-  /// as ripples (8 left 0.1 % ripples in
-  /// FailureCases.DiffusionStaysBoundedAndMonotone's 17-voxel slab at
-  /// s = 1000).
+  /// as ripples (at 8, FailureCases.DiffusionStaysBoundedAndMonotone's
+  /// 17-voxel slab rippled at s = 1000).
   int MinimumVoxelsPerAxis = 12;
   /// The GPU's error per sub-step, as a fraction of the largest irradiance
   /// (errors of sub-steps add up, so the total is at most MaxSubSteps times
@@ -53,15 +52,14 @@ struct DiffusionSettings
   /// (1 - rho) times it, and after the sweeps the Chebyshev error bound
   /// needs at the latest.
   double SweepTolerance = 1.0e-3;
-  /// How the diffusion is integrated in time. False (the default):
-  /// MaxSubSteps backward-Euler steps (CG on the CPU, Chebyshev-accelerated
-  /// Jacobi on the GPU), first order in time. True: the exponential
-  /// exp(-T C^-1 A) applied as a truncated Chebyshev series
-  /// (ExponentialChebyshevCoefficients), exact in time, and on the GPU 4-5x
-  /// fewer passes (TwoBlocks: 14 against 56 sweeps at s = 8). Not the
-  /// default: against the same-model reference (which then integrates
-  /// exactly too) the head loses 0.11 dB (43.09 against 43.21 dB), below
-  /// the 1-dB accuracy promise of issue 9 (docs/benchmark.md).
+  /// How the diffusion is integrated in time. False (this struct's default,
+  /// and the reference renderer's): MaxSubSteps backward-Euler steps (CG on
+  /// the CPU, Chebyshev-accelerated Jacobi on the GPU), first order in time.
+  /// True (what the filter, the mapper and the pass use by default,
+  /// mmv::DefaultExponentialDiffusion): the exponential exp(-T C^-1 A)
+  /// applied as a truncated Chebyshev series (ExponentialChebyshevCoefficients),
+  /// exact in time and in several times fewer GPU passes (docs/performance.md,
+  /// "Diffusion: exponential series against backward Euler").
   bool Exponential = false;
 };
 
@@ -204,11 +202,10 @@ VTKMULTIMATERIALVOLUMEFILTERS_EXPORT void RestrictToDiffusionGrid(const int dims
  *
  * Adding the change keeps the direct light's detail finer than a block,
  * which a full solve would smooth; interpolating the diffused field instead
- * smooths it, and is closer to the full solve in a lit slab (DiffusionGrid.
- * CoarseChangeApproachesTheFullSolve: 2 % against 20 % of the change at the
- * lit face), but lost 0.7 to 0.9 dB on the head and orbital benchmark
- * scenes against the reference renderer, which adds its change to each
- * sample's own direct light the same way. The change it is.
+ * smooths it; it is closer to the full solve at a lit slab's face
+ * (DiffusionGrid.CoarseChangeApproachesTheFullSolve), but the reference
+ * renderer adds its change to each sample's own direct light, and adding the
+ * change matches it better on the benchmark scenes. The change it is.
  */
 VTKMULTIMATERIALVOLUMEFILTERS_EXPORT DiffusionReport DiffuseIrradianceOnDiffusionGrid(const int dims[3],
   const double spacing[3], const float* strength, float* irradiance,

@@ -67,8 +67,8 @@ public:
    * Henyey-Greenstein anisotropy in [0, 0.9] and extinction per voxel > 0
    * (sigma_t times the voxel size: -ln(1 - alpha) for opacity alpha per
    * voxel). The mapping is mmv::PhysicalMediumToMaterial, fitted to the
-   * Monte Carlo truth (docs/benchmark.md, "Mapping physical media to our
-   * parameters"). Returns the node's index, or -1 with an error saying why
+   * Monte Carlo truth (docs/how-it-works.md, "Physical media"). Returns the
+   * node's index, or -1 with an error saying why
    * (PhysicalMediumDomainError) outside that domain; nothing is added then.
    */
   int AddPhysicalMediumNode(

@@ -49,7 +49,7 @@
  * a segment of opacity alpha adds e * colour * alpha (= e * I_c) to the
  * radiance, whatever the lights and shadows; a homogeneous slab of optical
  * depth tau glows with e * colour * (1 - exp(-tau)).
- * Transmission (selective absorption, Yang et al. eq. 26, issue 14 item 3):
+ * Transmission (selective absorption, Yang et al. eq. 26):
  * the colour T = (T_r, T_g, T_b) filters the light that crosses the medium,
  * on top of the grey attenuation: channel lambda's shadow extinction is
  *   sigma_lambda = c_t * mu * w_lambda,  w_lambda = 1 - ln(max(T_lambda, T_min))
@@ -267,30 +267,27 @@ constexpr double IrradianceBytesPerVoxelPerLight = 2.0;
 /// paper's Delta v_std / Delta l_std (over all ray directions), with one
 /// opacity transfer function for both elements (its Fig. 4c); its CT figures
 /// put it at 0.0008-0.0024 (Delta v_std 13-40 of 4096 per Delta l_std of 4
-/// voxels). Measured against the Monte Carlo truth (docs/benchmark.md,
-/// "Hybrid surface/particle shading"), 0.005 beats 0.002 at the default
-/// settings on all four scenes lit from the camera's side, at equal best
-/// fits; it is also the truth's own scale for surface events (Kroes et al.,
-/// vtkMultiMaterialPathTracer::SurfaceGradientPerVoxel). A one-voxel edge
+/// voxels). 0.005 is the Monte Carlo truth's own scale for surface events
+/// (Kroes et al., vtkMultiMaterialPathTracer::SurfaceGradientPerVoxel) and
+/// fits that truth at least as well as 0.002 (docs/performance.md,
+/// "Anisotropy and the hybrid shading"). A one-voxel edge
 /// across 5 % of the range is 91 % surface, noise of 0.01 % of the range 2 %.
 /// Read by the mapper (mmv_surfaceEqualShare) and the reference renderer.
 constexpr double SurfaceEqualShareGradientPerVoxel = 0.005;
 
 /// With an automatic irradiance resolution, an irradiance voxel need not
 /// cover fewer pixels than this on screen (mmv::ChooseIrradianceResolution):
-/// sub-pixel irradiance detail cannot show. Measured (docs/benchmark.md):
-/// 1 keeps the benchmark scenes' error unchanged at 128 x 128; 1.5 already
-/// cost the synthetic scene's thin shells 4.5 dB, so coarser is not a safe
-/// default.
+/// sub-pixel irradiance detail cannot show. A coarser rule blurs thin shells
+/// (docs/performance.md, "Diffusion: exponential series against backward
+/// Euler").
 constexpr double PixelsPerIrradianceVoxel = 1.0;
 
 /// Default IrradianceErrorBound (dB): with an automatic resolution, the
 /// error probe (vtkIrradianceResolutionProbe) keeps the coarsest grid whose
 /// opacity-weighted irradiance PSNR against the budget's grid reaches it.
-/// Measured (docs/benchmark.md, "Error probe"): the thin shells of the
-/// synthetic scene and the 64^3 heads measure 21-33 dB at the first coarser
-/// grid and lose 0.6-4.5 dB of accuracy there, so they keep their grid; the
-/// CT-sized head measures 40.4 dB at 0.71 and 35.4 dB at 0.5 of its grid.
+/// It lies above what thin shells score at the first coarser grid, so they
+/// keep their grid, and below what large smooth volumes score, so those
+/// coarsen (docs/performance.md, "The error probe").
 constexpr double DefaultIrradianceErrorBoundDB = 34.0;
 /// Largest IrradianceErrorBound accepted (dB): far beyond 16-bit textures.
 constexpr double MaxIrradianceErrorBoundDB = 200.0;
@@ -306,20 +303,16 @@ enum ShadowEstimation : int
   PiecewiseShadowRays = 1
 };
 
-/// Slices K a piecewise shadow ray spans at most, by default. Measured on
-/// the CT-sized head, 5 lights (docs/benchmark.md): 16 was the fastest at
-/// the default resolution (1.8x faster than full rays) and within 4 % of the
-/// fastest at half of it, at 58-60 dB against full rays (K = 8: 55-57 dB).
+/// Slices K a piecewise shadow ray spans at most, by default. Smaller K
+/// means more chunks and blurrier shadow edges, larger K longer rays; 16 was
+/// the fastest (docs/performance.md, "Piecewise shadow rays").
 constexpr int DefaultPiecewiseShadowSlices = 16;
 
 /// Default time integration of the diffusion (ExponentialDiffusion of the
 /// mapper, the pass and the CPU filter): the exponential's Chebyshev series,
-/// exact in time. Measured (docs/benchmark.md, "The diffusion's time
-/// integration"): against the unchanged ground truth (8 backward-Euler steps
-/// at data resolution) the three scenes score 38.20 / 43.25 / 49.74 dB
-/// against backward Euler's 38.19 / 43.21 / 49.80, and against an exact-in-time
-/// reference the head scores 43.09 against 43.02; the `skin` update on the
-/// CT-sized head takes 3.1x fewer seconds on llvmpipe (28 against 112 passes).
+/// exact in time. It is as accurate as backward Euler in fewer passes
+/// (docs/performance.md, "Diffusion: exponential series against backward
+/// Euler").
 constexpr bool DefaultExponentialDiffusion = true;
 
 /// Default irradiance memory budget in MB (the paper's recommendation).

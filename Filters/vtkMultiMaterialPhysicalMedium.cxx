@@ -36,8 +36,8 @@ bool PhysicalMediumToMaterial(double albedo, double g, double extinctionPerVoxel
     return Reject(why, "extinction per voxel must be a positive number, got " +
         std::to_string(extinctionPerVoxel));
   }
-  // Fitted to the path tracer (docs/benchmark.md, "Mapping physical media to
-  // our parameters"); a = albedo, tau = extinction per voxel.
+  // Fitted to the path tracer (docs/how-it-works.md, "Physical media"); a =
+  // albedo, tau = extinction per voxel.
   const double a = albedo;
   const double tau = extinctionPerVoxel;
   const PhysicalMediumFit& f = PhysicalMediumCoefficients;

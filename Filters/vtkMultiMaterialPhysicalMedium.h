@@ -9,9 +9,9 @@
  * extinction, as the path tracer reads them; what the mapping sets are the
  * parameters our model leaves free: ka, kd, attenuation c_t and
  * scattering s (ks = 0, no surface; g as given; r = e = 0).
- * Fitted by Testing/Benchmark/mmvMediumCalibration; the table, the formula's
- * derivation and its residual are in docs/benchmark.md ("Mapping physical
- * media to our parameters").
+ * Fitted by Testing/Benchmark/mmvMediumCalibration; the formula and its
+ * reading are in docs/how-it-works.md ("Physical media"), its residual in
+ * docs/performance.md ("Physical media").
  */
 #ifndef vtkMultiMaterialPhysicalMedium_h
 #define vtkMultiMaterialPhysicalMedium_h
@@ -26,8 +26,8 @@ namespace mmv
 
 /// The domain the mapping accepts. Fitted on albedo 0.3 ... 0.99, g 0 ...
 /// 0.8 and extinction 0.056 ... 0.89 per voxel (a ball of radius 18
-/// voxels); docs/benchmark.md gives the residual. Backward scattering
-/// (g < 0) was not measured and is rejected.
+/// voxels); docs/performance.md ("Physical media") gives the residual.
+/// Backward scattering (g < 0) was not measured and is rejected.
 constexpr double PhysicalMediumMaxAlbedo = 0.999;
 constexpr double PhysicalMediumMaxAnisotropy = 0.9;
 

@@ -115,10 +115,11 @@ public:
   vtkBooleanMacro(MultipleScattering, bool);
 
   /// The diffusion's time integration (mmv::DiffusionSettings::Exponential).
-  /// Off (default): 8 backward-Euler steps, the ground truth issue 9's
-  /// accuracy promise was measured against, kept so that figures stay
-  /// comparable although the mapper integrates exactly by default. On: the
-  /// exact exponential, the stricter truth (docs/benchmark.md quotes both).
+  /// Off (default): 8 backward-Euler steps, kept as the ground truth so that
+  /// accuracy figures stay comparable although the mapper integrates exactly
+  /// by default. On: the exact exponential, the stricter truth
+  /// (docs/performance.md, "Diffusion: exponential series against backward
+  /// Euler").
   vtkSetMacro(ExponentialDiffusion, bool);
   vtkGetMacro(ExponentialDiffusion, bool);
   vtkBooleanMacro(ExponentialDiffusion, bool);
