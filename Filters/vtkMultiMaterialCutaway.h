@@ -1,8 +1,8 @@
 /**
  * @file   vtkMultiMaterialCutaway.h
  * @brief  What the mapper's cropping region and clipping planes remove, so
- *         that the irradiance estimation treats it as empty (issue 12,
- *         "Cutaway views": what is cut away casts no shadow).
+ *         that the irradiance estimation treats it as empty (what is cut
+ *         away casts no shadow).
  *
  * VTK's conventions (vtkOpenGLGPUVolumeRayCastMapper): a clipping plane
  * (world coordinates) removes the points x with dot(x - origin, normal) < 0;

@@ -49,12 +49,8 @@ enum ReflectionVisibility
 
 /// Where the per-sample march and the view-dependent pass cost the same, in
 /// view pixels per irradiance voxel. The march costs per shaded pixel, the
-/// pass per voxel, whatever the view. Measured on llvmpipe (wall clock, the
-/// camera turning every frame, docs/benchmark.md): at 128 x 128 the march
-/// is 2.8x (synthetic, 64^3 grid) and 2.0x (headsq, 64 x 64 x 93) cheaper,
-/// at 400 x 400 the pass 1.3x and 2.3x; per pixel the march costs 2-7 us, per
-/// voxel the pass 0.5-0.7 us, which puts the crossover at 0.1-0.26 pixels
-/// per voxel.
+/// pass per voxel, whatever the view; 0.15 lies inside the measured
+/// crossover (docs/performance.md, "Material terms: cost").
 constexpr double PerSampleMarchPixelsPerVoxel = 0.15;
 
 /// The visibility march starts this many voxels (of the grid it marches:

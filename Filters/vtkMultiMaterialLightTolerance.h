@@ -4,13 +4,13 @@
  *
  * ParaView's light kit follows the camera, so every rotation moves its five
  * lights. A light whose placement changed by less than a tolerance angle
- * keeps the irradiance computed for its old placement (issue 9, item 2); the
- * shading terms of the ray cast still use the new placement. The comparison
- * is always against the placement the irradiance was computed for, so small
- * moves cannot add up unnoticed.
+ * keeps the irradiance computed for its old placement, so small nudges
+ * cost only a ray cast; the shading terms of the ray cast still use the new
+ * placement. The comparison is always against the placement the irradiance
+ * was computed for, so small moves cannot add up unnoticed.
  *
- * Measured (docs/benchmark.md, "Light tolerance"): the image with the kept
- * irradiance against the exact one, on the CT with the light kit.
+ * What a tolerance costs in image error: docs/performance.md, "Light
+ * tolerance".
  */
 #ifndef vtkMultiMaterialLightTolerance_h
 #define vtkMultiMaterialLightTolerance_h

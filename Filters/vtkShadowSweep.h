@@ -15,8 +15,8 @@
  * nothing unless they lie on a slice the next chunk reads.
  *
  * The price is the in-slice interpolation: once per chunk along a ray, so a
- * shadow edge blurs by at most about sqrt(n / K) / 2 voxels (measured against
- * full rays in docs/benchmark.md).
+ * shadow edge blurs by at most about sqrt(n / K) / 2 voxels (compared with
+ * full rays in docs/performance.md, "Piecewise shadow rays").
  */
 #ifndef vtkShadowSweep_h
 #define vtkShadowSweep_h

@@ -3,8 +3,7 @@
  * @brief  The gradient the ray caster shades with, precomputed per voxel.
  *
  * Computing the gradient at every shaded sample by central differences costs
- * six fetches of the data texture, half of a sample's twelve, and made our
- * ray cast 1.35-1.5x VTK's Phong on llvmpipe (docs/benchmark.md). The
+ * six fetches of the data texture, half of a sample's twelve. The
  * gradient is a property of the data alone, so it is computed once per data
  * change here and the shader reads it with one trilinear fetch
  * (Shaders/mmvRayCastDec.glsl, mmvGradient).
@@ -14,8 +13,9 @@
  * (v[i+1] - v[i-1]) / 2 along each axis, with the neighbours clamped to the
  * volume (one-sided halves at the faces, as a clamped texture gives them).
  * Interpolating these trilinearly differs from the central difference of the
- * trilinear field at the sample (what the reference renderer keeps): the
- * cost in image error is measured in docs/benchmark.md.
+ * trilinear field at the sample (what the reference renderer keeps); the
+ * difference is part of the image error against the reference
+ * (docs/performance.md, "Accuracy against speed").
  */
 #ifndef vtkValueGradient_h
 #define vtkValueGradient_h
