@@ -15,9 +15,8 @@ namespace
 {
 /// The probe's grids: the reference's scale times 2^(-k/2), k = 1 ... 4.
 constexpr int ProbeSteps = 4;
-/// One light: measured (docs/benchmark.md, "Error probe"), four lights cost
-/// 1.2-1.7x the time and told the CT from the thin-shell scenes by less
-/// (1.0 dB between them at the grids that matter, against 2.8 dB).
+/// One light: four lights cost more time and told smooth volumes from thin
+/// shells apart less clearly.
 constexpr int ProbeLightCount = 1;
 }
 

@@ -1,7 +1,7 @@
 /**
  * @class   vtkIrradianceResolutionProbe
  * @brief   The coarsest irradiance grid a volume needs, from the measured
- *          error of coarser grids (issue 9: "model no more than a scene needs").
+ *          error of coarser grids: model no more than a scene needs.
  *
  * Smooth data (a CT of soft tissue) keeps its lighting on a grid an eighth
  * of the voxels, while thin shells lose their self-shadowing on any coarser

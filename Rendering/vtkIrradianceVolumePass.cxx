@@ -49,9 +49,8 @@ constexpr int LightsPerTexture = mmv::IrradianceLightsPerTexture;
 
 /// Residual checks of a diffusion sub-step: each costs about a sweep and
 /// waits for the GPU, so only sub-steps whose error bound asks for at least
-/// this many sweeps are checked, four times at most. (Checking the CT's
-/// `skin` sub-steps of 9 sweeps every 3 saved 17 % of the sweeps but made
-/// the update 20 % slower on llvmpipe.)
+/// this many sweeps are checked, four times at most. (Checking short
+/// sub-steps too saves sweeps but costs more in waiting than it saves.)
 constexpr int ResidualCheckMinimumSweeps = 12;
 
 /// Linear interpolation of an n-entry table over the normalised range, as a

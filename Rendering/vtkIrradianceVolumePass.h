@@ -118,7 +118,7 @@ public:
   /// The diffusion's time integration (mmv::DiffusionSettings::Exponential):
   /// on (default, mmv::DefaultExponentialDiffusion), the exponential's
   /// Chebyshev series, exact in time; off, backward-Euler sub-steps of
-  /// Jacobi sweeps, 4-5x more passes.
+  /// Jacobi sweeps, several times more passes.
   vtkSetMacro(ExponentialDiffusion, bool);
   vtkGetMacro(ExponentialDiffusion, bool);
   vtkBooleanMacro(ExponentialDiffusion, bool);
@@ -133,9 +133,9 @@ public:
    * fragment draws; 1, compute dispatches (OpenGL 4.3; fragment draws where
    * the context lacks it); 2, automatic (default): compute dispatches except
    * on a CPU rasterizer (llvmpipe, softpipe, swrast). Both give the same
-   * irradiance. Measured (docs/benchmark.md): on an H100 compute dispatches
-   * made a 5-light update with s = 8 about 10x faster; on llvmpipe they made
-   * the diffusion slower.
+   * irradiance. A GPU runs compute dispatches much faster; a CPU rasterizer
+   * runs the diffusion's fragment draws faster (docs/performance.md, "On a
+   * GPU: NVIDIA H100").
    */
   enum ComputeShaderUse
   {

@@ -119,7 +119,7 @@ public:
    * before (vtkShadowSweep.h; O(n^3 K) for an n^3 grid), or
    * mmv::FullShadowRays (0), one ray per voxel to the boundary (exact,
    * O(n^4)). Point and spot lights always take full rays. Accuracy and
-   * speed of both: docs/benchmark.md.
+   * speed of both: docs/performance.md, "Piecewise shadow rays".
    */
   vtkSetClampMacro(ShadowEstimation, int, 0, 1);
   vtkGetMacro(ShadowEstimation, int);
@@ -131,8 +131,9 @@ public:
 
   /// The diffusion's time integration (vtkIrradianceVolumePass): on
   /// (default, mmv::DefaultExponentialDiffusion), the exponential's
-  /// Chebyshev series, exact in time, 4-5x fewer passes than off,
-  /// backward-Euler sub-steps (docs/benchmark.md).
+  /// Chebyshev series, exact in time, in far fewer passes than off,
+  /// backward-Euler sub-steps (docs/performance.md, "Diffusion: exponential
+  /// series against backward Euler").
   vtkSetMacro(ExponentialDiffusion, bool);
   vtkGetMacro(ExponentialDiffusion, bool);
   vtkBooleanMacro(ExponentialDiffusion, bool);
@@ -146,7 +147,7 @@ public:
    * volume's centre, and the spot axis. The comparison is with the placement
    * the irradiance holds, so small moves do not add up; shading terms always
    * use the current placement. The image error against the exact one per
-   * angle is in docs/benchmark.md ("Light tolerance"). Clamped to [0, 45];
+   * angle is in docs/performance.md ("Light tolerance"). Clamped to [0, 45];
    * NaN: 0.
    */
   vtkSetClampMacro(LightDirectionTolerance, double, 0.0, mmv::MaxLightDirectionToleranceDegrees);
@@ -194,8 +195,8 @@ public:
   /// pre-filtered extinction once per irradiance voxel when the camera or the
   /// volume changes, interpolated by the ray cast; 1
   /// (mmv::MarchedReflectionVisibility), the same march from every shaded
-  /// sample with r > 0 (while the camera turns on llvmpipe, 1.3-2.3x the
-  /// process CPU of 2 at 400x400 and 1.7-2.9x at 800x800, docs/benchmark.md);
+  /// sample with r > 0 (dearer than 2 on large views while the camera turns;
+  /// docs/performance.md, "Material terms: cost");
   /// 0 (mmv::UnoccludedReflections), none. Both marches honour the cropping
   /// region and clipping planes (cut material does not occlude). Needs a
   /// light (the pre-filtered volume comes with the irradiance): without one,
