@@ -66,7 +66,7 @@ QString editorLabel(int p)
 // A preset's swatch: a grey sphere shaded with the preset's ambient,
 // diffuse, specular and shininess (Blinn-Phong, light from the upper left).
 // Grey, because a preset sets the material, never the colour: that comes
-// from the colour map (issue 12: coloured swatches promised colours).
+// from the colour map, and a coloured swatch would promise one.
 QPixmap presetSwatch(const double parameters[ParameterCount], int size)
 {
   QImage image(size, size, QImage::Format_ARGB32);

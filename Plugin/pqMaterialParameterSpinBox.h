@@ -6,7 +6,7 @@
  *          Refused callback) instead of silently keeping part of the text.
  *
  * QDoubleSpinBox drops characters its validator does not expect, so "1e9"
- * typed into Shininess became 19 (issue 12).
+ * typed into Shininess would become 19.
  */
 #ifndef pqMaterialParameterSpinBox_h
 #define pqMaterialParameterSpinBox_h

@@ -3,8 +3,8 @@
 // mmvIsCut() of Filters/vtkMultiMaterialCutaway.h line for line. Needs
 // MMV_MAX_CUT_PLANES (mmv::CutawayGLSLPrelude()). Without MMV_CUTAWAY (the
 // pass defines it only while something is cut) nothing is cut and the test
-// compiles away: it ran at every shadow-ray step and cost a third of the
-// estimation on llvmpipe.
+// compiles away: it runs at every shadow-ray step, a large share of the
+// estimation's cost.
 
 uniform int cutPlaneCount;                   // 0: no clipping planes
 uniform vec4 cutPlanes[MMV_MAX_CUT_PLANES];  // removed where dot(xyz, index) + w < 0

@@ -1,7 +1,8 @@
 // main() of the irradiance voxel passes (see mmvVoxelPassDec.glsl).
 #ifdef MMV_COMPUTE
 
-// 8x8x4 was as fast as 4x4x4 and 16x8x1 on an H100 (docs/benchmark.md).
+// 8x8x4: no slower than 4x4x4 or 16x8x1 on the GPU of docs/performance.md
+// ("On a GPU: NVIDIA H100").
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 4) in;
 writeonly uniform image3D mmvTarget;
 uniform sampler3D mmvTargetBefore; // the same texture: channels the mask keeps

@@ -1,8 +1,8 @@
 /**
  * @file   vtkGlobalPrefilterExchange.h
  * @brief  Combines every rank's piece into one vtkGlobalPrefilteredVolume on
- *         every rank, through vtkMultiProcessController (issue 11, global
- *         shadows under MPI).
+ *         every rank, through vtkMultiProcessController, so that shadows
+ *         cross rank boundaries under MPI.
  *
  * Collective: every process of the controller must call it the same number of
  * times, with or without data (a rank with an empty piece passes null or an

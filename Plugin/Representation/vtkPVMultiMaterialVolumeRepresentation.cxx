@@ -376,7 +376,7 @@ void vtkPVMultiMaterialVolumeRepresentation::PinReflectionBackground()
 {
   // Before the render the renderer holds the view's background; while the
   // ranks draw for parallel compositing it is cleared to black, which the
-  // reflections would otherwise show (-np 3 against -np 1: 32.7 dB).
+  // reflections would otherwise show, unlike a serial render.
   auto* view = vtkPVRenderView::SafeDownCast(this->GetView());
   vtkMultiMaterialVolumeMapper* mapper = this->GetMultiMaterialMapper();
   if (!view || !mapper || !view->GetRenderer())
