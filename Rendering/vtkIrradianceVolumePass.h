@@ -133,9 +133,8 @@ public:
    * fragment draws; 1, compute dispatches (OpenGL 4.3; fragment draws where
    * the context lacks it); 2, automatic (default): compute dispatches except
    * on a CPU rasterizer (llvmpipe, softpipe, swrast). Both give the same
-   * irradiance. A GPU runs compute dispatches much faster; a CPU rasterizer
-   * runs the diffusion's fragment draws faster (docs/performance.md, "On a
-   * GPU: NVIDIA H100").
+   * irradiance. A GPU runs compute dispatches much faster, a CPU rasterizer
+   * fragment draws (docs/performance.md, "On a GPU: NVIDIA H100").
    */
   enum ComputeShaderUse
   {
