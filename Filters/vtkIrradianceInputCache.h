@@ -24,8 +24,7 @@
 #include "vtkMultiMaterialVolumeFiltersModule.h" // export macro
 #include "vtkObject.h"
 
-#include <algorithm> // std::min
-#include <vector>    // keys, samples
+#include <vector> // keys, samples
 
 class vtkDataArray;
 class vtkGlobalPrefilteredVolume;
@@ -72,12 +71,6 @@ public:
   /// Bumped only when the sampled values change.
   int GetMaterialVersion() const { return this->MaterialVersion; }
   const std::vector<float>& GetScattering() const { return this->Scattering; }
-  /// The attenuation samples alone (the extinction's grey part).
-  std::vector<float> GetAttenuation() const
-  {
-    return std::vector<float>(this->Extinction.begin(),
-      this->Extinction.begin() + std::min(this->Extinction.size(), this->Scattering.size()));
-  }
   ///@}
 
   ///@{

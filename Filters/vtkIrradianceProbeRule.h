@@ -15,7 +15,9 @@
  *    range, or the support appears or vanishes, or
  *  - the peak optical depth changes by more than a factor PeakRatio.
  * Changes are compared with the measured signature, never the last one, so
- * a long drag adds up and measures again once it has moved far enough.
+ * a long drag adds up and measures again once it has moved far enough. The
+ * tables are sampled over the opacity function's own range, not the data's,
+ * so a time step whose values span another range keeps the signature.
  */
 #ifndef vtkIrradianceProbeRule_h
 #define vtkIrradianceProbeRule_h
@@ -27,7 +29,7 @@
 namespace mmv
 {
 
-/// An end of the support may move this fraction of the scalar range.
+/// An end of the support may move this fraction of the sampled range.
 constexpr double ProbeSupportTolerance = 1.0 / 32.0;
 /// The peak optical depth may change by this factor either way.
 constexpr double ProbePeakRatio = 2.0;
@@ -39,17 +41,19 @@ struct ProbeSignature
   double SupportLow = 0.0;  // the lowest and highest data value with extinction
   double SupportHigh = 0.0;
   double PeakDepth = 0.0;  // the largest optical depth per unit length
+  double Width = 0.0;      // the sampled range's width: the support's scale
 };
 
 /**
  * The signature of the opacity table `opacity` (n entries over `range`, the
  * scalar opacity per `unitDistance`) times the attenuation table
- * `attenuation` (n entries, or empty for 1).
+ * `attenuation` (n entries at the same values, or empty for 1).
  */
 inline ProbeSignature MakeProbeSignature(const std::vector<float>& opacity,
   const std::vector<float>& attenuation, const double range[2], double unitDistance)
 {
   ProbeSignature signature;
+  signature.Width = std::abs(range[1] - range[0]);
   const int n = static_cast<int>(opacity.size());
   const double unit = unitDistance > 0.0 ? unitDistance : 1.0;
   for (int i = 0; i < n; ++i)
@@ -73,16 +77,15 @@ inline ProbeSignature MakeProbeSignature(const std::vector<float>& opacity,
   return signature;
 }
 
-/// Whether `now` differs materially from `measured` over a scalar range of
-/// width `rangeWidth`: the probe must measure again.
-inline bool ProbeSignatureChanged(
-  const ProbeSignature& measured, const ProbeSignature& now, double rangeWidth)
+/// Whether `now` differs materially from `measured`: the probe must
+/// measure again.
+inline bool ProbeSignatureChanged(const ProbeSignature& measured, const ProbeSignature& now)
 {
   if (measured.Empty || now.Empty)
   {
     return measured.Empty != now.Empty;
   }
-  const double tolerance = ProbeSupportTolerance * std::abs(rangeWidth);
+  const double tolerance = ProbeSupportTolerance * std::max(measured.Width, now.Width);
   if (std::abs(now.SupportLow - measured.SupportLow) > tolerance ||
     std::abs(now.SupportHigh - measured.SupportHigh) > tolerance)
   {

@@ -63,8 +63,7 @@ bool vtkIrradianceResolutionProbe::Holds(const vtkIrradianceInputCache::VolumeKe
   {
     return true;
   }
-  if (mmv::ProbeSignatureChanged(
-        this->MeasuredSignature, signature(), key.Range[1] - key.Range[0]))
+  if (mmv::ProbeSignatureChanged(this->MeasuredSignature, signature()))
   {
     return false;
   }

@@ -148,10 +148,20 @@ void vtkMultiMaterialIrradianceStage::ApplyProbe(vtkRenderer* ren, vtkVolume* vo
   auto* window = vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow());
   vtkVolumeProperty* property = vol->GetProperty();
   const int n = this->Mapper->PreIntegrationTableSize;
-  // Sampled only when the volume key changed (vtkIrradianceProbeRule.h).
+  // Sampled only when the volume key changed, over the opacity function's
+  // own range (vtkIrradianceProbeRule.h).
   const auto signature = [&]() {
-    return mmv::MakeProbeSignature(SampleOpacityTable(property->GetScalarOpacity(0), range, n),
-      this->Cache->GetAttenuation(), range, property->GetScalarOpacityUnitDistance(0));
+    vtkPiecewiseFunction* opacity = property->GetScalarOpacity(0);
+    double own[2];
+    opacity->GetRange(own);
+    std::vector<float> attenuation(n, 1.0f);
+    for (int i = 0; this->Materials && i < n; ++i)
+    {
+      attenuation[i] = static_cast<float>(this->Materials->EvaluateParameter(
+        own[0] + (own[1] - own[0]) * i / (n - 1), mmv::Attenuation));
+    }
+    return mmv::MakeProbeSignature(SampleOpacityTable(opacity, own, n), attenuation, own,
+      property->GetScalarOpacityUnitDistance(0));
   };
   // A measurement takes seconds on a software GPU: ParaView's progress bar
   // shows it, as it shows the update that follows.

@@ -10,7 +10,7 @@
 namespace
 {
 constexpr int N = 65;
-const double Range[2] = { 100.0, 420.0 }; // width 320: the tolerance is 10
+const double Range[2] = { 100.0, 420.0 }; // width 320: the support's tolerance is 10
 
 /// Opacity `peak` on [low, high] (data values), 0 elsewhere.
 std::vector<float> Box(double low, double high, double peak)
@@ -50,19 +50,19 @@ TEST(IrradianceProbeRule, AnOpacityDragWithinTheSupportKeepsTheChoice)
   for (double peak : { 0.3, 0.4, 0.6, 0.7 })
   {
     EXPECT_FALSE(mmv::ProbeSignatureChanged(
-      measured, mmv::MakeProbeSignature(Box(200.0, 300.0, peak), none, Range, 1.0), 320.0))
+      measured, mmv::MakeProbeSignature(Box(200.0, 300.0, peak), none, Range, 1.0)))
       << peak;
   }
   // ln 2 = 0.693: 0.2 gives 0.223 (x 0.32), 0.8 gives 1.61 (x 2.3).
   for (double peak : { 0.2, 0.8 })
   {
     EXPECT_TRUE(mmv::ProbeSignatureChanged(
-      measured, mmv::MakeProbeSignature(Box(200.0, 300.0, peak), none, Range, 1.0), 320.0))
+      measured, mmv::MakeProbeSignature(Box(200.0, 300.0, peak), none, Range, 1.0)))
       << peak;
   }
   // The unit distance scales the depth as the opacity does.
   EXPECT_TRUE(mmv::ProbeSignatureChanged(
-    measured, mmv::MakeProbeSignature(Box(200.0, 300.0, 0.5), none, Range, 0.4), 320.0));
+    measured, mmv::MakeProbeSignature(Box(200.0, 300.0, 0.5), none, Range, 0.4)));
 }
 
 TEST(IrradianceProbeRule, TheSupportMovingFartherThanItsToleranceMeasuresAgain)
@@ -71,20 +71,20 @@ TEST(IrradianceProbeRule, TheSupportMovingFartherThanItsToleranceMeasuresAgain)
   const mmv::ProbeSignature measured = mmv::MakeProbeSignature(Box(200.0, 300.0, 0.5), none, Range, 1.0);
   // One table step (5 units) either way is within 10.
   EXPECT_FALSE(mmv::ProbeSignatureChanged(
-    measured, mmv::MakeProbeSignature(Box(195.0, 305.0, 0.5), none, Range, 1.0), 320.0));
+    measured, mmv::MakeProbeSignature(Box(195.0, 305.0, 0.5), none, Range, 1.0)));
   EXPECT_FALSE(mmv::ProbeSignatureChanged(
-    measured, mmv::MakeProbeSignature(Box(210.0, 290.0, 0.5), none, Range, 1.0), 320.0));
+    measured, mmv::MakeProbeSignature(Box(210.0, 290.0, 0.5), none, Range, 1.0)));
   // 15 units is not.
   EXPECT_TRUE(mmv::ProbeSignatureChanged(
-    measured, mmv::MakeProbeSignature(Box(215.0, 300.0, 0.5), none, Range, 1.0), 320.0));
+    measured, mmv::MakeProbeSignature(Box(215.0, 300.0, 0.5), none, Range, 1.0)));
   EXPECT_TRUE(mmv::ProbeSignatureChanged(
-    measured, mmv::MakeProbeSignature(Box(200.0, 285.0, 0.5), none, Range, 1.0), 320.0));
+    measured, mmv::MakeProbeSignature(Box(200.0, 285.0, 0.5), none, Range, 1.0)));
   // Everything transparent, or back: always measured again.
   const mmv::ProbeSignature empty = mmv::MakeProbeSignature(Box(0.0, 0.0, 0.5), none, Range, 1.0);
   ASSERT_TRUE(empty.Empty);
-  EXPECT_TRUE(mmv::ProbeSignatureChanged(measured, empty, 320.0));
-  EXPECT_TRUE(mmv::ProbeSignatureChanged(empty, measured, 320.0));
-  EXPECT_FALSE(mmv::ProbeSignatureChanged(empty, empty, 320.0));
+  EXPECT_TRUE(mmv::ProbeSignatureChanged(measured, empty));
+  EXPECT_TRUE(mmv::ProbeSignatureChanged(empty, measured));
+  EXPECT_FALSE(mmv::ProbeSignatureChanged(empty, empty));
 }
 
 TEST(IrradianceProbeRule, SmallChangesAddUpAgainstTheMeasuredSignature)
@@ -98,8 +98,8 @@ TEST(IrradianceProbeRule, SmallChangesAddUpAgainstTheMeasuredSignature)
   for (double low = 205.0; low <= 240.0; low += 5.0)
   {
     const mmv::ProbeSignature now = mmv::MakeProbeSignature(Box(low, 300.0, 0.5), none, Range, 1.0);
-    EXPECT_FALSE(mmv::ProbeSignatureChanged(previous, now, 320.0)) << low;
-    changed = changed || mmv::ProbeSignatureChanged(measured, now, 320.0);
+    EXPECT_FALSE(mmv::ProbeSignatureChanged(previous, now)) << low;
+    changed = changed || mmv::ProbeSignatureChanged(measured, now);
     previous = now;
   }
   EXPECT_TRUE(changed);
