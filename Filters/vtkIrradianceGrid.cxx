@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <vector>
 
 namespace
 {
@@ -245,35 +246,128 @@ glm::dvec3 FootprintSample(const FootprintLayout& layout, const glm::dvec3& voxe
   return p;
 }
 
+namespace
+{
+/// One axis of the footprint filter: for each grid index, the data points
+/// its samples' linear weights reach (taps of weight 0 left out, as the
+/// trilinear interpolation leaves them unread) and their summed weights.
+struct AxisTaps
+{
+  std::vector<int> First; // per grid index: its first tap in Index/Weight
+  std::vector<int> Index;
+  std::vector<double> Weight;
+};
+
+AxisTaps MakeAxisTaps(const FootprintLayout& layout, int axis, int dataDim, int gridDim)
+{
+  AxisTaps taps;
+  taps.First.push_back(0);
+  std::vector<double> weights(dataDim, 0.0);
+  std::vector<char> reached(dataDim, 0);
+  for (int o = 0; o < gridDim; ++o)
+  {
+    std::vector<int> touched;
+    for (int q = 0; q < layout.Samples[axis]; ++q)
+    {
+      glm::dvec3 voxel(0.0);
+      voxel[axis] = o;
+      const int sample[3] = { q, q, q };
+      const double x = std::min(
+        std::max(FootprintSample(layout, voxel, sample)[axis], 0.0), static_cast<double>(dataDim - 1));
+      const int i0 = std::min(static_cast<int>(x), dataDim - 1);
+      const int i1 = std::min(i0 + 1, dataDim - 1);
+      const double w = x - i0;
+      const double share = 1.0 / layout.Samples[axis];
+      auto add = [&](int i, double weight) {
+        if (!reached[i])
+        {
+          reached[i] = 1;
+          touched.push_back(i);
+        }
+        weights[i] += share * weight;
+      };
+      // As Lerp: a weight of 0 or 1 reads one point only.
+      if (w != 1.0)
+      {
+        add(i0, 1.0 - w);
+      }
+      if (w != 0.0)
+      {
+        add(i1, w);
+      }
+    }
+    std::sort(touched.begin(), touched.end());
+    for (int i : touched)
+    {
+      taps.Index.push_back(i);
+      taps.Weight.push_back(weights[i]);
+      weights[i] = 0.0;
+      reached[i] = 0;
+    }
+    taps.First.push_back(static_cast<int>(taps.Index.size()));
+  }
+  return taps;
+}
+}
+
 void PrefilterScalars(vtkImageData* image, vtkDataArray* scalars, int component,
   const IrradianceGrid& grid, std::vector<float>& prefiltered)
 {
   const int* extent = image->GetExtent();
   const int dataDims[3] = { extent[1] - extent[0] + 1, extent[3] - extent[2] + 1,
     extent[5] - extent[4] + 1 };
-  const FootprintLayout layout = MakeFootprintLayout(dataDims, grid.Dimensions);
-  const int* samples = layout.Samples;
+  const int* g = grid.Dimensions;
+  const FootprintLayout layout = MakeFootprintLayout(dataDims, g);
   const std::vector<float> values = CopyComponent(scalars, component);
-  prefiltered.resize(grid.GetNumberOfVoxels());
-  vtkSMPTools::For(0, grid.GetNumberOfVoxels(), [&](vtkIdType begin, vtkIdType end) {
-    for (vtkIdType v = begin; v < end; ++v)
-    {
-      const glm::dvec3 voxel = grid.IndexOfVoxel(v);
-      double sum = 0.0;
-      for (int k = 0; k < samples[2]; ++k)
+  // The midpoint rule over trilinear samples is a tensor product of one 1D
+  // filter per axis: filtered along x, then y, then z, each pass reading a
+  // few points per output instead of 8 per sample per voxel.
+  AxisTaps taps[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    taps[a] = MakeAxisTaps(layout, a, dataDims[a], g[a]);
+  }
+  // in[(i, j, k)] with strides (1, n0, n0 n1) -> out along `axis`.
+  auto filter = [](const auto* in, const int inDims[3], int axis, const AxisTaps& t, int outLength,
+                  std::vector<double>& out) {
+    int outDims[3] = { inDims[0], inDims[1], inDims[2] };
+    outDims[axis] = outLength;
+    out.assign(static_cast<size_t>(outDims[0]) * outDims[1] * outDims[2], 0.0);
+    const vtkIdType inStride[3] = { 1, inDims[0], static_cast<vtkIdType>(inDims[0]) * inDims[1] };
+    const vtkIdType outStride[3] = { 1, outDims[0],
+      static_cast<vtkIdType>(outDims[0]) * outDims[1] };
+    const int b = (axis + 1) % 3;
+    const int c = (axis + 2) % 3;
+    vtkSMPTools::For(0, outDims[c], [&](vtkIdType begin, vtkIdType end) {
+      for (vtkIdType z = begin; z < end; ++z)
       {
-        for (int j = 0; j < samples[1]; ++j)
+        for (int y = 0; y < outDims[b]; ++y)
         {
-          for (int i = 0; i < samples[0]; ++i)
+          const vtkIdType inBase = z * inStride[c] + y * inStride[b];
+          const vtkIdType outBase = z * outStride[c] + y * outStride[b];
+          for (int o = 0; o < outLength; ++o)
           {
-            const int q[3] = { i, j, k };
-            sum += Interpolate(dataDims, values.data(), FootprintSample(layout, voxel, q));
+            double sum = 0.0;
+            for (int n = t.First[o]; n < t.First[o + 1]; ++n)
+            {
+              sum += t.Weight[n] * static_cast<double>(in[inBase + t.Index[n] * inStride[axis]]);
+            }
+            out[outBase + o * outStride[axis]] = sum;
           }
         }
       }
-      prefiltered[v] = static_cast<float>(sum / (samples[0] * samples[1] * samples[2]));
-    }
-  });
+    });
+  };
+  std::vector<double> alongX, alongY, alongZ;
+  int dims[3] = { dataDims[0], dataDims[1], dataDims[2] };
+  filter(values.data(), dims, 0, taps[0], g[0], alongX);
+  dims[0] = g[0];
+  filter(alongX.data(), dims, 1, taps[1], g[1], alongY);
+  dims[1] = g[1];
+  filter(alongY.data(), dims, 2, taps[2], g[2], alongZ);
+  prefiltered.resize(alongZ.size());
+  std::transform(alongZ.begin(), alongZ.end(), prefiltered.begin(),
+    [](double v) { return static_cast<float>(v); });
 }
 
 double ValidIrradianceScale(double scale, std::string* why)

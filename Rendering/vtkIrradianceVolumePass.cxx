@@ -568,13 +568,30 @@ bool vtkIrradianceVolumePass::vtkInternals::AllocateTargets(
       reallocated = true;
     }
   }
-  for (size_t i = 0; i < (diffusion ? this->FineScratch.size() : 1); ++i)
+  for (size_t i = 0; i < this->FineScratch.size(); ++i)
   {
-    ok = ok && EnsureFloatTexture(context, this->FineScratch[i], d);
+    // Kept scratch the diffusion no longer needs goes.
+    if (i == 0 || diffusion)
+    {
+      ok = ok && EnsureFloatTexture(context, this->FineScratch[i], d);
+    }
+    else if (this->FineScratch[i])
+    {
+      this->FineScratch[i]->ReleaseGraphicsResources(context);
+      this->FineScratch[i] = nullptr;
+    }
   }
-  for (size_t i = 0; diffusion && i < this->CoarseScratch.size(); ++i)
+  for (size_t i = 0; i < this->CoarseScratch.size(); ++i)
   {
-    ok = ok && EnsureFloatTexture(context, this->CoarseScratch[i], this->Coarse.Dimensions);
+    if (diffusion)
+    {
+      ok = ok && EnsureFloatTexture(context, this->CoarseScratch[i], this->Coarse.Dimensions);
+    }
+    else if (this->CoarseScratch[i])
+    {
+      this->CoarseScratch[i]->ReleaseGraphicsResources(context);
+      this->CoarseScratch[i] = nullptr;
+    }
   }
   if (!this->Framebuffer)
   {
@@ -1342,6 +1359,8 @@ bool vtkIrradianceVolumePass::Render(vtkOpenGLRenderWindow* context)
   this->LastEstimatedVoxels = 0;
   this->LastEstimationSeconds = 0.0;
   this->LastDiffusionSeconds = 0.0;
+  this->LastSetupSeconds = 0.0;
+  this->LastWriteSeconds = 0.0;
   if (!context || !internals.HasInputs)
   {
     vtkErrorMacro("Render() needs a context and valid inputs (SetInputs).");
@@ -1420,6 +1439,9 @@ bool vtkIrradianceVolumePass::Render(vtkOpenGLRenderWindow* context)
     this->ComputeShadersUsed = internals.Compute;
     bool reallocated = false;
     ok = internals.Upload(context) && internals.AllocateTargets(context, diffusion, reallocated);
+    glFinish();
+    this->LastSetupSeconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     // Only the lights that moved (or all, when the volume changed) are
     // recomputed: each light keeps its own channel.
     const bool all = internals.VolumeChanged || reallocated;
@@ -1509,6 +1531,7 @@ bool vtkIrradianceVolumePass::Render(vtkOpenGLRenderWindow* context)
         this->LastDiffusionSeconds += elapsed();
       }
       ok = ok && internals.FillPass(context, result, group, mask, this->LayeredRendering);
+      this->LastWriteSeconds += elapsed();
       for (int l = 0; ok && !internals.Tint.empty() && l < LightsPerTexture; ++l)
       {
         if ((mask & (1 << l)) != 0)
@@ -1521,7 +1544,10 @@ bool vtkIrradianceVolumePass::Render(vtkOpenGLRenderWindow* context)
         this->LastEstimationSeconds += elapsed();
       }
     }
-    internals.ReleaseScratch(context);
+    if (!this->KeepScratch)
+    {
+      internals.ReleaseScratch(context);
+    }
   }
   state->PopFramebufferBindings();
   glFinish();
@@ -1673,6 +1699,20 @@ vtkIdType vtkIrradianceVolumePass::GetTextureMemoryBytes() const
   return bytes;
 }
 
+vtkIdType vtkIrradianceVolumePass::GetScratchMemoryBytes() const
+{
+  vtkIdType bytes = 0;
+  auto add = [&bytes](const vtkSmartPointer<vtkTextureObject>& texture) {
+    // RGBA32F: 4 channels of 4 bytes.
+    bytes += texture ? static_cast<vtkIdType>(texture->GetWidth()) * texture->GetHeight() *
+        texture->GetDepth() * 16
+                     : 0;
+  };
+  std::for_each(this->Internals->FineScratch.begin(), this->Internals->FineScratch.end(), add);
+  std::for_each(this->Internals->CoarseScratch.begin(), this->Internals->CoarseScratch.end(), add);
+  return bytes;
+}
+
 //------------------------------------------------------------------------------
 void vtkIrradianceVolumePass::SetTintTable(const float* tintTable)
 {
@@ -1781,4 +1821,6 @@ void vtkIrradianceVolumePass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "LastEstimationSeconds: " << this->LastEstimationSeconds << "\n";
   os << indent << "LastDiffusionSeconds: " << this->LastDiffusionSeconds << "\n";
   os << indent << "TextureMemoryBytes: " << this->GetTextureMemoryBytes() << "\n";
+  os << indent << "KeepScratch: " << this->KeepScratch << "\n";
+  os << indent << "ScratchMemoryBytes: " << this->GetScratchMemoryBytes() << "\n";
 }

@@ -147,6 +147,20 @@ public:
   /// Whether the last update ran compute dispatches.
   vtkGetMacro(ComputeShadersUsed, bool);
 
+  /**
+   * Keeps the float scratch textures the passes work in between updates
+   * (default on): an update then allocates nothing, which on a software
+   * rasterizer is a large share of a light update (docs/performance.md,
+   * "Irradiance update stages"). The price is holding them: 16 bytes a voxel,
+   * three times that with multiple scattering (GetScratchMemoryBytes). Off:
+   * released after every update.
+   */
+  vtkSetMacro(KeepScratch, bool);
+  vtkGetMacro(KeepScratch, bool);
+  vtkBooleanMacro(KeepScratch, bool);
+  /// GPU memory the scratch textures hold now, in bytes.
+  vtkIdType GetScratchMemoryBytes() const;
+
   /// Empty voxels cost nothing (default on; piecewise rays still compute the
   /// empty voxels of the slices a later chunk reads); off computes every
   /// voxel's shadow rays, to measure what the skipping saves.
@@ -246,10 +260,12 @@ public:
   /// light's whole grid, or what its region depends on).
   vtkGetMacro(LastEstimatedVoxels, vtkIdType);
   vtkGetMacro(LastRenderSeconds, double);
-  /// Its shadow rays and its diffusion (glFinish after each; the rest of
-  /// LastRenderSeconds is the final write).
+  /// Its uploads and allocations, its shadow rays, its diffusion and its
+  /// final write (glFinish after each).
+  vtkGetMacro(LastSetupSeconds, double);
   vtkGetMacro(LastEstimationSeconds, double);
   vtkGetMacro(LastDiffusionSeconds, double);
+  vtkGetMacro(LastWriteSeconds, double);
   ///@}
 
   ///@{
@@ -280,6 +296,7 @@ protected:
   int ComputeShaders = ComputeUnlessSoftware;
   bool ComputeShadersUsed = false;
   bool SkipEmptyVoxels = true;
+  bool KeepScratch = true;
   int ShadowEstimation = mmv::PiecewiseShadowRays;
   int PiecewiseShadowSlices = mmv::DefaultPiecewiseShadowSlices;
   double LightDirectionTolerance = 0.0;
@@ -290,6 +307,8 @@ protected:
   double LastRenderSeconds = 0.0;
   double LastEstimationSeconds = 0.0;
   double LastDiffusionSeconds = 0.0;
+  double LastSetupSeconds = 0.0;
+  double LastWriteSeconds = 0.0;
 
 private:
   vtkIrradianceVolumePass(const vtkIrradianceVolumePass&) = delete;

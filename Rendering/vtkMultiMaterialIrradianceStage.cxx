@@ -305,6 +305,8 @@ bool vtkMultiMaterialIrradianceStage::Update(vtkMultiMaterialVolumeMapper* mappe
   stages.Tables = this->TablesSeconds;
   stages.Shadows = this->Pass->GetLastEstimationSeconds();
   stages.Diffusion = this->Pass->GetLastDiffusionSeconds();
+  stages.Setup = this->Pass->GetLastSetupSeconds();
+  stages.Write = this->Pass->GetLastWriteSeconds();
   stages.Pass = this->Pass->GetLastRenderSeconds();
   stages.Total = SecondsSince(start);
   this->Stages = stages;
@@ -396,9 +398,9 @@ std::string mmv::IrradianceStageSeconds::Report() const
 {
   char text[256];
   std::snprintf(text, sizeof(text),
-    "probe %.3f s, prefilter %.3f s, shadow table %.3f s, shadows %.3f s, diffusion %.3f s, "
-    "pass %.3f s, total %.3f s",
-    this->Probe, this->Prefilter, this->Tables, this->Shadows, this->Diffusion, this->Pass,
-    this->Total);
+    "probe %.3f s, prefilter %.3f s, shadow table %.3f s, setup %.3f s, shadows %.3f s, "
+    "diffusion %.3f s, write %.3f s, pass %.3f s, total %.3f s",
+    this->Probe, this->Prefilter, this->Tables, this->Setup, this->Shadows, this->Diffusion,
+    this->Write, this->Pass, this->Total);
   return text;
 }

@@ -40,6 +40,8 @@ struct VTKMULTIMATERIALVOLUME_EXPORT IrradianceStageSeconds
   double Tables = 0.0;    // the shadow rays' pre-integrated table
   double Shadows = 0.0;   // the transmittance toward every updated light
   double Diffusion = 0.0; // multiple scattering
+  double Setup = 0.0;     // the pass's uploads and texture allocations
+  double Write = 0.0;     // the final write into the irradiance textures
   double Pass = 0.0;      // the whole GPU pass (shadows, diffusion, final write)
   double Total = 0.0;     // the whole update
   /// "probe 0.000 s, prefilter 0.012 s, ...": the information property's text.

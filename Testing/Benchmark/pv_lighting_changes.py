@@ -68,7 +68,8 @@ TARGETS = {
 }
 # Sequences whose target is a ratio to the method's own still frame.
 OWN_STILL = ("colour", "series-2")
-STAGES = ["probe", "prefilter", "shadow table", "shadows", "diffusion", "pass", "total"]
+STAGES = ["probe", "prefilter", "shadow table", "setup", "shadows", "diffusion", "write", "pass",
+          "total"]
 INFO = ["IrradianceUpdateCount", "IrradianceProbeCount", "LastIrradianceStages",
         "IrradianceResolutionInfo"]
 
@@ -328,14 +329,15 @@ def main():
     orbit.write_csv(path, rows)
     log("%-6s %-8s %-12s %9s %8s %8s %6s %4s %4s  %s" % (
         "volume", "sequence", "method", "median s", "x Volume", "x still", "target", "upd", "prb",
-        "stages (median s): probe/prefilter/table/shadows/diffusion/total"))
+        "stages (median s): probe/prefilter/table/setup/shadows/diffusion/write/total"))
     for r in rows:
         log("%-6s %-8s %-12s %9s %8s %8s %6s %4s %4s  %s" % (
             r["volume"], r["sequence"], r["method"], r["median_s"], r["ratio_to_pv_volume"],
             r["ratio_to_own_still"], (r["target"] + (" " + r["met"] if r["met"] else "")),
             r["irradiance_updates"], r["probes"],
             "/".join(r["%s_s" % s.replace(" ", "_")] or "-" for s in
-                     ["probe", "prefilter", "shadow table", "shadows", "diffusion", "total"])))
+                     ["probe", "prefilter", "shadow table", "setup", "shadows", "diffusion",
+                      "write", "total"])))
     log("wrote %s" % path)
     if not args.no_plot:
         try:

@@ -5,6 +5,7 @@
 
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
+#include "vtkIrradianceGrid.h"
 #include "vtkIrradianceInputCache.h"
 #include "vtkMaterialTransferFunction.h"
 #include "vtkMultiMaterialLightTolerance.h"
@@ -13,7 +14,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <algorithm>
 #include <limits>
+#include <vector>
 
 TEST(IrradianceInputCache, MaterialVersionChangesOnlyWithTheSampledValues)
 {
@@ -207,4 +210,62 @@ TEST(IrradianceInputCache, LightToleranceDegreesAreValidated)
   EXPECT_EQ(mmv::LightToleranceRadians(std::nan("")), 0.0);
   EXPECT_DOUBLE_EQ(mmv::LightToleranceRadians(90.0), glm::radians(45.0));
   EXPECT_DOUBLE_EQ(mmv::LightToleranceRadians(2.0), glm::radians(2.0));
+}
+
+TEST(IrradianceInputCache, PrefilterIsTheMeanOfTrilinearFootprintSamples)
+{
+  // The separable pre-filter against its definition, sample by sample:
+  // the mean of trilinear samples over each voxel's footprint.
+  const int data[3] = { 23, 17, 12 };
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(data[0], data[1], data[2]);
+  vtkNew<vtkFloatArray> values;
+  values->SetNumberOfTuples(static_cast<vtkIdType>(data[0]) * data[1] * data[2]);
+  for (vtkIdType i = 0; i < values->GetNumberOfTuples(); ++i)
+  {
+    values->SetValue(i, static_cast<float>(std::sin(0.37 * i) * 50.0 + 0.01 * i));
+  }
+  image->GetPointData()->SetScalars(values);
+  const int grids[][3] = { { 23, 17, 12 }, { 12, 9, 6 }, { 8, 17, 5 }, { 5, 4, 3 }, { 2, 2, 2 } };
+  for (const auto& dims : grids)
+  {
+    const mmv::IrradianceGrid grid = mmv::MakeIrradianceGrid(image, dims);
+    std::vector<float> separable;
+    mmv::PrefilterScalars(image, values, 0, grid, separable);
+    ASSERT_EQ(separable.size(), static_cast<size_t>(grid.GetNumberOfVoxels()));
+    const mmv::FootprintLayout layout = mmv::MakeFootprintLayout(data, dims);
+    mmv::IrradianceGrid dataGrid;
+    std::copy(data, data + 3, dataGrid.Dimensions);
+    double worst = 0.0;
+    for (vtkIdType v = 0; v < grid.GetNumberOfVoxels(); ++v)
+    {
+      double sum = 0.0;
+      for (int k = 0; k < layout.Samples[2]; ++k)
+      {
+        for (int j = 0; j < layout.Samples[1]; ++j)
+        {
+          for (int i = 0; i < layout.Samples[0]; ++i)
+          {
+            const int q[3] = { i, j, k };
+            sum += mmv::SampleTrilinear(dataGrid, values->GetPointer(0),
+              mmv::FootprintSample(layout, grid.IndexOfVoxel(v), q));
+          }
+        }
+      }
+      const double mean = sum / (layout.Samples[0] * layout.Samples[1] * layout.Samples[2]);
+      worst = std::max(worst, std::abs(mean - separable[v]));
+    }
+    EXPECT_LT(worst, 1e-4) << dims[0] << "x" << dims[1] << "x" << dims[2];
+  }
+  // At the data's resolution a NaN stays on its point (weight-0 taps are
+  // not read), as the trilinear interpolation keeps it.
+  values->SetValue(5 + 3 * data[0] + 2 * data[0] * data[1], NAN);
+  std::vector<float> copy;
+  mmv::PrefilterScalars(image, values, 0, mmv::MakeIrradianceGrid(image, data), copy);
+  size_t nan = 0;
+  for (float v : copy)
+  {
+    nan += std::isnan(v) ? 1 : 0;
+  }
+  EXPECT_EQ(nan, 1u);
 }

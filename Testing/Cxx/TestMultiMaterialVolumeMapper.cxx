@@ -843,6 +843,51 @@ TEST(MultiMaterialVolumeMapper, AStepOutsideTheOpacityDrawsTheBackgroundWithoutA
   EXPECT_EQ(scene.Mapper->GetIrradianceUpdateCount(), updates + 1);
 }
 
+TEST(MultiMaterialVolumeMapper, KeptScratchGivesTheImagesOfFreshScratch)
+{
+  // The pass keeps its float scratch between updates (no allocation per
+  // update); nothing of an earlier update may leak into a later one.
+  ProbeScene kept(ThinShell, 0.8);
+  ProbeScene fresh(ThinShell, 0.8);
+  fresh.Mapper->GetIrradianceVolumePass()->KeepScratchOff();
+  for (ProbeScene* scene : { &kept, &fresh })
+  {
+    scene->Materials->AddNode(1.0, 0.1, 0.9, 0.0, 1.0, 1.0, 8.0, 0.0);
+    scene->Mapper->MultipleScatteringOn();
+  }
+  const std::function<void(ProbeScene&)> changes[] = {
+    [](ProbeScene&) {},
+    [](ProbeScene& s) { s.Renderer->GetActiveCamera()->Azimuth(30.0); },
+    [](ProbeScene& s) { s.Opacity->AddPoint(1.0, 0.6); },
+    [](ProbeScene& s) { s.Mapper->MultipleScatteringOff(); },
+    [](ProbeScene& s) { s.Renderer->GetActiveCamera()->Elevation(20.0); },
+    [](ProbeScene& s) { s.Mapper->MultipleScatteringOn(); },
+  };
+  int step = 0;
+  for (const auto& change : changes)
+  {
+    for (ProbeScene* scene : { &kept, &fresh })
+    {
+      change(*scene);
+      scene->Renderer->ResetCameraClippingRange();
+      scene->Window->Render();
+    }
+    EXPECT_EQ(ImagePSNR(kept.Pixels(), fresh.Pixels()), INFINITY) << "change " << step;
+    EXPECT_EQ(fresh.Mapper->GetIrradianceVolumePass()->GetScratchMemoryBytes(), 0);
+    ++step;
+  }
+  EXPECT_GE(kept.Mapper->GetIrradianceUpdateCount(), 5);
+  // With scattering the scratch is the fine pair and the diffusion grid's;
+  // without, one fine texture.
+  int dims[3];
+  kept.Mapper->GetIrradianceDimensions(dims);
+  const vtkIdType voxels = static_cast<vtkIdType>(dims[0]) * dims[1] * dims[2];
+  EXPECT_GT(kept.Mapper->GetIrradianceVolumePass()->GetScratchMemoryBytes(), 2 * 16 * voxels);
+  kept.Mapper->MultipleScatteringOff();
+  kept.Window->Render();
+  EXPECT_EQ(kept.Mapper->GetIrradianceVolumePass()->GetScratchMemoryBytes(), 16 * voxels);
+}
+
 namespace
 {
 // Counts the deaths of the objects it watches (VTK here is built without
