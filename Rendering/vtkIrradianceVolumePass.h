@@ -314,6 +314,12 @@ private:
   vtkIrradianceVolumePass(const vtkIrradianceVolumePass&) = delete;
   void operator=(const vtkIrradianceVolumePass&) = delete;
 
+  // The steps of Render().
+  bool CanRender(vtkOpenGLRenderWindow* context);
+  int PrepareSettings(bool& diffusion);
+  bool UpdateGroup(vtkOpenGLRenderWindow* context, int group, const std::vector<bool>& updated,
+    int estimation, bool diffusion);
+
   class vtkInternals;
   vtkInternals* Internals;
 };

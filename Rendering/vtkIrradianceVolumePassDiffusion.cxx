@@ -1,0 +1,264 @@
+// vtkIrradianceVolumePass: multiple scattering, the diffusion of the
+// transmittance on the diffusion grid.
+#include "vtkIrradianceVolumePassInternals.h"
+
+#include "mmvDiffusionFS.h"
+#include "mmvDiffusionGridFS.h"
+
+using namespace mmv::voxelpass;
+
+//------------------------------------------------------------------------------
+// The diffusion grid and how long its solve runs, exactly as the CPU's
+// mmv::DiffuseIrradianceOnDiffusionGrid plans them.
+void vtkIrradianceVolumePass::vtkInternals::PlanDiffusion(double time, bool exponential)
+{
+  this->Diffusion.Exponential = exponential;
+  this->Diffusion.Time = time;
+  std::vector<float> strength(this->Classes.size());
+  float maxStrength = 0.0f;
+  for (size_t v = 0; v < strength.size(); ++v)
+  {
+    strength[v] = std::max(0.0f, this->Classes[v]);
+    maxStrength = std::max(maxStrength, strength[v]);
+  }
+  const double spacing[3] = { this->Grid.DataVoxelsPerVoxel[0], this->Grid.DataVoxelsPerVoxel[1],
+    this->Grid.DataVoxelsPerVoxel[2] };
+  this->Coarse = mmv::PlanDiffusionGrid(this->Grid.Dimensions, spacing, maxStrength, this->Diffusion);
+  std::vector<float> coarseStrength;
+  std::vector<float> capacity;
+  mmv::RestrictToDiffusionGrid(this->Grid.Dimensions, this->Coarse, strength.data(), nullptr,
+    &coarseStrength, nullptr, &capacity);
+  this->CoarseMaxRate = time > 0.0 ? mmv::MaxDiffusionRate(this->Coarse.Dimensions,
+                                       this->Coarse.Spacing, coarseStrength.data(), capacity.data())
+                                   : 0.0;
+  // One RG texel per block: strength, capacity; and the box of the blocks
+  // that scatter, the only ones the sweeps change.
+  this->CoarseStrength.resize(2 * coarseStrength.size());
+  const int* cd = this->Coarse.Dimensions;
+  int* box = this->ScatteringBox.Bounds;
+  for (int a = 0; a < 3; ++a)
+  {
+    box[2 * a] = cd[a] - 1;
+    box[2 * a + 1] = 0;
+  }
+  for (size_t c = 0; c < coarseStrength.size(); ++c)
+  {
+    this->CoarseStrength[2 * c] = coarseStrength[c];
+    this->CoarseStrength[2 * c + 1] = capacity[c];
+    if (coarseStrength[c] > 0.0f)
+    {
+      const int index[3] = { static_cast<int>(c % cd[0]), static_cast<int>((c / cd[0]) % cd[1]),
+        static_cast<int>(c / (static_cast<size_t>(cd[0]) * cd[1])) };
+      for (int a = 0; a < 3; ++a)
+      {
+        box[2 * a] = std::min(box[2 * a], index[a]);
+        box[2 * a + 1] = std::max(box[2 * a + 1], index[a]);
+      }
+    }
+  }
+  if (this->Diffusion.Exponential)
+  {
+    // One "sub-step" of as many passes as the series has terms. A quarter of
+    // the sweeps' tolerance: the result is stored in 16 bits as well, and the
+    // two errors together stay below the sweeps' (1e-3 of the largest
+    // irradiance) for two or three more terms.
+    this->ExponentialSeries = mmv::ExponentialChebyshevCoefficients(
+      this->CoarseMaxRate * time, 0.25 * this->Diffusion.SweepTolerance);
+    this->SubSteps = this->ExponentialSeries.empty() ? 0 : 1;
+    this->SweepsPerStep = static_cast<int>(this->ExponentialSeries.size());
+    this->SpectralRadius = 0.0;
+    return;
+  }
+  this->ExponentialSeries.clear();
+  this->SubSteps = mmv::DiffusionSubSteps(this->CoarseMaxRate, this->Diffusion);
+  const double stiffness = this->CoarseMaxRate * time / this->SubSteps;
+  this->SweepsPerStep = mmv::ChebyshevSweeps(stiffness, this->Diffusion);
+  this->SpectralRadius = mmv::JacobiSpectralRadius(stiffness);
+}
+
+//------------------------------------------------------------------------------
+// Multiple scattering of FineScratch[0] into FineScratch[1]: restriction to
+// the diffusion grid, the exponential's Chebyshev series (the default) or
+// backward-Euler sub-steps each solved by Chebyshev-accelerated Jacobi sweeps
+// (their number from the error bound, mmv::ChebyshevSweeps), then the
+// prolongation of the change. Returns the passes drawn, or -1 on failure.
+int vtkIrradianceVolumePass::vtkInternals::Diffuse(
+  vtkOpenGLRenderWindow* context, bool layered, int mask)
+{
+  const bool exponential = !this->ExponentialSeries.empty();
+  vtkShaderProgram* restriction =
+    this->Ready(context, this->RestrictQuad, mmvDiffusionGridFS, "#define MMV_RESTRICT\n", false);
+  vtkShaderProgram* sweep = exponential
+    ? this->Ready(context, this->ExponentialQuad, mmvDiffusionFS, "#define MMV_EXPONENTIAL\n", false)
+    : this->Ready(context, this->SweepQuad, mmvDiffusionFS, "", false);
+  vtkShaderProgram* prolong = this->Ready(context, this->ProlongQuad, mmvDiffusionGridFS, "", false);
+  if (!restriction || !sweep || !prolong)
+  {
+    return -1;
+  }
+  auto& coarse = this->CoarseScratch;
+  {
+    context->GetShaderCache()->ReadyShaderProgram(restriction);
+    ScopedTextures bound{ this->FineScratch[0], this->ClassTexture };
+    restriction->SetUniformi("fine", this->FineScratch[0]->GetTextureUnit());
+    restriction->SetUniformi("classes", this->ClassTexture->GetTextureUnit());
+    this->SetTransferUniforms(restriction);
+    this->DrawLayers(context, this->RestrictQuad, coarse[0], layered,
+      DrawBox(this->Plan.Coarse, this->Coarse.Dimensions));
+  }
+
+  int current = 0;
+  const int sweeps = exponential ? this->ExponentialSweeps(context, sweep, layered, current)
+                                 : this->BackwardEulerSweeps(context, sweep, layered, mask, current);
+
+  context->GetShaderCache()->ReadyShaderProgram(prolong);
+  ScopedTextures bound{ this->FineScratch[0], this->ClassTexture, coarse[current],
+    this->CoarseStrengthTexture, coarse[0] };
+  prolong->SetUniformi("before", coarse[0]->GetTextureUnit());
+  prolong->SetUniformi("coarseStrength", this->CoarseStrengthTexture->GetTextureUnit());
+  prolong->SetUniformi("fine", this->FineScratch[0]->GetTextureUnit());
+  prolong->SetUniformi("classes", this->ClassTexture->GetTextureUnit());
+  prolong->SetUniformi("after", coarse[current]->GetTextureUnit());
+  this->SetTransferUniforms(prolong);
+  this->DrawLayers(context, this->ProlongQuad, this->FineScratch[1], layered,
+    DrawBox(this->Plan.Source, this->Grid.Dimensions));
+  return sweeps;
+}
+
+//------------------------------------------------------------------------------
+// The diffusion grid's strength texture (activated here, deactivated by the
+// caller), dimensions and 1 / h^2, for the sweeps and the exponential's steps.
+void vtkIrradianceVolumePass::vtkInternals::SetDiffusionGridUniforms(vtkShaderProgram* program)
+{
+  const glm::vec3 invH2(1.0 / (this->Coarse.Spacing[0] * this->Coarse.Spacing[0]),
+    1.0 / (this->Coarse.Spacing[1] * this->Coarse.Spacing[1]),
+    1.0 / (this->Coarse.Spacing[2] * this->Coarse.Spacing[2]));
+  this->CoarseStrengthTexture->Activate();
+  program->SetUniformi("classes", this->CoarseStrengthTexture->GetTextureUnit());
+  program->SetUniform1iv("dims", 3, this->Coarse.Dimensions);
+  program->SetUniform3f("invH2", glm::value_ptr(invH2));
+}
+
+//------------------------------------------------------------------------------
+// Backward-Euler sub-steps on the diffusion grid, each solved by Chebyshev-
+// accelerated Jacobi sweeps; `current` receives the texture of the result.
+int vtkIrradianceVolumePass::vtkInternals::BackwardEulerSweeps(vtkOpenGLRenderWindow* context,
+  vtkShaderProgram* sweep, bool layered, int mask, int& current)
+{
+  auto& coarse = this->CoarseScratch;
+  context->GetShaderCache()->ReadyShaderProgram(sweep);
+  this->SetDiffusionGridUniforms(sweep);
+  sweep->SetUniformf("dt", static_cast<float>(this->Diffusion.Time / this->SubSteps));
+  // Stop on the residual: |J(x) - x| <= (1 - rho) tol everywhere bounds the
+  // error by tol; checked every few sweeps, the error bound's count at most.
+  const float threshold =
+    static_cast<float>((1.0 - this->SpectralRadius) * this->Diffusion.SweepTolerance);
+  const int checkInterval = this->SweepsPerStep >= ResidualCheckMinimumSweeps
+    ? this->SweepsPerStep / 4
+    : this->SweepsPerStep;
+  sweep->SetUniformf("residualThreshold", 0.0f);
+  // Only the lights being updated decide convergence: the scratch's other
+  // channels hold whatever the GPU left there.
+  const int residualChannels[4] = { (mask & 1) != 0, (mask & 2) != 0, (mask & 4) != 0,
+    (mask & 8) != 0 };
+  glUniform4iv(sweep->FindUniform("residualChannels"), 1, residualChannels);
+  // Blocks outside ScatteringBox never change and are never read; of the
+  // rest, those the region depends on.
+  const mmv::IndexBox box = this->ScatteringBox.Intersected(this->Plan.Coarse);
+  int rhs = 0;
+  current = 0;
+  int sweeps = 0;
+  for (int step = 0; step < this->SubSteps; ++step)
+  {
+    int previous = current;
+    for (int k = 1; k <= this->SweepsPerStep; ++k)
+    {
+      int next = 1;
+      while (next == rhs || next == current || next == previous)
+      {
+        ++next;
+      }
+      {
+        ScopedTextures bound{ coarse[rhs], coarse[current], coarse[previous] };
+        sweep->SetUniformi("rhs", coarse[rhs]->GetTextureUnit());
+        sweep->SetUniformi("current", coarse[current]->GetTextureUnit());
+        sweep->SetUniformi("previous", coarse[previous]->GetTextureUnit());
+        sweep->SetUniformf(
+          "omega", static_cast<float>(mmv::ChebyshevWeight(k, this->SpectralRadius)));
+        this->DrawLayers(context, this->SweepQuad, coarse[next], layered, box.Bounds);
+      }
+      ++sweeps;
+      previous = current;
+      current = next;
+      if (k % checkInterval == 0 && k < this->SweepsPerStep)
+      {
+        // The check draws into a texture no iterate lives in.
+        int scratch = 1;
+        while (scratch == rhs || scratch == current || scratch == previous)
+        {
+          ++scratch;
+        }
+        // The iterate just drawn, against the same right-hand side.
+        ScopedTextures bound{ coarse[rhs], coarse[current] };
+        sweep->SetUniformi("rhs", coarse[rhs]->GetTextureUnit());
+        sweep->SetUniformi("current", coarse[current]->GetTextureUnit());
+        sweep->SetUniformi("previous", coarse[current]->GetTextureUnit());
+        sweep->SetUniformf("residualThreshold", threshold);
+        const unsigned int unconverged =
+          this->CountWrites(context, this->SweepQuad, coarse[scratch], layered, box.Bounds);
+        context->GetShaderCache()->ReadyShaderProgram(sweep);
+        sweep->SetUniformf("residualThreshold", 0.0f);
+        if (unconverged == 0)
+        {
+          break;
+        }
+      }
+    }
+    rhs = current;
+  }
+  this->CoarseStrengthTexture->Deactivate();
+  return sweeps;
+}
+
+//------------------------------------------------------------------------------
+// The exponential's Chebyshev series on the diffusion grid by the Clenshaw
+// recurrence (Shaders/mmvDiffusionFS.glsl, MMV_EXPONENTIAL): b_k = c_k u0 +
+// 2 B b_k+1 - b_k+2 from k = n down to 1, then c_0 u0 + B b_1 - b_2; u0 is
+// the restricted irradiance (texture 0). `current` receives the result.
+int vtkIrradianceVolumePass::vtkInternals::ExponentialSweeps(vtkOpenGLRenderWindow* context,
+  vtkShaderProgram* sweep, bool layered, int& current)
+{
+  auto& coarse = this->CoarseScratch;
+  context->GetShaderCache()->ReadyShaderProgram(sweep);
+  this->SetDiffusionGridUniforms(sweep);
+  sweep->SetUniformf("invRate", static_cast<float>(1.0 / this->CoarseMaxRate));
+  const std::vector<double>& c = this->ExponentialSeries;
+  const int n = static_cast<int>(c.size()) - 1;
+  // As in BackwardEulerSweeps: the scattering blocks the region depends on.
+  const mmv::IndexBox box = this->ScatteringBox.Intersected(this->Plan.Coarse);
+  // b_n+1 = b_n+2 = 0: their weights are 0 and texture 0 stands in for them.
+  current = 0;
+  int previous = 0;
+  int passes = 0;
+  for (int k = n; k >= 0; --k)
+  {
+    int next = 1;
+    while (next == current || next == previous)
+    {
+      ++next;
+    }
+    ScopedTextures bound{ coarse[0], coarse[current], coarse[previous] };
+    sweep->SetUniformi("initial", coarse[0]->GetTextureUnit());
+    sweep->SetUniformi("current", coarse[current]->GetTextureUnit());
+    sweep->SetUniformi("previous", coarse[previous]->GetTextureUnit());
+    sweep->SetUniformf("alpha", static_cast<float>(c[k]));
+    sweep->SetUniformf("beta", k == n ? 0.0f : (k == 0 ? 1.0f : 2.0f));
+    sweep->SetUniformf("gammaWeight", k >= n - 1 ? 0.0f : -1.0f);
+    this->DrawLayers(context, this->ExponentialQuad, coarse[next], layered, box.Bounds);
+    ++passes;
+    previous = current;
+    current = next;
+  }
+  this->CoarseStrengthTexture->Deactivate();
+  return passes;
+}

@@ -1,0 +1,404 @@
+/**
+ * @file   vtkIrradianceVolumePassInternals.h
+ * @brief  The state vtkIrradianceVolumePass keeps between updates and the
+ *         helpers its voxel passes share; private to the pass's sources:
+ *         vtkIrradianceVolumePass.cxx (inputs, the update's order, results),
+ *         vtkIrradianceVolumePassRunner.cxx (programs, draws, dispatches,
+ *         textures), vtkIrradianceVolumePassShadows.cxx (shadow rays and
+ *         tints) and vtkIrradianceVolumePassDiffusion.cxx (multiple
+ *         scattering).
+ */
+#ifndef vtkIrradianceVolumePassInternals_h
+#define vtkIrradianceVolumePassInternals_h
+
+#include "vtkIrradianceVolumePass.h"
+
+#include "vtkIrradianceComputeProgram.h"
+#include "vtkIrradianceDiffusion.h"
+#include "vtkIrradianceRegion.h"
+#include "vtkMultiMaterialLightTolerance.h"
+#include "vtkMultiMaterialLightUniforms.h"
+#include "vtkMultiMaterialParameters.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLFramebufferObject.h"
+#include "vtkOpenGLQuadHelper.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLShaderCache.h"
+#include "vtkOpenGLState.h"
+#include "vtkOpenGLVertexArrayObject.h"
+#include "vtkShaderProgram.h"
+#include "vtkShadowSweep.h"
+#include "vtkSmartPointer.h"
+#include "vtkTextureObject.h"
+#include "vtk_glew.h"
+
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <initializer_list>
+#include <memory>
+#include <string>
+
+#include "mmvCutaway.h"
+#include "mmvLightModel.h"
+#include "mmvVoxelPassDec.h"
+#include "mmvVoxelPassMain.h"
+
+namespace mmv
+{
+namespace voxelpass
+{
+
+constexpr int LightsPerTexture = mmv::IrradianceLightsPerTexture;
+
+/// Residual checks of a diffusion sub-step: each costs about a sweep and
+/// waits for the GPU, so only sub-steps whose error bound asks for at least
+/// this many sweeps are checked, four times at most. (Checking short
+/// sub-steps too saves sweeps but costs more in waiting than it saves.)
+constexpr int ResidualCheckMinimumSweeps = 12;
+
+/// Linear interpolation of an n-entry table over the normalised range, as a
+/// bilinear texture lookup at (x + 0.5) / n would do it.
+inline float LookupTable(const std::vector<float>& table, float t)
+{
+  const int n = static_cast<int>(table.size());
+  const float x = std::min(std::max(t, 0.0f), 1.0f) * static_cast<float>(n - 1);
+  const int i0 = std::min(static_cast<int>(x), n - 2);
+  const float f = x - static_cast<float>(i0);
+  return (1.0f - f) * table[i0] + f * table[i0 + 1];
+}
+
+/// A voxel pass: system declarations, `defines`, optionally the light
+/// model, the voxel-pass declarations, `body`, then main(); as a fragment
+/// shader (VTK's tags) or as a compute shader.
+inline std::string ComposeShader(
+  const std::string& body, const std::string& defines, bool lightModel, bool compute)
+{
+  std::string source = compute ? "#version 430 core\n#define MMV_COMPUTE\n" : "//VTK::System::Dec\n";
+  source += mmv::MaterialGLSLPrelude();
+  source += mmv::CutawayGLSLPrelude();
+  source += defines;
+  source += mmvCutaway;
+  source += "\n";
+  if (lightModel)
+  {
+    source += mmv::LightUniformDeclarations(std::to_string(LightsPerTexture));
+    source += mmvLightModel;
+    source += "\n";
+  }
+  if (!compute)
+  {
+    source += "//VTK::Output::Dec\n";
+  }
+  source += mmvVoxelPassDec;
+  source += body;
+  source += mmvVoxelPassMain;
+  return source;
+}
+
+/// An empty 3D/2D texture object with explicit GL formats, so that no
+/// context-dependent default picks a different precision.
+inline vtkSmartPointer<vtkTextureObject> NewTexture(vtkOpenGLRenderWindow* context,
+  unsigned int internalFormat, unsigned int format, unsigned int type, bool linear)
+{
+  auto texture = vtkSmartPointer<vtkTextureObject>::New();
+  texture->SetContext(context);
+  texture->SetInternalFormat(internalFormat);
+  texture->SetFormat(format);
+  texture->SetDataType(type);
+  const int filter = linear ? vtkTextureObject::Linear : vtkTextureObject::Nearest;
+  texture->SetMinificationFilter(filter);
+  texture->SetMagnificationFilter(filter);
+  texture->SetWrapS(vtkTextureObject::ClampToEdge);
+  texture->SetWrapT(vtkTextureObject::ClampToEdge);
+  texture->SetWrapR(vtkTextureObject::ClampToEdge);
+  return texture;
+}
+
+inline bool HasSize(vtkTextureObject* t, const int d[3])
+{
+  return t && t->GetHandle() && static_cast<int>(t->GetWidth()) == d[0] &&
+    static_cast<int>(t->GetHeight()) == d[1] && static_cast<int>(t->GetDepth()) == d[2];
+}
+
+/// A float RGBA 3D texture of size d, kept when it already has that size.
+inline bool EnsureFloatTexture(
+  vtkOpenGLRenderWindow* context, vtkSmartPointer<vtkTextureObject>& texture, const int d[3])
+{
+  if (HasSize(texture, d))
+  {
+    return true;
+  }
+  // Linear: the prolongation interpolates the diffusion grid; the other
+  // passes read with texelFetch, which ignores filtering.
+  texture = NewTexture(context, GL_RGBA32F, GL_RGBA, GL_FLOAT, true);
+  return texture->Allocate3D(d[0], d[1], d[2], 4, VTK_FLOAT);
+}
+
+/// The pass's lights first .. first + 3 (one output texture's channels)
+/// through the ray cast's light layout, and which of them to compute.
+inline void SetLightUniforms(
+  vtkShaderProgram* program, const std::vector<mmv::LightSource>& lights, int first, int mask)
+{
+  const int count = std::min(LightsPerTexture, static_cast<int>(lights.size()) - first);
+  program->SetUniformi("numberOfLights", count);
+  program->SetUniformi("lightMask", mask);
+  mmv::SetLightUniforms(program, lights.data() + first, nullptr, count, LightsPerTexture);
+}
+
+/// The uniforms of Shaders/mmvCutaway.glsl.
+inline void SetCutawayUniforms(vtkShaderProgram* program, const mmv::IndexCutaway& cut)
+{
+  float planes[mmv::MaxCutPlanes][4] = {};
+  for (int p = 0; p < cut.NumberOfPlanes; ++p)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      planes[p][c] = static_cast<float>(cut.Planes[p][c]);
+    }
+  }
+  float axes[3][4] = {};
+  float bounds[6] = {};
+  for (int a = 0; a < 3; ++a)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      axes[a][c] = static_cast<float>(cut.CropAxes[a][c]);
+    }
+    bounds[2 * a] = static_cast<float>(cut.CropBounds[2 * a]);
+    bounds[2 * a + 1] = static_cast<float>(cut.CropBounds[2 * a + 1]);
+  }
+  program->SetUniformi("cutPlaneCount", cut.NumberOfPlanes);
+  program->SetUniform4fv("cutPlanes", mmv::MaxCutPlanes, planes);
+  program->SetUniformi("cropping", cut.Cropping ? 1 : 0);
+  program->SetUniform4fv("cropAxes", 3, axes);
+  program->SetUniform1fv("cropBounds", 6, bounds);
+  program->SetUniformi("cropFlags", cut.CropFlags);
+}
+
+/// A draw's box (i0, i1, j0, j1, k0, k1) that holds no voxel; null is the
+/// whole target.
+inline bool IsEmptyBox(const int* box)
+{
+  return box && (box[0] > box[1] || box[2] > box[3] || box[4] > box[5]);
+}
+
+inline bool SameGrid(const mmv::IrradianceGrid& a, const mmv::IrradianceGrid& b)
+{
+  return std::equal(a.Dimensions, a.Dimensions + 3, b.Dimensions) && a.Origin == b.Origin &&
+    a.Spacing == b.Spacing && a.Direction == b.Direction;
+}
+
+/// Activates textures for one draw and deactivates them when it ends.
+class ScopedTextures
+{
+public:
+  ScopedTextures(std::initializer_list<vtkTextureObject*> textures)
+  {
+    for (vtkTextureObject* t : textures)
+    {
+      if (std::find(this->Textures.begin(), this->Textures.end(), t) == this->Textures.end())
+      {
+        this->Textures.push_back(t);
+      }
+    }
+    for (vtkTextureObject* t : this->Textures)
+    {
+      t->Activate();
+    }
+  }
+  ~ScopedTextures()
+  {
+    for (vtkTextureObject* t : this->Textures)
+    {
+      t->Deactivate();
+    }
+  }
+
+private:
+  std::vector<vtkTextureObject*> Textures;
+};
+
+/// One voxel pass's programs: the layered fragment draw (built on first use)
+/// and the compute dispatch (where OpenGL 4.3 is there and asked for).
+struct VoxelPass
+{
+  std::unique_ptr<vtkOpenGLQuadHelper> Quad;
+  vtkSmartPointer<vtkIrradianceComputeProgram> Compute;
+  // The sources they were built from: a pass whose defines change (a
+  // cutaway appears) is rebuilt.
+  std::string QuadSource;
+  std::string ComputeSource;
+
+  /// The compute program is not the shader cache's own: when it was bound
+  /// last, the cache must forget it, or a new program that happens to get
+  /// its address would be taken for bound and dispatched unbound (seen with
+  /// passes released and created again in one context).
+  void ReleaseCompute(vtkWindow* window)
+  {
+    if (!this->Compute)
+    {
+      return;
+    }
+    auto* context = vtkOpenGLRenderWindow::SafeDownCast(window);
+    if (context && context->GetShaderCache()->GetLastShaderBound() == this->Compute)
+    {
+      context->GetShaderCache()->ReleaseCurrentShader();
+    }
+    this->Compute->ReleaseGraphicsResources(window);
+    this->Compute = nullptr;
+  }
+  void Release(vtkWindow* window)
+  {
+    if (this->Quad)
+    {
+      this->Quad->ReleaseGraphicsResources(window);
+      this->Quad.reset();
+    }
+    this->ReleaseCompute(window);
+  }
+};
+
+} // namespace voxelpass
+} // namespace mmv
+
+class vtkIrradianceVolumePass::vtkInternals
+{
+public:
+  // Inputs, copied by SetInputs().
+  mmv::IrradianceGrid Grid;
+  std::vector<float> Scalars;
+  unsigned long ScalarsVersion = 0; // the caller's, 0: compare the values
+  int TableSize = 0;
+  std::vector<float> ShadowTable;
+  double StepLength = 0.0;
+  std::vector<float> OpacityTable;
+  std::vector<float> ScatteringTable;
+  std::vector<mmv::LightSource> Lights;
+  mmv::Cutaway Cut;
+  bool HasInputs = false;
+  bool Uploaded = false;
+  vtkIdType VolumeUploads = 0;
+  // The lights the irradiance textures hold, and whether the volume they
+  // were computed from is still the current one.
+  std::vector<mmv::LightSource> ComputedLights;
+  bool VolumeChanged = true;
+  bool MultipleScatteringUsed = true;
+  bool WarnedNoBarrier = false;
+  int ShadowEstimationUsed = -1; // with PiecewiseSlicesUsed: how the held lights were estimated
+  int PiecewiseSlicesUsed = 0;
+
+  // Derived on the CPU: s per voxel (-1 where empty), and the diffusion
+  // grid (vtkIrradianceDiffusion.h) with its strength and capacity per block
+  // (interleaved) and solve lengths.
+  std::vector<float> Classes;
+  vtkIdType NonEmptyVoxels = 0;
+  mmv::DiffusionSettings Diffusion;
+  mmv::DiffusionGrid Coarse;
+  std::vector<float> CoarseStrength;
+  double CoarseMaxRate = 0.0;
+  int SubSteps = 0;
+  int SweepsPerStep = 0;
+  std::vector<double> ExponentialSeries; // c_k of the exponential integrator
+  double SpectralRadius = 0.0; // of the Jacobi iteration, for the Chebyshev weights
+  mmv::IndexBox ScatteringBox; // diffusion-grid blocks with s > 0
+  unsigned int ResidualQuery = 0; // occlusion query counting unconverged blocks
+
+  // The caller's region (SetRegion; every voxel until then or after
+  // ResetRegion), the one the textures hold, and what this Render() draws.
+  mmv::IndexBox RequestedRegion = mmv::IndexBox::Everything();
+  mmv::IndexBox RegionUsed;
+  mmv::IrradianceRegionPlan Plan;
+  vtkIdType EstimatedVoxels = 0; // of this Render(), all lights
+  mmv::IndexBox Region() const
+  {
+    return this->RequestedRegion.Intersected(mmv::IndexBox::Whole(this->Grid.Dimensions));
+  }
+  /// `box` for a draw into a grid of `dims`: nullptr when it is the whole
+  /// grid (the draws without a scissor, as before regions).
+  static const int* DrawBox(const mmv::IndexBox& box, const int dims[3])
+  {
+    return box == mmv::IndexBox::Whole(dims) ? nullptr : box.Bounds;
+  }
+  void PlanRegion(bool diffusion);
+
+  // GPU resources.
+  vtkSmartPointer<vtkTextureObject> ScalarTexture;
+  vtkSmartPointer<vtkTextureObject> ClassTexture;
+  vtkSmartPointer<vtkTextureObject> TableTexture;
+  vtkSmartPointer<vtkTextureObject> CoarseStrengthTexture;
+  std::vector<vtkSmartPointer<vtkTextureObject>> Irradiance;
+  // The tint of a non-white transmission colour: its table (4 floats per
+  // entry; empty when grey), and one RGBA16F texture per light on the tint
+  // grid (mmv::TintDimension).
+  std::vector<float> TintTable;
+  vtkSmartPointer<vtkTextureObject> TintTableTexture;
+  std::vector<vtkSmartPointer<vtkTextureObject>> Tint;
+  mmv::voxelpass::VoxelPass TintQuad;
+  void TintDimensions(int dims[3]) const
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      dims[a] = mmv::TintDimension(this->Grid.Dimensions[a]);
+    }
+  }
+  bool TintPass(vtkOpenGLRenderWindow* context, int light, bool layered);
+  // Irradiance grid: [0] shadow rays, [1] after the diffusion. Diffusion
+  // grid: [0] restricted, [1..4] rotate through the sweeps (right-hand side,
+  // previous, current and next iterate).
+  std::array<vtkSmartPointer<vtkTextureObject>, 2> FineScratch;
+  std::array<vtkSmartPointer<vtkTextureObject>, 5> CoarseScratch;
+  vtkSmartPointer<vtkOpenGLFramebufferObject> Framebuffer;
+  mmv::voxelpass::VoxelPass ShadowQuad;
+  mmv::voxelpass::VoxelPass PiecewiseQuad;
+  mmv::voxelpass::VoxelPass RestrictQuad;
+  mmv::voxelpass::VoxelPass SweepQuad;
+  mmv::voxelpass::VoxelPass ExponentialQuad;
+  mmv::voxelpass::VoxelPass ProlongQuad;
+  mmv::voxelpass::VoxelPass FillQuad;
+  // Compute dispatches instead of fragment draws (this update), and the
+  // atomic counter that stands in for the occlusion query there.
+  bool Compute = false;
+  unsigned int WriteCounter = 0;
+
+  void Classify(const std::vector<float>& opacity, const std::vector<float>& scattering);
+  void PlanDiffusion(double time, bool exponential);
+
+  bool Upload(vtkOpenGLRenderWindow* context);
+  bool AllocateTargets(vtkOpenGLRenderWindow* context, bool diffusion, bool& reallocated);
+  vtkShaderProgram* Ready(vtkOpenGLRenderWindow* context, mmv::voxelpass::VoxelPass& pass,
+    const std::string& body, const std::string& defines, bool lightModel);
+  void DrawLayers(vtkOpenGLRenderWindow* context, mmv::voxelpass::VoxelPass& pass, vtkTextureObject* target,
+    bool layered, const int* box = nullptr, int writeMask = 0xF);
+  void Dispatch(vtkOpenGLRenderWindow* context, mmv::voxelpass::VoxelPass& pass, vtkTextureObject* target,
+    const int* box, int writeMask, bool countWrites);
+  unsigned int CountWrites(vtkOpenGLRenderWindow* context, mmv::voxelpass::VoxelPass& pass,
+    vtkTextureObject* target, bool layered, const int* box);
+  void SetTransferUniforms(vtkShaderProgram* program) const;
+  std::string ShadowRayDefines() const;
+  void SetShadowRayUniforms(vtkShaderProgram* program) const;
+
+  bool ShadowPass(vtkOpenGLRenderWindow* context, int group, int mask, bool skipEmpty, bool layered);
+  bool PiecewiseShadowPass(vtkOpenGLRenderWindow* context, int light, int slicesPerChunk,
+    bool skipEmpty, bool layered);
+  int Diffuse(vtkOpenGLRenderWindow* context, bool layered, int mask);
+  void SetDiffusionGridUniforms(vtkShaderProgram* program);
+  int BackwardEulerSweeps(
+    vtkOpenGLRenderWindow* context, vtkShaderProgram* sweep, bool layered, int mask, int& current);
+  int ExponentialSweeps(
+    vtkOpenGLRenderWindow* context, vtkShaderProgram* sweep, bool layered, int& current);
+  bool FillPass(vtkOpenGLRenderWindow* context, vtkTextureObject* source, int group, int mask,
+    bool layered);
+  /// Which lights this update recomputes: all of them (`all`), or the new
+  /// ones and those beyond `toleranceRadians` of the placement their channel
+  /// holds; records the placements they get.
+  std::vector<bool> MarkLightsToUpdate(bool all, double toleranceRadians);
+  void ReleaseScratch(vtkWindow* window);
+  void Release(vtkWindow* window);
+};
+
+#endif

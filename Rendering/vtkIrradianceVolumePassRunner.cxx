@@ -1,0 +1,465 @@
+// vtkIrradianceVolumePass: running its voxel passes (programs, layered draws
+// or compute dispatches, the textures they read and write) and the final
+// write into the irradiance textures.
+#include "vtkIrradianceVolumePassInternals.h"
+
+#include "mmvDiffusionFS.h"
+#include "mmvLayerGS.h"
+#include "mmvLayerVS.h"
+
+using namespace mmv::voxelpass;
+
+//------------------------------------------------------------------------------
+void vtkIrradianceVolumePass::vtkInternals::Classify(
+  const std::vector<float>& opacity, const std::vector<float>& scattering)
+{
+  this->Classes.resize(this->Scalars.size());
+  this->NonEmptyVoxels = 0;
+  for (size_t v = 0; v < this->Scalars.size(); ++v)
+  {
+    const bool nonEmpty = LookupTable(opacity, this->Scalars[v]) > 0.0f;
+    this->Classes[v] = nonEmpty ? std::max(0.0f, LookupTable(scattering, this->Scalars[v])) : -1.0f;
+    this->NonEmptyVoxels += nonEmpty ? 1 : 0;
+  }
+}
+
+//------------------------------------------------------------------------------
+// What this Render() draws for the region; the diffusion's passes each read
+// their input's neighbours (every sweep of every sub-step for backward
+// Euler, which may stop earlier).
+void vtkIrradianceVolumePass::vtkInternals::PlanRegion(bool diffusion)
+{
+  const int passes = this->ExponentialSeries.empty()
+    ? this->SubSteps * this->SweepsPerStep
+    : static_cast<int>(this->ExponentialSeries.size());
+  this->Plan = mmv::PlanIrradianceRegion(
+    this->Region(), this->Grid.Dimensions, diffusion ? &this->Coarse : nullptr, passes);
+}
+
+//------------------------------------------------------------------------------
+bool vtkIrradianceVolumePass::vtkInternals::Upload(vtkOpenGLRenderWindow* context)
+{
+  if (this->Uploaded && this->ScalarTexture)
+  {
+    return true;
+  }
+  const int* d = this->Grid.Dimensions;
+  const int* c = this->Coarse.Dimensions;
+  this->ScalarTexture = NewTexture(context, GL_R32F, GL_RED, GL_FLOAT, true);
+  this->ClassTexture = NewTexture(context, GL_R32F, GL_RED, GL_FLOAT, false);
+  this->TableTexture = NewTexture(context, GL_R32F, GL_RED, GL_FLOAT, true);
+  this->CoarseStrengthTexture = NewTexture(context, GL_RG32F, GL_RG, GL_FLOAT, false);
+  ++this->VolumeUploads;
+  this->Uploaded = this->ScalarTexture->Create3DFromRaw(d[0], d[1], d[2], 1, VTK_FLOAT,
+                     this->Scalars.data()) &&
+    this->ClassTexture->Create3DFromRaw(d[0], d[1], d[2], 1, VTK_FLOAT, this->Classes.data()) &&
+    this->TableTexture->Create2DFromRaw(
+      this->TableSize, this->TableSize, 1, VTK_FLOAT, this->ShadowTable.data()) &&
+    this->CoarseStrengthTexture->Create3DFromRaw(
+      c[0], c[1], c[2], 2, VTK_FLOAT, this->CoarseStrength.data());
+  this->TintTableTexture = nullptr;
+  if (this->Uploaded && !this->TintTable.empty())
+  {
+    this->TintTableTexture = NewTexture(context, GL_RGBA32F, GL_RGBA, GL_FLOAT, true);
+    this->Uploaded = this->TintTableTexture->Create2DFromRaw(
+      this->TableSize, this->TableSize, 4, VTK_FLOAT, this->TintTable.data());
+  }
+  return this->Uploaded;
+}
+
+//------------------------------------------------------------------------------
+bool vtkIrradianceVolumePass::vtkInternals::AllocateTargets(
+  vtkOpenGLRenderWindow* context, bool diffusion, bool& reallocated)
+{
+  const int* d = this->Grid.Dimensions;
+  const size_t textures = (this->Lights.size() + LightsPerTexture - 1) / LightsPerTexture;
+  reallocated = this->Irradiance.size() != textures;
+  this->Irradiance.resize(textures);
+  bool ok = true;
+  for (size_t t = 0; t < textures; ++t)
+  {
+    // As many channels as lights (the last texture may hold fewer than 4),
+    // so the memory is what mmv::IrradianceBytesPerVoxel counts.
+    const int lights = std::min(LightsPerTexture,
+      static_cast<int>(this->Lights.size()) - static_cast<int>(t) * LightsPerTexture);
+    const int channels = mmv::IrradianceTextureChannels(lights);
+    vtkSmartPointer<vtkTextureObject>& texture = this->Irradiance[t];
+    if (!HasSize(texture, d) || texture->GetComponents() != channels)
+    {
+      // 16-bit unsigned normalised: values are fractions in [0, 1]. Zeroed:
+      // channels without a light are never written, and an NVIDIA driver
+      // hands out garbage (NaN after the conversion) where llvmpipe zeroes.
+      static const GLenum internal[] = { GL_R16, GL_RG16, GL_RGBA16, GL_RGBA16 };
+      static const GLenum format[] = { GL_RED, GL_RG, GL_RGBA, GL_RGBA };
+      texture = NewTexture(
+        context, internal[channels - 1], format[channels - 1], GL_UNSIGNED_SHORT, true);
+      std::vector<unsigned short> zeros(channels * static_cast<size_t>(d[0]) * d[1] * d[2], 0);
+      ok = ok &&
+        texture->Create3DFromRaw(d[0], d[1], d[2], channels, VTK_UNSIGNED_SHORT, zeros.data());
+      reallocated = true;
+    }
+  }
+  // The tint: one texture per light, only while some colour is not white.
+  const size_t tints = this->TintTable.empty() ? 0 : this->Lights.size();
+  for (size_t t = tints; t < this->Tint.size(); ++t)
+  {
+    this->Tint[t]->ReleaseGraphicsResources(context);
+  }
+  reallocated = reallocated || this->Tint.size() != tints;
+  this->Tint.resize(tints);
+  int tintDims[3];
+  this->TintDimensions(tintDims);
+  for (auto& texture : this->Tint)
+  {
+    if (!HasSize(texture, tintDims))
+    {
+      // Half floats: K in [0, 1] with 11 bits of mantissa also where it is
+      // small (deep tinted shadow), linear for the ray cast's lookups.
+      texture = NewTexture(context, GL_RGBA16F, GL_RGBA, GL_FLOAT, true);
+      ok = ok && texture->Allocate3D(tintDims[0], tintDims[1], tintDims[2], 4, VTK_FLOAT);
+      reallocated = true;
+    }
+  }
+  for (size_t i = 0; i < this->FineScratch.size(); ++i)
+  {
+    // Kept scratch the diffusion no longer needs goes.
+    if (i == 0 || diffusion)
+    {
+      ok = ok && EnsureFloatTexture(context, this->FineScratch[i], d);
+    }
+    else if (this->FineScratch[i])
+    {
+      this->FineScratch[i]->ReleaseGraphicsResources(context);
+      this->FineScratch[i] = nullptr;
+    }
+  }
+  for (size_t i = 0; i < this->CoarseScratch.size(); ++i)
+  {
+    if (diffusion)
+    {
+      ok = ok && EnsureFloatTexture(context, this->CoarseScratch[i], this->Coarse.Dimensions);
+    }
+    else if (this->CoarseScratch[i])
+    {
+      this->CoarseScratch[i]->ReleaseGraphicsResources(context);
+      this->CoarseScratch[i] = nullptr;
+    }
+  }
+  if (!this->Framebuffer)
+  {
+    this->Framebuffer = vtkSmartPointer<vtkOpenGLFramebufferObject>::New();
+    this->Framebuffer->SetContext(context);
+  }
+  return ok;
+}
+
+//------------------------------------------------------------------------------
+vtkShaderProgram* vtkIrradianceVolumePass::vtkInternals::Ready(vtkOpenGLRenderWindow* context,
+  VoxelPass& pass, const std::string& body, const std::string& defines, bool lightModel)
+{
+  const std::string source = ComposeShader(body, defines, lightModel, this->Compute);
+  if (this->Compute)
+  {
+    if (!pass.Compute || pass.ComputeSource != source)
+    {
+      pass.ReleaseCompute(context);
+      pass.ComputeSource = source;
+      auto program = vtkSmartPointer<vtkIrradianceComputeProgram>::New();
+      if (!program->Build(source))
+      {
+        vtkGenericWarningMacro("Irradiance pass: " << program->GetError());
+        return nullptr;
+      }
+      pass.Compute = program;
+    }
+    return context->GetShaderCache()->ReadyShaderProgram(pass.Compute);
+  }
+  std::unique_ptr<vtkOpenGLQuadHelper>& quad = pass.Quad;
+  if (!quad || pass.QuadSource != source)
+  {
+    if (quad)
+    {
+      quad->ReleaseGraphicsResources(context);
+    }
+    pass.QuadSource = source;
+    quad = std::make_unique<vtkOpenGLQuadHelper>(context, mmvLayerVS, source.c_str(), mmvLayerGS);
+  }
+  if (!quad->Program || !context->GetShaderCache()->ReadyShaderProgram(quad->Program))
+  {
+    return nullptr;
+  }
+  return quad->Program;
+}
+
+//------------------------------------------------------------------------------
+// Every slice of `target` in one instanced draw into the whole 3D texture
+// (layered rendering), or, with `layered` off, one draw per slice.
+void vtkIrradianceVolumePass::vtkInternals::DrawLayers(vtkOpenGLRenderWindow* context,
+  VoxelPass& pass, vtkTextureObject* target, bool layered, const int* box, int writeMask)
+{
+  if (IsEmptyBox(box))
+  {
+    return; // nothing of the region's depends on this draw
+  }
+  if (this->Compute)
+  {
+    this->Dispatch(context, pass, target, box, writeMask, false);
+    return;
+  }
+  vtkOpenGLQuadHelper& quad = *pass.Quad;
+  // `box` (i0, i1, j0, j1, k0, k1, inclusive) limits the draw to the voxels
+  // that can change: a scissor in x and y, a range of layers in z.
+  vtkOpenGLState* state = context->GetState();
+  state->vtkglColorMask((writeMask & 1) != 0, (writeMask & 2) != 0, (writeMask & 4) != 0,
+    (writeMask & 8) != 0);
+  const int first = box ? box[4] : 0;
+  const int last = box ? box[5] : static_cast<int>(target->GetDepth()) - 1;
+  state->vtkglViewport(0, 0, target->GetWidth(), target->GetHeight());
+  if (box)
+  {
+    state->vtkglEnable(GL_SCISSOR_TEST);
+    state->vtkglScissor(box[0], box[2], box[1] - box[0] + 1, box[3] - box[2] + 1);
+  }
+  this->Framebuffer->Bind();
+  if (layered)
+  {
+    glFramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, target->GetHandle(), 0);
+    this->Framebuffer->ActivateDrawBuffers(1);
+    quad.Program->SetUniformi("firstLayer", first);
+    quad.VAO->Bind();
+    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, last - first + 1);
+    quad.VAO->Release();
+    glFramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, 0, 0);
+  }
+  for (int z = first; !layered && z <= last; ++z)
+  {
+    // Removed first: re-adding the same texture keeps the old slice.
+    this->Framebuffer->RemoveColorAttachment(0);
+    this->Framebuffer->AddColorAttachment(0, target, z);
+    this->Framebuffer->ActivateDrawBuffers(1);
+    quad.Program->SetUniformi("firstLayer", z);
+    quad.Render();
+  }
+  if (!layered)
+  {
+    this->Framebuffer->RemoveColorAttachment(0);
+  }
+  if (box)
+  {
+    state->vtkglDisable(GL_SCISSOR_TEST);
+  }
+  state->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+}
+
+//------------------------------------------------------------------------------
+// The compute form of DrawLayers: one invocation per voxel of `box` (all of
+// `target` without one) stores into `target` as an image; the channels off
+// in `writeMask` keep what `target` held. With `countWrites`, the atomic
+// counter counts the voxels written. The stores are made visible to the
+// texture fetches, image accesses and draws that follow.
+void vtkIrradianceVolumePass::vtkInternals::Dispatch(vtkOpenGLRenderWindow* context,
+  VoxelPass& pass, vtkTextureObject* target, const int* box, int writeMask, bool countWrites)
+{
+  vtkShaderProgram* program = pass.Compute;
+  context->GetShaderCache()->ReadyShaderProgram(program);
+  const int whole[6] = { 0, static_cast<int>(target->GetWidth()) - 1, 0,
+    static_cast<int>(target->GetHeight()) - 1, 0, static_cast<int>(target->GetDepth()) - 1 };
+  const int* b = box ? box : whole;
+  const int boxMin[3] = { b[0], b[2], b[4] };
+  const int boxMax[3] = { b[1], b[3], b[5] };
+  const int size[2] = { whole[1] + 1, whole[3] + 1 };
+  const int mask[4] = { (writeMask & 1) != 0, (writeMask & 2) != 0, (writeMask & 4) != 0,
+    (writeMask & 8) != 0 };
+  // (vtkShaderProgram has no ivec3/bvec4 setters.)
+  glUniform3iv(program->FindUniform("mmvBoxMin"), 1, boxMin);
+  glUniform3iv(program->FindUniform("mmvBoxMax"), 1, boxMax);
+  glUniform2iv(program->FindUniform("mmvTargetSize"), 1, size);
+  glUniform4iv(program->FindUniform("mmvWriteMask"), 1, mask);
+  program->SetUniformi("mmvCountWrites", countWrites ? 1 : 0);
+  if (!this->WriteCounter)
+  {
+    glGenBuffers(1, &this->WriteCounter);
+    glBindBuffer(GL_ATOMIC_COUNTER_BUFFER, this->WriteCounter);
+    glBufferData(GL_ATOMIC_COUNTER_BUFFER, sizeof(GLuint), nullptr, GL_DYNAMIC_READ);
+  }
+  const GLuint zero = 0;
+  glBindBufferBase(GL_ATOMIC_COUNTER_BUFFER, 0, this->WriteCounter);
+  if (countWrites)
+  {
+    glBufferSubData(GL_ATOMIC_COUNTER_BUFFER, 0, sizeof(GLuint), &zero);
+  }
+  // The masked channels are read back from the target itself (already bound
+  // where the pass samples its own target, as the piecewise rays do).
+  const bool wasActive = target->GetTextureUnit() >= 0;
+  if (!wasActive)
+  {
+    target->Activate();
+  }
+  program->SetUniformi("mmvTargetBefore", target->GetTextureUnit());
+  glBindImageTexture(0, target->GetHandle(), 0, GL_TRUE, 0, GL_READ_WRITE,
+    static_cast<GLenum>(target->GetInternalFormat(VTK_FLOAT, 4, false)));
+  program->SetUniformi("mmvTarget", 0);
+  // 8 x 8 x 4 invocations per group (mmvVoxelPassMain.glsl).
+  glDispatchCompute(static_cast<GLuint>((boxMax[0] - boxMin[0] + 8) / 8),
+    static_cast<GLuint>((boxMax[1] - boxMin[1] + 8) / 8),
+    static_cast<GLuint>((boxMax[2] - boxMin[2] + 4) / 4));
+  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
+    GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT | GL_ATOMIC_COUNTER_BARRIER_BIT);
+  glBindImageTexture(0, 0, 0, GL_TRUE, 0, GL_READ_WRITE, GL_RGBA32F);
+  if (!wasActive)
+  {
+    target->Deactivate();
+  }
+}
+
+//------------------------------------------------------------------------------
+// DrawLayers that returns the number of voxels written (the others returned
+// without writing: discarded fragments): an occlusion query, or the atomic
+// counter of a compute dispatch. Waits for the GPU.
+unsigned int vtkIrradianceVolumePass::vtkInternals::CountWrites(vtkOpenGLRenderWindow* context,
+  VoxelPass& pass, vtkTextureObject* target, bool layered, const int* box)
+{
+  GLuint written = 0;
+  if (IsEmptyBox(box))
+  {
+    return written;
+  }
+  if (this->Compute)
+  {
+    this->Dispatch(context, pass, target, box, 0xF, true);
+    glBindBuffer(GL_ATOMIC_COUNTER_BUFFER, this->WriteCounter);
+    glGetBufferSubData(GL_ATOMIC_COUNTER_BUFFER, 0, sizeof(GLuint), &written);
+    return written;
+  }
+  if (!this->ResidualQuery)
+  {
+    glGenQueries(1, &this->ResidualQuery);
+  }
+  glBeginQuery(GL_SAMPLES_PASSED, this->ResidualQuery);
+  this->DrawLayers(context, pass, target, layered, box);
+  glEndQuery(GL_SAMPLES_PASSED);
+  glGetQueryObjectuiv(this->ResidualQuery, GL_QUERY_RESULT, &written);
+  return written;
+}
+
+//------------------------------------------------------------------------------
+// The final write of the lights in `mask`: the other channels of the
+// irradiance texture keep what they hold.
+bool vtkIrradianceVolumePass::vtkInternals::FillPass(vtkOpenGLRenderWindow* context,
+  vtkTextureObject* source, int group, int mask, bool layered)
+{
+  vtkShaderProgram* program =
+    this->Ready(context, this->FillQuad, mmvDiffusionFS, "#define MMV_FILL_PASS\n", false);
+  if (!program)
+  {
+    return false;
+  }
+  ScopedTextures bound{ this->ClassTexture, source };
+  program->SetUniformi("classes", this->ClassTexture->GetTextureUnit());
+  program->SetUniformi("current", source->GetTextureUnit());
+  program->SetUniform1iv("dims", 3, this->Grid.Dimensions);
+  this->DrawLayers(context, this->FillQuad, this->Irradiance[group], layered,
+    DrawBox(this->Plan.Region, this->Grid.Dimensions), mask);
+  return true;
+}
+
+//------------------------------------------------------------------------------
+void vtkIrradianceVolumePass::vtkInternals::ReleaseScratch(vtkWindow* window)
+{
+  // The float scratch is 8x the result per texture: not worth keeping.
+  for (auto* scratch : { this->FineScratch.data(), this->CoarseScratch.data() })
+  {
+    const size_t count = scratch == this->FineScratch.data() ? this->FineScratch.size()
+                                                             : this->CoarseScratch.size();
+    for (size_t i = 0; i < count; ++i)
+    {
+      if (scratch[i])
+      {
+        scratch[i]->ReleaseGraphicsResources(window);
+        scratch[i] = nullptr;
+      }
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkIrradianceVolumePass::vtkInternals::Release(vtkWindow* window)
+{
+  this->ReleaseScratch(window);
+  for (auto* texture : { &this->ScalarTexture, &this->ClassTexture, &this->TableTexture,
+         &this->CoarseStrengthTexture })
+  {
+    if (*texture)
+    {
+      (*texture)->ReleaseGraphicsResources(window);
+      *texture = nullptr;
+    }
+  }
+  for (auto& texture : this->Irradiance)
+  {
+    texture->ReleaseGraphicsResources(window);
+  }
+  this->Irradiance.clear();
+  for (auto& texture : this->Tint)
+  {
+    texture->ReleaseGraphicsResources(window);
+  }
+  this->Tint.clear();
+  if (this->TintTableTexture)
+  {
+    this->TintTableTexture->ReleaseGraphicsResources(window);
+    this->TintTableTexture = nullptr;
+  }
+  this->ComputedLights.clear();
+  if (this->ResidualQuery)
+  {
+    glDeleteQueries(1, &this->ResidualQuery);
+    this->ResidualQuery = 0;
+  }
+  if (this->Framebuffer)
+  {
+    this->Framebuffer->ReleaseGraphicsResources(window);
+    this->Framebuffer = nullptr;
+  }
+  if (this->WriteCounter)
+  {
+    glDeleteBuffers(1, &this->WriteCounter);
+    this->WriteCounter = 0;
+  }
+  for (VoxelPass* pass : { &this->ShadowQuad, &this->PiecewiseQuad, &this->RestrictQuad,
+         &this->SweepQuad, &this->ExponentialQuad, &this->ProlongQuad, &this->FillQuad,
+         &this->TintQuad })
+  {
+    pass->Release(window);
+  }
+  this->Uploaded = false;
+}
+
+//------------------------------------------------------------------------------
+std::vector<bool> vtkIrradianceVolumePass::vtkInternals::MarkLightsToUpdate(
+  bool all, double toleranceRadians)
+{
+  std::vector<bool> updated(this->Lights.size(), false);
+  const glm::dvec3 centre = this->Grid.Center();
+  // A new light, or one beyond the tolerance of what its channel holds;
+  // the others keep the placement they were computed for.
+  std::vector<mmv::LightSource>& held = this->ComputedLights;
+  held.resize(std::min(held.size(), this->Lights.size()));
+  for (size_t k = 0; k < this->Lights.size(); ++k)
+  {
+    if (all || k >= held.size() ||
+      !mmv::LightWithinTolerance(held[k], this->Lights[k], toleranceRadians, centre))
+    {
+      updated[k] = true;
+      if (k < held.size())
+      {
+        held[k] = this->Lights[k];
+      }
+      else
+      {
+        held.push_back(this->Lights[k]);
+      }
+    }
+  }
+  return updated;
+}
