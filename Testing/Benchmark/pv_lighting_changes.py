@@ -27,7 +27,10 @@ Sequences, each change followed by one timed StillRender() per view:
 
 Writes OUT/changes.csv (one row per volume, sequence and method: medians,
 ratios to pv-volume, irradiance updates, probes and the median seconds of each
-irradiance stage), OUT/frames.csv (every frame), OUT/changes.png.
+irradiance stage), OUT/frames.csv (every frame), OUT/changes.png, and
+OUT/grid_check.csv: after the sequences, the irradiance grid each method kept
+against the one a fresh representation's probe chooses for the final
+transfer functions and time step.
 """
 
 import argparse
@@ -183,7 +186,7 @@ def frame(method, volume, sequence, change, writer, records):
     return seconds
 
 
-def run_volume(name, args, methods, folder, writer, records):
+def run_volume(name, args, methods, folder, writer, records, checks):
     paths = write_series(name, args, folder)
     source = simple.XMLImageDataReader(FileName=paths)
     source.UpdatePipelineInformation()
@@ -254,6 +257,25 @@ def run_volume(name, args, methods, folder, writer, records):
                     for m in active:
                         m.view.ViewTime = t
                 each("series" if loop == 0 else "series-2", k, step)
+    # The grid the kept probe choice gives against a fresh probe of the
+    # final transfer functions and step (a new representation measures).
+    for m in active:
+        if m.representation != MMV:
+            continue
+        kept = info(m).get("IrradianceResolutionInfo", "").split(" ")[0]
+        view = orbit.make_view(args)
+        view.ViewTime = m.view.ViewTime
+        rep = orbit.show(orbit.Method(m.name, m.representation, m.props, None), source, view)
+        orbit.place_camera(view, orbit_args(args))
+        view.SMProxy.StillRender()
+        fresh_method = Method(m.name, m.representation, m.props)
+        fresh_method.rep = rep
+        fresh = info(fresh_method).get("IrradianceResolutionInfo", "").split(" ")[0]
+        checks.append({"volume": name, "method": m.name, "kept_grid": kept, "fresh_grid": fresh,
+                       "same": "yes" if kept == fresh else "no"})
+        log("%s %s: kept grid %s, fresh probe %s" % (name, m.name, kept, fresh))
+        simple.Delete(rep)
+        simple.Delete(view)
     for m in active:
         simple.Delete(m.rep)
         simple.Delete(m.view)
@@ -313,6 +335,7 @@ def main():
     wanted = [m.strip() for m in args.methods.split(",")]
     methods = [Method(*m) for m in METHODS if m[0] in wanted]
     records = []
+    checks = []
     folder = tempfile.mkdtemp(prefix="mmv_changes_")
     with open(os.path.join(args.out, "frames.csv"), "w", newline="") as f:
         writer = csv.writer(f)
@@ -321,7 +344,7 @@ def main():
                         + ["irradiance_grid"])
         for volume in [v.strip() for v in args.volumes.split(",")]:
             t0 = time.perf_counter()
-            run_volume(volume, args, methods, folder, writer, records)
+            run_volume(volume, args, methods, folder, writer, records, checks)
             f.flush()
             log("== %s done (%.0f s)" % (volume, time.perf_counter() - t0))
     rows = summarise(records)
@@ -339,6 +362,8 @@ def main():
                      ["probe", "prefilter", "shadow table", "setup", "shadows", "diffusion",
                       "write", "total"])))
     log("wrote %s" % path)
+    if checks:
+        orbit.write_csv(os.path.join(args.out, "grid_check.csv"), checks)
     if not args.no_plot:
         try:
             import plot_lighting_changes
