@@ -8,6 +8,9 @@ still frame), one panel per volume, the targets marked.
 import csv
 import sys
 
+# Sequences shown as a ratio to the method's own still frame.
+OWN_STILL = ("colour", "series-2")
+
 
 def plot(csv_path, png_path):
     import matplotlib
@@ -30,6 +33,8 @@ def plot(csv_path, png_path):
                 if row is None:
                     continue
                 own = row["ratio_to_own_still"]
+                if sequence in OWN_STILL and not own:
+                    continue  # no still frame of its own to compare with
                 value = float(own) if own else float(row["ratio_to_pv_volume"])
                 xs.append(s + (m - (len(methods) - 1) / 2.0) * width)
                 ys.append(value)

@@ -220,7 +220,7 @@ def run_volume(name, args, methods, folder, writer, records, checks):
         for m in active[shift:] + active[:shift]:
             if sequence.startswith("series") and m.name not in ("pv-volume", "mmv-default", "mmv-smoke"):
                 continue
-            if not sequence.startswith("series") and m.name == "mmv-smoke":
+            if sequence not in ("still", "series", "series-2") and m.name == "mmv-smoke":
                 continue
             frame(m, name, sequence, change, writer, records)
 
