@@ -370,6 +370,20 @@ void PrefilterScalars(vtkImageData* image, vtkDataArray* scalars, int component,
     [](double v) { return static_cast<float>(v); });
 }
 
+bool ReplaceNonFinite(std::vector<float>& values, float low, float high)
+{
+  bool replaced = false;
+  for (float& v : values)
+  {
+    if (!std::isfinite(v))
+    {
+      replaced = true;
+      v = v > 0.0f ? high : low;
+    }
+  }
+  return replaced;
+}
+
 double ValidIrradianceScale(double scale, std::string* why)
 {
   if (scale >= 0.0 && scale <= 1.0)

@@ -184,6 +184,19 @@ VTKMULTIMATERIALVOLUMEFILTERS_EXPORT glm::dvec3 FootprintSample(
 VTKMULTIMATERIALVOLUMEFILTERS_EXPORT void PrefilterScalars(vtkImageData* image, vtkDataArray* scalars,
   int component, const IrradianceGrid& grid, std::vector<float>& prefiltered);
 
+/**
+ * NaN and -Inf in `values` become `low`, +Inf becomes `high` (the finite
+ * range's ends), so that no table lookup reads out of bounds; returns
+ * whether any value was replaced. Both the mapper and the CPU filter clean
+ * their pre-filtered values with it and report NonFiniteScalarsMessage.
+ */
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT bool ReplaceNonFinite(
+  std::vector<float>& values, float low, float high);
+/// What a user is told when ReplaceNonFinite replaced values.
+constexpr const char* NonFiniteScalarsMessage =
+  "the scalars contain NaN or Inf: NaN and -Inf are lit as the finite minimum, +Inf as the "
+  "maximum";
+
 } // namespace mmv
 
 #endif

@@ -110,19 +110,12 @@ bool vtkIrradianceInputCache::UpdatePrefiltered(vtkImageData* image, vtkDataArra
   }
   ++this->PrefilteredVersion;
   const double scale = 1.0 / (range[1] - range[0]);
-  bool nonFinite = false;
   for (float& v : this->Prefiltered)
   {
     v = static_cast<float>((v - range[0]) * scale);
-    // NaN/Inf voxels (TestBadInput.NonFiniteVoxels) used to index the
-    // opacity tables out of bounds: NaN counts as empty, +-Inf as the
-    // range's ends.
-    if (!std::isfinite(v))
-    {
-      nonFinite = true;
-      v = std::isnan(v) ? 0.0f : (v > 0.0f ? 1.0f : 0.0f);
-    }
   }
+  // Normalised, the finite range is [0, 1].
+  const bool nonFinite = mmv::ReplaceNonFinite(this->Prefiltered, 0.0f, 1.0f);
   this->PrefilteredFrom = key;
   this->HasPrefiltered = true;
   return nonFinite;

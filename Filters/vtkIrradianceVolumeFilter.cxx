@@ -813,23 +813,12 @@ int vtkIrradianceVolumeFilter::RequestData(
   std::vector<float> prefiltered;
   mmv::PrefilterScalars(input, scalars, 0, grid, prefiltered);
   {
-    // NaN/Inf voxels (TestBadInput.NonFiniteVoxels) must not reach the table
-    // lookups: NaN and -Inf become the finite minimum, +Inf the maximum.
     double finite[2];
     scalars->GetFiniteRange(finite, 0);
-    bool nonFinite = false;
-    for (float& v : prefiltered)
+    if (mmv::ReplaceNonFinite(
+          prefiltered, static_cast<float>(finite[0]), static_cast<float>(finite[1])))
     {
-      if (!std::isfinite(v))
-      {
-        nonFinite = true;
-        v = static_cast<float>(v > 0.0f ? finite[1] : finite[0]);
-      }
-    }
-    if (nonFinite)
-    {
-      vtkWarningMacro("The scalars contain NaN or Inf: NaN and -Inf are lit as the finite "
-                      "minimum, +Inf as the maximum.");
+      vtkWarningMacro(<< mmv::NonFiniteScalarsMessage << ".");
     }
   }
   std::vector<unsigned char> nonEmpty;

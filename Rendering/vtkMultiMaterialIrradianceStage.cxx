@@ -288,9 +288,7 @@ bool vtkMultiMaterialIrradianceStage::Update(vtkMultiMaterialVolumeMapper* mappe
   }
   if (nonFinite)
   {
-    this->Mapper->WarnOnce(
-      "the scalars contain NaN or Inf: lit as empty (NaN) or as the ends of the "
-      "finite range (Inf)");
+    this->Mapper->WarnOnce(mmv::NonFiniteScalarsMessage);
   }
   this->Pass->SetRegion(region.Bounds);
   if (!this->ComputeOn(this->Pass, vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow()),

@@ -269,3 +269,15 @@ TEST(IrradianceInputCache, PrefilterIsTheMeanOfTrilinearFootprintSamples)
   }
   EXPECT_EQ(nan, 1u);
 }
+
+TEST(IrradianceInputCache, NonFiniteValuesBecomeTheFiniteRangesEnds)
+{
+  // One rule for the mapper (normalised, [0, 1]) and the CPU filter (data
+  // units): NaN and -Inf the finite minimum, +Inf the maximum.
+  const float inf = std::numeric_limits<float>::infinity();
+  std::vector<float> values = { 3.0f, NAN, -inf, inf, -2.0f };
+  EXPECT_TRUE(mmv::ReplaceNonFinite(values, -2.0f, 7.0f));
+  const std::vector<float> expected = { 3.0f, -2.0f, -2.0f, 7.0f, -2.0f };
+  EXPECT_EQ(values, expected);
+  EXPECT_FALSE(mmv::ReplaceNonFinite(values, -2.0f, 7.0f));
+}
