@@ -139,7 +139,14 @@ IndexCutaway ToIndexSpace(const Cutaway& cutaway, const IrradianceGrid& grid)
 
 std::string CutawayGLSLPrelude()
 {
-  return "#define MMV_MAX_CUT_PLANES " + std::to_string(MaxCutPlanes) + "\n";
+  std::string prelude = "#define MMV_MAX_CUT_PLANES " + std::to_string(MaxCutPlanes) + "\n";
+  for (const CutawayUniformInfo& u : CutawayUniformLayout)
+  {
+    prelude += std::string("uniform ") + u.GLSLType + " " + u.Name +
+      (u.ArraySize[0] ? std::string("[") + u.ArraySize + "]" : std::string()) + "; // " +
+      u.Meaning + "\n";
+  }
+  return prelude;
 }
 
 } // namespace mmv

@@ -37,6 +37,36 @@ namespace mmv
 /// a warning from the mapper).
 constexpr int MaxCutPlanes = 6;
 
+/// The uniforms of Shaders/mmvCutaway.glsl: CutawayGLSLPrelude() declares
+/// them from this table and the Rendering module sets them by these names.
+enum CutawayUniform : int
+{
+  CutPlaneCountUniform = 0,
+  CutPlanesUniform,
+  CroppingUniform,
+  CropAxesUniform,
+  CropBoundsUniform,
+  CropFlagsUniform,
+  CutawayUniformCount
+};
+
+struct CutawayUniformInfo
+{
+  const char* GLSLType;
+  const char* Name;
+  const char* ArraySize; // "" for a single value
+  const char* Meaning;
+};
+
+constexpr CutawayUniformInfo CutawayUniformLayout[CutawayUniformCount] = {
+  { "int", "mmv_cutPlaneCount", "", "0: no clipping planes" },
+  { "vec4", "mmv_cutPlanes", "MMV_MAX_CUT_PLANES", "removed where dot(xyz, index) + w < 0" },
+  { "int", "mmv_cropping", "", "0: no cropping region" },
+  { "vec4", "mmv_cropAxes", "3", "object coordinate a = dot(xyz, index) + w" },
+  { "float", "mmv_cropBounds", "6", "the region's planes, (min, max) per axis" },
+  { "int", "mmv_cropFlags", "", "VTK's CroppingRegionFlags" },
+};
+
 /// The removed part of the volume in object (data) coordinates.
 struct Cutaway
 {

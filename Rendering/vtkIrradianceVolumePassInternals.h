@@ -172,12 +172,13 @@ inline void SetCutawayUniforms(vtkShaderProgram* program, const mmv::IndexCutawa
     bounds[2 * a] = static_cast<float>(cut.CropBounds[2 * a]);
     bounds[2 * a + 1] = static_cast<float>(cut.CropBounds[2 * a + 1]);
   }
-  program->SetUniformi("cutPlaneCount", cut.NumberOfPlanes);
-  program->SetUniform4fv("cutPlanes", mmv::MaxCutPlanes, planes);
-  program->SetUniformi("cropping", cut.Cropping ? 1 : 0);
-  program->SetUniform4fv("cropAxes", 3, axes);
-  program->SetUniform1fv("cropBounds", 6, bounds);
-  program->SetUniformi("cropFlags", cut.CropFlags);
+  const mmv::CutawayUniformInfo* u = mmv::CutawayUniformLayout;
+  program->SetUniformi(u[mmv::CutPlaneCountUniform].Name, cut.NumberOfPlanes);
+  program->SetUniform4fv(u[mmv::CutPlanesUniform].Name, mmv::MaxCutPlanes, planes);
+  program->SetUniformi(u[mmv::CroppingUniform].Name, cut.Cropping ? 1 : 0);
+  program->SetUniform4fv(u[mmv::CropAxesUniform].Name, 3, axes);
+  program->SetUniform1fv(u[mmv::CropBoundsUniform].Name, 6, bounds);
+  program->SetUniformi(u[mmv::CropFlagsUniform].Name, cut.CropFlags);
 }
 
 /// A draw's box (i0, i1, j0, j1, k0, k1) that holds no voxel; null is the

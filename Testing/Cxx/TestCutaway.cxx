@@ -9,6 +9,7 @@
 #include "vtkFloatArray.h"
 #include "vtkIrradianceVolumeFilter.h"
 #include "vtkMaterialTransferFunction.h"
+#include "vtkMultiMaterialCutaway.h"
 #include "vtkMultiMaterialReferenceRenderer.h"
 #include "vtkMultiMaterialVolumeMapper.h"
 #include "vtkPlane.h"
@@ -17,8 +18,11 @@
 
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <functional>
+#include <iterator>
 #include <limits>
+#include <string>
 
 namespace
 {
@@ -311,4 +315,24 @@ TEST(Cutaway, ReferenceRendererCutsAsTheMapper)
     crop, clip);
   EXPECT_GE(crop, Target);
   EXPECT_GE(clip, Target);
+}
+
+TEST(Cutaway, UniformsAreDeclaredOnceFromTheLayout)
+{
+  // The prelude declares every uniform of mmv::CutawayUniformLayout (the
+  // names the passes set); Shaders/mmvCutaway.glsl declares none and reads
+  // each, so the two cannot drift (the GPU-against-CPU cutaway tests above
+  // fail if a name is not set).
+  const std::string prelude = mmv::CutawayGLSLPrelude();
+  std::ifstream file(std::string(MMV_SOURCE_DIR) + "/Shaders/mmvCutaway.glsl");
+  ASSERT_TRUE(file.good());
+  const std::string shader((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(shader.find("uniform "), std::string::npos);
+  for (const mmv::CutawayUniformInfo& u : mmv::CutawayUniformLayout)
+  {
+    EXPECT_NE(prelude.find(std::string("uniform ") + u.GLSLType + " " + u.Name), std::string::npos)
+      << u.Name;
+    EXPECT_NE(shader.find(u.Name), std::string::npos) << u.Name;
+    EXPECT_EQ(std::string(u.Name).rfind("mmv_", 0), 0u) << u.Name;
+  }
 }
