@@ -61,14 +61,14 @@ mmv::IndexBox ReadRegion(
   return mmv::PieceIrradianceBox(global->GetGrid(), o, pieceDims);
 }
 
-/// The scalar opacity at `n` points over `range` (> 0 marks a voxel
-/// non-empty for the pass; the probe's weights).
 using Clock = std::chrono::steady_clock;
 double SecondsSince(Clock::time_point start)
 {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
+/// The scalar opacity at `n` points over `range` (> 0 marks a voxel
+/// non-empty for the pass; the probe's weights).
 std::vector<float> SampleOpacityTable(vtkPiecewiseFunction* opacity, const double range[2], int n)
 {
   std::vector<float> table(n);
