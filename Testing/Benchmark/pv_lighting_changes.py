@@ -93,6 +93,7 @@ def parse_args():
     args, _ = p.parse_known_args()
     args.dims = [128, 128, 64] if args.quick else [256, 256, 128]
     args.paraview_lod = False  # never LOD geometry instead of the volume
+    args.zoom = 1.3  # pv_lightkit_orbit.place_camera's framing
     if args.changes is None:
         args.changes = 2 if args.quick else 4
     return args
@@ -140,22 +141,10 @@ class Method(object):
         self.view = self.rep = None
 
 
-def info(method):
-    if method.representation != MMV:
-        return {}
-    rep = method.rep.SMProxy
-    rep.UpdatePropertyInformation()
-    out = {}
-    for name in INFO:
-        prop = rep.GetProperty(name)
-        if prop is None:
-            continue
-        helper = servermanager.vtkSMPropertyHelper(prop)
-        if isinstance(prop, servermanager.vtkSMStringVectorProperty):
-            out[name] = helper.GetAsString(0) if helper.GetNumberOfElements() else ""
-        else:
-            out[name] = helper.GetAsInt(0)
-    return out
+def info(representation, rep):
+    """The information properties of INFO (none for ParaView's own
+    representations)."""
+    return orbit.read_info(rep, INFO) if representation == MMV else {}
 
 
 def stage_seconds(text):
@@ -169,11 +158,11 @@ def stage_seconds(text):
 
 
 def frame(method, volume, sequence, change, writer, records):
-    before = info(method)
+    before = info(method.representation, method.rep)
     t0 = time.perf_counter()
     method.view.SMProxy.StillRender()
     seconds = time.perf_counter() - t0
-    after = info(method)
+    after = info(method.representation, method.rep)
     updates = after.get("IrradianceUpdateCount", 0) - before.get("IrradianceUpdateCount", 0)
     probes = after.get("IrradianceProbeCount", 0) - before.get("IrradianceProbeCount", 0)
     stages = stage_seconds(after.get("LastIrradianceStages")) if updates else {}
@@ -202,7 +191,7 @@ def run_volume(name, args, methods, folder, writer, records, checks):
             simple.Delete(m.view)
             continue
         m.rep = rep
-        orbit.place_camera(m.view, orbit_args(args))
+        orbit.place_camera(m.view, args)
         active.append(m)
     lut, pwf = orbit.setup_transfer_functions()
     for m in active:
@@ -262,15 +251,13 @@ def run_volume(name, args, methods, folder, writer, records, checks):
     for m in active:
         if m.representation != MMV:
             continue
-        kept = info(m).get("IrradianceResolutionInfo", "").split(" ")[0]
+        kept = info(m.representation, m.rep).get("IrradianceResolutionInfo", "").split(" ")[0]
         view = orbit.make_view(args)
         view.ViewTime = m.view.ViewTime
         rep = orbit.show(orbit.Method(m.name, m.representation, m.props, None), source, view)
-        orbit.place_camera(view, orbit_args(args))
+        orbit.place_camera(view, args)
         view.SMProxy.StillRender()
-        fresh_method = Method(m.name, m.representation, m.props)
-        fresh_method.rep = rep
-        fresh = info(fresh_method).get("IrradianceResolutionInfo", "").split(" ")[0]
+        fresh = info(m.representation, rep).get("IrradianceResolutionInfo", "").split(" ")[0]
         checks.append({"volume": name, "method": m.name, "kept_grid": kept, "fresh_grid": fresh,
                        "same": "yes" if kept == fresh else "no"})
         log("%s %s: kept grid %s, fresh probe %s" % (name, m.name, kept, fresh))
@@ -284,12 +271,6 @@ def run_volume(name, args, methods, folder, writer, records, checks):
     # Restore the shared transfer functions for the next volume.
     pwf.Points = orbit.OPACITY_POINTS
     lut.RGBPoints = orbit.RGB_POINTS
-
-
-def orbit_args(args):
-    class A(object):
-        zoom = 1.3
-    return A
 
 
 def summarise(records):

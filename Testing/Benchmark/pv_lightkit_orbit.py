@@ -164,15 +164,16 @@ def psnr(a, b):
     return float("inf") if mse == 0.0 else 10.0 * math.log10(255.0 ** 2 / mse)
 
 
-def read_info(rep):
-    """The representation's information properties that exist (counters of the
-    mapper on this process; the new ones may not exist yet)."""
+def read_info(rep, names=None):
+    """The representation's information properties `names` (default: the
+    orbit's) that exist (counters of the mapper on this process; the new ones
+    may not exist yet)."""
     out = {}
     try:
         rep.SMProxy.UpdatePropertyInformation()
     except Exception:  # noqa: BLE001
         return out
-    for name in INFO_INT + INFO_OTHER:
+    for name in names or INFO_INT + INFO_OTHER:
         try:
             prop = rep.SMProxy.GetProperty(name)
             if prop is None:
