@@ -392,6 +392,12 @@ const std::vector<mmv::LightSource>& vtkIrradianceVolumePass::GetComputedLights(
   return this->Internals->ComputedLights;
 }
 
+void vtkIrradianceVolumePass::InvalidateComputedLights()
+{
+  this->Internals->VolumeChanged = true;
+  this->Modified();
+}
+
 //------------------------------------------------------------------------------
 bool vtkIrradianceVolumePass::ReadBack(
   vtkOpenGLRenderWindow* context, int light, std::vector<float>& values)

@@ -197,6 +197,10 @@ public:
   /// first Render() or after a failed one).
   const std::vector<mmv::LightSource>& GetComputedLights() const;
 
+  /// The textures were overwritten from outside (vtkIrradianceStepCache):
+  /// the next Render() recomputes every light.
+  void InvalidateComputedLights();
+
   /**
    * The tint table of a non-white transmission colour
    * (vtkPreIntegrationTable::GetShadowTintTable, 4 floats per entry, the

@@ -86,6 +86,7 @@ vtkMultiMaterialIrradianceStage::~vtkMultiMaterialIrradianceStage() = default;
 
 void vtkMultiMaterialIrradianceStage::ReleaseGraphicsResources(vtkWindow* window)
 {
+  this->Steps.ReleaseGraphicsResources(window);
   this->Pass->ReleaseGraphicsResources(window);
   this->Probe->ReleaseGraphicsResources(window);
   this->Cache->Invalidate();
@@ -217,6 +218,12 @@ bool vtkMultiMaterialIrradianceStage::Update(vtkMultiMaterialVolumeMapper* mappe
   // data, on its grid and over its range.
   const double* range = global ? global->GetScalarRange() : pieceRange;
   this->Mapper->NumberOfUpdatedLights = 0;
+  // Kept irradiance of earlier inputs (a budget lowered since goes now).
+  // Not for a piece of a global volume: its data is the global copy.
+  auto* window = vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow());
+  const size_t stepBudget =
+    global ? 0 : static_cast<size_t>(this->Mapper->IrradianceCacheMB * 1048576.0);
+  this->Steps.Trim(stepBudget);
 
   this->Cache->SampleMaterials(this->Materials, range, this->Mapper->PreIntegrationTableSize);
   const vtkMTimeType dataTime =
@@ -248,8 +255,17 @@ bool vtkMultiMaterialIrradianceStage::Update(vtkMultiMaterialVolumeMapper* mappe
   }
   const bool computed = this->Pass->GetNumberOfIrradianceTextures() > 0;
   const double tolerance = mmv::LightToleranceRadians(this->Mapper->LightDirectionTolerance);
+  const vtkIrradianceStepCache::Key stepKey = stepBudget > 0
+    ? vtkIrradianceStepCache::MakeKey(volumeKey,
+        this->Materials ? this->Materials->GetMTime() : 0, image, scalars, sources, dims)
+    : vtkIrradianceStepCache::Key();
   if (computed && this->Cache->IsCurrent(volumeKey, sources, dims, tolerance))
   {
+    // Current but not yet kept (the step shown before caching was on).
+    if (stepBudget > 0 && !this->Steps.Contains(stepKey))
+    {
+      this->Steps.Store(window, stepKey, this->Pass, this->HeldLights, stepBudget);
+    }
     return true;
   }
   // Interactive frames keep the last irradiance while only the lights or the
@@ -271,6 +287,17 @@ bool vtkMultiMaterialIrradianceStage::Update(vtkMultiMaterialVolumeMapper* mappe
     {
       return true;
     }
+  }
+  // Data seen before with everything else the same (a series' earlier step):
+  // its kept irradiance is copied back.
+  std::vector<mmv::LightSource> restored;
+  if (computed && stepBudget > 0 && this->Steps.Restore(window, stepKey, this->Pass, restored))
+  {
+    this->Cache->Store(volumeKey, restored, dims);
+    this->HeldLights = restored;
+    ++this->Mapper->IrradianceCacheHitCount;
+    std::copy(dims, dims + 3, this->Mapper->IrradianceDimensions);
+    return true;
   }
   // A real update (seconds on a software GPU): VTK progress events, which
   // ParaView's progress bar shows, mark its start and end.
@@ -299,7 +326,12 @@ bool vtkMultiMaterialIrradianceStage::Update(vtkMultiMaterialVolumeMapper* mappe
     this->Mapper->SetProgressText(nullptr);
     return false;
   }
-  this->Cache->Store(volumeKey, this->Pass->GetComputedLights(), dims);
+  this->HeldLights = this->Pass->GetComputedLights();
+  this->Cache->Store(volumeKey, this->HeldLights, dims);
+  if (stepBudget > 0)
+  {
+    this->Steps.Store(window, stepKey, this->Pass, this->HeldLights, stepBudget);
+  }
   stages.Tables = this->TablesSeconds;
   stages.Shadows = this->Pass->GetLastEstimationSeconds();
   stages.Diffusion = this->Pass->GetLastDiffusionSeconds();

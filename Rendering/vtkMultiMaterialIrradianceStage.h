@@ -18,6 +18,7 @@
 #include "vtkIrradianceGrid.h"            // IrradianceResolution
 #include "vtkIrradianceInputCache.h"      // vtkNew
 #include "vtkIrradianceResolutionProbe.h" // vtkNew
+#include "vtkIrradianceStepCache.h"       // member
 #include "vtkIrradianceVolumePass.h"      // vtkNew
 #include "vtkMultiMaterialCutaway.h"      // Cutaway
 #include "vtkMultiMaterialLights.h"       // ShadingLight
@@ -86,6 +87,9 @@ public:
   /// The stages of the last update that recomputed the irradiance.
   const mmv::IrradianceStageSeconds& GetStageSeconds() const { return this->Stages; }
 
+  /// GPU memory the irradiance of earlier inputs holds (IrradianceCacheMB).
+  size_t GetStepCacheBytes() const { return this->Steps.GetBytes(); }
+
   void ReleaseGraphicsResources(vtkWindow* window);
 
 private:
@@ -113,6 +117,10 @@ private:
   vtkNew<vtkPreIntegrationTable> ShadowTable;
   vtkNew<vtkIrradianceVolumePass> Pass;
   vtkNew<vtkIrradianceResolutionProbe> Probe;
+  vtkIrradianceStepCache Steps;
+  // The light placements the pass's textures hold: its own record after an
+  // update, the copy's after a restore (the pass's record is then stale).
+  std::vector<mmv::LightSource> HeldLights;
   std::string ResolutionReason;
   mmv::IrradianceStageSeconds Stages;
   double TablesSeconds = 0.0;

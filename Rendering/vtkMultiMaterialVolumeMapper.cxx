@@ -206,6 +206,11 @@ std::string vtkMultiMaterialVolumeMapper::GetLastFragmentShaderSource()
   return this->Internals->Pass->GetLastFragmentSource();
 }
 
+size_t vtkMultiMaterialVolumeMapper::GetIrradianceCacheBytes()
+{
+  return this->Internals->Irradiance.GetStepCacheBytes();
+}
+
 int vtkMultiMaterialVolumeMapper::GetGradientUploadCount()
 {
   return this->Internals->Textures->GetGradientUploads();
@@ -603,6 +608,8 @@ void vtkMultiMaterialVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "IrradianceResolution: " << this->Internals->Irradiance.GetResolutionReason()
      << "\n";
   os << indent << "DeferredIrradianceCount: " << this->DeferredIrradianceCount << "\n";
+  os << indent << "IrradianceCacheMB: " << this->IrradianceCacheMB << "\n";
+  os << indent << "IrradianceCacheHitCount: " << this->IrradianceCacheHitCount << "\n";
   os << indent << "IrradianceDimensions: " << this->IrradianceDimensions[0] << " "
      << this->IrradianceDimensions[1] << " " << this->IrradianceDimensions[2] << "\n";
   os << indent << "Counts (pre-integration, irradiance, ray cast): " << this->PreIntegrationCount

@@ -69,6 +69,16 @@ public:
   vtkSetClampMacro(IrradianceMemoryMB, double, 0.001, 1.0e6);
   vtkGetMacro(IrradianceMemoryMB, double);
 
+  /**
+   * GPU memory in MB for the irradiance of earlier inputs, kept so that data
+   * coming back (the steps of a series on its second loop, with ParaView's
+   * animation caching) costs a copy instead of an update
+   * (vtkIrradianceStepCache). 0 (the default) keeps none. Not used for a
+   * piece of a volume in pieces.
+   */
+  vtkSetClampMacro(IrradianceCacheMB, double, 0.0, 1.0e6);
+  vtkGetMacro(IrradianceCacheMB, double);
+
   /// Irradiance resolution as a fraction of the data's (0 < x <= 1); 0 (the
   /// default) chooses it from the memory budget, the screen and the error
   /// probe (IrradianceErrorBound).
@@ -254,6 +264,10 @@ public:
   vtkGetMacro(NumberOfUpdatedLights, int);
   /// Interactive frames that kept a stale irradiance (InteractiveIrradiance).
   vtkGetMacro(DeferredIrradianceCount, int);
+  /// Updates served from the irradiance of an earlier input (IrradianceCacheMB),
+  /// and the memory those copies hold now.
+  vtkGetMacro(IrradianceCacheHitCount, int);
+  size_t GetIrradianceCacheBytes();
   /// Whether the last render was interactive (allocated render time < 1 s).
   vtkGetMacro(LastRenderInteractive, bool);
   /// The irradiance (and diffusion) resolution in use, and why it was chosen.
@@ -369,6 +383,8 @@ protected:
   int NumberOfShadedLights = 0;
   int NumberOfUpdatedLights = 0;
   int DeferredIrradianceCount = 0;
+  int IrradianceCacheHitCount = 0;
+  double IrradianceCacheMB = 0.0;
   bool LastRenderInteractive = false;
   bool MultiMaterialActive = false;
   bool PartitionsRequested = false;

@@ -200,6 +200,10 @@ void vtkPVMultiMaterialVolumeRepresentation::UpdateMapperParameters()
   mapper->SetExponentialDiffusion(this->ExponentialDiffusion);
   mapper->SetPieceIrradianceOnly(this->PieceIrradianceOnly);
   mapper->SetLightDirectionTolerance(this->LightDirectionTolerance);
+  // Earlier steps come back as the same data objects only from the view's
+  // animation cache; without it every step is new data.
+  auto* view = vtkPVView::SafeDownCast(this->GetView());
+  mapper->SetIrradianceCacheMB(view && view->GetUseCache() ? this->IrradianceCacheMB : 0.0);
 }
 
 //------------------------------------------------------------------------------
@@ -231,6 +235,7 @@ vtkPVMMVSetter(PiecewiseShadowSlices, int);
 vtkPVMMVSetter(ExponentialDiffusion, bool);
 vtkPVMMVSetter(PieceIrradianceOnly, bool);
 vtkPVMMVSetter(LightDirectionTolerance, double);
+vtkPVMMVSetter(IrradianceCacheMB, double);
 vtkPVMMVSetter(ReflectionSource, int);
 vtkPVMMVSetter(ReflectionVisibility, int);
 vtkPVMMVSetter(LightFalloff, int);
@@ -271,6 +276,12 @@ int vtkPVMultiMaterialVolumeRepresentation::GetDeferredIrradianceCount()
 {
   auto* mapper = this->GetMultiMaterialMapper();
   return mapper ? mapper->GetDeferredIrradianceCount() : 0;
+}
+
+int vtkPVMultiMaterialVolumeRepresentation::GetIrradianceCacheHitCount()
+{
+  auto* mapper = this->GetMultiMaterialMapper();
+  return mapper ? mapper->GetIrradianceCacheHitCount() : 0;
 }
 
 double vtkPVMultiMaterialVolumeRepresentation::GetLastIrradianceSeconds()
@@ -472,6 +483,7 @@ void vtkPVMultiMaterialVolumeRepresentation::PrintSelf(ostream& os, vtkIndent in
   os << indent << "InteractiveIrradiance: " << this->InteractiveIrradiance << "\n";
   os << indent << "ShadowEstimation: " << this->ShadowEstimation << "\n";
   os << indent << "PieceIrradianceOnly: " << this->PieceIrradianceOnly << "\n";
+  os << indent << "IrradianceCacheMB: " << this->IrradianceCacheMB << "\n";
   os << indent << "PiecewiseShadowSlices: " << this->PiecewiseShadowSlices << "\n";
   os << indent << "ExponentialDiffusion: " << this->ExponentialDiffusion << "\n";
   os << indent << "LightDirectionTolerance: " << this->LightDirectionTolerance << "\n";

@@ -98,6 +98,9 @@ public:
   /// default), or the whole global grid (off), vtkMultiMaterialVolumeMapper.
   void SetPieceIrradianceOnly(bool pieceOnly);
   void SetLightDirectionTolerance(double degrees);
+  /// GPU memory for the irradiance of earlier time steps, used while the
+  /// view caches them (Cache Geometry For Animation); otherwise none.
+  void SetIrradianceCacheMB(double megabytes);
   void SetReflectionSource(int source);
   void SetReflectionVisibility(int visibility);
   ///@}
@@ -116,6 +119,7 @@ public:
   int GetNumberOfShadedLights();
   int GetMultiMaterialActive();
   int GetDeferredIrradianceCount();
+  int GetIrradianceCacheHitCount();
   double GetLastIrradianceSeconds();
   /// Voxels x lights the last irradiance update cast shadow rays from.
   double GetLastEstimatedIrradianceVoxels();
@@ -188,6 +192,7 @@ private:
   bool ExponentialDiffusion = mmv::DefaultExponentialDiffusion;
   bool PieceIrradianceOnly = true;
   double LightDirectionTolerance = mmv::DefaultLightDirectionToleranceDegrees;
+  double IrradianceCacheMB = 1024.0;
   int ReflectionSource = 0;     // mmv::ReflectEnvironmentTexture
   int ReflectionVisibility = 3; // mmv::AutomaticReflectionVisibility (the proxy's default)
   int LightFalloff = 0;

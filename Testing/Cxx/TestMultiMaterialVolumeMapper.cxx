@@ -20,6 +20,8 @@
 #include "vtkMultiMaterialRenderPass.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLRenderPass.h"
+#include "vtkPointData.h"
+#include "vtkDataArray.h"
 #include "vtkRenderer.h"
 #include "vtk_glew.h"
 
@@ -841,6 +843,113 @@ TEST(MultiMaterialVolumeMapper, AStepOutsideTheOpacityDrawsTheBackgroundWithoutA
   scene.Mapper->SetInputData(mmvtest::MakeVolume(Dims, MovedBlob));
   scene.Window->Render();
   EXPECT_EQ(scene.Mapper->GetIrradianceUpdateCount(), updates + 1);
+}
+
+TEST(MultiMaterialVolumeMapper, KeptStepsComeBackWithoutAnUpdate)
+{
+  // Three steps of a series on one grid, each its own data object (as
+  // ParaView's animation cache hands them back), with scattering so the
+  // copies include diffused light.
+  ProbeScene scene(SmoothBlob, 0.3);
+  scene.Materials->AddNode(1.0, 0.1, 0.9, 0.0, 1.0, 1.0, 8.0, 0.0);
+  scene.Mapper->MultipleScatteringOn();
+  scene.Mapper->SetIrradianceCacheMB(64.0);
+  const std::function<float(int, int, int)> values[] = { SmoothBlob, MovedBlob,
+    [](int i, int j, int k) { return 0.5f * SmoothBlob(i, j - 3, k); } };
+  std::vector<vtkSmartPointer<vtkImageData>> steps;
+  for (const auto& value : values)
+  {
+    steps.push_back(mmvtest::MakeVolume(Dims, value));
+  }
+  const auto show = [&scene, &steps](size_t k) {
+    scene.Mapper->SetInputData(steps[k]);
+    scene.Window->Render();
+  };
+  std::vector<std::vector<unsigned char>> first;
+  for (size_t k = 0; k < steps.size(); ++k)
+  {
+    const int updates = scene.Mapper->GetIrradianceUpdateCount();
+    show(k);
+    EXPECT_EQ(scene.Mapper->GetIrradianceUpdateCount(), updates + 1) << "first loop, step " << k;
+    first.push_back(scene.Pixels());
+  }
+  EXPECT_EQ(scene.Mapper->GetIrradianceCacheHitCount(), 0);
+  // Five light-kit lights: an RGBA16 and an R16 texture, 10 bytes a voxel.
+  int dims[3];
+  scene.Mapper->GetIrradianceDimensions(dims);
+  const size_t entry = 10u * static_cast<size_t>(dims[0]) * dims[1] * dims[2];
+  EXPECT_EQ(scene.Mapper->GetIrradianceCacheBytes(), 3 * entry);
+
+  // The second loop: copies, not updates, and the very same images.
+  const int updates = scene.Mapper->GetIrradianceUpdateCount();
+  for (size_t k = 0; k < steps.size(); ++k)
+  {
+    show(k);
+    EXPECT_EQ(scene.Mapper->GetIrradianceCacheHitCount(), static_cast<int>(k + 1));
+    EXPECT_EQ(ImagePSNR(scene.Pixels(), first[k]), INFINITY) << "second loop, step " << k;
+  }
+  EXPECT_EQ(scene.Mapper->GetIrradianceUpdateCount(), updates);
+
+  // Room for two and a half entries: the least recently used step (0) goes
+  // first and is recomputed; step 2 is still there.
+  const double mib = 1048576.0;
+  scene.Mapper->SetIrradianceCacheMB(2.5 * entry / mib);
+  show(0);
+  EXPECT_EQ(scene.Mapper->GetIrradianceUpdateCount(), updates + 1);
+  EXPECT_EQ(ImagePSNR(scene.Pixels(), first[0]), INFINITY);
+  EXPECT_EQ(scene.Mapper->GetIrradianceCacheBytes(), 2 * entry);
+  show(2);
+  EXPECT_EQ(scene.Mapper->GetIrradianceUpdateCount(), updates + 1);
+  EXPECT_EQ(scene.Mapper->GetIrradianceCacheHitCount(), 4);
+
+  // The pass last computed step 0 but holds step 2's copy; with step 0's
+  // entry dropped, step 0 comes back through a full update, not through
+  // the pass's stale record of its textures.
+  scene.Mapper->SetIrradianceCacheMB(1.5 * entry / mib);
+  show(0);
+  EXPECT_EQ(scene.Mapper->GetIrradianceUpdateCount(), updates + 2);
+  EXPECT_EQ(ImagePSNR(scene.Pixels(), first[0]), INFINITY);
+
+  // What the copies depend on: new values in the same array, then moved
+  // lights, are updates whose images equal fresh renders.
+  scene.Mapper->SetIrradianceCacheMB(64.0);
+  show(1);
+  show(2);
+  const auto expectFresh = [&scene](const std::function<float(int, int, int)>& value,
+                             const char* what) {
+    ProbeScene fresh(value, 0.3);
+    fresh.Materials->AddNode(1.0, 0.1, 0.9, 0.0, 1.0, 1.0, 8.0, 0.0);
+    fresh.Mapper->MultipleScatteringOn();
+    fresh.Renderer->GetActiveCamera()->DeepCopy(scene.Renderer->GetActiveCamera());
+    fresh.Renderer->ResetCameraClippingRange();
+    scene.Renderer->ResetCameraClippingRange();
+    fresh.Window->Render();
+    scene.Window->Render();
+    EXPECT_EQ(ImagePSNR(scene.Pixels(), fresh.Pixels()), INFINITY) << what;
+  };
+  const int before = scene.Mapper->GetIrradianceUpdateCount();
+  const int hits = scene.Mapper->GetIrradianceCacheHitCount();
+  vtkDataArray* array = steps[1]->GetPointData()->GetScalars();
+  for (vtkIdType t = 0; t < array->GetNumberOfTuples(); ++t)
+  {
+    array->SetTuple1(t, 0.8 * array->GetTuple1(t));
+  }
+  array->Modified();
+  show(1);
+  expectFresh([](int i, int j, int k) { return 0.8f * MovedBlob(i, j, k); }, "new values");
+  scene.Renderer->GetActiveCamera()->Azimuth(40.0);
+  show(2);
+  expectFresh(values[2], "moved lights");
+  EXPECT_EQ(scene.Mapper->GetIrradianceUpdateCount(), before + 2);
+  EXPECT_EQ(scene.Mapper->GetIrradianceCacheHitCount(), hits);
+  scene.Opacity->AddPoint(1.0, 0.35);
+  show(2);
+  EXPECT_EQ(scene.Mapper->GetIrradianceUpdateCount(), before + 3);
+  EXPECT_EQ(scene.Mapper->GetIrradianceCacheHitCount(), hits);
+  // No budget, no copies.
+  scene.Mapper->SetIrradianceCacheMB(0.0);
+  show(2);
+  EXPECT_EQ(scene.Mapper->GetIrradianceCacheBytes(), 0u);
 }
 
 TEST(MultiMaterialVolumeMapper, KeptScratchGivesTheImagesOfFreshScratch)

@@ -1,0 +1,107 @@
+/**
+ * @class   vtkIrradianceStepCache
+ * @brief   The irradiance of earlier inputs (the steps of a time series),
+ *          kept on the GPU so that data coming back costs a copy, not an
+ *          update.
+ *
+ * ParaView's animation caching keeps each time step's data object, so the
+ * second loop through a series hands the mapper the same scalar arrays
+ * again. An entry holds copies of the irradiance (and tint) textures for one
+ * input and everything the irradiance depends on; a later frame with the
+ * same key gets them copied back into the pass instead of recomputing.
+ * Entries beyond the memory budget are dropped, least recently used first.
+ *
+ * The key names the data by its scalar array and that array's modification
+ * time: a modified or new array never matches (modification times only
+ * grow), and the same array on another geometry is another key.
+ */
+#ifndef vtkIrradianceStepCache_h
+#define vtkIrradianceStepCache_h
+
+#include "vtkIrradianceInputCache.h"      // VolumeKey
+#include "vtkMultiMaterialLightModel.h"   // LightSource
+#include "vtkMultiMaterialVolumeModule.h" // export macro
+#include "vtkSmartPointer.h"              // entries' textures
+#include "vtkType.h"                      // vtkMTimeType
+
+#include <cstddef>
+#include <list>
+#include <vector>
+
+class vtkDataArray;
+class vtkImageData;
+class vtkIrradianceVolumePass;
+class vtkOpenGLRenderWindow;
+class vtkTextureObject;
+class vtkWindow;
+
+class VTKMULTIMATERIALVOLUME_EXPORT vtkIrradianceStepCache
+{
+public:
+  struct Key
+  {
+    /// With DataTime and MaterialVersion 0: the data and the materials are
+    /// named by the fields below.
+    vtkIrradianceInputCache::VolumeKey Volume;
+    vtkMTimeType MaterialsTime = 0;
+    const void* Scalars = nullptr;
+    vtkMTimeType ScalarsTime = 0;
+    int DataDimensions[3] = { 0, 0, 0 };
+    double Origin[3] = { 0.0, 0.0, 0.0 };
+    double Spacing[3] = { 0.0, 0.0, 0.0 };
+    int IrradianceDimensions[3] = { 0, 0, 0 };
+    std::vector<mmv::LightSource> Lights;
+
+    bool operator==(const Key& o) const;
+  };
+
+  /// The key of `scalars` (point data of `image`) under `volume` and
+  /// materials of modification time `materialsTime`, lit by `lights` on a
+  /// grid of `dims`.
+  static Key MakeKey(const vtkIrradianceInputCache::VolumeKey& volume,
+    vtkMTimeType materialsTime, vtkImageData* image, vtkDataArray* scalars,
+    const std::vector<mmv::LightSource>& lights, const int dims[3]);
+
+  /// Copies the entry of `key`, if there is one, into `pass`'s textures
+  /// (when they have its sizes) and has the pass recompute every light at
+  /// its next update; `computed` gets the light placements the copy holds.
+  /// False: no such entry, or the pass's textures have other sizes.
+  bool Restore(vtkOpenGLRenderWindow* context, const Key& key, vtkIrradianceVolumePass* pass,
+    std::vector<mmv::LightSource>& computed);
+
+  /// Keeps a copy of `pass`'s textures, which hold the light placements
+  /// `computed`, under `key` if it fits in `budgetBytes`, dropping the least
+  /// recently used entries to make room. False: nothing kept (no budget,
+  /// too large, or no copy support).
+  bool Store(vtkOpenGLRenderWindow* context, const Key& key, vtkIrradianceVolumePass* pass,
+    const std::vector<mmv::LightSource>& computed, size_t budgetBytes);
+
+  bool Contains(const Key& key) const;
+
+  /// Drops entries until the rest fit in `budgetBytes` (0: all).
+  void Trim(size_t budgetBytes);
+
+  size_t GetBytes() const { return this->Bytes; }
+  int GetNumberOfEntries() const { return static_cast<int>(this->Entries.size()); }
+
+  /// Whether this context can copy textures (glCopyImageSubData, OpenGL 4.3).
+  static bool CanCopy();
+
+  void ReleaseGraphicsResources(vtkWindow* window);
+
+private:
+  struct Entry
+  {
+    Key EntryKey;
+    std::vector<vtkSmartPointer<vtkTextureObject>> Textures; // irradiance, then tints
+    std::vector<mmv::LightSource> ComputedLights;
+    size_t Bytes = 0;
+  };
+  static std::vector<vtkTextureObject*> PassTextures(vtkIrradianceVolumePass* pass);
+  void Drop(std::list<Entry>::iterator entry);
+
+  std::list<Entry> Entries; // most recently used first
+  size_t Bytes = 0;
+};
+
+#endif
