@@ -83,6 +83,18 @@ bool vtkIrradianceStepCache::Key::operator==(const Key& o) const
     this->Lights == o.Lights;
 }
 
+bool vtkIrradianceStepCache::Key::SameLighting(const Key& o) const
+{
+  // The range is the step's own (its finite data range).
+  vtkIrradianceInputCache::VolumeKey a = this->Volume;
+  vtkIrradianceInputCache::VolumeKey b = o.Volume;
+  a.Range[0] = a.Range[1] = b.Range[0] = b.Range[1] = 0.0;
+  return a == b && this->MaterialsTime == o.MaterialsTime &&
+    std::equal(this->IrradianceDimensions, this->IrradianceDimensions + 3,
+      o.IrradianceDimensions) &&
+    this->Lights == o.Lights;
+}
+
 vtkIrradianceStepCache::Key vtkIrradianceStepCache::MakeKey(
   const vtkIrradianceInputCache::VolumeKey& volume, vtkMTimeType materialsTime,
   vtkImageData* image, vtkDataArray* scalars, const std::vector<mmv::LightSource>& lights,
@@ -169,11 +181,14 @@ bool vtkIrradianceStepCache::Store(vtkOpenGLRenderWindow* context, const Key& ke
   vtkIrradianceVolumePass* pass, const std::vector<mmv::LightSource>& computed,
   size_t budgetBytes)
 {
-  auto old = std::find_if(this->Entries.begin(), this->Entries.end(),
-    [&key](const Entry& e) { return e.EntryKey == key; });
-  if (old != this->Entries.end())
+  for (auto entry = this->Entries.begin(); entry != this->Entries.end();)
   {
-    this->Drop(old);
+    auto next = std::next(entry);
+    if (entry->EntryKey == key || !entry->EntryKey.SameLighting(key))
+    {
+      this->Drop(entry);
+    }
+    entry = next;
   }
   const std::vector<vtkTextureObject*> sources = PassTextures(pass);
   size_t bytes = 0;

@@ -53,6 +53,9 @@ public:
     std::vector<mmv::LightSource> Lights;
 
     bool operator==(const Key& o) const;
+    /// Lit the same way (everything but the data): keys whose lighting
+    /// differs can never match again, as modification times only grow.
+    bool SameLighting(const Key& o) const;
   };
 
   /// The key of `scalars` (point data of `image`) under `volume` and
@@ -70,8 +73,8 @@ public:
     std::vector<mmv::LightSource>& computed);
 
   /// Keeps a copy of `pass`'s textures, which hold the light placements
-  /// `computed`, under `key` if it fits in `budgetBytes`, dropping the least
-  /// recently used entries to make room. False: nothing kept (no budget,
+  /// `computed`, under `key` if it fits in `budgetBytes`, dropping the
+  /// entries lit otherwise, then the least recently used to make room. False: nothing kept (no budget,
   /// too large, or no copy support).
   bool Store(vtkOpenGLRenderWindow* context, const Key& key, vtkIrradianceVolumePass* pass,
     const std::vector<mmv::LightSource>& computed, size_t budgetBytes);

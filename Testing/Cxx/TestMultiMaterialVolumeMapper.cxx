@@ -29,6 +29,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <unistd.h>
 #include <functional>
 #include <initializer_list>
 #include <string>
@@ -950,6 +951,60 @@ TEST(MultiMaterialVolumeMapper, KeptStepsComeBackWithoutAnUpdate)
   scene.Mapper->SetIrradianceCacheMB(0.0);
   show(2);
   EXPECT_EQ(scene.Mapper->GetIrradianceCacheBytes(), 0u);
+}
+
+namespace
+{
+/// The process's resident memory in bytes (Linux).
+double ResidentBytes()
+{
+  long pages = 0;
+  long resident = 0;
+  if (FILE* statm = std::fopen("/proc/self/statm", "r"))
+  {
+    if (std::fscanf(statm, "%ld %ld", &pages, &resident) != 2)
+    {
+      resident = 0;
+    }
+    std::fclose(statm);
+  }
+  return static_cast<double>(resident) * sysconf(_SC_PAGESIZE);
+}
+}
+
+TEST(MultiMaterialVolumeMapper, AnOpacityEditEveryFrameKeepsTheMemoryFlat)
+{
+  // 100 frames, each after an opacity edit (an update each), with time
+  // steps being kept: the GPU memory stays what the first frame allocated,
+  // the kept copies hold only the current lighting's step, and the process
+  // does not grow.
+  ProbeScene scene(SmoothBlob, 0.3);
+  scene.Mapper->SetIrradianceCacheMB(64.0);
+  scene.Window->Render();
+  const vtkIdType memory = scene.Mapper->GetMultiMaterialMemoryBytes();
+  int dims[3];
+  scene.Mapper->GetIrradianceDimensions(dims);
+  const size_t entry = 10u * static_cast<size_t>(dims[0]) * dims[1] * dims[2];
+  double settled = 0.0;
+  const int updates = scene.Mapper->GetIrradianceUpdateCount();
+  for (int frame = 1; frame <= 100; ++frame)
+  {
+    scene.Opacity->AddPoint(1.0, frame % 2 ? 0.31 : 0.3);
+    scene.Window->Render();
+    if (frame == 10)
+    {
+      settled = ResidentBytes();
+    }
+  }
+  EXPECT_EQ(scene.Mapper->GetIrradianceUpdateCount(), updates + 100);
+  EXPECT_EQ(scene.Mapper->GetMultiMaterialMemoryBytes(), memory);
+  EXPECT_EQ(scene.Mapper->GetIrradianceCacheBytes(), entry);
+  // A leak of the smallest per-update allocation (a 256 x 256 pre-integration
+  // table, 1 MB) would add 90 MB over the last 90 frames.
+  const double grown = ResidentBytes() - settled;
+  std::printf("resident growth over 90 updates: %.2f MB\n", grown / 1048576.0);
+  EXPECT_GT(settled, 0.0);
+  EXPECT_LT(grown, 16.0 * 1048576.0) << grown / 1048576.0 << " MB";
 }
 
 TEST(MultiMaterialVolumeMapper, KeptScratchGivesTheImagesOfFreshScratch)
