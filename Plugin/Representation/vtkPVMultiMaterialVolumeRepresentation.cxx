@@ -174,6 +174,23 @@ void vtkPVMultiMaterialVolumeRepresentation::UpdateMapperParameters()
     this->PresetRange[1] = 0.0;
   }
 
+  // Vectors as Volume draws them: vtkImageVolumeRepresentation hands the colour
+  // map's Magnitude / component to its mapper when components are independent
+  // (MapScalars on); dependent ones (RGBA, MapScalars off) are not reduced,
+  // and render with VTK's shading.
+  vtkColorTransferFunction* colors = this->Property->GetRGBTransferFunction(0);
+  const bool independent = this->Property->GetIndependentComponents() != 0;
+  const int vectorMode = independent && colors ? colors->GetVectorMode() : -1;
+  // vtkScalarsToColors::RGBCOLORS (2) has no single value to shade.
+  mapper->SetVectorMode(vectorMode == vtkScalarsToColors::MAGNITUDE ||
+      vectorMode == vtkScalarsToColors::COMPONENT
+    ? vectorMode
+    : mmv::VectorModeDisabled);
+  if (independent && colors && colors->GetVectorComponent() >= 0)
+  {
+    mapper->SetVectorComponent(colors->GetVectorComponent());
+  }
+
   // vtkSetMacro only bumps the mapper's MTime on a real change, so setting
   // these every frame costs nothing.
   mapper->SetIrradianceMemoryMB(this->IrradianceMemoryMB);
