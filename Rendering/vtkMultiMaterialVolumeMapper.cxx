@@ -122,6 +122,7 @@ public:
   int ReducedMode = mmv::VectorModeDisabled;
   int ReducedComponent = -1;
   std::string LastVectorError; // reported once until it changes
+  int DrawnComponents = 0;      // of the scalars the ray caster drew last
 
   void SetUniforms(vtkShaderProgram* program)
   {
@@ -332,7 +333,7 @@ void vtkMultiMaterialVolumeMapper::SetVectorComponent(int component)
 
 void vtkMultiMaterialVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
 {
-  if (!this->SelectVectorScalars())
+  if (!this->SelectVectorScalars(ren))
   {
     return;
   }
@@ -364,7 +365,7 @@ bool ReplaceArray(vtkDataSetAttributes* attributes, vtkDataArray* current, vtkDa
 }
 }
 
-bool vtkMultiMaterialVolumeMapper::SelectVectorScalars()
+bool vtkMultiMaterialVolumeMapper::SelectVectorScalars(vtkRenderer* ren)
 {
   vtkInternals& in = *this->Internals;
   vtkDataSet* input = this->GetInput();
@@ -435,11 +436,24 @@ bool vtkMultiMaterialVolumeMapper::SelectVectorScalars()
     : static_cast<vtkDataSetAttributes*>(copy->GetPointData());
   if (!ReplaceArray(attributes, current, wanted))
   {
-    vtkErrorMacro("cannot select a vector's " << (this->VectorMode == mmv::VectorModeMagnitude ? "magnitude" : "component")
-                                              << " of an unnamed array that is not the active scalars; "
-                                                 "name the array; not rendering the volume");
+    vtkErrorMacro("cannot select a vector's "
+      << (this->VectorMode == mmv::VectorModeMagnitude ? "magnitude" : "component")
+      << " of an unnamed array that is not the active scalars; name the array; not rendering "
+         "the volume");
     return false;
   }
+  // VTK 9.2's ray caster keeps its transfer-function tables per component of
+  // the first scalars it drew and crashes (vtkVolumeInputHelper::
+  // RefreshTransferFunction) when the scalars of the same input gain
+  // components: start its resources afresh (DataInputs.
+  // SwitchingFromAScalarToAVectorArrayDoesNotCrash).
+  const int components = wanted->GetNumberOfComponents();
+  if (in.DrawnComponents != 0 && components != in.DrawnComponents && ren &&
+    ren->GetRenderWindow())
+  {
+    this->ReleaseGraphicsResources(ren->GetRenderWindow());
+  }
+  in.DrawnComponents = components;
   return true;
 }
 

@@ -419,7 +419,7 @@ private:
   bool PrepareMultiMaterial(vtkRenderer* ren, vtkVolume* vol);
   // Puts the array VectorMode selects into the ray caster's copy of the
   // input; false (with an error) when it cannot, and nothing is drawn.
-  bool SelectVectorScalars();
+  bool SelectVectorScalars(vtkRenderer* ren);
   bool UpdateSegmentTables(
     vtkOpenGLRenderWindow* context, vtkVolume* vol, vtkImageData* image, const double range[2]);
   bool UpdateGradient(vtkOpenGLRenderWindow* context, vtkImageData* image,
