@@ -393,6 +393,7 @@ TEST(BadInput, CellDataAreShadedWithMaterials)
 {
   auto image = vtkSmartPointer<vtkImageData>::New();
   image->SetDimensions(17, 17, 17);
+  image->SetSpacing(2.0, 2.0, 2.0); // the scene frames 0..32
   vtkNew<vtkFloatArray> values;
   values->SetNumberOfTuples(16 * 16 * 16);
   for (vtkIdType c = 0; c < values->GetNumberOfTuples(); ++c)
