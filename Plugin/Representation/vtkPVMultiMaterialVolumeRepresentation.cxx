@@ -18,8 +18,11 @@
 #include "vtkIrradianceVolumePass.h"
 #include "vtkMultiMaterialVolumeMapper.h"
 #include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkVolumeInputScalars.h"
 #include "vtkVolumeProperty.h"
 
+#include <algorithm>
 #include <sstream>
 
 vtkStandardNewMacro(vtkPVMultiMaterialVolumeRepresentation);
@@ -174,22 +177,9 @@ void vtkPVMultiMaterialVolumeRepresentation::UpdateMapperParameters()
     this->PresetRange[1] = 0.0;
   }
 
-  // Vectors as Volume draws them: vtkImageVolumeRepresentation hands the colour
-  // map's Magnitude / component to its mapper when components are independent
-  // (MapScalars on); dependent ones (RGBA, MapScalars off) are not reduced,
-  // and render with VTK's shading.
-  vtkColorTransferFunction* colors = this->Property->GetRGBTransferFunction(0);
-  const bool independent = this->Property->GetIndependentComponents() != 0;
-  const int vectorMode = independent && colors ? colors->GetVectorMode() : -1;
-  // vtkScalarsToColors::RGBCOLORS (2) has no single value to shade.
-  mapper->SetVectorMode(vectorMode == vtkScalarsToColors::MAGNITUDE ||
-      vectorMode == vtkScalarsToColors::COMPONENT
-    ? vectorMode
-    : mmv::VectorModeDisabled);
-  if (independent && colors && colors->GetVectorComponent() >= 0)
-  {
-    mapper->SetVectorComponent(colors->GetVectorComponent());
-  }
+  int component = 0;
+  mapper->SetVectorMode(this->MapperVectorMode(component));
+  mapper->SetVectorComponent(component);
 
   // vtkSetMacro only bumps the mapper's MTime on a real change, so setting
   // these every frame costs nothing.
@@ -217,6 +207,28 @@ void vtkPVMultiMaterialVolumeRepresentation::UpdateMapperParameters()
   mapper->SetExponentialDiffusion(this->ExponentialDiffusion);
   mapper->SetPieceIrradianceOnly(this->PieceIrradianceOnly);
   mapper->SetLightDirectionTolerance(this->LightDirectionTolerance);
+}
+
+//------------------------------------------------------------------------------
+int vtkPVMultiMaterialVolumeRepresentation::MapperVectorMode(int& component)
+{
+  // Vectors as Volume draws them: vtkImageVolumeRepresentation hands the
+  // colour map's Magnitude / component to its mapper when components are
+  // independent (MapScalars on); dependent ones (RGBA, MapScalars off) are
+  // not reduced, and render with VTK's shading.
+  component = 0;
+  vtkColorTransferFunction* colors =
+    this->Property ? this->Property->GetRGBTransferFunction(0) : nullptr;
+  if (!colors || !this->Property->GetIndependentComponents())
+  {
+    return mmv::VectorModeDisabled;
+  }
+  component = std::max(colors->GetVectorComponent(), 0);
+  const int mode = colors->GetVectorMode();
+  // vtkScalarsToColors::RGBCOLORS has no single value to shade.
+  return mode == vtkScalarsToColors::MAGNITUDE || mode == vtkScalarsToColors::COMPONENT
+    ? mode
+    : mmv::VectorModeDisabled;
 }
 
 //------------------------------------------------------------------------------
@@ -424,8 +436,10 @@ void vtkPVMultiMaterialVolumeRepresentation::UpdateGlobalVolume()
   {
     array = info->Get(vtkDataObject::FIELD_NAME());
   }
+  int component = 0;
+  const int vectorMode = this->MapperVectorMode(component);
   const std::vector<double> key = { double(this->DataGeneration), this->IrradianceMemoryMB,
-    this->IrradianceScale };
+    this->IrradianceScale, double(vectorMode), double(component) };
   if (key == this->GlobalKey && array == this->GlobalArray)
   {
     return;
@@ -438,6 +452,21 @@ void vtkPVMultiMaterialVolumeRepresentation::UpdateGlobalVolume()
   settings.Scale = this->IrradianceScale;
   std::string error;
   auto* piece = vtkImageData::SafeDownCast(this->Cache);
+  // A vector is lit as the mapper reduces it (VectorMode), from the colour
+  // map's settings, which every rank shares.
+  vtkDataArray* vectors =
+    piece && !array.empty() ? piece->GetPointData()->GetArray(array.c_str()) : nullptr;
+  vtkNew<vtkImageData> reducedPiece;
+  if (vectors && vectors->GetNumberOfComponents() > 1 && vectorMode != mmv::VectorModeDisabled)
+  {
+    if (vtkSmartPointer<vtkDataArray> reduced =
+          mmv::MakeVectorScalars(vectors, vectorMode, component, nullptr))
+    {
+      reducedPiece->ShallowCopy(piece);
+      reducedPiece->GetPointData()->AddArray(reduced); // replaces the vector
+      piece = reducedPiece;
+    }
+  }
   const bool valid = mmv::ExchangeGlobalPrefilter(controller, piece,
     array.empty() ? nullptr : array.c_str(), settings, this->GlobalVolume, error);
   mapper->SetGlobalPrefilteredVolume(valid ? this->GlobalVolume.Get() : nullptr);

@@ -153,6 +153,9 @@ private:
   void operator=(const vtkPVMultiMaterialVolumeRepresentation&) = delete;
 
   bool UsesPreset() const;
+  // The mapper's VectorMode (and `component`) from the colour map, as
+  // vtkImageVolumeRepresentation sets its mapper's.
+  int MapperVectorMode(int& component);
   // Collective (every rank, same order): combines the pieces into
   // GlobalVolume when the data or the settings it depends on changed.
   void UpdateGlobalVolume();
