@@ -129,6 +129,17 @@ public:
   const char* GetGlobalIrradianceInfo();
   ///@}
 
+  /**
+   * Data other than image data (unstructured, structured, rectilinear grids
+   * and polydata) are resampled to an image of these many points over their
+   * bounds, as Volume's "Resample To Image" does (default 128^3, ParaView's
+   * SamplingDimensions); in parallel with vtkPResampleToImage. Below 2 on an
+   * axis: an error, the old value is kept.
+   */
+  void SetSamplingDimensions(int x, int y, int z);
+  /// What the last resampling made and what it cost; empty for image data.
+  const char* GetResampleInfo() { return this->ResampleInfo.c_str(); }
+
   vtkMultiMaterialVolumeMapper* GetMultiMaterialMapper();
 
   /// REQUEST_UPDATE (on every rank at once) also combines the pieces for
@@ -147,6 +158,9 @@ protected:
   /// the global irradiance exchange take one image per rank.
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  // Resamples `dataset` to image data and draws that.
+  int RequestResampledData(vtkInformation* request, vtkInformation* inInfo, vtkDataSet* dataset,
+    vtkInformationVector* outputVector);
 
 private:
   vtkPVMultiMaterialVolumeRepresentation(const vtkPVMultiMaterialVolumeRepresentation&) = delete;
@@ -204,6 +218,10 @@ private:
   std::string GlobalArray;
   std::string GlobalInfo;
   std::string StagesInfo;
+
+  int SamplingDimensions[3] = { 128, 128, 128 };
+  bool Resampled = false; // the data drawn are a resampled image
+  std::string ResampleInfo;
 };
 
 #endif

@@ -40,6 +40,8 @@ def shot(view, name):
 
 
 # --- First use ---------------------------------------------------------------
+# The camera is set once; without this the first render would reset it.
+simple._DisableFirstRenderCameraReset()
 wavelet = mmv.make_volume()
 view = mmv.make_view()
 frame(view)
