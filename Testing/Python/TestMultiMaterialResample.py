@@ -1,7 +1,7 @@
 """Data other than image data in the Multi-Material Volume representation:
-unstructured and structured grids are offered the representation and
-resampled to image data (SamplingDimensions, shared with Volume's) as
-Volume's "Resample To Image" does. Each must be shaded with materials and
+unstructured, structured and rectilinear grids are offered the
+representation and resampled to image data (SamplingDimensions, shared with
+Volume's where Volume has it) as Volume's "Resample To Image" does. Each must be shaded with materials and
 render as the same data resampled by hand with ResampleToImage at the same
 dimensions (PSNR >= 40 dB: the same filter on the same data should give the
 same image), report what the resampling cost, and a grid with no cells must
@@ -54,8 +54,40 @@ def show(source, dims=None):
     return shown
 
 
+# A rectilinear grid with uneven spacing (the UniformGridRepresentation path).
+rectilinear = simple.ProgrammableSource()
+rectilinear.OutputDataSetType = "vtkRectilinearGrid"
+rectilinear.ScriptRequestInformation = """
+executive = self.GetExecutive()
+executive.GetOutputInformation(0).Set(executive.WHOLE_EXTENT(), 0, 20, 0, 20, 0, 20)
+"""
+rectilinear.Script = """
+import math
+from vtkmodules.vtkCommonCore import vtkDoubleArray, vtkFloatArray
+out = self.GetRectilinearGridOutput()
+xs = [-10.0 + 20.0 * (i / 20.0) ** 1.3 for i in range(21)]
+def coordinates():
+    a = vtkDoubleArray()
+    for x in xs:
+        a.InsertNextValue(x)
+    return a
+out.SetDimensions(21, 21, 21)
+out.SetXCoordinates(coordinates())
+out.SetYCoordinates(coordinates())
+out.SetZCoordinates(coordinates())
+values = vtkFloatArray()
+values.SetName("RTData")
+for k in range(21):
+    for j in range(21):
+        for i in range(21):
+            r = math.sqrt(xs[i] ** 2 + xs[j] ** 2 + xs[k] ** 2)
+            values.InsertNextValue(277.0 - 12.0 * r)
+out.GetPointData().AddArray(values)
+"""
+
 for name, grid in (("unstructured", simple.Tetrahedralize(Input=wavelet)),
-                   ("structured", simple.Transform(Input=wavelet))):
+                   ("structured", simple.Transform(Input=wavelet)),
+                   ("rectilinear", rectilinear)):
     shown = show(grid, DIMS)
     checker.check(mmv.REPRESENTATION in shown.GetProperty("Representation").Available,
                   "%s grids are offered %s" % (name, mmv.REPRESENTATION))
