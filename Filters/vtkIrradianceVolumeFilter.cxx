@@ -25,6 +25,7 @@
 #include "vtkShadowSweep.h"
 #include "vtkSmartPointer.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkVolumeInputScalars.h"
 
 #include <algorithm>
 #include <atomic>
@@ -784,11 +785,25 @@ int vtkIrradianceVolumeFilter::RequestData(
       << this->ScalarOpacityUnitDistance << ".");
     return 0;
   }
-  vtkDataArray* scalars = this->GetInputArrayToProcess(0, inputVector);
+  int association = vtkDataObject::FIELD_ASSOCIATION_POINTS;
+  vtkDataArray* scalars = this->GetInputArrayToProcess(0, inputVector, association);
+  vtkSmartPointer<vtkImageData> cellCentres;
+  if (scalars && association == vtkDataObject::FIELD_ASSOCIATION_CELLS)
+  {
+    // As the mapper does: cell values live on the grid of the cell centres.
+    cellCentres = mmv::MakeCellCentreImage(input, scalars);
+    if (!cellCentres)
+    {
+      vtkErrorMacro("The cell scalars need an image with cells along every axis and a value "
+                    "per cell.");
+      return 0;
+    }
+    input = cellCentres;
+  }
   if (!scalars || scalars->GetNumberOfTuples() != input->GetNumberOfPoints() ||
     input->GetNumberOfPoints() == 0)
   {
-    vtkErrorMacro("The input has no point scalars to process.");
+    vtkErrorMacro("The input has no point or cell scalars to process.");
     return 0;
   }
 

@@ -1,6 +1,7 @@
 #include "vtkMultiMaterialInputCheck.h"
 
 #include "vtkDataArray.h"
+#include "vtkGPUVolumeRayCastMapper.h"
 #include "vtkImageData.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkRenderer.h"
@@ -28,8 +29,15 @@ InputCheck CheckMultiMaterialInputs(vtkVolumeMapper* mapper, vtkRenderer* ren, v
     }
     return check;
   }
+  // The ray caster's copy holds what it draws (a vector reduced by VectorMode).
+  vtkDataSet* scalarSource = image;
+  if (auto* gpu = vtkGPUVolumeRayCastMapper::SafeDownCast(mapper))
+  {
+    vtkDataSet* copy = gpu->GetTransformedInput(0);
+    scalarSource = copy && copy->GetNumberOfPoints() == image->GetNumberOfPoints() ? copy : image;
+  }
   int cellFlag = 0;
-  vtkDataArray* scalars = vtkAbstractMapper::GetScalars(image, mapper->GetScalarMode(),
+  vtkDataArray* scalars = vtkAbstractMapper::GetScalars(scalarSource, mapper->GetScalarMode(),
     mapper->GetArrayAccessMode(), mapper->GetArrayId(), mapper->GetArrayName(), cellFlag);
   if (!scalars)
   {
@@ -44,15 +52,21 @@ InputCheck CheckMultiMaterialInputs(vtkVolumeMapper* mapper, vtkRenderer* ren, v
     check.Reason = "the input has no points or fewer scalars than points; nothing to shade";
     return check;
   }
-  if (cellFlag)
-  {
-    check.Reason = "multi-material shading needs point scalars (cell scalars given); "
-                   "using VTK's shading";
-    return check;
-  }
   int dataDims[3];
   image->GetDimensions(dataDims);
-  if (dataDims[0] < 2 || dataDims[1] < 2 || dataDims[2] < 2)
+  const bool flat = dataDims[0] < 2 || dataDims[1] < 2 || dataDims[2] < 2;
+  if (cellFlag == 1 && flat)
+  {
+    // VTK's ray caster would upload a texture with no texel along that axis.
+    check.Reason = "cell scalars on an image with a single point along an axis have no "
+                   "volume to render; using VTK's shading";
+    return check;
+  }
+  if (cellFlag != 0 && cellFlag != 1)
+  {
+    return check; // field data: the base class reports it
+  }
+  if (flat)
   {
     // Found by TestBadInput.SingleSliceAnd2DImages: a single slice has no
     // thickness, so seen face-on it integrates to nothing (a black image).
@@ -61,7 +75,9 @@ InputCheck CheckMultiMaterialInputs(vtkVolumeMapper* mapper, vtkRenderer* ren, v
   }
   if (scalars->GetNumberOfComponents() != 1)
   {
-    check.Reason = "multi-material shading needs one-component scalars; using VTK's shading";
+    check.Reason = "multi-material shading needs one-component scalars (for vectors, set the "
+                   "mapper's VectorMode, or colour by Magnitude or a component); using VTK's "
+                   "shading";
     return check;
   }
   if (vol->GetProperty()->GetTransferFunctionMode() != vtkVolumeProperty::TF_1D)
@@ -72,6 +88,7 @@ InputCheck CheckMultiMaterialInputs(vtkVolumeMapper* mapper, vtkRenderer* ren, v
   check.Supported = true;
   check.Image = image;
   check.Scalars = scalars;
+  check.CellData = cellFlag == 1;
   check.Context = context;
   return check;
 }

@@ -4,9 +4,12 @@
  *         materials, and if not, why: one verdict the mapper only reports.
  *
  * Multi-material shading needs composite blending, vtkImageData with as many
- * one-component point scalars as points, a 1D transfer function and an
- * OpenGL render window; anything else is rendered by VTK's own shading
- * (the mapper warns once with the reason).
+ * one-component point or cell scalars as points or cells, a 1D transfer
+ * function and an OpenGL render window; anything else is rendered by VTK's
+ * own shading (the mapper warns once with the reason). Vectors reach it as
+ * one component through the mapper's VectorMode, which puts the reduced
+ * array in the ray caster's copy of the input (GetTransformedInput): the
+ * scalars are read from that copy when there is one.
  */
 #ifndef vtkMultiMaterialInputCheck_h
 #define vtkMultiMaterialInputCheck_h
@@ -36,6 +39,8 @@ struct InputCheck
   /// What passed, when Supported.
   vtkImageData* Image = nullptr;
   vtkDataArray* Scalars = nullptr;
+  /// Whether Scalars are cell data (one value per cell of Image).
+  bool CellData = false;
   vtkOpenGLRenderWindow* Context = nullptr;
 };
 

@@ -84,6 +84,7 @@ void vtkMultiMaterialShadingUniforms::Apply(vtkShaderProgram* program,
   program->SetUniformMatrix3x3("mmv_gradientToObject", const_cast<float*>(this->GradientToObject));
   program->SetUniform3f("mmv_wholeDimensions", this->WholeDimensions);
   program->SetUniform3f("mmv_dataSpacing", this->DataSpacing);
+  program->SetUniformi("mmv_cellData", this->CellData);
 
   const int count = this->Variant.NumberOfLights;
   if (count > 0)

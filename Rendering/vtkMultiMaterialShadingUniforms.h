@@ -51,6 +51,11 @@ public:
   void SetGeometry(vtkImageData* image, const int irradianceDims[3],
     vtkGlobalPrefilteredVolume* global);
 
+  /// Whether the data are cell scalars: the ray caster's texture coordinate
+  /// then spans the cells (texel centres at the cell centres) and the
+  /// gradient and irradiance grids are those of the cell centres.
+  void SetCellData(bool cellData) { this->CellData = cellData ? 1 : 0; }
+
   /// The environment of the reflection term: the renderer's background
   /// colours around the camera's view-up, in object space.
   /// Eq. 17's environment and visibility (null: no reflection this frame).
@@ -78,6 +83,7 @@ private:
   float GradientTexScale[3] = { 1.0f, 1.0f, 1.0f };
   float GradientTexBias[3] = { 0.0f, 0.0f, 0.0f };
   float TableStep = 1.0f;
+  int CellData = 0;
   vtkMultiMaterialReflection* Reflection = nullptr; // owned by the mapper
 };
 

@@ -1,5 +1,6 @@
 #include "vtkMultiMaterialVolumeMapper.h"
 
+#include "vtkCellData.h"
 #include "vtkColorTransferFunction.h"
 #include "vtkDataArray.h"
 #include "vtkGlobalPrefilteredVolume.h"
@@ -25,6 +26,7 @@
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkPiecewiseFunction.h"
+#include "vtkPointData.h"
 #include "vtkPreIntegrationTable.h"
 #include "vtkRenderer.h"
 #include "vtkShaderProgram.h"
@@ -33,6 +35,7 @@
 #include "vtkValueGradient.h"
 #include "vtkVolume.h"
 #include "vtkVolumeBricking.h"
+#include "vtkVolumeInputScalars.h"
 #include "vtkVolumeInputHelper.h"
 #include "vtkVolumeTexture.h"
 #include "vtkVolumeProperty.h"
@@ -41,6 +44,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <set>
 #include <sstream>
 #include <string>
@@ -89,6 +93,36 @@ public:
   vtkNew<vtkMultiMaterialReflection> Reflection; // eq. 17's c_r and visibility
 
   std::set<std::string> Warnings;
+
+  // Cell scalars are lit on the image of the cell centres; rebuilt only when
+  // the input or its scalars change, so the stages' MTime keys hold.
+  vtkSmartPointer<vtkImageData> CellCentres;
+  vtkImageData* CellCentresOf = nullptr;
+  vtkDataArray* CellCentresScalars = nullptr;
+  vtkMTimeType CellCentresTime = 0;
+  vtkImageData* CellCentreImage(vtkImageData* image, vtkDataArray* scalars)
+  {
+    const vtkMTimeType time = std::max(image->GetMTime(), scalars->GetMTime());
+    if (!this->CellCentres || image != this->CellCentresOf ||
+      scalars != this->CellCentresScalars || time != this->CellCentresTime)
+    {
+      this->CellCentres = mmv::MakeCellCentreImage(image, scalars);
+      this->CellCentresOf = image;
+      this->CellCentresScalars = scalars;
+      this->CellCentresTime = time;
+    }
+    return this->CellCentres;
+  }
+
+  // The one-component array VectorMode made of a vector, and what it was
+  // made from.
+  vtkSmartPointer<vtkDataArray> Reduced;
+  vtkDataArray* ReducedFrom = nullptr;
+  vtkMTimeType ReducedTime = 0;
+  int ReducedMode = mmv::VectorModeDisabled;
+  int ReducedComponent = -1;
+  std::string LastVectorError; // reported once until it changes
+  int DrawnComponents = 0;      // of the scalars the ray caster drew last
 
   void SetUniforms(vtkShaderProgram* program)
   {
@@ -287,6 +321,148 @@ bool vtkMultiMaterialVolumeMapper::FitBricksToTextureLimit(vtkRenderer* ren)
 }
 
 //------------------------------------------------------------------------------
+void vtkMultiMaterialVolumeMapper::SetVectorComponent(int component)
+{
+  if (component < 0)
+  {
+    vtkErrorMacro("VectorComponent must be 0 or more (the first component is 0), got "
+      << component << "; keeping " << this->VectorComponent);
+    return;
+  }
+  if (component != this->VectorComponent)
+  {
+    this->VectorComponent = component;
+    this->Modified();
+  }
+}
+
+void vtkMultiMaterialVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
+{
+  if (!this->SelectVectorScalars(ren))
+  {
+    return;
+  }
+  this->Superclass::Render(ren, vol);
+}
+
+namespace
+{
+// Puts `wanted` where `current` is in `attributes` (same name, or the active
+// scalars when unnamed); false when neither finds it.
+bool ReplaceArray(vtkDataSetAttributes* attributes, vtkDataArray* current, vtkDataArray* wanted)
+{
+  if (current == wanted)
+  {
+    return true;
+  }
+  if (current->GetName() && current->GetName()[0] && wanted->GetName() &&
+    strcmp(current->GetName(), wanted->GetName()) == 0)
+  {
+    attributes->AddArray(wanted); // replaces the array of that name, in place
+    return attributes->GetArray(wanted->GetName()) == wanted;
+  }
+  if (attributes->GetScalars() == current)
+  {
+    attributes->SetScalars(wanted);
+    return true;
+  }
+  return false;
+}
+}
+
+bool vtkMultiMaterialVolumeMapper::SelectVectorScalars(vtkRenderer* ren)
+{
+  vtkInternals& in = *this->Internals;
+  vtkDataSet* input = this->GetInput();
+  if (!input || this->GetNumberOfInputConnections(0) < 1)
+  {
+    return true; // the base class reports a missing input
+  }
+  // What ValidateInput would do first, so that the copy holds this data.
+  this->GetInputAlgorithm(0, 0)->Update();
+  input = this->GetInput();
+  int cellFlag = 0;
+  vtkDataArray* original = input ? vtkAbstractMapper::GetScalars(input, this->ScalarMode,
+                                     this->ArrayAccessMode, this->ArrayId, this->ArrayName, cellFlag)
+                                 : nullptr;
+  if (!original || (cellFlag != 0 && cellFlag != 1))
+  {
+    return true; // the base class reports missing or field scalars
+  }
+  vtkDataArray* wanted = original;
+  if (this->VectorMode != mmv::VectorModeDisabled && original->GetNumberOfComponents() > 1)
+  {
+    const vtkMTimeType time = original->GetMTime();
+    if (!in.Reduced || in.ReducedFrom != original || in.ReducedTime != time ||
+      in.ReducedMode != this->VectorMode || in.ReducedComponent != this->VectorComponent)
+    {
+      std::string error;
+      in.Reduced = mmv::MakeVectorScalars(original, this->VectorMode, this->VectorComponent, &error);
+      in.ReducedFrom = original;
+      in.ReducedTime = time;
+      in.ReducedMode = this->VectorMode;
+      in.ReducedComponent = this->VectorComponent;
+      if (!in.Reduced)
+      {
+        if (error != in.LastVectorError)
+        {
+          vtkErrorMacro("VectorComponent " << this->VectorComponent << ": " << error
+                                           << "; not rendering the volume");
+          in.LastVectorError = error;
+        }
+        return false;
+      }
+      in.LastVectorError.clear();
+    }
+    if (!in.Reduced)
+    {
+      return false; // reported when it was made
+    }
+    wanted = in.Reduced;
+  }
+  // The copy VTK draws (made here as ValidateInput would, and kept by it as
+  // long as the input does not change): it gets `wanted` in the vector's
+  // place, or the original back when VectorMode no longer reduces it.
+  this->CloneInputs();
+  vtkDataSet* copy = this->GetTransformedInput(0);
+  if (!copy)
+  {
+    return true;
+  }
+  int copyFlag = 0;
+  vtkDataArray* current = vtkAbstractMapper::GetScalars(copy, this->ScalarMode,
+    this->ArrayAccessMode, this->ArrayId, this->ArrayName, copyFlag);
+  if (!current)
+  {
+    return true;
+  }
+  vtkDataSetAttributes* attributes = copyFlag == 1
+    ? static_cast<vtkDataSetAttributes*>(copy->GetCellData())
+    : static_cast<vtkDataSetAttributes*>(copy->GetPointData());
+  if (!ReplaceArray(attributes, current, wanted))
+  {
+    vtkErrorMacro("cannot select a vector's "
+      << (this->VectorMode == mmv::VectorModeMagnitude ? "magnitude" : "component")
+      << " of an unnamed array that is not the active scalars; name the array; not rendering "
+         "the volume");
+    return false;
+  }
+  // VTK 9.2's ray caster keeps its transfer-function tables per component of
+  // the first scalars it drew and crashes (vtkVolumeInputHelper::
+  // RefreshTransferFunction) when the scalars of the same input gain
+  // components: start its resources afresh (DataInputs.
+  // SwitchingFromAScalarToAVectorArrayDoesNotCrash).
+  const int components = wanted->GetNumberOfComponents();
+  if (in.DrawnComponents != 0 && components != in.DrawnComponents && ren &&
+    ren->GetRenderWindow())
+  {
+    this->ReleaseGraphicsResources(ren->GetRenderWindow());
+  }
+  in.DrawnComponents = components;
+  return true;
+}
+
+//------------------------------------------------------------------------------
 void vtkMultiMaterialVolumeMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
 {
   vtkInternals& in = *this->Internals;
@@ -358,6 +534,23 @@ bool vtkMultiMaterialVolumeMapper::PrepareMultiMaterial(vtkRenderer* ren, vtkVol
     }
     return false;
   }
+  vtkImageData* image = input.Image;
+  if (input.CellData)
+  {
+    if (this->BrickPartitions[0] * this->BrickPartitions[1] * this->BrickPartitions[2] > 1)
+    {
+      this->WarnOnce("cell scalars in bricks (partitions) are not lit with materials; using "
+                     "VTK's shading");
+      return false;
+    }
+    image = this->Internals->CellCentreImage(input.Image, input.Scalars);
+    if (!image)
+    {
+      this->WarnOnce("the cell scalars do not fill the image's cells; using VTK's shading");
+      return false;
+    }
+  }
+  this->Internals->Uniforms.SetCellData(input.CellData);
   double range[2];
   input.Scalars->GetFiniteRange(range, 0);
   if (!(range[1] > range[0]))
@@ -366,8 +559,11 @@ bool vtkMultiMaterialVolumeMapper::PrepareMultiMaterial(vtkRenderer* ren, vtkVol
   }
 
   // 1. Segment tables (pre-integration): only when the TFs or the step change.
+  // From here on the lighting works on `image`: the input, or for cell
+  // scalars the grid of the cell centres (the sampling step follows the
+  // input, as VTK's does).
   if (!this->UpdateSegmentTables(input.Context, vol, input.Image, range) ||
-    !this->UpdateGradient(input.Context, input.Image, input.Scalars, range))
+    !this->UpdateGradient(input.Context, image, input.Scalars, range))
   {
     return false;
   }
@@ -380,14 +576,14 @@ bool vtkMultiMaterialVolumeMapper::PrepareMultiMaterial(vtkRenderer* ren, vtkVol
   // 3. The irradiance volume: only when lights, opacity, materials or data change.
   this->LastRenderInteractive = vol->GetAllocatedRenderTime() < 1.0;
   if (!this->Internals->Lights.empty() &&
-    !this->Internals->Irradiance.Update(this, ren, vol, input.Image, input.Scalars, range,
+    !this->Internals->Irradiance.Update(this, ren, vol, image, input.Scalars, range,
       this->Internals->ActiveGlobal(), this->Internals->Materials, this->Internals->Lights))
   {
     return false;
   }
 
   // 4. The shader variant and the per-frame uniforms.
-  this->UpdateShading(ren, input.Image, worldToObject, range);
+  this->UpdateShading(ren, image, worldToObject, range);
   return true;
 }
 
@@ -593,6 +789,12 @@ void vtkMultiMaterialVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MultipleScattering: " << this->MultipleScattering << "\n";
   os << indent << "ShadowEstimation: " << this->ShadowEstimation << "\n";
   os << indent << "PieceIrradianceOnly: " << this->PieceIrradianceOnly << "\n";
+  os << indent << "VectorMode: "
+     << (this->VectorMode == mmv::VectorModeMagnitude
+            ? "Magnitude"
+            : (this->VectorMode == mmv::VectorModeComponent ? "Component" : "Disabled"))
+     << "\n";
+  os << indent << "VectorComponent: " << this->VectorComponent << "\n";
   os << indent << "PiecewiseShadowSlices: " << this->PiecewiseShadowSlices << "\n";
   os << indent << "ExponentialDiffusion: " << this->ExponentialDiffusion << "\n";
   os << indent << "PreIntegration: " << this->PreIntegration << "\n";

@@ -29,15 +29,22 @@
  * it, with sigma = attenuation * mu), composited front to back with
  * transmittance exp(-int mu).
  *
+ * Cell scalars are lit on the grid of the cell centres, where VTK's ray
+ * caster knows their field (mmv::MakeCellCentreImage); vectors are shaded by
+ * their magnitude or one component (VectorMode, VectorComponent), as
+ * vtkSmartVolumeMapper draws them.
+ *
  * Falls back to the base class (warning once) for what it does not model:
- * several components, cell scalars, blend modes other than composite, and
- * volumes longer than the largest 3D texture (rendered in bricks).
+ * several components without a VectorMode, blend modes other than
+ * composite, cell scalars in bricks, and volumes longer than the largest 3D
+ * texture (rendered in bricks).
  */
 #ifndef vtkMultiMaterialVolumeMapper_h
 #define vtkMultiMaterialVolumeMapper_h
 
 #include "vtkMultiMaterialParameters.h"   // ShadowEstimation
 #include "vtkMultiMaterialVolumeModule.h" // export macro
+#include "vtkVolumeInputScalars.h"         // VectorModes
 #include "vtkOpenGLGPUVolumeRayCastMapper.h"
 
 #include <string> // shader source
@@ -64,6 +71,29 @@ public:
   /// Material parameters by data value; null means the defaults everywhere.
   void SetMaterialTransferFunction(vtkMaterialTransferFunction* materials);
   vtkMaterialTransferFunction* GetMaterialTransferFunction();
+
+  /**
+   * How multi-component scalars are shaded, as vtkSmartVolumeMapper's
+   * VectorMode (ParaView's colour map Magnitude / X / Y / Z):
+   * mmv::VectorModeDisabled (-1, default; several components render with
+   * VTK's shading), mmv::VectorModeMagnitude (0, the Euclidean norm) or
+   * mmv::VectorModeComponent (1, component VectorComponent). The reduced
+   * array replaces the vector in the ray caster's copy of the input, so
+   * VTK's ray cast and the lighting see the same values; one-component
+   * scalars are used as they are in every mode. Out of [-1, 1]: clamped.
+   */
+  vtkSetClampMacro(VectorMode, int, mmv::VectorModeDisabled, mmv::VectorModeComponent);
+  vtkGetMacro(VectorMode, int);
+  void SetVectorModeToMagnitude() { this->SetVectorMode(mmv::VectorModeMagnitude); }
+  void SetVectorModeToComponent() { this->SetVectorMode(mmv::VectorModeComponent); }
+  void SetVectorModeToDisabled() { this->SetVectorMode(mmv::VectorModeDisabled); }
+
+  /// The component VectorModeComponent shades (default 0). A negative value
+  /// is an error (kept as it was); one at or past the array's number of
+  /// components is reported (vtkErrorMacro) at render time and nothing is
+  /// drawn until it is fixed.
+  virtual void SetVectorComponent(int component);
+  vtkGetMacro(VectorComponent, int);
 
   /// Irradiance memory budget in MB (16 bits per light per voxel). Default 64.
   vtkSetClampMacro(IrradianceMemoryMB, double, 0.001, 1.0e6);
@@ -344,6 +374,8 @@ public:
   vtkSetClampMacro(MaxBrickMB, double, 1.0, 1.0e6);
   vtkGetMacro(MaxBrickMB, double);
 
+  /// Reduces a vector (VectorMode) before VTK validates and draws the input.
+  void Render(vtkRenderer* ren, vtkVolume* vol) override;
   void GPURender(vtkRenderer* ren, vtkVolume* vol) override;
   void ReleaseGraphicsResources(vtkWindow* window) override;
   vtkMTimeType GetMTime() override;
@@ -370,6 +402,8 @@ protected:
   int ReflectionSource = 0;     // mmv::ReflectEnvironmentTexture
   int ReflectionVisibility = 3; // mmv::AutomaticReflectionVisibility
   bool PieceIrradianceOnly = true;
+  int VectorMode = mmv::VectorModeDisabled;
+  int VectorComponent = 0;
 
   int PreIntegrationCount = 0;
   int IrradianceUpdateCount = 0;
@@ -399,6 +433,9 @@ private:
   // Validates the inputs and refreshes every cache the frame needs; false
   // means "render with the base class". Its steps follow.
   bool PrepareMultiMaterial(vtkRenderer* ren, vtkVolume* vol);
+  // Puts the array VectorMode selects into the ray caster's copy of the
+  // input; false (with an error) when it cannot, and nothing is drawn.
+  bool SelectVectorScalars(vtkRenderer* ren);
   bool UpdateSegmentTables(
     vtkOpenGLRenderWindow* context, vtkVolume* vol, vtkImageData* image, const double range[2]);
   bool UpdateGradient(vtkOpenGLRenderWindow* context, vtkImageData* image,

@@ -30,6 +30,10 @@ uniform mat4 mmv_physicalToWholeIndex; // object space -> the whole volume's poi
 uniform vec3 mmv_wholeDimensions;      // points of the whole volume
 uniform vec3 mmv_dataSpacing;          // |spacing| along the index axes
 uniform mat3 mmv_gradientToObject;     // texture-coordinate gradient -> object-space gradient
+// Cell scalars (one block only): VTK's texture coordinate spans the cells,
+// texel centres on the cell centres, so it is already the coordinate of the
+// cell-centre grid that the gradient and irradiance textures cover.
+uniform int mmv_cellData;
 #if MMV_NUMBER_OF_LIGHTS > 0
 uniform sampler3D mmv_irradiance0;  // lights 0-3, one per channel
 #if MMV_IRRADIANCE_TEXTURES > 1
@@ -67,8 +71,9 @@ vec3 mmvBlockIndex(vec3 texPos)
 
 float mmvValue(vec3 texPos)
 {
-  // Fetch the point the geometry means (identical to texPos for one block).
-  vec3 fetch = (mmvBlockIndex(texPos) + 0.5) / mmv_blockPoints;
+  // Fetch the point the geometry means (identical to texPos for one block
+  // and for cell scalars).
+  vec3 fetch = mmv_cellData != 0 ? texPos : (mmvBlockIndex(texPos) + 0.5) / mmv_blockPoints;
   return texture3D(in_volume[0], fetch).r * in_volume_scale[0].r + in_volume_bias[0].r;
 }
 
@@ -76,6 +81,10 @@ float mmvValue(vec3 texPos)
 // itself for one block).
 vec3 mmvWholeTexCoord(vec3 texPos)
 {
+  if (mmv_cellData != 0)
+  {
+    return texPos;
+  }
   return (mmv_blockFirstIndex + mmvBlockIndex(texPos) + 0.5) / mmv_wholeDimensions;
 }
 

@@ -18,8 +18,15 @@
 #include "vtkIrradianceVolumePass.h"
 #include "vtkMultiMaterialVolumeMapper.h"
 #include "vtkObjectFactory.h"
+#include "vtkPResampleToImage.h"
+#include "vtkRectilinearGrid.h"
+#include "vtkResampleToImage.h"
+#include "vtkPointData.h"
+#include "vtkVolumeInputScalars.h"
 #include "vtkVolumeProperty.h"
 
+#include <algorithm>
+#include <chrono>
 #include <sstream>
 
 vtkStandardNewMacro(vtkPVMultiMaterialVolumeRepresentation);
@@ -174,6 +181,15 @@ void vtkPVMultiMaterialVolumeRepresentation::UpdateMapperParameters()
     this->PresetRange[1] = 0.0;
   }
 
+  if (this->Resampled)
+  {
+    // Resampling probes cell arrays into point arrays of the same name.
+    mapper->SetScalarModeToUsePointFieldData();
+  }
+  int component = 0;
+  mapper->SetVectorMode(this->MapperVectorMode(component));
+  mapper->SetVectorComponent(component);
+
   // vtkSetMacro only bumps the mapper's MTime on a real change, so setting
   // these every frame costs nothing.
   mapper->SetIrradianceMemoryMB(this->IrradianceMemoryMB);
@@ -204,6 +220,28 @@ void vtkPVMultiMaterialVolumeRepresentation::UpdateMapperParameters()
   // animation cache; without it every step is new data.
   auto* view = vtkPVView::SafeDownCast(this->GetView());
   mapper->SetIrradianceCacheMB(view && view->GetUseCache() ? this->IrradianceCacheMB : 0.0);
+}
+
+//------------------------------------------------------------------------------
+int vtkPVMultiMaterialVolumeRepresentation::MapperVectorMode(int& component)
+{
+  // Vectors as Volume draws them: vtkImageVolumeRepresentation hands the
+  // colour map's Magnitude / component to its mapper when components are
+  // independent (MapScalars on); dependent ones (RGBA, MapScalars off) are
+  // not reduced, and render with VTK's shading.
+  component = 0;
+  vtkColorTransferFunction* colors =
+    this->Property ? this->Property->GetRGBTransferFunction(0) : nullptr;
+  if (!colors || !this->Property->GetIndependentComponents())
+  {
+    return mmv::VectorModeDisabled;
+  }
+  component = std::max(colors->GetVectorComponent(), 0);
+  const int mode = colors->GetVectorMode();
+  // vtkScalarsToColors::RGBCOLORS has no single value to shade.
+  return mode == vtkScalarsToColors::MAGNITUDE || mode == vtkScalarsToColors::COMPONENT
+    ? mode
+    : mmv::VectorModeDisabled;
 }
 
 //------------------------------------------------------------------------------
@@ -329,7 +367,29 @@ int vtkPVMultiMaterialVolumeRepresentation::FillInputPortInformation(
   this->Superclass::FillInputPortInformation(port, info);
   info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkMultiBlockDataSet");
   info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPartitionedDataSetCollection");
+  // Other data sets are resampled to image data (RequestData).
+  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkDataSet");
   return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkPVMultiMaterialVolumeRepresentation::SetSamplingDimensions(int x, int y, int z)
+{
+  if (x < 2 || y < 2 || z < 2)
+  {
+    vtkErrorMacro("SamplingDimensions need at least 2 points per axis, got "
+      << x << " " << y << " " << z << "; keeping " << this->SamplingDimensions[0] << " "
+      << this->SamplingDimensions[1] << " " << this->SamplingDimensions[2]);
+    return;
+  }
+  if (x != this->SamplingDimensions[0] || y != this->SamplingDimensions[1] ||
+    z != this->SamplingDimensions[2])
+  {
+    this->SamplingDimensions[0] = x;
+    this->SamplingDimensions[1] = y;
+    this->SamplingDimensions[2] = z;
+    this->MarkModified(); // resample again
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -337,9 +397,16 @@ int vtkPVMultiMaterialVolumeRepresentation::RequestData(
   vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   ++this->DataGeneration;
+  this->Resampled = false;
+  this->ResampleInfo.clear();
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
-  auto* blocks = vtkCompositeDataSet::SafeDownCast(
-    inInfo ? inInfo->Get(vtkDataObject::DATA_OBJECT()) : nullptr);
+  vtkDataObject* input = inInfo ? inInfo->Get(vtkDataObject::DATA_OBJECT()) : nullptr;
+  auto* blocks = vtkCompositeDataSet::SafeDownCast(input);
+  auto* dataset = vtkDataSet::SafeDownCast(input);
+  if (dataset && !vtkImageData::SafeDownCast(dataset))
+  {
+    return this->RequestResampledData(request, inInfo, dataset, outputVector);
+  }
   if (!blocks)
   {
     return this->Superclass::RequestData(request, inputVector, outputVector);
@@ -359,6 +426,62 @@ int vtkPVMultiMaterialVolumeRepresentation::RequestData(
   info->Copy(inInfo);
   info->Set(vtkDataObject::DATA_OBJECT(), merged);
   info->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), merged->GetExtent(), 6);
+  vtkInformationVector* inputs[1] = { substitute };
+  return this->Superclass::RequestData(request, inputs, outputVector);
+}
+
+//------------------------------------------------------------------------------
+int vtkPVMultiMaterialVolumeRepresentation::RequestResampledData(vtkInformation* request,
+  vtkInformation* inInfo, vtkDataSet* dataset, vtkInformationVector* outputVector)
+{
+  // As Volume's "Resample To Image": an image over the data's bounds, cells
+  // and points probed at its points; every rank takes part, and in parallel
+  // each gets its piece of one global image (vtkPResampleToImage), so the
+  // pieces meet in the global pre-filter as image pieces do.
+  const auto start = std::chrono::steady_clock::now();
+  vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
+  vtkSmartPointer<vtkResampleToImage> resample;
+  if (controller && controller->GetNumberOfProcesses() > 1)
+  {
+    auto parallel = vtkSmartPointer<vtkPResampleToImage>::New();
+    parallel->SetController(controller);
+    resample = parallel;
+  }
+  else
+  {
+    resample = vtkSmartPointer<vtkResampleToImage>::New();
+  }
+  resample->SetUseInputBounds(true);
+  resample->SetSamplingDimensions(this->SamplingDimensions);
+  resample->SetInputDataObject(dataset);
+  resample->Update();
+  vtkSmartPointer<vtkImageData> image = resample->GetOutput();
+  if (!image)
+  {
+    image = vtkSmartPointer<vtkImageData>::New();
+  }
+  const double seconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::ostringstream text;
+  text << dataset->GetClassName() << " (" << dataset->GetNumberOfCells()
+       << " cells) resampled to " << this->SamplingDimensions[0] << "x"
+       << this->SamplingDimensions[1] << "x" << this->SamplingDimensions[2] << " points in "
+       << seconds << " s";
+  this->ResampleInfo = text.str();
+  this->Resampled = true;
+  if (dataset->GetNumberOfCells() == 0)
+  {
+    vtkWarningMacro("the data have no cells: the resampled image is empty and nothing is drawn");
+  }
+
+  vtkNew<vtkInformationVector> substitute;
+  substitute->SetNumberOfInformationObjects(1);
+  vtkInformation* info = substitute->GetInformationObject(0);
+  info->Copy(inInfo);
+  info->Set(vtkDataObject::DATA_OBJECT(), image);
+  int wholeExtent[6] = { 0, this->SamplingDimensions[0] - 1, 0,
+    this->SamplingDimensions[1] - 1, 0, this->SamplingDimensions[2] - 1 };
+  info->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), wholeExtent, 6);
   vtkInformationVector* inputs[1] = { substitute };
   return this->Superclass::RequestData(request, inputs, outputVector);
 }
@@ -418,8 +541,10 @@ void vtkPVMultiMaterialVolumeRepresentation::UpdateGlobalVolume()
   {
     array = info->Get(vtkDataObject::FIELD_NAME());
   }
+  int component = 0;
+  const int vectorMode = this->MapperVectorMode(component);
   const std::vector<double> key = { double(this->DataGeneration), this->IrradianceMemoryMB,
-    this->IrradianceScale };
+    this->IrradianceScale, double(vectorMode), double(component) };
   if (key == this->GlobalKey && array == this->GlobalArray)
   {
     return;
@@ -432,6 +557,21 @@ void vtkPVMultiMaterialVolumeRepresentation::UpdateGlobalVolume()
   settings.Scale = this->IrradianceScale;
   std::string error;
   auto* piece = vtkImageData::SafeDownCast(this->Cache);
+  // A vector is lit as the mapper reduces it (VectorMode), from the colour
+  // map's settings, which every rank shares.
+  vtkDataArray* vectors =
+    piece && !array.empty() ? piece->GetPointData()->GetArray(array.c_str()) : nullptr;
+  vtkNew<vtkImageData> reducedPiece;
+  if (vectors && vectors->GetNumberOfComponents() > 1 && vectorMode != mmv::VectorModeDisabled)
+  {
+    if (vtkSmartPointer<vtkDataArray> reduced =
+          mmv::MakeVectorScalars(vectors, vectorMode, component, nullptr))
+    {
+      reducedPiece->ShallowCopy(piece);
+      reducedPiece->GetPointData()->AddArray(reduced); // replaces the vector
+      piece = reducedPiece;
+    }
+  }
   const bool valid = mmv::ExchangeGlobalPrefilter(controller, piece,
     array.empty() ? nullptr : array.c_str(), settings, this->GlobalVolume, error);
   mapper->SetGlobalPrefilteredVolume(valid ? this->GlobalVolume.Get() : nullptr);
@@ -490,4 +630,7 @@ void vtkPVMultiMaterialVolumeRepresentation::PrintSelf(ostream& os, vtkIndent in
   os << indent << "LightFalloff: " << this->LightFalloff << "\n";
   os << indent << "ReflectionSource: " << this->ReflectionSource << "\n";
   os << indent << "ReflectionVisibility: " << this->ReflectionVisibility << "\n";
+  os << indent << "SamplingDimensions: " << this->SamplingDimensions[0] << " "
+     << this->SamplingDimensions[1] << " " << this->SamplingDimensions[2] << "\n";
+  os << indent << "ResampleInfo: " << this->ResampleInfo << "\n";
 }

@@ -133,6 +133,17 @@ public:
   const char* GetGlobalIrradianceInfo();
   ///@}
 
+  /**
+   * Data other than image data (unstructured, structured, rectilinear grids
+   * and polydata) are resampled to an image of these many points over their
+   * bounds, as Volume's "Resample To Image" does (default 128^3, ParaView's
+   * SamplingDimensions); in parallel with vtkPResampleToImage. Below 2 on an
+   * axis: an error, the old value is kept.
+   */
+  void SetSamplingDimensions(int x, int y, int z);
+  /// What the last resampling made and what it cost; empty for image data.
+  const char* GetResampleInfo() { return this->ResampleInfo.c_str(); }
+
   vtkMultiMaterialVolumeMapper* GetMultiMaterialMapper();
 
   /// REQUEST_UPDATE (on every rank at once) also combines the pieces for
@@ -151,12 +162,18 @@ protected:
   /// the global irradiance exchange take one image per rank.
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  // Resamples `dataset` to image data and draws that.
+  int RequestResampledData(vtkInformation* request, vtkInformation* inInfo, vtkDataSet* dataset,
+    vtkInformationVector* outputVector);
 
 private:
   vtkPVMultiMaterialVolumeRepresentation(const vtkPVMultiMaterialVolumeRepresentation&) = delete;
   void operator=(const vtkPVMultiMaterialVolumeRepresentation&) = delete;
 
   bool UsesPreset() const;
+  // The mapper's VectorMode (and `component`) from the colour map, as
+  // vtkImageVolumeRepresentation sets its mapper's.
+  int MapperVectorMode(int& component);
   // Collective (every rank, same order): combines the pieces into
   // GlobalVolume when the data or the settings it depends on changed.
   void UpdateGlobalVolume();
@@ -206,6 +223,10 @@ private:
   std::string GlobalArray;
   std::string GlobalInfo;
   std::string StagesInfo;
+
+  int SamplingDimensions[3] = { 128, 128, 128 };
+  bool Resampled = false; // the data drawn are a resampled image
+  std::string ResampleInfo;
 };
 
 #endif

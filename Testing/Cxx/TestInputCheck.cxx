@@ -93,7 +93,7 @@ TEST(InputCheck, OtherBlendModesAndMissingInputsFallBackSilently)
   ExpectFallback(scene.Check(unscaled), "");
 }
 
-TEST(InputCheck, EmptyShortCellAndMultiComponentScalarsSayWhy)
+TEST(InputCheck, EmptyShortFlatCellAndMultiComponentScalarsSayWhy)
 {
   CheckScene scene;
   const std::string nothing =
@@ -108,17 +108,33 @@ TEST(InputCheck, EmptyShortCellAndMultiComponentScalarsSayWhy)
   shortScalars->GetPointData()->GetScalars()->SetNumberOfTuples(63);
   ExpectFallback(scene.Check(shortScalars), nothing);
 
-  auto cells = vtkSmartPointer<vtkImageData>::New();
-  cells->SetDimensions(4, 4, 4);
-  cells->GetCellData()->SetScalars(Filled(1, 27, 1.0f));
-  ExpectFallback(scene.Check(cells),
-    "multi-material shading needs point scalars (cell scalars given); using VTK's shading");
+  auto flatCells = vtkSmartPointer<vtkImageData>::New();
+  flatCells->SetDimensions(4, 4, 1);
+  flatCells->GetCellData()->SetScalars(Filled(1, 9, 1.0f));
+  ExpectFallback(scene.Check(flatCells),
+    "cell scalars on an image with a single point along an axis have no volume to render; "
+    "using VTK's shading");
 
   auto rgb = Ramp(4);
   rgb->GetPointData()->SetScalars(Filled(3, 64, 0.5f));
   const mmv::InputCheck check = scene.Check(rgb);
-  ExpectFallback(check, "multi-material shading needs one-component scalars; using VTK's shading");
+  ExpectFallback(check,
+    "multi-material shading needs one-component scalars (for vectors, set the mapper's "
+    "VectorMode, or colour by Magnitude or a component); using VTK's shading");
   EXPECT_EQ(check.Caveat, "");
+}
+
+TEST(InputCheck, CellScalarsAreSupportedAndMarkedAsCellData)
+{
+  CheckScene scene;
+  auto cells = vtkSmartPointer<vtkImageData>::New();
+  cells->SetDimensions(4, 4, 4);
+  cells->GetCellData()->SetScalars(Filled(1, 27, 1.0f));
+  const mmv::InputCheck check = scene.Check(cells);
+  EXPECT_TRUE(check.Supported);
+  EXPECT_TRUE(check.CellData);
+  EXPECT_EQ(check.Scalars, cells->GetCellData()->GetScalars());
+  EXPECT_FALSE(scene.Check(Ramp(4)).CellData);
 }
 
 TEST(InputCheck, SingleSliceIsShadedWithACaveat)

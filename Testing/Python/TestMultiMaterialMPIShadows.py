@@ -11,7 +11,10 @@ representation merges them, and the image must equal the -np 1 reference of
 the plain pieces. With --tinted, the material has a transmission colour
 (tinted shadows): -np 1 writes its own reference, -np 3 must equal it. With
 --reflective, the `metal` preset reflects the view's background, which the
-ranks must see as -np 1 does (before it was pinned: 32.7 dB).
+ranks must see as -np 1 does (before it was pinned: 32.7 dB). With --vector,
+the field is a vector whose magnitude is the plain field, coloured by
+Magnitude: every rank lights the magnitude, and -np 3 must equal the plain
+-np 1 reference.
 
 Each rank estimates only the irradiance its piece reads (PieceIrradianceOnly):
 rank 0 must estimate a share of the global grid, and with the option off
@@ -34,7 +37,9 @@ parser = argparse.ArgumentParser()
 parser.add_argument("--blocks", action="store_true")
 parser.add_argument("--tinted", action="store_true")
 parser.add_argument("--reflective", action="store_true")
+parser.add_argument("--vector", action="store_true")
 options = parser.parse_known_args()[0]
+vector = options.vector
 split_into_blocks = options.blocks
 tinted = options.tinted
 reflective = options.reflective
@@ -102,11 +107,14 @@ if piece.GetNumberOfPoints() > 0:
 
 
 def show(expression):
-    calculator.Function = expression
+    # As a vector (0.6, 0.8, 0) x the field: its magnitude is the field.
+    calculator.Function = "(%s)*(0.6*iHat+0.8*jHat)" % expression if vector else expression
     rep = simple.Show(source, view)
     rep.Representation = mmv.REPRESENTATION
     simple.ColorBy(rep, ("POINTS", "density"))
     lut = simple.GetColorTransferFunction("density")
+    if vector:
+        lut.VectorMode = "Magnitude"
     lut.RGBPoints = [0.0, 0.9, 0.85, 0.8, 200.0, 0.9, 0.85, 0.8]
     pwf = simple.GetOpacityTransferFunction("density")
     pwf.Points = [0.0, 0.0, 0.5, 0.0, 60.0, 0.0, 0.5, 0.0, 150.0, 0.9, 0.5, 0.0,
@@ -130,8 +138,8 @@ def show(expression):
 
 
 rep = show("200*(%s+%s)" % (PLATE, FLOOR))
-variant = "Blocks" if split_into_blocks else (
-    "Tinted" if tinted else ("Reflective" if reflective else ""))
+variant = "Blocks" if split_into_blocks else ("Vector" if vector else (
+    "Tinted" if tinted else ("Reflective" if reflective else "")))
 path = os.path.join(args.temp_dir, "PVMultiMaterialMPIShadows%s_%d.png" % (variant, ranks))
 image = mmv.render_image(view, path)
 checker.check(mmv.check_not_blank(image, "plate and floor"), "the volume is visible")
@@ -160,9 +168,10 @@ def psnr(a, b):
     return float("inf") if mse == 0.0 else 10.0 * math.log10(255.0 ** 2 / mse)
 
 
+plain = split_into_blocks or vector  # compared with the plain -np 1 image
 reference = os.path.join(args.temp_dir, "PVMultiMaterialMPIShadows%s_1.png"
-                         % ("" if split_into_blocks else variant))
-if ranks == 1 and not split_into_blocks:
+                         % ("" if plain else variant))
+if ranks == 1 and not plain:
     # The shadow is there to be kept: without the plate the floor is brighter.
     show("200*(%s)" % FLOOR)
     floorOnly = mmv.render_image(view, os.path.join(args.temp_dir, "PVMultiMaterialMPIFloor.png"))
@@ -173,7 +182,9 @@ else:
     checker.check(os.path.exists(reference), "the -np 1 reference exists (%s)" % reference)
     if os.path.exists(reference):
         value = psnr(image, mmv.read_png(reference))
-        what = "-np %d%s" % (ranks, {"Blocks": " in blocks", "Tinted": " tinted", "Reflective": " reflective"}.get(variant, ""))
+        what = "-np %d%s" % (ranks, {"Blocks": " in blocks", "Tinted": " tinted",
+                                     "Reflective": " reflective",
+                                     "Vector": " by vector magnitude"}.get(variant, ""))
         print("%s vs -np 1: PSNR %.2f dB" % (what, value))
         checker.check(value >= 40.0, "%s equals -np 1 (PSNR %.2f dB >= 40)" % (what, value))
 if ranks > 1 and variant in ("", "Reflective"):
