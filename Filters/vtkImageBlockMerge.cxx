@@ -94,18 +94,16 @@ void CopyBlock(vtkDataArray* from, const int extent[6], const int shift[3], vtkD
     }
   }
 }
-}
 
-vtkSmartPointer<vtkImageData> MergeImageBlocks(vtkDataObject* composite, std::string& error)
+// The image blocks of `composite` that have points, in traversal order;
+// the error ("" if none).
+std::string CollectBlocks(vtkDataObject* composite, std::vector<vtkImageData*>& blocks)
 {
-  error.clear();
   auto* dataset = vtkCompositeDataSet::SafeDownCast(composite);
   if (!dataset)
   {
-    error = "the input is not a composite dataset";
-    return nullptr;
+    return "the input is not a composite dataset";
   }
-  std::vector<vtkImageData*> blocks;
   vtkSmartPointer<vtkCompositeDataIterator> it;
   it.TakeReference(dataset->NewIterator());
   for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem())
@@ -114,13 +112,73 @@ vtkSmartPointer<vtkImageData> MergeImageBlocks(vtkDataObject* composite, std::st
     auto* image = vtkImageData::SafeDownCast(leaf);
     if (!image)
     {
-      error = std::string("a block is a ") + leaf->GetClassName() + ", not image data";
-      return nullptr;
+      return std::string("a block is a ") + leaf->GetClassName() + ", not image data";
     }
     if (image->GetNumberOfPoints() > 0)
     {
       blocks.push_back(image);
     }
+  }
+  return "";
+}
+
+// Block b's offset from block 0 in whole lattice steps, per index axis; the
+// error ("" if none) when its spacing, direction or origin leaves block 0's
+// lattice.
+std::string LatticeShift(vtkImageData* block, size_t b, const double spacing[3],
+  const double origin[3], vtkMatrix3x3* direction, std::array<int, 3>& shift)
+{
+  const double* s = block->GetSpacing();
+  const double* o = block->GetOrigin();
+  for (int a = 0; a < 3; ++a)
+  {
+    if (!Near(s[a], spacing[a], 1e-6))
+    {
+      std::ostringstream text;
+      text << "block " << b << " has spacing (" << s[0] << ", " << s[1] << ", " << s[2]
+           << "), block 0 (" << spacing[0] << ", " << spacing[1] << ", " << spacing[2]
+           << "): blocks must share one lattice";
+      return text.str();
+    }
+    for (int c = 0; c < 3; ++c)
+    {
+      if (!Near(block->GetDirectionMatrix()->GetElement(a, c), direction->GetElement(a, c), 1e-6))
+      {
+        return "block " + std::to_string(b) + " has another direction matrix than block 0";
+      }
+    }
+  }
+  // The origin's offset in lattice steps: the direction's columns are the
+  // index axes, so the steps are D^T (o - o0) / spacing.
+  for (int a = 0; a < 3; ++a)
+  {
+    double along = 0.0;
+    for (int c = 0; c < 3; ++c)
+    {
+      along += direction->GetElement(c, a) * (o[c] - origin[c]);
+    }
+    const double steps = along / spacing[a];
+    shift[a] = static_cast<int>(std::lround(steps));
+    if (std::abs(steps - shift[a]) > 1e-3)
+    {
+      std::ostringstream text;
+      text << "block " << b << "'s origin is " << steps
+           << " lattice steps from block 0's along axis " << a
+           << ": blocks must share one lattice";
+      return text.str();
+    }
+  }
+  return "";
+}
+}
+
+vtkSmartPointer<vtkImageData> MergeImageBlocks(vtkDataObject* composite, std::string& error)
+{
+  std::vector<vtkImageData*> blocks;
+  error = CollectBlocks(composite, blocks);
+  if (!error.empty())
+  {
+    return nullptr;
   }
   auto merged = vtkSmartPointer<vtkImageData>::New();
   if (blocks.empty())
@@ -138,49 +196,11 @@ vtkSmartPointer<vtkImageData> MergeImageBlocks(vtkDataObject* composite, std::st
   for (size_t b = 0; b < blocks.size(); ++b)
   {
     vtkImageData* block = blocks[b];
-    const double* s = block->GetSpacing();
-    const double* o = block->GetOrigin();
-    for (int a = 0; a < 3; ++a)
-    {
-      if (!Near(s[a], spacing[a], 1e-6))
-      {
-        std::ostringstream text;
-        text << "block " << b << " has spacing (" << s[0] << ", " << s[1] << ", " << s[2]
-             << "), block 0 (" << spacing[0] << ", " << spacing[1] << ", " << spacing[2]
-             << "): blocks must share one lattice";
-        error = text.str();
-        return nullptr;
-      }
-      for (int c = 0; c < 3; ++c)
-      {
-        if (!Near(block->GetDirectionMatrix()->GetElement(a, c), direction->GetElement(a, c), 1e-6))
-        {
-          error = "block " + std::to_string(b) + " has another direction matrix than block 0";
-          return nullptr;
-        }
-      }
-    }
-    // The origin's offset in lattice steps: the direction's columns are the
-    // index axes, so the steps are D^T (o - o0) / spacing.
     std::array<int, 3> shift{};
-    for (int a = 0; a < 3; ++a)
+    error = LatticeShift(block, b, spacing, origin, direction, shift);
+    if (!error.empty())
     {
-      double along = 0.0;
-      for (int c = 0; c < 3; ++c)
-      {
-        along += direction->GetElement(c, a) * (o[c] - origin[c]);
-      }
-      const double steps = along / spacing[a];
-      shift[a] = static_cast<int>(std::lround(steps));
-      if (std::abs(steps - shift[a]) > 1e-3)
-      {
-        std::ostringstream text;
-        text << "block " << b << "'s origin is " << steps
-             << " lattice steps from block 0's along axis " << a
-             << ": blocks must share one lattice";
-        error = text.str();
-        return nullptr;
-      }
+      return nullptr;
     }
     shifts.push_back(shift);
     const int* extent = block->GetExtent();

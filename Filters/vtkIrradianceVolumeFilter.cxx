@@ -555,6 +555,86 @@ int DiffuseLights(const mmv::IrradianceGrid& grid, const std::vector<float>& pre
   return iterations;
 }
 
+/**
+ * The scalars (component 0) box-filtered to the irradiance grid, non-finite
+ * values replaced by the ends of the finite range as the mapper does.
+ * Returns whether any were replaced.
+ */
+bool PrefilterFinite(vtkImageData* input, vtkDataArray* scalars, const mmv::IrradianceGrid& grid,
+  std::vector<float>& prefiltered)
+{
+  mmv::PrefilterScalars(input, scalars, 0, grid, prefiltered);
+  double finite[2];
+  scalars->GetFiniteRange(finite, 0);
+  return mmv::ReplaceNonFinite(
+    prefiltered, static_cast<float>(finite[0]), static_cast<float>(finite[1]));
+}
+
+/**
+ * The transmittance toward every active light, into its array: piecewise
+ * shadow rays or one full ray per computed voxel, as `estimation` says for
+ * that light. Progress runs from 0.1 to 0.9. Returns false when aborted.
+ */
+bool ShadowLights(vtkAlgorithm* self, const RayContext& ctx, const std::vector<LightTask>& tasks,
+  const std::vector<vtkSmartPointer<vtkFloatArray>>& arrays, const std::vector<vtkIdType>& computed,
+  const std::vector<unsigned char>& nonEmpty, int estimation, int slicesPerChunk, vtkIdType& rays)
+{
+  std::vector<float> transmittance; // reused from light to light
+  for (size_t l = 0; l < tasks.size(); ++l)
+  {
+    if (!tasks[l].Active)
+    {
+      continue;
+    }
+    const double progress = 0.1 + 0.8 * l / tasks.size();
+    const double span = 0.8 / tasks.size();
+    bool finished = true;
+    if (mmv::UsesPiecewiseShadowRays(estimation, tasks[l].Source))
+    {
+      finished = SweepPiecewiseShadowRays(self, ctx, tasks[l].Source, slicesPerChunk, nonEmpty,
+        progress, span, transmittance, rays);
+      float* irradiance = arrays[l]->GetPointer(0);
+      for (const vtkIdType v : computed)
+      {
+        irradiance[v] = transmittance[v];
+      }
+    }
+    else
+    {
+      finished = CastShadowRays(
+        self, ctx, tasks[l].Source, computed, arrays[l]->GetPointer(0), progress, span, rays);
+    }
+    if (!finished)
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+/// One "IrradianceTint_<k>" array per light, 3 components: white where the
+/// light is off, its tint (ComputeTint) elsewhere.
+std::vector<vtkSmartPointer<vtkFloatArray>> MakeTints(
+  const RayContext& ctx, const std::vector<LightTask>& tasks, int divisor, vtkIdType& rays)
+{
+  const vtkIdType size = ctx.Irradiance->GetNumberOfVoxels();
+  std::vector<vtkSmartPointer<vtkFloatArray>> tints;
+  for (size_t l = 0; l < tasks.size(); ++l)
+  {
+    vtkNew<vtkFloatArray> tint;
+    tint->SetName(("IrradianceTint_" + std::to_string(l)).c_str());
+    tint->SetNumberOfComponents(3);
+    tint->SetNumberOfTuples(size);
+    std::fill_n(tint->GetPointer(0), 3 * size, 1.0f);
+    if (tasks[l].Active)
+    {
+      ComputeTint(ctx, tasks[l].Source, divisor, tint->GetPointer(0), rays);
+    }
+    tints.emplace_back(tint);
+  }
+  return tints;
+}
+
 } // namespace
 
 class vtkIrradianceVolumeFilter::vtkInternals
@@ -760,6 +840,63 @@ int vtkIrradianceVolumeFilter::RequestUpdateExtent(
   return 1;
 }
 
+vtkDataArray* vtkIrradianceVolumeFilter::InputScalars(vtkInformationVector** inputVector,
+  vtkImageData* output, vtkImageData*& input, vtkSmartPointer<vtkImageData>& cellCentres)
+{
+  if (!input || !output)
+  {
+    vtkErrorMacro("Input and output must be vtkImageData.");
+    return nullptr;
+  }
+  if (!this->Internals->Opacity)
+  {
+    vtkErrorMacro("No scalar opacity function set.");
+    return nullptr;
+  }
+  if (!(this->ScalarOpacityUnitDistance > 0.0))
+  {
+    vtkErrorMacro("ScalarOpacityUnitDistance must be positive, got "
+      << this->ScalarOpacityUnitDistance << ".");
+    return nullptr;
+  }
+  int association = vtkDataObject::FIELD_ASSOCIATION_POINTS;
+  vtkDataArray* scalars = this->GetInputArrayToProcess(0, inputVector, association);
+  if (scalars && association == vtkDataObject::FIELD_ASSOCIATION_CELLS)
+  {
+    // As the mapper does: cell values live on the grid of the cell centres.
+    cellCentres = mmv::MakeCellCentreImage(input, scalars);
+    if (!cellCentres)
+    {
+      vtkErrorMacro("The cell scalars need an image with cells along every axis and a value "
+                    "per cell.");
+      return nullptr;
+    }
+    input = cellCentres;
+  }
+  if (!scalars || scalars->GetNumberOfTuples() != input->GetNumberOfPoints() ||
+    input->GetNumberOfPoints() == 0)
+  {
+    vtkErrorMacro("The input has no point or cell scalars to process.");
+    return nullptr;
+  }
+  return scalars;
+}
+
+void vtkIrradianceVolumeFilter::UpdateIrradianceDimensions(vtkImageData* input)
+{
+  const int* inExtent = input->GetExtent();
+  const int dataDims[3] = { inExtent[1] - inExtent[0] + 1, inExtent[3] - inExtent[2] + 1,
+    inExtent[5] - inExtent[4] + 1 };
+  std::string scaleProblem;
+  const double scale = mmv::ValidIrradianceScale(this->IrradianceScale, &scaleProblem);
+  if (!scaleProblem.empty())
+  {
+    vtkWarningMacro(<< scaleProblem);
+  }
+  mmv::ComputeIrradianceDimensions(dataDims, this->Internals->Lights->GetNumberOfItems(),
+    this->IrradianceMemoryMB, scale, this->IrradianceDimensions, this->IsTinted());
+}
+
 int vtkIrradianceVolumeFilter::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
@@ -769,78 +906,30 @@ int vtkIrradianceVolumeFilter::RequestData(
   vtkImageData* input = vtkImageData::GetData(inputVector[0]);
   vtkImageData* output = vtkImageData::GetData(outputVector);
   vtkPiecewiseFunction* otf = this->Internals->Opacity;
-  if (!input || !output)
-  {
-    vtkErrorMacro("Input and output must be vtkImageData.");
-    return 0;
-  }
-  if (!otf)
-  {
-    vtkErrorMacro("No scalar opacity function set.");
-    return 0;
-  }
-  if (!(this->ScalarOpacityUnitDistance > 0.0))
-  {
-    vtkErrorMacro("ScalarOpacityUnitDistance must be positive, got "
-      << this->ScalarOpacityUnitDistance << ".");
-    return 0;
-  }
-  int association = vtkDataObject::FIELD_ASSOCIATION_POINTS;
-  vtkDataArray* scalars = this->GetInputArrayToProcess(0, inputVector, association);
   vtkSmartPointer<vtkImageData> cellCentres;
-  if (scalars && association == vtkDataObject::FIELD_ASSOCIATION_CELLS)
+  vtkDataArray* scalars = this->InputScalars(inputVector, output, input, cellCentres);
+  if (!scalars)
   {
-    // As the mapper does: cell values live on the grid of the cell centres.
-    cellCentres = mmv::MakeCellCentreImage(input, scalars);
-    if (!cellCentres)
-    {
-      vtkErrorMacro("The cell scalars need an image with cells along every axis and a value "
-                    "per cell.");
-      return 0;
-    }
-    input = cellCentres;
-  }
-  if (!scalars || scalars->GetNumberOfTuples() != input->GetNumberOfPoints() ||
-    input->GetNumberOfPoints() == 0)
-  {
-    vtkErrorMacro("The input has no point or cell scalars to process.");
     return 0;
   }
 
   // Step 1: geometry of the irradiance grid.
-  const int* inExtent = input->GetExtent();
-  const int dataDims[3] = { inExtent[1] - inExtent[0] + 1, inExtent[3] - inExtent[2] + 1,
-    inExtent[5] - inExtent[4] + 1 };
-  const int numberOfLights = this->Internals->Lights->GetNumberOfItems();
-  std::string scaleProblem;
-  const double scale = mmv::ValidIrradianceScale(this->IrradianceScale, &scaleProblem);
-  if (!scaleProblem.empty())
-  {
-    vtkWarningMacro(<< scaleProblem);
-  }
-  mmv::ComputeIrradianceDimensions(dataDims, numberOfLights, this->IrradianceMemoryMB, scale,
-    this->IrradianceDimensions, this->IsTinted());
+  this->UpdateIrradianceDimensions(input);
   const mmv::IrradianceGrid grid = mmv::MakeIrradianceGrid(input, this->IrradianceDimensions);
   output->SetExtent(0, grid.Dimensions[0] - 1, 0, grid.Dimensions[1] - 1, 0, grid.Dimensions[2] - 1);
   SetGridGeometry(grid, output);
 
   // Step 2: pre-filter and find the voxels worth computing.
   std::vector<float> prefiltered;
-  mmv::PrefilterScalars(input, scalars, 0, grid, prefiltered);
+  if (PrefilterFinite(input, scalars, grid, prefiltered))
   {
-    double finite[2];
-    scalars->GetFiniteRange(finite, 0);
-    if (mmv::ReplaceNonFinite(
-          prefiltered, static_cast<float>(finite[0]), static_cast<float>(finite[1])))
-    {
-      vtkWarningMacro(<< mmv::NonFiniteScalarsMessage << ".");
-    }
+    vtkWarningMacro(<< mmv::NonFiniteScalarsMessage << ".");
   }
   std::vector<unsigned char> nonEmpty;
   const std::vector<vtkIdType> computed = FindComputedVoxels(otf, prefiltered, nonEmpty);
   this->NumberOfComputedVoxels = static_cast<vtkIdType>(computed.size());
   this->UpdateProgress(0.1);
-  if (numberOfLights == 0)
+  if (this->Internals->Lights->GetNumberOfItems() == 0)
   {
     vtkWarningMacro("No lights: the output has no irradiance arrays.");
     return 1;
@@ -872,36 +961,11 @@ int vtkIrradianceVolumeFilter::RequestData(
   }
   const RayContext ctx{ &grid, prefiltered.data(), this->Internals->Table, step,
     grid.PhysicalToIndexMatrix(), mmv::ToIndexSpace(this->MakeCutaway(), grid) };
-  std::vector<float> transmittance;
-  for (size_t l = 0; l < tasks.size(); ++l)
+  if (!ShadowLights(this, ctx, tasks, arrays, computed, nonEmpty, this->ShadowEstimation,
+        this->PiecewiseShadowSlices, this->NumberOfShadowRays))
   {
-    if (!tasks[l].Active)
-    {
-      continue;
-    }
-    const double progress = 0.1 + 0.8 * l / tasks.size();
-    const double span = 0.8 / tasks.size();
-    bool finished = true;
-    if (mmv::UsesPiecewiseShadowRays(this->ShadowEstimation, tasks[l].Source))
-    {
-      finished = SweepPiecewiseShadowRays(this, ctx, tasks[l].Source, this->PiecewiseShadowSlices,
-        nonEmpty, progress, span, transmittance, this->NumberOfShadowRays);
-      float* irradiance = arrays[l]->GetPointer(0);
-      for (const vtkIdType v : computed)
-      {
-        irradiance[v] = transmittance[v];
-      }
-    }
-    else
-    {
-      finished = CastShadowRays(this, ctx, tasks[l].Source, computed, arrays[l]->GetPointer(0),
-        progress, span, this->NumberOfShadowRays);
-    }
-    if (!finished)
-    {
-      output->Initialize();
-      return 1;
-    }
+    output->Initialize();
+    return 1;
   }
 
   // The tint of a non-white transmission colour (grey materials: none, the
@@ -909,20 +973,7 @@ int vtkIrradianceVolumeFilter::RequestData(
   std::vector<vtkSmartPointer<vtkFloatArray>> tints;
   if (this->Internals->Table->GetShadowTintTable())
   {
-    for (size_t l = 0; l < tasks.size(); ++l)
-    {
-      vtkNew<vtkFloatArray> tint;
-      tint->SetName(("IrradianceTint_" + std::to_string(l)).c_str());
-      tint->SetNumberOfComponents(3);
-      tint->SetNumberOfTuples(grid.GetNumberOfVoxels());
-      std::fill_n(tint->GetPointer(0), 3 * grid.GetNumberOfVoxels(), 1.0f);
-      if (tasks[l].Active)
-      {
-        ComputeTint(ctx, tasks[l].Source, this->TintResolutionDivisor, tint->GetPointer(0),
-          this->NumberOfShadowRays);
-      }
-      tints.emplace_back(tint);
-    }
+    tints = MakeTints(ctx, tasks, this->TintResolutionDivisor, this->NumberOfShadowRays);
   }
 
   // Steps 4 and 5: multiple scattering, then the empty neighbours.

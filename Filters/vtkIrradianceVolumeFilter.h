@@ -55,7 +55,10 @@
 #endif
 #include "vtkMultiMaterialParameters.h" // ShadowEstimation
 #include "vtkMultiMaterialVolumeFiltersModule.h" // export macro
+#include "vtkSmartPointer.h"                      // InputScalars
 
+class vtkDataArray;
+class vtkImageData;
 class vtkLight;
 class vtkLightCollection;
 class vtkMaterialTransferFunction;
@@ -207,6 +210,13 @@ protected:
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  // The scalars to light, after checking the input and the settings; for
+  // cell scalars `input` becomes the grid of the cell centres, which
+  // `cellCentres` holds. Null after reporting an error.
+  vtkDataArray* InputScalars(vtkInformationVector** inputVector, vtkImageData* output,
+    vtkImageData*& input, vtkSmartPointer<vtkImageData>& cellCentres);
+  // IrradianceDimensions for this input, the lights and the scale or budget.
+  void UpdateIrradianceDimensions(vtkImageData* input);
   double ScalarOpacityUnitDistance = 1.0;
   double IrradianceScale = 0.0;
   double IrradianceMemoryMB = mmv::DefaultIrradianceBudgetMB;

@@ -530,18 +530,103 @@ std::uint64_t PixelSeed(unsigned int seed, vtkIdType pixel)
   z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
   return z ^ (z >> 31);
 }
+
+// The transfer functions tabulated over the scalar range: albedo, extinction
+// and material parameters (the defaults where there are no materials).
+void TabulateTransferFunctions(vtkVolumeProperty* property, vtkMaterialTransferFunction* materials,
+  const double range[2], double unitDistance, MediumTables& tables)
+{
+  tables.Min = range[0];
+  tables.Scale = (TableSize - 1) / (range[1] - range[0]);
+  mmv::TabulateColor(property, range, TableSize, tables.Albedo);
+  std::vector<double> alpha(TableSize);
+  property->GetScalarOpacity(0)->GetTable(range[0], range[1], TableSize, alpha.data());
+  constexpr int P = mmv::MaterialParameterCount;
+  tables.Sigma.resize(TableSize);
+  tables.Material.resize(static_cast<size_t>(P) * TableSize);
+  for (int i = 0; i < TableSize; ++i)
+  {
+    const double s = range[0] + (range[1] - range[0]) * i / (TableSize - 1.0);
+    double* m = &tables.Material[static_cast<size_t>(P) * i];
+    if (materials)
+    {
+      materials->Evaluate(s, m);
+    }
+    else
+    {
+      for (int c = 0; c < P; ++c)
+      {
+        m[c] = mmv::MaterialParameterTable[c].Default;
+      }
+    }
+    tables.Sigma[i] = mmv::ExtinctionFromOpacity(alpha[i], unitDistance);
+  }
+}
+
+// Where TracePixels writes: 3 values per pixel each, row after row.
+struct PixelOutput
+{
+  double* Radiance;
+  double* Error;
+  unsigned char* Colors;
+};
+
+// `samples` paths through every pixel's centre, rows in parallel, each pixel
+// with its own random stream so the image does not depend on the threads.
+// Returns the scattering events of all paths.
+long long TracePixels(const Medium& medium, const vtkMatrix4x4* ndcToObject, int width, int height,
+  int samples, unsigned int seed, const PixelOutput& output)
+{
+  double* out = output.Radiance;
+  double* outError = output.Error;
+  unsigned char* bytes = output.Colors;
+  std::atomic<long long> events(0);
+  vtkSMPTools::For(0, height, 1, [&](vtkIdType firstRow, vtkIdType lastRow) {
+    long long localEvents = 0;
+    for (vtkIdType j = firstRow; j < lastRow; ++j)
+    {
+      const double y = (j + 0.5) / height * 2.0 - 1.0;
+      // VTK draws the gradient background bottom (Background) to top.
+      const dvec3 background = glm::mix(medium.EnvironmentBottom, medium.EnvironmentTop, (j + 0.5) / height);
+      for (int i = 0; i < width; ++i)
+      {
+        const vtkIdType id = j * width + i;
+        const double x = (i + 0.5) / width * 2.0 - 1.0;
+        dvec3 origin, direction;
+        double length;
+        mmv::PixelRay(ndcToObject, x, y, origin, direction, length);
+        Random rng(PixelSeed(seed, id), static_cast<std::uint64_t>(id));
+        // Welford's running mean and squared deviations: pixels whose paths
+        // all agree get exactly zero error (sum-of-squares would round).
+        dvec3 mean(0.0), squares(0.0);
+        for (int k = 0; k < samples; ++k)
+        {
+          const dvec3 l = length > 0.0
+            ? medium.Trace(origin, direction, length, background, rng, localEvents)
+            : background;
+          const dvec3 delta = l - mean;
+          mean += delta / double(k + 1);
+          squares += delta * (l - mean);
+        }
+        // Unbiased sample variance of one path, over samples for the mean's.
+        const dvec3 variance = samples > 1 ? squares / double(samples - 1) : dvec3(0.0);
+        for (int c = 0; c < 3; ++c)
+        {
+          out[3 * id + c] = mean[c];
+          outError[3 * id + c] = std::sqrt(variance[c] / samples);
+          bytes[3 * id + c] =
+            static_cast<unsigned char>(std::lround(std::min(std::max(mean[c], 0.0), 1.0) * 255.0));
+        }
+      }
+    }
+    events += localEvents;
+  });
+  return events;
+}
 }
 
 vtkMultiMaterialPathTracer::vtkMultiMaterialPathTracer() = default;
 vtkMultiMaterialPathTracer::~vtkMultiMaterialPathTracer() = default;
-
-
-
-
-
-
-
-
 
 vtkImageData* vtkMultiMaterialPathTracer::RenderToImage(vtkRenderer* ren, vtkVolume* volume)
 {
@@ -604,34 +689,8 @@ vtkImageData* vtkMultiMaterialPathTracer::Render(vtkRenderer* ren, int width, in
   medium.SurfaceScattering = this->SurfaceScattering;
 
   // Transfer functions.
-  MediumTables& tables = medium.Tables;
-  tables.Min = range[0];
-  tables.Scale = (TableSize - 1) / (range[1] - range[0]);
-  mmv::TabulateColor(property, range, TableSize, tables.Albedo);
-  std::vector<double> alpha(TableSize);
-  property->GetScalarOpacity(0)->GetTable(range[0], range[1], TableSize, alpha.data());
-  constexpr int P = mmv::MaterialParameterCount;
-  tables.Sigma.resize(TableSize);
-  tables.Material.resize(static_cast<size_t>(P) * TableSize);
-  vtkMaterialTransferFunction* materials = this->Materials;
-  for (int i = 0; i < TableSize; ++i)
-  {
-    const double s = range[0] + (range[1] - range[0]) * i / (TableSize - 1.0);
-    double* m = &tables.Material[static_cast<size_t>(P) * i];
-    if (materials)
-    {
-      materials->Evaluate(s, m);
-    }
-    else
-    {
-      for (int c = 0; c < P; ++c)
-      {
-        m[c] = mmv::MaterialParameterTable[c].Default;
-      }
-    }
-    tables.Sigma[i] = mmv::ExtinctionFromOpacity(alpha[i], unitDistance);
-  }
-  medium.Majorant.Build(medium.Data, tables);
+  TabulateTransferFunctions(property, this->Materials, range, unitDistance, medium.Tables);
+  medium.Majorant.Build(medium.Data, medium.Tables);
 
   // Lights and environment in object space.
   vtkNew<vtkMatrix4x4> objectToWorld;
@@ -664,53 +723,11 @@ vtkImageData* vtkMultiMaterialPathTracer::Render(vtkRenderer* ren, int width, in
   vtkSmartPointer<vtkDoubleArray> radiance = makeArray("Radiance", vtkSmartPointer<vtkDoubleArray>::New());
   vtkSmartPointer<vtkDoubleArray> error = makeArray("StandardError", vtkSmartPointer<vtkDoubleArray>::New());
   vtkSmartPointer<vtkUnsignedCharArray> colors = makeArray("Colors", vtkSmartPointer<vtkUnsignedCharArray>::New());
-  double* out = radiance->GetPointer(0);
-  double* outError = error->GetPointer(0);
-  unsigned char* bytes = colors->GetPointer(0);
-
   const int samples = this->SamplesPerPixel;
-  const unsigned int seed = this->Seed;
-  std::atomic<long long> events(0);
-  vtkSMPTools::For(0, height, 1, [&](vtkIdType firstRow, vtkIdType lastRow) {
-    long long localEvents = 0;
-    for (vtkIdType j = firstRow; j < lastRow; ++j)
-    {
-      const double y = (j + 0.5) / height * 2.0 - 1.0;
-      // VTK draws the gradient background bottom (Background) to top.
-      const dvec3 background = glm::mix(medium.EnvironmentBottom, medium.EnvironmentTop, (j + 0.5) / height);
-      for (int i = 0; i < width; ++i)
-      {
-        const vtkIdType id = j * width + i;
-        const double x = (i + 0.5) / width * 2.0 - 1.0;
-        dvec3 origin, direction;
-        double length;
-        mmv::PixelRay(ndcToObject, x, y, origin, direction, length);
-        Random rng(PixelSeed(seed, id), static_cast<std::uint64_t>(id));
-        // Welford's running mean and squared deviations: pixels whose paths
-        // all agree get exactly zero error (sum-of-squares would round).
-        dvec3 mean(0.0), squares(0.0);
-        for (int k = 0; k < samples; ++k)
-        {
-          const dvec3 l = length > 0.0
-            ? medium.Trace(origin, direction, length, background, rng, localEvents)
-            : background;
-          const dvec3 delta = l - mean;
-          mean += delta / double(k + 1);
-          squares += delta * (l - mean);
-        }
-        // Unbiased sample variance of one path, over samples for the mean's.
-        const dvec3 variance = samples > 1 ? squares / double(samples - 1) : dvec3(0.0);
-        for (int c = 0; c < 3; ++c)
-        {
-          out[3 * id + c] = mean[c];
-          outError[3 * id + c] = std::sqrt(variance[c] / samples);
-          bytes[3 * id + c] =
-            static_cast<unsigned char>(std::lround(std::min(std::max(mean[c], 0.0), 1.0) * 255.0));
-        }
-      }
-    }
-    events += localEvents;
-  });
+  const PixelOutput pixelOutput{ radiance->GetPointer(0), error->GetPointer(0),
+    colors->GetPointer(0) };
+  const long long events =
+    TracePixels(medium, ndcToObject, width, height, samples, this->Seed, pixelOutput);
 
   this->Output = vtkSmartPointer<vtkImageData>::New();
   this->Output->SetDimensions(width, height, 1);

@@ -262,6 +262,56 @@ pqMaterialNodesPropertyWidget::pqMaterialNodesPropertyWidget(
   vbox->addWidget(internals.Track);
 
   // Preset chooser, selection status and remove button on one row.
+  vbox->addLayout(this->createSelectionRow());
+  internals.Notice = new QLabel(this);
+  internals.Notice->setObjectName("Notice");
+  internals.Notice->setWordWrap(true);
+  internals.Notice->setStyleSheet(QStringLiteral("QLabel { color: #d02020; }"));
+  internals.Notice->setVisible(false);
+  vbox->addWidget(internals.Notice);
+
+  // The selected node: its value and the parameters, two per row.
+  this->createEditors();
+  this->layoutEditors(1);
+  vbox->addLayout(internals.Grid);
+
+  QObject::connect(internals.Value, &pqDoubleLineEdit::textChangedAndEditingFinished, this,
+    &pqMaterialNodesPropertyWidget::onValueEdited);
+  QObject::connect(internals.Presets, QOverload<int>::of(&QComboBox::activated), this,
+    &pqMaterialNodesPropertyWidget::onPresetActivated);
+  QObject::connect(internals.Remove, &QToolButton::clicked, this,
+    &pqMaterialNodesPropertyWidget::removeCurrentNode);
+
+  // Links pull the current values into the widget now and keep it in step
+  // with undo/redo, Python and state files later.
+  this->addPropertyLink(this, "materialNodes", SIGNAL(materialNodesChanged()), smproperty);
+  if (vtkSMProperty* preset = smproxy->GetProperty("MaterialPreset"))
+  {
+    internals.HasPresetProperty = true;
+    // The property's default is its "use the nodes" entry.
+    auto* svp = vtkSMStringVectorProperty::SafeDownCast(preset);
+    if (svp && svp->GetDefaultValue(0))
+    {
+      internals.CustomPreset = QString::fromUtf8(svp->GetDefaultValue(0));
+    }
+    this->addPropertyLink(this, "materialPreset", SIGNAL(materialPresetChanged()), preset);
+  }
+
+  // The track's range and opacity curve follow the data and the colouring.
+  internals.VTKConnect->Connect(
+    smproxy, vtkCommand::PropertyModifiedEvent, this, SLOT(updateContext()));
+  internals.VTKConnect->Connect(smproxy, vtkCommand::UpdateDataEvent, this, SLOT(updateContext()));
+  this->updateContext();
+  this->updateEditors();
+
+  vtkVLogF(PARAVIEW_LOG_APPLICATION_VERBOSITY(),
+    "pqMaterialNodesPropertyWidget created with %d nodes", this->nodeCount());
+}
+
+//-----------------------------------------------------------------------------
+QHBoxLayout* pqMaterialNodesPropertyWidget::createSelectionRow()
+{
+  auto& internals = *this->Internals;
   auto* row = new QHBoxLayout();
   row->setSpacing(pqPropertiesPanel::suggestedHorizontalSpacing());
   internals.Presets = new QComboBox(this);
@@ -294,15 +344,13 @@ pqMaterialNodesPropertyWidget::pqMaterialNodesPropertyWidget(
   internals.Remove->setToolTip(tr("Remove the selected node (Delete)"));
   internals.Remove->setAutoRaise(true);
   row->addWidget(internals.Remove);
-  vbox->addLayout(row);
-  internals.Notice = new QLabel(this);
-  internals.Notice->setObjectName("Notice");
-  internals.Notice->setWordWrap(true);
-  internals.Notice->setStyleSheet(QStringLiteral("QLabel { color: #d02020; }"));
-  internals.Notice->setVisible(false);
-  vbox->addWidget(internals.Notice);
+  return row;
+}
 
-  // The selected node: its value and the parameters, two per row.
+//-----------------------------------------------------------------------------
+void pqMaterialNodesPropertyWidget::createEditors()
+{
+  auto& internals = *this->Internals;
   internals.Grid = new QGridLayout();
   internals.Grid->setHorizontalSpacing(pqPropertiesPanel::suggestedHorizontalSpacing());
   internals.Grid->setVerticalSpacing(pqPropertiesPanel::suggestedVerticalSpacing());
@@ -340,40 +388,6 @@ pqMaterialNodesPropertyWidget::pqMaterialNodesPropertyWidget(
     QObject::connect(spin, QOverload<double>::of(&QDoubleSpinBox::valueChanged), this,
       &pqMaterialNodesPropertyWidget::onParameterEdited);
   }
-  this->layoutEditors(1);
-  vbox->addLayout(internals.Grid);
-
-  QObject::connect(internals.Value, &pqDoubleLineEdit::textChangedAndEditingFinished, this,
-    &pqMaterialNodesPropertyWidget::onValueEdited);
-  QObject::connect(internals.Presets, QOverload<int>::of(&QComboBox::activated), this,
-    &pqMaterialNodesPropertyWidget::onPresetActivated);
-  QObject::connect(internals.Remove, &QToolButton::clicked, this,
-    &pqMaterialNodesPropertyWidget::removeCurrentNode);
-
-  // Links pull the current values into the widget now and keep it in step
-  // with undo/redo, Python and state files later.
-  this->addPropertyLink(this, "materialNodes", SIGNAL(materialNodesChanged()), smproperty);
-  if (vtkSMProperty* preset = smproxy->GetProperty("MaterialPreset"))
-  {
-    internals.HasPresetProperty = true;
-    // The property's default is its "use the nodes" entry.
-    auto* svp = vtkSMStringVectorProperty::SafeDownCast(preset);
-    if (svp && svp->GetDefaultValue(0))
-    {
-      internals.CustomPreset = QString::fromUtf8(svp->GetDefaultValue(0));
-    }
-    this->addPropertyLink(this, "materialPreset", SIGNAL(materialPresetChanged()), preset);
-  }
-
-  // The track's range and opacity curve follow the data and the colouring.
-  internals.VTKConnect->Connect(
-    smproxy, vtkCommand::PropertyModifiedEvent, this, SLOT(updateContext()));
-  internals.VTKConnect->Connect(smproxy, vtkCommand::UpdateDataEvent, this, SLOT(updateContext()));
-  this->updateContext();
-  this->updateEditors();
-
-  vtkVLogF(PARAVIEW_LOG_APPLICATION_VERBOSITY(),
-    "pqMaterialNodesPropertyWidget created with %d nodes", this->nodeCount());
 }
 
 //-----------------------------------------------------------------------------

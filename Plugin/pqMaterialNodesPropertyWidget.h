@@ -41,6 +41,7 @@
 #include <QString>
 #include <QVariant>
 
+class QHBoxLayout;
 class QResizeEvent;
 
 class pqMaterialNodesPropertyWidget : public pqPropertyWidget
@@ -119,6 +120,10 @@ private: // NOLINT(readability-redundant-access-specifiers)
   void updateEditors();
   /// Places the editors in `columns` label/editor pairs per row.
   void layoutEditors(int columns);
+  /// The preset chooser, the selection status and the remove button: one row.
+  QHBoxLayout* createSelectionRow();
+  /// The selected node's value and parameter editors, in a grid not yet laid out.
+  void createEditors();
 };
 
 #endif

@@ -71,6 +71,69 @@ int pqMaterialNodesTrack::nodeAt(double x) const
 }
 
 //-----------------------------------------------------------------------------
+void pqMaterialNodesTrack::paintOpacityCurve(QPainter& painter, const double range[2]) const
+{
+  if (this->View.Opacity.size() < 2)
+  {
+    return;
+  }
+  const QPalette& pal = this->palette();
+  const QRectF plot = this->plotRect();
+  QPainterPath path;
+  path.moveTo(this->toX(this->View.Opacity.front().first, range), plot.bottom());
+  for (const auto& pt : this->View.Opacity)
+  {
+    path.lineTo(this->toX(pt.first, range), plot.bottom() - pt.second * plot.height());
+  }
+  path.lineTo(this->toX(this->View.Opacity.back().first, range), plot.bottom());
+  path.closeSubpath();
+  QColor fill = pal.color(QPalette::Highlight);
+  fill.setAlpha(50);
+  QColor line = fill;
+  line.setAlpha(140);
+  painter.save();
+  painter.setClipRect(plot);
+  painter.setPen(QPen(line, 1));
+  painter.setBrush(fill);
+  painter.drawPath(path);
+  painter.restore();
+}
+
+//-----------------------------------------------------------------------------
+void pqMaterialNodesTrack::paintHandles(QPainter& painter, const double range[2]) const
+{
+  // A guide line through the plot and a disc, in the colour of the preset
+  // the node matches (grey otherwise); the selected one is outlined.
+  const auto& nodes = this->Model.GetNodes();
+  const QPalette& pal = this->palette();
+  const QRectF plot = this->plotRect();
+  const double hy = this->handleY();
+  for (size_t i = 0; i < nodes.size(); ++i)
+  {
+    const Node& node = nodes[i];
+    const double x = this->toX(node[0], range);
+    const bool selected = static_cast<int>(i) == this->Model.GetCurrent();
+    QColor guide = pal.color(QPalette::Mid);
+    painter.setPen(QPen(guide, 1, selected ? Qt::SolidLine : Qt::DotLine));
+    painter.drawLine(QPointF(x, plot.top()), QPointF(x, plot.bottom()));
+
+    QColor fill = pal.color(QPalette::Button);
+    double rgb[3];
+    if (const char* preset = this->Model.PresetOf(node))
+    {
+      if (this->Model.GetLibrary()->GetPresetColor(preset, rgb))
+      {
+        fill = QColor::fromRgbF(rgb[0], rgb[1], rgb[2]);
+      }
+    }
+    painter.setBrush(fill);
+    painter.setPen(selected ? QPen(pal.color(QPalette::Highlight), 2.5)
+                            : QPen(pal.color(QPalette::Dark), 1));
+    painter.drawEllipse(QPointF(x, hy), Radius, Radius);
+  }
+}
+
+//-----------------------------------------------------------------------------
 void pqMaterialNodesTrack::paintEvent(QPaintEvent*)
 {
   const auto& nodes = this->Model.GetNodes();
@@ -85,27 +148,7 @@ void pqMaterialNodesTrack::paintEvent(QPaintEvent*)
   painter.fillRect(this->rect(), pal.base());
 
   // Opacity curve, filled, as context: where the volume is visible at all.
-  if (this->View.Opacity.size() >= 2)
-  {
-    QPainterPath path;
-    path.moveTo(this->toX(this->View.Opacity.front().first, range), plot.bottom());
-    for (const auto& pt : this->View.Opacity)
-    {
-      path.lineTo(this->toX(pt.first, range), plot.bottom() - pt.second * plot.height());
-    }
-    path.lineTo(this->toX(this->View.Opacity.back().first, range), plot.bottom());
-    path.closeSubpath();
-    QColor fill = pal.color(QPalette::Highlight);
-    fill.setAlpha(50);
-    QColor line = fill;
-    line.setAlpha(140);
-    painter.save();
-    painter.setClipRect(plot);
-    painter.setPen(QPen(line, 1));
-    painter.setBrush(fill);
-    painter.drawPath(path);
-    painter.restore();
-  }
+  this->paintOpacityCurve(painter, range);
 
   // A whole-range preset replaces the nodes: show it as a band in its colour
   // and draw the (unused) nodes faintly.
@@ -164,33 +207,8 @@ void pqMaterialNodesTrack::paintEvent(QPaintEvent*)
   painter.drawText(labels, Qt::AlignLeft | Qt::AlignVCenter, QString::number(range[0], 'g', 4));
   painter.drawText(labels, Qt::AlignRight | Qt::AlignVCenter, QString::number(range[1], 'g', 4));
 
-  // Handles: a guide line through the plot and a disc, in the colour of the
-  // preset the node matches (grey otherwise); the selected one is outlined.
-  const double hy = this->handleY();
   painter.setOpacity(presetActive ? 0.5 : 1.0);
-  for (size_t i = 0; i < nodes.size(); ++i)
-  {
-    const Node& node = nodes[i];
-    const double x = this->toX(node[0], range);
-    const bool selected = static_cast<int>(i) == this->Model.GetCurrent();
-    QColor guide = pal.color(QPalette::Mid);
-    painter.setPen(QPen(guide, 1, selected ? Qt::SolidLine : Qt::DotLine));
-    painter.drawLine(QPointF(x, plot.top()), QPointF(x, plot.bottom()));
-
-    QColor fill = pal.color(QPalette::Button);
-    double rgb[3];
-    if (const char* preset = this->Model.PresetOf(node))
-    {
-      if (this->Model.GetLibrary()->GetPresetColor(preset, rgb))
-      {
-        fill = QColor::fromRgbF(rgb[0], rgb[1], rgb[2]);
-      }
-    }
-    painter.setBrush(fill);
-    painter.setPen(selected ? QPen(pal.color(QPalette::Highlight), 2.5)
-                            : QPen(pal.color(QPalette::Dark), 1));
-    painter.drawEllipse(QPointF(x, hy), Radius, Radius);
-  }
+  this->paintHandles(painter, range);
 
   painter.setOpacity(1.0);
   painter.setRenderHint(QPainter::Antialiasing, false);

@@ -21,6 +21,7 @@
 #include <utility>
 #include <vector>
 
+class QPainter;
 class pqMaterialNodesPropertyWidget;
 namespace mmv
 {
@@ -65,6 +66,11 @@ protected:
   void keyPressEvent(QKeyEvent* event) override;
 
 private:
+  // The parts of paintEvent: the filled opacity curve in the plot, and the
+  // nodes' guide lines and handles.
+  void paintOpacityCurve(QPainter& painter, const double range[2]) const;
+  void paintHandles(QPainter& painter, const double range[2]) const;
+
   pqMaterialNodesPropertyWidget* Owner;
   const mmv::MaterialNodeModel& Model;
   ViewState View;

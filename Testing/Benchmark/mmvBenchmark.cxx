@@ -172,13 +172,9 @@ std::vector<std::vector<MethodSpec>> MakeMethods(bool quick)
 }
 
 // One window rendering one scene with one or more methods.
-struct Instance
+struct Instance : mmvbench::View
 {
   std::vector<Result> Results;
-  vtkSmartPointer<vtkRenderWindow> Window = mmvtest::NewRenderWindow();
-  vtkNew<vtkRenderer> Renderer;
-  vtkNew<vtkVolume> Volume;
-  vtkNew<vtkVolumeProperty> Property;
   vtkSmartPointer<vtkOpenGLGPUVolumeRayCastMapper> Mapper;
   vtkMultiMaterialVolumeMapper* Ours = nullptr;
   double SmallestSpacing = 1.0;
@@ -186,8 +182,8 @@ struct Instance
   double Render()
   {
     const auto start = Clock::now();
-    this->Window->Render();
-    this->Window->WaitForCompletion();
+    this->RenderWindow->Render();
+    this->RenderWindow->WaitForCompletion();
     return Since(start);
   }
 
@@ -210,7 +206,7 @@ struct Instance
   vtkSmartPointer<vtkImageData> Grab(int size)
   {
     vtkNew<vtkUnsignedCharArray> rgb;
-    this->Window->GetPixelData(0, 0, size - 1, size - 1, 0, rgb);
+    this->RenderWindow->GetPixelData(0, 0, size - 1, size - 1, 0, rgb);
     auto image = vtkSmartPointer<vtkImageData>::New();
     image->SetDimensions(size, size, 1);
     image->GetPointData()->SetScalars(rgb);
@@ -338,21 +334,6 @@ void SetUpInstance(Instance& in, const mmvbench::SceneSpec& scene, vtkCamera* ca
 {
   const MethodSpec& m = in.Results.front().Spec;
   in.SmallestSpacing = smallestSpacing;
-  in.Window->SetOffScreenRendering(1);
-  in.Window->SetSize(size, size);
-  in.Window->SetMultiSamples(0);
-  in.Window->AddRenderer(in.Renderer);
-  in.Renderer->SetBackground(const_cast<double*>(scene.Background));
-  in.Renderer->SetBackground2(const_cast<double*>(scene.Background2));
-  in.Renderer->GradientBackgroundOn();
-  in.Renderer->AutomaticLightCreationOff();
-  in.Renderer->AddLight(light);
-  in.Renderer->SetActiveCamera(camera);
-
-  in.Property->SetColor(scene.Color);
-  in.Property->SetScalarOpacity(scene.Opacity);
-  in.Property->SetScalarOpacityUnitDistance(scene.UnitDistance);
-  in.Property->SetInterpolationTypeToLinear();
   if (m.Family == "ours")
   {
     vtkNew<vtkMultiMaterialVolumeMapper> ours;
@@ -367,26 +348,18 @@ void SetUpInstance(Instance& in, const mmvbench::SceneSpec& scene, vtkCamera* ca
   }
   else
   {
-    // VTK has one material per volume: the mmv default parameters.
     in.Mapper = vtkSmartPointer<vtkOpenGLGPUVolumeRayCastMapper>::New();
-    in.Property->ShadeOn();
-    in.Property->SetAmbient(mmv::MaterialParameterTable[mmv::Ambient].Default);
-    in.Property->SetDiffuse(mmv::MaterialParameterTable[mmv::Diffuse].Default);
-    in.Property->SetSpecular(mmv::MaterialParameterTable[mmv::Specular].Default);
-    in.Property->SetSpecularPower(mmv::MaterialParameterTable[mmv::Shininess].Default);
+    mmvbench::ShadeWithDefaultMaterial(in.Property);
     if (m.Family == "vtk-scattering")
     {
       in.Mapper->SetVolumetricScatteringBlending(static_cast<float>(m.Blending));
       in.Mapper->SetGlobalIlluminationReach(static_cast<float>(m.Reach));
     }
   }
-  in.Mapper->SetInputData(scene.Image);
+  in.SetUp(scene, camera, light, size, in.Mapper);
   in.Mapper->AutoAdjustSampleDistancesOff();
   in.Mapper->LockSampleDistanceToInputSpacingOff();
   in.Select(0, false);
-  in.Volume->SetMapper(in.Mapper);
-  in.Volume->SetProperty(in.Property);
-  in.Renderer->AddVolume(in.Volume);
 }
 
 }
@@ -486,7 +459,7 @@ int main(int argc, char* argv[])
         r.FirstFrame = in->Render();
         if (!rendererReported)
         {
-          machine << "renderer " << mmvtest::RendererString(in->Window) << "\n";
+          machine << "renderer " << mmvtest::RendererString(in->RenderWindow) << "\n";
           rendererReported = true;
         }
         if (in->Ours)

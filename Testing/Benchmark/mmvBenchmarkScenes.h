@@ -1,6 +1,9 @@
 /**
- * The three benchmark scenes: data, colour/opacity, materials, the light and
- * the start of the camera path.
+ * The benchmark scenes (data, colour/opacity, materials, the light and the
+ * start of the camera path) and how every benchmark program shows them: the
+ * camera and key light (FrameScene), the volume property (SetUpProperty),
+ * the renderer (SetUpRenderer), VTK's shading at our default material
+ * (ShadeWithDefaultMaterial) and one offscreen window per mapper (View).
  *
  *  - "synthetic": 64^3 voxels, three objects of three materials: a polished
  *    metal ball (reflective), a strongly scattering translucent blob (s = 15)
@@ -17,6 +20,7 @@
 #define mmvBenchmarkScenes_h
 
 #include "mmvTestScenes.h" // MakeVolume, shared with the tests
+#include "mmvTestWindow.h" // NewRenderWindow
 
 #include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
@@ -26,10 +30,16 @@
 #include "vtkImageResample.h"
 #include "vtkLight.h"
 #include "vtkMaterialTransferFunction.h"
+#include "vtkMultiMaterialParameters.h"
 #include "vtkNew.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
 #include "vtkSmartPointer.h"
+#include "vtkVolume.h"
+#include "vtkVolumeMapper.h"
+#include "vtkVolumeProperty.h"
 #include "vtkXMLImageDataReader.h"
 
 #include <algorithm>
@@ -307,6 +317,72 @@ inline double FrameScene(const SceneSpec& scene, vtkCamera* camera, vtkLight* li
   light->SetIntensity(1.0);
   return distance;
 }
+
+/// The scene's colour, opacity and unit distance, trilinear: the volume
+/// property every method renders with.
+inline void SetUpProperty(const SceneSpec& scene, vtkVolumeProperty* property)
+{
+  property->SetColor(scene.Color);
+  property->SetScalarOpacity(scene.Opacity);
+  property->SetScalarOpacityUnitDistance(scene.UnitDistance);
+  property->SetInterpolationTypeToLinear();
+}
+
+/// VTK's own shading with the mmv default material: VTK has one material
+/// per volume, so its methods are compared at our defaults.
+inline void ShadeWithDefaultMaterial(vtkVolumeProperty* property)
+{
+  property->ShadeOn();
+  property->SetAmbient(mmv::MaterialParameterTable[mmv::Ambient].Default);
+  property->SetDiffuse(mmv::MaterialParameterTable[mmv::Diffuse].Default);
+  property->SetSpecular(mmv::MaterialParameterTable[mmv::Specular].Default);
+  property->SetSpecularPower(mmv::MaterialParameterTable[mmv::Shininess].Default);
+}
+
+/// The scene's background (its gradient unless `gradient` is false), only
+/// `light`, and `camera`: every method and the references see the same.
+inline void SetUpRenderer(
+  const SceneSpec& scene, vtkRenderer* renderer, vtkCamera* camera, vtkLight* light, bool gradient = true)
+{
+  renderer->SetBackground(const_cast<double*>(scene.Background));
+  if (gradient)
+  {
+    renderer->SetBackground2(const_cast<double*>(scene.Background2));
+    renderer->GradientBackgroundOn();
+  }
+  renderer->AutomaticLightCreationOff();
+  renderer->AddLight(light);
+  renderer->SetActiveCamera(camera);
+}
+
+/**
+ * One offscreen window showing the scene through one mapper: size x size,
+ * no multisampling (a method's cost and image are its own), the renderer of
+ * SetUpRenderer and the property of SetUpProperty. Sample distances are the
+ * caller's.
+ */
+struct View
+{
+  vtkSmartPointer<vtkRenderWindow> RenderWindow = mmvtest::NewRenderWindow();
+  vtkNew<vtkRenderer> Renderer;
+  vtkNew<vtkVolume> Volume;
+  vtkNew<vtkVolumeProperty> Property;
+
+  void SetUp(const SceneSpec& scene, vtkCamera* camera, vtkLight* light, int size,
+    vtkVolumeMapper* mapper, bool gradient = true)
+  {
+    this->RenderWindow->SetOffScreenRendering(1);
+    this->RenderWindow->SetSize(size, size);
+    this->RenderWindow->SetMultiSamples(0);
+    this->RenderWindow->AddRenderer(this->Renderer);
+    SetUpRenderer(scene, this->Renderer, camera, light, gradient);
+    SetUpProperty(scene, this->Property);
+    mapper->SetInputData(scene.Image);
+    this->Volume->SetMapper(mapper);
+    this->Volume->SetProperty(this->Property);
+    this->Renderer->AddVolume(this->Volume);
+  }
+};
 
 } // namespace mmvbench
 

@@ -1,8 +1,9 @@
 /**
  * What the calibration programs against the physical reference share
  * (mmvPhysicalCalibration, mmvMediumCalibration): an offscreen window that
- * renders a benchmark scene with one mapper and times it, the scaling of a
- * scene's materials, and the error after the best brightness factor.
+ * renders a benchmark scene with one mapper and times it, the path tracer's
+ * image as the truth, the scaling of a scene's materials, and the error
+ * after the best brightness factor.
  */
 #ifndef mmvCalibrationCommon_h
 #define mmvCalibrationCommon_h
@@ -82,39 +83,18 @@ inline void ScaleMaterials(vtkMaterialTransferFunction* source, double scatterin
   target->SetNodes(static_cast<int>(nodes.size()), nodes.data());
 }
 
-// One offscreen window rendering the scene with one mapper.
-struct Window
+// One offscreen window rendering the scene with one mapper, sampled at the
+// smallest spacing.
+struct Window : mmvbench::View
 {
-  vtkSmartPointer<vtkRenderWindow> RenderWindow = mmvtest::NewRenderWindow();
-  vtkNew<vtkRenderer> Renderer;
-  vtkNew<vtkVolume> Volume;
-  vtkNew<vtkVolumeProperty> Property;
-
   Window(const mmvbench::SceneSpec& scene, vtkCamera* camera, vtkLight* light, int size,
     vtkOpenGLGPUVolumeRayCastMapper* mapper)
   {
-    this->RenderWindow->SetOffScreenRendering(1);
-    this->RenderWindow->SetSize(size, size);
-    this->RenderWindow->SetMultiSamples(0);
-    this->RenderWindow->AddRenderer(this->Renderer);
-    this->Renderer->SetBackground(const_cast<double*>(scene.Background));
-    this->Renderer->SetBackground2(const_cast<double*>(scene.Background2));
-    this->Renderer->GradientBackgroundOn();
-    this->Renderer->AutomaticLightCreationOff();
-    this->Renderer->AddLight(light);
-    this->Renderer->SetActiveCamera(camera);
-    this->Property->SetColor(scene.Color);
-    this->Property->SetScalarOpacity(scene.Opacity);
-    this->Property->SetScalarOpacityUnitDistance(scene.UnitDistance);
-    this->Property->SetInterpolationTypeToLinear();
+    this->SetUp(scene, camera, light, size, mapper);
     const double* spacing = scene.Image->GetSpacing();
-    mapper->SetInputData(scene.Image);
     mapper->AutoAdjustSampleDistancesOff();
     mapper->LockSampleDistanceToInputSpacingOff();
     mapper->SetSampleDistance(static_cast<float>(std::min({ spacing[0], spacing[1], spacing[2] })));
-    this->Volume->SetMapper(mapper);
-    this->Volume->SetProperty(this->Property);
-    this->Renderer->AddVolume(this->Volume);
   }
 
   // Median frame time after one untimed frame (0 with frames = 0); the image
@@ -136,6 +116,32 @@ struct Window
     image->SetDimensions(size[0], size[1], 1);
     image->GetPointData()->SetScalars(rgb);
     return Median(times);
+  }
+};
+
+// The path tracer's image as the methods are compared with it: its 8-bit
+// colours, the pixels where its paths met the medium (some standard error),
+// and its noise floor (the RMS standard error, 0-255).
+struct Truth
+{
+  vtkNew<vtkImageData> Image;
+  std::vector<bool> Mask;
+  double FloorRMSE = 0.0;
+
+  Truth(vtkImageData* traced, int size)
+  {
+    this->Image->SetDimensions(size, size, 1);
+    this->Image->GetPointData()->SetScalars(traced->GetPointData()->GetArray("Colors"));
+    vtkDataArray* se = traced->GetPointData()->GetArray("StandardError");
+    double floor2 = 0.0;
+    this->Mask.assign(se->GetNumberOfTuples(), false);
+    for (vtkIdType i = 0; i < se->GetNumberOfValues(); ++i)
+    {
+      const double e = se->GetComponent(i / 3, i % 3);
+      floor2 += e * e;
+      this->Mask[i / 3] = this->Mask[i / 3] || e > 0.0;
+    }
+    this->FloorRMSE = 255.0 * std::sqrt(floor2 / se->GetNumberOfValues());
   }
 };
 

@@ -346,19 +346,10 @@ int main(int argc, char* argv[])
         {
           return 1;
         }
-        vtkNew<vtkImageData> truth;
-        truth->SetDimensions(opt.Size, opt.Size, 1);
-        truth->GetPointData()->SetScalars(truthImage->GetPointData()->GetArray("Colors"));
-        vtkDataArray* se = truthImage->GetPointData()->GetArray("StandardError");
-        double floor2 = 0.0;
-        std::vector<bool> mask(se->GetNumberOfTuples(), false);
-        for (vtkIdType i = 0; i < se->GetNumberOfValues(); ++i)
-        {
-          const double e = se->GetComponent(i / 3, i % 3);
-          floor2 += e * e;
-          mask[i / 3] = mask[i / 3] || e > 0.0;
-        }
-        const double floor = 255.0 * std::sqrt(floor2 / se->GetNumberOfValues());
+        const mmvcal::Truth reference(truthImage, opt.Size);
+        vtkImageData* truth = reference.Image;
+        const std::vector<bool>& mask = reference.Mask;
+        const double floor = reference.FloorRMSE;
         std::cout << " " << truthSeconds << " s, noise floor " << floor << "/255\n";
         vtkImageErrorMetrics::WritePNG(
           (opt.Out + "/" + opt.Shape + "_" + medium.Key() + "_truth.png").c_str(), truth);
@@ -454,11 +445,7 @@ int main(int argc, char* argv[])
         {
           vtkNew<vtkOpenGLGPUVolumeRayCastMapper> vtkMapper;
           Window vtkWindow(scene, camera, light, opt.Size, vtkMapper);
-          vtkWindow.Property->ShadeOn();
-          vtkWindow.Property->SetAmbient(mmv::MaterialParameterTable[mmv::Ambient].Default);
-          vtkWindow.Property->SetDiffuse(mmv::MaterialParameterTable[mmv::Diffuse].Default);
-          vtkWindow.Property->SetSpecular(mmv::MaterialParameterTable[mmv::Specular].Default);
-          vtkWindow.Property->SetSpecularPower(mmv::MaterialParameterTable[mmv::Shininess].Default);
+          mmvbench::ShadeWithDefaultMaterial(vtkWindow.Property);
           // Best over the three parameters at the mmv default
           // exposure. (Fitting VTK's ambient and diffuse as ours are does not
           // work: its image is not linear in them, the "fitted" renders were

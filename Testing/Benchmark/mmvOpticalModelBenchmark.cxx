@@ -108,13 +108,9 @@ vtkSmartPointer<vtkMaterialTransferFunction> WithTerms(
   return out;
 }
 
-struct Instance
+struct Instance : mmvbench::View
 {
   const Variant* Spec = nullptr;
-  vtkSmartPointer<vtkRenderWindow> Window = mmvtest::NewRenderWindow();
-  vtkNew<vtkRenderer> Renderer;
-  vtkNew<vtkVolume> Volume;
-  vtkNew<vtkVolumeProperty> Property;
   vtkNew<vtkMultiMaterialVolumeMapper> Mapper;
   vtkSmartPointer<vtkMaterialTransferFunction> Materials;
   std::vector<double> Seconds;
@@ -125,8 +121,8 @@ struct Instance
   {
     const auto start = Clock::now();
     const double cpu = ProcessCPUSeconds();
-    this->Window->Render();
-    this->Window->WaitForCompletion();
+    this->RenderWindow->Render();
+    this->RenderWindow->WaitForCompletion();
     this->CPUSeconds.push_back(ProcessCPUSeconds() - cpu);
     this->Seconds.push_back(std::chrono::duration<double>(Clock::now() - start).count());
   }
@@ -220,25 +216,11 @@ int main(int argc, char* argv[])
     {
       auto in = std::make_unique<Instance>();
       in->Spec = &v;
-      in->Window->SetOffScreenRendering(1);
-      in->Window->SetSize(opt.Size, opt.Size);
-      in->Window->SetMultiSamples(0);
-      in->Window->AddRenderer(in->Renderer);
-      in->Renderer->SetBackground(const_cast<double*>(scene.Background));
-      in->Renderer->AutomaticLightCreationOff();
-      in->Renderer->AddLight(light);
-      in->Renderer->SetActiveCamera(camera);
-      in->Property->SetColor(scene.Color);
-      in->Property->SetScalarOpacity(scene.Opacity);
-      in->Property->SetScalarOpacityUnitDistance(scene.UnitDistance);
-      in->Property->SetInterpolationTypeToLinear();
+      // A flat background, as in the figures of docs/performance.md.
+      in->SetUp(scene, camera, light, opt.Size, in->Mapper, /*gradient=*/false);
       in->Materials = WithTerms(scene.Materials, v.Anisotropy, v.Emission, v.Tinted);
-      in->Mapper->SetInputData(scene.Image);
       in->Mapper->SetMaterialTransferFunction(in->Materials);
       in->Mapper->SetCompileUnusedOpticalTerms(v.CompileUnused);
-      in->Volume->SetMapper(in->Mapper);
-      in->Volume->SetProperty(in->Property);
-      in->Renderer->AddVolume(in->Volume);
       in->Render(); // build the tables, irradiance and program: untimed
       in->FirstIrradianceSeconds = in->Mapper->GetLastIrradianceSeconds();
       in->Render();
@@ -257,7 +239,7 @@ int main(int argc, char* argv[])
     }
     const double base = Quantile(instances.front()->Seconds, 0.5);
     const double cpuBase = Quantile(instances.front()->CPUSeconds, 0.5);
-    const std::string renderer = mmvtest::RendererString(instances.front()->Window);
+    const std::string renderer = mmvtest::RendererString(instances.front()->RenderWindow);
     for (const auto& in : instances)
     {
       const double median = Quantile(in->Seconds, 0.5);

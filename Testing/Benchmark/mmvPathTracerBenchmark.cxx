@@ -188,19 +188,13 @@ int main(int argc, char* argv[])
       return 1;
     }
     vtkNew<vtkRenderer> renderer;
+    vtkNew<vtkCamera> camera;
     vtkNew<vtkLight> light;
     double radius = 0.0;
-    mmvbench::FrameScene(scene, renderer->GetActiveCamera(), light, radius);
-    renderer->AutomaticLightCreationOff();
-    renderer->AddLight(light);
-    renderer->SetBackground(const_cast<double*>(scene.Background));
-    renderer->SetBackground2(const_cast<double*>(scene.Background2));
-    renderer->GradientBackgroundOn();
+    mmvbench::FrameScene(scene, camera, light, radius);
+    mmvbench::SetUpRenderer(scene, renderer, camera, light);
     vtkNew<vtkVolumeProperty> property;
-    property->SetColor(scene.Color);
-    property->SetScalarOpacity(scene.Opacity);
-    property->SetScalarOpacityUnitDistance(scene.UnitDistance);
-    property->SetInterpolationTypeToLinear();
+    mmvbench::SetUpProperty(scene, property);
 
     vtkNew<vtkMultiMaterialPathTracer> tracer;
     tracer->SetInputData(scene.Image);

@@ -305,18 +305,10 @@ int main(int argc, char* argv[])
     {
       return 1;
     }
-    vtkNew<vtkImageData> truth;
-    truth->SetDimensions(opt.Size, opt.Size, 1);
-    truth->GetPointData()->SetScalars(truthImage->GetPointData()->GetArray("Colors"));
-    vtkDataArray* se = truthImage->GetPointData()->GetArray("StandardError");
-    double floor2 = 0.0;
-    std::vector<bool> volumePixels(se->GetNumberOfTuples(), false);
-    for (vtkIdType i = 0; i < se->GetNumberOfValues(); ++i)
-    {
-      floor2 += se->GetComponent(i / 3, i % 3) * se->GetComponent(i / 3, i % 3);
-      volumePixels[i / 3] = volumePixels[i / 3] || se->GetComponent(i / 3, i % 3) > 0.0;
-    }
-    const double floorRMSE = 255.0 * std::sqrt(floor2 / se->GetNumberOfValues());
+    const mmvcal::Truth reference(truthImage, opt.Size);
+    vtkImageData* truth = reference.Image;
+    const std::vector<bool>& volumePixels = reference.Mask;
+    const double floorRMSE = reference.FloorRMSE;
     const double truthSeconds = tracer->GetLastRenderSeconds();
     std::cout << " " << truthSeconds << " s, noise floor RMSE " << floorRMSE << "/255\n";
     vtkImageErrorMetrics::WritePNG((opt.Out + "/" + name + "_truth.png").c_str(), truth);
@@ -399,11 +391,7 @@ int main(int argc, char* argv[])
     {
       vtkNew<vtkOpenGLGPUVolumeRayCastMapper> phong;
       Window window(scene, camera, light, opt.Size, phong);
-      window.Property->ShadeOn();
-      window.Property->SetAmbient(mmv::MaterialParameterTable[mmv::Ambient].Default);
-      window.Property->SetDiffuse(mmv::MaterialParameterTable[mmv::Diffuse].Default);
-      window.Property->SetSpecular(mmv::MaterialParameterTable[mmv::Specular].Default);
-      window.Property->SetSpecularPower(mmv::MaterialParameterTable[mmv::Shininess].Default);
+      mmvbench::ShadeWithDefaultMaterial(window.Property);
       measure("vtk-phong", "", window);
       for (double blending : { 0.25, 0.5, 1.0, 2.0 })
       {
