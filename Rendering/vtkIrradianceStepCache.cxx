@@ -4,70 +4,10 @@
 #include "vtkImageData.h"
 #include "vtkIrradianceVolumePass.h"
 #include "vtkOpenGLRenderWindow.h"
+#include "vtkTextureCopy.h"
 #include "vtkTextureObject.h"
-#include "vtk_glew.h"
 
 #include <algorithm>
-
-namespace
-{
-/// Bytes of one texel: the irradiance is 16-bit normalised and the tint half
-/// float, whatever VTK type they were allocated with.
-size_t TexelBytes(vtkTextureObject* texture)
-{
-  const int type = texture->GetVTKDataType();
-  const unsigned int internal = texture->GetInternalFormat(type, texture->GetComponents(), false);
-  switch (internal)
-  {
-    case GL_R16:
-    case GL_RG16:
-    case GL_RGBA16:
-    case GL_R16F:
-    case GL_RG16F:
-    case GL_RGBA16F:
-      return 2 * static_cast<size_t>(texture->GetComponents());
-    default:
-      return 4 * static_cast<size_t>(texture->GetComponents());
-  }
-}
-
-size_t TextureBytes(vtkTextureObject* texture)
-{
-  return TexelBytes(texture) * texture->GetWidth() * texture->GetHeight() * texture->GetDepth();
-}
-
-bool SameSize(vtkTextureObject* a, vtkTextureObject* b)
-{
-  return a->GetWidth() == b->GetWidth() && a->GetHeight() == b->GetHeight() &&
-    a->GetDepth() == b->GetDepth() && a->GetComponents() == b->GetComponents() &&
-    a->GetVTKDataType() == b->GetVTKDataType();
-}
-
-void CopyTexture(vtkTextureObject* from, vtkTextureObject* to)
-{
-  glCopyImageSubData(from->GetHandle(), GL_TEXTURE_3D, 0, 0, 0, 0, to->GetHandle(),
-    GL_TEXTURE_3D, 0, 0, 0, 0, static_cast<GLsizei>(from->GetWidth()),
-    static_cast<GLsizei>(from->GetHeight()), static_cast<GLsizei>(from->GetDepth()));
-}
-
-/// An uninitialised texture of `like`'s size and format (storage only: the
-/// copies are never sampled).
-vtkSmartPointer<vtkTextureObject> NewLike(vtkOpenGLRenderWindow* context, vtkTextureObject* like)
-{
-  const int type = like->GetVTKDataType();
-  const int components = like->GetComponents();
-  auto texture = vtkSmartPointer<vtkTextureObject>::New();
-  texture->SetContext(context);
-  texture->SetInternalFormat(like->GetInternalFormat(type, components, false));
-  texture->SetFormat(like->GetFormat(type, components, false));
-  texture->SetDataType(like->GetDataType(type));
-  if (!texture->Allocate3D(like->GetWidth(), like->GetHeight(), like->GetDepth(), components, type))
-  {
-    return nullptr;
-  }
-  return texture;
-}
-}
 
 //------------------------------------------------------------------------------
 bool vtkIrradianceStepCache::Key::operator==(const Key& o) const
@@ -122,7 +62,7 @@ vtkIrradianceStepCache::Key vtkIrradianceStepCache::MakeKey(
 //------------------------------------------------------------------------------
 bool vtkIrradianceStepCache::CanCopy()
 {
-  return glCopyImageSubData != nullptr;
+  return mmv::CanCopyTextures();
 }
 
 std::vector<vtkTextureObject*> vtkIrradianceStepCache::PassTextures(vtkIrradianceVolumePass* pass)
@@ -153,7 +93,7 @@ bool vtkIrradianceStepCache::Restore(vtkOpenGLRenderWindow* context, const Key& 
   bool fits = targets.size() == entry->Textures.size();
   for (size_t t = 0; fits && t < targets.size(); ++t)
   {
-    fits = targets[t] && SameSize(targets[t], entry->Textures[t]);
+    fits = targets[t] && mmv::SameTextureSize(targets[t], entry->Textures[t]);
   }
   if (!fits)
   {
@@ -161,7 +101,7 @@ bool vtkIrradianceStepCache::Restore(vtkOpenGLRenderWindow* context, const Key& 
   }
   for (size_t t = 0; t < targets.size(); ++t)
   {
-    CopyTexture(entry->Textures[t], targets[t]);
+    mmv::CopyTexture3D(entry->Textures[t], targets[t]);
   }
   // The pass's record of what its textures hold is no longer true.
   pass->InvalidateComputedLights();
@@ -194,7 +134,7 @@ bool vtkIrradianceStepCache::Store(vtkOpenGLRenderWindow* context, const Key& ke
   size_t bytes = 0;
   for (vtkTextureObject* texture : sources)
   {
-    bytes += TextureBytes(texture);
+    bytes += mmv::TextureBytes(texture);
   }
   if (!context || !CanCopy() || sources.empty() || bytes > budgetBytes)
   {
@@ -208,7 +148,7 @@ bool vtkIrradianceStepCache::Store(vtkOpenGLRenderWindow* context, const Key& ke
   entry.Bytes = bytes;
   for (vtkTextureObject* texture : sources)
   {
-    vtkSmartPointer<vtkTextureObject> copy = NewLike(context, texture);
+    vtkSmartPointer<vtkTextureObject> copy = mmv::NewTextureLike(context, texture);
     if (!copy)
     {
       for (auto& made : entry.Textures)
@@ -217,7 +157,7 @@ bool vtkIrradianceStepCache::Store(vtkOpenGLRenderWindow* context, const Key& ke
       }
       return false;
     }
-    CopyTexture(texture, copy);
+    mmv::CopyTexture3D(texture, copy);
     entry.Textures.push_back(copy);
   }
   this->Entries.push_front(std::move(entry));

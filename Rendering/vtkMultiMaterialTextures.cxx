@@ -1,5 +1,7 @@
 #include "vtkMultiMaterialTextures.h"
 
+#include "vtkTextureCopy.h"
+
 #include "vtkDataArray.h"
 #include "vtkMaterialTransferFunction.h"
 #include "vtkMultiMaterialParameters.h"
@@ -113,6 +115,18 @@ bool vtkMultiMaterialTextures::UpdateGradientTexture(vtkOpenGLRenderWindow* cont
     std::equal(sigma, sigma + 3, this->UploadedGradientSmoothing);
   if (current)
   {
+    // Shown before steps were kept (the step on screen when caching began).
+    if (this->KeptBudget > 0 &&
+      std::none_of(this->Kept.begin(), this->Kept.end(), [&](const KeptGradient& kept) {
+        return kept.Scalars == scalars && kept.ScalarsTime == time;
+      }))
+    {
+      this->KeepGradient(context);
+    }
+    return true;
+  }
+  if (this->RestoreKeptGradient(scalars, dims, range, sigma))
+  {
     return true;
   }
   std::vector<float> gradients;
@@ -158,7 +172,82 @@ bool vtkMultiMaterialTextures::UpdateGradientTexture(vtkOpenGLRenderWindow* cont
   std::copy(dims, dims + 3, this->GradientDimensions);
   std::copy(textureDims, textureDims + 3, this->GradientTextureDimensions);
   ++this->GradientUploads;
+  this->KeepGradient(context);
   return true;
+}
+
+//------------------------------------------------------------------------------
+void vtkMultiMaterialTextures::SetKeptGradientBytes(size_t bytes)
+{
+  // Dropped at the next upload or restore, where the context is current.
+  this->KeptBudget = bytes;
+}
+
+bool vtkMultiMaterialTextures::RestoreKeptGradient(
+  vtkDataArray* scalars, const int dims[3], const double range[2], const double smoothing[3])
+{
+  this->TrimKeptGradients(this->KeptBudget);
+  const vtkMTimeType time = scalars->GetMTime();
+  for (auto kept = this->Kept.begin(); kept != this->Kept.end(); ++kept)
+  {
+    if (kept->Scalars == scalars && kept->ScalarsTime == time && kept->Range[0] == range[0] &&
+      kept->Range[1] == range[1] && std::equal(dims, dims + 3, kept->Dimensions) &&
+      std::equal(smoothing, smoothing + 3, kept->Smoothing))
+    {
+      // Only into a texture of its size: the grid's earlier steps'.
+      if (!this->Gradient->GetHandle() || !mmv::SameTextureSize(kept->Texture, this->Gradient))
+      {
+        return false;
+      }
+      mmv::CopyTexture3D(kept->Texture, this->Gradient);
+      this->UploadedScalars = scalars;
+      this->UploadedScalarsTime = time;
+      std::copy(range, range + 2, this->UploadedGradientRange);
+      std::copy(smoothing, smoothing + 3, this->UploadedGradientSmoothing);
+      std::copy(dims, dims + 3, this->GradientDimensions);
+      this->Kept.splice(this->Kept.begin(), this->Kept, kept);
+      ++this->KeptGradientHits;
+      return true;
+    }
+  }
+  return false;
+}
+
+void vtkMultiMaterialTextures::KeepGradient(vtkOpenGLRenderWindow* context)
+{
+  const size_t bytes = mmv::TextureBytes(this->Gradient);
+  if (this->KeptBudget < bytes || !mmv::CanCopyTextures())
+  {
+    this->TrimKeptGradients(this->KeptBudget);
+    return;
+  }
+  this->TrimKeptGradients(this->KeptBudget - bytes);
+  KeptGradient kept;
+  kept.Texture = mmv::NewTextureLike(context, this->Gradient);
+  if (!kept.Texture)
+  {
+    return;
+  }
+  mmv::CopyTexture3D(this->Gradient, kept.Texture);
+  kept.Scalars = this->UploadedScalars;
+  kept.ScalarsTime = this->UploadedScalarsTime;
+  std::copy(this->UploadedGradientRange, this->UploadedGradientRange + 2, kept.Range);
+  std::copy(this->UploadedGradientSmoothing, this->UploadedGradientSmoothing + 3, kept.Smoothing);
+  std::copy(this->GradientDimensions, this->GradientDimensions + 3, kept.Dimensions);
+  kept.Bytes = bytes;
+  this->KeptBytes += bytes;
+  this->Kept.push_front(kept);
+}
+
+void vtkMultiMaterialTextures::TrimKeptGradients(size_t bytes)
+{
+  while (!this->Kept.empty() && this->KeptBytes > bytes)
+  {
+    KeptGradient& oldest = this->Kept.back();
+    oldest.Texture->ReleaseGraphicsResources(oldest.Texture->GetContext());
+    this->KeptBytes -= oldest.Bytes;
+    this->Kept.pop_back();
+  }
 }
 
 void vtkMultiMaterialTextures::Activate()
@@ -194,6 +283,7 @@ void vtkMultiMaterialTextures::ReleaseGraphicsResources(vtkWindow* window)
   this->SegmentPosition->ReleaseGraphicsResources(window);
   this->Material->ReleaseGraphicsResources(window);
   this->Gradient->ReleaseGraphicsResources(window);
+  this->TrimKeptGradients(0);
   this->UploadedTable = nullptr;
   this->UploadedMaterials = nullptr;
   this->UploadedTableBuild = -1;

@@ -16,8 +16,13 @@
 #define vtkMultiMaterialTextures_h
 
 #include "vtkMultiMaterialVolumeModule.h" // export macro
-#include "vtkNew.h"                       // members
+#include "vtkNew.h"
 #include "vtkObject.h"
+#include "vtkSmartPointer.h" // kept gradients
+#include "vtkTextureObject.h" // kept gradients
+
+#include <cstddef>
+#include <list> // kept gradients
 
 class vtkDataArray;
 class vtkMaterialTransferFunction;
@@ -49,6 +54,13 @@ public:
   bool UpdateGradientTexture(vtkOpenGLRenderWindow* context, vtkDataArray* scalars,
     const int dims[3], const double range[2], double maxTextureBytes = 0.0,
     const double smoothing[3] = nullptr);
+
+  /// GPU memory for the gradient volumes of earlier inputs (the steps of a
+  /// series), so data coming back is copied instead of recomputed and
+  /// uploaded; least recently used first out. 0 (the default): none.
+  void SetKeptGradientBytes(size_t bytes);
+  vtkGetMacro(KeptGradientHits, int);
+  size_t GetKeptGradientBytes() const { return this->KeptBytes; }
 
   vtkTextureObject* GetSegmentColorTexture() { return this->SegmentColor; }
   vtkTextureObject* GetGradientTexture() { return this->Gradient; }
@@ -84,6 +96,24 @@ private:
   vtkNew<vtkTextureObject> Material;
   vtkNew<vtkTextureObject> Gradient;
   int GradientUploads = 0;
+  struct KeptGradient
+  {
+    vtkDataArray* Scalars = nullptr;
+    vtkMTimeType ScalarsTime = 0;
+    double Range[2] = { 0.0, 0.0 };
+    double Smoothing[3] = { 0.0, 0.0, 0.0 };
+    int Dimensions[3] = { 0, 0, 0 };
+    vtkSmartPointer<vtkTextureObject> Texture;
+    size_t Bytes = 0;
+  };
+  bool RestoreKeptGradient(vtkDataArray* scalars, const int dims[3], const double range[2],
+    const double smoothing[3]);
+  void KeepGradient(vtkOpenGLRenderWindow* context);
+  void TrimKeptGradients(size_t bytes);
+  std::list<KeptGradient> Kept; // most recently used first
+  size_t KeptBytes = 0;
+  size_t KeptBudget = 0;
+  int KeptGradientHits = 0;
   vtkDataArray* UploadedScalars = nullptr;
   vtkMTimeType UploadedScalarsTime = 0;
   double UploadedGradientRange[2] = { 0.0, 0.0 };

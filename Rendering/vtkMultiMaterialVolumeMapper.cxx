@@ -654,6 +654,8 @@ bool vtkMultiMaterialVolumeMapper::UpdateGradient(vtkOpenGLRenderWindow* context
   }
   double smoothingVoxels[3];
   mmv::GradientSmoothingVoxels(smoothing, image->GetSpacing(), smoothingVoxels);
+  // The steps of a series kept with their irradiance keep their gradients.
+  in.Textures->SetKeptGradientBytes(static_cast<size_t>(this->IrradianceCacheMB * 1048576.0));
   if (!in.Textures->UpdateGradientTexture(context, scalars, dataDims, gradientRange,
         this->MaxBrickMB * 1024.0 * 1024.0, smoothingVoxels))
   {

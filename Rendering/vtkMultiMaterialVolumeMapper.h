@@ -103,8 +103,9 @@ public:
    * GPU memory in MB for the irradiance of earlier inputs, kept so that data
    * coming back (the steps of a series on its second loop, with ParaView's
    * animation caching) costs a copy instead of an update
-   * (vtkIrradianceStepCache). 0 (the default) keeps none. Not used for a
-   * piece of a volume in pieces.
+   * (vtkIrradianceStepCache); their gradient volumes are kept within the
+   * same amount again. 0 (the default) keeps none. The irradiance is not
+   * kept for a piece of a volume in pieces.
    */
   vtkSetClampMacro(IrradianceCacheMB, double, 0.0, 1.0e6);
   vtkGetMacro(IrradianceCacheMB, double);

@@ -122,22 +122,7 @@ struct PlateScene : mmvtest::Scene
   }
 };
 
-double PSNR(const std::vector<unsigned char>& a, const std::vector<unsigned char>& b)
-{
-  if (a.size() != b.size() || a.empty())
-  {
-    return -1.0;
-  }
-  double sum = 0.0;
-  for (size_t i = 0; i < a.size(); ++i)
-  {
-    const double d = double(a[i]) - double(b[i]);
-    sum += d * d;
-  }
-  const double mse = sum / a.size();
-  return mse == 0.0 ? std::numeric_limits<double>::infinity()
-                    : 10.0 * std::log10(255.0 * 255.0 / mse);
-}
+using mmvtest::PSNR;
 
 int Brightest(const std::vector<unsigned char>& pixels)
 {

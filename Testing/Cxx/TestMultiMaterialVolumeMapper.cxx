@@ -639,16 +639,6 @@ float ThinShell(int i, int j, int k)
   return std::abs(r - 12.0) < 0.75 ? 1.0f : 0.0f;
 }
 
-double ImagePSNR(const std::vector<unsigned char>& a, const std::vector<unsigned char>& b)
-{
-  double sum = 0.0;
-  for (size_t p = 0; p < a.size(); ++p)
-  {
-    const double d = static_cast<double>(a[p]) - b[p];
-    sum += d * d;
-  }
-  return sum == 0.0 ? INFINITY : 10.0 * std::log10(255.0 * 255.0 * a.size() / sum);
-}
 }
 
 TEST(MultiMaterialVolumeMapper, ErrorProbeCoarsensSmoothDataWithinItsBound)
@@ -665,7 +655,7 @@ TEST(MultiMaterialVolumeMapper, ErrorProbeCoarsensSmoothDataWithinItsBound)
   ProbeScene full(SmoothBlob, 0.3);
   full.Mapper->SetIrradianceScale(1.0);
   full.Window->Render();
-  const double psnr = ImagePSNR(probed.Pixels(), full.Pixels());
+  const double psnr = mmvtest::PSNR(probed.Pixels(), full.Pixels());
   EXPECT_GE(psnr, mmv::DefaultIrradianceErrorBoundDB) << reason;
   std::printf("smooth blob: %s; image %.1f dB against the full grid\n", reason.c_str(), psnr);
 
@@ -716,7 +706,7 @@ TEST(MultiMaterialVolumeMapper, ErrorProbeRunsOncePerTransferFunctionNotPerCamer
   scene.Renderer->ResetCameraClippingRange();
   fresh.Window->Render();
   scene.Window->Render();
-  EXPECT_EQ(ImagePSNR(scene.Pixels(), fresh.Pixels()), INFINITY);
+  EXPECT_EQ(mmvtest::PSNR(scene.Pixels(), fresh.Pixels()), INFINITY);
   // A transfer-function change measures again.
   scene.Opacity->AddPoint(1.0, 0.6);
   scene.Window->Render();
@@ -746,7 +736,7 @@ void ExpectSameAsFresh(ProbeScene& scene, const std::function<float(int, int, in
   scene.Mapper->GetIrradianceDimensions(kept);
   fresh.Mapper->GetIrradianceDimensions(chosen);
   EXPECT_EQ(kept[0], chosen[0]) << what << ": " << fresh.Mapper->GetIrradianceResolutionReason();
-  EXPECT_EQ(ImagePSNR(scene.Pixels(), fresh.Pixels()), INFINITY) << what;
+  EXPECT_EQ(mmvtest::PSNR(scene.Pixels(), fresh.Pixels()), INFINITY) << what;
 }
 }
 
@@ -811,7 +801,7 @@ TEST(MultiMaterialVolumeMapper, TimeStepsOnTheSameGridKeepTheProbesChoice)
     fresh.Mapper->GetIrradianceDimensions(chosen);
     EXPECT_EQ(dims[0], chosen[0]) << scene.Mapper->GetIrradianceResolutionReason();
     EXPECT_NE(dims[0], first[0]) << scene.Mapper->GetIrradianceResolutionReason();
-    EXPECT_EQ(ImagePSNR(scene.Pixels(), fresh.Pixels()), INFINITY);
+    EXPECT_EQ(mmvtest::PSNR(scene.Pixels(), fresh.Pixels()), INFINITY);
   }
   auto spaced = mmvtest::MakeVolume(larger, SmoothBlob);
   spaced->SetSpacing(0.5, 0.5, 0.5);
@@ -881,15 +871,18 @@ TEST(MultiMaterialVolumeMapper, KeptStepsComeBackWithoutAnUpdate)
   const size_t entry = 10u * static_cast<size_t>(dims[0]) * dims[1] * dims[2];
   EXPECT_EQ(scene.Mapper->GetIrradianceCacheBytes(), 3 * entry);
 
-  // The second loop: copies, not updates, and the very same images.
+  // The second loop: copies, not updates (of the irradiance or the
+  // gradient volume), and the very same images.
   const int updates = scene.Mapper->GetIrradianceUpdateCount();
+  const int gradients = scene.Mapper->GetGradientUploadCount();
   for (size_t k = 0; k < steps.size(); ++k)
   {
     show(k);
     EXPECT_EQ(scene.Mapper->GetIrradianceCacheHitCount(), static_cast<int>(k + 1));
-    EXPECT_EQ(ImagePSNR(scene.Pixels(), first[k]), INFINITY) << "second loop, step " << k;
+    EXPECT_EQ(mmvtest::PSNR(scene.Pixels(), first[k]), INFINITY) << "second loop, step " << k;
   }
   EXPECT_EQ(scene.Mapper->GetIrradianceUpdateCount(), updates);
+  EXPECT_EQ(scene.Mapper->GetGradientUploadCount(), gradients);
 
   // Room for two and a half entries: the least recently used step (0) goes
   // first and is recomputed; step 2 is still there.
@@ -897,7 +890,7 @@ TEST(MultiMaterialVolumeMapper, KeptStepsComeBackWithoutAnUpdate)
   scene.Mapper->SetIrradianceCacheMB(2.5 * entry / mib);
   show(0);
   EXPECT_EQ(scene.Mapper->GetIrradianceUpdateCount(), updates + 1);
-  EXPECT_EQ(ImagePSNR(scene.Pixels(), first[0]), INFINITY);
+  EXPECT_EQ(mmvtest::PSNR(scene.Pixels(), first[0]), INFINITY);
   EXPECT_EQ(scene.Mapper->GetIrradianceCacheBytes(), 2 * entry);
   show(2);
   EXPECT_EQ(scene.Mapper->GetIrradianceUpdateCount(), updates + 1);
@@ -909,7 +902,7 @@ TEST(MultiMaterialVolumeMapper, KeptStepsComeBackWithoutAnUpdate)
   scene.Mapper->SetIrradianceCacheMB(1.5 * entry / mib);
   show(0);
   EXPECT_EQ(scene.Mapper->GetIrradianceUpdateCount(), updates + 2);
-  EXPECT_EQ(ImagePSNR(scene.Pixels(), first[0]), INFINITY);
+  EXPECT_EQ(mmvtest::PSNR(scene.Pixels(), first[0]), INFINITY);
 
   // What the copies depend on: new values in the same array, then moved
   // lights, are updates whose images equal fresh renders.
@@ -926,7 +919,7 @@ TEST(MultiMaterialVolumeMapper, KeptStepsComeBackWithoutAnUpdate)
     scene.Renderer->ResetCameraClippingRange();
     fresh.Window->Render();
     scene.Window->Render();
-    EXPECT_EQ(ImagePSNR(scene.Pixels(), fresh.Pixels()), INFINITY) << what;
+    EXPECT_EQ(mmvtest::PSNR(scene.Pixels(), fresh.Pixels()), INFINITY) << what;
   };
   const int before = scene.Mapper->GetIrradianceUpdateCount();
   const int hits = scene.Mapper->GetIrradianceCacheHitCount();
@@ -1036,7 +1029,7 @@ TEST(MultiMaterialVolumeMapper, KeptScratchGivesTheImagesOfFreshScratch)
       scene->Renderer->ResetCameraClippingRange();
       scene->Window->Render();
     }
-    EXPECT_EQ(ImagePSNR(kept.Pixels(), fresh.Pixels()), INFINITY) << "change " << step;
+    EXPECT_EQ(mmvtest::PSNR(kept.Pixels(), fresh.Pixels()), INFINITY) << "change " << step;
     EXPECT_EQ(fresh.Mapper->GetIrradianceVolumePass()->GetScratchMemoryBytes(), 0);
     ++step;
   }

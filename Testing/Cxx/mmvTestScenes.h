@@ -21,11 +21,32 @@
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
 
+#include <cmath>
 #include <functional>
+#include <limits>
 #include <vector>
 
 namespace mmvtest
 {
+
+/// PSNR of two 8-bit images in dB: infinity when identical, -1 when their
+/// sizes differ or they are empty.
+inline double PSNR(const std::vector<unsigned char>& a, const std::vector<unsigned char>& b)
+{
+  if (a.size() != b.size() || a.empty())
+  {
+    return -1.0;
+  }
+  double sum = 0.0;
+  for (size_t i = 0; i < a.size(); ++i)
+  {
+    const double d = static_cast<double>(a[i]) - static_cast<double>(b[i]);
+    sum += d * d;
+  }
+  const double mse = sum / a.size();
+  return mse == 0.0 ? std::numeric_limits<double>::infinity()
+                    : 10.0 * std::log10(255.0 * 255.0 / mse);
+}
 
 /// dims^3 points, spacing 1, origin 0, values from f(i, j, k).
 inline vtkSmartPointer<vtkImageData> MakeVolume(

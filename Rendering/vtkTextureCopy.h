@@ -1,0 +1,31 @@
+/**
+ * @file   vtkTextureCopy.h
+ * @brief  GPU-side copies of 3D textures: what the irradiance and gradient
+ *         volumes of earlier time steps are kept as.
+ */
+#ifndef vtkTextureCopy_h
+#define vtkTextureCopy_h
+
+#include "vtkSmartPointer.h" // return value
+
+#include <cstddef>
+
+class vtkOpenGLRenderWindow;
+class vtkTextureObject;
+
+namespace mmv
+{
+/// Whether this context can copy textures (glCopyImageSubData, OpenGL 4.3).
+bool CanCopyTextures();
+/// Bytes of `texture` on the GPU (16-bit formats counted as such).
+size_t TextureBytes(vtkTextureObject* texture);
+/// Same size, components and type: one can be copied into the other.
+bool SameTextureSize(vtkTextureObject* a, vtkTextureObject* b);
+/// Copies all of 3D texture `from` into `to` (SameTextureSize) on the GPU.
+void CopyTexture3D(vtkTextureObject* from, vtkTextureObject* to);
+/// An uninitialised 3D texture of `like`'s size and format (null: failed).
+vtkSmartPointer<vtkTextureObject> NewTextureLike(
+  vtkOpenGLRenderWindow* context, vtkTextureObject* like);
+}
+
+#endif
