@@ -1,4 +1,4 @@
-// The ParaView proxies (Plugin/MultiMaterialVolume.xml) repeat the C++
+// The ParaView proxies (Plugin/MultiMaterialVolume.xml.in) repeat the C++
 // defaults as text; this keeps every copy equal to the one constant
 // (a default written in several places drifts).
 #include "vtkMultiMaterialParameters.h"
@@ -15,7 +15,7 @@ namespace
 {
 std::string ReadPluginXML()
 {
-  std::ifstream in(MMV_SOURCE_DIR "/Plugin/MultiMaterialVolume.xml");
+  std::ifstream in(MMV_SOURCE_DIR "/Plugin/MultiMaterialVolume.xml.in");
   std::stringstream text;
   text << in.rdbuf();
   return text.str();
