@@ -60,11 +60,6 @@ vtkIrradianceStepCache::Key vtkIrradianceStepCache::MakeKey(
 }
 
 //------------------------------------------------------------------------------
-bool vtkIrradianceStepCache::CanCopy()
-{
-  return mmv::CanCopyTextures();
-}
-
 std::vector<vtkTextureObject*> vtkIrradianceStepCache::PassTextures(vtkIrradianceVolumePass* pass)
 {
   std::vector<vtkTextureObject*> textures;
@@ -85,7 +80,7 @@ bool vtkIrradianceStepCache::Restore(vtkOpenGLRenderWindow* context, const Key& 
 {
   auto entry = std::find_if(this->Entries.begin(), this->Entries.end(),
     [&key](const Entry& e) { return e.EntryKey == key; });
-  if (entry == this->Entries.end() || !context || !CanCopy())
+  if (entry == this->Entries.end() || !context || !mmv::CanCopyTextures())
   {
     return false;
   }
@@ -111,12 +106,6 @@ bool vtkIrradianceStepCache::Restore(vtkOpenGLRenderWindow* context, const Key& 
 }
 
 //------------------------------------------------------------------------------
-bool vtkIrradianceStepCache::Contains(const Key& key) const
-{
-  return std::any_of(this->Entries.begin(), this->Entries.end(),
-    [&key](const Entry& e) { return e.EntryKey == key; });
-}
-
 bool vtkIrradianceStepCache::Store(vtkOpenGLRenderWindow* context, const Key& key,
   vtkIrradianceVolumePass* pass, const std::vector<mmv::LightSource>& computed,
   size_t budgetBytes)
@@ -136,7 +125,7 @@ bool vtkIrradianceStepCache::Store(vtkOpenGLRenderWindow* context, const Key& ke
   {
     bytes += mmv::TextureBytes(texture);
   }
-  if (!context || !CanCopy() || sources.empty() || bytes > budgetBytes)
+  if (!context || !mmv::CanCopyTextures() || sources.empty() || bytes > budgetBytes)
   {
     this->Trim(budgetBytes);
     return false;

@@ -79,7 +79,6 @@ public:
   bool Store(vtkOpenGLRenderWindow* context, const Key& key, vtkIrradianceVolumePass* pass,
     const std::vector<mmv::LightSource>& computed, size_t budgetBytes);
 
-  bool Contains(const Key& key) const;
 
   /// Drops entries until the rest fit in `budgetBytes` (0: all).
   void Trim(size_t budgetBytes);
@@ -87,8 +86,6 @@ public:
   size_t GetBytes() const { return this->Bytes; }
   int GetNumberOfEntries() const { return static_cast<int>(this->Entries.size()); }
 
-  /// Whether this context can copy textures (glCopyImageSubData, OpenGL 4.3).
-  static bool CanCopy();
 
   void ReleaseGraphicsResources(vtkWindow* window);
 

@@ -87,6 +87,7 @@ vtkMultiMaterialIrradianceStage::~vtkMultiMaterialIrradianceStage() = default;
 void vtkMultiMaterialIrradianceStage::ReleaseGraphicsResources(vtkWindow* window)
 {
   this->Steps.ReleaseGraphicsResources(window);
+  this->HeldKept = false;
   this->Pass->ReleaseGraphicsResources(window);
   this->Probe->ReleaseGraphicsResources(window);
   this->Cache->Invalidate();
@@ -255,16 +256,18 @@ bool vtkMultiMaterialIrradianceStage::Update(vtkMultiMaterialVolumeMapper* mappe
   }
   const bool computed = this->Pass->GetNumberOfIrradianceTextures() > 0;
   const double tolerance = mmv::LightToleranceRadians(this->Mapper->LightDirectionTolerance);
-  const vtkIrradianceStepCache::Key stepKey = stepBudget > 0
-    ? vtkIrradianceStepCache::MakeKey(volumeKey,
-        this->Materials ? this->Materials->GetMTime() : 0, image, scalars, sources, dims)
-    : vtkIrradianceStepCache::Key();
+  // The key of the kept steps, made only where they are looked up or stored.
+  const auto stepKey = [&]() {
+    return vtkIrradianceStepCache::MakeKey(volumeKey,
+      this->Materials ? this->Materials->GetMTime() : 0, image, scalars, sources, dims);
+  };
   if (computed && this->Cache->IsCurrent(volumeKey, sources, dims, tolerance))
   {
     // Current but not yet kept (the step shown before caching was on).
-    if (stepBudget > 0 && !this->Steps.Contains(stepKey))
+    if (stepBudget > 0 && !this->HeldKept)
     {
-      this->Steps.Store(window, stepKey, this->Pass, this->HeldLights, stepBudget);
+      this->HeldKept =
+        this->Steps.Store(window, stepKey(), this->Pass, this->HeldLights, stepBudget);
     }
     return true;
   }
@@ -291,10 +294,11 @@ bool vtkMultiMaterialIrradianceStage::Update(vtkMultiMaterialVolumeMapper* mappe
   // Data seen before with everything else the same (a series' earlier step):
   // its kept irradiance is copied back.
   std::vector<mmv::LightSource> restored;
-  if (computed && stepBudget > 0 && this->Steps.Restore(window, stepKey, this->Pass, restored))
+  if (computed && stepBudget > 0 && this->Steps.Restore(window, stepKey(), this->Pass, restored))
   {
     this->Cache->Store(volumeKey, restored, dims);
     this->HeldLights = restored;
+    this->HeldKept = true;
     ++this->Mapper->IrradianceCacheHitCount;
     std::copy(dims, dims + 3, this->Mapper->IrradianceDimensions);
     return true;
@@ -328,10 +332,8 @@ bool vtkMultiMaterialIrradianceStage::Update(vtkMultiMaterialVolumeMapper* mappe
   }
   this->HeldLights = this->Pass->GetComputedLights();
   this->Cache->Store(volumeKey, this->HeldLights, dims);
-  if (stepBudget > 0)
-  {
-    this->Steps.Store(window, stepKey, this->Pass, this->HeldLights, stepBudget);
-  }
+  this->HeldKept = stepBudget > 0 &&
+    this->Steps.Store(window, stepKey(), this->Pass, this->HeldLights, stepBudget);
   stages.Tables = this->TablesSeconds;
   stages.Shadows = this->Pass->GetLastEstimationSeconds();
   stages.Diffusion = this->Pass->GetLastDiffusionSeconds();

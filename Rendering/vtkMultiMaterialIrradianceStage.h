@@ -121,6 +121,8 @@ private:
   // The light placements the pass's textures hold: its own record after an
   // update, the copy's after a restore (the pass's record is then stale).
   std::vector<mmv::LightSource> HeldLights;
+  // Whether Steps holds a copy of what the pass's textures hold now.
+  bool HeldKept = false;
   std::string ResolutionReason;
   mmv::IrradianceStageSeconds Stages;
   double TablesSeconds = 0.0;

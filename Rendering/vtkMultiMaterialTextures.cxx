@@ -116,10 +116,7 @@ bool vtkMultiMaterialTextures::UpdateGradientTexture(vtkOpenGLRenderWindow* cont
   if (current)
   {
     // Shown before steps were kept (the step on screen when caching began).
-    if (this->KeptBudget > 0 &&
-      std::none_of(this->Kept.begin(), this->Kept.end(), [&](const KeptGradient& kept) {
-        return kept.Scalars == scalars && kept.ScalarsTime == time;
-      }))
+    if (this->KeptBudget > 0 && !this->GradientKept)
     {
       this->KeepGradient(context);
     }
@@ -172,6 +169,7 @@ bool vtkMultiMaterialTextures::UpdateGradientTexture(vtkOpenGLRenderWindow* cont
   std::copy(dims, dims + 3, this->GradientDimensions);
   std::copy(textureDims, textureDims + 3, this->GradientTextureDimensions);
   ++this->GradientUploads;
+  this->GradientKept = false;
   this->KeepGradient(context);
   return true;
 }
@@ -206,6 +204,7 @@ bool vtkMultiMaterialTextures::RestoreKeptGradient(
       std::copy(smoothing, smoothing + 3, this->UploadedGradientSmoothing);
       std::copy(dims, dims + 3, this->GradientDimensions);
       this->Kept.splice(this->Kept.begin(), this->Kept, kept);
+      this->GradientKept = true;
       ++this->KeptGradientHits;
       return true;
     }
@@ -237,6 +236,7 @@ void vtkMultiMaterialTextures::KeepGradient(vtkOpenGLRenderWindow* context)
   kept.Bytes = bytes;
   this->KeptBytes += bytes;
   this->Kept.push_front(kept);
+  this->GradientKept = true;
 }
 
 void vtkMultiMaterialTextures::TrimKeptGradients(size_t bytes)
@@ -284,6 +284,7 @@ void vtkMultiMaterialTextures::ReleaseGraphicsResources(vtkWindow* window)
   this->Material->ReleaseGraphicsResources(window);
   this->Gradient->ReleaseGraphicsResources(window);
   this->TrimKeptGradients(0);
+  this->GradientKept = false;
   this->UploadedTable = nullptr;
   this->UploadedMaterials = nullptr;
   this->UploadedTableBuild = -1;

@@ -113,6 +113,7 @@ private:
   std::list<KeptGradient> Kept; // most recently used first
   size_t KeptBytes = 0;
   size_t KeptBudget = 0;
+  bool GradientKept = false; // Kept holds a copy of what Gradient holds
   int KeptGradientHits = 0;
   vtkDataArray* UploadedScalars = nullptr;
   vtkMTimeType UploadedScalarsTime = 0;
