@@ -4,7 +4,7 @@
 // render as the scene built without the plate (PSNR >= 35 dB), a plane moving
 // through the volume must match fresh renders frame after frame, and the CPU
 // filter must agree with the GPU pass on the cut irradiance.
-#include "mmvTestScenes.h"
+#include "mmvPlateScene.h"
 
 #include "vtkFloatArray.h"
 #include "vtkIrradianceVolumeFilter.h"
@@ -48,41 +48,13 @@ vtkSmartPointer<vtkImageData> PlateAboveFloor(bool withPlate)
 
 using Cut = std::function<void(vtkMultiMaterialVolumeMapper*)>;
 
-/// A scene of the plate and floor seen from above (+z), lit from above.
-struct PlateScene : mmvtest::Scene
+/// The plate and floor (mmvPlateScene.h), with the plate or without it.
+/// Attenuation 1 casts the shadows; no specular.
+struct PlateScene : mmvtest::PlateScene
 {
-  vtkNew<vtkMultiMaterialVolumeMapper> Mapper;
-  vtkNew<vtkMaterialTransferFunction> Materials;
-  vtkSmartPointer<vtkImageData> Image;
-
   explicit PlateScene(bool withPlate)
-    : mmvtest::Scene(64)
+    : mmvtest::PlateScene(PlateAboveFloor(withPlate), 0.0)
   {
-    this->Image = PlateAboveFloor(withPlate);
-    this->Color->AddRGBPoint(0.0, 1.0, 0.9, 0.8);
-    this->Color->AddRGBPoint(1.0, 1.0, 0.9, 0.8);
-    this->Opacity->AddPoint(0.0, 0.0);
-    this->Opacity->AddPoint(0.5, 0.5);
-    this->Opacity->AddPoint(1.0, 0.5);
-    this->Property->SetScalarOpacityUnitDistance(1.0);
-    // Ambient-heavy so the floor is bright where lit; attenuation 1: shadows.
-    this->Materials->AddNode(1.0, 0.6, 0.4, 0.0, 10.0, 1.0, 0.0, 0.0);
-    this->Mapper->SetInputData(this->Image);
-    this->Mapper->SetMaterialTransferFunction(this->Materials);
-    this->Mapper->SetIrradianceScale(1.0);
-    this->Mapper->AutoAdjustSampleDistancesOff();
-    this->Mapper->SetSampleDistance(0.5);
-    this->Volume->SetMapper(this->Mapper);
-    this->FrameBounds(this->Image->GetBounds(), 1.1);
-    const double from[3] = { 20.0, 18.0, 100.0 };
-    const double to[3] = { 16.0, 16.0, 0.0 };
-    this->AddDirectionalLight(from, to);
-  }
-
-  std::vector<unsigned char> Render()
-  {
-    this->Window->Render();
-    return this->Pixels();
   }
 };
 

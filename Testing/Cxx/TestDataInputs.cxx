@@ -4,6 +4,7 @@
 // Each is shaded with materials (MultiMaterialActive) and renders as its
 // one-component point-data equivalent does; the CPU filter lights cell
 // scalars as the GPU does.
+#include "mmvPlateScene.h"
 #include "mmvTestScenes.h"
 #include "mmvTestUtilities.h"
 
@@ -87,39 +88,15 @@ vtkSmartPointer<vtkImageData> AsPointDataOnCentres(vtkFloatArray* values)
   return image;
 }
 
-struct PlateScene : mmvtest::Scene
+/// The plate and floor of mmvPlateScene.h, framed on the cells' bounds so
+/// that cell data and their point data on the cell centres look alike.
+struct PlateScene : mmvtest::PlateScene
 {
-  vtkNew<vtkMultiMaterialVolumeMapper> Mapper;
-  vtkNew<vtkMaterialTransferFunction> Materials;
-
   explicit PlateScene(vtkImageData* image)
-    : mmvtest::Scene(64)
+    : mmvtest::PlateScene(image, 0.2, CellBounds)
   {
-    this->Color->AddRGBPoint(0.0, 1.0, 0.9, 0.8);
-    this->Color->AddRGBPoint(1.0, 1.0, 0.9, 0.8);
-    this->Opacity->AddPoint(0.0, 0.0);
-    this->Opacity->AddPoint(0.5, 0.5);
-    this->Opacity->AddPoint(1.0, 0.5);
-    this->Property->SetScalarOpacityUnitDistance(1.0);
-    this->Materials->AddNode(1.0, 0.6, 0.4, 0.2, 10.0, 1.0, 0.0, 0.0);
-    this->Mapper->SetInputData(image);
-    this->Mapper->SetMaterialTransferFunction(this->Materials);
-    this->Mapper->SetIrradianceScale(1.0);
-    this->Mapper->AutoAdjustSampleDistancesOff();
-    this->Mapper->SetSampleDistance(0.5);
-    this->Volume->SetMapper(this->Mapper);
-    const double bounds[6] = { 0, Cells, 0, Cells, 0, Cells };
-    this->FrameBounds(bounds, 1.1);
-    const double from[3] = { 20.0, 18.0, 100.0 };
-    const double to[3] = { 16.0, 16.0, 0.0 };
-    this->AddDirectionalLight(from, to);
   }
-
-  std::vector<unsigned char> Render()
-  {
-    this->Window->Render();
-    return this->Pixels();
-  }
+  static constexpr double CellBounds[6] = { 0, Cells, 0, Cells, 0, Cells };
 };
 
 using mmvtest::PSNR;
