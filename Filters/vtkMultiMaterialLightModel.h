@@ -51,12 +51,15 @@ struct LightSource
   /// with distances in object units; used when Radius == 0.
   glm::dvec3 Attenuation{ 1.0, 0.0, 0.0 };
   double Radius = 0.0;             // point/spot: epsilon of eq. 12; 0: Attenuation
+  /// The GPU estimates the light's transmittance on every GridStride-th
+  /// point of the irradiance grid (mmv::LightGridStride) and interpolates it.
+  int GridStride = 1;
 
   bool operator==(const LightSource& o) const
   {
     return Kind == o.Kind && Position == o.Position && ToLight == o.ToLight &&
       SpotAxis == o.SpotAxis && CosCone == o.CosCone && SpotExponent == o.SpotExponent &&
-      Attenuation == o.Attenuation && Radius == o.Radius;
+      Attenuation == o.Attenuation && Radius == o.Radius && GridStride == o.GridStride;
   }
   bool operator!=(const LightSource& o) const { return !(*this == o); }
 };

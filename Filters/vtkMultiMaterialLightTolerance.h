@@ -53,7 +53,7 @@ inline bool LightWithinTolerance(const LightSource& computed, const LightSource&
 {
   if (computed.Kind != now.Kind || computed.CosCone != now.CosCone ||
     computed.SpotExponent != now.SpotExponent || computed.Attenuation != now.Attenuation ||
-    computed.Radius != now.Radius)
+    computed.Radius != now.Radius || computed.GridStride != now.GridStride)
   {
     return false;
   }

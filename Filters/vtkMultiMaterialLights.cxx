@@ -227,4 +227,26 @@ std::vector<ShadingLight> CollectLights(vtkLightCollection* lights,
   return kept;
 }
 
+//------------------------------------------------------------------------------
+std::vector<LightSource> IrradianceLightSources(
+  const std::vector<ShadingLight>& lights, const int dims[3], bool strideDimLights)
+{
+  auto brightness = [](const ShadingLight& light) {
+    return std::max(light.Radiance.x, std::max(light.Radiance.y, light.Radiance.z));
+  };
+  double brightest = 0.0;
+  for (const ShadingLight& light : lights)
+  {
+    brightest = std::max(brightest, brightness(light));
+  }
+  std::vector<LightSource> sources;
+  for (const ShadingLight& light : lights)
+  {
+    sources.push_back(light.Source);
+    sources.back().GridStride =
+      strideDimLights ? LightGridStride(brightness(light), brightest, dims) : 1;
+  }
+  return sources;
+}
+
 } // namespace mmv

@@ -59,6 +59,15 @@ VTKMULTIMATERIALVOLUMEFILTERS_EXPORT std::vector<ShadingLight> CollectLights(vtk
   const vtkMatrix4x4* worldToObject, double radius, int maxLights, int* dropped = nullptr,
   std::vector<std::string>* problems = nullptr);
 
+/**
+ * The lights' geometry for the irradiance volume on a grid of `dims`. With
+ * `strideDimLights`, each light gets the grid stride its share of the image
+ * allows (mmv::LightGridStride of its brightest colour channel against the
+ * brightest light's); without, every light the irradiance grid.
+ */
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT std::vector<LightSource> IrradianceLightSources(
+  const std::vector<ShadingLight>& lights, const int dims[3], bool strideDimLights);
+
 /// Checks a PointLightRadius (eq. 12's epsilon; 0 selects VTK's attenuation):
 /// a negative or non-finite radius returns 0 and describes why in `why`.
 VTKMULTIMATERIALVOLUMEFILTERS_EXPORT double ValidPointLightRadius(double radius, std::string* why);

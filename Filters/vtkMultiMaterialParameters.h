@@ -173,6 +173,46 @@ inline int TintDimension(int irradianceDim, int divisor = TintResolutionDivisor)
   return n < 2 ? 2 : n;
 }
 
+/**
+ * Dim lights on a coarser grid. A light's share of the image bounds the
+ * image error its irradiance can cause: a light at most DimLightRatio of the
+ * brightest light's radiance (the light kit's fill, back and head lights are
+ * 1/3 to 1/3.5 of its key light) is estimated on every DimLightStride-th
+ * point of the irradiance grid per axis and interpolated trilinearly, an
+ * eighth of the shadow rays (docs/performance.md, "Dim lights", measures
+ * the image error on smooth and fine-structured volumes). Grids too small
+ * to coarsen (LightGridDimension below MinimumLightGridDimension on an
+ * axis) keep every light on the irradiance grid.
+ */
+constexpr int DimLightStride = 2;
+constexpr double DimLightRatio = 0.5;
+constexpr int MinimumLightGridDimension = 8;
+
+/// Points along an axis of `irradianceDim` irradiance points of a light grid
+/// of stride `stride` (the end points shared, as the tint grid's).
+inline int LightGridDimension(int irradianceDim, int stride)
+{
+  return TintDimension(irradianceDim, stride);
+}
+
+/// The grid stride of a light of radiance `luminance` among lights whose
+/// brightest has `brightest`, on an irradiance grid of `dims`.
+inline int LightGridStride(double luminance, double brightest, const int dims[3])
+{
+  if (!(luminance <= DimLightRatio * brightest))
+  {
+    return 1;
+  }
+  for (int a = 0; a < 3; ++a)
+  {
+    if (LightGridDimension(dims[a], DimLightStride) < MinimumLightGridDimension)
+    {
+      return 1;
+    }
+  }
+  return DimLightStride;
+}
+
 /// Rows of the ray caster's material texture (vtkMultiMaterialTextures.h):
 /// (ka, kd, ks, ke), (r, 0, 0, g), (e, 0, 0, 0). GLSL: MMV_MATERIAL_ROWS.
 constexpr int MaterialTextureRows = 3;

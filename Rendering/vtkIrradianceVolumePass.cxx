@@ -40,6 +40,12 @@ void vtkIrradianceVolumePass::SetInputs(const mmv::IrradianceGrid& grid,
   }
   internals.Lights.assign(
     lights.begin(), lights.begin() + std::min<size_t>(lights.size(), mmv::MaxLights));
+  // One strided light grid: every strided light takes the largest stride.
+  const int stride = internals.MaxLightGridStride();
+  for (mmv::LightSource& light : internals.Lights)
+  {
+    light.GridStride = light.GridStride > 1 ? stride : 1;
+  }
   // A light move changes only the lights: keep the classified, uploaded
   // volume and tables unless one of them differs.
   const std::vector<float> shadow(shadowTable, shadowTable + tableSize * tableSize);
@@ -275,8 +281,11 @@ bool vtkIrradianceVolumePass::UpdateGroup(vtkOpenGLRenderWindow* context, int gr
   const std::vector<bool>& updated, int estimation, bool diffusion)
 {
   vtkInternals& internals = *this->Internals;
+  const int stride = internals.MaxLightGridStride();
   int mask = 0;
-  int fullMask = 0;
+  int fullMask = 0;        // full rays on the irradiance grid
+  int stridedFullMask = 0; // full rays on the strided light grid
+  int stridedMask = 0;     // every light on the strided grid
   std::vector<int> swept;
   for (int l = 0; l < LightsPerTexture; ++l)
   {
@@ -285,13 +294,15 @@ bool vtkIrradianceVolumePass::UpdateGroup(vtkOpenGLRenderWindow* context, int gr
     {
       mask |= 1 << l;
       ++this->NumberOfUpdatedLights;
+      const bool strided = internals.Lights[k].GridStride > 1;
+      stridedMask |= strided ? 1 << l : 0;
       if (mmv::UsesPiecewiseShadowRays(estimation, internals.Lights[k]))
       {
         swept.push_back(static_cast<int>(k));
       }
       else
       {
-        fullMask |= 1 << l;
+        (strided ? stridedFullMask : fullMask) |= 1 << l;
       }
     }
   }
@@ -308,13 +319,23 @@ bool vtkIrradianceVolumePass::UpdateGroup(vtkOpenGLRenderWindow* context, int gr
     return seconds;
   };
   bool ok = fullMask == 0 ||
-    internals.ShadowPass(context, group, fullMask, this->SkipEmptyVoxels, this->LayeredRendering);
+    internals.ShadowPass(
+      context, group, fullMask, 1, this->SkipEmptyVoxels, this->LayeredRendering);
+  ok = ok &&
+    (stridedFullMask == 0 ||
+      internals.ShadowPass(
+        context, group, stridedFullMask, stride, this->SkipEmptyVoxels, this->LayeredRendering));
   for (const int k : swept)
   {
     ok = ok &&
       internals.PiecewiseShadowPass(
         context, k, this->PiecewiseShadowSlices, this->SkipEmptyVoxels, this->LayeredRendering);
   }
+  // The dim lights' grid, interpolated to the irradiance grid: from here on
+  // they are lit as the others.
+  ok = ok &&
+    (stridedMask == 0 ||
+      internals.UpsamplePass(context, stridedMask, stride, this->LayeredRendering));
   this->LastEstimationSeconds += elapsed();
   vtkTextureObject* result = internals.FineScratch[0];
   if (ok && diffusion)
@@ -492,6 +513,7 @@ vtkIdType vtkIrradianceVolumePass::GetScratchMemoryBytes() const
   };
   std::for_each(this->Internals->FineScratch.begin(), this->Internals->FineScratch.end(), add);
   std::for_each(this->Internals->CoarseScratch.begin(), this->Internals->CoarseScratch.end(), add);
+  add(this->Internals->LightGridScratch);
   return bytes;
 }
 

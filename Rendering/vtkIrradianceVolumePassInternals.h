@@ -353,6 +353,15 @@ public:
   // previous, current and next iterate).
   std::array<vtkSmartPointer<vtkTextureObject>, 2> FineScratch;
   std::array<vtkSmartPointer<vtkTextureObject>, 5> CoarseScratch;
+  // The dim lights' transmittance on their strided grid (LightGridStride),
+  // before it is interpolated into FineScratch[0]; only while one is dim.
+  vtkSmartPointer<vtkTextureObject> LightGridScratch;
+  // Which strided points a non-empty irradiance voxel needs (1) or not (0),
+  // for the volume upload and stride it was made for.
+  vtkSmartPointer<vtkTextureObject> LightGridClassTexture;
+  vtkIdType LightGridClassUpload = -1;
+  int LightGridClassStride = 0;
+  bool UploadLightGridClasses(vtkOpenGLRenderWindow* context, int stride);
   vtkSmartPointer<vtkOpenGLFramebufferObject> Framebuffer;
   mmv::voxelpass::VoxelPass ShadowQuad;
   mmv::voxelpass::VoxelPass PiecewiseQuad;
@@ -361,6 +370,7 @@ public:
   mmv::voxelpass::VoxelPass ExponentialQuad;
   mmv::voxelpass::VoxelPass ProlongQuad;
   mmv::voxelpass::VoxelPass FillQuad;
+  mmv::voxelpass::VoxelPass UpsampleQuad;
   // Compute dispatches instead of fragment draws (this update), and the
   // atomic counter that stands in for the occlusion query there.
   bool Compute = false;
@@ -383,9 +393,24 @@ public:
   std::string ShadowRayDefines() const;
   void SetShadowRayUniforms(vtkShaderProgram* program) const;
 
-  bool ShadowPass(vtkOpenGLRenderWindow* context, int group, int mask, bool skipEmpty, bool layered);
+  /// The grid the shadow rays of lights of grid stride `stride` start from
+  /// (mmv::LightGridDimension per axis; the irradiance grid for 1), the
+  /// texture they write, and the uniforms of Shaders/mmvLightGrid.glsl.
+  void LightGridDimensions(int stride, int dims[3]) const;
+  vtkTextureObject* LightGridTarget(int stride) const;
+  vtkTextureObject* LightGridClasses(int stride) const;
+  void SetLightGridUniforms(vtkShaderProgram* program, int stride) const;
+  /// The largest grid stride of the lights (1: every light on the
+  /// irradiance grid).
+  int MaxLightGridStride() const;
+
+  bool ShadowPass(vtkOpenGLRenderWindow* context, int group, int mask, int stride, bool skipEmpty,
+    bool layered);
   bool PiecewiseShadowPass(vtkOpenGLRenderWindow* context, int light, int slicesPerChunk,
     bool skipEmpty, bool layered);
+  /// The lights of `mask` of a strided light grid, interpolated into their
+  /// channels of FineScratch[0] over the estimated box.
+  bool UpsamplePass(vtkOpenGLRenderWindow* context, int mask, int stride, bool layered);
   int Diffuse(vtkOpenGLRenderWindow* context, bool layered, int mask);
   void SetDiffusionGridUniforms(vtkShaderProgram* program);
   int BackwardEulerSweeps(

@@ -133,6 +133,25 @@ bool vtkIrradianceVolumePass::vtkInternals::AllocateTargets(
       this->FineScratch[i] = nullptr;
     }
   }
+  const int stride = this->MaxLightGridStride();
+  if (stride > 1)
+  {
+    int lightDims[3];
+    this->LightGridDimensions(stride, lightDims);
+    ok = ok && EnsureFloatTexture(context, this->LightGridScratch, lightDims) &&
+      this->UploadLightGridClasses(context, stride);
+  }
+  else
+  {
+    for (auto* texture : { &this->LightGridScratch, &this->LightGridClassTexture })
+    {
+      if (*texture)
+      {
+        (*texture)->ReleaseGraphicsResources(context);
+        *texture = nullptr;
+      }
+    }
+  }
   for (size_t i = 0; i < this->CoarseScratch.size(); ++i)
   {
     if (diffusion)
@@ -151,6 +170,66 @@ bool vtkIrradianceVolumePass::vtkInternals::AllocateTargets(
     this->Framebuffer->SetContext(context);
   }
   return ok;
+}
+
+//------------------------------------------------------------------------------
+// A strided point is needed where the trilinear interpolation to a
+// non-empty irradiance voxel reads it: the two points around the voxel per
+// axis. Made once per volume upload, so a strided point's emptiness costs
+// one fetch in the shadow passes.
+bool vtkIrradianceVolumePass::vtkInternals::UploadLightGridClasses(
+  vtkOpenGLRenderWindow* context, int stride)
+{
+  if (this->LightGridClassTexture && this->LightGridClassUpload == this->VolumeUploads &&
+    this->LightGridClassStride == stride)
+  {
+    return true;
+  }
+  const int* d = this->Grid.Dimensions;
+  int c[3];
+  this->LightGridDimensions(stride, c);
+  std::array<std::vector<int>, 3> below; // per axis: the point at or below each voxel
+  for (int a = 0; a < 3; ++a)
+  {
+    const double ratio = d[a] > 1 ? static_cast<double>(c[a] - 1) / (d[a] - 1) : 0.0;
+    below[a].resize(d[a]);
+    for (int i = 0; i < d[a]; ++i)
+    {
+      below[a][i] = std::min(static_cast<int>(std::floor(i * ratio)), c[a] - 1);
+    }
+  }
+  std::vector<unsigned char> needed(static_cast<size_t>(c[0]) * c[1] * c[2], 0);
+  size_t v = 0;
+  for (int k = 0; k < d[2]; ++k)
+  {
+    for (int j = 0; j < d[1]; ++j)
+    {
+      for (int i = 0; i < d[0]; ++i, ++v)
+      {
+        if (this->Classes[v] < 0.0f)
+        {
+          continue;
+        }
+        for (int dk = 0; dk < 2; ++dk)
+        {
+          const int z = std::min(below[2][k] + dk, c[2] - 1);
+          for (int dj = 0; dj < 2; ++dj)
+          {
+            const int y = std::min(below[1][j] + dj, c[1] - 1);
+            const size_t row = (static_cast<size_t>(z) * c[1] + y) * c[0];
+            needed[row + below[0][i]] = 255; // GL_R8 reads it as 1
+            needed[row + std::min(below[0][i] + 1, c[0] - 1)] = 255;
+          }
+        }
+      }
+    }
+  }
+  this->LightGridClassTexture =
+    NewTexture(context, GL_R8, GL_RED, GL_UNSIGNED_BYTE, false);
+  this->LightGridClassUpload = this->VolumeUploads;
+  this->LightGridClassStride = stride;
+  return this->LightGridClassTexture->Create3DFromRaw(
+    c[0], c[1], c[2], 1, VTK_UNSIGNED_CHAR, needed.data());
 }
 
 //------------------------------------------------------------------------------
@@ -367,6 +446,11 @@ bool vtkIrradianceVolumePass::vtkInternals::FillPass(vtkOpenGLRenderWindow* cont
 void vtkIrradianceVolumePass::vtkInternals::ReleaseScratch(vtkWindow* window)
 {
   // The float scratch is 8x the result per texture: not worth keeping.
+  if (this->LightGridScratch)
+  {
+    this->LightGridScratch->ReleaseGraphicsResources(window);
+    this->LightGridScratch = nullptr;
+  }
   for (auto* scratch : { this->FineScratch.data(), this->CoarseScratch.data() })
   {
     const size_t count = scratch == this->FineScratch.data() ? this->FineScratch.size()
@@ -387,7 +471,7 @@ void vtkIrradianceVolumePass::vtkInternals::Release(vtkWindow* window)
 {
   this->ReleaseScratch(window);
   for (auto* texture : { &this->ScalarTexture, &this->ClassTexture, &this->TableTexture,
-         &this->CoarseStrengthTexture })
+         &this->CoarseStrengthTexture, &this->LightGridClassTexture })
   {
     if (*texture)
     {

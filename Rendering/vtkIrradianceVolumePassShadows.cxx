@@ -4,6 +4,8 @@
 
 #include "mmvIrradianceFS.h"
 #include "mmvIrradianceTintFS.h"
+#include "mmvLightGrid.h"
+#include "mmvLightGridUpsampleFS.h"
 #include "mmvPiecewiseShadowFS.h"
 #include "mmvShadowRay.h"
 
@@ -46,30 +48,117 @@ void vtkIrradianceVolumePass::vtkInternals::SetShadowRayUniforms(vtkShaderProgra
 }
 
 //------------------------------------------------------------------------------
-bool vtkIrradianceVolumePass::vtkInternals::ShadowPass(
-  vtkOpenGLRenderWindow* context, int group, int mask, bool skipEmpty, bool layered)
+void vtkIrradianceVolumePass::vtkInternals::LightGridDimensions(int stride, int dims[3]) const
+{
+  for (int a = 0; a < 3; ++a)
+  {
+    dims[a] = mmv::LightGridDimension(this->Grid.Dimensions[a], stride);
+  }
+}
+
+vtkTextureObject* vtkIrradianceVolumePass::vtkInternals::LightGridTarget(int stride) const
+{
+  return stride > 1 ? this->LightGridScratch.Get() : this->FineScratch[0].Get();
+}
+
+// (On the irradiance grid the shaders read `classes` instead; any texture
+// serves the unused sampler.)
+vtkTextureObject* vtkIrradianceVolumePass::vtkInternals::LightGridClasses(int stride) const
+{
+  return stride > 1 ? this->LightGridClassTexture.Get() : this->ClassTexture.Get();
+}
+
+int vtkIrradianceVolumePass::vtkInternals::MaxLightGridStride() const
+{
+  int stride = 1;
+  for (const mmv::LightSource& light : this->Lights)
+  {
+    stride = std::max(stride, light.GridStride);
+  }
+  return stride;
+}
+
+void vtkIrradianceVolumePass::vtkInternals::SetLightGridUniforms(
+  vtkShaderProgram* program, int stride) const
+{
+  int dims[3];
+  this->LightGridDimensions(stride, dims);
+  float toIndex[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    toIndex[a] = dims[a] > 1
+      ? static_cast<float>(this->Grid.Dimensions[a] - 1) / static_cast<float>(dims[a] - 1)
+      : 1.0f;
+  }
+  program->SetUniform1iv("targetDims", 3, dims);
+  program->SetUniform3f("targetToIndex", toIndex);
+  program->SetUniformi("strided", stride > 1 ? 1 : 0);
+  program->SetUniformi("lightGridClasses", this->LightGridClasses(stride)->GetTextureUnit());
+}
+
+//------------------------------------------------------------------------------
+// Full shadow rays of the lights of `mask` whose grid stride is `stride`,
+// into their channels of that grid's target.
+bool vtkIrradianceVolumePass::vtkInternals::ShadowPass(vtkOpenGLRenderWindow* context, int group,
+  int mask, int stride, bool skipEmpty, bool layered)
 {
   vtkShaderProgram* program = this->Ready(context, this->ShadowQuad,
-    std::string(mmvShadowRay) + mmvIrradianceFS, this->ShadowRayDefines(), true);
+    std::string(mmvShadowRay) + mmvLightGrid + mmvIrradianceFS, this->ShadowRayDefines(), true);
   if (!program)
   {
     return false;
   }
   glm::mat3 toWorld(this->Grid.IndexToPhysicalMatrix());
   const glm::vec3 origin(this->Grid.Origin);
-  ScopedTextures bound{ this->ScalarTexture, this->ClassTexture, this->TableTexture };
+  ScopedTextures bound{ this->ScalarTexture, this->ClassTexture, this->TableTexture,
+    this->LightGridClasses(stride) };
   this->SetShadowRayUniforms(program);
+  this->SetLightGridUniforms(program, stride);
   program->SetUniform3f("origin", glm::value_ptr(origin));
   program->SetUniformMatrix3x3("indexToWorld", glm::value_ptr(toWorld));
   program->SetUniformi("computeEmptyVoxels", skipEmpty ? 0 : 1);
   SetLightUniforms(program, this->Lights, group * LightsPerTexture, mask);
-  const mmv::IndexBox& box = this->Plan.Estimated;
+  int dims[3];
+  this->LightGridDimensions(stride, dims);
+  const mmv::IndexBox box = stride > 1
+    ? mmv::ResampledBox(this->Plan.Estimated, this->Grid.Dimensions, dims)
+    : this->Plan.Estimated;
   this->DrawLayers(
-    context, this->ShadowQuad, this->FineScratch[0], layered, DrawBox(box, this->Grid.Dimensions));
+    context, this->ShadowQuad, this->LightGridTarget(stride), layered, DrawBox(box, dims));
   for (int l = 0; l < LightsPerTexture; ++l)
   {
     this->EstimatedVoxels += (mask & (1 << l)) != 0 ? box.GetNumberOfVoxels() : 0;
   }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkIrradianceVolumePass::vtkInternals::UpsamplePass(
+  vtkOpenGLRenderWindow* context, int mask, int stride, bool layered)
+{
+  vtkShaderProgram* program =
+    this->Ready(context, this->UpsampleQuad, mmvLightGridUpsampleFS, "", false);
+  if (!program)
+  {
+    return false;
+  }
+  int dims[3];
+  this->LightGridDimensions(stride, dims);
+  float toLightGrid[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    toLightGrid[a] = this->Grid.Dimensions[a] > 1
+      ? static_cast<float>(dims[a] - 1) / static_cast<float>(this->Grid.Dimensions[a] - 1)
+      : 0.0f;
+  }
+  ScopedTextures bound{ this->LightGridScratch, this->ClassTexture };
+  program->SetUniformi("lightGrid", this->LightGridScratch->GetTextureUnit());
+  program->SetUniformi("classes", this->ClassTexture->GetTextureUnit());
+  program->SetUniform1iv("lightGridDims", 3, dims);
+  program->SetUniform3f("indexToLightGrid", toLightGrid);
+  program->SetUniform1iv("dims", 3, this->Grid.Dimensions);
+  this->DrawLayers(context, this->UpsampleQuad, this->FineScratch[0], layered,
+    DrawBox(this->Plan.Estimated, this->Grid.Dimensions), mask);
   return true;
 }
 
@@ -121,24 +210,42 @@ bool vtkIrradianceVolumePass::vtkInternals::PiecewiseShadowPass(vtkOpenGLRenderW
   int light, int slicesPerChunk, bool skipEmpty, bool layered)
 {
   vtkShaderProgram* program = this->Ready(context, this->PiecewiseQuad,
-    std::string(mmvShadowRay) + mmvPiecewiseShadowFS, this->ShadowRayDefines(), false);
+    std::string(mmvShadowRay) + mmvLightGrid + mmvPiecewiseShadowFS, this->ShadowRayDefines(),
+    false);
   if (!program)
   {
     return false;
   }
   const mmv::LightSource& source = this->Lights[light];
-  const int* d = this->Grid.Dimensions;
-  const glm::dvec3 toLightIndex = this->Grid.PhysicalToIndexMatrix() * source.ToLight;
-  const mmv::ShadowSweep sweep = mmv::PlanShadowSweep(d, toLightIndex, slicesPerChunk);
+  // The sweep runs over the light's grid: a strided grid takes chunks of as
+  // many irradiance slices as the irradiance grid's, so each ray marches as
+  // far before it reads an earlier chunk.
+  const int stride = source.GridStride;
+  int d[3];
+  this->LightGridDimensions(stride, d);
+  glm::dvec3 toLightIndex = this->Grid.PhysicalToIndexMatrix() * source.ToLight;
+  for (int a = 0; a < 3; ++a)
+  {
+    toLightIndex[a] *= d[a] > 1
+      ? static_cast<double>(d[a] - 1) / (this->Grid.Dimensions[a] - 1)
+      : 1.0;
+  }
+  const mmv::ShadowSweep sweep =
+    mmv::PlanShadowSweep(d, toLightIndex, std::max(1, slicesPerChunk / stride));
   // Each chunk draws what the region's voxels depend on (its whole slab
   // for the whole grid).
+  const mmv::IndexBox estimated = stride > 1
+    ? mmv::ResampledBox(this->Plan.Estimated, this->Grid.Dimensions, d)
+    : this->Plan.Estimated;
   const std::vector<mmv::IndexBox> boxes =
-    mmv::PlanSweepBoxes(sweep, d, toLightIndex, this->Plan.Estimated);
+    mmv::PlanSweepBoxes(sweep, d, toLightIndex, estimated);
   glm::vec3 toLight(source.ToLight);
   const int channel = light % LightsPerTexture;
-  vtkTextureObject* target = this->FineScratch[0];
-  ScopedTextures bound{ this->ScalarTexture, this->ClassTexture, this->TableTexture, target };
+  vtkTextureObject* target = this->LightGridTarget(stride);
+  ScopedTextures bound{ this->ScalarTexture, this->ClassTexture, this->TableTexture, target,
+    this->LightGridClasses(stride) };
   this->SetShadowRayUniforms(program);
+  this->SetLightGridUniforms(program, stride);
   program->SetUniformi("transmittance", target->GetTextureUnit());
   program->SetUniform3f("toLight", glm::value_ptr(toLight));
   program->SetUniformi("channel", channel);

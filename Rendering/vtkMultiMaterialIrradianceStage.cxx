@@ -249,11 +249,8 @@ bool vtkMultiMaterialIrradianceStage::Update(vtkMultiMaterialVolumeMapper* mappe
   // A piece of a volume in pieces: only what its ray cast reads.
   const mmv::IndexBox region = ReadRegion(image, global, this->Mapper->PieceIrradianceOnly, dims);
   std::copy(region.Bounds, region.Bounds + 6, volumeKey.Region);
-  std::vector<mmv::LightSource> sources;
-  for (const auto& light : *this->Lights)
-  {
-    sources.push_back(light.Source);
-  }
+  const std::vector<mmv::LightSource> sources =
+    mmv::IrradianceLightSources(*this->Lights, dims, this->Mapper->DimLightCoarsening);
   const bool computed = this->Pass->GetNumberOfIrradianceTextures() > 0;
   const double tolerance = mmv::LightToleranceRadians(this->Mapper->LightDirectionTolerance);
   // The key of the kept steps, made only where they are looked up or stored.

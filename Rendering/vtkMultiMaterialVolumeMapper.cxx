@@ -788,6 +788,7 @@ void vtkMultiMaterialVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "IrradianceErrorBound: " << this->IrradianceErrorBound << "\n";
   os << indent << "GradientSmoothing: " << this->GradientSmoothing << "\n";
   os << indent << "LightDirectionTolerance: " << this->LightDirectionTolerance << "\n";
+  os << indent << "DimLightCoarsening: " << this->DimLightCoarsening << "\n";
   os << indent << "MultipleScattering: " << this->MultipleScattering << "\n";
   os << indent << "ShadowEstimation: " << this->ShadowEstimation << "\n";
   os << indent << "PieceIrradianceOnly: " << this->PieceIrradianceOnly << "\n";

@@ -194,6 +194,18 @@ public:
   vtkSetClampMacro(LightDirectionTolerance, double, 0.0, mmv::MaxLightDirectionToleranceDegrees);
   vtkGetMacro(LightDirectionTolerance, double);
 
+  /**
+   * Dim lights on a coarser grid (default on): a light at most
+   * mmv::DimLightRatio of the brightest light's radiance (the light kit's
+   * fill, back and head lights) gets its shadows on every
+   * mmv::DimLightStride-th irradiance point per axis, interpolated, an
+   * eighth of its shadow rays (vtkMultiMaterialParameters.h). Off: every
+   * light on the irradiance grid.
+   */
+  vtkSetMacro(DimLightCoarsening, bool);
+  vtkGetMacro(DimLightCoarsening, bool);
+  vtkBooleanMacro(DimLightCoarsening, bool);
+
   /// Pre-integrated segments (default on); off: post-classified samples.
   vtkSetMacro(PreIntegration, bool);
   vtkGetMacro(PreIntegration, bool);
@@ -397,6 +409,7 @@ protected:
   double PointLightRadius = 0.0;
   int InteractiveIrradiance = ReuseWhileInteracting;
   double LightDirectionTolerance = mmv::DefaultLightDirectionToleranceDegrees;
+  bool DimLightCoarsening = true;
   int PreIntegrationTableSize = 256;
   bool TimeStages = false;
   bool CompileUnusedOpticalTerms = false;

@@ -4,9 +4,9 @@
 // line. Prepended by the pass: the material prelude, the shadow-ray constants
 // of mmv::ShadowRayGLSLPrelude(), the light uniforms of
 // mmv::LightUniformDeclarations() (vtkMultiMaterialLightUniforms.h, the
-// ray cast's layout), mmvLightModel.glsl and mmvShadowRay.glsl.
+// ray cast's layout), mmvLightModel.glsl, mmvShadowRay.glsl and
+// mmvLightGrid.glsl: the fragment's voxel is a point of the lights' grid.
 
-uniform sampler3D classes;     // s per voxel, < 0 where the voxel is empty
 uniform vec3 origin;
 uniform mat3 indexToWorld;
 uniform mat3 worldToIndex;
@@ -33,13 +33,13 @@ float mmvShadowTransmittance(int light, vec3 start, vec3 x, float startValue)
 
 void mmvVoxelMain()
 {
-  ivec3 voxel = ivec3(floor(texCoord * vec2(dims[0], dims[1])), slice);
+  ivec3 voxel = mmvTargetVoxel();
+  vec3 start = vec3(voxel) * targetToIndex;
   vec4 irradiance = vec4(0.0);
-  if (computeEmptyVoxels || texelFetch(classes, voxel, 0).r >= 0.0)
+  if (computeEmptyVoxels || !mmvLightGridIsEmpty(voxel))
   {
-    vec3 start = vec3(voxel);
     vec3 x = origin + indexToWorld * start;
-    float startValue = texelFetch(scalars, voxel, 0).r;
+    float startValue = mmvStartValue(voxel, start);
     for (int light = 0; light < numberOfLights; ++light)
     {
       if (((lightMask >> light) & 1) == 0)

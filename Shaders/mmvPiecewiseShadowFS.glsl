@@ -5,7 +5,9 @@
 // barrier separates the chunks' draws, and a chunk never reads its own
 // slices). Mirrors SweepPiecewiseShadowRays() of
 // Filters/vtkIrradianceVolumeFilter.cxx. Prepended by the pass: the material
-// prelude, mmv::ShadowRayGLSLPrelude() and mmvShadowRay.glsl.
+// prelude, mmv::ShadowRayGLSLPrelude(), mmvShadowRay.glsl and
+// mmvLightGrid.glsl: the voxels, slices and planes are the light grid's, the
+// rays march in the irradiance grid's index space.
 
 uniform sampler3D transmittance; // the target itself: earlier chunks' results
 uniform int channel;             // the light's channel in it
@@ -14,26 +16,27 @@ uniform vec3 toLight;            // unit, world space
 uniform int sweepAxis;
 uniform int sweepPlane;          // -1: the first chunk, rays run to the boundary
 uniform int readSlice;           // the slice the next chunk reads (-1: none)
-uniform sampler3D classes;       // s per voxel, < 0 where the voxel is empty
 uniform bool computeEmptyVoxels; // on: every voxel (to measure what skipping saves)
 
 // mmv::ReachesSweepPlane: does the ray reach the plane before leaving the box?
-bool mmvReachesSweepPlane(float start, float direction, int plane, float exitDistance,
+// `plane` is the plane's coordinate along the axis (irradiance index).
+bool mmvReachesSweepPlane(float start, float direction, float plane, float exitDistance,
   out float distance)
 {
   distance = 0.0;
-  if (plane < 0 || direction == 0.0)
+  if (plane < 0.0 || direction == 0.0)
   {
     return false;
   }
-  distance = (float(plane) - start) / direction;
+  distance = (plane - start) / direction;
   return distance >= 0.0 &&
     distance <= exitDistance * (1.0 + MMV_SWEEP_PLANE_RELATIVE_TOLERANCE) +
       MMV_SWEEP_PLANE_ABSOLUTE_TOLERANCE;
 }
 
-// Bilinear transmittance in slice `plane` at the in-slice coordinates of q,
-// clamped to the slice (texelFetch: no filtering reaches another slice).
+// Bilinear transmittance in light grid slice `plane` at the in-slice
+// coordinates of q (light grid index), clamped to the slice (texelFetch: no
+// filtering reaches another slice).
 float mmvSampleSlice(int axis, int plane, vec3 q)
 {
   int b = (axis + 1) % 3;
@@ -46,12 +49,12 @@ float mmvSampleSlice(int axis, int plane, vec3 q)
   for (int k = 0; k < 2; ++k)
   {
     int a = k == 0 ? b : c;
-    float x = clamp(q[a], 0.0, float(dims[a] - 1));
-    i0[a] = min(int(x), max(dims[a] - 2, 0));
-    f[a] = dims[a] > 1 ? x - float(i0[a]) : 0.0;
+    float x = clamp(q[a], 0.0, float(targetDims[a] - 1));
+    i0[a] = min(int(x), max(targetDims[a] - 2, 0));
+    f[a] = targetDims[a] > 1 ? x - float(i0[a]) : 0.0;
   }
-  db[b] = dims[b] > 1 ? 1 : 0;
-  dc[c] = dims[c] > 1 ? 1 : 0;
+  db[b] = targetDims[b] > 1 ? 1 : 0;
+  dc[c] = targetDims[c] > 1 ? 1 : 0;
   float v00 = texelFetch(transmittance, i0, 0)[channel];
   float v10 = texelFetch(transmittance, i0 + db, 0)[channel];
   float v01 = texelFetch(transmittance, i0 + dc, 0)[channel];
@@ -62,26 +65,25 @@ float mmvSampleSlice(int axis, int plane, vec3 q)
 
 void mmvVoxelMain()
 {
-  ivec3 voxel = ivec3(floor(texCoord * vec2(dims[0], dims[1])), slice);
-  if (!computeEmptyVoxels && voxel[sweepAxis] != readSlice &&
-    texelFetch(classes, voxel, 0).r < 0.0)
+  ivec3 voxel = mmvTargetVoxel();
+  vec3 start = vec3(voxel) * targetToIndex;
+  if (!computeEmptyVoxels && voxel[sweepAxis] != readSlice && mmvLightGridIsEmpty(voxel))
   {
     // Empty, and no later chunk reads it: the fill pass decides its value.
     mmvWrite(vec4(0.0));
     return;
   }
-  vec3 start = vec3(voxel);
   vec3 indexDir = worldToIndex * toLight;
   float exitDistance = mmvExitDistance(start, indexDir);
   float far = 1.0;
   float distance;
-  if (mmvReachesSweepPlane(start[sweepAxis], indexDir[sweepAxis], sweepPlane, exitDistance,
-        distance))
+  float plane = sweepPlane < 0 ? -1.0 : float(sweepPlane) * targetToIndex[sweepAxis];
+  if (mmvReachesSweepPlane(start[sweepAxis], indexDir[sweepAxis], plane, exitDistance, distance))
   {
     exitDistance = distance;
-    far = mmvSampleSlice(sweepAxis, sweepPlane, start + distance * indexDir);
+    far = mmvSampleSlice(sweepAxis, sweepPlane, (start + distance * indexDir) / targetToIndex);
   }
   // The colour mask keeps the other lights' channels.
   mmvWrite(vec4(mmvMarchTransmittance(start, indexDir, exitDistance,
-    texelFetch(scalars, voxel, 0).r, far)));
+    mmvStartValue(voxel, start), far)));
 }
