@@ -1,9 +1,12 @@
 #include "mmvMaterialNodeModel.h"
 
+#include "mmvNumberText.h"
 #include "vtkLogger.h"
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
+#include <sstream>
 
 namespace mmv
 {
@@ -201,6 +204,89 @@ bool MaterialNodeModel::SetParameter(int index, int parameter, double value)
   }
   this->Nodes[index][parameter + 1] = value;
   this->Sync();
+  return true;
+}
+
+//-----------------------------------------------------------------------------
+std::string MaterialNodeModel::ParameterTextNotice(
+  int parameter, const std::string& text, double kept)
+{
+  if (parameter < 0 || parameter >= ParameterCount)
+  {
+    return "no such parameter";
+  }
+  const MaterialParameterInfo& info = MaterialParameterTable[parameter];
+  const NumberText parsed = ParseNumberText(text, info.HardMin, info.HardMax);
+  if (parsed.State == NumberTextState::Acceptable)
+  {
+    return std::string();
+  }
+  std::ostringstream notice;
+  notice << "\"" << text << "\" refused: " << info.Key << " takes a number from " << info.HardMin
+         << " to " << info.HardMax << " (such as 0.25 or 2.5e-1); kept " << kept;
+  return notice.str();
+}
+
+//-----------------------------------------------------------------------------
+bool MaterialNodeModel::SetParameterText(int index, int parameter, const std::string& text)
+{
+  if (index < 0 || index >= this->GetNumberOfNodes() || parameter < 0 ||
+    parameter >= ParameterCount)
+  {
+    return false;
+  }
+  this->Notice =
+    ParameterTextNotice(parameter, text, this->Nodes[index][parameter + 1]);
+  if (!this->Notice.empty())
+  {
+    return false;
+  }
+  const MaterialParameterInfo& info = MaterialParameterTable[parameter];
+  return this->SetParameter(
+    index, parameter, ParseNumberText(text, info.HardMin, info.HardMax).Value);
+}
+
+//-----------------------------------------------------------------------------
+bool MaterialNodeModel::SetValueText(int index, const std::string& text, const double range[2])
+{
+  if (index < 0 || index >= this->GetNumberOfNodes())
+  {
+    return false;
+  }
+  const NumberText parsed = ParseNumberText(text, -DBL_MAX, DBL_MAX);
+  std::ostringstream notice;
+  if (parsed.State != NumberTextState::Acceptable)
+  {
+    notice << "\"" << text << "\" refused: a node's value must be a finite number; kept "
+           << this->Nodes[index][0];
+    this->Notice = notice.str();
+    return false;
+  }
+  this->Notice.clear();
+  if (!this->Move(index, parsed.Value, range))
+  {
+    return false;
+  }
+  const double placed = this->Nodes[index][0];
+  if (placed != parsed.Value)
+  {
+    notice << text << " moved to " << placed << ": node " << index + 1
+           << " stays between its neighbours";
+    if (index > 0)
+    {
+      notice << " (" << this->Nodes[index - 1][0];
+      notice << (index + 1 < this->GetNumberOfNodes() ? " and " : ")");
+    }
+    else
+    {
+      notice << " (";
+    }
+    if (index + 1 < this->GetNumberOfNodes())
+    {
+      notice << this->Nodes[index + 1][0] << ")";
+    }
+    this->Notice = notice.str();
+  }
   return true;
 }
 

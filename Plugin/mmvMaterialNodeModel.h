@@ -99,6 +99,29 @@ public:
   /// Sets one parameter of node `index`; false for a bad index or parameter.
   bool SetParameter(int index, int parameter, double value);
 
+  ///@{
+  /**
+   * Typed text for the value of node `index` or for one of its parameters.
+   * Text that is not a finite number, or a parameter outside its limits, is
+   * refused (nothing changes); a value past a neighbour is moved next to it
+   * (Move). Either way GetNotice() says what happened to the text, so the
+   * editor can show it; an edit that went through as typed clears it.
+   */
+  bool SetValueText(int index, const std::string& text, const double range[2]);
+  bool SetParameterText(int index, int parameter, const std::string& text);
+  ///@}
+
+  /// Why `text` cannot be parameter `parameter` ("" when it can), keeping
+  /// `kept`: the notice SetParameterText gives, for editors that refuse
+  /// text as it is typed.
+  static std::string ParameterTextNotice(int parameter, const std::string& text, double kept);
+
+  ///@{
+  /// What the last typed edit was refused for or changed to ("" for none).
+  const std::string& GetNotice() const { return this->Notice; }
+  void ClearNotice() { this->Notice.clear(); }
+  ///@}
+
   /// Gives the selected node `parameters` (a preset's); false without one.
   bool SetCurrentParameters(const double parameters[ParameterCount]);
 
@@ -137,6 +160,7 @@ private:
   std::vector<Node> Nodes; // sorted by value, values distinct
   int Current = -1;
   std::vector<LoadProblem> LoadProblems;
+  std::string Notice;
   vtkNew<vtkMaterialLibrary> Library;
   // Mirror of the nodes, so interpolation matches the renderer's exactly.
   vtkNew<vtkMaterialTransferFunction> Function;

@@ -147,6 +147,7 @@ public:
   QLabel* Status = nullptr;
   QString Refusal; // the last typed value a spin box refused
   QLabel* Notice = nullptr; // shows the model's load problems or Refusal, in red
+  QString NoticeText;       // the whole notice (the label may show it elided)
   QGridLayout* Grid = nullptr;
   std::vector<std::pair<QLabel*, QWidget*>> Rows; // Value, then the parameters
   int Columns = 0;                                // label/editor pairs per grid row
@@ -177,6 +178,8 @@ public:
     return text;
   }
 
+  // The notice row is always there, one line high, so a notice never moves
+  // the fields below it; a long notice is elided and whole in the tooltip.
   void showNotice()
   {
     QString text = this->Refusal;
@@ -188,8 +191,16 @@ public:
         "stand-ins (red); your next edit applies them.")
                .arg(problems.join("; "));
     }
-    this->Notice->setText(text);
-    this->Notice->setVisible(!text.isEmpty());
+    this->NoticeText = text;
+    this->Notice->setToolTip(text);
+    this->elideNotice();
+  }
+
+  void elideNotice()
+  {
+    const int width = std::max(20, this->Notice->contentsRect().width());
+    this->Notice->setText(
+      this->Notice->fontMetrics().elidedText(this->NoticeText, Qt::ElideRight, width));
   }
 
   // The representation shades with MaterialPreset instead of the nodes.
@@ -265,9 +276,10 @@ pqMaterialNodesPropertyWidget::pqMaterialNodesPropertyWidget(
   vbox->addLayout(this->createSelectionRow());
   internals.Notice = new QLabel(this);
   internals.Notice->setObjectName("Notice");
-  internals.Notice->setWordWrap(true);
+  internals.Notice->setWordWrap(false);
   internals.Notice->setStyleSheet(QStringLiteral("QLabel { color: #d02020; }"));
-  internals.Notice->setVisible(false);
+  internals.Notice->setFixedHeight(internals.Notice->fontMetrics().lineSpacing());
+  internals.Notice->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Fixed);
   vbox->addWidget(internals.Notice);
 
   // The selected node: its value and the parameters, two per row.
@@ -376,10 +388,12 @@ void pqMaterialNodesPropertyWidget::createEditors()
                              .arg(info.SoftMin)
                              .arg(info.SoftMax)
                              .arg(info.HardMax));
-    spin->Refused = [&internals](const QString& why) {
-      internals.Refusal = why;
+    spin->Refused = [&internals, p, spin](const QString& text) {
+      internals.Refusal = QString::fromStdString(
+        mmv::MaterialNodeModel::ParameterTextNotice(p, text.trimmed().toStdString(), spin->value()));
       internals.showNotice();
-      vtkVLogF(PARAVIEW_LOG_APPLICATION_VERBOSITY(), "%s", why.toUtf8().constData());
+      vtkVLogF(PARAVIEW_LOG_APPLICATION_VERBOSITY(), "%s",
+        internals.Refusal.toUtf8().constData());
     };
     internals.Spin[p] = spin;
     auto* label = new QLabel(editorLabel(p), this);
@@ -434,7 +448,7 @@ QString pqMaterialNodesPropertyWidget::materialPreset() const
 void pqMaterialNodesPropertyWidget::setMaterialPreset(const QString& name)
 {
   this->Internals->Preset = name;
-  this->Internals->updateTrack();
+  this->updateEditors(); // with no selection the editors show the preset
 }
 
 //-----------------------------------------------------------------------------
@@ -567,7 +581,7 @@ void pqMaterialNodesPropertyWidget::applyPreset(const QString& name)
     internals.Preset = name;
     vtkVLogF(
       PARAVIEW_LOG_APPLICATION_VERBOSITY(), "MaterialPreset set to '%s'", key.constData());
-    internals.updateTrack();
+    this->updateEditors();
     Q_EMIT this->materialPresetChanged();
     return;
   }
@@ -628,19 +642,23 @@ void pqMaterialNodesPropertyWidget::onValueEdited()
   {
     return;
   }
-  // Same parser as the spin boxes: "nan" or "inf" would pass toDouble().
-  const mmv::NumberText parsed = mmv::ParseNumberText(
-    internals.Value->text().toStdString(), -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX);
-  if (parsed.State == mmv::NumberTextState::Acceptable)
+  // The model's parser, as the spin boxes': "nan" or "inf" would pass
+  // toDouble(); a value past a neighbour is moved, and both are noticed.
+  double range[2];
+  this->trackRange(range);
+  const bool moved = internals.Model.SetValueText(
+    internals.Model.GetCurrent(), internals.Value->text().toStdString(), range);
+  const QString notice = QString::fromStdString(internals.Model.GetNotice());
+  if (moved)
   {
-    this->moveNode(internals.Model.GetCurrent(), parsed.Value, true);
+    this->commitNodes();
   }
-  else
+  internals.Refusal = notice;
+  if (!notice.isEmpty())
   {
-    internals.Refusal =
-      tr("%1 refused: a node's value must be a finite number").arg(internals.Value->text());
-    this->updateEditors(); // restore the node's value
+    vtkVLogF(PARAVIEW_LOG_APPLICATION_VERBOSITY(), "%s", notice.toUtf8().constData());
   }
+  this->updateEditors(); // the node's value as placed, and the notice
 }
 
 //-----------------------------------------------------------------------------
@@ -665,11 +683,16 @@ void pqMaterialNodesPropertyWidget::updateEditors()
   internals.Updating = true;
   internals.Value->setEnabled(selected);
   internals.Remove->setEnabled(selected);
+  // With no selection the editors show what shades the whole range: the
+  // active preset's material, else the defaults a new node would get.
+  double shown[ParameterCount];
+  const bool preset = !selected && internals.presetActive() &&
+    internals.Model.GetLibrary()->GetPreset(internals.Preset.toUtf8().constData(), shown);
   for (int p = 0; p < ParameterCount; ++p)
   {
     internals.Spin[p]->setEnabled(selected);
-    // With no selection the editors show the defaults a new node would get.
     internals.Spin[p]->setValue(selected ? internals.Model.GetNodes()[current][p + 1]
+        : preset                         ? shown[p]
                                          : mmv::MaterialParameterTable[p].Default);
     internals.Spin[p]->setProblem(selected ? internals.cellProblem(p) : QString());
   }
@@ -678,9 +701,9 @@ void pqMaterialNodesPropertyWidget::updateEditors()
       ? pqDoubleLineEdit::formatDoubleUsingGlobalPrecisionAndNotation(
           internals.Model.GetNodes()[current][0])
       : QString());
-  internals.Status->setText(selected
-      ? tr("%1 / %2").arg(current + 1).arg(this->nodeCount())
-      : tr("%n node(s)", nullptr, this->nodeCount()));
+  internals.Status->setText(selected ? tr("%1 / %2").arg(current + 1).arg(this->nodeCount())
+      : preset                          ? tr("preset %1").arg(internals.Preset)
+                                        : tr("%n node(s)", nullptr, this->nodeCount()));
   internals.Updating = prev;
   internals.updateTrack();
 }
@@ -807,4 +830,5 @@ void pqMaterialNodesPropertyWidget::resizeEvent(QResizeEvent* event)
   const int available = this->contentsRect().width() - 2 * pqPropertiesPanel::suggestedMargin();
   this->layoutEditors(available >= 2 * pair + spacing ? 2 : 1);
   this->Superclass::resizeEvent(event);
+  internals.elideNotice();
 }

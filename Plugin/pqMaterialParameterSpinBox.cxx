@@ -23,7 +23,13 @@ pqMaterialParameterSpinBox::pqMaterialParameterSpinBox(QWidget* parent)
 //-----------------------------------------------------------------------------
 QValidator::State pqMaterialParameterSpinBox::validate(QString& text, int&) const
 {
-  switch (parse(text, this->minimum(), this->maximum()).State)
+  const mmv::NumberTextState state = parse(text, this->minimum(), this->maximum()).State;
+  if (state == mmv::NumberTextState::Invalid && this->Refused)
+  {
+    // Qt drops the keystroke; without this it would vanish without a word.
+    this->Refused(text);
+  }
+  switch (state)
   {
     case mmv::NumberTextState::Acceptable:
       return QValidator::Acceptable;
@@ -57,12 +63,7 @@ void pqMaterialParameterSpinBox::fixup(QString& text) const
   const mmv::NumberText parsed = parse(text, this->minimum(), this->maximum());
   if (parsed.State == mmv::NumberTextState::OutOfRange && this->Refused)
   {
-    this->Refused(QStringLiteral("%1 refused: %2 accepts %3 to %4; kept %5")
-                    .arg(text.trimmed())
-                    .arg(this->objectName())
-                    .arg(this->minimum())
-                    .arg(this->maximum())
-                    .arg(this->value()));
+    this->Refused(text);
   }
   // CorrectToPreviousValue then restores the last accepted value.
 }

@@ -32,7 +32,8 @@ public:
   void setProblem(const QString& why);
   bool hasProblem() const { return !this->Problem.isEmpty(); }
 
-  /// Called with a message when typed text is refused (out of range).
+  /// Called with the text when typed text is refused: a keystroke that
+  /// cannot make a number ("nan"), or a number out of range when editing ends.
   std::function<void(const QString&)> Refused;
 
   /// The tooltip shown when there is no problem.

@@ -14,6 +14,7 @@
 #include "vtkPVView.h"
 #include "vtkRenderer.h"
 #include "vtkMaterialLibrary.h"
+#include "vtkMultiMaterialLightingQuality.h"
 #include "vtkMultiMaterialLiveObjects.h"
 #include "vtkIrradianceVolumePass.h"
 #include "vtkMultiMaterialVolumeMapper.h"
@@ -27,6 +28,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <sstream>
 
 vtkStandardNewMacro(vtkPVMultiMaterialVolumeRepresentation);
@@ -198,13 +200,7 @@ void vtkPVMultiMaterialVolumeRepresentation::UpdateMapperParameters()
   mapper->SetGradientSmoothing(this->GradientSmoothing);
   mapper->SetMultipleScattering(this->MultipleScattering);
   mapper->SetPreIntegration(this->PreIntegration);
-  if (this->LightFalloff == 1 && !(this->PointLightRadius > 0.0) && !this->WarnedZeroRadius)
-  {
-    vtkWarningMacro("LightFalloff \"Inverse Square Beyond Radius\" needs a PointLightRadius "
-                    "greater than 0: using the lights' attenuation");
-    this->WarnedZeroRadius = true;
-  }
-  mapper->SetPointLightRadius(this->LightFalloff == 1 ? this->PointLightRadius : 0.0);
+  mapper->SetPointLightRadius(this->LightFalloff == 1 ? this->FalloffRadius() : 0.0);
   mapper->SetReflectionSource(this->ReflectionSource);
   mapper->SetReflectionVisibility(this->ReflectionVisibility);
   mapper->SetSampleDistance(static_cast<float>(this->SampleDistance));
@@ -220,6 +216,54 @@ void vtkPVMultiMaterialVolumeRepresentation::UpdateMapperParameters()
   // animation cache; without it every step is new data.
   auto* view = vtkPVView::SafeDownCast(this->GetView());
   mapper->SetIrradianceCacheMB(view && view->GetUseCache() ? this->IrradianceCacheMB : 0.0);
+}
+
+//------------------------------------------------------------------------------
+double vtkPVMultiMaterialVolumeRepresentation::FalloffRadius() const
+{
+  if (this->PointLightRadius > 0.0)
+  {
+    return this->PointLightRadius;
+  }
+  // Automatic: light falls off over the data's scale, so a radius of 0 (the
+  // default) is a valid choice too, not a mode that silently does nothing.
+  const double* b = this->DataBounds;
+  double d2 = 0.0;
+  for (int a = 0; a < 3; ++a)
+  {
+    const double extent = b[2 * a + 1] - b[2 * a];
+    d2 += extent > 0.0 ? extent * extent : 0.0;
+  }
+  return d2 > 0.0 ? 0.25 * std::sqrt(d2) : 1.0;
+}
+
+//------------------------------------------------------------------------------
+void vtkPVMultiMaterialVolumeRepresentation::SetLightingQuality(int level)
+{
+  if (level == mmv::LightingQualityCustom)
+  {
+    this->LightingQuality = level;
+    return;
+  }
+  const mmv::LightingQualitySettings* row = mmv::GetLightingQualitySettings(level);
+  if (!row)
+  {
+    vtkErrorMacro("LightingQuality " << level
+                                     << " is not 0 (Fast), 1 (Balanced), 2 (Exact) or 3 "
+                                        "(Custom); keeping "
+                                     << this->LightingQuality << ".");
+    return;
+  }
+  this->LightingQuality = level;
+  this->SetShadowEstimation(row->ShadowEstimation);
+  this->SetPiecewiseShadowSlices(row->PiecewiseShadowSlices);
+  this->SetExponentialDiffusion(row->ExponentialDiffusion != 0);
+  this->SetPieceIrradianceOnly(row->PieceIrradianceOnly != 0);
+  this->SetLightDirectionTolerance(row->LightDirectionTolerance);
+  this->SetReflectionVisibility(row->ReflectionVisibility);
+  this->SetIrradianceErrorBound(row->IrradianceErrorBound);
+  this->SetIrradianceMemoryMB(row->IrradianceMemoryMB);
+  this->SetIrradianceScale(row->IrradianceScale);
 }
 
 //------------------------------------------------------------------------------
@@ -263,7 +307,6 @@ vtkPVMMVSetter(IrradianceErrorBound, double);
 vtkPVMMVSetter(GradientSmoothing, double);
 vtkPVMMVSetter(MultipleScattering, bool);
 vtkPVMMVSetter(PreIntegration, bool);
-vtkPVMMVSetter(PointLightRadius, double);
 vtkPVMMVSetter(SampleDistance, double);
 vtkPVMMVSetter(AutoAdjustSampleDistances, bool);
 vtkPVMMVSetter(LockSampleDistanceToInputSpacing, bool);
@@ -278,6 +321,24 @@ vtkPVMMVSetter(ReflectionSource, int);
 vtkPVMMVSetter(ReflectionVisibility, int);
 vtkPVMMVSetter(LightFalloff, int);
 #undef vtkPVMMVSetter
+
+//------------------------------------------------------------------------------
+void vtkPVMultiMaterialVolumeRepresentation::SetPointLightRadius(double radius)
+{
+  if (!(radius >= 0.0))
+  {
+    // Reported here, where the value arrives: 0 (automatic) is what is used.
+    vtkWarningMacro("PointLightRadius " << radius
+                                        << " is not a length: using 0 (automatic, a quarter of "
+                                           "the data's diagonal).");
+    radius = 0.0;
+  }
+  if (this->PointLightRadius != radius)
+  {
+    this->PointLightRadius = radius;
+    this->Modified();
+  }
+}
 
 //------------------------------------------------------------------------------
 int vtkPVMultiMaterialVolumeRepresentation::GetIrradianceUpdateCount()
@@ -628,6 +689,7 @@ void vtkPVMultiMaterialVolumeRepresentation::PrintSelf(ostream& os, vtkIndent in
   os << indent << "ExponentialDiffusion: " << this->ExponentialDiffusion << "\n";
   os << indent << "LightDirectionTolerance: " << this->LightDirectionTolerance << "\n";
   os << indent << "LightFalloff: " << this->LightFalloff << "\n";
+  os << indent << "LightingQuality: " << this->LightingQuality << "\n";
   os << indent << "ReflectionSource: " << this->ReflectionSource << "\n";
   os << indent << "ReflectionVisibility: " << this->ReflectionVisibility << "\n";
   os << indent << "SamplingDimensions: " << this->SamplingDimensions[0] << " "

@@ -106,9 +106,23 @@ public:
   ///@}
 
   /// Point and spot lights' falloff: 0 (default), the lights' attenuation;
-  /// 1, the paper's eq. 12 with PointLightRadius (the mapper gets radius 0
-  /// with 0, PointLightRadius with 1).
+  /// 1, the paper's eq. 12 with PointLightRadius, or with a quarter of the
+  /// data's diagonal while PointLightRadius is 0 (automatic): every pair of
+  /// values is a valid choice.
   void SetLightFalloff(int falloff);
+
+  ///@{
+  /**
+   * Sets the irradiance internals (ShadowEstimation, PiecewiseShadowSlices,
+   * ExponentialDiffusion, PieceIrradianceOnly, LightDirectionTolerance,
+   * ReflectionVisibility, IrradianceErrorBound, IrradianceMemoryMB,
+   * IrradianceScale) to the row of mmv::LightingQualityTable for `level`
+   * (Fast 0, Balanced 1, Exact 2). Custom (3) changes nothing: the internals
+   * keep what their own setters were given. Other values are errors.
+   */
+  void SetLightingQuality(int level);
+  vtkGetMacro(LightingQuality, int);
+  ///@}
 
   ///@{
   /// The mapper's counters on this process (see vtkMultiMaterialVolumeMapper).
@@ -162,6 +176,8 @@ protected:
   /// the global irradiance exchange take one image per rank.
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  // PointLightRadius, or the automatic radius while it is 0.
+  double FalloffRadius() const;
   // Resamples `dataset` to image data and draws that.
   int RequestResampledData(vtkInformation* request, vtkInformation* inInfo, vtkDataSet* dataset,
     vtkInformationVector* outputVector);
@@ -213,7 +229,7 @@ private:
   int ReflectionSource = 0;     // mmv::ReflectEnvironmentTexture
   int ReflectionVisibility = 3; // mmv::AutomaticReflectionVisibility (the proxy's default)
   int LightFalloff = 0;
-  bool WarnedZeroRadius = false;
+  int LightingQuality = 1; // mmv::DefaultLightingQuality
 
   vtkNew<vtkGlobalPrefilteredVolume> GlobalVolume;
   // RequestData runs on every rank together, so counting it gives every rank

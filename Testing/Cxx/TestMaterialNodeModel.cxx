@@ -291,3 +291,46 @@ TEST(MaterialNodeModel, TrackRangeCoversTheDataAndEveryNode)
   EXPECT_EQ(range[1], 12.0);
 }
 }
+
+// Every refused or changed typed value gets a notice saying so; an edit that
+// goes through as typed leaves none.
+TEST(MaterialNodeModel, TypedTextIsRefusedOrMovedWithANotice)
+{
+  mmv::MaterialNodeModel model;
+  std::vector<double> flat = { 0.38, 0.1, 0.7, 0.2, 10, 1, 0, 0, 0, 0, 1, 1, 1,
+                               0.8, 0.1, 0.7, 0.2, 10, 1, 0, 0, 0, 0, 1, 1, 1 };
+  model.SetFlat(flat);
+  const double range[2] = { 0.0, 1.0 };
+
+  // "nan" is not a value: refused, nothing moves.
+  EXPECT_FALSE(model.SetValueText(1, "nan", range));
+  EXPECT_EQ(model.GetNodes()[1][0], 0.8);
+  EXPECT_NE(model.GetNotice().find("\"nan\" refused"), std::string::npos) << model.GetNotice();
+
+  // -5 for the second node stops next to the first (0.38 + 1e-4 of the range).
+  EXPECT_TRUE(model.SetValueText(1, "-5", range));
+  EXPECT_NEAR(model.GetNodes()[1][0], 0.3801, 1e-12);
+  EXPECT_NE(model.GetNotice().find("-5 moved to 0.3801"), std::string::npos) << model.GetNotice();
+
+  // A value between the neighbours goes through: no notice.
+  EXPECT_TRUE(model.SetValueText(1, " 5e-1 ", range));
+  EXPECT_EQ(model.GetNodes()[1][0], 0.5);
+  EXPECT_EQ(model.GetNotice(), "");
+
+  // Parameters: NaN and values past the limits are refused and keep the old value.
+  const double diffuse = model.GetNodes()[0][1 + mmv::Diffuse];
+  EXPECT_FALSE(model.SetParameterText(0, mmv::Diffuse, "nan"));
+  EXPECT_NE(model.GetNotice().find("\"nan\" refused: diffuse"), std::string::npos)
+    << model.GetNotice();
+  EXPECT_FALSE(model.SetParameterText(0, mmv::Diffuse, "-5"));
+  EXPECT_NE(model.GetNotice().find("\"-5\" refused"), std::string::npos) << model.GetNotice();
+  EXPECT_NE(model.GetNotice().find("kept 0.7"), std::string::npos) << model.GetNotice();
+  EXPECT_EQ(model.GetNodes()[0][1 + mmv::Diffuse], diffuse);
+  EXPECT_TRUE(model.SetParameterText(0, mmv::Diffuse, "0.25"));
+  EXPECT_EQ(model.GetNodes()[0][1 + mmv::Diffuse], 0.25);
+  EXPECT_EQ(model.GetNotice(), "");
+
+  // What an editor refusing keystrokes shows is the same notice.
+  EXPECT_EQ(mmv::MaterialNodeModel::ParameterTextNotice(mmv::Diffuse, "0.5", 0.7), "");
+  EXPECT_NE(mmv::MaterialNodeModel::ParameterTextNotice(mmv::Diffuse, "abc", 0.7), "");
+}
