@@ -38,6 +38,7 @@ struct LightingQualitySettings
   double IrradianceErrorBound;    // dB
   double IrradianceMemoryMB;
   double IrradianceScale; // 0: chosen from the budget, the screen and the probe
+  int DimLightCoarsening; // dim lights' shadows on every second irradiance point
 };
 
 /// Rows in LightingQualityLevel order (Fast, Balanced, Exact).
@@ -45,14 +46,14 @@ constexpr LightingQualitySettings LightingQualityTable[3] = {
   // Fast: shorter piecewise rays, a coarser grid (smaller budget, looser
   // probe bound), reflections visibility from the grid, and small light turns
   // keep their irradiance.
-  { PiecewiseShadowRays, 4, 1, 1, 2.0, 2, 28.0, 16.0, 0.0 },
+  { PiecewiseShadowRays, 4, 1, 1, 2.0, 2, 28.0, 16.0, 0.0, 1 },
   // Balanced: the defaults.
   { PiecewiseShadowRays, DefaultPiecewiseShadowSlices, DefaultExponentialDiffusion ? 1 : 0, 1,
     DefaultLightDirectionToleranceDegrees, 3, DefaultIrradianceErrorBoundDB,
-    DefaultIrradianceBudgetMB, 0.0 },
-  // Exact: full shadow rays on the data's own grid, per-sample reflection
-  // visibility, no tolerance.
-  { FullShadowRays, DefaultPiecewiseShadowSlices, 1, 1, 0.0, 1, 0.0, 256.0, 1.0 },
+    DefaultIrradianceBudgetMB, 0.0, 1 },
+  // Exact: full shadow rays on the data's own grid for every light,
+  // per-sample reflection visibility, no tolerance.
+  { FullShadowRays, DefaultPiecewiseShadowSlices, 1, 1, 0.0, 1, 0.0, 256.0, 1.0, 0 },
 };
 
 /// The row of `level`, or null for Custom and out-of-range levels.

@@ -48,6 +48,8 @@ const Internal Internals[] = {
     [](const mmv::LightingQualitySettings& r) { return r.IrradianceErrorBound; } },
   { "IrradianceMemoryMB", [](const mmv::LightingQualitySettings& r) { return r.IrradianceMemoryMB; } },
   { "IrradianceScale", [](const mmv::LightingQualitySettings& r) { return r.IrradianceScale; } },
+  { "DimLightCoarsening",
+    [](const mmv::LightingQualitySettings& r) { return double(r.DimLightCoarsening); } },
 };
 
 const Internal* FindInternal(const char* name)

@@ -211,6 +211,7 @@ void vtkPVMultiMaterialVolumeRepresentation::UpdateMapperParameters()
   mapper->SetPiecewiseShadowSlices(this->PiecewiseShadowSlices);
   mapper->SetExponentialDiffusion(this->ExponentialDiffusion);
   mapper->SetPieceIrradianceOnly(this->PieceIrradianceOnly);
+  mapper->SetDimLightCoarsening(this->DimLightCoarsening);
   mapper->SetLightDirectionTolerance(this->LightDirectionTolerance);
   // Earlier steps come back as the same data objects only from the view's
   // animation cache; without it every step is new data.
@@ -264,6 +265,7 @@ void vtkPVMultiMaterialVolumeRepresentation::SetLightingQuality(int level)
   this->SetIrradianceErrorBound(row->IrradianceErrorBound);
   this->SetIrradianceMemoryMB(row->IrradianceMemoryMB);
   this->SetIrradianceScale(row->IrradianceScale);
+  this->SetDimLightCoarsening(row->DimLightCoarsening != 0);
 }
 
 //------------------------------------------------------------------------------
@@ -315,6 +317,7 @@ vtkPVMMVSetter(ShadowEstimation, int);
 vtkPVMMVSetter(PiecewiseShadowSlices, int);
 vtkPVMMVSetter(ExponentialDiffusion, bool);
 vtkPVMMVSetter(PieceIrradianceOnly, bool);
+vtkPVMMVSetter(DimLightCoarsening, bool);
 vtkPVMMVSetter(LightDirectionTolerance, double);
 vtkPVMMVSetter(IrradianceCacheMB, double);
 vtkPVMMVSetter(ReflectionSource, int);
@@ -684,6 +687,7 @@ void vtkPVMultiMaterialVolumeRepresentation::PrintSelf(ostream& os, vtkIndent in
   os << indent << "InteractiveIrradiance: " << this->InteractiveIrradiance << "\n";
   os << indent << "ShadowEstimation: " << this->ShadowEstimation << "\n";
   os << indent << "PieceIrradianceOnly: " << this->PieceIrradianceOnly << "\n";
+  os << indent << "DimLightCoarsening: " << this->DimLightCoarsening << "\n";
   os << indent << "IrradianceCacheMB: " << this->IrradianceCacheMB << "\n";
   os << indent << "PiecewiseShadowSlices: " << this->PiecewiseShadowSlices << "\n";
   os << indent << "ExponentialDiffusion: " << this->ExponentialDiffusion << "\n";

@@ -97,6 +97,8 @@ public:
   /// Under MPI: each rank estimates only the irradiance its piece reads (on,
   /// default), or the whole global grid (off), vtkMultiMaterialVolumeMapper.
   void SetPieceIrradianceOnly(bool pieceOnly);
+  /// vtkMultiMaterialVolumeMapper::SetDimLightCoarsening.
+  void SetDimLightCoarsening(bool coarsening);
   void SetLightDirectionTolerance(double degrees);
   /// GPU memory for the irradiance of earlier time steps, used while the
   /// view caches them (Cache Geometry For Animation); otherwise none.
@@ -224,6 +226,7 @@ private:
   int PiecewiseShadowSlices = mmv::DefaultPiecewiseShadowSlices;
   bool ExponentialDiffusion = mmv::DefaultExponentialDiffusion;
   bool PieceIrradianceOnly = true;
+  bool DimLightCoarsening = true;
   double LightDirectionTolerance = mmv::DefaultLightDirectionToleranceDegrees;
   double IrradianceCacheMB = 1024.0;
   int ReflectionSource = 0;     // mmv::ReflectEnvironmentTexture

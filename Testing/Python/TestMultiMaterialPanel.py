@@ -118,7 +118,7 @@ PARAVIEW = {"Representation", "group:Coloring", "MapScalars", "Position", "Scale
             "Origin", "Pickable", "PolarAxes", "DataAxesGrid"}
 INTERNALS = {"ShadowEstimation", "PiecewiseShadowSlices", "ExponentialDiffusion",
              "PieceIrradianceOnly", "LightDirectionTolerance", "ReflectionVisibility",
-             "IrradianceErrorBound", "IrradianceMemoryMB", "IrradianceScale"}
+             "IrradianceErrorBound", "IrradianceMemoryMB", "IrradianceScale", "DimLightCoarsening"}
 DEAD = {"Opacity", "Specular", "PointSize", "LineWidth", "Texture", "group:Edge Styling",
         "EdgeColor", "BackfaceRepresentation", "Triangulate", "NonlinearSubdivisionLevel",
         "Interpolation", "SpecularPower", "Ambient", "Diffuse", "MaterialPreset"}
