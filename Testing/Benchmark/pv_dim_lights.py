@@ -26,6 +26,7 @@ import tempfile
 import time
 
 from paraview import simple
+import multimaterialvolume  # noqa: F401 (the mapper's own methods from Python)
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)

@@ -408,25 +408,33 @@ TEST(IrradianceVolumePass, MatchesCPUFilterOnReducedOrientedGrid)
   pass->ReleaseGraphicsResources(ctx.GL);
 }
 
-TEST(IrradianceVolumePass, HomogeneousSlabFollowsBeerLambert)
+namespace
 {
-  const Context& ctx = SharedContext();
-  ASSERT_NE(ctx.GL, nullptr);
+/// A homogeneous slab of `dims` (extinction `sigma` per unit length) lit
+/// along +z: its transmittance is exp(-sigma (n - 1 - k)) in slice k.
+Scene HomogeneousSlab(const std::array<int, 3>& dims, double sigma)
+{
   Scene scene;
-  const std::array<int, 3> dims = { 8, 8, 32 };
   scene.Image = MakeImage(dims, { 1.0, 1.0, 1.0 }, [](int, int, int) { return 1.0f; });
-  const double sigma = 0.1;
   scene.Opacity = vtkSmartPointer<vtkPiecewiseFunction>::New();
   scene.Opacity->AddPoint(0.0, 1.0 - std::exp(-sigma));
   scene.Opacity->AddPoint(2.0, 1.0 - std::exp(-sigma));
   scene.Material = vtkSmartPointer<vtkMaterialTransferFunction>::New();
   scene.Material->AddNode(0.0, 0.2, 0.7, 0.2, 20.0, 1.0, 0.0, 0.0);
   scene.Lights.push_back(Directional(0.0, 0.0, 1.0));
-  vtkNew<vtkIrradianceVolumePass> pass;
-  SetPassInputs(scene, pass);
-  ASSERT_TRUE(pass->Render(ctx.GL));
+  return scene;
+}
+
+/// The largest relative error of the pass's light 0 against Beer-Lambert in
+/// the slab of HomogeneousSlab(dims, sigma).
+double WorstBeerLambertError(
+  const Context& ctx, vtkIrradianceVolumePass* pass, const std::array<int, 3>& dims, double sigma)
+{
   std::vector<float> gpu;
-  ASSERT_TRUE(pass->ReadBack(ctx.GL, 0, gpu));
+  if (!pass->ReadBack(ctx.GL, 0, gpu))
+  {
+    return INFINITY;
+  }
   double worst = 0.0;
   for (int k = 0; k < dims[2]; ++k)
   {
@@ -436,7 +444,20 @@ TEST(IrradianceVolumePass, HomogeneousSlabFollowsBeerLambert)
       worst = std::max(worst, std::abs(gpu[k * dims[0] * dims[1] + v] / expected - 1.0));
     }
   }
-  EXPECT_LE(worst, 0.01);
+  return worst;
+}
+}
+
+TEST(IrradianceVolumePass, HomogeneousSlabFollowsBeerLambert)
+{
+  const Context& ctx = SharedContext();
+  ASSERT_NE(ctx.GL, nullptr);
+  const std::array<int, 3> dims = { 8, 8, 32 };
+  const Scene scene = HomogeneousSlab(dims, 0.1);
+  vtkNew<vtkIrradianceVolumePass> pass;
+  SetPassInputs(scene, pass);
+  ASSERT_TRUE(pass->Render(ctx.GL));
+  EXPECT_LE(WorstBeerLambertError(ctx, pass, dims, 0.1), 0.01);
   pass->ReleaseGraphicsResources(ctx.GL);
 }
 
@@ -448,16 +469,8 @@ TEST(IrradianceVolumePass, StridedLightGridFollowsBeerLambert)
 {
   const Context& ctx = SharedContext();
   ASSERT_NE(ctx.GL, nullptr);
-  Scene scene;
   const std::array<int, 3> dims = { 9, 9, 33 };
-  scene.Image = MakeImage(dims, { 1.0, 1.0, 1.0 }, [](int, int, int) { return 1.0f; });
-  const double sigma = 0.1;
-  scene.Opacity = vtkSmartPointer<vtkPiecewiseFunction>::New();
-  scene.Opacity->AddPoint(0.0, 1.0 - std::exp(-sigma));
-  scene.Opacity->AddPoint(2.0, 1.0 - std::exp(-sigma));
-  scene.Material = vtkSmartPointer<vtkMaterialTransferFunction>::New();
-  scene.Material->AddNode(0.0, 0.2, 0.7, 0.2, 20.0, 1.0, 0.0, 0.0);
-  scene.Lights.push_back(Directional(0.0, 0.0, 1.0));
+  Scene scene = HomogeneousSlab(dims, 0.1);
   scene.Strides = { 2 };
   for (const int estimation : { mmv::PiecewiseShadowRays, mmv::FullShadowRays })
   {
@@ -465,18 +478,7 @@ TEST(IrradianceVolumePass, StridedLightGridFollowsBeerLambert)
     vtkNew<vtkIrradianceVolumePass> pass;
     SetPassInputs(scene, pass);
     ASSERT_TRUE(pass->Render(ctx.GL));
-    std::vector<float> gpu;
-    ASSERT_TRUE(pass->ReadBack(ctx.GL, 0, gpu));
-    double worst = 0.0;
-    for (int k = 0; k < dims[2]; ++k)
-    {
-      const double expected = std::exp(-sigma * (dims[2] - 1 - k));
-      for (int v = 0; v < dims[0] * dims[1]; ++v)
-      {
-        worst = std::max(worst, std::abs(gpu[k * dims[0] * dims[1] + v] / expected - 1.0));
-      }
-    }
-    EXPECT_LE(worst, 0.01) << "estimation " << estimation;
+    EXPECT_LE(WorstBeerLambertError(ctx, pass, dims, 0.1), 0.01) << "estimation " << estimation;
     // The rays started from the 5 x 5 x 17 points of the light grid.
     EXPECT_EQ(pass->GetLastEstimatedVoxels(), 5 * 5 * 17) << "estimation " << estimation;
     pass->ReleaseGraphicsResources(ctx.GL);
