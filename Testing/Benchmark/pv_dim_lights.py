@@ -1,5 +1,5 @@
 """Dim lights on a coarser grid: the still frame after a light-kit camera
-move with the kit's fill, back and head lights strided (the mapper's
+move with the kit's fill, back and head lights strided (the representation's
 DimLightCoarsening, default on) and with every light on the irradiance grid,
 in one view, interleaved; the image error between the two (run with
 pvpython).
@@ -8,9 +8,9 @@ pvpython).
         scripts/pvpython Testing/Benchmark/pv_dim_lights.py --out DIR [--quick]
 
 Volumes as pv_lighting_changes.py's (head: smooth, chest: fine structure),
-400 x 400, ParaView's light kit; materials default and `skin`. Each of
---changes camera moves (Azimuth 10 degrees) is rendered once with each
-setting (the order alternates). Writes OUT/dim_lights.csv: per volume and
+400 x 400, ParaView's light kit; materials default and `skin`; each setting
+in its own view. Each of --changes camera moves (Azimuth 10 degrees) is made
+in both views and rendered once in each (the order alternates). Writes OUT/dim_lights.csv: per volume and
 material the median still frame and shadow seconds of each setting, the
 shadow rays cast (voxel-lights) and the PSNR of the strided image against the
 exact one (the minimum over the moves).
@@ -67,7 +67,8 @@ def psnr(a, b):
     return float("inf") if mse == 0 else 10.0 * math.log10(255.0 * 255.0 / mse)
 
 
-def run(name, preset, path, args, writer):
+def make_method(path, preset, strided, args):
+    """A view of its own showing the volume, DimLightCoarsening on or off."""
     reader = simple.XMLImageDataReader(FileName=[path])
     view = orbit.make_view(args)
     rep = simple.Show(reader, view)
@@ -77,26 +78,32 @@ def run(name, preset, path, args, writer):
     rep.ScalarOpacityUnitDistance = orbit.OPACITY_UNIT_DISTANCE
     if preset != "default":
         rep.MaterialPreset = preset
+    rep.DimLightCoarsening = int(strided)
     orbit.place_camera(view, args)
     view.SMProxy.StillRender()
-    mapper = orbit.volume_props(view)[0].GetMapper()
-    irradiance = mapper.GetIrradianceVolumePass()
+    return reader, view, rep
+
+
+def run(name, preset, path, args, writer):
+    methods = {strided: make_method(path, preset, strided, args) for strided in (True, False)}
     frames = {True: [], False: []}
     shadows = {True: [], False: []}
     rays = {}
     errors = []
     for change in range(args.changes):
-        view.GetActiveCamera().Azimuth(10.0)
         images = {}
         for strided in ((True, False) if change % 2 == 0 else (False, True)):
-            mapper.SetDimLightCoarsening(strided)
+            _, view, _ = methods[strided]
+            view.GetActiveCamera().Azimuth(10.0)
             start = time.time()
             view.SMProxy.StillRender()
             frames[strided].append(time.time() - start)
+            irradiance = orbit.volume_props(view)[0].GetMapper().GetIrradianceVolumePass()
             shadows[strided].append(irradiance.GetLastEstimationSeconds())
             rays[strided] = irradiance.GetLastEstimatedVoxels()
             images[strided] = grab(view)
         errors.append(psnr(images[True], images[False]))
+    mapper = orbit.volume_props(methods[True][1])[0].GetMapper()
     row = {
         "volume": name, "material": preset,
         "grid": "x".join(str(d) for d in mapper.GetIrradianceDimensions()),
@@ -112,9 +119,10 @@ def run(name, preset, path, args, writer):
     print(", ".join("%s %s" % (k, ("%.3f" % v) if isinstance(v, float) else v)
                     for k, v in row.items()))
     sys.stdout.flush()
-    simple.Delete(rep)
-    simple.Delete(view)
-    simple.Delete(reader)
+    for reader, view, rep in methods.values():
+        simple.Delete(rep)
+        simple.Delete(view)
+        simple.Delete(reader)
 
 
 def main():
