@@ -2,6 +2,20 @@
 
 using namespace mmv::voxelpass;
 
+namespace
+{
+// Lights set in a channel mask.
+int PopCount(int mask)
+{
+  int count = 0;
+  for (; mask != 0; mask &= mask - 1)
+  {
+    ++count;
+  }
+  return count;
+}
+}
+
 //------------------------------------------------------------------------------
 vtkStandardNewMacro(vtkIrradianceVolumePass);
 
@@ -179,6 +193,11 @@ bool vtkIrradianceVolumePass::Render(vtkOpenGLRenderWindow* context)
     const std::vector<bool> updated = internals.MarkLightsToUpdate(
       internals.VolumeChanged || reallocated,
       mmv::LightToleranceRadians(this->LightDirectionTolerance));
+    // Progress counts a light's shadows and its share of a diffusion as one
+    // unit each.
+    this->ProgressDone = 0.0;
+    this->ProgressTotal = static_cast<double>(
+      std::count(updated.begin(), updated.end(), true) * (diffusion ? 2 : 1));
     for (int group = 0; ok && group < this->GetNumberOfIrradianceTextures(); ++group)
     {
       ok = this->UpdateGroup(context, group, updated, estimation, diffusion);
@@ -318,6 +337,7 @@ bool vtkIrradianceVolumePass::UpdateGroup(vtkOpenGLRenderWindow* context, int gr
     stage = now;
     return seconds;
   };
+  const int lights = PopCount(mask);
   bool ok = fullMask == 0 ||
     internals.ShadowPass(
       context, group, fullMask, 1, this->SkipEmptyVoxels, this->LayeredRendering);
@@ -325,11 +345,19 @@ bool vtkIrradianceVolumePass::UpdateGroup(vtkOpenGLRenderWindow* context, int gr
     (stridedFullMask == 0 ||
       internals.ShadowPass(
         context, group, stridedFullMask, stride, this->SkipEmptyVoxels, this->LayeredRendering));
+  if (ok && (fullMask | stridedFullMask) != 0)
+  {
+    this->ReportProgress(context, PopCount(fullMask | stridedFullMask));
+  }
   for (const int k : swept)
   {
     ok = ok &&
       internals.PiecewiseShadowPass(
         context, k, this->PiecewiseShadowSlices, this->SkipEmptyVoxels, this->LayeredRendering);
+    if (ok)
+    {
+      this->ReportProgress(context, 1.0);
+    }
   }
   // The dim lights' grid, interpolated to the irradiance grid: from here on
   // they are lit as the others.
@@ -348,6 +376,10 @@ bool vtkIrradianceVolumePass::UpdateGroup(vtkOpenGLRenderWindow* context, int gr
   }
   ok = ok && internals.FillPass(context, result, group, mask, this->LayeredRendering);
   this->LastWriteSeconds += elapsed();
+  if (ok && diffusion)
+  {
+    this->ReportProgress(context, lights); // the diffusion, with the short write
+  }
   for (int l = 0; ok && !internals.Tint.empty() && l < LightsPerTexture; ++l)
   {
     if ((mask & (1 << l)) != 0)
@@ -360,6 +392,30 @@ bool vtkIrradianceVolumePass::UpdateGroup(vtkOpenGLRenderWindow* context, int gr
     this->LastEstimationSeconds += elapsed();
   }
   return ok;
+}
+
+//------------------------------------------------------------------------------
+void vtkIrradianceVolumePass::SetProgressCallback(std::function<void(double)> callback)
+{
+  this->Progress = std::move(callback);
+}
+
+void vtkIrradianceVolumePass::ReportProgress(vtkOpenGLRenderWindow* context, double units)
+{
+  if (!this->Progress || !(this->ProgressTotal > 0.0))
+  {
+    return;
+  }
+  // What is reported done is done, not queued.
+  glFinish();
+  this->ProgressDone = std::min(this->ProgressDone + units, this->ProgressTotal);
+  this->Progress(this->ProgressDone / this->ProgressTotal);
+  // A GUI that repaints in the callback may leave its own context current;
+  // the passes' GL calls and VTK's state cache are this context's.
+  if (!context->IsCurrent())
+  {
+    context->MakeCurrent();
+  }
 }
 
 //------------------------------------------------------------------------------

@@ -63,7 +63,8 @@
 #include "vtkMultiMaterialVolumeModule.h" // export macro
 #include "vtkObject.h"
 
-#include <vector> // inputs
+#include <functional> // progress callback
+#include <vector>     // inputs
 
 class vtkOpenGLRenderWindow;
 class vtkShaderProgram;
@@ -237,6 +238,17 @@ public:
   /// inputs are missing or the context lacks what the passes need.
   bool Render(vtkOpenGLRenderWindow* context);
 
+#ifndef __VTK_WRAP__
+  /**
+   * Called during Render() with the fraction of its work done (0 < x <= 1,
+   * increasing): after each light's shadows and each texture's diffusion,
+   * counted per light, once the GPU finished them (glFinish). A callback
+   * that leaves another context current (a GUI repainting) gets Render()'s
+   * made current again. Empty (the default): no calls and no extra glFinish.
+   */
+  void SetProgressCallback(std::function<void(double)> callback);
+#endif
+
   /// RGBA16 3D texture holding lights 4i..4i+3 (nullptr before Render()).
   vtkTextureObject* GetIrradianceTexture(int i) const;
   /// The pre-filtered scalars (R32F, linear) and the shadow-opacity table the
@@ -323,6 +335,12 @@ private:
   int PrepareSettings(bool& diffusion);
   bool UpdateGroup(vtkOpenGLRenderWindow* context, int group, const std::vector<bool>& updated,
     int estimation, bool diffusion);
+  // Finishes the GPU's work, adds `units` to what is done and calls the
+  // progress callback (nothing without one).
+  void ReportProgress(vtkOpenGLRenderWindow* context, double units);
+  std::function<void(double)> Progress;
+  double ProgressDone = 0.0;
+  double ProgressTotal = 0.0;
 
   class vtkInternals;
   vtkInternals* Internals;

@@ -1,5 +1,6 @@
 #include "vtkMultiMaterialIrradianceStage.h"
 
+#include "vtkCommand.h"
 #include "vtkDataArray.h"
 #include "vtkGlobalPrefilteredVolume.h"
 #include "vtkImageData.h"
@@ -18,6 +19,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <sstream>
 
@@ -177,17 +179,29 @@ void vtkMultiMaterialIrradianceStage::ApplyProbe(vtkRenderer* ren, vtkVolume* vo
     this->Mapper->SetProgressText("Irradiance resolution probe");
     this->Mapper->UpdateProgress(0.0);
   }
+  int estimates = 0;
   const double probed = this->Probe->Choose(window, volumeKey, image, scalars, range, budget,
     maxAxis, bound, opacityTable, signature,
     [&](vtkIrradianceVolumePass* pass, const mmv::IrradianceGrid& grid,
       const std::vector<float>& prefiltered, unsigned long version,
       const std::vector<mmv::LightSource>& lights) {
-      return this->ComputeOn(
+      // Each grid the probe lights has about 2^-1.5 the voxels of the one
+      // before: after n of them, about 0.35^n of its work is left.
+      const double shrink = std::exp2(-1.5);
+      const double from = 1.0 - std::pow(shrink, estimates);
+      const double to = 1.0 - std::pow(shrink, ++estimates);
+      this->ReportProgressOf(pass, from, to);
+      const bool ok = this->ComputeOn(
         pass, window, vol, range, cutaway, grid, prefiltered, version, lights, false);
+      pass->SetProgressCallback(nullptr);
+      return ok;
     });
-  if (measures)
+  if (measures && this->Mapper->GetProgress() < 1.0)
   {
     this->Mapper->UpdateProgress(1.0);
+  }
+  if (measures)
+  {
     this->Mapper->SetProgressText(nullptr);
     vtkDebugWithObjectMacro(this->Mapper, << this->Probe->GetSummary() << " in "
                                           << this->Probe->GetLastProbeSeconds() << " s");
@@ -319,9 +333,13 @@ bool vtkMultiMaterialIrradianceStage::Update(vtkMultiMaterialVolumeMapper* mappe
     this->Mapper->WarnOnce(mmv::NonFiniteScalarsMessage);
   }
   this->Pass->SetRegion(region.Bounds);
-  if (!this->ComputeOn(this->Pass, vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow()),
-        vol, range, cutaway, this->Cache->GetGrid(), this->Cache->GetPrefiltered(),
-        this->Cache->GetPrefilteredVersion(), sources, this->Mapper->MultipleScattering))
+  this->ReportProgressOf(this->Pass, 0.0, 1.0);
+  const bool estimated = this->ComputeOn(this->Pass,
+    vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow()), vol, range, cutaway,
+    this->Cache->GetGrid(), this->Cache->GetPrefiltered(), this->Cache->GetPrefilteredVersion(),
+    sources, this->Mapper->MultipleScattering);
+  this->Pass->SetProgressCallback(nullptr);
+  if (!estimated)
   {
     this->Cache->Invalidate();
     this->Mapper->SetProgressText(nullptr);
@@ -339,11 +357,29 @@ bool vtkMultiMaterialIrradianceStage::Update(vtkMultiMaterialVolumeMapper* mappe
   stages.Pass = this->Pass->GetLastRenderSeconds();
   stages.Total = SecondsSince(start);
   this->Stages = stages;
-  this->Mapper->UpdateProgress(1.0);
+  if (this->Mapper->GetProgress() < 1.0)
+  {
+    this->Mapper->UpdateProgress(1.0);
+  }
   // The mapper's own pipeline progress (its input's update) is not this.
   this->Mapper->SetProgressText(nullptr);
   this->Record(resolution);
   return true;
+}
+
+void vtkMultiMaterialIrradianceStage::ReportProgressOf(
+  vtkIrradianceVolumePass* pass, double from, double to)
+{
+  // Without an observer the pass runs without progress, and without the
+  // glFinish each report takes.
+  if (!this->Mapper->HasObserver(vtkCommand::ProgressEvent))
+  {
+    pass->SetProgressCallback(nullptr);
+    return;
+  }
+  vtkMultiMaterialVolumeMapper* mapper = this->Mapper;
+  pass->SetProgressCallback(
+    [mapper, from, to](double done) { mapper->UpdateProgress(from + (to - from) * done); });
 }
 
 bool vtkMultiMaterialIrradianceStage::ComputeOn(vtkIrradianceVolumePass* pass,

@@ -103,6 +103,9 @@ private:
   void ApplyProbe(vtkRenderer* ren, vtkVolume* vol, vtkImageData* image, vtkDataArray* scalars,
     const double range[2], const vtkIrradianceInputCache::VolumeKey& volumeKey,
     const mmv::Cutaway& cutaway, double bound, int maxAxis, mmv::IrradianceResolution& resolution);
+  /// Has `pass` report the mapper's progress from `from` to `to` (nothing
+  /// while no one observes it).
+  void ReportProgressOf(vtkIrradianceVolumePass* pass, double from, double to);
   /// Estimates `sources` on `grid` into `pass` (the frame's pass, or the
   /// probe's without scattering).
   bool ComputeOn(vtkIrradianceVolumePass* pass, vtkOpenGLRenderWindow* window, vtkVolume* vol,

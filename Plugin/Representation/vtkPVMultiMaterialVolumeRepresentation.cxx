@@ -9,6 +9,7 @@
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkCommand.h"
 #include "vtkMultiProcessController.h"
 #include "vtkPVRenderView.h"
 #include "vtkPVView.h"
@@ -47,11 +48,9 @@ vtkPVMultiMaterialVolumeRepresentation::vtkPVMultiMaterialVolumeRepresentation()
   // vtkOpenGLGPUVolumeRayCastMapper, so everything generic keeps working.
   vtkNew<vtkMultiMaterialVolumeMapper> mapper;
   mapper->SetMaterialTransferFunction(this->Materials);
-  // The mapper's progress events (an irradiance update's start and end) are
-  // not forwarded to ParaView's progress handler: it processes Qt events
-  // inside our render, and what other widgets draw then leaves the GL state
-  // out of VTK's cache (28 vtkOpenGLState warnings and the Output Messages
-  // window in the GUI test when they were).
+  // ParaView's progress bar listens to the representation, not its mapper.
+  mapper->AddObserver(
+    vtkCommand::ProgressEvent, this, &vtkPVMultiMaterialVolumeRepresentation::ForwardProgress);
   this->VolumeMapper = mapper;
 
   this->AppliedNodes->SetName("MaterialNodes");
@@ -68,6 +67,22 @@ vtkPVMultiMaterialVolumeRepresentation::~vtkPVMultiMaterialVolumeRepresentation(
   vtkMultiMaterialLiveObjects::Destroyed("vtkPVMultiMaterialVolumeRepresentation");
 }
 
+//------------------------------------------------------------------------------
+void vtkPVMultiMaterialVolumeRepresentation::ForwardProgress(
+  vtkObject* caller, unsigned long, void* progress)
+{
+  // Only the irradiance update's events carry a text; the mapper's pipeline
+  // progress (its input's update, every frame) is left out.
+  auto* mapper = vtkAlgorithm::SafeDownCast(caller);
+  if (!mapper || !mapper->GetProgressText())
+  {
+    return;
+  }
+  this->SetProgressText(mapper->GetProgressText());
+  this->UpdateProgress(*static_cast<double*>(progress));
+  // This representation's own pipeline progress carries no text.
+  this->SetProgressText(nullptr);
+}
 
 //------------------------------------------------------------------------------
 vtkMultiMaterialVolumeMapper* vtkPVMultiMaterialVolumeRepresentation::GetMultiMaterialMapper()

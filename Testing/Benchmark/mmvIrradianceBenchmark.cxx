@@ -7,8 +7,8 @@
 //   mmvIrradianceBenchmark --out DIR [--size N] [--reps N] [--head FILE.vti] [--quick]
 //                          [--only SECTION[,SECTION...]]  (updates, resolution,
 //                          estimation, raycast, orbit, compute, diffusion,
-//                          tolerance; all but raycast, orbit, compute,
-//                          diffusion and tolerance by default)
+//                          tolerance, progress; all but raycast, orbit, compute,
+//                          diffusion, tolerance and progress by default)
 //                          [--orbit-steps N] [--orbit-interactive-frames K]
 //                          [--image-sample-distance D] [--lights N]  (raycast: both
 //                          mappers, no auto-adjust, N scene lights, default 5)
@@ -25,7 +25,9 @@
 #include "mmvBenchmarkScenes.h"
 #include "mmvTestWindow.h"
 
+#include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
+#include "vtkCommand.h"
 #include "vtkImageData.h"
 #include "vtkImageErrorMetrics.h"
 #include "vtkWindowToImageFilter.h"
@@ -711,6 +713,67 @@ int main(int argc, char* argv[])
           << ",\"" << renderer << "\"\n";
       std::printf("s = %g: compute %.4f s, fragment %.4f s, fragment / compute %.2f (%s)\n", s,
         Median(compute), Median(fragment), Median(ratios), renderer.c_str());
+    }
+    return 0;
+  }
+  if (Wanted(only, "progress") && !only.empty())
+  {
+    // What progress reporting costs an update: with a ProgressEvent observer
+    // on the mapper (as ParaView's representation has; the pass then reports
+    // after glFinish, per light and per texture's diffusion) and without,
+    // alternating update by update (the machine may be shared): 5 lights,
+    // scale 0.5 and 1, s = 0 and 8. The mapper's default: no stage timing.
+    ours.SetLightCount(5);
+    ours.Ours->TimeStagesOff();
+    int reports = 0;
+    vtkNew<vtkCallbackCommand> observer;
+    observer->SetClientData(&reports);
+    observer->SetCallback(
+      [](vtkObject*, unsigned long, void* client, void*) { ++*static_cast<int*>(client); });
+    std::ofstream csv(out + "/progress_overhead.csv");
+    csv << "irradiance_scale,scattering,reports_per_update,with_progress_update_s,"
+           "without_progress_update_s,with_over_without,renderer\n";
+    for (double scale : { 0.5, 1.0 })
+    {
+      ours.Ours->SetIrradianceScale(scale);
+      for (double s : { 0.0, 8.0 })
+      {
+        ours.SetScattering(s);
+        std::vector<double> with, without, ratios;
+        int reportsPerUpdate = 0;
+        for (int r = 0; r <= reps; ++r) // the first round warms both up
+        {
+          // Which goes first alternates, so neither profits from the order.
+          std::vector<double> pair(2);
+          for (bool observed : { r % 2 == 0, r % 2 != 0 })
+          {
+            const unsigned long tag =
+              observed ? ours.Ours->AddObserver(vtkCommand::ProgressEvent, observer) : 0;
+            reports = 0;
+            std::vector<double> update;
+            ours.Frames(1, [&]() { ours.PlaceLights(); }, &update);
+            pair[observed ? 0 : 1] = update.back();
+            if (observed)
+            {
+              reportsPerUpdate = reports;
+              ours.Ours->RemoveObserver(tag);
+            }
+          }
+          if (r > 0)
+          {
+            with.push_back(pair[0]);
+            without.push_back(pair[1]);
+            ratios.push_back(pair[0] / pair[1]);
+          }
+        }
+        const std::string renderer = mmvtest::RendererString(ours.Window);
+        csv << scale << "," << s << "," << reportsPerUpdate << "," << Median(with) << ","
+            << Median(without) << "," << Median(ratios) << ",\"" << renderer << "\"\n";
+        std::printf("scale %.2g, s = %g: %d reports, with progress %.4f s, without %.4f s, "
+                    "with / without %.4f (%s)\n",
+          scale, s, reportsPerUpdate, Median(with), Median(without), Median(ratios),
+          renderer.c_str());
+      }
     }
     return 0;
   }

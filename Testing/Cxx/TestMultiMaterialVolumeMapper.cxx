@@ -216,20 +216,87 @@ TEST(MultiMaterialVolumeMapper, IrradianceUpdatesReportProgress)
   EXPECT_EQ(scene.Mapper->GetProgressText(), nullptr) << "the text is cleared after an update";
 
   // With an automatic resolution, the error probe's measurement reports its
-  // own start and end before the update's; a camera move reports nothing.
+  // own progress, rising from 0 to 1 after each grid it lights, before the
+  // update's; a camera move reports nothing.
   events.clear();
   scene.Mapper->SetIrradianceScale(0.0);
   scene.Window->Render();
-  const std::vector<std::pair<double, std::string>> probeThenUpdate = {
-    { 0.0, "Irradiance resolution probe" }, { 1.0, "Irradiance resolution probe" },
-    { 0.0, "Irradiance volume" }, { 1.0, "Irradiance volume" }
-  };
-  EXPECT_EQ(events, probeThenUpdate);
+  ASSERT_GE(events.size(), 5u);
+  const std::string probe = "Irradiance resolution probe";
+  EXPECT_EQ(events.front(), std::make_pair(0.0, probe));
+  size_t probeEnd = 1;
+  for (; probeEnd < events.size() && events[probeEnd].second == probe; ++probeEnd)
+  {
+    EXPECT_GT(events[probeEnd].first, events[probeEnd - 1].first) << "probe report " << probeEnd;
+  }
+  EXPECT_GE(probeEnd, 3u) << "the probe lights several grids";
+  EXPECT_EQ(events[probeEnd - 1].first, 1.0);
+  const std::vector<std::pair<double, std::string>> update(events.begin() + probeEnd, events.end());
+  EXPECT_EQ(update, startEnd);
   EXPECT_EQ(scene.Mapper->GetNumberOfIrradianceProbes(), 1);
   events.clear();
   scene.Renderer->GetActiveCamera()->Azimuth(20.0);
   scene.Window->Render();
   EXPECT_TRUE(events.empty()) << events.size() << " events for a camera move";
+}
+
+TEST(MultiMaterialVolumeMapper, IrradianceProgressRisesPerLight)
+{
+  // An update of several lights with diffusion reports progress between its
+  // passes (each light's shadows, each texture's diffusion), increasing from
+  // 0 to 1; a camera move or a colour edit reports nothing.
+  CubeScene scene(1.0);
+  scene.Materials->RemoveAllNodes();
+  scene.Materials->AddNode(1.0, 0.2, 0.8, 0.0, 1.0, 1.0, 4.0, 0.0);
+  scene.Mapper->MultipleScatteringOn();
+  std::vector<double> progress;
+  vtkNew<vtkCallbackCommand> observer;
+  observer->SetClientData(&progress);
+  observer->SetCallback([](vtkObject* caller, unsigned long, void* client, void* data) {
+    auto* algorithm = vtkAlgorithm::SafeDownCast(caller);
+    if (algorithm && algorithm->GetProgressText() &&
+      std::string(algorithm->GetProgressText()) == "Irradiance volume")
+    {
+      static_cast<std::vector<double>*>(client)->push_back(*static_cast<double*>(data));
+    }
+  });
+  scene.Mapper->AddObserver(vtkCommand::ProgressEvent, observer);
+  // Five lights: two irradiance textures (four lights each).
+  const double from[5][3] = { { 16, 16, 1000 }, { 1000, 16, 16 }, { 16, 1000, 16 },
+    { -1000, 16, 16 }, { 16, 16, -1000 } };
+  std::vector<vtkLight*> lights;
+  for (const auto& f : from)
+  {
+    lights.push_back(scene.AddDirectionalLight(f, CubeCenter));
+  }
+  const auto expectRising = [&progress](size_t reports, const char* what) {
+    ASSERT_FALSE(progress.empty()) << what;
+    EXPECT_EQ(progress.front(), 0.0) << what;
+    EXPECT_EQ(progress.back(), 1.0) << what;
+    for (size_t i = 1; i < progress.size(); ++i)
+    {
+      EXPECT_GT(progress[i], progress[i - 1]) << what << ", report " << i;
+    }
+    // The start, then one report per light's shadows and one per texture's
+    // diffusion.
+    EXPECT_EQ(progress.size(), 1 + reports) << what;
+  };
+  scene.Window->Render();
+  ASSERT_EQ(scene.Mapper->GetNumberOfShadedLights(), 5);
+  EXPECT_GT(scene.Mapper->GetDiffusionPassCount(), 0);
+  expectRising(5 + 2, "first update");
+
+  progress.clear();
+  scene.Renderer->GetActiveCamera()->Azimuth(20.0);
+  scene.Window->Render();
+  scene.Color->AddRGBPoint(1.0, 0.2, 0.9, 0.4);
+  scene.Window->Render();
+  EXPECT_TRUE(progress.empty()) << progress.size() << " reports without an update";
+
+  // One light moved: its shadows and its texture's diffusion.
+  lights[4]->SetPosition(16.0, -1000.0, 16.0);
+  scene.Window->Render();
+  expectRising(1 + 1, "one light moved");
 }
 
 TEST(MultiMaterialVolumeMapper, ColourOnlyMaterialEditsKeepTheIrradiance)
