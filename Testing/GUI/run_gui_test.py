@@ -111,7 +111,8 @@ def main():
     parser.add_argument("--plugin", required=True)
     parser.add_argument("--materials", required=True)
     parser.add_argument("--out", required=True)
-    parser.add_argument("--timeout", type=float, default=150)
+    # A deadlock guard: a loaded 2-core machine has taken 150 s.
+    parser.add_argument("--timeout", type=float, default=300)
     parser.add_argument("--setup", default=os.path.join(HERE, "setup_material_editor.py"),
                         help="startup script (defines check_nodes() for the XML)")
     args = parser.parse_args()
