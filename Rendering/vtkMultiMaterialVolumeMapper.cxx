@@ -35,6 +35,7 @@
 #include "vtkValueGradient.h"
 #include "vtkVolume.h"
 #include "vtkVolumeBricking.h"
+#include "vtkVectorScalarsCache.h"
 #include "vtkVolumeInputScalars.h"
 #include "vtkVolumeInputHelper.h"
 #include "vtkVolumeTexture.h"
@@ -114,13 +115,9 @@ public:
     return this->CellCentres;
   }
 
-  // The one-component array VectorMode made of a vector, and what it was
-  // made from.
-  vtkSmartPointer<vtkDataArray> Reduced;
-  vtkDataArray* ReducedFrom = nullptr;
-  vtkMTimeType ReducedTime = 0;
-  int ReducedMode = mmv::VectorModeDisabled;
-  int ReducedComponent = -1;
+  // The one-component arrays VectorMode made of vectors: the same array for
+  // the same vector, so that kept steps' irradiance matches its key.
+  vtkVectorScalarsCache Reduced;
   std::string LastVectorError; // reported once until it changes
   int DrawnComponents = 0;      // of the scalars the ray caster drew last
 
@@ -392,33 +389,20 @@ bool vtkMultiMaterialVolumeMapper::SelectVectorScalars(vtkRenderer* ren)
   vtkDataArray* wanted = original;
   if (this->VectorMode != mmv::VectorModeDisabled && original->GetNumberOfComponents() > 1)
   {
-    const vtkMTimeType time = original->GetMTime();
-    if (!in.Reduced || in.ReducedFrom != original || in.ReducedTime != time ||
-      in.ReducedMode != this->VectorMode || in.ReducedComponent != this->VectorComponent)
+    in.Reduced.SetKeepAll(this->IrradianceCacheMB > 0.0);
+    std::string error;
+    wanted = in.Reduced.Get(original, this->VectorMode, this->VectorComponent, &error);
+    if (!wanted)
     {
-      std::string error;
-      in.Reduced = mmv::MakeVectorScalars(original, this->VectorMode, this->VectorComponent, &error);
-      in.ReducedFrom = original;
-      in.ReducedTime = time;
-      in.ReducedMode = this->VectorMode;
-      in.ReducedComponent = this->VectorComponent;
-      if (!in.Reduced)
+      if (error != in.LastVectorError)
       {
-        if (error != in.LastVectorError)
-        {
-          vtkErrorMacro("VectorComponent " << this->VectorComponent << ": " << error
-                                           << "; not rendering the volume");
-          in.LastVectorError = error;
-        }
-        return false;
+        vtkErrorMacro("VectorComponent " << this->VectorComponent << ": " << error
+                                         << "; not rendering the volume");
+        in.LastVectorError = error;
       }
-      in.LastVectorError.clear();
+      return false;
     }
-    if (!in.Reduced)
-    {
-      return false; // reported when it was made
-    }
-    wanted = in.Reduced;
+    in.LastVectorError.clear();
   }
   // The copy VTK draws (made here as ValidateInput would, and kept by it as
   // long as the input does not change): it gets `wanted` in the vector's

@@ -2,6 +2,7 @@
 
 #include "vtkColorTransferFunction.h"
 #include "vtkDataObject.h"
+#include "vtkCellData.h"
 #include "vtkCompositeDataSet.h"
 #include "vtkGlobalPrefilterExchange.h"
 #include "vtkImageBlockMerge.h"
@@ -614,16 +615,22 @@ void vtkPVMultiMaterialVolumeRepresentation::UpdateGlobalVolume()
   // Everything in the key is the same on every rank (proxy properties and the
   // count of RequestData), so every rank decides alike.
   std::string array;
+  bool cells = false;
   vtkInformation* info = this->GetInputArrayInformation(0);
-  if (info && info->Has(vtkDataObject::FIELD_NAME()) &&
-    info->Get(vtkDataObject::FIELD_ASSOCIATION()) == vtkDataObject::FIELD_ASSOCIATION_POINTS)
+  if (info && info->Has(vtkDataObject::FIELD_NAME()))
   {
-    array = info->Get(vtkDataObject::FIELD_NAME());
+    const int association = info->Get(vtkDataObject::FIELD_ASSOCIATION());
+    if (association == vtkDataObject::FIELD_ASSOCIATION_POINTS ||
+      association == vtkDataObject::FIELD_ASSOCIATION_CELLS)
+    {
+      array = info->Get(vtkDataObject::FIELD_NAME());
+      cells = association == vtkDataObject::FIELD_ASSOCIATION_CELLS;
+    }
   }
   int component = 0;
   const int vectorMode = this->MapperVectorMode(component);
   const std::vector<double> key = { double(this->DataGeneration), this->IrradianceMemoryMB,
-    this->IrradianceScale, double(vectorMode), double(component) };
+    this->IrradianceScale, double(vectorMode), double(component), double(cells) };
   if (key == this->GlobalKey && array == this->GlobalArray)
   {
     return;
@@ -638,18 +645,34 @@ void vtkPVMultiMaterialVolumeRepresentation::UpdateGlobalVolume()
   auto* piece = vtkImageData::SafeDownCast(this->Cache);
   // A vector is lit as the mapper reduces it (VectorMode), from the colour
   // map's settings, which every rank shares.
-  vtkDataArray* vectors =
-    piece && !array.empty() ? piece->GetPointData()->GetArray(array.c_str()) : nullptr;
-  vtkNew<vtkImageData> reducedPiece;
-  if (vectors && vectors->GetNumberOfComponents() > 1 && vectorMode != mmv::VectorModeDisabled)
+  vtkDataSetAttributes* attributes = nullptr;
+  if (piece)
   {
-    if (vtkSmartPointer<vtkDataArray> reduced =
-          mmv::MakeVectorScalars(vectors, vectorMode, component, nullptr))
-    {
-      reducedPiece->ShallowCopy(piece);
-      reducedPiece->GetPointData()->AddArray(reduced); // replaces the vector
-      piece = reducedPiece;
-    }
+    attributes = cells ? static_cast<vtkDataSetAttributes*>(piece->GetCellData())
+                       : static_cast<vtkDataSetAttributes*>(piece->GetPointData());
+  }
+  vtkDataArray* scalars =
+    attributes && !array.empty() ? attributes->GetArray(array.c_str()) : nullptr;
+  vtkSmartPointer<vtkDataArray> reduced;
+  if (scalars && scalars->GetNumberOfComponents() > 1 && vectorMode != mmv::VectorModeDisabled)
+  {
+    reduced = mmv::MakeVectorScalars(scalars, vectorMode, component, nullptr);
+  }
+  vtkSmartPointer<vtkImageData> litPiece;
+  if (cells && scalars)
+  {
+    // Cell data are lit on each piece's grid of cell centres, as the mapper
+    // lights them; the pieces' centres lie on one lattice, the whole
+    // volume's cell centres.
+    litPiece = mmv::MakeCellCentreImage(piece, reduced ? reduced.Get() : scalars);
+    piece = litPiece;
+  }
+  else if (reduced)
+  {
+    litPiece = vtkSmartPointer<vtkImageData>::New();
+    litPiece->ShallowCopy(piece);
+    litPiece->GetPointData()->AddArray(reduced); // replaces the vector
+    piece = litPiece;
   }
   const bool valid = mmv::ExchangeGlobalPrefilter(controller, piece,
     array.empty() ? nullptr : array.c_str(), settings, this->GlobalVolume, error);

@@ -13,10 +13,12 @@
 #include "vtkIrradianceVolumeFilter.h"
 #include "vtkMaterialTransferFunction.h"
 #include "vtkMultiMaterialVolumeMapper.h"
+#include "vtkVectorScalarsCache.h"
 #include "vtkVolumeInputScalars.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <functional>
@@ -454,4 +456,158 @@ TEST(DataInputs, SwitchingFromAScalarToAVectorArrayDoesNotCrash)
   scene.Mapper->SetVectorModeToMagnitude();
   scene.Render();
   EXPECT_TRUE(scene.Mapper->GetMultiMaterialActive());
+}
+
+namespace
+{
+// One kind of input of a time series: how a step is made and how the mapper
+// is told to read it.
+struct SeriesKind
+{
+  const char* Name;
+  bool Cells;
+  int Components;
+  std::function<void(vtkMultiMaterialVolumeMapper*)> Setup;
+};
+
+// Step `step` of a series: the plate and floor moved `step` cells along x,
+// as a scalar or as the vector of Vector(), each step its own data object.
+vtkSmartPointer<vtkImageData> SeriesStep(const SeriesKind& kind, int step)
+{
+  auto values = Values("values", kind.Components, [&kind, step](int i, int j, int k, float* v) {
+    if (i < step)
+    {
+      std::fill(v, v + kind.Components, 0.0f);
+    }
+    else if (kind.Components == 1)
+    {
+      *v = PlateAndFloor(i - step, j, k);
+    }
+    else
+    {
+      Vector(i - step, j, k, v);
+    }
+  });
+  return kind.Cells ? AsCellData(values) : AsPointDataOnCentres(values);
+}
+} // namespace
+
+// ParaView's animation cache hands the mapper each step's data object again
+// on the second loop: vectors (by magnitude or a component) and cell data
+// must find their kept irradiance and gradient volume as point scalars do,
+// so the reduced array of a vector has to stay the same array.
+TEST(DataInputs, KeptStepsOfVectorsAndCellDataComeBackWithoutAnUpdate)
+{
+  const SeriesKind kinds[] = {
+    { "point vector, magnitude", false, 3,
+      [](vtkMultiMaterialVolumeMapper* m) { m->SetVectorModeToMagnitude(); } },
+    { "point vector, component 0", false, 3,
+      [](vtkMultiMaterialVolumeMapper* m) {
+        m->SetVectorModeToComponent();
+        m->SetVectorComponent(0);
+      } },
+    { "cell scalars", true, 1, nullptr },
+    { "cell vector, magnitude", true, 3,
+      [](vtkMultiMaterialVolumeMapper* m) { m->SetVectorModeToMagnitude(); } },
+  };
+  constexpr int Steps = 3;
+  for (const SeriesKind& kind : kinds)
+  {
+    SCOPED_TRACE(kind.Name);
+    std::vector<vtkSmartPointer<vtkImageData>> steps;
+    for (int s = 0; s < Steps; ++s)
+    {
+      steps.push_back(SeriesStep(kind, 2 * s));
+    }
+    const auto configure = [&kind](vtkMultiMaterialVolumeMapper* m) {
+      kind.Cells ? m->SetScalarModeToUseCellFieldData() : m->SetScalarModeToUsePointFieldData();
+      m->SelectScalarArray("values");
+      if (kind.Setup)
+      {
+        kind.Setup(m);
+      }
+    };
+    PlateScene scene(steps[0]);
+    configure(scene.Mapper);
+    scene.Mapper->SetIrradianceCacheMB(64.0);
+    mmvtest::ErrorCounter counter(scene.Mapper);
+    std::vector<std::vector<unsigned char>> first;
+    for (int s = 0; s < Steps; ++s)
+    {
+      const int updates = scene.Mapper->GetIrradianceUpdateCount();
+      scene.Mapper->SetInputData(steps[s]);
+      first.push_back(scene.Render());
+      EXPECT_TRUE(scene.Mapper->GetMultiMaterialActive()) << "step " << s;
+      EXPECT_EQ(scene.Mapper->GetIrradianceUpdateCount(), updates + 1) << "first loop, step " << s;
+      EXPECT_GT(Brightest(first.back()), 100) << "step " << s;
+    }
+    EXPECT_EQ(scene.Mapper->GetIrradianceCacheHitCount(), 0);
+    // The steps differ visibly, so a wrong step's irradiance would show.
+    EXPECT_LT(PSNR(first[0], first[1]), 35.0);
+
+    // The second loop: copies of the irradiance and the gradient volume,
+    // the very same images, and each equal to a fresh mapper's render.
+    const int updates = scene.Mapper->GetIrradianceUpdateCount();
+    const int gradients = scene.Mapper->GetGradientUploadCount();
+    for (int s = 0; s < Steps; ++s)
+    {
+      scene.Mapper->SetInputData(steps[s]);
+      const auto again = scene.Render();
+      EXPECT_EQ(scene.Mapper->GetIrradianceCacheHitCount(), s + 1) << "second loop, step " << s;
+      const double kept = PSNR(again, first[s]);
+      PlateScene fresh(steps[s]);
+      configure(fresh.Mapper);
+      const double vsFresh = PSNR(again, fresh.Render());
+      std::printf("%s, step %d again: PSNR %.1f dB vs the first loop, %.1f dB vs a fresh "
+                  "render\n",
+        kind.Name, s, kept, vsFresh);
+      EXPECT_EQ(kept, INFINITY) << "second loop, step " << s;
+      EXPECT_GE(vsFresh, 40.0) << "second loop, step " << s;
+    }
+    EXPECT_EQ(scene.Mapper->GetIrradianceUpdateCount(), updates);
+    EXPECT_EQ(scene.Mapper->GetGradientUploadCount(), gradients);
+    EXPECT_EQ(counter.Errors() + counter.Warnings(), 0) << counter.LastMessage();
+  }
+}
+
+TEST(DataInputs, VectorScalarsCacheGivesTheSameArrayForTheSameVector)
+{
+  auto a = Values("a", 3, Vector);
+  auto b = Values("b", 3, Vector);
+  vtkVectorScalarsCache cache;
+  cache.SetKeepAll(true);
+  vtkDataArray* magA = cache.Get(a, mmv::VectorModeMagnitude, 0, nullptr);
+  vtkDataArray* magB = cache.Get(b, mmv::VectorModeMagnitude, 0, nullptr);
+  ASSERT_NE(magA, nullptr);
+  ASSERT_NE(magB, nullptr);
+  EXPECT_NE(magA, magB);
+  EXPECT_EQ(cache.Get(a, mmv::VectorModeMagnitude, 0, nullptr), magA);
+  EXPECT_EQ(cache.Get(b, mmv::VectorModeMagnitude, 0, nullptr), magB);
+  EXPECT_EQ(cache.GetNumberOfReductions(), 2);
+  // 32^3 floats each.
+  EXPECT_EQ(cache.GetBytes(), 2u * 4u * Cells * Cells * Cells);
+
+  // New values in the vector: a new array of them, the old one dropped.
+  a->SetComponent(0, 0, 3.0f);
+  a->SetComponent(0, 1, 4.0f);
+  a->Modified();
+  vtkDataArray* again = cache.Get(a, mmv::VectorModeMagnitude, 0, nullptr);
+  ASSERT_NE(again, nullptr);
+  EXPECT_FLOAT_EQ(static_cast<float>(again->GetComponent(0, 0)), 5.0f);
+  EXPECT_EQ(cache.GetNumberOfReductions(), 3);
+  EXPECT_EQ(cache.GetNumberOfEntries(), 2);
+
+  // A deleted vector's array goes at the next look-up.
+  b = nullptr;
+  cache.Get(a, mmv::VectorModeComponent, 2, nullptr);
+  EXPECT_EQ(cache.GetNumberOfEntries(), 2); // a's magnitude and component 2
+
+  // Only the latest without KeepAll; a bad component is an error.
+  cache.SetKeepAll(false);
+  cache.Get(a, mmv::VectorModeMagnitude, 0, nullptr);
+  EXPECT_EQ(cache.GetNumberOfEntries(), 1);
+  std::string error;
+  EXPECT_EQ(cache.Get(a, mmv::VectorModeComponent, 3, &error), nullptr);
+  EXPECT_NE(error.find("has 3 component(s)"), std::string::npos) << error;
+  EXPECT_EQ(cache.Get(nullptr, mmv::VectorModeMagnitude, 0, &error), nullptr);
 }
