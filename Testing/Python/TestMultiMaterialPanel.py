@@ -14,6 +14,7 @@ internals and that Volume's panel is as ParaView's own."""
 from paraview import servermanager as sm
 from paraview import simple
 
+import mmv_panel_sets as sets
 import mmv_testing as mmv
 
 args = mmv.parse_args()
@@ -111,23 +112,13 @@ source = mmv.make_volume()
 display = mmv.show_volume(source, view, preset="bone")
 simple.Render(view)
 
-OWN = {"MaterialNodes", "LightingQuality", "MultipleScattering", "ReflectionSource",
-       "InteractiveIrradiance", "GradientSmoothing", "LightFalloff", "SamplingDimensions"}
-VOLUME = {"ScalarOpacityUnitDistance", "BlendMode", "UseCropping"}
-PARAVIEW = {"Representation", "group:Coloring", "MapScalars", "Position", "Scale", "Orientation",
-            "Origin", "Pickable", "PolarAxes", "DataAxesGrid"}
-INTERNALS = {"ShadowEstimation", "PiecewiseShadowSlices", "ExponentialDiffusion",
-             "PieceIrradianceOnly", "LightDirectionTolerance", "ReflectionVisibility",
-             "IrradianceErrorBound", "IrradianceMemoryMB", "IrradianceScale", "DimLightCoarsening"}
-DEAD = {"Opacity", "Specular", "PointSize", "LineWidth", "Texture", "group:Edge Styling",
-        "EdgeColor", "BackfaceRepresentation", "Triangulate", "NonlinearSubdivisionLevel",
-        "Interpolation", "SpecularPower", "Ambient", "Diffuse", "MaterialPreset"}
+OWN, INTERNALS, DEAD = sets.OWN, sets.INTERNALS, sets.DEAD
 
 advanced = panel(display, True)
 default = panel(display, False)
 print("advanced:", sorted(advanced))
 print("default:", sorted(default))
-expected_advanced = OWN | VOLUME | PARAVIEW
+expected_advanced = sets.ADVANCED
 checker.check(advanced == expected_advanced,
               "advanced panel is the expected set (extra %s, missing %s)"
               % (sorted(advanced - expected_advanced), sorted(expected_advanced - advanced)))
@@ -136,15 +127,18 @@ checker.check(not (advanced & (DEAD | INTERNALS)),
 # PointLightRadius shows with its falloff: 9 of our own at most.
 checker.check(len(advanced & OWN) + 1 <= 10,
               "%d own controls shown (at most 10)" % (len(advanced & OWN) + 1))
-checker.check({"MaterialNodes", "LightingQuality", "MultipleScattering", "BlendMode"} <= default,
-              "the default view shows the editor, Lighting Quality, Multiple Scattering, Blend Mode")
+checker.check(default == sets.DEFAULT,
+              "default panel is the expected set (extra %s, missing %s)"
+              % (sorted(default - sets.DEFAULT), sorted(sets.DEFAULT - default)))
 
 # Cropping's box appears with Use Cropping; the falloff radius with its falloff.
 display.UseCropping = 1
 display.LightFalloff = "Inverse Square Beyond Radius"
 shown = panel(display, True)
-checker.check("group:Cropping Parameters" in shown, "Use Cropping shows the cropping box")
-checker.check("PointLightRadius" in shown, "Inverse Square Beyond Radius shows its radius")
+checker.check(shown == sets.ADVANCED | sets.WITH_CROPPING_AND_RADIUS,
+              "Use Cropping shows the cropping box, Inverse Square Beyond Radius its radius "
+              "(extra %s, missing %s)" % (sorted(shown - sets.ADVANCED - sets.WITH_CROPPING_AND_RADIUS),
+                                          sorted((sets.ADVANCED | sets.WITH_CROPPING_AND_RADIUS) - shown)))
 display.UseCropping = 0
 display.LightFalloff = "Light Attenuation"
 checker.check("PointLightRadius" not in panel(display, True),

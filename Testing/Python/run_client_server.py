@@ -4,7 +4,10 @@ when there is none), waits until it accepts connections, runs
 `pvpython SCRIPT --server-port N ARGS...`, stops the server and returns the
 script's exit status.
 
-usage: run_client_server.py --pvserver P --pvpython P SCRIPT [ARGS...]
+With --mpiexec M --ranks N the server is `M -np N pvserver` (a parallel
+render server); the script is passed --ranks N.
+
+usage: run_client_server.py --pvserver P --pvpython P [--mpiexec M --ranks N] SCRIPT [ARGS...]
 """
 import argparse
 import os
@@ -24,11 +27,17 @@ def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--pvserver", required=True)
     parser.add_argument("--pvpython", required=True)
+    parser.add_argument("--mpiexec")
+    parser.add_argument("--ranks", type=int, default=1)
     parser.add_argument("script")
     args, rest = parser.parse_known_args()
 
     port = free_port()
     server_command = [args.pvserver, "--server-port=%d" % port]
+    if args.mpiexec:
+        server_command = [args.mpiexec, "--allow-run-as-root", "--oversubscribe",
+                          "-np", str(args.ranks)] + server_command
+        rest += ["--ranks", str(args.ranks)]
     if not os.environ.get("DISPLAY"):
         server_command = ["xvfb-run", "-a", "-s", "-noreset -screen 0 1280x1024x24"] + server_command
     server = subprocess.Popen(server_command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
