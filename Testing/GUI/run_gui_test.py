@@ -105,6 +105,71 @@ def start_xvfb(fbdir):
     return xvfb, ":" + display
 
 
+
+def run_client(command, env, log_path, timeout, xvfb, watch):
+    """Runs the ParaView client with `watch(client)` on a thread beside it
+    (it polls the results file and the screen while the client runs), then
+    stops Xvfb; returns the client's exit code, or "timeout"."""
+    try:
+        with open(log_path, "w") as log:
+            client = subprocess.Popen(command, env=env, stdout=log, stderr=subprocess.STDOUT)
+            watcher = threading.Thread(target=watch, args=(client,))
+            watcher.start()
+            try:
+                rc = client.wait(timeout=timeout)
+            except subprocess.TimeoutExpired:
+                client.kill()
+                rc = "timeout"
+            watcher.join()
+    finally:
+        xvfb.terminate()
+        xvfb.wait()
+    return rc
+
+
+def grab_when_final(results, fbdir, settle, timeout, grabbed):
+    """A watch for run_client: once the test script writes FINAL to
+    `results` (then holds the window still), waits `settle` seconds and
+    copies Xvfb's framebuffer to grabbed["xwd"]."""
+    def watch(client):
+        deadline = time.time() + timeout
+        while time.time() < deadline and client.poll() is None:
+            if os.path.exists(results) and "FINAL" in open(results).read():
+                time.sleep(settle)
+                shutil.copy(os.path.join(fbdir, "Xvfb_screen0"), os.path.join(fbdir, "grab.xwd"))
+                grabbed["xwd"] = os.path.join(fbdir, "grab.xwd")
+                return
+            time.sleep(0.2)
+    return watch
+
+
+
+def finish(grabbed, screenshot, failures, lines, output, scratch, min_bytes=0):
+    """The screenshot (saved as PNG; "looks empty" without content or under
+    `min_bytes`), the removal of the `scratch` folders, the report; the exit
+    code."""
+    if "xwd" in grabbed:
+        width, height, rows = read_xwd(grabbed["xwd"])
+        write_png(screenshot, width, height, rows)
+        variance, colours = content_stats(width, height, rows)
+        print("screenshot %s: %dx%d, %d bytes, grey variance %.0f, %d colours"
+              % (screenshot, width, height, os.path.getsize(screenshot), variance, colours))
+        if variance < 200 or colours < 50 or os.path.getsize(screenshot) < min_bytes:
+            failures.append("screenshot looks empty")
+    else:
+        failures.append("no screenshot taken")
+    for folder in scratch:
+        shutil.rmtree(folder, ignore_errors=True)
+    print("\n".join(lines))
+    if failures:
+        print("---- paraview output (tail) ----")
+        print(output[-6000:])
+        print("FAILED:\n  " + "\n  ".join(failures))
+        return 1
+    print("PASSED")
+    return 0
+
+
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--paraview", required=True)
@@ -145,33 +210,10 @@ def main():
                "--test-script=" + os.path.join(HERE, "material_editor.xml"), "--exit"]
     print("running:", " ".join(command), "on", display, flush=True)
     grabbed = {}
-
-    def grab_when_ready():
-        # The XML writes results.txt as its last check, then holds the window
-        # still (process events, then a frozen pause) while this grabs it.
-        deadline = time.time() + args.timeout
-        while time.time() < deadline and client.poll() is None:
-            if os.path.exists(results) and "FINAL" in open(results).read():
-                time.sleep(3.0)
-                shutil.copy(os.path.join(fbdir, "Xvfb_screen0"), os.path.join(fbdir, "grab.xwd"))
-                grabbed["xwd"] = os.path.join(fbdir, "grab.xwd")
-                return
-            time.sleep(0.2)
-
-    try:
-        with open(log_path, "w") as log:
-            client = subprocess.Popen(command, env=env, stdout=log, stderr=subprocess.STDOUT)
-            grabber = threading.Thread(target=grab_when_ready)
-            grabber.start()
-            try:
-                rc = client.wait(timeout=args.timeout)
-            except subprocess.TimeoutExpired:
-                client.kill()
-                rc = "timeout"
-            grabber.join()
-    finally:
-        xvfb.terminate()
-        xvfb.wait()
+    # The XML writes results.txt as its last check, then holds the window
+    # still (process events, then a frozen pause) while this grabs it.
+    rc = run_client(command, env, log_path, args.timeout, xvfb,
+                    grab_when_final(results, fbdir, 3.0, args.timeout, grabbed))
 
     failures = []
     output = open(log_path, errors="replace").read()
@@ -191,27 +233,7 @@ def main():
         failures.append("expected the NaN MaterialNodes reported once, got %d:\n    %s"
                         % (len(nan_reports), "\n    ".join(nan_reports)))
 
-    if "xwd" in grabbed:
-        width, height, rows = read_xwd(grabbed["xwd"])
-        write_png(screenshot, width, height, rows)
-        variance, colours = content_stats(width, height, rows)
-        print("screenshot %s: %dx%d, %d bytes, grey variance %.0f, %d colours"
-              % (screenshot, width, height, os.path.getsize(screenshot), variance, colours))
-        if variance < 200 or colours < 50 or os.path.getsize(screenshot) < 20000:
-            failures.append("screenshot looks empty")
-    else:
-        failures.append("no screenshot taken")
-
-    shutil.rmtree(fbdir, ignore_errors=True)
-    shutil.rmtree(home, ignore_errors=True)
-    print("\n".join(lines))
-    if failures:
-        print("---- paraview output (tail) ----")
-        print(output[-6000:])
-        print("FAILED:\n  " + "\n  ".join(failures))
-        return 1
-    print("PASSED")
-    return 0
+    return finish(grabbed, screenshot, failures, lines, output, (fbdir, home), min_bytes=20000)
 
 
 if __name__ == "__main__":

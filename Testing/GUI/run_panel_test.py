@@ -19,15 +19,12 @@ usage: run_panel_test.py --paraview P --plugin-path DIRS --data VTI --out DIR
 import argparse
 import os
 import shutil
-import subprocess
 import sys
 import tempfile
-import threading
-import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(os.path.dirname(HERE), "Python"))
-from run_gui_test import SCREEN, content_stats, read_xwd, start_xvfb, write_png  # noqa: E402
+from run_gui_test import SCREEN, finish, grab_when_final, run_client, start_xvfb  # noqa: E402
 import mmv_panel_sets as sets  # noqa: E402
 
 
@@ -93,31 +90,8 @@ def main():
                "--test-script=" + xml, "--exit"]
     print("running:", " ".join(command), "on", display, flush=True)
     grabbed = {}
-
-    def grab_when_ready():
-        deadline = time.time() + args.timeout
-        while time.time() < deadline and client.poll() is None:
-            if os.path.exists(results) and "FINAL" in open(results).read():
-                time.sleep(2.0)
-                shutil.copy(os.path.join(fbdir, "Xvfb_screen0"), os.path.join(fbdir, "grab.xwd"))
-                grabbed["xwd"] = os.path.join(fbdir, "grab.xwd")
-                return
-            time.sleep(0.2)
-
-    try:
-        with open(log_path, "w") as log:
-            client = subprocess.Popen(command, env=env, stdout=log, stderr=subprocess.STDOUT)
-            grabber = threading.Thread(target=grab_when_ready)
-            grabber.start()
-            try:
-                rc = client.wait(timeout=args.timeout)
-            except subprocess.TimeoutExpired:
-                client.kill()
-                rc = "timeout"
-            grabber.join()
-    finally:
-        xvfb.terminate()
-        xvfb.wait()
+    rc = run_client(command, env, log_path, args.timeout, xvfb,
+                    grab_when_final(results, fbdir, 2.0, args.timeout, grabbed))
 
     failures = []
     output = open(log_path, errors="replace").read()
@@ -151,26 +125,7 @@ def main():
             failures.append("%s shows dead controls or internals %s"
                             % (what, sorted(shown & (sets.DEAD | sets.INTERNALS))))
 
-    if "xwd" in grabbed:
-        width, height, rows = read_xwd(grabbed["xwd"])
-        write_png(screenshot, width, height, rows)
-        variance, colours = content_stats(width, height, rows)
-        print("screenshot %s: grey variance %.0f, %d colours" % (screenshot, variance, colours))
-        if variance < 200 or colours < 50:
-            failures.append("screenshot looks empty")
-    else:
-        failures.append("no screenshot taken")
-
-    shutil.rmtree(fbdir, ignore_errors=True)
-    shutil.rmtree(home, ignore_errors=True)
-    print("\n".join(lines))
-    if failures:
-        print("---- paraview output (tail) ----")
-        print(output[-6000:])
-        print("FAILED:\n  " + "\n  ".join(failures))
-        return 1
-    print("PASSED")
-    return 0
+    return finish(grabbed, screenshot, failures, lines, output, (fbdir, home))
 
 
 if __name__ == "__main__":
