@@ -167,8 +167,8 @@ void vtkMultiMaterialIrradianceStage::ApplyProbe(vtkRenderer* ren, vtkVolume* vo
     return mmv::MakeProbeSignature(SampleOpacityTable(opacity, own, n), attenuation, own,
       property->GetScalarOpacityUnitDistance(0));
   };
-  // A measurement takes seconds on a software GPU: ParaView's progress bar
-  // shows it, as it shows the update that follows.
+  // A measurement takes seconds on a software GPU: it reports progress, as
+  // the update that follows does.
   const double budget = this->Mapper->IrradianceMemoryMB;
   const bool measures = !this->Probe->Holds(volumeKey, image, budget, bound, signature);
   // The weights only matter to a measurement: no table on the per-frame path.
@@ -314,8 +314,8 @@ bool vtkMultiMaterialIrradianceStage::Update(vtkMultiMaterialVolumeMapper* mappe
     std::copy(dims, dims + 3, this->Mapper->IrradianceDimensions);
     return true;
   }
-  // A real update (seconds on a software GPU): VTK progress events, which
-  // ParaView's progress bar shows, mark its start and end.
+  // A real update (seconds on a software GPU): VTK progress events mark its
+  // start, its lights and its end.
   this->Mapper->SetProgressText("Irradiance volume");
   this->Mapper->UpdateProgress(0.0);
 
