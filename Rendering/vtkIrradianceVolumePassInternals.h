@@ -397,6 +397,9 @@ public:
   /// (mmv::LightGridDimension per axis; the irradiance grid for 1), the
   /// texture they write, and the uniforms of Shaders/mmvLightGrid.glsl.
   void LightGridDimensions(int stride, int dims[3]) const;
+  /// Light grid coordinate per irradiance index, per axis ((m - 1) / (n - 1)
+  /// for m light grid and n irradiance points; 1 where an axis has one point).
+  void LightGridRatio(int stride, double ratio[3]) const;
   vtkTextureObject* LightGridTarget(int stride) const;
   vtkTextureObject* LightGridClasses(int stride) const;
   void SetLightGridUniforms(vtkShaderProgram* program, int stride) const;

@@ -188,14 +188,15 @@ bool vtkIrradianceVolumePass::vtkInternals::UploadLightGridClasses(
   const int* d = this->Grid.Dimensions;
   int c[3];
   this->LightGridDimensions(stride, c);
+  double ratio[3];
+  this->LightGridRatio(stride, ratio);
   std::array<std::vector<int>, 3> below; // per axis: the point at or below each voxel
   for (int a = 0; a < 3; ++a)
   {
-    const double ratio = d[a] > 1 ? static_cast<double>(c[a] - 1) / (d[a] - 1) : 0.0;
     below[a].resize(d[a]);
     for (int i = 0; i < d[a]; ++i)
     {
-      below[a][i] = std::min(static_cast<int>(std::floor(i * ratio)), c[a] - 1);
+      below[a][i] = std::min(static_cast<int>(std::floor(i * ratio[a])), c[a] - 1);
     }
   }
   std::vector<unsigned char> needed(static_cast<size_t>(c[0]) * c[1] * c[2], 0);

@@ -56,6 +56,17 @@ void vtkIrradianceVolumePass::vtkInternals::LightGridDimensions(int stride, int 
   }
 }
 
+void vtkIrradianceVolumePass::vtkInternals::LightGridRatio(int stride, double ratio[3]) const
+{
+  int dims[3];
+  this->LightGridDimensions(stride, dims);
+  for (int a = 0; a < 3; ++a)
+  {
+    const int n = this->Grid.Dimensions[a];
+    ratio[a] = n > 1 ? static_cast<double>(dims[a] - 1) / (n - 1) : 1.0;
+  }
+}
+
 vtkTextureObject* vtkIrradianceVolumePass::vtkInternals::LightGridTarget(int stride) const
 {
   return stride > 1 ? this->LightGridScratch.Get() : this->FineScratch[0].Get();
@@ -83,13 +94,10 @@ void vtkIrradianceVolumePass::vtkInternals::SetLightGridUniforms(
 {
   int dims[3];
   this->LightGridDimensions(stride, dims);
-  float toIndex[3];
-  for (int a = 0; a < 3; ++a)
-  {
-    toIndex[a] = dims[a] > 1
-      ? static_cast<float>(this->Grid.Dimensions[a] - 1) / static_cast<float>(dims[a] - 1)
-      : 1.0f;
-  }
+  double ratio[3];
+  this->LightGridRatio(stride, ratio);
+  const float toIndex[3] = { static_cast<float>(1.0 / ratio[0]),
+    static_cast<float>(1.0 / ratio[1]), static_cast<float>(1.0 / ratio[2]) };
   program->SetUniform1iv("targetDims", 3, dims);
   program->SetUniform3f("targetToIndex", toIndex);
   program->SetUniformi("strided", stride > 1 ? 1 : 0);
@@ -144,13 +152,10 @@ bool vtkIrradianceVolumePass::vtkInternals::UpsamplePass(
   }
   int dims[3];
   this->LightGridDimensions(stride, dims);
-  float toLightGrid[3];
-  for (int a = 0; a < 3; ++a)
-  {
-    toLightGrid[a] = this->Grid.Dimensions[a] > 1
-      ? static_cast<float>(dims[a] - 1) / static_cast<float>(this->Grid.Dimensions[a] - 1)
-      : 0.0f;
-  }
+  double ratio[3];
+  this->LightGridRatio(stride, ratio);
+  const float toLightGrid[3] = { static_cast<float>(ratio[0]), static_cast<float>(ratio[1]),
+    static_cast<float>(ratio[2]) };
   ScopedTextures bound{ this->LightGridScratch, this->ClassTexture };
   program->SetUniformi("lightGrid", this->LightGridScratch->GetTextureUnit());
   program->SetUniformi("classes", this->ClassTexture->GetTextureUnit());
@@ -223,13 +228,10 @@ bool vtkIrradianceVolumePass::vtkInternals::PiecewiseShadowPass(vtkOpenGLRenderW
   const int stride = source.GridStride;
   int d[3];
   this->LightGridDimensions(stride, d);
-  glm::dvec3 toLightIndex = this->Grid.PhysicalToIndexMatrix() * source.ToLight;
-  for (int a = 0; a < 3; ++a)
-  {
-    toLightIndex[a] *= d[a] > 1
-      ? static_cast<double>(d[a] - 1) / (this->Grid.Dimensions[a] - 1)
-      : 1.0;
-  }
+  double ratio[3];
+  this->LightGridRatio(stride, ratio);
+  const glm::dvec3 toLightIndex = glm::dvec3(ratio[0], ratio[1], ratio[2]) *
+    (this->Grid.PhysicalToIndexMatrix() * source.ToLight);
   const mmv::ShadowSweep sweep =
     mmv::PlanShadowSweep(d, toLightIndex, std::max(1, slicesPerChunk / stride));
   // Each chunk draws what the region's voxels depend on (its whole slab

@@ -690,7 +690,7 @@ int main(int argc, char* argv[])
     {
       ours.SetScattering(s);
       std::vector<double> compute, fragment, ratios;
-      for (int r = 0; r <= reps; ++r) // the first round warms both up
+      for (int r = 0; r <= reps; ++r) // the first repetition warms both up
       {
         std::vector<double> pair;
         for (int kind :
@@ -741,7 +741,7 @@ int main(int argc, char* argv[])
         ours.SetScattering(s);
         std::vector<double> with, without, ratios;
         int reportsPerUpdate = 0;
-        for (int r = 0; r <= reps; ++r) // the first round warms both up
+        for (int r = 0; r <= reps; ++r) // the first repetition warms both up
         {
           // Which goes first alternates, so neither profits from the order.
           std::vector<double> pair(2);
