@@ -6,6 +6,9 @@
 #include "mmvDiffusionFS.h"
 #include "mmvLayerGS.h"
 #include "mmvLayerVS.h"
+#include "vtkSMPTools.h"
+
+#include <atomic>
 
 using namespace mmv::voxelpass;
 
@@ -14,13 +17,21 @@ void vtkIrradianceVolumePass::vtkInternals::Classify(
   const std::vector<float>& opacity, const std::vector<float>& scattering)
 {
   this->Classes.resize(this->Scalars.size());
-  this->NonEmptyVoxels = 0;
-  for (size_t v = 0; v < this->Scalars.size(); ++v)
-  {
-    const bool nonEmpty = LookupTable(opacity, this->Scalars[v]) > 0.0f;
-    this->Classes[v] = nonEmpty ? std::max(0.0f, LookupTable(scattering, this->Scalars[v])) : -1.0f;
-    this->NonEmptyVoxels += nonEmpty ? 1 : 0;
-  }
+  // Every opacity edit classifies the whole grid again: on all cores.
+  std::atomic<vtkIdType> nonEmptyVoxels(0);
+  vtkSMPTools::For(0, static_cast<vtkIdType>(this->Scalars.size()),
+    [&](vtkIdType begin, vtkIdType end) {
+      vtkIdType count = 0;
+      for (vtkIdType v = begin; v < end; ++v)
+      {
+        const bool nonEmpty = LookupTable(opacity, this->Scalars[v]) > 0.0f;
+        this->Classes[v] =
+          nonEmpty ? std::max(0.0f, LookupTable(scattering, this->Scalars[v])) : -1.0f;
+        count += nonEmpty ? 1 : 0;
+      }
+      nonEmptyVoxels += count;
+    });
+  this->NonEmptyVoxels = nonEmptyVoxels;
 }
 
 //------------------------------------------------------------------------------
@@ -200,31 +211,34 @@ bool vtkIrradianceVolumePass::vtkInternals::UploadLightGridClasses(
     }
   }
   std::vector<unsigned char> needed(static_cast<size_t>(c[0]) * c[1] * c[2], 0);
-  size_t v = 0;
-  for (int k = 0; k < d[2]; ++k)
-  {
-    for (int j = 0; j < d[1]; ++j)
+  // In parallel over the light grid's planes: each writes only its own.
+  vtkSMPTools::For(0, c[2], [&](vtkIdType zBegin, vtkIdType zEnd) {
+    for (int z = static_cast<int>(zBegin); z < zEnd; ++z)
     {
-      for (int i = 0; i < d[0]; ++i, ++v)
+      for (int k = 0; k < d[2]; ++k)
       {
-        if (this->Classes[v] < 0.0f)
+        const bool reads = below[2][k] == z || std::min(below[2][k] + 1, c[2] - 1) == z;
+        for (int j = 0; reads && j < d[1]; ++j)
         {
-          continue;
-        }
-        for (int dk = 0; dk < 2; ++dk)
-        {
-          const int z = std::min(below[2][k] + dk, c[2] - 1);
-          for (int dj = 0; dj < 2; ++dj)
+          const size_t rowOfVoxels = (static_cast<size_t>(k) * d[1] + j) * d[0];
+          for (int i = 0; i < d[0]; ++i)
           {
-            const int y = std::min(below[1][j] + dj, c[1] - 1);
-            const size_t row = (static_cast<size_t>(z) * c[1] + y) * c[0];
-            needed[row + below[0][i]] = 255; // GL_R8 reads it as 1
-            needed[row + std::min(below[0][i] + 1, c[0] - 1)] = 255;
+            if (this->Classes[rowOfVoxels + i] < 0.0f)
+            {
+              continue;
+            }
+            for (int dj = 0; dj < 2; ++dj)
+            {
+              const int y = std::min(below[1][j] + dj, c[1] - 1);
+              const size_t row = (static_cast<size_t>(z) * c[1] + y) * c[0];
+              needed[row + below[0][i]] = 255; // GL_R8 reads it as 1
+              needed[row + std::min(below[0][i] + 1, c[0] - 1)] = 255;
+            }
           }
         }
       }
     }
-  }
+  });
   this->LightGridClassTexture =
     NewTexture(context, GL_R8, GL_RED, GL_UNSIGNED_BYTE, false);
   this->LightGridClassUpload = this->VolumeUploads;

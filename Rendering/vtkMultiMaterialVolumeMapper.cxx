@@ -21,6 +21,7 @@
 #include "vtkMultiMaterialRenderPass.h"
 #include "vtkMultiMaterialShaderAssembly.h"
 #include "vtkMultiMaterialShadingUniforms.h"
+#include "vtkMultiMaterialThreads.h"
 #include "vtkMultiMaterialTextures.h"
 #include "vtkMultiMaterialVolumeGeometry.h"
 #include "vtkObjectFactory.h"
@@ -464,7 +465,7 @@ void vtkMultiMaterialVolumeMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
 
   const auto prepareStart = Clock::now();
   const int updatesBefore = this->IrradianceUpdateCount;
-  this->MultiMaterialActive = this->PrepareMultiMaterial(ren, vol);
+  mmv::RunOnAllCores([&]() { this->MultiMaterialActive = this->PrepareMultiMaterial(ren, vol); });
   this->LastPrepareSeconds = Seconds(prepareStart) -
     (this->IrradianceUpdateCount != updatesBefore ? this->LastIrradianceSeconds : 0.0);
   if (!this->MultiMaterialActive)
