@@ -3,6 +3,8 @@
 #include "vtkDataArray.h"
 #include "vtkSMPTools.h"
 
+#include <glm/gtc/packing.hpp>
+
 #include <algorithm>
 #include <cmath>
 
@@ -160,6 +162,18 @@ std::vector<float> ResampleVectors(
     }
   });
   return out;
+}
+
+std::vector<unsigned short> PackHalfFloats(const std::vector<float>& values)
+{
+  std::vector<unsigned short> halves(values.size());
+  vtkSMPTools::For(0, static_cast<vtkIdType>(values.size()), [&](vtkIdType begin, vtkIdType end) {
+    for (vtkIdType i = begin; i < end; ++i)
+    {
+      halves[i] = static_cast<unsigned short>(glm::packHalf1x16(values[i]));
+    }
+  });
+  return halves;
 }
 
 } // namespace mmv

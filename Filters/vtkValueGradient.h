@@ -71,6 +71,11 @@ VTKMULTIMATERIALVOLUMEFILTERS_EXPORT void SmoothVectors(
 VTKMULTIMATERIALVOLUMEFILTERS_EXPORT std::vector<float> ResampleVectors(const std::vector<float>& values,
   int components, const int dims[3], const int newDims[3]);
 
+/// The values as IEEE half floats (GL_HALF_FLOAT), converted on every core:
+/// the gradient texture is RGB16F, and a driver given 32-bit floats converts
+/// them on one thread.
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT std::vector<unsigned short> PackHalfFloats(
+  const std::vector<float>& values);
 } // namespace mmv
 
 #endif

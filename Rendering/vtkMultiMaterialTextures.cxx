@@ -149,12 +149,14 @@ bool vtkMultiMaterialTextures::UpdateGradientTexture(vtkOpenGLRenderWindow* cont
   }
   this->Gradient->SetContext(context);
   // Half floats: 6 bytes a voxel, and 11 bits of mantissa keep the faint
-  // gradients of soft tissue that 8-bit normals would flatten.
+  // gradients of soft tissue that 8-bit normals would flatten. Packed here,
+  // so the upload is a copy.
+  std::vector<unsigned short> halves = mmv::PackHalfFloats(gradients);
   this->Gradient->SetInternalFormat(GL_RGB16F);
   this->Gradient->SetFormat(GL_RGB);
-  this->Gradient->SetDataType(GL_FLOAT);
+  this->Gradient->SetDataType(GL_HALF_FLOAT);
   if (!this->Gradient->Create3DFromRaw(
-        textureDims[0], textureDims[1], textureDims[2], 3, VTK_FLOAT, gradients.data()))
+        textureDims[0], textureDims[1], textureDims[2], 3, VTK_UNSIGNED_SHORT, halves.data()))
   {
     this->UploadedScalars = nullptr;
     return false;

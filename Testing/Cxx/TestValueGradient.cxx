@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -183,4 +184,30 @@ TEST(ValueGradient, BadSmoothingValuesAreReported)
   EXPECT_EQ(mmv::ValidGradientSmoothing(std::numeric_limits<double>::infinity(), &why),
     mmv::MaxGradientSmoothing);
   EXPECT_FALSE(why.empty());
+}
+
+TEST(ValueGradient, HalfFloatsArePackedAsIEEEBinary16)
+{
+  // Exact halves: sign, exponent and mantissa bits of binary16.
+  const std::vector<float> exact = { 0.0f, 1.0f, -2.0f, 0.5f, 65504.0f, 0.099975586f };
+  const std::vector<unsigned short> bits = { 0x0000, 0x3C00, 0xC000, 0x3800, 0x7BFF, 0x2E66 };
+  EXPECT_EQ(mmv::PackHalfFloats(exact), bits);
+  // Any other value is within half a unit in the last place: 2^-11 relative.
+  std::vector<float> values;
+  for (int i = 1; i <= 100000; ++i)
+  {
+    values.push_back(std::ldexp(1.0f + i * 1e-5f, (i % 20) - 10) * (i % 2 ? 1.0f : -1.0f));
+  }
+  const std::vector<unsigned short> halves = mmv::PackHalfFloats(values);
+  ASSERT_EQ(halves.size(), values.size());
+  double worst = 0.0;
+  for (size_t i = 0; i < values.size(); ++i)
+  {
+    const unsigned short h = halves[i];
+    const int exponent = (h >> 10) & 0x1F;
+    const double mantissa = 1.0 + (h & 0x3FF) / 1024.0;
+    const double value = (h & 0x8000 ? -1.0 : 1.0) * std::ldexp(mantissa, exponent - 15);
+    worst = std::max(worst, std::abs(value - values[i]) / std::abs(values[i]));
+  }
+  EXPECT_LE(worst, std::ldexp(1.0, -11));
 }
