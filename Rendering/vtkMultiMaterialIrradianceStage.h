@@ -19,6 +19,7 @@
 #include "vtkIrradianceInputCache.h"      // vtkNew
 #include "vtkIrradianceResolutionProbe.h" // vtkNew
 #include "vtkIrradianceStepCache.h"       // member
+#include "vtkIrradianceUpdatePlan.h"      // the update's decisions
 #include "vtkIrradianceVolumePass.h"      // vtkNew
 #include "vtkMultiMaterialCutaway.h"      // Cutaway
 #include "vtkMultiMaterialLights.h"       // ShadingLight
@@ -26,6 +27,7 @@
 #include "vtkNew.h"
 #include "vtkPreIntegrationTable.h"       // vtkNew
 
+#include <functional> // the kept steps' key, made on demand
 #include <string>
 #include <vector>
 
@@ -103,6 +105,12 @@ private:
   void ApplyProbe(vtkRenderer* ren, vtkVolume* vol, vtkImageData* image, vtkDataArray* scalars,
     const double range[2], const vtkIrradianceInputCache::VolumeKey& volumeKey,
     const mmv::Cutaway& cutaway, double bound, int maxAxis, mmv::IrradianceResolution& resolution);
+  /// Keeps the held irradiance when `plan` (to `now`) allows it: current,
+  /// kept while interacting, nothing visible, or a kept step copied back.
+  /// False: the caller recomputes what the plan marks.
+  bool KeepsHeld(const vtkIrradianceUpdatePlan& plan, const vtkIrradianceUpdatePlan::Inputs& now,
+    vtkOpenGLRenderWindow* window, vtkVolume* vol, const double range[2], size_t stepBudget,
+    const std::function<vtkIrradianceStepCache::Key()>& stepKey);
   /// Has `pass` report the mapper's progress from `from` to `to` (nothing
   /// while no one observes it).
   void ReportProgressOf(vtkIrradianceVolumePass* pass, double from, double to);
