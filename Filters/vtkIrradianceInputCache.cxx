@@ -11,6 +11,15 @@
 
 vtkStandardNewMacro(vtkIrradianceInputCache);
 
+namespace
+{
+bool SameGrid(const mmv::IrradianceGrid& a, const mmv::IrradianceGrid& b)
+{
+  return std::equal(a.Dimensions, a.Dimensions + 3, b.Dimensions) && a.Origin == b.Origin &&
+    a.Spacing == b.Spacing && a.Direction == b.Direction;
+}
+}
+
 vtkIrradianceInputCache::vtkIrradianceInputCache()
 {
   vtkMultiMaterialLiveObjects::Constructed("vtkIrradianceInputCache");
@@ -85,24 +94,34 @@ bool vtkIrradianceInputCache::UpdatePrefiltered(vtkImageData* image, vtkDataArra
   {
     return false;
   }
+  mmv::IrradianceGrid grid;
+  std::vector<float> values;
   if (global)
   {
-    this->Grid = global->GetGrid();
-    this->Prefiltered = global->GetValues();
+    grid = global->GetGrid();
+    values = global->GetValues();
   }
   else
   {
-    this->Grid = mmv::MakeIrradianceGrid(image, dims);
-    mmv::PrefilterScalars(image, scalars, 0, this->Grid, this->Prefiltered);
+    grid = mmv::MakeIrradianceGrid(image, dims);
+    mmv::PrefilterScalars(image, scalars, 0, grid, values);
   }
-  ++this->PrefilteredVersion;
   const double scale = 1.0 / (range[1] - range[0]);
-  for (float& v : this->Prefiltered)
+  for (float& v : values)
   {
     v = static_cast<float>((v - range[0]) * scale);
   }
   // Normalised, the finite range is [0, 1].
-  const bool nonFinite = mmv::ReplaceNonFinite(this->Prefiltered, 0.0f, 1.0f);
+  const bool nonFinite = mmv::ReplaceNonFinite(values, 0.0f, 1.0f);
+  // The only comparison of the values: a new data time whose values are
+  // the same (a pipeline that executed again) keeps the version, so the
+  // irradiance pass, which trusts it, keeps every light.
+  if (!this->HasPrefiltered || !SameGrid(grid, this->Grid) || values != this->Prefiltered)
+  {
+    ++this->PrefilteredVersion;
+  }
+  this->Grid = grid;
+  this->Prefiltered.swap(values);
   this->PrefilteredFrom = key;
   this->HasPrefiltered = true;
   return nonFinite;

@@ -10,8 +10,8 @@
  *    sampled values change, so editing a colour-only parameter keeps the
  *    irradiance;
  *  - the data pre-filtered onto the irradiance grid, normalised to [0, 1] over
- *    the scalar range with NaN and Inf cleaned up, and a version counting the
- *    pre-filterings (the pass re-uploads on a new version);
+ *    the scalar range with NaN and Inf cleaned up, and a version that names
+ *    its values (the pass re-uploads on a new version, without comparing);
  *  - what the last computed irradiance was computed from: the volume (data,
  *    opacity, materials, settings, cutaway), each light, and the grid; what
  *    a new update recomputes is vtkIrradianceUpdatePlan's decision (Plan()).
@@ -68,7 +68,8 @@ public:
     const double range[2]);
   const mmv::IrradianceGrid& GetGrid() const { return this->Grid; }
   const std::vector<float>& GetPrefiltered() const { return this->Prefiltered; }
-  /// Counts the pre-filterings.
+  /// Names the pre-filtered values: bumped when they or their grid change,
+  /// not when the data were pre-filtered again to the same values.
   unsigned long GetPrefilteredVersion() const { return this->PrefilteredVersion; }
   ///@}
 

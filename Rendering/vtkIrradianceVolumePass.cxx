@@ -65,10 +65,11 @@ void vtkIrradianceVolumePass::SetInputs(const mmv::IrradianceGrid& grid,
   const std::vector<float> shadow(shadowTable, shadowTable + tableSize * tableSize);
   const std::vector<float> opacity(opacityTable, opacityTable + tableSize);
   const std::vector<float> scattering(scatteringTable, scatteringTable + tableSize);
-  // A caller's version number saves comparing the scalars (27 MB on the
-  // CT-sized head).
-  const bool sameScalars = (scalarsVersion != 0 && scalarsVersion == internals.ScalarsVersion) ||
-    internals.Scalars == normalizedScalars;
+  // A caller's version names its scalars (vtkIrradianceInputCache compares
+  // them once, where they are made): no second comparison of 27 MB on the
+  // CT-sized head. Without one (0) they are compared here.
+  const bool sameScalars = scalarsVersion != 0 ? scalarsVersion == internals.ScalarsVersion
+                                               : internals.Scalars == normalizedScalars;
   const bool sameVolume = internals.HasInputs && SameGrid(internals.Grid, grid) &&
     internals.StepLength == stepLength && sameScalars &&
     internals.ShadowTable == shadow && internals.OpacityTable == opacity &&

@@ -88,8 +88,10 @@ public:
    *  - n-entry classification tables over the same range: opacity (> 0 marks
    *    a voxel non-empty) and scattering strength s (data voxel^2 units);
    *  - the lights (at most mmv::MaxLights) in object space;
-   *  - optionally a version of the scalars (not 0): the same version as
-   *    last time means the same scalars, which are then not compared.
+   *  - optionally a version that names the scalars' values (not 0;
+   *    vtkIrradianceInputCache::GetPrefilteredVersion): the same version as
+   *    last time means the same scalars, another version other scalars, and
+   *    they are not compared. Without one they are compared.
    */
 #ifndef __VTK_WRAP__
   void SetInputs(const mmv::IrradianceGrid& grid, const std::vector<float>& normalizedScalars,
