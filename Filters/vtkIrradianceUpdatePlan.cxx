@@ -78,6 +78,7 @@ vtkIrradianceUpdatePlan vtkIrradianceUpdatePlan::Make(
   if (!held)
   {
     plan.MarkedLights.assign(now.Lights.size(), true);
+    plan.MovedLights = plan.MarkedLights;
     return plan; // NothingHeld: everything is computed
   }
   plan.Changes = VolumeChanges(held->Volume, now.Volume);
@@ -92,13 +93,13 @@ vtkIrradianceUpdatePlan vtkIrradianceUpdatePlan::Make(
   plan.TextureLayoutChanged = TextureLayout(held->Lights.size()) != TextureLayout(now.Lights.size());
   // The lights are compared even when all of them are recomputed: Lights
   // says whether one moved, whatever else changed.
-  const std::vector<bool> moved =
-    MarkLights(held->Lights, now.Lights, false, toleranceRadians, centre);
-  if (std::find(moved.begin(), moved.end(), true) != moved.end())
+  plan.MovedLights = MarkLights(held->Lights, now.Lights, false, toleranceRadians, centre);
+  if (std::find(plan.MovedLights.begin(), plan.MovedLights.end(), true) != plan.MovedLights.end())
   {
     plan.Changes |= Lights;
   }
-  plan.MarkedLights = plan.RecomputesAllLights() ? std::vector<bool>(now.Lights.size(), true) : moved;
+  plan.MarkedLights =
+    plan.RecomputesAllLights() ? std::vector<bool>(now.Lights.size(), true) : plan.MovedLights;
   return plan;
 }
 

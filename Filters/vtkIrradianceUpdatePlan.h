@@ -131,6 +131,10 @@ public:
   /// Light k is recomputed (shadows, diffusion, final write) when marked.
   const std::vector<bool>& GetLights() const { return this->MarkedLights; }
   int GetNumberOfLights() const;
+  /// The lights that are new or beyond their tolerance, whatever else
+  /// changed: what vtkIrradianceVolumePass recomputes when its own inputs
+  /// (the values the keys stand for) turn out unchanged.
+  const std::vector<bool>& GetMovedLights() const { return this->MovedLights; }
   /// With `multipleScattering` on, the updated lights are diffused.
   bool Diffuses(bool multipleScattering) const
   {
@@ -147,6 +151,7 @@ private:
   // changes with the number of lights.
   bool TextureLayoutChanged = true;
   std::vector<bool> MarkedLights;
+  std::vector<bool> MovedLights;
 };
 
 #endif

@@ -155,6 +155,9 @@ bool vtkIrradianceVolumePass::Render(vtkOpenGLRenderWindow* context)
   this->LastDiffusionSeconds = 0.0;
   this->LastSetupSeconds = 0.0;
   this->LastWriteSeconds = 0.0;
+  // The caller's light marks hold for this Render() alone.
+  std::vector<bool> given;
+  given.swap(internals.GivenMarks);
   if (!this->CanRender(context))
   {
     return false;
@@ -193,7 +196,7 @@ bool vtkIrradianceVolumePass::Render(vtkOpenGLRenderWindow* context)
     // recomputed: each light keeps its own channel.
     const std::vector<bool> updated = internals.MarkLightsToUpdate(
       internals.VolumeChanged || reallocated,
-      mmv::LightToleranceRadians(this->LightDirectionTolerance));
+      mmv::LightToleranceRadians(this->LightDirectionTolerance), given);
     // Progress counts a light's shadows and its share of a diffusion as one
     // unit each.
     this->ProgressDone = 0.0;
@@ -463,6 +466,12 @@ vtkTextureObject* vtkIrradianceVolumePass::GetShadowTableTexture() const
 int vtkIrradianceVolumePass::GetNumberOfIrradianceTextures() const
 {
   return static_cast<int>(this->Internals->Irradiance.size());
+}
+
+void vtkIrradianceVolumePass::SetLightsToUpdate(const std::vector<bool>& marks)
+{
+  this->Internals->GivenMarks = marks;
+  this->Modified();
 }
 
 const std::vector<mmv::LightSource>& vtkIrradianceVolumePass::GetComputedLights() const

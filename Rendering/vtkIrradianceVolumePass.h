@@ -196,6 +196,18 @@ public:
   vtkSetClampMacro(LightDirectionTolerance, double, 0.0, mmv::MaxLightDirectionToleranceDegrees);
   vtkGetMacro(LightDirectionTolerance, double);
 
+#ifndef __VTK_WRAP__
+  /**
+   * Which lights the next Render() recomputes besides those its own inputs
+   * recompute (all of them when the volume, tables, settings or textures
+   * changed): vtkIrradianceUpdatePlan::GetMovedLights() of a plan made from
+   * the placements GetComputedLights() holds, so the pass does not compare
+   * the lights again. Without marks (the default; they hold for one
+   * Render()) the pass marks them with vtkIrradianceUpdatePlan::MarkLights.
+   */
+  void SetLightsToUpdate(const std::vector<bool>& marks);
+#endif
+
   /// The light placements the irradiance textures hold (empty before the
   /// first Render() or after a failed one).
   const std::vector<mmv::LightSource>& GetComputedLights() const;

@@ -524,14 +524,23 @@ void vtkIrradianceVolumePass::vtkInternals::Release(vtkWindow* window)
 
 //------------------------------------------------------------------------------
 std::vector<bool> vtkIrradianceVolumePass::vtkInternals::MarkLightsToUpdate(
-  bool all, double toleranceRadians)
+  bool all, double toleranceRadians, const std::vector<bool>& given)
 {
   // A new light, or one beyond the tolerance of what its channel holds;
   // the others keep the placement they were computed for.
   std::vector<mmv::LightSource>& held = this->ComputedLights;
   held.resize(std::min(held.size(), this->Lights.size()));
-  const std::vector<bool> updated = vtkIrradianceUpdatePlan::MarkLights(
-    held, this->Lights, all, toleranceRadians, this->Grid.Center());
+  std::vector<bool> updated;
+  if (given.size() >= this->Lights.size())
+  {
+    updated.assign(given.begin(), given.begin() + this->Lights.size());
+    std::replace(updated.begin(), updated.end(), false, all);
+  }
+  else
+  {
+    updated = vtkIrradianceUpdatePlan::MarkLights(
+      held, this->Lights, all, toleranceRadians, this->Grid.Center());
+  }
   held.resize(this->Lights.size());
   for (size_t k = 0; k < this->Lights.size(); ++k)
   {

@@ -302,6 +302,9 @@ bool vtkMultiMaterialIrradianceStage::Update(vtkMultiMaterialVolumeMapper* mappe
     this->Mapper->WarnOnce(mmv::NonFiniteScalarsMessage);
   }
   this->Pass->SetRegion(region.Bounds);
+  // The plan compared the lights with what the textures hold: the pass
+  // recomputes those it marks (and every light where its inputs changed).
+  this->Pass->SetLightsToUpdate(plan.GetMovedLights());
   this->ReportProgressOf(this->Pass, 0.0, 1.0);
   const bool estimated = this->ComputeOn(this->Pass,
     vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow()), vol, range, cutaway,

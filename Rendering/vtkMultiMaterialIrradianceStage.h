@@ -4,10 +4,12 @@
  *          paper's Algorithm 1).
  *
  * Chooses the irradiance grid (screen, budget, user scale or the global grid
- * of a volume in pieces), tells from the input cache's keys whether the
- * irradiance volume is current, keeps it while interacting when only the
- * lights moved (InteractiveIrradiance), and otherwise has
- * vtkIrradianceVolumePass recompute what changed, with VTK progress events.
+ * of a volume in pieces), makes the frame's vtkIrradianceUpdatePlan (what
+ * changed since the held irradiance, decided once), keeps the irradiance
+ * when the plan allows it (current, or only the lights moved while
+ * interacting: InteractiveIrradiance), and otherwise has
+ * vtkIrradianceVolumePass recompute the lights the plan marks, with VTK
+ * progress events.
  * It reads the mapper's settings and updates its counters (IrradianceDimensions,
  * IrradianceUpdateCount, ...), as the mapper's own step did. Not a vtkObject:
  * plain state owned by the mapper.

@@ -284,3 +284,18 @@ TEST(IrradianceUpdatePlan, MarkLightsComparesEachChannelWithWhatItHolds)
   EXPECT_EQ(Plan::MarkLights(held, now, false, mmv::LightToleranceRadians(45.0), Centre),
     std::vector<bool>({ true, false }));
 }
+
+TEST(IrradianceUpdatePlan, MovedLightsAreNamedWhateverElseChanged)
+{
+  // The pass recomputes every light only where the values behind the keys
+  // changed; otherwise it takes the moved lights the plan names.
+  Plan::Inputs now = ThreeLights();
+  now.Volume.OpacityTime = 21;
+  now.Lights[1] = Turned(45.0);
+  const Plan plan = Make(ThreeLights(), now, 1.0);
+  EXPECT_EQ(plan.GetNumberOfLights(), 3);
+  EXPECT_EQ(plan.GetMovedLights(), Only(3, 1));
+  EXPECT_TRUE(plan.Changed(Plan::Lights));
+  // Nothing held: every light is new.
+  EXPECT_EQ(Plan::Make(nullptr, now, 0.0, Centre).GetMovedLights(), std::vector<bool>(3, true));
+}
