@@ -2,7 +2,6 @@
 
 #include "vtkGlobalPrefilteredVolume.h"
 #include "vtkMaterialTransferFunction.h"
-#include "vtkMultiMaterialLightTolerance.h"
 #include "vtkMultiMaterialLiveObjects.h"
 #include "vtkMultiMaterialParameters.h"
 #include "vtkObjectFactory.h"
@@ -12,6 +11,15 @@
 
 vtkStandardNewMacro(vtkIrradianceInputCache);
 
+namespace
+{
+bool SameGrid(const mmv::IrradianceGrid& a, const mmv::IrradianceGrid& b)
+{
+  return std::equal(a.Dimensions, a.Dimensions + 3, b.Dimensions) && a.Origin == b.Origin &&
+    a.Spacing == b.Spacing && a.Direction == b.Direction;
+}
+}
+
 vtkIrradianceInputCache::vtkIrradianceInputCache()
 {
   vtkMultiMaterialLiveObjects::Constructed("vtkIrradianceInputCache");
@@ -20,18 +28,6 @@ vtkIrradianceInputCache::vtkIrradianceInputCache()
 vtkIrradianceInputCache::~vtkIrradianceInputCache()
 {
   vtkMultiMaterialLiveObjects::Destroyed("vtkIrradianceInputCache");
-}
-
-bool vtkIrradianceInputCache::VolumeKey::operator==(const VolumeKey& o) const
-{
-  return this->DataTime == o.DataTime && this->OpacityTime == o.OpacityTime &&
-    this->MaterialVersion == o.MaterialVersion && this->UnitDistance == o.UnitDistance &&
-    this->Range[0] == o.Range[0] && this->Range[1] == o.Range[1] &&
-    this->MultipleScattering == o.MultipleScattering && this->TableSize == o.TableSize &&
-    this->NumberOfLights == o.NumberOfLights && this->ShadowEstimation == o.ShadowEstimation &&
-    this->PiecewiseShadowSlices == o.PiecewiseShadowSlices &&
-    this->ExponentialDiffusion == o.ExponentialDiffusion && this->Cut == o.Cut &&
-    std::equal(this->Region, this->Region + 6, o.Region);
 }
 
 bool vtkIrradianceInputCache::MaterialKey::operator==(const MaterialKey& o) const
@@ -98,61 +94,71 @@ bool vtkIrradianceInputCache::UpdatePrefiltered(vtkImageData* image, vtkDataArra
   {
     return false;
   }
+  mmv::IrradianceGrid grid;
+  std::vector<float> values;
   if (global)
   {
-    this->Grid = global->GetGrid();
-    this->Prefiltered = global->GetValues();
+    grid = global->GetGrid();
+    values = global->GetValues();
   }
   else
   {
-    this->Grid = mmv::MakeIrradianceGrid(image, dims);
-    mmv::PrefilterScalars(image, scalars, 0, this->Grid, this->Prefiltered);
+    grid = mmv::MakeIrradianceGrid(image, dims);
+    mmv::PrefilterScalars(image, scalars, 0, grid, values);
   }
-  ++this->PrefilteredVersion;
   const double scale = 1.0 / (range[1] - range[0]);
-  for (float& v : this->Prefiltered)
+  for (float& v : values)
   {
     v = static_cast<float>((v - range[0]) * scale);
   }
   // Normalised, the finite range is [0, 1].
-  const bool nonFinite = mmv::ReplaceNonFinite(this->Prefiltered, 0.0f, 1.0f);
+  const bool nonFinite = mmv::ReplaceNonFinite(values, 0.0f, 1.0f);
+  // The only comparison of the values: a new data time whose values are
+  // the same (a pipeline that executed again) keeps the version, so the
+  // irradiance pass, which trusts it, keeps every light.
+  if (!this->HasPrefiltered || !SameGrid(grid, this->Grid) || values != this->Prefiltered)
+  {
+    ++this->PrefilteredVersion;
+  }
+  this->Grid = grid;
+  this->Prefiltered.swap(values);
   this->PrefilteredFrom = key;
   this->HasPrefiltered = true;
   return nonFinite;
 }
 
 //------------------------------------------------------------------------------
+vtkIrradianceUpdatePlan vtkIrradianceInputCache::Plan(
+  const vtkIrradianceUpdatePlan::Inputs& now, double toleranceRadians) const
+{
+  return vtkIrradianceUpdatePlan::Make(
+    this->HasVolume ? &this->Held : nullptr, now, toleranceRadians, this->Grid.Center());
+}
+
 bool vtkIrradianceInputCache::IsCurrent(const VolumeKey& volume,
   const std::vector<mmv::LightSource>& lights, const int dims[3], double toleranceRadians) const
 {
-  if (!this->SameVolume(volume) || !std::equal(dims, dims + 3, this->Dimensions) ||
-    lights.size() != this->Lights.size())
-  {
-    return false;
-  }
-  const glm::dvec3 centre = this->Grid.Center();
-  for (size_t k = 0; k < lights.size(); ++k)
-  {
-    if (!mmv::LightWithinTolerance(this->Lights[k], lights[k], toleranceRadians, centre))
-    {
-      return false;
-    }
-  }
-  return true;
+  vtkIrradianceUpdatePlan::Inputs now;
+  now.Volume = volume;
+  std::copy(dims, dims + 3, now.Dimensions);
+  now.Lights = lights;
+  return this->Plan(now, toleranceRadians).IsCurrent();
 }
 
 bool vtkIrradianceInputCache::SameVolume(const VolumeKey& volume) const
 {
-  return this->HasVolume && volume == this->Volume;
+  vtkIrradianceUpdatePlan::Inputs now = this->Held;
+  now.Volume = volume;
+  return this->Plan(now, 0.0).KeepsVolume();
 }
 
 void vtkIrradianceInputCache::Store(
   const VolumeKey& volume, const std::vector<mmv::LightSource>& lights, const int dims[3])
 {
-  this->Volume = volume;
+  this->Held.Volume = volume;
+  this->Held.Lights = lights;
+  std::copy(dims, dims + 3, this->Held.Dimensions);
   this->HasVolume = true;
-  this->Lights = lights;
-  std::copy(dims, dims + 3, this->Dimensions);
 }
 
 //------------------------------------------------------------------------------
@@ -163,6 +169,6 @@ void vtkIrradianceInputCache::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "PrefilteredVersion: " << this->PrefilteredVersion << "\n";
   os << indent << "Prefiltered voxels: " << this->Prefiltered.size() << "\n";
   os << indent << "Irradiance stored: " << (this->HasVolume ? "yes" : "no") << ", "
-     << this->Lights.size() << " lights, " << this->Dimensions[0] << " x " << this->Dimensions[1]
-     << " x " << this->Dimensions[2] << "\n";
+     << this->Held.Lights.size() << " lights, " << this->Held.Dimensions[0] << " x "
+     << this->Held.Dimensions[1] << " x " << this->Held.Dimensions[2] << "\n";
 }

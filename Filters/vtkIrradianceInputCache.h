@@ -10,17 +10,18 @@
  *    sampled values change, so editing a colour-only parameter keeps the
  *    irradiance;
  *  - the data pre-filtered onto the irradiance grid, normalised to [0, 1] over
- *    the scalar range with NaN and Inf cleaned up, and a version counting the
- *    pre-filterings (the pass re-uploads on a new version);
- *  - the key of the last computed irradiance: the volume (data, opacity,
- *    materials, settings, cutaway), each light, and the grid.
+ *    the scalar range with NaN and Inf cleaned up, and a version that names
+ *    its values (the pass re-uploads on a new version, without comparing);
+ *  - what the last computed irradiance was computed from: the volume (data,
+ *    opacity, materials, settings, cutaway), each light, and the grid; what
+ *    a new update recomputes is vtkIrradianceUpdatePlan's decision (Plan()).
  */
 #ifndef vtkIrradianceInputCache_h
 #define vtkIrradianceInputCache_h
 
 #include "vtkIrradianceGrid.h"            // mmv::IrradianceGrid
+#include "vtkIrradianceUpdatePlan.h"      // VolumeKey, the held inputs
 #include "vtkMultiMaterialLightModel.h"   // mmv::LightSource
-#include "vtkMultiMaterialParameters.h"   // DefaultExponentialDiffusion
 #include "vtkMultiMaterialVolumeFiltersModule.h" // export macro
 #include "vtkObject.h"
 
@@ -39,28 +40,8 @@ public:
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   /// Everything the whole irradiance volume depends on besides the lights and
-  /// the grid: a change recomputes every light.
-  struct VolumeKey
-  {
-    vtkMTimeType DataTime = 0;
-    vtkMTimeType OpacityTime = 0;
-    int MaterialVersion = 0;
-    double UnitDistance = 1.0;
-    double Range[2] = { 0.0, 0.0 };
-    bool MultipleScattering = false;
-    int TableSize = 0;
-    int NumberOfLights = 0;
-    int ShadowEstimation = 0;
-    int PiecewiseShadowSlices = 0;
-    bool ExponentialDiffusion = mmv::DefaultExponentialDiffusion;
-    /// mmv::Cutaway::Key(): what cropping and clipping remove casts no shadow.
-    std::vector<double> Cut;
-    /// The irradiance voxels the pass estimates for (vtkIrradianceRegion.h).
-    int Region[6] = { 0, -1, 0, -1, 0, -1 };
-
-    bool operator==(const VolumeKey& o) const;
-    bool operator!=(const VolumeKey& o) const { return !(*this == o); }
-  };
+  /// the grid (vtkIrradianceUpdatePlan.h).
+  using VolumeKey = vtkIrradianceUpdatePlan::VolumeKey;
 
   ///@{
   /// Attenuation, transmission colour and scattering sampled at `tableSize` points over `range`
@@ -87,17 +68,24 @@ public:
     const double range[2]);
   const mmv::IrradianceGrid& GetGrid() const { return this->Grid; }
   const std::vector<float>& GetPrefiltered() const { return this->Prefiltered; }
-  /// Counts the pre-filterings.
+  /// Names the pre-filtered values: bumped when they or their grid change,
+  /// not when the data were pre-filtered again to the same values.
   unsigned long GetPrefilteredVersion() const { return this->PrefilteredVersion; }
   ///@}
 
   ///@{
+  /// What an update to `now` recomputes against the irradiance stored last,
+  /// with each light kept within `toleranceRadians` of its stored placement
+  /// (about the pre-filtered grid's centre).
+  vtkIrradianceUpdatePlan Plan(const vtkIrradianceUpdatePlan::Inputs& now,
+    double toleranceRadians) const;
   /// Whether the irradiance stored last was computed from `volume` and a grid
   /// of `dims`, with each light within `toleranceRadians` of `lights`
-  /// (mmv::LightWithinTolerance about the grid's centre).
+  /// (Plan(...).IsCurrent()).
   bool IsCurrent(const VolumeKey& volume, const std::vector<mmv::LightSource>& lights,
     const int dims[3], double toleranceRadians) const;
-  /// Whether only the lights or the grid differ from the stored irradiance's.
+  /// Whether only the lights or the grid differ from the stored irradiance's
+  /// (Plan(...).KeepsVolume()).
   bool SameVolume(const VolumeKey& volume) const;
   /// Records a successfully computed irradiance: `lights` are the placements
   /// it holds (vtkIrradianceVolumePass::GetComputedLights()).
@@ -144,9 +132,7 @@ private:
   unsigned long PrefilteredVersion = 0;
 
   bool HasVolume = false;
-  VolumeKey Volume;
-  std::vector<mmv::LightSource> Lights;
-  int Dimensions[3] = { 0, 0, 0 };
+  vtkIrradianceUpdatePlan::Inputs Held;
 };
 
 #endif

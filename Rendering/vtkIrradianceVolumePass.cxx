@@ -65,10 +65,11 @@ void vtkIrradianceVolumePass::SetInputs(const mmv::IrradianceGrid& grid,
   const std::vector<float> shadow(shadowTable, shadowTable + tableSize * tableSize);
   const std::vector<float> opacity(opacityTable, opacityTable + tableSize);
   const std::vector<float> scattering(scatteringTable, scatteringTable + tableSize);
-  // A caller's version number saves comparing the scalars (27 MB on the
-  // CT-sized head).
-  const bool sameScalars = (scalarsVersion != 0 && scalarsVersion == internals.ScalarsVersion) ||
-    internals.Scalars == normalizedScalars;
+  // A caller's version names its scalars (vtkIrradianceInputCache compares
+  // them once, where they are made): no second comparison of 27 MB on the
+  // CT-sized head. Without one (0) they are compared here.
+  const bool sameScalars = scalarsVersion != 0 ? scalarsVersion == internals.ScalarsVersion
+                                               : internals.Scalars == normalizedScalars;
   const bool sameVolume = internals.HasInputs && SameGrid(internals.Grid, grid) &&
     internals.StepLength == stepLength && sameScalars &&
     internals.ShadowTable == shadow && internals.OpacityTable == opacity &&
@@ -154,6 +155,9 @@ bool vtkIrradianceVolumePass::Render(vtkOpenGLRenderWindow* context)
   this->LastDiffusionSeconds = 0.0;
   this->LastSetupSeconds = 0.0;
   this->LastWriteSeconds = 0.0;
+  // The caller's light marks hold for this Render() alone.
+  std::vector<bool> given;
+  given.swap(internals.GivenMarks);
   if (!this->CanRender(context))
   {
     return false;
@@ -192,7 +196,7 @@ bool vtkIrradianceVolumePass::Render(vtkOpenGLRenderWindow* context)
     // recomputed: each light keeps its own channel.
     const std::vector<bool> updated = internals.MarkLightsToUpdate(
       internals.VolumeChanged || reallocated,
-      mmv::LightToleranceRadians(this->LightDirectionTolerance));
+      mmv::LightToleranceRadians(this->LightDirectionTolerance), given);
     // Progress counts a light's shadows and its share of a diffusion as one
     // unit each.
     this->ProgressDone = 0.0;
@@ -462,6 +466,12 @@ vtkTextureObject* vtkIrradianceVolumePass::GetShadowTableTexture() const
 int vtkIrradianceVolumePass::GetNumberOfIrradianceTextures() const
 {
   return static_cast<int>(this->Internals->Irradiance.size());
+}
+
+void vtkIrradianceVolumePass::SetLightsToUpdate(const std::vector<bool>& marks)
+{
+  this->Internals->GivenMarks = marks;
+  this->Modified();
 }
 
 const std::vector<mmv::LightSource>& vtkIrradianceVolumePass::GetComputedLights() const

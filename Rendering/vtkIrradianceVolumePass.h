@@ -88,8 +88,10 @@ public:
    *  - n-entry classification tables over the same range: opacity (> 0 marks
    *    a voxel non-empty) and scattering strength s (data voxel^2 units);
    *  - the lights (at most mmv::MaxLights) in object space;
-   *  - optionally a version of the scalars (not 0): the same version as
-   *    last time means the same scalars, which are then not compared.
+   *  - optionally a version that names the scalars' values (not 0;
+   *    vtkIrradianceInputCache::GetPrefilteredVersion): the same version as
+   *    last time means the same scalars, another version other scalars, and
+   *    they are not compared. Without one they are compared.
    */
 #ifndef __VTK_WRAP__
   void SetInputs(const mmv::IrradianceGrid& grid, const std::vector<float>& normalizedScalars,
@@ -193,6 +195,18 @@ public:
    */
   vtkSetClampMacro(LightDirectionTolerance, double, 0.0, mmv::MaxLightDirectionToleranceDegrees);
   vtkGetMacro(LightDirectionTolerance, double);
+
+#ifndef __VTK_WRAP__
+  /**
+   * Which lights the next Render() recomputes besides those its own inputs
+   * recompute (all of them when the volume, tables, settings or textures
+   * changed): vtkIrradianceUpdatePlan::GetMovedLights() of a plan made from
+   * the placements GetComputedLights() holds, so the pass does not compare
+   * the lights again. Without marks (the default; they hold for one
+   * Render()) the pass marks them with vtkIrradianceUpdatePlan::MarkLights.
+   */
+  void SetLightsToUpdate(const std::vector<bool>& marks);
+#endif
 
   /// The light placements the irradiance textures hold (empty before the
   /// first Render() or after a failed one).

@@ -422,10 +422,13 @@ public:
     vtkOpenGLRenderWindow* context, vtkShaderProgram* sweep, bool layered, int& current);
   bool FillPass(vtkOpenGLRenderWindow* context, vtkTextureObject* source, int group, int mask,
     bool layered);
-  /// Which lights this update recomputes: all of them (`all`), or the new
-  /// ones and those beyond `toleranceRadians` of the placement their channel
-  /// holds; records the placements they get.
-  std::vector<bool> MarkLightsToUpdate(bool all, double toleranceRadians);
+  /// Which lights this update recomputes: all of them (`all`), or those
+  /// the caller marked (SetLightsToUpdate), or else the new ones and those
+  /// beyond `toleranceRadians` of the placement their channel holds;
+  /// records the placements they get.
+  std::vector<bool> MarkLightsToUpdate(
+    bool all, double toleranceRadians, const std::vector<bool>& given);
+  std::vector<bool> GivenMarks; // the caller's (SetLightsToUpdate), for one Render()
   void ReleaseScratch(vtkWindow* window);
   void Release(vtkWindow* window);
 };

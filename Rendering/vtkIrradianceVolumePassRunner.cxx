@@ -3,6 +3,8 @@
 // write into the irradiance textures.
 #include "vtkIrradianceVolumePassInternals.h"
 
+#include "vtkIrradianceUpdatePlan.h"
+
 #include "mmvDiffusionFS.h"
 #include "mmvLayerGS.h"
 #include "mmvLayerVS.h"
@@ -536,28 +538,29 @@ void vtkIrradianceVolumePass::vtkInternals::Release(vtkWindow* window)
 
 //------------------------------------------------------------------------------
 std::vector<bool> vtkIrradianceVolumePass::vtkInternals::MarkLightsToUpdate(
-  bool all, double toleranceRadians)
+  bool all, double toleranceRadians, const std::vector<bool>& given)
 {
-  std::vector<bool> updated(this->Lights.size(), false);
-  const glm::dvec3 centre = this->Grid.Center();
   // A new light, or one beyond the tolerance of what its channel holds;
   // the others keep the placement they were computed for.
   std::vector<mmv::LightSource>& held = this->ComputedLights;
   held.resize(std::min(held.size(), this->Lights.size()));
+  std::vector<bool> updated;
+  if (given.size() >= this->Lights.size())
+  {
+    updated.assign(given.begin(), given.begin() + this->Lights.size());
+    std::replace(updated.begin(), updated.end(), false, all);
+  }
+  else
+  {
+    updated = vtkIrradianceUpdatePlan::MarkLights(
+      held, this->Lights, all, toleranceRadians, this->Grid.Center());
+  }
+  held.resize(this->Lights.size());
   for (size_t k = 0; k < this->Lights.size(); ++k)
   {
-    if (all || k >= held.size() ||
-      !mmv::LightWithinTolerance(held[k], this->Lights[k], toleranceRadians, centre))
+    if (updated[k])
     {
-      updated[k] = true;
-      if (k < held.size())
-      {
-        held[k] = this->Lights[k];
-      }
-      else
-      {
-        held.push_back(this->Lights[k]);
-      }
+      held[k] = this->Lights[k];
     }
   }
   return updated;

@@ -5,6 +5,7 @@
 #include "vtkGlobalPrefilteredVolume.h"
 #include "vtkImageData.h"
 #include "vtkIrradianceRegion.h"
+#include "vtkIrradianceUpdatePlan.h"
 #include "vtkMaterialTransferFunction.h"
 #include "vtkMatrix4x4.h"
 #include "vtkMultiMaterialLightTolerance.h"
@@ -265,53 +266,21 @@ bool vtkMultiMaterialIrradianceStage::Update(vtkMultiMaterialVolumeMapper* mappe
   std::copy(region.Bounds, region.Bounds + 6, volumeKey.Region);
   const std::vector<mmv::LightSource> sources =
     mmv::IrradianceLightSources(*this->Lights, dims, this->Mapper->DimLightCoarsening);
-  const bool computed = this->Pass->GetNumberOfIrradianceTextures() > 0;
-  const double tolerance = mmv::LightToleranceRadians(this->Mapper->LightDirectionTolerance);
+  // What changed since the held irradiance, and so what this update
+  // recomputes: decided here, once.
+  vtkIrradianceUpdatePlan::Inputs now;
+  now.Volume = volumeKey;
+  std::copy(dims, dims + 3, now.Dimensions);
+  now.Lights = sources;
+  const vtkIrradianceUpdatePlan plan =
+    this->Cache->Plan(now, mmv::LightToleranceRadians(this->Mapper->LightDirectionTolerance));
   // The key of the kept steps, made only where they are looked up or stored.
   const auto stepKey = [&]() {
     return vtkIrradianceStepCache::MakeKey(volumeKey,
       this->Materials ? this->Materials->GetMTime() : 0, image, scalars, sources, dims);
   };
-  if (computed && this->Cache->IsCurrent(volumeKey, sources, dims, tolerance))
+  if (this->KeepsHeld(plan, now, window, vol, range, stepBudget, stepKey))
   {
-    // Current but not yet kept (the step shown before caching was on).
-    if (stepBudget > 0 && !this->HeldKept)
-    {
-      this->HeldKept =
-        this->Steps.Store(window, stepKey(), this->Pass, this->HeldLights, stepBudget);
-    }
-    return true;
-  }
-  // Interactive frames keep the last irradiance while only the lights or the
-  // screen-chosen grid moved; the still frame after them updates it.
-  if (computed && this->Mapper->LastRenderInteractive &&
-    this->Mapper->InteractiveIrradiance == vtkMultiMaterialVolumeMapper::ReuseWhileInteracting &&
-    this->Cache->SameVolume(volumeKey))
-  {
-    ++this->Mapper->DeferredIrradianceCount;
-    return true;
-  }
-  // No value of the data is visible (a time step outside the opacity):
-  // nothing casts a shadow or is drawn, so the last irradiance serves.
-  if (computed)
-  {
-    const std::vector<float> opacity = SampleOpacityTable(
-      vol->GetProperty()->GetScalarOpacity(0), range, this->Mapper->PreIntegrationTableSize);
-    if (std::all_of(opacity.begin(), opacity.end(), [](float a) { return !(a > 0.0f); }))
-    {
-      return true;
-    }
-  }
-  // Data seen before with everything else the same (a series' earlier step):
-  // its kept irradiance is copied back.
-  std::vector<mmv::LightSource> restored;
-  if (computed && stepBudget > 0 && this->Steps.Restore(window, stepKey(), this->Pass, restored))
-  {
-    this->Cache->Store(volumeKey, restored, dims);
-    this->HeldLights = restored;
-    this->HeldKept = true;
-    ++this->Mapper->IrradianceCacheHitCount;
-    std::copy(dims, dims + 3, this->Mapper->IrradianceDimensions);
     return true;
   }
   // A real update (seconds on a software GPU): VTK progress events mark its
@@ -333,6 +302,9 @@ bool vtkMultiMaterialIrradianceStage::Update(vtkMultiMaterialVolumeMapper* mappe
     this->Mapper->WarnOnce(mmv::NonFiniteScalarsMessage);
   }
   this->Pass->SetRegion(region.Bounds);
+  // The plan compared the lights with what the textures hold: the pass
+  // recomputes those it marks (and every light where its inputs changed).
+  this->Pass->SetLightsToUpdate(plan.GetMovedLights());
   this->ReportProgressOf(this->Pass, 0.0, 1.0);
   const bool estimated = this->ComputeOn(this->Pass,
     vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow()), vol, range, cutaway,
@@ -365,6 +337,56 @@ bool vtkMultiMaterialIrradianceStage::Update(vtkMultiMaterialVolumeMapper* mappe
   this->Mapper->SetProgressText(nullptr);
   this->Record(resolution);
   return true;
+}
+
+bool vtkMultiMaterialIrradianceStage::KeepsHeld(const vtkIrradianceUpdatePlan& plan,
+  const vtkIrradianceUpdatePlan::Inputs& now, vtkOpenGLRenderWindow* window, vtkVolume* vol,
+  const double range[2], size_t stepBudget, const std::function<vtkIrradianceStepCache::Key()>& stepKey)
+{
+  if (this->Pass->GetNumberOfIrradianceTextures() == 0)
+  {
+    return false; // nothing computed yet, or released
+  }
+  if (plan.IsCurrent())
+  {
+    // Current but not yet kept (the step shown before caching was on).
+    if (stepBudget > 0 && !this->HeldKept)
+    {
+      this->HeldKept =
+        this->Steps.Store(window, stepKey(), this->Pass, this->HeldLights, stepBudget);
+    }
+    return true;
+  }
+  // Interactive frames keep the last irradiance while only the lights or the
+  // screen-chosen grid moved; the still frame after them updates it.
+  if (this->Mapper->LastRenderInteractive &&
+    this->Mapper->InteractiveIrradiance == vtkMultiMaterialVolumeMapper::ReuseWhileInteracting &&
+    plan.KeepsVolume())
+  {
+    ++this->Mapper->DeferredIrradianceCount;
+    return true;
+  }
+  // No value of the data is visible (a time step outside the opacity):
+  // nothing casts a shadow or is drawn, so the last irradiance serves.
+  const std::vector<float> opacity = SampleOpacityTable(
+    vol->GetProperty()->GetScalarOpacity(0), range, this->Mapper->PreIntegrationTableSize);
+  if (std::all_of(opacity.begin(), opacity.end(), [](float a) { return !(a > 0.0f); }))
+  {
+    return true;
+  }
+  // Data seen before with everything else the same (a series' earlier step):
+  // its kept irradiance is copied back.
+  std::vector<mmv::LightSource> restored;
+  if (stepBudget > 0 && this->Steps.Restore(window, stepKey(), this->Pass, restored))
+  {
+    this->Cache->Store(now.Volume, restored, now.Dimensions);
+    this->HeldLights = restored;
+    this->HeldKept = true;
+    ++this->Mapper->IrradianceCacheHitCount;
+    std::copy(now.Dimensions, now.Dimensions + 3, this->Mapper->IrradianceDimensions);
+    return true;
+  }
+  return false;
 }
 
 void vtkMultiMaterialIrradianceStage::ReportProgressOf(

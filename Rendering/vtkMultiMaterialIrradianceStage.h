@@ -4,10 +4,12 @@
  *          paper's Algorithm 1).
  *
  * Chooses the irradiance grid (screen, budget, user scale or the global grid
- * of a volume in pieces), tells from the input cache's keys whether the
- * irradiance volume is current, keeps it while interacting when only the
- * lights moved (InteractiveIrradiance), and otherwise has
- * vtkIrradianceVolumePass recompute what changed, with VTK progress events.
+ * of a volume in pieces), makes the frame's vtkIrradianceUpdatePlan (what
+ * changed since the held irradiance, decided once), keeps the irradiance
+ * when the plan allows it (current, or only the lights moved while
+ * interacting: InteractiveIrradiance), and otherwise has
+ * vtkIrradianceVolumePass recompute the lights the plan marks, with VTK
+ * progress events.
  * It reads the mapper's settings and updates its counters (IrradianceDimensions,
  * IrradianceUpdateCount, ...), as the mapper's own step did. Not a vtkObject:
  * plain state owned by the mapper.
@@ -19,6 +21,7 @@
 #include "vtkIrradianceInputCache.h"      // vtkNew
 #include "vtkIrradianceResolutionProbe.h" // vtkNew
 #include "vtkIrradianceStepCache.h"       // member
+#include "vtkIrradianceUpdatePlan.h"      // the update's decisions
 #include "vtkIrradianceVolumePass.h"      // vtkNew
 #include "vtkMultiMaterialCutaway.h"      // Cutaway
 #include "vtkMultiMaterialLights.h"       // ShadingLight
@@ -26,6 +29,7 @@
 #include "vtkNew.h"
 #include "vtkPreIntegrationTable.h"       // vtkNew
 
+#include <functional> // the kept steps' key, made on demand
 #include <string>
 #include <vector>
 
@@ -103,6 +107,12 @@ private:
   void ApplyProbe(vtkRenderer* ren, vtkVolume* vol, vtkImageData* image, vtkDataArray* scalars,
     const double range[2], const vtkIrradianceInputCache::VolumeKey& volumeKey,
     const mmv::Cutaway& cutaway, double bound, int maxAxis, mmv::IrradianceResolution& resolution);
+  /// Keeps the held irradiance when `plan` (to `now`) allows it: current,
+  /// kept while interacting, nothing visible, or a kept step copied back.
+  /// False: the caller recomputes what the plan marks.
+  bool KeepsHeld(const vtkIrradianceUpdatePlan& plan, const vtkIrradianceUpdatePlan::Inputs& now,
+    vtkOpenGLRenderWindow* window, vtkVolume* vol, const double range[2], size_t stepBudget,
+    const std::function<vtkIrradianceStepCache::Key()>& stepKey);
   /// Has `pass` report the mapper's progress from `from` to `to` (nothing
   /// while no one observes it).
   void ReportProgressOf(vtkIrradianceVolumePass* pass, double from, double to);

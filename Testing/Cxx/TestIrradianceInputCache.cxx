@@ -109,6 +109,26 @@ TEST(IrradianceInputCache, PrefilteredDataIsNormalisedAndCleanedOnce)
   EXPECT_EQ(cache->GetPrefilteredVersion(), 6u);
 }
 
+TEST(IrradianceInputCache, PrefilteredVersionNamesTheValues)
+{
+  // A pipeline that executed again hands over the same values at a new data
+  // time: pre-filtered again, but the version (which the irradiance pass
+  // trusts instead of comparing the values) is kept.
+  auto image = mmvtest::MakeVolume(4, [](int i, int, int) { return static_cast<float>(i); });
+  vtkDataArray* values = image->GetPointData()->GetScalars();
+  const int dims[3] = { 4, 4, 4 };
+  const double range[2] = { 0.0, 3.0 };
+  vtkNew<vtkIrradianceInputCache> cache;
+  cache->UpdatePrefiltered(image, values, nullptr, dims, 10, range);
+  EXPECT_EQ(cache->GetPrefilteredVersion(), 1u);
+  cache->UpdatePrefiltered(image, values, nullptr, dims, 11, range);
+  EXPECT_EQ(cache->GetPrefilteredVersion(), 1u);
+  // The same values on a moved grid are other pre-filtered data.
+  image->SetOrigin(1.0, 0.0, 0.0);
+  cache->UpdatePrefiltered(image, values, nullptr, dims, 12, range);
+  EXPECT_EQ(cache->GetPrefilteredVersion(), 2u);
+}
+
 TEST(IrradianceInputCache, StoredIrradianceIsCurrentUntilItsInputsChange)
 {
   vtkNew<vtkIrradianceInputCache> cache;
