@@ -10,7 +10,9 @@
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkUniformGridAMR.h"
 #include "vtkCommand.h"
+#include "vtkCommunicator.h"
 #include "vtkMultiProcessController.h"
 #include "vtkPVRenderView.h"
 #include "vtkPVView.h"
@@ -431,7 +433,8 @@ int vtkPVMultiMaterialVolumeRepresentation::FillInputPortInformation(
   this->Superclass::FillInputPortInformation(port, info);
   info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkMultiBlockDataSet");
   info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPartitionedDataSetCollection");
-  // Other data sets are resampled to image data (RequestData).
+  // AMR and other data sets are resampled to image data (RequestData).
+  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkUniformGridAMR");
   info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkDataSet");
   return 1;
 }
@@ -471,6 +474,12 @@ int vtkPVMultiMaterialVolumeRepresentation::RequestData(
   {
     return this->RequestResampledData(request, inInfo, dataset, outputVector);
   }
+  // AMR's blocks overlap across levels (or differ in spacing): resampled,
+  // not merged like image blocks that tile a box.
+  if (auto* amr = vtkUniformGridAMR::SafeDownCast(input))
+  {
+    return this->RequestResampledData(request, inInfo, amr, outputVector);
+  }
   if (!blocks)
   {
     return this->Superclass::RequestData(request, inputVector, outputVector);
@@ -496,30 +505,50 @@ int vtkPVMultiMaterialVolumeRepresentation::RequestData(
 
 //------------------------------------------------------------------------------
 int vtkPVMultiMaterialVolumeRepresentation::RequestResampledData(vtkInformation* request,
-  vtkInformation* inInfo, vtkDataSet* dataset, vtkInformationVector* outputVector)
+  vtkInformation* inInfo, vtkDataObject* data, vtkInformationVector* outputVector)
 {
   // As Volume's "Resample To Image": an image over the data's bounds, cells
   // and points probed at its points; every rank takes part, and in parallel
   // each gets its piece of one global image (vtkPResampleToImage), so the
-  // pieces meet in the global pre-filter as image pieces do.
+  // pieces meet in the global pre-filter as image pieces do. AMR blocks are
+  // probed finest level first (vtkCompositeDataProbeFilter), so a point takes
+  // the value of the finest block that holds it.
   const auto start = std::chrono::steady_clock::now();
+  auto* dataset = vtkDataSet::SafeDownCast(data);
+  auto* blocks = vtkCompositeDataSet::SafeDownCast(data);
+  const vtkIdType cells =
+    dataset ? dataset->GetNumberOfCells() : (blocks ? blocks->GetNumberOfCells() : 0);
   vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
-  vtkSmartPointer<vtkResampleToImage> resample;
-  if (controller && controller->GetNumberOfProcesses() > 1)
+  const bool parallel = controller && controller->GetNumberOfProcesses() > 1;
+  // Data without cells on every rank are not resampled: vtkPResampleToImage
+  // dereferences a mask array that it never made (a crash under MPI), and
+  // there is nothing to draw. A rank without cells still resamples when
+  // another has some: its piece of the image comes from them.
+  vtkIdType totalCells = cells;
+  if (parallel)
   {
-    auto parallel = vtkSmartPointer<vtkPResampleToImage>::New();
-    parallel->SetController(controller);
-    resample = parallel;
+    controller->AllReduce(&cells, &totalCells, 1, vtkCommunicator::SUM_OP);
   }
-  else
+  vtkSmartPointer<vtkImageData> image;
+  if (totalCells > 0)
   {
-    resample = vtkSmartPointer<vtkResampleToImage>::New();
+    vtkSmartPointer<vtkResampleToImage> resample;
+    if (parallel)
+    {
+      auto pieces = vtkSmartPointer<vtkPResampleToImage>::New();
+      pieces->SetController(controller);
+      resample = pieces;
+    }
+    else
+    {
+      resample = vtkSmartPointer<vtkResampleToImage>::New();
+    }
+    resample->SetUseInputBounds(true);
+    resample->SetSamplingDimensions(this->SamplingDimensions);
+    resample->SetInputDataObject(data);
+    resample->Update();
+    image = resample->GetOutput();
   }
-  resample->SetUseInputBounds(true);
-  resample->SetSamplingDimensions(this->SamplingDimensions);
-  resample->SetInputDataObject(dataset);
-  resample->Update();
-  vtkSmartPointer<vtkImageData> image = resample->GetOutput();
   if (!image)
   {
     image = vtkSmartPointer<vtkImageData>::New();
@@ -527,15 +556,27 @@ int vtkPVMultiMaterialVolumeRepresentation::RequestResampledData(vtkInformation*
   const double seconds =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::ostringstream text;
-  text << dataset->GetClassName() << " (" << dataset->GetNumberOfCells()
-       << " cells) resampled to " << this->SamplingDimensions[0] << "x"
-       << this->SamplingDimensions[1] << "x" << this->SamplingDimensions[2] << " points in "
-       << seconds << " s";
+  text << data->GetClassName() << " (";
+  if (auto* amr = vtkUniformGridAMR::SafeDownCast(data))
+  {
+    text << amr->GetTotalNumberOfBlocks() << " blocks in " << amr->GetNumberOfLevels()
+         << " levels, ";
+  }
+  text << cells << " cells) ";
+  if (totalCells > 0)
+  {
+    text << "resampled to " << this->SamplingDimensions[0] << "x" << this->SamplingDimensions[1]
+         << "x" << this->SamplingDimensions[2] << " points in " << seconds << " s";
+  }
+  else
+  {
+    text << "not resampled: no cells";
+  }
   this->ResampleInfo = text.str();
   this->Resampled = true;
-  if (dataset->GetNumberOfCells() == 0)
+  if (totalCells == 0 && (!parallel || controller->GetLocalProcessId() == 0))
   {
-    vtkWarningMacro("the data have no cells: the resampled image is empty and nothing is drawn");
+    vtkWarningMacro("the data have no cells: there is nothing to resample and nothing is drawn");
   }
 
   vtkNew<vtkInformationVector> substitute;
@@ -545,7 +586,8 @@ int vtkPVMultiMaterialVolumeRepresentation::RequestResampledData(vtkInformation*
   info->Set(vtkDataObject::DATA_OBJECT(), image);
   int wholeExtent[6] = { 0, this->SamplingDimensions[0] - 1, 0,
     this->SamplingDimensions[1] - 1, 0, this->SamplingDimensions[2] - 1 };
-  info->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), wholeExtent, 6);
+  info->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(),
+    totalCells > 0 ? wholeExtent : image->GetExtent(), 6);
   vtkInformationVector* inputs[1] = { substitute };
   return this->Superclass::RequestData(request, inputs, outputVector);
 }

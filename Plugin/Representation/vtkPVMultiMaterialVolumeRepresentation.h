@@ -150,8 +150,8 @@ public:
   ///@}
 
   /**
-   * Data other than image data (unstructured, structured, rectilinear grids
-   * and polydata) are resampled to an image of these many points over their
+   * Data other than image data (unstructured, structured, rectilinear grids,
+   * polydata and AMR) are resampled to an image of these many points over their
    * bounds, as Volume's "Resample To Image" does (default 128^3, ParaView's
    * SamplingDimensions); in parallel with vtkPResampleToImage. Below 2 on an
    * axis: an error, the old value is kept.
@@ -180,8 +180,9 @@ protected:
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   // PointLightRadius, or the automatic radius while it is 0.
   double FalloffRadius() const;
-  // Resamples `dataset` to image data and draws that.
-  int RequestResampledData(vtkInformation* request, vtkInformation* inInfo, vtkDataSet* dataset,
+  // Resamples `data` (a vtkDataSet, or AMR's levels of blocks, the finest
+  // block that holds a point giving its value) to image data and draws that.
+  int RequestResampledData(vtkInformation* request, vtkInformation* inInfo, vtkDataObject* data,
     vtkInformationVector* outputVector);
 
 private:
