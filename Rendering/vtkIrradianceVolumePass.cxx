@@ -76,6 +76,10 @@ void vtkIrradianceVolumePass::SetInputs(const mmv::IrradianceGrid& grid,
     internals.ScatteringTable == scattering;
   if (!sameVolume)
   {
+    if (!sameScalars || !SameGrid(internals.Grid, grid))
+    {
+      internals.ScalarsUploaded = false;
+    }
     internals.Grid = grid;
     if (!sameScalars)
     {

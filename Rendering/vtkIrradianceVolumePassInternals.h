@@ -283,6 +283,8 @@ public:
   mmv::Cutaway Cut;
   bool HasInputs = false;
   bool Uploaded = false;
+  // The scalar texture alone: an opacity edit re-uploads the classes, not it.
+  bool ScalarsUploaded = false;
   vtkIdType VolumeUploads = 0;
   // The lights the irradiance textures hold, and whether the volume they
   // were computed from is still the current one.

@@ -58,13 +58,19 @@ bool vtkIrradianceVolumePass::vtkInternals::Upload(vtkOpenGLRenderWindow* contex
   }
   const int* d = this->Grid.Dimensions;
   const int* c = this->Coarse.Dimensions;
-  this->ScalarTexture = NewTexture(context, GL_R32F, GL_RED, GL_FLOAT, true);
+  const bool scalarsKept =
+    this->ScalarsUploaded && this->ScalarTexture && this->ScalarTexture->GetHandle() != 0;
+  if (!scalarsKept)
+  {
+    this->ScalarTexture = NewTexture(context, GL_R32F, GL_RED, GL_FLOAT, true);
+    this->ScalarsUploaded = this->ScalarTexture->Create3DFromRaw(
+      d[0], d[1], d[2], 1, VTK_FLOAT, this->Scalars.data());
+  }
   this->ClassTexture = NewTexture(context, GL_R32F, GL_RED, GL_FLOAT, false);
   this->TableTexture = NewTexture(context, GL_R32F, GL_RED, GL_FLOAT, true);
   this->CoarseStrengthTexture = NewTexture(context, GL_RG32F, GL_RG, GL_FLOAT, false);
   ++this->VolumeUploads;
-  this->Uploaded = this->ScalarTexture->Create3DFromRaw(d[0], d[1], d[2], 1, VTK_FLOAT,
-                     this->Scalars.data()) &&
+  this->Uploaded = this->ScalarsUploaded &&
     this->ClassTexture->Create3DFromRaw(d[0], d[1], d[2], 1, VTK_FLOAT, this->Classes.data()) &&
     this->TableTexture->Create2DFromRaw(
       this->TableSize, this->TableSize, 1, VTK_FLOAT, this->ShadowTable.data()) &&
@@ -534,6 +540,7 @@ void vtkIrradianceVolumePass::vtkInternals::Release(vtkWindow* window)
     pass->Release(window);
   }
   this->Uploaded = false;
+  this->ScalarsUploaded = false;
 }
 
 //------------------------------------------------------------------------------

@@ -781,11 +781,20 @@ TEST(IrradianceVolumePass, MovingALightKeepsTheUploadedVolume)
   EXPECT_NE(before, after);
   EXPECT_LE(MaxDifference(after, RunFilter(scene, false)[0], OnConeEdge(GridOf(scene), {})), 0.01);
 
-  // The opacity changes: the volume's classification goes up again.
+  // The opacity changes: the volume's classification goes up again, the
+  // scalars' texture stays (the same GL object), and the result is the
+  // CPU's for the new opacity.
+  const unsigned int scalarsHandle = pass->GetScalarTexture()->GetHandle();
   scene.Opacity->AddPoint(1.5, 0.05);
   SetPassInputs(scene, pass);
   ASSERT_TRUE(pass->Render(ctx.GL));
   EXPECT_EQ(pass->GetNumberOfVolumeUploads(), 2);
+  ASSERT_NE(pass->GetScalarTexture(), nullptr);
+  EXPECT_EQ(pass->GetScalarTexture()->GetHandle(), scalarsHandle);
+  std::vector<float> edited;
+  ASSERT_TRUE(pass->ReadBack(ctx.GL, 0, edited));
+  EXPECT_NE(edited, after);
+  EXPECT_LE(MaxDifference(edited, RunFilter(scene, false)[0], OnConeEdge(GridOf(scene), {})), 0.01);
   pass->ReleaseGraphicsResources(ctx.GL);
 }
 
