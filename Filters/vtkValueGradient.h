@@ -58,7 +58,7 @@ VTKMULTIMATERIALVOLUMEFILTERS_EXPORT void GradientSmoothingVoxels(
  * 3 sigma, the volume's faces repeated outward; axes with sigma 0 are left
  * alone. The gradient of thin shells sampled coarsely (the MR head's 3.2 mm
  * in x and y) turns at every voxel face; in the image that shows as stripes
- * at the voxel spacing (docs/banding.md), which a sigma of one voxel removes.
+ * at the voxel spacing (docs/stability.md, "Stripes on thin shells"), which a sigma of one voxel removes.
  */
 VTKMULTIMATERIALVOLUMEFILTERS_EXPORT void SmoothVectors(
   std::vector<float>& values, int components, const int dims[3], const double sigma[3]);

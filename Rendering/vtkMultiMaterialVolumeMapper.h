@@ -143,7 +143,7 @@ public:
   /// whose standard deviation is this many times the largest data spacing
   /// (round in world space). Default 0 (none: the references' model). About
   /// 1 removes the stripes that thin shells sampled coarsely show at the
-  /// voxel spacing (docs/banding.md). Negative or NaN: reported, used as 0;
+  /// voxel spacing (docs/stability.md, "Stripes on thin shells"). Negative or NaN: reported, used as 0;
   /// above mmv::MaxGradientSmoothing (4): reported, clamped.
   vtkSetMacro(GradientSmoothing, double);
   vtkGetMacro(GradientSmoothing, double);

@@ -1,4 +1,4 @@
-"""Banding study of the demo scene (docs/banding.md): which setting removes the
+"""Banding study of the demo scene (docs/stability.md, "Stripes on thin shells"): which setting removes the
 stripes on the cheek and neck of docs/demo.png (run with scripts/pvpython).
 
     xvfb-run -a -s "-noreset -screen 0 1280x1024x24" \\
@@ -155,7 +155,7 @@ with open(os.path.join(OUT, "banding.csv"), "w") as f:
         print("%-12s high-pass RMS %.2f  mean %.1f  %s" % (name, hp, mean, info), flush=True)
         f.write("%s,%.3f,%.2f,%s\n" % (name, hp, mean, info))
 
-# The region of a few variants side by side, doubled, for docs/banding.md.
+# The region of a few variants side by side, doubled, for docs/stability.md, "Stripes on thin shells".
 shown = [n for n in ("default", "vtk_phong", "sd_0.25", "ambient_only", "gsmooth_1", "smooth_1")
          if os.path.exists(os.path.join(OUT, n + ".png"))]
 if shown:

@@ -12,7 +12,7 @@ and opacity maps of pv_lightkit_orbit.py, a front view, 400 x 400:
   gallery_reflection.png  MaterialPreset metal (reflection 0.6) in a gradient
                           background, which the reflection mirrors
 all with GradientSmoothing 3 (3.3 mm here, the original 3.2 mm voxel: the
-resample keeps the coarse sampling's stripes otherwise, docs/banding.md).
+resample keeps the coarse sampling's stripes otherwise, docs/stability.md, "Stripes on thin shells").
 Writes OUT/gallery_*.png and prints each image's render time.
 """
 

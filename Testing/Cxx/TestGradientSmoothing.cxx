@@ -1,8 +1,8 @@
-// GradientSmoothing (the demo's banding, docs/banding.md): the MR head's skin is a
+// GradientSmoothing (the demo's banding, docs/stability.md, "Stripes on thin shells"): the MR head's skin is a
 // thin shell sampled every 3.2 mm in x and y, and the gradient of its
 // trilinear reconstruction turns at every voxel face, which the shading
 // draws as stripes at the voxel spacing on the cheek and neck
-// (docs/banding.md: not the sampling, the pre-integration or the irradiance).
+// (docs/stability.md, "Stripes on thin shells": not the sampling, the pre-integration or the irradiance).
 // Smoothing the shading normal by a Gaussian of one voxel must remove most
 // of that high-frequency energy without changing the image's brightness,
 // and bad values must be reported and render as no smoothing.

@@ -79,7 +79,7 @@ int main(int argc, char* argv[])
   mapper->SetMaterialTransferFunction(materials);
   // The head's skin is a thin shell sampled every 3.2 mm in x and y: a
   // smoothed shading normal keeps its voxel rows from showing as stripes
-  // (docs/banding.md).
+  // (docs/stability.md, "Stripes on thin shells").
   mapper->SetGradientSmoothing(1.0);
   vtkNew<vtkVolume> volume;
   volume->SetMapper(mapper);
