@@ -12,6 +12,8 @@
 #include "vtkMultiMaterialVolumeGeometry.h"
 #include "vtkMultiMaterialVolumeMapper.h"
 #include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLShaderCache.h"
+#include "vtkOpenGLState.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkRenderer.h"
 #include "vtkTextureObject.h"
@@ -178,7 +180,7 @@ void vtkMultiMaterialIrradianceStage::ApplyProbe(vtkRenderer* ren, vtkVolume* vo
   {
     opacityTable = SampleOpacityTable(property->GetScalarOpacity(0), range, n);
     this->Mapper->SetProgressText("Irradiance resolution probe");
-    this->Mapper->UpdateProgress(0.0);
+    this->ReportProgress(0.0);
   }
   int estimates = 0;
   const double probed = this->Probe->Choose(window, volumeKey, image, scalars, range, budget,
@@ -199,7 +201,7 @@ void vtkMultiMaterialIrradianceStage::ApplyProbe(vtkRenderer* ren, vtkVolume* vo
     });
   if (measures && this->Mapper->GetProgress() < 1.0)
   {
-    this->Mapper->UpdateProgress(1.0);
+    this->ReportProgress(1.0);
   }
   if (measures)
   {
@@ -228,6 +230,7 @@ bool vtkMultiMaterialIrradianceStage::Update(vtkMultiMaterialVolumeMapper* mappe
   this->Global = global;
   this->Materials = materials;
   this->Lights = &lights;
+  this->Context = vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow());
   const Clock::time_point start = Clock::now();
   const int probesBefore = this->Probe->GetNumberOfProbes();
   // A piece of a larger volume is lit from the whole volume's pre-filtered
@@ -286,7 +289,7 @@ bool vtkMultiMaterialIrradianceStage::Update(vtkMultiMaterialVolumeMapper* mappe
   // A real update (seconds on a software GPU): VTK progress events mark its
   // start, its lights and its end.
   this->Mapper->SetProgressText("Irradiance volume");
-  this->Mapper->UpdateProgress(0.0);
+  this->ReportProgress(0.0);
 
   // Pre-filtered data: only when the data or the grid changed.
   const Clock::time_point prefilterStart = Clock::now();
@@ -331,7 +334,7 @@ bool vtkMultiMaterialIrradianceStage::Update(vtkMultiMaterialVolumeMapper* mappe
   this->Stages = stages;
   if (this->Mapper->GetProgress() < 1.0)
   {
-    this->Mapper->UpdateProgress(1.0);
+    this->ReportProgress(1.0);
   }
   // The mapper's own pipeline progress (its input's update) is not this.
   this->Mapper->SetProgressText(nullptr);
@@ -399,9 +402,26 @@ void vtkMultiMaterialIrradianceStage::ReportProgressOf(
     pass->SetProgressCallback(nullptr);
     return;
   }
-  vtkMultiMaterialVolumeMapper* mapper = this->Mapper;
   pass->SetProgressCallback(
-    [mapper, from, to](double done) { mapper->UpdateProgress(from + (to - from) * done); });
+    [this, from, to](double done) { this->ReportProgress(from + (to - from) * done); });
+}
+
+void vtkMultiMaterialIrradianceStage::ReportProgress(double progress)
+{
+  if (!this->Context || !this->Mapper->HasObserver(vtkCommand::ProgressEvent))
+  {
+    this->Mapper->UpdateProgress(progress);
+    return;
+  }
+  // An observer may paint other OpenGL widgets (ParaView's client repaints
+  // its progress bar): VTK's context, its recorded state and the bound
+  // program come back before the update goes on.
+  vtkOpenGLState* state = this->Context->GetState();
+  state->Push();
+  this->Mapper->UpdateProgress(progress);
+  this->Context->MakeCurrent();
+  state->Pop();
+  this->Context->GetShaderCache()->ReleaseCurrentShader();
 }
 
 bool vtkMultiMaterialIrradianceStage::ComputeOn(vtkIrradianceVolumePass* pass,

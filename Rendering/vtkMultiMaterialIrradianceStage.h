@@ -116,6 +116,8 @@ private:
   /// Has `pass` report the mapper's progress from `from` to `to` (nothing
   /// while no one observes it).
   void ReportProgressOf(vtkIrradianceVolumePass* pass, double from, double to);
+  /// The mapper's progress, with VTK's OpenGL state kept across the report.
+  void ReportProgress(double progress);
   /// Estimates `sources` on `grid` into `pass` (the frame's pass, or the
   /// probe's without scattering).
   bool ComputeOn(vtkIrradianceVolumePass* pass, vtkOpenGLRenderWindow* window, vtkVolume* vol,
@@ -145,6 +147,7 @@ private:
   vtkGlobalPrefilteredVolume* Global = nullptr;
   vtkMaterialTransferFunction* Materials = nullptr;
   const std::vector<mmv::ShadingLight>* Lights = nullptr;
+  vtkOpenGLRenderWindow* Context = nullptr;
 };
 
 #endif

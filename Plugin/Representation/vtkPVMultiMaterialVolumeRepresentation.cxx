@@ -51,10 +51,11 @@ vtkPVMultiMaterialVolumeRepresentation::vtkPVMultiMaterialVolumeRepresentation()
   // vtkOpenGLGPUVolumeRayCastMapper, so everything generic keeps working.
   vtkNew<vtkMultiMaterialVolumeMapper> mapper;
   mapper->SetMaterialTransferFunction(this->Materials);
-  // The mapper's irradiance progress is not forwarded to ParaView's progress
-  // bar: the client repaints the bar inside the render, and in the GUI that
-  // repaint left VTK's OpenGL state cache out of step with the context
-  // (GUI.PropertiesPanel's first render: "Error in cache state").
+  // ParaView's progress bar listens to the representation, not its mapper.
+  // The client repaints the bar inside the render; the mapper keeps VTK's
+  // OpenGL state across each report (vtkMultiMaterialIrradianceStage).
+  mapper->AddObserver(
+    vtkCommand::ProgressEvent, this, &vtkPVMultiMaterialVolumeRepresentation::ForwardProgress);
   this->VolumeMapper = mapper;
 
   this->AppliedNodes->SetName("MaterialNodes");
@@ -69,6 +70,23 @@ vtkPVMultiMaterialVolumeRepresentation::vtkPVMultiMaterialVolumeRepresentation()
 vtkPVMultiMaterialVolumeRepresentation::~vtkPVMultiMaterialVolumeRepresentation()
 {
   vtkMultiMaterialLiveObjects::Destroyed("vtkPVMultiMaterialVolumeRepresentation");
+}
+
+//------------------------------------------------------------------------------
+void vtkPVMultiMaterialVolumeRepresentation::ForwardProgress(
+  vtkObject* caller, unsigned long, void* progress)
+{
+  // Only the irradiance update's events carry a text; the mapper's pipeline
+  // progress (its input's update, every frame) is left out.
+  auto* mapper = vtkAlgorithm::SafeDownCast(caller);
+  if (!mapper || !mapper->GetProgressText())
+  {
+    return;
+  }
+  this->SetProgressText(mapper->GetProgressText());
+  this->UpdateProgress(*static_cast<double*>(progress));
+  // This representation's own pipeline progress carries no text.
+  this->SetProgressText(nullptr);
 }
 
 //------------------------------------------------------------------------------

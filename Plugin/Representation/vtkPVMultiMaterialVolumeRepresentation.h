@@ -190,6 +190,9 @@ private:
   void operator=(const vtkPVMultiMaterialVolumeRepresentation&) = delete;
 
   bool UsesPreset() const;
+  // The mapper's irradiance progress as this one's, which ParaView's
+  // progress handler observes.
+  void ForwardProgress(vtkObject* caller, unsigned long event, void* progress);
   // The mapper's VectorMode (and `component`) from the colour map, as
   // vtkImageVolumeRepresentation sets its mapper's.
   int MapperVectorMode(int& component);
