@@ -31,7 +31,9 @@
 #include "vtkLight.h"
 #include "vtkMaterialTransferFunction.h"
 #include "vtkMultiMaterialParameters.h"
+#include "vtkMultiMaterialVolumeMapper.h"
 #include "vtkNew.h"
+#include "vtkOpenGLGPUVolumeRayCastMapper.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
 #include "vtkRenderWindow.h"
@@ -63,6 +65,19 @@ inline std::vector<std::string> SplitList(const std::string& text)
   return items;
 }
 
+
+/// One volume in its own window, drawn by VTK's GPU ray caster or by ours
+/// (`Ours`, the same object as `Mapper`, or nullptr).
+struct VolumeWindow
+{
+  vtkSmartPointer<vtkRenderWindow> Window = mmvtest::NewRenderWindow();
+  vtkNew<vtkRenderer> Renderer;
+  vtkNew<vtkVolume> Volume;
+  vtkNew<vtkVolumeProperty> Property;
+  vtkNew<vtkMaterialTransferFunction> Materials;
+  vtkSmartPointer<vtkOpenGLGPUVolumeRayCastMapper> Mapper;
+  vtkMultiMaterialVolumeMapper* Ours = nullptr;
+};
 
 struct SceneSpec
 {

@@ -116,16 +116,9 @@ struct TransferFunctions
 };
 
 /// One method in its own window, under ParaView's light kit.
-struct View
+struct View : mmvbench::VolumeWindow
 {
   std::string Name;
-  vtkSmartPointer<vtkRenderWindow> Window = mmvtest::NewRenderWindow();
-  vtkNew<vtkRenderer> Renderer;
-  vtkNew<vtkVolume> Volume;
-  vtkNew<vtkVolumeProperty> Property;
-  vtkNew<vtkMaterialTransferFunction> Materials;
-  vtkSmartPointer<vtkOpenGLGPUVolumeRayCastMapper> Mapper;
-  vtkMultiMaterialVolumeMapper* Ours = nullptr;
 
   /// `preset` empty: VTK's Phong; "default": ours with no material nodes.
   View(const std::string& name, const std::string& preset, vtkImageData* image,

@@ -72,15 +72,8 @@ const double LightDirections[8][3] = { { 0.3, -0.8, 0.9 }, { -0.6, -0.9, -0.3 },
   { -0.4, 0.3, 0.9 }, { 0.8, -0.3, -0.4 } };
 
 /// One window rendering the CT-sized scene with N scene lights.
-struct Bench
+struct Bench : mmvbench::VolumeWindow
 {
-  vtkSmartPointer<vtkRenderWindow> Window = mmvtest::NewRenderWindow();
-  vtkNew<vtkRenderer> Renderer;
-  vtkNew<vtkVolume> Volume;
-  vtkNew<vtkVolumeProperty> Property;
-  vtkNew<vtkMaterialTransferFunction> Materials;
-  vtkSmartPointer<vtkOpenGLGPUVolumeRayCastMapper> Mapper;
-  vtkMultiMaterialVolumeMapper* Ours = nullptr;
   std::vector<vtkSmartPointer<vtkLight>> Lights;
   double Center[3] = { 0.0, 0.0, 0.0 };
   double Turn = 0.0;

@@ -106,6 +106,21 @@ def start_xvfb(fbdir):
 
 
 
+
+def start_client_display(prefix, settings):
+    """A private Xvfb and the client's environment on it: an empty HOME (no
+    user settings or saved window layouts leak in) and `settings`. Returns
+    (xvfb, display, env, fbdir); the scratch folders are `fbdir` and
+    env["HOME"]."""
+    fbdir = tempfile.mkdtemp(prefix=prefix)
+    home = tempfile.mkdtemp(prefix=prefix + "home-")
+    xvfb, display = start_xvfb(fbdir)
+    env = dict(os.environ)
+    env.update({"DISPLAY": display, "HOME": home, "XDG_RUNTIME_DIR": home})
+    env.update(settings)
+    return xvfb, display, env, fbdir
+
+
 def run_client(command, env, log_path, timeout, xvfb, watch):
     """Runs the ParaView client with `watch(client)` on a thread beside it
     (it polls the results file and the screen while the client runs), then
@@ -190,14 +205,7 @@ def main():
         if os.path.exists(stale):
             os.remove(stale)
 
-    fbdir = tempfile.mkdtemp(prefix="mmv-gui-")
-    home = tempfile.mkdtemp(prefix="mmv-gui-home-")
-    xvfb, display = start_xvfb(fbdir)
-    env = dict(os.environ)
-    env.update({
-        "DISPLAY": display,
-        "HOME": home,  # no user settings or saved window layouts leak in
-        "XDG_RUNTIME_DIR": home,
+    xvfb, display, env, fbdir = start_client_display("mmv-gui-", {
         "MMV_PLUGIN": os.path.abspath(args.plugin),
         "MMV_MATERIALS_DIR": os.path.abspath(args.materials),
         "MMV_RESULTS": results,
@@ -233,7 +241,7 @@ def main():
         failures.append("expected the NaN MaterialNodes reported once, got %d:\n    %s"
                         % (len(nan_reports), "\n    ".join(nan_reports)))
 
-    return finish(grabbed, screenshot, failures, lines, output, (fbdir, home), min_bytes=20000)
+    return finish(grabbed, screenshot, failures, lines, output, (fbdir, env["HOME"]), min_bytes=20000)
 
 
 if __name__ == "__main__":

@@ -20,11 +20,11 @@ import argparse
 import os
 import shutil
 import sys
-import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(os.path.dirname(HERE), "Python"))
-from run_gui_test import SCREEN, finish, grab_when_final, run_client, start_xvfb  # noqa: E402
+from run_gui_test import (SCREEN, finish, grab_when_final, run_client,  # noqa: E402
+                          start_client_display)
 import mmv_panel_sets as sets  # noqa: E402
 
 
@@ -73,14 +73,7 @@ def main():
     with open(os.path.join(HERE, "panel.xml")) as source, open(xml, "w") as target:
         target.write(source.read().replace("@DATA@", os.path.abspath(args.data)))
 
-    fbdir = tempfile.mkdtemp(prefix="mmv-gui-")
-    home = tempfile.mkdtemp(prefix="mmv-gui-home-")
-    xvfb, display = start_xvfb(fbdir)
-    env = dict(os.environ)
-    env.update({
-        "DISPLAY": display,
-        "HOME": home,  # no user settings or saved window layouts leak in
-        "XDG_RUNTIME_DIR": home,
+    xvfb, display, env, fbdir = start_client_display("mmv-gui-", {
         "PV_PLUGIN_PATH": args.plugin_path,
         "MMV_RESULTS": results,
         "MMV_PANEL_PROBE": probe,
@@ -125,7 +118,7 @@ def main():
             failures.append("%s shows dead controls or internals %s"
                             % (what, sorted(shown & (sets.DEAD | sets.INTERNALS))))
 
-    return finish(grabbed, screenshot, failures, lines, output, (fbdir, home))
+    return finish(grabbed, screenshot, failures, lines, output, (fbdir, env["HOME"]))
 
 
 if __name__ == "__main__":

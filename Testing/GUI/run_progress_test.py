@@ -30,13 +30,12 @@ import json
 import os
 import subprocess
 import sys
-import tempfile
-import threading
 import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
-from run_gui_test import SCREEN, read_xwd, start_xvfb, write_png  # noqa: E402
+from run_gui_test import (SCREEN, read_xwd, run_client,  # noqa: E402
+                          start_client_display, write_png)
 
 STRIP = 40  # rows of the screen's bottom holding the status bar
 
@@ -92,14 +91,7 @@ def main():
     for name in os.listdir(os.path.join(out, "grabs")):
         os.remove(os.path.join(out, "grabs", name))
 
-    fbdir = tempfile.mkdtemp(prefix="mmv-progress-")
-    home = tempfile.mkdtemp(prefix="mmv-progress-home-")
-    xvfb, display = start_xvfb(fbdir)
-    env = dict(os.environ)
-    env.update({
-        "DISPLAY": display,
-        "HOME": home,
-        "XDG_RUNTIME_DIR": home,
+    xvfb, display, env, fbdir = start_client_display("mmv-progress-", {
         "MMV_PLUGIN": os.path.abspath(args.plugin),
         "MMV_SCENE": os.path.join(HERE, "progress_scene.py"),
         "MMV_OUT": out,
@@ -114,7 +106,7 @@ def main():
     def lines():
         return open(results).read().splitlines() if os.path.exists(results) else []
 
-    def watch():
+    def watch(client):
         deadline = time.time() + args.timeout
         while time.time() < deadline and client.poll() is None:
             text = lines()
@@ -124,20 +116,7 @@ def main():
                 raw.append((time.time(), grab_strip(fbdir)))
             time.sleep(0.1)
 
-    try:
-        with open(log_path, "w") as log:
-            client = subprocess.Popen(command, env=env, stdout=log, stderr=subprocess.STDOUT)
-            watcher = threading.Thread(target=watch)
-            watcher.start()
-            try:
-                rc = client.wait(timeout=args.timeout)
-            except subprocess.TimeoutExpired:
-                client.kill()
-                rc = "timeout"
-            watcher.join()
-    finally:
-        xvfb.terminate()
-        xvfb.wait()
+    rc = run_client(command, env, log_path, args.timeout, xvfb, watch)
 
     failures = []
     summary = []
