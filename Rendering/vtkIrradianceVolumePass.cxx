@@ -84,6 +84,7 @@ void vtkIrradianceVolumePass::SetInputs(const mmv::IrradianceGrid& grid,
     if (!sameScalars)
     {
       internals.Scalars = normalizedScalars;
+      internals.ValueHistogram.clear();
     }
     internals.TableSize = tableSize;
     internals.ShadowTable = shadow;
@@ -95,6 +96,10 @@ void vtkIrradianceVolumePass::SetInputs(const mmv::IrradianceGrid& grid,
     internals.ClassesOnCPU = false;
     internals.PlanDiffusion(
       this->DiffusionTime, this->ExponentialDiffusion, this->MultipleScattering);
+    if (!internals.ClassesOnCPU)
+    {
+      internals.CountNonEmptyVoxels();
+    }
     internals.Uploaded = false;
     internals.VolumeChanged = true;
   }

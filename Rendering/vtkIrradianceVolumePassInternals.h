@@ -299,11 +299,19 @@ public:
   // every upload (ClassifyOnGPU). The CPU classifies too (Classes) only
   // where the diffusion plan needs the strengths: multiple scattering on,
   // a positive diffusion time and some s > 0 in the scattering table
-  // (NeedsCPUClasses). NonEmptyVoxels is counted by whichever classified
-  // (the GPU's count pass where the CPU did not).
+  // (NeedsCPUClasses). Otherwise NonEmptyVoxels is counted on the CPU from
+  // ValueHistogram, without the voxels (CountNonEmptyVoxels).
   std::vector<float> Classes;
   bool ClassesOnCPU = false; // Classes and NonEmptyVoxels hold the current inputs'
   vtkIdType NonEmptyVoxels = 0;
+  // Where the voxels' values fall in a table of ValueHistogramSize entries,
+  // with LookupTable's arithmetic: [2 e] at entry e exactly, [2 e + 1]
+  // strictly between entries e and e + 1; [2 n - 1] NaN or a weight that
+  // could underflow (those are counted voxel by voxel). Made once per
+  // scalars (cleared when they change) and table size.
+  std::vector<vtkIdType> ValueHistogram;
+  int ValueHistogramSize = 0;
+  void CountNonEmptyVoxels();
   // The diffusion grid (vtkIrradianceDiffusion.h) with its strength and
   // capacity per block (interleaved) and solve lengths, planned on the CPU.
   mmv::DiffusionSettings Diffusion;
@@ -394,7 +402,6 @@ public:
   mmv::voxelpass::VoxelPass FillQuad;
   mmv::voxelpass::VoxelPass UpsampleQuad;
   mmv::voxelpass::VoxelPass ClassifyQuad;
-  mmv::voxelpass::VoxelPass CountQuad;
   mmv::voxelpass::VoxelPass NeededQuad;
   // Compute dispatches instead of fragment draws (this update), and the
   // atomic counter that stands in for the occlusion query there.
@@ -416,8 +423,7 @@ public:
   void PlanDiffusion(double time, bool exponential, bool multipleScattering);
 
   bool Upload(vtkOpenGLRenderWindow* context, bool layered);
-  /// ClassTexture from ScalarTexture and the tables, and NonEmptyVoxels
-  /// counted on the GPU where the CPU did not classify.
+  /// ClassTexture from ScalarTexture and the tables.
   bool ClassifyOnGPU(vtkOpenGLRenderWindow* context, bool layered);
   void EnsureFramebuffer(vtkOpenGLRenderWindow* context);
   bool AllocateTargets(

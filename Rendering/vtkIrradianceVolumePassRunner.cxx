@@ -13,6 +13,7 @@
 #include "vtkSMPTools.h"
 
 #include <atomic>
+#include <mutex>
 
 using namespace mmv::voxelpass;
 
@@ -66,10 +67,80 @@ void vtkIrradianceVolumePass::vtkInternals::EnsureFramebuffer(vtkOpenGLRenderWin
 }
 
 //------------------------------------------------------------------------------
+// The non-empty voxels (LookupTable(opacity, t) > 0) without a pass over
+// them at every edit: per table segment, the voxels at its first entry
+// exactly (there the interpolation is that entry), and those strictly inside
+// it (positive where either end is positive and neither negative). Exact
+// for tables without negative entries and without positive ones below
+// 1e-30 (where the product with the weight could underflow); the other
+// tables, and NaN values and weights below 1e-20, are counted voxel by
+// voxel.
+void vtkIrradianceVolumePass::vtkInternals::CountNonEmptyVoxels()
+{
+  const std::vector<float>& opacity = this->OpacityTable;
+  const int n = static_cast<int>(opacity.size());
+  const bool exact = std::none_of(opacity.begin(), opacity.end(),
+    [](float a) { return a < 0.0f || (a > 0.0f && a < 1e-30f) || !std::isfinite(a); });
+  if (exact && (this->ValueHistogramSize != n || this->ValueHistogram.empty()))
+  {
+    // Once per scalars and table size.
+    std::vector<vtkIdType> histogram(2 * static_cast<size_t>(n), 0);
+    std::mutex merge;
+    vtkSMPTools::For(0, static_cast<vtkIdType>(this->Scalars.size()),
+      [&](vtkIdType begin, vtkIdType end) {
+        std::vector<vtkIdType> local(histogram.size(), 0);
+        for (vtkIdType v = begin; v < end; ++v)
+        {
+          const float t = this->Scalars[v];
+          // LookupTable's x, i0 and f.
+          const float x = std::min(std::max(t, 0.0f), 1.0f) * static_cast<float>(n - 1);
+          const int i0 = std::isnan(t) ? 0 : std::min(static_cast<int>(x), n - 2);
+          const float f = x - static_cast<float>(i0);
+          // NaN, and weights so small that f * b could underflow: voxel by
+          // voxel.
+          const bool unusual = std::isnan(t) || (f > 0.0f && f < 1e-20f);
+          ++local[unusual ? 2 * n - 1
+                          : (f == 0.0f ? 2 * i0 : (f == 1.0f ? 2 * (n - 1) : 2 * i0 + 1))];
+        }
+        std::lock_guard<std::mutex> lock(merge);
+        for (size_t b = 0; b < local.size(); ++b)
+        {
+          histogram[b] += local[b];
+        }
+      });
+    this->ValueHistogram.swap(histogram);
+    this->ValueHistogramSize = n;
+  }
+  if (!exact || this->ValueHistogram[2 * n - 1] > 0)
+  {
+    std::atomic<vtkIdType> count(0);
+    vtkSMPTools::For(0, static_cast<vtkIdType>(this->Scalars.size()),
+      [&](vtkIdType begin, vtkIdType end) {
+        vtkIdType local = 0;
+        for (vtkIdType v = begin; v < end; ++v)
+        {
+          local += LookupTable(opacity, this->Scalars[v]) > 0.0f ? 1 : 0;
+        }
+        count += local;
+      });
+    this->NonEmptyVoxels = count;
+    return;
+  }
+  vtkIdType count = 0;
+  for (int e = 0; e < n; ++e)
+  {
+    count += opacity[e] > 0.0f ? this->ValueHistogram[2 * e] : 0;
+    if (e + 1 < n && (opacity[e] > 0.0f || opacity[e + 1] > 0.0f))
+    {
+      count += this->ValueHistogram[2 * e + 1];
+    }
+  }
+  this->NonEmptyVoxels = count;
+}
+
+//------------------------------------------------------------------------------
 // The classes on the GPU (Shaders/mmvClassifyFS.glsl): an opacity edit
-// uploads the (opacity, scattering) table, not a class volume. Where the CPU
-// did not classify, a second draw that writes only the non-empty voxels
-// (again, with the same values) counts them.
+// uploads the (opacity, scattering) table, not a class volume.
 bool vtkIrradianceVolumePass::vtkInternals::ClassifyOnGPU(
   vtkOpenGLRenderWindow* context, bool layered)
 {
@@ -86,34 +157,17 @@ bool vtkIrradianceVolumePass::vtkInternals::ClassifyOnGPU(
     return false;
   }
   this->EnsureFramebuffer(context);
-  const bool count = !this->ClassesOnCPU;
-  for (const bool counting : { false, true })
+  vtkShaderProgram* program = this->Ready(context, this->ClassifyQuad, mmvClassifyFS, "", false);
+  if (!program)
   {
-    if (counting && !count)
-    {
-      break;
-    }
-    VoxelPass& pass = counting ? this->CountQuad : this->ClassifyQuad;
-    vtkShaderProgram* program = this->Ready(
-      context, pass, mmvClassifyFS, counting ? "#define MMV_COUNT_NON_EMPTY\n" : "", false);
-    if (!program)
-    {
-      return false;
-    }
-    ScopedTextures bound{ this->ScalarTexture, this->ClassTableTexture };
-    program->SetUniformi("classifyScalars", this->ScalarTexture->GetTextureUnit());
-    program->SetUniformi("classifyTables", this->ClassTableTexture->GetTextureUnit());
-    program->SetUniformi("classifyTableSize", n);
-    program->SetUniform1iv("dims", 3, this->Grid.Dimensions);
-    if (counting)
-    {
-      this->NonEmptyVoxels = this->CountWrites(context, pass, this->ClassTexture, layered, nullptr);
-    }
-    else
-    {
-      this->DrawLayers(context, pass, this->ClassTexture, layered);
-    }
+    return false;
   }
+  ScopedTextures bound{ this->ScalarTexture, this->ClassTableTexture };
+  program->SetUniformi("classifyScalars", this->ScalarTexture->GetTextureUnit());
+  program->SetUniformi("classifyTables", this->ClassTableTexture->GetTextureUnit());
+  program->SetUniformi("classifyTableSize", n);
+  program->SetUniform1iv("dims", 3, this->Grid.Dimensions);
+  this->DrawLayers(context, this->ClassifyQuad, this->ClassTexture, layered);
   return true;
 }
 
@@ -692,8 +746,7 @@ void vtkIrradianceVolumePass::vtkInternals::Release(vtkWindow* window)
   }
   for (VoxelPass* pass : { &this->ShadowQuad, &this->PiecewiseQuad, &this->RestrictQuad,
          &this->SweepQuad, &this->ExponentialQuad, &this->ProlongQuad, &this->FillQuad,
-         &this->TintQuad, &this->UpsampleQuad, &this->ClassifyQuad, &this->CountQuad,
-         &this->NeededQuad })
+         &this->TintQuad, &this->UpsampleQuad, &this->ClassifyQuad, &this->NeededQuad })
   {
     pass->Release(window);
   }

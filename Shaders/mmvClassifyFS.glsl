@@ -3,10 +3,6 @@
 // empty. The same arithmetic as the CPU's mmv::voxelpass::LookupTable (a
 // linear interpolation of TableSize entries over the normalised range), so
 // that an opacity edit uploads the two small tables and not a class volume.
-// With MMV_COUNT_NON_EMPTY the empty voxels are not written, so the number
-// of voxels written (an occlusion query, or the compute pass's atomic
-// counter) is the number of non-empty ones; the others are rewritten with
-// the value the class pass gave them.
 
 uniform sampler3D classifyScalars; // normalised pre-filtered values (R32F)
 uniform sampler2D classifyTables;  // TableSize x 1, (opacity, scattering) per entry
@@ -28,12 +24,5 @@ void mmvVoxelMain()
 {
   ivec3 voxel = ivec3(floor(texCoord * vec2(dims[0], dims[1])), slice);
   vec2 table = mmvLookupTables(texelFetch(classifyScalars, voxel, 0).r);
-  float s = table.x > 0.0 ? max(0.0, table.y) : -1.0;
-#ifdef MMV_COUNT_NON_EMPTY
-  if (s < 0.0)
-  {
-    return;
-  }
-#endif
-  mmvWrite(vec4(s));
+  mmvWrite(vec4(table.x > 0.0 ? max(0.0, table.y) : -1.0));
 }

@@ -1036,8 +1036,8 @@ Scene ManyClasses()
 // GPU (an opacity edit uploads two small tables): both equal what the CPU
 // computes from the same inputs, before and after an opacity edit, as
 // fragment draws and as compute dispatches, with multiple scattering on (the
-// CPU classifies too, for the diffusion plan) and off (the GPU alone, which
-// then also counts the non-empty voxels).
+// CPU classifies too, for the diffusion plan) and off (the GPU alone; the
+// non-empty voxels are then counted from a histogram of the values).
 TEST(IrradianceVolumePass, GPUClassesAndNeededPointsMatchTheCPU)
 {
   const Context& ctx = SharedContext();
