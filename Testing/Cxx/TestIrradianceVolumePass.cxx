@@ -1129,6 +1129,31 @@ TEST(IrradianceVolumePass, GPUClassesAndNeededPointsMatchTheCPU)
         }
         EXPECT_EQ(neededMismatches, 0) << where;
       }
+      if (!multipleScattering)
+      {
+        // Multiple scattering turned on later: the CPU classifies then, and
+        // the plan and result are those of a pass that had it from the start.
+        pass->SetMultipleScattering(true);
+        ASSERT_TRUE(pass->Render(ctx.GL));
+        EXPECT_TRUE(pass->GetClassifiedOnCPU());
+        vtkNew<vtkIrradianceVolumePass> fresh;
+        fresh->SetComputeShaders(compute ? vtkIrradianceVolumePass::ComputeDispatches
+                                          : vtkIrradianceVolumePass::FragmentDraws);
+        SetPassInputs(scene, fresh);
+        ASSERT_TRUE(fresh->Render(ctx.GL));
+        EXPECT_GT(fresh->GetDiffusionPasses(), 0);
+        EXPECT_EQ(pass->GetDiffusionPasses(), fresh->GetDiffusionPasses());
+        int dims[2][3];
+        pass->GetDiffusionGridDimensions(dims[0]);
+        fresh->GetDiffusionGridDimensions(dims[1]);
+        EXPECT_TRUE(std::equal(dims[0], dims[0] + 3, dims[1]));
+        std::vector<float> later;
+        std::vector<float> fromStart;
+        ASSERT_TRUE(pass->ReadBack(ctx.GL, 0, later));
+        ASSERT_TRUE(fresh->ReadBack(ctx.GL, 0, fromStart));
+        EXPECT_EQ(later, fromStart);
+        fresh->ReleaseGraphicsResources(ctx.GL);
+      }
       pass->ReleaseGraphicsResources(ctx.GL);
     }
   }
