@@ -84,14 +84,22 @@ void vtkIrradianceVolumePass::SetInputs(const mmv::IrradianceGrid& grid,
     if (!sameScalars)
     {
       internals.Scalars = normalizedScalars;
+      internals.ValueHistogram.clear();
     }
     internals.TableSize = tableSize;
     internals.ShadowTable = shadow;
     internals.StepLength = stepLength;
     internals.OpacityTable = opacity;
     internals.ScatteringTable = scattering;
-    internals.Classify(opacity, scattering);
-    internals.PlanDiffusion(this->DiffusionTime, this->ExponentialDiffusion);
+    // Classified on the GPU at the upload; on the CPU as well only where
+    // the diffusion plan needs the strengths (NeedsCPUClasses).
+    internals.ClassesOnCPU = false;
+    internals.PlanDiffusion(
+      this->DiffusionTime, this->ExponentialDiffusion, this->MultipleScattering);
+    if (!internals.ClassesOnCPU)
+    {
+      internals.CountNonEmptyVoxels();
+    }
     internals.Uploaded = false;
     internals.VolumeChanged = true;
   }
@@ -192,7 +200,8 @@ bool vtkIrradianceVolumePass::Render(vtkOpenGLRenderWindow* context)
         !vtkIrradianceComputeProgram::IsSoftwareRenderer());
     this->ComputeShadersUsed = internals.Compute;
     bool reallocated = false;
-    ok = internals.Upload(context) && internals.AllocateTargets(context, diffusion, reallocated);
+    ok = internals.Upload(context, this->LayeredRendering) &&
+      internals.AllocateTargets(context, diffusion, this->LayeredRendering, reallocated);
     glFinish();
     this->LastSetupSeconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -257,10 +266,15 @@ bool vtkIrradianceVolumePass::CanRender(vtkOpenGLRenderWindow* context)
 int vtkIrradianceVolumePass::PrepareSettings(bool& diffusion)
 {
   vtkInternals& internals = *this->Internals;
+  // (Multiple scattering turned on over a volume the CPU did not classify
+  // needs its strengths now.)
   if (internals.Diffusion.Time != this->DiffusionTime ||
-    internals.Diffusion.Exponential != this->ExponentialDiffusion)
+    internals.Diffusion.Exponential != this->ExponentialDiffusion ||
+    (!internals.ClassesOnCPU &&
+      internals.NeedsCPUClasses(this->MultipleScattering, this->DiffusionTime)))
   {
-    internals.PlanDiffusion(this->DiffusionTime, this->ExponentialDiffusion);
+    internals.PlanDiffusion(
+      this->DiffusionTime, this->ExponentialDiffusion, this->MultipleScattering);
     internals.Uploaded = false;
     internals.VolumeChanged = true;
   }
@@ -553,6 +567,81 @@ bool vtkIrradianceVolumePass::ReadBackLights(vtkOpenGLRenderWindow* context, int
 vtkIdType vtkIrradianceVolumePass::GetNumberOfVolumeUploads() const
 {
   return this->Internals->VolumeUploads;
+}
+
+//------------------------------------------------------------------------------
+namespace
+{
+// Every slice of a single-channel 3D texture through the pass's framebuffer.
+template <typename T>
+bool ReadBackTexture(vtkOpenGLRenderWindow* context, vtkOpenGLFramebufferObject* framebuffer,
+  vtkTextureObject* texture, GLenum type, std::vector<T>& values)
+{
+  if (!context || !framebuffer || !texture || !texture->GetHandle())
+  {
+    return false;
+  }
+  const int d[3] = { static_cast<int>(texture->GetWidth()),
+    static_cast<int>(texture->GetHeight()), static_cast<int>(texture->GetDepth()) };
+  const size_t sliceSize = static_cast<size_t>(d[0]) * d[1];
+  values.assign(sliceSize * d[2], T());
+  vtkOpenGLState* state = context->GetState();
+  state->PushFramebufferBindings();
+  framebuffer->Bind();
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  for (int z = 0; z < d[2]; ++z)
+  {
+    framebuffer->RemoveColorAttachment(0);
+    framebuffer->AddColorAttachment(0, texture, z);
+    framebuffer->ActivateReadBuffer(0);
+    glReadPixels(0, 0, d[0], d[1], GL_RED, type, values.data() + z * sliceSize);
+  }
+  framebuffer->RemoveColorAttachment(0);
+  glPixelStorei(GL_PACK_ALIGNMENT, 4);
+  state->PopFramebufferBindings();
+  return true;
+}
+}
+
+bool vtkIrradianceVolumePass::ReadBackClasses(
+  vtkOpenGLRenderWindow* context, std::vector<float>& classes)
+{
+  vtkInternals& internals = *this->Internals;
+  return internals.Uploaded &&
+    ReadBackTexture(context, internals.Framebuffer, internals.ClassTexture, GL_FLOAT, classes);
+}
+
+void vtkIrradianceVolumePass::ClassifyOnCPU(std::vector<float>& classes) const
+{
+  const vtkInternals& internals = *this->Internals;
+  vtkInternals::ClassifyValues(
+    internals.Scalars, internals.OpacityTable, internals.ScatteringTable, classes);
+}
+
+bool vtkIrradianceVolumePass::GetClassifiedOnCPU() const
+{
+  return this->Internals->ClassesOnCPU;
+}
+
+bool vtkIrradianceVolumePass::ReadBackLightGridNeeded(
+  vtkOpenGLRenderWindow* context, std::vector<unsigned char>& needed, int dims[3])
+{
+  vtkInternals& internals = *this->Internals;
+  internals.LightGridDimensions(internals.MaxLightGridStride(), dims);
+  return internals.MaxLightGridStride() > 1 &&
+    ReadBackTexture(context, internals.Framebuffer, internals.LightGridClassTexture,
+      GL_UNSIGNED_BYTE, needed);
+}
+
+void vtkIrradianceVolumePass::LightGridNeededOnCPU(
+  std::vector<unsigned char>& needed, int dims[3]) const
+{
+  const vtkInternals& internals = *this->Internals;
+  const int stride = internals.MaxLightGridStride();
+  internals.LightGridDimensions(stride, dims);
+  std::vector<float> classes;
+  this->ClassifyOnCPU(classes);
+  needed = internals.LightGridNeededOnCPU(classes, stride);
 }
 
 vtkIdType vtkIrradianceVolumePass::GetTextureMemoryBytes() const

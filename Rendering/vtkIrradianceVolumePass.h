@@ -310,6 +310,33 @@ public:
   /// they change, not when only the lights move.
   vtkIdType GetNumberOfVolumeUploads() const;
 
+  ///@{
+  /**
+   * The classification of the irradiance voxels (s, -1 where empty; x
+   * fastest): as the GPU computed it at the last upload
+   * (Shaders/mmvClassifyFS.glsl), and as the CPU computes it from the same
+   * inputs. The CPU classifies during an update only where the diffusion
+   * plan needs the strengths (multiple scattering on, a positive diffusion
+   * time and some s > 0 in the scattering table): GetClassifiedOnCPU().
+   */
+  bool ReadBackClasses(vtkOpenGLRenderWindow* context, std::vector<float>& classes);
+  void ClassifyOnCPU(std::vector<float>& classes) const;
+  bool GetClassifiedOnCPU() const;
+  ///@}
+
+  ///@{
+  /**
+   * The strided light grid's needed points (255 where the interpolation to a
+   * non-empty voxel reads the point, else 0; x fastest) and the light grid's
+   * dimensions: as the GPU marked them at the last Render() with a strided
+   * light (Shaders/mmvLightGridNeededFS.glsl; false without one), and as the
+   * CPU marks them from its classification, for the largest light's stride.
+   */
+  bool ReadBackLightGridNeeded(
+    vtkOpenGLRenderWindow* context, std::vector<unsigned char>& needed, int dims[3]);
+  void LightGridNeededOnCPU(std::vector<unsigned char>& needed, int dims[3]) const;
+  ///@}
+
   /// GPU memory held by the irradiance textures, in bytes.
   vtkIdType GetTextureMemoryBytes() const;
 

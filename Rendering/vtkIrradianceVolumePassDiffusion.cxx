@@ -9,25 +9,47 @@ using namespace mmv::voxelpass;
 
 //------------------------------------------------------------------------------
 // The diffusion grid and how long its solve runs, exactly as the CPU's
-// mmv::DiffuseIrradianceOnDiffusionGrid plans them.
-void vtkIrradianceVolumePass::vtkInternals::PlanDiffusion(double time, bool exponential)
+// mmv::DiffuseIrradianceOnDiffusionGrid plans them. The strengths come from
+// the CPU's classes: classified here where the diffusion will run
+// (NeedsCPUClasses). Otherwise no voxel has a strength the diffusion would
+// use (it is off, or the table has no s > 0), and the plan is the one for
+// zero strength everywhere, made without touching the voxels.
+void vtkIrradianceVolumePass::vtkInternals::PlanDiffusion(
+  double time, bool exponential, bool multipleScattering)
 {
   this->Diffusion.Exponential = exponential;
   this->Diffusion.Time = time;
-  std::vector<float> strength(this->Classes.size());
-  float maxStrength = 0.0f;
-  for (size_t v = 0; v < strength.size(); ++v)
+  if (!this->ClassesOnCPU && this->NeedsCPUClasses(multipleScattering, time))
   {
-    strength[v] = std::max(0.0f, this->Classes[v]);
-    maxStrength = std::max(maxStrength, strength[v]);
+    this->Classify();
+  }
+  std::vector<float> strength;
+  float maxStrength = 0.0f;
+  if (this->ClassesOnCPU)
+  {
+    strength.resize(this->Classes.size());
+    for (size_t v = 0; v < strength.size(); ++v)
+    {
+      strength[v] = std::max(0.0f, this->Classes[v]);
+      maxStrength = std::max(maxStrength, strength[v]);
+    }
   }
   const double spacing[3] = { this->Grid.DataVoxelsPerVoxel[0], this->Grid.DataVoxelsPerVoxel[1],
     this->Grid.DataVoxelsPerVoxel[2] };
   this->Coarse = mmv::PlanDiffusionGrid(this->Grid.Dimensions, spacing, maxStrength, this->Diffusion);
   std::vector<float> coarseStrength;
   std::vector<float> capacity;
-  mmv::RestrictToDiffusionGrid(this->Grid.Dimensions, this->Coarse, strength.data(), nullptr,
-    &coarseStrength, nullptr, &capacity);
+  if (this->ClassesOnCPU)
+  {
+    mmv::RestrictToDiffusionGrid(this->Grid.Dimensions, this->Coarse, strength.data(), nullptr,
+      &coarseStrength, nullptr, &capacity);
+  }
+  else
+  {
+    // What the restriction of zero strength gives.
+    coarseStrength.assign(this->Coarse.GetNumberOfVoxels(), 0.0f);
+    capacity.assign(this->Coarse.GetNumberOfVoxels(), 0.0f);
+  }
   this->CoarseMaxRate = time > 0.0 ? mmv::MaxDiffusionRate(this->Coarse.Dimensions,
                                        this->Coarse.Spacing, coarseStrength.data(), capacity.data())
                                    : 0.0;

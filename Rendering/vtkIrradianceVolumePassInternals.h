@@ -295,11 +295,25 @@ public:
   int ShadowEstimationUsed = -1; // with PiecewiseSlicesUsed: how the held lights were estimated
   int PiecewiseSlicesUsed = 0;
 
-  // Derived on the CPU: s per voxel (-1 where empty), and the diffusion
-  // grid (vtkIrradianceDiffusion.h) with its strength and capacity per block
-  // (interleaved) and solve lengths.
+  // s per voxel (-1 where empty): the GPU computes it into ClassTexture on
+  // every upload (ClassifyOnGPU). The CPU classifies too (Classes) only
+  // where the diffusion plan needs the strengths: multiple scattering on,
+  // a positive diffusion time and some s > 0 in the scattering table
+  // (NeedsCPUClasses). Otherwise NonEmptyVoxels is counted on the CPU from
+  // ValueHistogram, without the voxels (CountNonEmptyVoxels).
   std::vector<float> Classes;
+  bool ClassesOnCPU = false; // Classes and NonEmptyVoxels hold the current inputs'
   vtkIdType NonEmptyVoxels = 0;
+  // Where the voxels' values fall in a table of ValueHistogramSize entries,
+  // with LookupTable's arithmetic: [2 e] at entry e exactly, [2 e + 1]
+  // strictly between entries e and e + 1; [2 n - 1] NaN or a weight that
+  // could underflow (those are counted voxel by voxel). Made once per
+  // scalars (cleared when they change) and table size.
+  std::vector<vtkIdType> ValueHistogram;
+  int ValueHistogramSize = 0;
+  void CountNonEmptyVoxels();
+  // The diffusion grid (vtkIrradianceDiffusion.h) with its strength and
+  // capacity per block (interleaved) and solve lengths, planned on the CPU.
   mmv::DiffusionSettings Diffusion;
   mmv::DiffusionGrid Coarse;
   std::vector<float> CoarseStrength;
@@ -332,6 +346,9 @@ public:
   // GPU resources.
   vtkSmartPointer<vtkTextureObject> ScalarTexture;
   vtkSmartPointer<vtkTextureObject> ClassTexture;
+  // TableSize x 1 RG32F: (opacity, scattering) per entry, what the class
+  // pass reads.
+  vtkSmartPointer<vtkTextureObject> ClassTableTexture;
   vtkSmartPointer<vtkTextureObject> TableTexture;
   vtkSmartPointer<vtkTextureObject> CoarseStrengthTexture;
   std::vector<vtkSmartPointer<vtkTextureObject>> Irradiance;
@@ -363,7 +380,18 @@ public:
   vtkSmartPointer<vtkTextureObject> LightGridClassTexture;
   vtkIdType LightGridClassUpload = -1;
   int LightGridClassStride = 0;
-  bool UploadLightGridClasses(vtkOpenGLRenderWindow* context, int stride);
+  // Per axis (rows 0..2), the first and last irradiance index whose
+  // interpolation reads each light grid point (RG32F, width the largest
+  // light grid dimension).
+  vtkSmartPointer<vtkTextureObject> LightGridRangeTexture;
+  /// LightGridClassTexture, marked on the GPU from ClassTexture.
+  bool MarkLightGridNeeded(vtkOpenGLRenderWindow* context, int stride, bool layered);
+  /// Per axis a, range[a][2 p] .. range[a][2 p + 1]: the irradiance indices
+  /// whose interpolation reads light grid point p (first > last: none).
+  void LightGridNeededRanges(int stride, std::array<std::vector<int>, 3>& range) const;
+  /// The CPU's marks (255 where needed, 0 elsewhere) from `classes`, x fastest.
+  std::vector<unsigned char> LightGridNeededOnCPU(
+    const std::vector<float>& classes, int stride) const;
   vtkSmartPointer<vtkOpenGLFramebufferObject> Framebuffer;
   mmv::voxelpass::VoxelPass ShadowQuad;
   mmv::voxelpass::VoxelPass PiecewiseQuad;
@@ -373,16 +401,33 @@ public:
   mmv::voxelpass::VoxelPass ProlongQuad;
   mmv::voxelpass::VoxelPass FillQuad;
   mmv::voxelpass::VoxelPass UpsampleQuad;
+  mmv::voxelpass::VoxelPass ClassifyQuad;
+  mmv::voxelpass::VoxelPass NeededQuad;
   // Compute dispatches instead of fragment draws (this update), and the
   // atomic counter that stands in for the occlusion query there.
   bool Compute = false;
   unsigned int WriteCounter = 0;
 
-  void Classify(const std::vector<float>& opacity, const std::vector<float>& scattering);
-  void PlanDiffusion(double time, bool exponential);
+  /// The CPU's classification of the current inputs into Classes and
+  /// NonEmptyVoxels.
+  void Classify();
+  /// The classes of `scalars` from the tables (s, -1 where empty); returns
+  /// the non-empty voxels.
+  static vtkIdType ClassifyValues(const std::vector<float>& scalars,
+    const std::vector<float>& opacity, const std::vector<float>& scattering,
+    std::vector<float>& classes);
+  /// Whether the diffusion plan needs the classes on the CPU.
+  bool NeedsCPUClasses(bool multipleScattering, double time) const;
+  /// Plans the diffusion; classifies on the CPU first where NeedsCPUClasses,
+  /// else (no strength anywhere the diffusion would use) plans for none.
+  void PlanDiffusion(double time, bool exponential, bool multipleScattering);
 
-  bool Upload(vtkOpenGLRenderWindow* context);
-  bool AllocateTargets(vtkOpenGLRenderWindow* context, bool diffusion, bool& reallocated);
+  bool Upload(vtkOpenGLRenderWindow* context, bool layered);
+  /// ClassTexture from ScalarTexture and the tables.
+  bool ClassifyOnGPU(vtkOpenGLRenderWindow* context, bool layered);
+  void EnsureFramebuffer(vtkOpenGLRenderWindow* context);
+  bool AllocateTargets(
+    vtkOpenGLRenderWindow* context, bool diffusion, bool layered, bool& reallocated);
   vtkShaderProgram* Ready(vtkOpenGLRenderWindow* context, mmv::voxelpass::VoxelPass& pass,
     const std::string& body, const std::string& defines, bool lightModel);
   void DrawLayers(vtkOpenGLRenderWindow* context, mmv::voxelpass::VoxelPass& pass, vtkTextureObject* target,

@@ -5,35 +5,170 @@
 
 #include "vtkIrradianceUpdatePlan.h"
 
+#include "mmvClassifyFS.h"
 #include "mmvDiffusionFS.h"
+#include "mmvLightGridNeededFS.h"
 #include "mmvLayerGS.h"
 #include "mmvLayerVS.h"
 #include "vtkSMPTools.h"
 
 #include <atomic>
+#include <mutex>
 
 using namespace mmv::voxelpass;
 
 //------------------------------------------------------------------------------
-void vtkIrradianceVolumePass::vtkInternals::Classify(
-  const std::vector<float>& opacity, const std::vector<float>& scattering)
+vtkIdType vtkIrradianceVolumePass::vtkInternals::ClassifyValues(const std::vector<float>& scalars,
+  const std::vector<float>& opacity, const std::vector<float>& scattering,
+  std::vector<float>& classes)
 {
-  this->Classes.resize(this->Scalars.size());
-  // Every opacity edit classifies the whole grid again: on all cores.
+  classes.resize(scalars.size());
+  // On all cores: the whole grid at every opacity edit that needs it.
   std::atomic<vtkIdType> nonEmptyVoxels(0);
-  vtkSMPTools::For(0, static_cast<vtkIdType>(this->Scalars.size()),
+  vtkSMPTools::For(0, static_cast<vtkIdType>(scalars.size()),
     [&](vtkIdType begin, vtkIdType end) {
       vtkIdType count = 0;
       for (vtkIdType v = begin; v < end; ++v)
       {
-        const bool nonEmpty = LookupTable(opacity, this->Scalars[v]) > 0.0f;
-        this->Classes[v] =
-          nonEmpty ? std::max(0.0f, LookupTable(scattering, this->Scalars[v])) : -1.0f;
+        const bool nonEmpty = LookupTable(opacity, scalars[v]) > 0.0f;
+        classes[v] = nonEmpty ? std::max(0.0f, LookupTable(scattering, scalars[v])) : -1.0f;
         count += nonEmpty ? 1 : 0;
       }
       nonEmptyVoxels += count;
     });
-  this->NonEmptyVoxels = nonEmptyVoxels;
+  return nonEmptyVoxels;
+}
+
+void vtkIrradianceVolumePass::vtkInternals::Classify()
+{
+  this->NonEmptyVoxels =
+    ClassifyValues(this->Scalars, this->OpacityTable, this->ScatteringTable, this->Classes);
+  this->ClassesOnCPU = true;
+}
+
+bool vtkIrradianceVolumePass::vtkInternals::NeedsCPUClasses(
+  bool multipleScattering, double time) const
+{
+  // Without an s > 0 in the table every class is -1 or 0: no strength, and
+  // the plan for none is the plan.
+  return multipleScattering && time > 0.0 &&
+    std::any_of(this->ScatteringTable.begin(), this->ScatteringTable.end(),
+      [](float s) { return s > 0.0f; });
+}
+
+//------------------------------------------------------------------------------
+void vtkIrradianceVolumePass::vtkInternals::EnsureFramebuffer(vtkOpenGLRenderWindow* context)
+{
+  if (!this->Framebuffer)
+  {
+    this->Framebuffer = vtkSmartPointer<vtkOpenGLFramebufferObject>::New();
+    this->Framebuffer->SetContext(context);
+  }
+}
+
+//------------------------------------------------------------------------------
+// The non-empty voxels (LookupTable(opacity, t) > 0) without a pass over
+// them at every edit: per table segment, the voxels at its first entry
+// exactly (there the interpolation is that entry), and those strictly inside
+// it (positive where either end is positive and neither negative). Exact
+// for tables without negative entries and without positive ones below
+// 1e-30 (where the product with the weight could underflow); the other
+// tables, and NaN values and weights below 1e-20, are counted voxel by
+// voxel.
+void vtkIrradianceVolumePass::vtkInternals::CountNonEmptyVoxels()
+{
+  const std::vector<float>& opacity = this->OpacityTable;
+  const int n = static_cast<int>(opacity.size());
+  const bool exact = std::none_of(opacity.begin(), opacity.end(),
+    [](float a) { return a < 0.0f || (a > 0.0f && a < 1e-30f) || !std::isfinite(a); });
+  if (exact && (this->ValueHistogramSize != n || this->ValueHistogram.empty()))
+  {
+    // Once per scalars and table size.
+    std::vector<vtkIdType> histogram(2 * static_cast<size_t>(n), 0);
+    std::mutex merge;
+    vtkSMPTools::For(0, static_cast<vtkIdType>(this->Scalars.size()),
+      [&](vtkIdType begin, vtkIdType end) {
+        std::vector<vtkIdType> local(histogram.size(), 0);
+        for (vtkIdType v = begin; v < end; ++v)
+        {
+          const float t = this->Scalars[v];
+          // LookupTable's x, i0 and f.
+          const float x = std::min(std::max(t, 0.0f), 1.0f) * static_cast<float>(n - 1);
+          const int i0 = std::isnan(t) ? 0 : std::min(static_cast<int>(x), n - 2);
+          const float f = x - static_cast<float>(i0);
+          // NaN, and weights so small that f * b could underflow: voxel by
+          // voxel.
+          const bool unusual = std::isnan(t) || (f > 0.0f && f < 1e-20f);
+          ++local[unusual ? 2 * n - 1
+                          : (f == 0.0f ? 2 * i0 : (f == 1.0f ? 2 * (n - 1) : 2 * i0 + 1))];
+        }
+        std::lock_guard<std::mutex> lock(merge);
+        for (size_t b = 0; b < local.size(); ++b)
+        {
+          histogram[b] += local[b];
+        }
+      });
+    this->ValueHistogram.swap(histogram);
+    this->ValueHistogramSize = n;
+  }
+  if (!exact || this->ValueHistogram[2 * n - 1] > 0)
+  {
+    std::atomic<vtkIdType> count(0);
+    vtkSMPTools::For(0, static_cast<vtkIdType>(this->Scalars.size()),
+      [&](vtkIdType begin, vtkIdType end) {
+        vtkIdType local = 0;
+        for (vtkIdType v = begin; v < end; ++v)
+        {
+          local += LookupTable(opacity, this->Scalars[v]) > 0.0f ? 1 : 0;
+        }
+        count += local;
+      });
+    this->NonEmptyVoxels = count;
+    return;
+  }
+  vtkIdType count = 0;
+  for (int e = 0; e < n; ++e)
+  {
+    count += opacity[e] > 0.0f ? this->ValueHistogram[2 * e] : 0;
+    if (e + 1 < n && (opacity[e] > 0.0f || opacity[e + 1] > 0.0f))
+    {
+      count += this->ValueHistogram[2 * e + 1];
+    }
+  }
+  this->NonEmptyVoxels = count;
+}
+
+//------------------------------------------------------------------------------
+// The classes on the GPU (Shaders/mmvClassifyFS.glsl): an opacity edit
+// uploads the (opacity, scattering) table, not a class volume.
+bool vtkIrradianceVolumePass::vtkInternals::ClassifyOnGPU(
+  vtkOpenGLRenderWindow* context, bool layered)
+{
+  const int n = this->TableSize;
+  std::vector<float> tables(2 * static_cast<size_t>(n));
+  for (int i = 0; i < n; ++i)
+  {
+    tables[2 * i] = this->OpacityTable[i];
+    tables[2 * i + 1] = this->ScatteringTable[i];
+  }
+  this->ClassTableTexture = NewTexture(context, GL_RG32F, GL_RG, GL_FLOAT, false);
+  if (!this->ClassTableTexture->Create2DFromRaw(n, 1, 2, VTK_FLOAT, tables.data()))
+  {
+    return false;
+  }
+  this->EnsureFramebuffer(context);
+  vtkShaderProgram* program = this->Ready(context, this->ClassifyQuad, mmvClassifyFS, "", false);
+  if (!program)
+  {
+    return false;
+  }
+  ScopedTextures bound{ this->ScalarTexture, this->ClassTableTexture };
+  program->SetUniformi("classifyScalars", this->ScalarTexture->GetTextureUnit());
+  program->SetUniformi("classifyTables", this->ClassTableTexture->GetTextureUnit());
+  program->SetUniformi("classifyTableSize", n);
+  program->SetUniform1iv("dims", 3, this->Grid.Dimensions);
+  this->DrawLayers(context, this->ClassifyQuad, this->ClassTexture, layered);
+  return true;
 }
 
 //------------------------------------------------------------------------------
@@ -50,7 +185,7 @@ void vtkIrradianceVolumePass::vtkInternals::PlanRegion(bool diffusion)
 }
 
 //------------------------------------------------------------------------------
-bool vtkIrradianceVolumePass::vtkInternals::Upload(vtkOpenGLRenderWindow* context)
+bool vtkIrradianceVolumePass::vtkInternals::Upload(vtkOpenGLRenderWindow* context, bool layered)
 {
   if (this->Uploaded && this->ScalarTexture)
   {
@@ -66,12 +201,17 @@ bool vtkIrradianceVolumePass::vtkInternals::Upload(vtkOpenGLRenderWindow* contex
     this->ScalarsUploaded = this->ScalarTexture->Create3DFromRaw(
       d[0], d[1], d[2], 1, VTK_FLOAT, this->Scalars.data());
   }
-  this->ClassTexture = NewTexture(context, GL_R32F, GL_RED, GL_FLOAT, false);
+  bool classes = true;
+  if (!HasSize(this->ClassTexture, d))
+  {
+    // Written by ClassifyOnGPU below.
+    this->ClassTexture = NewTexture(context, GL_R32F, GL_RED, GL_FLOAT, false);
+    classes = this->ClassTexture->Allocate3D(d[0], d[1], d[2], 1, VTK_FLOAT);
+  }
   this->TableTexture = NewTexture(context, GL_R32F, GL_RED, GL_FLOAT, true);
   this->CoarseStrengthTexture = NewTexture(context, GL_RG32F, GL_RG, GL_FLOAT, false);
   ++this->VolumeUploads;
-  this->Uploaded = this->ScalarsUploaded &&
-    this->ClassTexture->Create3DFromRaw(d[0], d[1], d[2], 1, VTK_FLOAT, this->Classes.data()) &&
+  this->Uploaded = this->ScalarsUploaded && classes &&
     this->TableTexture->Create2DFromRaw(
       this->TableSize, this->TableSize, 1, VTK_FLOAT, this->ShadowTable.data()) &&
     this->CoarseStrengthTexture->Create3DFromRaw(
@@ -83,12 +223,13 @@ bool vtkIrradianceVolumePass::vtkInternals::Upload(vtkOpenGLRenderWindow* contex
     this->Uploaded = this->TintTableTexture->Create2DFromRaw(
       this->TableSize, this->TableSize, 4, VTK_FLOAT, this->TintTable.data());
   }
+  this->Uploaded = this->Uploaded && this->ClassifyOnGPU(context, layered);
   return this->Uploaded;
 }
 
 //------------------------------------------------------------------------------
 bool vtkIrradianceVolumePass::vtkInternals::AllocateTargets(
-  vtkOpenGLRenderWindow* context, bool diffusion, bool& reallocated)
+  vtkOpenGLRenderWindow* context, bool diffusion, bool layered, bool& reallocated)
 {
   const int* d = this->Grid.Dimensions;
   const size_t textures = (this->Lights.size() + LightsPerTexture - 1) / LightsPerTexture;
@@ -158,11 +299,12 @@ bool vtkIrradianceVolumePass::vtkInternals::AllocateTargets(
     int lightDims[3];
     this->LightGridDimensions(stride, lightDims);
     ok = ok && EnsureFloatTexture(context, this->LightGridScratch, lightDims) &&
-      this->UploadLightGridClasses(context, stride);
+      this->MarkLightGridNeeded(context, stride, layered);
   }
   else
   {
-    for (auto* texture : { &this->LightGridScratch, &this->LightGridClassTexture })
+    for (auto* texture :
+      { &this->LightGridScratch, &this->LightGridClassTexture, &this->LightGridRangeTexture })
     {
       if (*texture)
       {
@@ -183,27 +325,49 @@ bool vtkIrradianceVolumePass::vtkInternals::AllocateTargets(
       this->CoarseScratch[i] = nullptr;
     }
   }
-  if (!this->Framebuffer)
-  {
-    this->Framebuffer = vtkSmartPointer<vtkOpenGLFramebufferObject>::New();
-    this->Framebuffer->SetContext(context);
-  }
+  this->EnsureFramebuffer(context);
   return ok;
 }
 
 //------------------------------------------------------------------------------
 // A strided point is needed where the trilinear interpolation to a
 // non-empty irradiance voxel reads it: the two points around the voxel per
-// axis. Made once per volume upload, so a strided point's emptiness costs
-// one fetch in the shadow passes.
-bool vtkIrradianceVolumePass::vtkInternals::UploadLightGridClasses(
-  vtkOpenGLRenderWindow* context, int stride)
+// axis (the point at or below it, floor(i * ratio), and the next, clamped).
+// Marked once per volume upload, so a strided point's emptiness costs one
+// fetch in the shadow passes. The voxels that read point p along an axis
+// are those whose point below is p - 1 or p: one run of indices, as that
+// point never decreases along the axis.
+void vtkIrradianceVolumePass::vtkInternals::LightGridNeededRanges(
+  int stride, std::array<std::vector<int>, 3>& range) const
 {
-  if (this->LightGridClassTexture && this->LightGridClassUpload == this->VolumeUploads &&
-    this->LightGridClassStride == stride)
+  const int* d = this->Grid.Dimensions;
+  int c[3];
+  this->LightGridDimensions(stride, c);
+  double ratio[3];
+  this->LightGridRatio(stride, ratio);
+  for (int a = 0; a < 3; ++a)
   {
-    return true;
+    range[a].assign(2 * static_cast<size_t>(c[a]), 0);
+    for (int p = 0; p < c[a]; ++p)
+    {
+      range[a][2 * p] = d[a];
+      range[a][2 * p + 1] = -1;
+    }
+    for (int i = 0; i < d[a]; ++i)
+    {
+      const int below = std::min(static_cast<int>(std::floor(i * ratio[a])), c[a] - 1);
+      for (const int p : { below, std::min(below + 1, c[a] - 1) })
+      {
+        range[a][2 * p] = std::min(range[a][2 * p], i);
+        range[a][2 * p + 1] = std::max(range[a][2 * p + 1], i);
+      }
+    }
   }
+}
+
+std::vector<unsigned char> vtkIrradianceVolumePass::vtkInternals::LightGridNeededOnCPU(
+  const std::vector<float>& classes, int stride) const
+{
   const int* d = this->Grid.Dimensions;
   int c[3];
   this->LightGridDimensions(stride, c);
@@ -231,7 +395,7 @@ bool vtkIrradianceVolumePass::vtkInternals::UploadLightGridClasses(
           const size_t rowOfVoxels = (static_cast<size_t>(k) * d[1] + j) * d[0];
           for (int i = 0; i < d[0]; ++i)
           {
-            if (this->Classes[rowOfVoxels + i] < 0.0f)
+            if (classes[rowOfVoxels + i] < 0.0f)
             {
               continue;
             }
@@ -247,12 +411,58 @@ bool vtkIrradianceVolumePass::vtkInternals::UploadLightGridClasses(
       }
     }
   });
-  this->LightGridClassTexture =
-    NewTexture(context, GL_R8, GL_RED, GL_UNSIGNED_BYTE, false);
+  return needed;
+}
+
+// On the GPU (Shaders/mmvLightGridNeededFS.glsl): a pass over the light
+// grid reads the classes of the voxels that interpolate from each point.
+bool vtkIrradianceVolumePass::vtkInternals::MarkLightGridNeeded(
+  vtkOpenGLRenderWindow* context, int stride, bool layered)
+{
+  int c[3];
+  this->LightGridDimensions(stride, c);
+  if (this->LightGridClassUpload == this->VolumeUploads && this->LightGridClassStride == stride &&
+    HasSize(this->LightGridClassTexture, c))
+  {
+    return true;
+  }
+  std::array<std::vector<int>, 3> range;
+  this->LightGridNeededRanges(stride, range);
+  const int width = std::max({ c[0], c[1], c[2] });
+  std::vector<float> ranges(2 * static_cast<size_t>(width) * 3, 0.0f);
+  for (int a = 0; a < 3; ++a)
+  {
+    for (int p = 0; p < width; ++p)
+    {
+      // Indices below 2^24: exact in a float.
+      ranges[2 * (static_cast<size_t>(a) * width + p)] =
+        p < c[a] ? static_cast<float>(range[a][2 * p]) : 1.0f;
+      ranges[2 * (static_cast<size_t>(a) * width + p) + 1] =
+        p < c[a] ? static_cast<float>(range[a][2 * p + 1]) : 0.0f;
+    }
+  }
+  this->LightGridRangeTexture = NewTexture(context, GL_RG32F, GL_RG, GL_FLOAT, false);
+  bool ok = this->LightGridRangeTexture->Create2DFromRaw(width, 3, 2, VTK_FLOAT, ranges.data());
+  if (ok && !HasSize(this->LightGridClassTexture, c))
+  {
+    this->LightGridClassTexture = NewTexture(context, GL_R8, GL_RED, GL_UNSIGNED_BYTE, false);
+    ok = this->LightGridClassTexture->Allocate3D(c[0], c[1], c[2], 1, VTK_UNSIGNED_CHAR);
+  }
+  vtkShaderProgram* program =
+    ok ? this->Ready(context, this->NeededQuad, mmvLightGridNeededFS, "", false) : nullptr;
+  if (!program)
+  {
+    return false;
+  }
+  this->EnsureFramebuffer(context);
+  ScopedTextures bound{ this->ClassTexture, this->LightGridRangeTexture };
+  program->SetUniformi("classes", this->ClassTexture->GetTextureUnit());
+  program->SetUniformi("neededRanges", this->LightGridRangeTexture->GetTextureUnit());
+  program->SetUniform1iv("lightDims", 3, c);
+  this->DrawLayers(context, this->NeededQuad, this->LightGridClassTexture, layered);
   this->LightGridClassUpload = this->VolumeUploads;
   this->LightGridClassStride = stride;
-  return this->LightGridClassTexture->Create3DFromRaw(
-    c[0], c[1], c[2], 1, VTK_UNSIGNED_CHAR, needed.data());
+  return true;
 }
 
 //------------------------------------------------------------------------------
@@ -494,7 +704,8 @@ void vtkIrradianceVolumePass::vtkInternals::Release(vtkWindow* window)
 {
   this->ReleaseScratch(window);
   for (auto* texture : { &this->ScalarTexture, &this->ClassTexture, &this->TableTexture,
-         &this->CoarseStrengthTexture, &this->LightGridClassTexture })
+         &this->CoarseStrengthTexture, &this->LightGridClassTexture, &this->ClassTableTexture,
+         &this->LightGridRangeTexture })
   {
     if (*texture)
     {
@@ -535,7 +746,7 @@ void vtkIrradianceVolumePass::vtkInternals::Release(vtkWindow* window)
   }
   for (VoxelPass* pass : { &this->ShadowQuad, &this->PiecewiseQuad, &this->RestrictQuad,
          &this->SweepQuad, &this->ExponentialQuad, &this->ProlongQuad, &this->FillQuad,
-         &this->TintQuad })
+         &this->TintQuad, &this->UpsampleQuad, &this->ClassifyQuad, &this->NeededQuad })
   {
     pass->Release(window);
   }

@@ -999,6 +999,166 @@ TEST(IrradianceVolumePass, ComputeAndFragmentPassesAgree)
   }
 }
 
+namespace
+{
+/// Values 0 .. 3 in steps of 0.3 on a 23 x 17 x 13 grid (odd on every
+/// axis), transfer functions with empty ranges between non-empty ones and
+/// several strengths, one directional light on a grid of stride 2.
+Scene ManyClasses()
+{
+  Scene scene;
+  scene.Image = MakeImage({ 23, 17, 13 }, { 1.0, 1.0, 1.0 }, [](int i, int j, int k) {
+    const bool shell = i < 3 || j < 2 || k < 2; // empty margins on three sides
+    return shell ? 0.0f : 0.3f * static_cast<float>((i * 7 + j * 3 + k * 5) % 11);
+  });
+  scene.Opacity = vtkSmartPointer<vtkPiecewiseFunction>::New();
+  scene.Opacity->AddPoint(0.0, 0.0);
+  scene.Opacity->AddPoint(0.7, 0.0);
+  scene.Opacity->AddPoint(0.9, 0.2);
+  scene.Opacity->AddPoint(1.4, 0.05);
+  scene.Opacity->AddPoint(1.7, 0.0);
+  scene.Opacity->AddPoint(2.1, 0.0);
+  scene.Opacity->AddPoint(2.5, 0.4);
+  scene.Opacity->AddPoint(3.0, 0.8);
+  scene.Material = vtkSmartPointer<vtkMaterialTransferFunction>::New();
+  scene.Material->AddNode(0.0, 0.2, 0.7, 0.2, 20.0, 1.0, 0.0, 0.0);
+  scene.Material->AddNode(1.0, 0.2, 0.7, 0.2, 20.0, 1.0, 3.0, 0.0);
+  scene.Material->AddNode(1.6, 0.2, 0.7, 0.2, 20.0, 1.0, 12.5, 0.0);
+  scene.Material->AddNode(2.4, 0.2, 0.7, 0.2, 20.0, 1.0, 0.0, 0.0);
+  scene.Material->AddNode(3.0, 0.2, 0.7, 0.2, 20.0, 1.0, 0.7, 0.0);
+  scene.Lights.push_back(Directional(1.0, 0.6, 0.8));
+  scene.Strides = { 2 };
+  return scene;
+}
+}
+
+// The classes and the strided light grid's needed points are computed on the
+// GPU (an opacity edit uploads two small tables): both equal what the CPU
+// computes from the same inputs, before and after an opacity edit, as
+// fragment draws and as compute dispatches, with multiple scattering on (the
+// CPU classifies too, for the diffusion plan) and off (the GPU alone; the
+// non-empty voxels are then counted from a histogram of the values).
+TEST(IrradianceVolumePass, GPUClassesAndNeededPointsMatchTheCPU)
+{
+  const Context& ctx = SharedContext();
+  ASSERT_NE(ctx.GL, nullptr);
+  const bool computeSupported = GLEW_VERSION_4_3 != 0;
+  for (const bool compute : { false, true })
+  {
+    if (compute && !computeSupported)
+    {
+      continue;
+    }
+    for (const bool multipleScattering : { true, false })
+    {
+      Scene scene = ManyClasses();
+      vtkNew<vtkIrradianceVolumePass> pass;
+      pass->SetComputeShaders(compute ? vtkIrradianceVolumePass::ComputeDispatches
+                                       : vtkIrradianceVolumePass::FragmentDraws);
+      pass->SetMultipleScattering(multipleScattering);
+      for (const int edit : { 0, 1 })
+      {
+        const std::string where = std::string(compute ? "compute" : "fragment") +
+          (multipleScattering ? ", multiple scattering" : "") + ", edit " + std::to_string(edit);
+        if (edit == 1)
+        {
+          // An opacity edit: another range empty, another non-empty.
+          scene.Opacity->RemoveAllPoints();
+          scene.Opacity->AddPoint(0.0, 0.0);
+          scene.Opacity->AddPoint(0.4, 0.3);
+          scene.Opacity->AddPoint(1.1, 0.0);
+          scene.Opacity->AddPoint(1.9, 0.0);
+          scene.Opacity->AddPoint(2.0, 0.6);
+          scene.Opacity->AddPoint(3.0, 0.6);
+        }
+        SetPassInputs(scene, pass);
+        ASSERT_TRUE(pass->Render(ctx.GL)) << where;
+        EXPECT_EQ(pass->GetComputeShadersUsed(), compute) << where;
+        EXPECT_EQ(pass->GetClassifiedOnCPU(), multipleScattering) << where;
+        std::vector<float> gpu;
+        std::vector<float> cpu;
+        ASSERT_TRUE(pass->ReadBackClasses(ctx.GL, gpu)) << where;
+        pass->ClassifyOnCPU(cpu);
+        ASSERT_EQ(gpu.size(), cpu.size()) << where;
+        const mmv::IrradianceGrid grid = GridOf(scene);
+        ASSERT_EQ(static_cast<vtkIdType>(cpu.size()), grid.GetNumberOfVoxels()) << where;
+        vtkIdType nonEmpty = 0;
+        vtkIdType mismatches = 0;
+        double worst = 0.0;
+        std::vector<float> strengths;
+        for (size_t v = 0; v < cpu.size(); ++v)
+        {
+          nonEmpty += cpu[v] >= 0.0f ? 1 : 0;
+          mismatches += (cpu[v] < 0.0f) != (gpu[v] < 0.0f) ? 1 : 0;
+          worst = std::max(worst,
+            std::abs(static_cast<double>(gpu[v]) - cpu[v]) / std::max(1.0f, std::abs(cpu[v])));
+          if (cpu[v] >= 0.0f &&
+            std::find(strengths.begin(), strengths.end(), cpu[v]) == strengths.end())
+          {
+            strengths.push_back(cpu[v]);
+          }
+        }
+        EXPECT_EQ(mismatches, 0) << where;
+        EXPECT_LE(worst, 1e-6) << where;
+        // The scene is not trivial: empty and non-empty voxels, several s.
+        EXPECT_GT(nonEmpty, 100) << where;
+        EXPECT_LT(nonEmpty, static_cast<vtkIdType>(cpu.size()) - 100) << where;
+        EXPECT_GE(strengths.size(), 4u) << where;
+        EXPECT_EQ(pass->GetNumberOfComputedVoxels(), nonEmpty) << where;
+
+        std::vector<unsigned char> gpuNeeded;
+        std::vector<unsigned char> cpuNeeded;
+        int gpuDims[3];
+        int cpuDims[3];
+        ASSERT_TRUE(pass->ReadBackLightGridNeeded(ctx.GL, gpuNeeded, gpuDims)) << where;
+        pass->LightGridNeededOnCPU(cpuNeeded, cpuDims);
+        for (int a = 0; a < 3; ++a)
+        {
+          EXPECT_EQ(gpuDims[a], cpuDims[a]) << where;
+          EXPECT_EQ(gpuDims[a], mmv::LightGridDimension(grid.Dimensions[a], 2)) << where;
+          EXPECT_LT(gpuDims[a], grid.Dimensions[a]) << where;
+        }
+        ASSERT_EQ(gpuNeeded.size(), cpuNeeded.size()) << where;
+        const auto needed = std::count(cpuNeeded.begin(), cpuNeeded.end(), 255);
+        EXPECT_GT(needed, 0) << where;
+        EXPECT_LT(needed, static_cast<long>(cpuNeeded.size())) << where;
+        vtkIdType neededMismatches = 0;
+        for (size_t p = 0; p < cpuNeeded.size(); ++p)
+        {
+          neededMismatches += gpuNeeded[p] != cpuNeeded[p] ? 1 : 0;
+        }
+        EXPECT_EQ(neededMismatches, 0) << where;
+      }
+      if (!multipleScattering)
+      {
+        // Multiple scattering turned on later: the CPU classifies then, and
+        // the plan and result are those of a pass that had it from the start.
+        pass->SetMultipleScattering(true);
+        ASSERT_TRUE(pass->Render(ctx.GL));
+        EXPECT_TRUE(pass->GetClassifiedOnCPU());
+        vtkNew<vtkIrradianceVolumePass> fresh;
+        fresh->SetComputeShaders(compute ? vtkIrradianceVolumePass::ComputeDispatches
+                                          : vtkIrradianceVolumePass::FragmentDraws);
+        SetPassInputs(scene, fresh);
+        ASSERT_TRUE(fresh->Render(ctx.GL));
+        EXPECT_GT(fresh->GetDiffusionPasses(), 0);
+        EXPECT_EQ(pass->GetDiffusionPasses(), fresh->GetDiffusionPasses());
+        int dims[2][3];
+        pass->GetDiffusionGridDimensions(dims[0]);
+        fresh->GetDiffusionGridDimensions(dims[1]);
+        EXPECT_TRUE(std::equal(dims[0], dims[0] + 3, dims[1]));
+        std::vector<float> later;
+        std::vector<float> fromStart;
+        ASSERT_TRUE(pass->ReadBack(ctx.GL, 0, later));
+        ASSERT_TRUE(fresh->ReadBack(ctx.GL, 0, fromStart));
+        EXPECT_EQ(later, fromStart);
+        fresh->ReleaseGraphicsResources(ctx.GL);
+      }
+      pass->ReleaseGraphicsResources(ctx.GL);
+    }
+  }
+}
+
 TEST(IrradianceVolumePass, AutomaticComputeShadersSkipCPURasterizers)
 {
   const Context& ctx = SharedContext();
