@@ -66,7 +66,10 @@ constexpr int ResidualCheckMinimumSweeps = 12;
 inline float LookupTable(const std::vector<float>& table, float t)
 {
   const int n = static_cast<int>(table.size());
-  const float x = std::min(std::max(t, 0.0f), 1.0f) * static_cast<float>(n - 1);
+  // NaN reads as the lowest value, as mmv::ReplaceNonFinite makes it; an
+  // index made from NaN would read outside the table.
+  const float c = std::isnan(t) ? 0.0f : std::min(std::max(t, 0.0f), 1.0f);
+  const float x = c * static_cast<float>(n - 1);
   const int i0 = std::min(static_cast<int>(x), n - 2);
   const float f = x - static_cast<float>(i0);
   return (1.0f - f) * table[i0] + f * table[i0 + 1];

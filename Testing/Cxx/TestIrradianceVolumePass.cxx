@@ -1159,6 +1159,55 @@ TEST(IrradianceVolumePass, GPUClassesAndNeededPointsMatchTheCPU)
   }
 }
 
+// The non-empty voxel count without a pass over the voxels (a histogram of
+// the values) gives way to a voxel-by-voxel count where it would not be
+// exact: a table with a positive entry below 1e-30, and NaN values. Each
+// count equals the CPU's classes.
+TEST(IrradianceVolumePass, NonEmptyCountsOfUnusualTablesAndValuesEqualTheCPUs)
+{
+  const Context& ctx = SharedContext();
+  ASSERT_NE(ctx.GL, nullptr);
+  auto expectCPUCount = [&](vtkIrradianceVolumePass* pass, const char* what) {
+    std::vector<float> cpu;
+    pass->ClassifyOnCPU(cpu);
+    const vtkIdType nonEmpty = std::count_if(cpu.begin(), cpu.end(), [](float c) { return c >= 0.0f; });
+    EXPECT_GT(nonEmpty, 100) << what;
+    EXPECT_LT(nonEmpty, static_cast<vtkIdType>(cpu.size()) - 100) << what;
+    EXPECT_EQ(pass->GetNumberOfComputedVoxels(), nonEmpty) << what;
+  };
+  {
+    Scene scene = ManyClasses();
+    scene.Opacity->RemoveAllPoints();
+    scene.Opacity->AddPoint(0.0, 0.0);
+    scene.Opacity->AddPoint(0.5, 0.0);
+    scene.Opacity->AddPoint(1.0, 1e-35); // tiny but positive: lit
+    scene.Opacity->AddPoint(1.5, 0.0);
+    scene.Opacity->AddPoint(2.5, 0.0);
+    scene.Opacity->AddPoint(3.0, 0.5);
+    vtkNew<vtkIrradianceVolumePass> pass;
+    pass->SetMultipleScattering(false);
+    SetPassInputs(scene, pass);
+    ASSERT_TRUE(pass->Render(ctx.GL));
+    EXPECT_FALSE(pass->GetClassifiedOnCPU());
+    expectCPUCount(pass, "a positive entry below 1e-30");
+    pass->ReleaseGraphicsResources(ctx.GL);
+  }
+  {
+    Scene scene = ManyClasses();
+    vtkDataArray* values = scene.Image->GetPointData()->GetScalars();
+    for (vtkIdType v = 1000; v < 1100; ++v)
+    {
+      values->SetTuple1(v, std::nan(""));
+    }
+    vtkNew<vtkIrradianceVolumePass> pass;
+    pass->SetMultipleScattering(false);
+    SetPassInputs(scene, pass);
+    ASSERT_TRUE(pass->Render(ctx.GL));
+    expectCPUCount(pass, "NaN values");
+    pass->ReleaseGraphicsResources(ctx.GL);
+  }
+}
+
 TEST(IrradianceVolumePass, AutomaticComputeShadersSkipCPURasterizers)
 {
   const Context& ctx = SharedContext();
