@@ -504,6 +504,51 @@ void vtkIrradianceVolumePass::InvalidateComputedLights()
 }
 
 //------------------------------------------------------------------------------
+namespace
+{
+// Slices 0 .. depth-1 of a 3D texture in turn as the read buffer of the
+// pass's framebuffer; `read(z)` reads the slice with glReadPixels.
+template <typename ReadSlice>
+void ForEachTextureSlice(vtkOpenGLRenderWindow* context,
+  vtkOpenGLFramebufferObject* framebuffer, vtkTextureObject* texture, int depth, ReadSlice&& read)
+{
+  vtkOpenGLState* state = context->GetState();
+  state->PushFramebufferBindings();
+  framebuffer->Bind();
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  for (int z = 0; z < depth; ++z)
+  {
+    framebuffer->RemoveColorAttachment(0);
+    framebuffer->AddColorAttachment(0, texture, z);
+    framebuffer->ActivateReadBuffer(0);
+    read(z);
+  }
+  framebuffer->RemoveColorAttachment(0);
+  glPixelStorei(GL_PACK_ALIGNMENT, 4);
+  state->PopFramebufferBindings();
+}
+
+// Every slice of a single-channel 3D texture.
+template <typename T>
+bool ReadBackTexture(vtkOpenGLRenderWindow* context, vtkOpenGLFramebufferObject* framebuffer,
+  vtkTextureObject* texture, GLenum type, std::vector<T>& values)
+{
+  if (!context || !framebuffer || !texture || !texture->GetHandle())
+  {
+    return false;
+  }
+  const int d[3] = { static_cast<int>(texture->GetWidth()),
+    static_cast<int>(texture->GetHeight()), static_cast<int>(texture->GetDepth()) };
+  const size_t sliceSize = static_cast<size_t>(d[0]) * d[1];
+  values.assign(sliceSize * d[2], T());
+  ForEachTextureSlice(context, framebuffer, texture, d[2], [&](int z) {
+    glReadPixels(0, 0, d[0], d[1], GL_RED, type, values.data() + z * sliceSize);
+  });
+  return true;
+}
+}
+
+//------------------------------------------------------------------------------
 bool vtkIrradianceVolumePass::ReadBack(
   vtkOpenGLRenderWindow* context, int light, std::vector<float>& values)
 {
@@ -530,18 +575,15 @@ bool vtkIrradianceVolumePass::ReadBackLights(vtkOpenGLRenderWindow* context, int
   const vtkIdType sliceSize = static_cast<vtkIdType>(d[0]) * d[1];
   std::vector<float> rgba(4 * sliceSize);
   values.assign(last - first, std::vector<float>(sliceSize * d[2]));
-  vtkOpenGLState* state = context->GetState();
-  state->PushFramebufferBindings();
-  internals.Framebuffer->Bind();
   // Each texture is read once for all the lights it holds.
   for (int t = first / LightsPerTexture; t * LightsPerTexture < last; ++t)
   {
     vtkTextureObject* texture = this->GetIrradianceTexture(t);
-    for (int z = 0; texture && z < d[2]; ++z)
+    if (!texture)
     {
-      internals.Framebuffer->RemoveColorAttachment(0);
-      internals.Framebuffer->AddColorAttachment(0, texture, z);
-      internals.Framebuffer->ActivateReadBuffer(0);
+      continue;
+    }
+    ForEachTextureSlice(context, internals.Framebuffer, texture, d[2], [&](int z) {
       glReadPixels(0, 0, d[0], d[1], GL_RGBA, GL_FLOAT, rgba.data());
       for (int c = 0; c < LightsPerTexture; ++c)
       {
@@ -556,10 +598,8 @@ bool vtkIrradianceVolumePass::ReadBackLights(vtkOpenGLRenderWindow* context, int
           out[p] = rgba[4 * p + c];
         }
       }
-    }
+    });
   }
-  internals.Framebuffer->RemoveColorAttachment(0);
-  state->PopFramebufferBindings();
   return true;
 }
 
@@ -567,40 +607,6 @@ bool vtkIrradianceVolumePass::ReadBackLights(vtkOpenGLRenderWindow* context, int
 vtkIdType vtkIrradianceVolumePass::GetNumberOfVolumeUploads() const
 {
   return this->Internals->VolumeUploads;
-}
-
-//------------------------------------------------------------------------------
-namespace
-{
-// Every slice of a single-channel 3D texture through the pass's framebuffer.
-template <typename T>
-bool ReadBackTexture(vtkOpenGLRenderWindow* context, vtkOpenGLFramebufferObject* framebuffer,
-  vtkTextureObject* texture, GLenum type, std::vector<T>& values)
-{
-  if (!context || !framebuffer || !texture || !texture->GetHandle())
-  {
-    return false;
-  }
-  const int d[3] = { static_cast<int>(texture->GetWidth()),
-    static_cast<int>(texture->GetHeight()), static_cast<int>(texture->GetDepth()) };
-  const size_t sliceSize = static_cast<size_t>(d[0]) * d[1];
-  values.assign(sliceSize * d[2], T());
-  vtkOpenGLState* state = context->GetState();
-  state->PushFramebufferBindings();
-  framebuffer->Bind();
-  glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  for (int z = 0; z < d[2]; ++z)
-  {
-    framebuffer->RemoveColorAttachment(0);
-    framebuffer->AddColorAttachment(0, texture, z);
-    framebuffer->ActivateReadBuffer(0);
-    glReadPixels(0, 0, d[0], d[1], GL_RED, type, values.data() + z * sliceSize);
-  }
-  framebuffer->RemoveColorAttachment(0);
-  glPixelStorei(GL_PACK_ALIGNMENT, 4);
-  state->PopFramebufferBindings();
-  return true;
-}
 }
 
 bool vtkIrradianceVolumePass::ReadBackClasses(
@@ -724,14 +730,7 @@ bool vtkIrradianceVolumePass::ReadBackTint(
   const vtkIdType sliceSize = static_cast<vtkIdType>(d[0]) * d[1];
   std::vector<float> rgba(4 * sliceSize);
   rgb.assign(3 * sliceSize * d[2], 0.0f);
-  vtkOpenGLState* state = context->GetState();
-  state->PushFramebufferBindings();
-  internals.Framebuffer->Bind();
-  for (int z = 0; z < d[2]; ++z)
-  {
-    internals.Framebuffer->RemoveColorAttachment(0);
-    internals.Framebuffer->AddColorAttachment(0, texture, z);
-    internals.Framebuffer->ActivateReadBuffer(0);
+  ForEachTextureSlice(context, internals.Framebuffer, texture, d[2], [&](int z) {
     glReadPixels(0, 0, d[0], d[1], GL_RGBA, GL_FLOAT, rgba.data());
     for (vtkIdType p = 0; p < sliceSize; ++p)
     {
@@ -740,9 +739,7 @@ bool vtkIrradianceVolumePass::ReadBackTint(
         rgb[3 * (z * sliceSize + p) + c] = rgba[4 * p + c];
       }
     }
-  }
-  internals.Framebuffer->RemoveColorAttachment(0);
-  state->PopFramebufferBindings();
+  });
   return true;
 }
 

@@ -151,7 +151,11 @@ bool vtkIrradianceVolumePass::vtkInternals::ClassifyOnGPU(
     tables[2 * i] = this->OpacityTable[i];
     tables[2 * i + 1] = this->ScatteringTable[i];
   }
-  this->ClassTableTexture = NewTexture(context, GL_RG32F, GL_RG, GL_FLOAT, false);
+  // One texture object for every edit: only its contents change.
+  if (!this->ClassTableTexture || this->ClassTableTexture->GetContext() != context)
+  {
+    this->ClassTableTexture = NewTexture(context, GL_RG32F, GL_RG, GL_FLOAT, false);
+  }
   if (!this->ClassTableTexture->Create2DFromRaw(n, 1, 2, VTK_FLOAT, tables.data()))
   {
     return false;
