@@ -13,6 +13,7 @@
 #ifndef vtkMultiMaterialMapperSettings_h
 #define vtkMultiMaterialMapperSettings_h
 
+#include "vtkMultiMaterialSettings.h"           // IlluminationSettings
 #include "vtkMultiMaterialVolumeFiltersModule.h" // export macro
 
 class vtkAbstractVolumeMapper;
@@ -24,10 +25,7 @@ namespace mmv
 struct MapperSettings
 {
   vtkMaterialTransferFunction* Materials = nullptr;
-  bool MultipleScattering = true;
-  double PointLightRadius = 0.0;
-  int ReflectionSource = 0;     // mmv::ReflectEnvironmentTexture
-  int ReflectionVisibility = 1; // mmv::MarchedReflectionVisibility
+  IlluminationSettings Illumination;
 };
 
 /// Fills `settings` from `mapper` and returns true when it is a mapper the

@@ -642,7 +642,7 @@ vtkImageData* vtkMultiMaterialPathTracer::RenderToImage(vtkRenderer* ren, vtkVol
   }
   if (mmvMapper)
   {
-    this->SetPointLightRadius(mmvMapper->PointLightRadius);
+    this->SetPointLightRadius(mmvMapper->Illumination.PointLightRadius);
   }
   const int* size = ren->GetSize();
   return this->Render(ren, size[0], size[1]);

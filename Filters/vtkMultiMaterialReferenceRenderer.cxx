@@ -373,10 +373,10 @@ vtkImageData* vtkMultiMaterialReferenceRenderer::RenderToImage(vtkRenderer* ren,
   this->SetCutawayMapper(vtkVolumeMapper::SafeDownCast(volume->GetMapper()));
   if (mmvMapper)
   {
-    this->SetMultipleScattering(mmvMapper->MultipleScattering);
-    this->SetPointLightRadius(mmvMapper->PointLightRadius);
-    this->SetReflectionSource(mmvMapper->ReflectionSource);
-    this->SetReflectionVisibility(mmvMapper->ReflectionVisibility);
+    this->SetMultipleScattering(mmvMapper->Illumination.MultipleScattering);
+    this->SetPointLightRadius(mmvMapper->Illumination.PointLightRadius);
+    this->SetReflectionSource(mmvMapper->Illumination.ReflectionSource);
+    this->SetReflectionVisibility(mmvMapper->Illumination.ReflectionVisibility);
   }
   const int* size = ren->GetSize();
   return this->Render(ren, size[0], size[1]);

@@ -10,7 +10,7 @@
 #include "vtkMatrix4x4.h"
 #include "vtkMultiMaterialLightTolerance.h"
 #include "vtkMultiMaterialVolumeGeometry.h"
-#include "vtkMultiMaterialVolumeMapper.h"
+#include "vtkAlgorithm.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLShaderCache.h"
 #include "vtkOpenGLState.h"
@@ -29,7 +29,7 @@
 namespace
 {
 /// What the whole irradiance volume depends on besides the lights and the grid.
-vtkIrradianceInputCache::VolumeKey MakeVolumeKey(vtkMultiMaterialVolumeMapper* mapper,
+vtkIrradianceInputCache::VolumeKey MakeVolumeKey(const mmv::IlluminationSettings& settings,
   vtkVolumeProperty* property, vtkMTimeType dataTime, int materialVersion, int lights,
   const double range[2], const mmv::Cutaway& cutaway)
 {
@@ -40,12 +40,12 @@ vtkIrradianceInputCache::VolumeKey MakeVolumeKey(vtkMultiMaterialVolumeMapper* m
   key.UnitDistance = property->GetScalarOpacityUnitDistance(0);
   key.Range[0] = range[0];
   key.Range[1] = range[1];
-  key.MultipleScattering = mapper->GetMultipleScattering();
-  key.TableSize = mapper->GetPreIntegrationTableSize();
+  key.MultipleScattering = settings.MultipleScattering;
+  key.TableSize = settings.PreIntegrationTableSize;
   key.NumberOfLights = lights;
-  key.ShadowEstimation = mapper->GetShadowEstimation();
-  key.PiecewiseShadowSlices = mapper->GetPiecewiseShadowSlices();
-  key.ExponentialDiffusion = mapper->GetExponentialDiffusion();
+  key.ShadowEstimation = settings.ShadowEstimation;
+  key.PiecewiseShadowSlices = settings.PiecewiseShadowSlices;
+  key.ExponentialDiffusion = settings.ExponentialDiffusion;
   key.Cut = cutaway.Key();
   return key;
 }
@@ -106,30 +106,30 @@ mmv::IrradianceResolution vtkMultiMaterialIrradianceStage::ChooseGrid(vtkRendere
   image->GetDimensions(dataDims);
   // The screen only matters when the resolution is automatic.
   std::string scaleProblem;
-  const double scale = mmv::ValidIrradianceScale(this->Mapper->IrradianceScale, &scaleProblem);
+  const double scale = mmv::ValidIrradianceScale(this->In->Settings.IrradianceScale, &scaleProblem);
   if (!scaleProblem.empty())
   {
-    this->Mapper->WarnOnce(scaleProblem);
+    this->Out->Warnings.push_back(scaleProblem);
   }
   const double pixelsPerVoxel = scale > 0.0 ? 0.0 : mmv::ProjectedPixelsPerVoxel(ren, vol, image);
   mmv::IrradianceResolution resolution;
-  if (vtkGlobalPrefilteredVolume* global = this->Global)
+  if (vtkGlobalPrefilteredVolume* global = this->In->Global)
   {
     global->GetIrradianceDimensions(resolution.Dimensions);
     resolution.Reason = "the global grid of a volume in pieces";
     return resolution;
   }
-  const int lights = static_cast<int>(this->Lights->size());
+  const int lights = static_cast<int>(this->In->Lights->size());
   // A non-white transmission colour adds each light's tint to the budget.
-  const bool tinted = this->Materials && this->Materials->HasChromaticTransmission();
+  const bool tinted = this->In->Materials && this->In->Materials->HasChromaticTransmission();
   resolution = mmv::ChooseIrradianceResolution(
-    dataDims, lights, this->Mapper->IrradianceMemoryMB, scale, pixelsPerVoxel, tinted);
+    dataDims, lights, this->In->Settings.IrradianceMemoryMB, scale, pixelsPerVoxel, tinted);
   std::string boundProblem;
   const double bound =
-    mmv::ValidIrradianceErrorBound(this->Mapper->IrradianceErrorBound, &boundProblem);
+    mmv::ValidIrradianceErrorBound(this->In->Settings.IrradianceErrorBound, &boundProblem);
   if (!boundProblem.empty())
   {
-    this->Mapper->WarnOnce(boundProblem);
+    this->Out->Warnings.push_back(boundProblem);
   }
   // The irradiance is one 3D texture: no axis longer than the largest one
   // (a long volume is drawn in bricks, its irradiance spans it whole).
@@ -154,7 +154,7 @@ void vtkMultiMaterialIrradianceStage::ApplyProbe(vtkRenderer* ren, vtkVolume* vo
 {
   auto* window = vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow());
   vtkVolumeProperty* property = vol->GetProperty();
-  const int n = this->Mapper->PreIntegrationTableSize;
+  const int n = this->In->Settings.PreIntegrationTableSize;
   // Sampled only when the volume key changed, over the opacity function's
   // own range (vtkIrradianceProbeRule.h).
   const auto signature = [&]() {
@@ -162,9 +162,9 @@ void vtkMultiMaterialIrradianceStage::ApplyProbe(vtkRenderer* ren, vtkVolume* vo
     double own[2];
     opacity->GetRange(own);
     std::vector<float> attenuation(n, 1.0f);
-    for (int i = 0; this->Materials && i < n; ++i)
+    for (int i = 0; this->In->Materials && i < n; ++i)
     {
-      attenuation[i] = static_cast<float>(this->Materials->EvaluateParameter(
+      attenuation[i] = static_cast<float>(this->In->Materials->EvaluateParameter(
         own[0] + (own[1] - own[0]) * i / (n - 1), mmv::Attenuation));
     }
     return mmv::MakeProbeSignature(SampleOpacityTable(opacity, own, n), attenuation, own,
@@ -172,14 +172,14 @@ void vtkMultiMaterialIrradianceStage::ApplyProbe(vtkRenderer* ren, vtkVolume* vo
   };
   // A measurement takes seconds on a software GPU: it reports progress, as
   // the update that follows does.
-  const double budget = this->Mapper->IrradianceMemoryMB;
+  const double budget = this->In->Settings.IrradianceMemoryMB;
   const bool measures = !this->Probe->Holds(volumeKey, image, budget, bound, signature);
   // The weights only matter to a measurement: no table on the per-frame path.
   std::vector<float> opacityTable;
   if (measures)
   {
     opacityTable = SampleOpacityTable(property->GetScalarOpacity(0), range, n);
-    this->Mapper->SetProgressText("Irradiance resolution probe");
+    this->In->Reporter->SetProgressText("Irradiance resolution probe");
     this->ReportProgress(0.0);
   }
   int estimates = 0;
@@ -199,14 +199,14 @@ void vtkMultiMaterialIrradianceStage::ApplyProbe(vtkRenderer* ren, vtkVolume* vo
       pass->SetProgressCallback(nullptr);
       return ok;
     });
-  if (measures && this->Mapper->GetProgress() < 1.0)
+  if (measures && this->In->Reporter->GetProgress() < 1.0)
   {
     this->ReportProgress(1.0);
   }
   if (measures)
   {
-    this->Mapper->SetProgressText(nullptr);
-    vtkDebugWithObjectMacro(this->Mapper, << this->Probe->GetSummary() << " in "
+    this->In->Reporter->SetProgressText(nullptr);
+    vtkDebugWithObjectMacro(this->In->Reporter, << this->Probe->GetSummary() << " in "
                                           << this->Probe->GetLastProbeSeconds() << " s");
   }
   if (probed < resolution.Scale)
@@ -214,61 +214,54 @@ void vtkMultiMaterialIrradianceStage::ApplyProbe(vtkRenderer* ren, vtkVolume* vo
     int dataDims[3];
     image->GetDimensions(dataDims);
     resolution.Scale = probed;
-    mmv::ComputeIrradianceDimensions(dataDims, static_cast<int>(this->Lights->size()),
-      this->Mapper->IrradianceMemoryMB, probed, resolution.Dimensions,
-      this->Materials && this->Materials->HasChromaticTransmission());
+    mmv::ComputeIrradianceDimensions(dataDims, static_cast<int>(this->In->Lights->size()),
+      this->In->Settings.IrradianceMemoryMB, probed, resolution.Dimensions,
+      this->In->Materials && this->In->Materials->HasChromaticTransmission());
     resolution.Reason = this->Probe->GetSummary();
   }
 }
 
-bool vtkMultiMaterialIrradianceStage::Update(vtkMultiMaterialVolumeMapper* mapper, vtkRenderer* ren,
-  vtkVolume* vol, vtkImageData* image, vtkDataArray* scalars, const double pieceRange[2],
-  vtkGlobalPrefilteredVolume* global, vtkMaterialTransferFunction* materials,
-  const std::vector<mmv::ShadingLight>& lights)
+bool vtkMultiMaterialIrradianceStage::Update(
+  const mmv::IrradianceStageInputs& inputs, mmv::IrradianceStageReport& report)
 {
-  this->Mapper = mapper;
-  this->Global = global;
-  this->Materials = materials;
-  this->Lights = &lights;
+  this->In = &inputs;
+  this->Out = &report;
+  report = mmv::IrradianceStageReport();
+  vtkRenderer* ren = inputs.Renderer;
+  vtkVolume* vol = inputs.Volume;
+  vtkImageData* image = inputs.Image;
+  vtkDataArray* scalars = inputs.Scalars;
+  vtkGlobalPrefilteredVolume* global = inputs.Global;
   this->Context = vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow());
   const Clock::time_point start = Clock::now();
   const int probesBefore = this->Probe->GetNumberOfProbes();
   // A piece of a larger volume is lit from the whole volume's pre-filtered
   // data, on its grid and over its range.
-  const double* range = global ? global->GetScalarRange() : pieceRange;
-  this->Mapper->NumberOfUpdatedLights = 0;
+  const double* range = global ? global->GetScalarRange() : inputs.PieceRange;
   // Kept irradiance of earlier inputs (a budget lowered since goes now).
   // Not for a piece of a global volume: its data is the global copy.
   auto* window = vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow());
   const size_t stepBudget =
-    global ? 0 : static_cast<size_t>(this->Mapper->IrradianceCacheMB * 1048576.0);
+    global ? 0 : static_cast<size_t>(this->In->Settings.IrradianceCacheMB * 1048576.0);
   this->Steps.Trim(stepBudget);
 
-  this->Cache->SampleMaterials(this->Materials, range, this->Mapper->PreIntegrationTableSize);
+  this->Cache->SampleMaterials(this->In->Materials, range, this->In->Settings.PreIntegrationTableSize);
   const vtkMTimeType dataTime =
     global ? global->GetMTime() : std::max(image->GetMTime(), scalars->GetMTime());
   // What cropping and clipping remove casts no shadow: part of the key, so a
   // moved crop box or plane updates the irradiance.
-  vtkNew<vtkMatrix4x4> worldToObject;
-  vtkMatrix4x4::Invert(vol->GetMatrix(), worldToObject);
-  int droppedPlanes = 0;
-  const mmv::Cutaway cutaway = mmv::MakeCutaway(this->Mapper, worldToObject, &droppedPlanes);
-  if (droppedPlanes > 0)
-  {
-    this->Mapper->WarnOnce("more than " + std::to_string(mmv::MaxCutPlanes) +
-      " clipping planes: the shadow rays ignore the others");
-  }
+  const mmv::Cutaway& cutaway = inputs.Cut;
   vtkIrradianceInputCache::VolumeKey volumeKey =
-    MakeVolumeKey(this->Mapper, vol->GetProperty(), dataTime, this->Cache->GetMaterialVersion(),
-      static_cast<int>(this->Lights->size()), range, cutaway);
+    MakeVolumeKey(inputs.Settings, vol->GetProperty(), dataTime, this->Cache->GetMaterialVersion(),
+      static_cast<int>(this->In->Lights->size()), range, cutaway);
   const mmv::IrradianceResolution resolution =
     this->ChooseGrid(ren, vol, image, scalars, range, volumeKey, cutaway);
   const int* dims = resolution.Dimensions;
   // A piece of a volume in pieces: only what its ray cast reads.
-  const mmv::IndexBox region = ReadRegion(image, global, this->Mapper->PieceIrradianceOnly, dims);
+  const mmv::IndexBox region = ReadRegion(image, global, this->In->Settings.PieceIrradianceOnly, dims);
   std::copy(region.Bounds, region.Bounds + 6, volumeKey.Region);
   const std::vector<mmv::LightSource> sources =
-    mmv::IrradianceLightSources(*this->Lights, dims, this->Mapper->DimLightCoarsening);
+    mmv::IrradianceLightSources(*inputs.Lights, dims, this->In->Settings.DimLightCoarsening);
   // What changed since the held irradiance, and so what this update
   // recomputes: decided here, once.
   vtkIrradianceUpdatePlan::Inputs now;
@@ -276,11 +269,11 @@ bool vtkMultiMaterialIrradianceStage::Update(vtkMultiMaterialVolumeMapper* mappe
   std::copy(dims, dims + 3, now.Dimensions);
   now.Lights = sources;
   const vtkIrradianceUpdatePlan plan =
-    this->Cache->Plan(now, mmv::LightToleranceRadians(this->Mapper->LightDirectionTolerance));
+    this->Cache->Plan(now, mmv::LightToleranceRadians(this->In->Settings.LightDirectionTolerance));
   // The key of the kept steps, made only where they are looked up or stored.
   const auto stepKey = [&]() {
     return vtkIrradianceStepCache::MakeKey(volumeKey,
-      this->Materials ? this->Materials->GetMTime() : 0, image, scalars, sources, dims);
+      this->In->Materials ? this->In->Materials->GetMTime() : 0, image, scalars, sources, dims);
   };
   if (this->KeepsHeld(plan, now, window, vol, range, stepBudget, stepKey))
   {
@@ -288,7 +281,7 @@ bool vtkMultiMaterialIrradianceStage::Update(vtkMultiMaterialVolumeMapper* mappe
   }
   // A real update (seconds on a software GPU): VTK progress events mark its
   // start, its lights and its end.
-  this->Mapper->SetProgressText("Irradiance volume");
+  this->In->Reporter->SetProgressText("Irradiance volume");
   this->ReportProgress(0.0);
 
   // Pre-filtered data: only when the data or the grid changed.
@@ -302,7 +295,7 @@ bool vtkMultiMaterialIrradianceStage::Update(vtkMultiMaterialVolumeMapper* mappe
   }
   if (nonFinite)
   {
-    this->Mapper->WarnOnce(mmv::NonFiniteScalarsMessage);
+    this->Out->Warnings.push_back(mmv::NonFiniteScalarsMessage);
   }
   this->Pass->SetRegion(region.Bounds);
   // The plan compared the lights with what the textures hold: the pass
@@ -312,12 +305,12 @@ bool vtkMultiMaterialIrradianceStage::Update(vtkMultiMaterialVolumeMapper* mappe
   const bool estimated = this->ComputeOn(this->Pass,
     vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow()), vol, range, cutaway,
     this->Cache->GetGrid(), this->Cache->GetPrefiltered(), this->Cache->GetPrefilteredVersion(),
-    sources, this->Mapper->MultipleScattering);
+    sources, this->In->Settings.MultipleScattering);
   this->Pass->SetProgressCallback(nullptr);
   if (!estimated)
   {
     this->Cache->Invalidate();
-    this->Mapper->SetProgressText(nullptr);
+    this->In->Reporter->SetProgressText(nullptr);
     return false;
   }
   this->HeldLights = this->Pass->GetComputedLights();
@@ -332,12 +325,12 @@ bool vtkMultiMaterialIrradianceStage::Update(vtkMultiMaterialVolumeMapper* mappe
   stages.Pass = this->Pass->GetLastRenderSeconds();
   stages.Total = SecondsSince(start);
   this->Stages = stages;
-  if (this->Mapper->GetProgress() < 1.0)
+  if (this->In->Reporter->GetProgress() < 1.0)
   {
     this->ReportProgress(1.0);
   }
   // The mapper's own pipeline progress (its input's update) is not this.
-  this->Mapper->SetProgressText(nullptr);
+  this->In->Reporter->SetProgressText(nullptr);
   this->Record(resolution);
   return true;
 }
@@ -362,17 +355,17 @@ bool vtkMultiMaterialIrradianceStage::KeepsHeld(const vtkIrradianceUpdatePlan& p
   }
   // Interactive frames keep the last irradiance while only the lights or the
   // screen-chosen grid moved; the still frame after them updates it.
-  if (this->Mapper->LastRenderInteractive &&
-    this->Mapper->InteractiveIrradiance == vtkMultiMaterialVolumeMapper::ReuseWhileInteracting &&
+  if (this->In->Interactive &&
+    this->In->Settings.InteractiveIrradiance == mmv::ReuseWhileInteracting &&
     plan.KeepsVolume())
   {
-    ++this->Mapper->DeferredIrradianceCount;
+    this->Out->Deferred = true;
     return true;
   }
   // No value of the data is visible (a time step outside the opacity):
   // nothing casts a shadow or is drawn, so the last irradiance serves.
   const std::vector<float> opacity = SampleOpacityTable(
-    vol->GetProperty()->GetScalarOpacity(0), range, this->Mapper->PreIntegrationTableSize);
+    vol->GetProperty()->GetScalarOpacity(0), range, this->In->Settings.PreIntegrationTableSize);
   if (std::all_of(opacity.begin(), opacity.end(), [](float a) { return !(a > 0.0f); }))
   {
     return true;
@@ -385,8 +378,9 @@ bool vtkMultiMaterialIrradianceStage::KeepsHeld(const vtkIrradianceUpdatePlan& p
     this->Cache->Store(now.Volume, restored, now.Dimensions);
     this->HeldLights = restored;
     this->HeldKept = true;
-    ++this->Mapper->IrradianceCacheHitCount;
-    std::copy(now.Dimensions, now.Dimensions + 3, this->Mapper->IrradianceDimensions);
+    this->Out->CacheHit = true;
+    this->Out->GridSet = true;
+    std::copy(now.Dimensions, now.Dimensions + 3, this->Out->Dimensions);
     return true;
   }
   return false;
@@ -397,7 +391,7 @@ void vtkMultiMaterialIrradianceStage::ReportProgressOf(
 {
   // Without an observer the pass runs without progress, and without the
   // glFinish each report takes.
-  if (!this->Mapper->HasObserver(vtkCommand::ProgressEvent))
+  if (!this->In->Reporter->HasObserver(vtkCommand::ProgressEvent))
   {
     pass->SetProgressCallback(nullptr);
     return;
@@ -408,9 +402,9 @@ void vtkMultiMaterialIrradianceStage::ReportProgressOf(
 
 void vtkMultiMaterialIrradianceStage::ReportProgress(double progress)
 {
-  if (!this->Context || !this->Mapper->HasObserver(vtkCommand::ProgressEvent))
+  if (!this->Context || !this->In->Reporter->HasObserver(vtkCommand::ProgressEvent))
   {
-    this->Mapper->UpdateProgress(progress);
+    this->In->Reporter->UpdateProgress(progress);
     return;
   }
   // An observer may paint other OpenGL widgets (ParaView's client repaints
@@ -418,7 +412,7 @@ void vtkMultiMaterialIrradianceStage::ReportProgress(double progress)
   // program come back before the update goes on.
   vtkOpenGLState* state = this->Context->GetState();
   state->Push();
-  this->Mapper->UpdateProgress(progress);
+  this->In->Reporter->UpdateProgress(progress);
   this->Context->MakeCurrent();
   state->Pop();
   this->Context->GetShaderCache()->ReleaseCurrentShader();
@@ -431,12 +425,12 @@ bool vtkMultiMaterialIrradianceStage::ComputeOn(vtkIrradianceVolumePass* pass,
   const std::vector<mmv::LightSource>& sources, bool scattering)
 {
   vtkPiecewiseFunction* opacity = vol->GetProperty()->GetScalarOpacity(0);
-  const int n = this->Mapper->PreIntegrationTableSize;
+  const int n = this->In->Settings.PreIntegrationTableSize;
   // Shadow rays step one irradiance voxel, with their own pre-integrated table.
   const double shadowStep = std::min({ grid.Spacing.x, grid.Spacing.y, grid.Spacing.z });
   vtkPreIntegrationTable* shadow = this->ShadowTable;
   shadow->SetScalarOpacity(opacity);
-  shadow->SetMaterialTransferFunction(this->Materials);
+  shadow->SetMaterialTransferFunction(this->In->Materials);
   shadow->SetScalarOpacityUnitDistance(vol->GetProperty()->GetScalarOpacityUnitDistance(0));
   shadow->SetTableSize(n);
   shadow->SetScalarRange(range[0], range[1]);
@@ -453,10 +447,10 @@ bool vtkMultiMaterialIrradianceStage::ComputeOn(vtkIrradianceVolumePass* pass,
     scattering ? this->Cache->GetScattering() : std::vector<float>(n, 0.0f);
 
   pass->SetMultipleScattering(scattering);
-  pass->SetShadowEstimation(this->Mapper->ShadowEstimation);
-  pass->SetPiecewiseShadowSlices(this->Mapper->PiecewiseShadowSlices);
-  pass->SetExponentialDiffusion(this->Mapper->ExponentialDiffusion);
-  pass->SetLightDirectionTolerance(this->Mapper->LightDirectionTolerance);
+  pass->SetShadowEstimation(this->In->Settings.ShadowEstimation);
+  pass->SetPiecewiseShadowSlices(this->In->Settings.PiecewiseShadowSlices);
+  pass->SetExponentialDiffusion(this->In->Settings.ExponentialDiffusion);
+  pass->SetLightDirectionTolerance(this->In->Settings.LightDirectionTolerance);
   pass->SetCutaway(cutaway);
   pass->SetInputs(grid, prefiltered, n, shadow->GetShadowOpacityTable(), shadowStep,
     opacityTable.data(), scatteringTable.data(), sources, version);
@@ -465,7 +459,7 @@ bool vtkMultiMaterialIrradianceStage::ComputeOn(vtkIrradianceVolumePass* pass,
   pass->SetTintTable(shadow->GetShadowTintTable()); // nullptr: grey, no tints
   if (!pass->Render(window))
   {
-    vtkErrorWithObjectMacro(this->Mapper, "the irradiance volume could not be computed on the GPU");
+    vtkErrorWithObjectMacro(this->In->Reporter, "the irradiance volume could not be computed on the GPU");
     return false;
   }
   return true;
@@ -475,19 +469,19 @@ void vtkMultiMaterialIrradianceStage::Record(const mmv::IrradianceResolution& re
 {
   vtkIrradianceVolumePass* pass = this->Pass;
   const int* dims = resolution.Dimensions;
-  std::copy(dims, dims + 3, this->Mapper->IrradianceDimensions);
-  this->Mapper->NumberOfUpdatedLights = pass->GetNumberOfUpdatedLights();
-  if (this->Mapper->NumberOfUpdatedLights > 0)
+  this->Out->GridSet = true;
+  std::copy(dims, dims + 3, this->Out->Dimensions);
+  this->Out->UpdatedLights = pass->GetNumberOfUpdatedLights();
+  if (this->Out->UpdatedLights > 0)
   {
-    ++this->Mapper->IrradianceUpdateCount;
-    this->Mapper->DiffusionPassCount += pass->GetDiffusionPasses();
-    this->Mapper->LastIrradianceSeconds = pass->GetLastRenderSeconds();
+    this->Out->DiffusionPasses = pass->GetDiffusionPasses();
+    this->Out->Seconds = pass->GetLastRenderSeconds();
   }
   int coarse[3];
   pass->GetDiffusionGridDimensions(coarse);
   std::ostringstream reason;
   reason << dims[0] << "x" << dims[1] << "x" << dims[2] << " (" << resolution.Reason << ")";
-  if (pass->GetDiffusionLength() > 0.0 && this->Mapper->MultipleScattering)
+  if (pass->GetDiffusionLength() > 0.0 && this->In->Settings.MultipleScattering)
   {
     reason << "; diffusion on " << coarse[0] << "x" << coarse[1] << "x" << coarse[2]
            << " (diffusion length " << pass->GetDiffusionLength() << " data voxels, "
@@ -495,10 +489,10 @@ void vtkMultiMaterialIrradianceStage::Record(const mmv::IrradianceResolution& re
            << " sweeps)";
   }
   this->ResolutionReason = reason.str();
-  vtkDebugWithObjectMacro(this->Mapper, << "irradiance " << this->ResolutionReason << ", "
-                                        << this->Mapper->NumberOfUpdatedLights << " of "
-                                        << this->Lights->size() << " lights updated in "
-                                        << this->Mapper->LastIrradianceSeconds << " s");
+  vtkDebugWithObjectMacro(this->In->Reporter, << "irradiance " << this->ResolutionReason << ", "
+                                        << this->Out->UpdatedLights << " of "
+                                        << this->In->Lights->size() << " lights updated in "
+                                        << this->Out->Seconds << " s");
 }
 
 std::string mmv::IrradianceStageSeconds::Report() const

@@ -10,9 +10,10 @@
  * interacting: InteractiveIrradiance), and otherwise has
  * vtkIrradianceVolumePass recompute the lights the plan marks, with VTK
  * progress events.
- * It reads the mapper's settings and updates its counters (IrradianceDimensions,
- * IrradianceUpdateCount, ...), as the mapper's own step did. Not a vtkObject:
- * plain state owned by the mapper.
+ * Settings in, report out: it reads one mmv::IrradianceStageInputs (the
+ * mapper's settings among them) and says what it did in an
+ * mmv::IrradianceStageReport, from which the mapper keeps its counters and
+ * warns. Not a vtkObject: plain state owned by the mapper.
  */
 #ifndef vtkMultiMaterialIrradianceStage_h
 #define vtkMultiMaterialIrradianceStage_h
@@ -25,6 +26,7 @@
 #include "vtkIrradianceVolumePass.h"      // vtkNew
 #include "vtkMultiMaterialCutaway.h"      // Cutaway
 #include "vtkMultiMaterialLights.h"       // ShadingLight
+#include "vtkMultiMaterialSettings.h"     // IlluminationSettings
 #include "vtkMultiMaterialVolumeModule.h" // export macro
 #include "vtkNew.h"
 #include "vtkPreIntegrationTable.h"       // vtkNew
@@ -32,6 +34,16 @@
 #include <functional> // the kept steps' key, made on demand
 #include <string>
 #include <vector>
+
+class vtkAlgorithm;
+class vtkDataArray;
+class vtkGlobalPrefilteredVolume;
+class vtkImageData;
+class vtkMaterialTransferFunction;
+class vtkOpenGLRenderWindow;
+class vtkRenderer;
+class vtkVolume;
+class vtkWindow;
 
 namespace mmv
 {
@@ -52,17 +64,39 @@ struct VTKMULTIMATERIALVOLUME_EXPORT IrradianceStageSeconds
   /// "probe 0.000 s, prefilter 0.012 s, ...": the information property's text.
   std::string Report() const;
 };
+
+/// What one update reads.
+struct IrradianceStageInputs
+{
+  vtkRenderer* Renderer = nullptr;
+  vtkVolume* Volume = nullptr;
+  vtkImageData* Image = nullptr; // the input, or one piece of Global
+  vtkDataArray* Scalars = nullptr;
+  const double* PieceRange = nullptr;     // the input's finite range
+  vtkGlobalPrefilteredVolume* Global = nullptr; // the whole volume of a piece; null: none
+  vtkMaterialTransferFunction* Materials = nullptr;
+  const std::vector<ShadingLight>* Lights = nullptr;
+  Cutaway Cut;                   // cropping and clipping, in object space
+  IlluminationSettings Settings;
+  bool Interactive = false;      // an interactive render (allocated time below 1 s)
+  /// Receives VTK's progress events and names the errors (the mapper).
+  vtkAlgorithm* Reporter = nullptr;
+};
+
+/// What one update did.
+struct IrradianceStageReport
+{
+  int UpdatedLights = 0;   // lights whose irradiance was recomputed
+  int DiffusionPasses = 0; // of that update
+  double Seconds = 0.0;    // the pass's time, when lights were recomputed
+  bool Deferred = false;   // an interactive frame kept a stale irradiance
+  bool CacheHit = false;   // an earlier input's irradiance was copied back
+  bool GridSet = false;    // Dimensions hold the grid now in use
+  int Dimensions[3] = { 0, 0, 0 };
+  std::vector<std::string> Warnings;
+};
 }
 
-class vtkDataArray;
-class vtkGlobalPrefilteredVolume;
-class vtkImageData;
-class vtkMaterialTransferFunction;
-class vtkMultiMaterialVolumeMapper;
-class vtkOpenGLRenderWindow;
-class vtkRenderer;
-class vtkVolume;
-class vtkWindow;
 
 class VTKMULTIMATERIALVOLUME_EXPORT vtkMultiMaterialIrradianceStage
 {
@@ -70,14 +104,10 @@ public:
   vtkMultiMaterialIrradianceStage();
   ~vtkMultiMaterialIrradianceStage();
 
-  /// Brings the irradiance of `lights` up to date for `mapper`'s input
-  /// `image` (scalars, its finite range `pieceRange`), or for the whole
-  /// volume `global` when it is a piece of one (null: none). False: the GPU
-  /// could not compute it (reported).
-  bool Update(vtkMultiMaterialVolumeMapper* mapper, vtkRenderer* ren, vtkVolume* vol,
-    vtkImageData* image, vtkDataArray* scalars, const double pieceRange[2],
-    vtkGlobalPrefilteredVolume* global, vtkMaterialTransferFunction* materials,
-    const std::vector<mmv::ShadingLight>& lights);
+  /// Brings the irradiance of the inputs' lights up to date for their image,
+  /// or for the whole volume when the image is a piece of one. False: the
+  /// GPU could not compute it (reported).
+  bool Update(const mmv::IrradianceStageInputs& inputs, mmv::IrradianceStageReport& report);
 
   vtkIrradianceVolumePass* GetPass() { return this->Pass; }
   vtkIrradianceResolutionProbe* GetProbe() { return this->Probe; }
@@ -143,10 +173,8 @@ private:
   double TablesSeconds = 0.0;
 
   // The current Update()'s arguments.
-  vtkMultiMaterialVolumeMapper* Mapper = nullptr;
-  vtkGlobalPrefilteredVolume* Global = nullptr;
-  vtkMaterialTransferFunction* Materials = nullptr;
-  const std::vector<mmv::ShadingLight>* Lights = nullptr;
+  const mmv::IrradianceStageInputs* In = nullptr;
+  mmv::IrradianceStageReport* Out = nullptr;
   vtkOpenGLRenderWindow* Context = nullptr;
 };
 

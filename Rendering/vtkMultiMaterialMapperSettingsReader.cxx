@@ -13,10 +13,7 @@ bool ReadMultiMaterialVolumeMapper(vtkAbstractVolumeMapper* mapper, mmv::MapperS
     return false;
   }
   settings.Materials = mmvMapper->GetMaterialTransferFunction();
-  settings.MultipleScattering = mmvMapper->GetMultipleScattering();
-  settings.PointLightRadius = mmvMapper->GetPointLightRadius();
-  settings.ReflectionSource = mmvMapper->GetReflectionSource();
-  settings.ReflectionVisibility = mmvMapper->GetReflectionVisibility();
+  settings.Illumination = mmvMapper->GetSettings();
   return true;
 }
 

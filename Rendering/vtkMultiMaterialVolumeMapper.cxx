@@ -291,7 +291,7 @@ bool vtkMultiMaterialVolumeMapper::FitBricksToTextureLimit(vtkRenderer* ren)
   const double bytesPerPoint =
     scalars ? scalars->GetDataTypeSize() * scalars->GetNumberOfComponents() : 4.0;
   if (maxSize <= 0 || !mmv::ChooseBrickPartitions(dims, maxSize, this->RequestedPartitions, parts) ||
-    !mmv::LimitBrickBytes(dims, bytesPerPoint, this->MaxBrickMB * 1024.0 * 1024.0, parts))
+    !mmv::LimitBrickBytes(dims, bytesPerPoint, this->Settings.MaxBrickMB * 1024.0 * 1024.0, parts))
   {
     vtkErrorMacro("the volume (" << dims[0] << " x " << dims[1] << " x " << dims[2]
                                  << " points) cannot be cut into bricks that fit the largest 3D "
@@ -311,7 +311,7 @@ bool vtkMultiMaterialVolumeMapper::FitBricksToTextureLimit(vtkRenderer* ren)
     std::ostringstream message;
     message << "the volume (" << dims[0] << " x " << dims[1] << " x " << dims[2]
             << " points) is larger than the largest 3D texture of this OpenGL context ("
-            << maxSize << ") or MaxBrickMB (" << this->MaxBrickMB << "): rendered in " << parts[0] << " x " << parts[1] << " x " << parts[2]
+            << maxSize << ") or MaxBrickMB (" << this->Settings.MaxBrickMB << "): rendered in " << parts[0] << " x " << parts[1] << " x " << parts[2]
             << " bricks";
     this->WarnOnce(message.str());
   }
@@ -390,7 +390,7 @@ bool vtkMultiMaterialVolumeMapper::SelectVectorScalars(vtkRenderer* ren)
   vtkDataArray* wanted = original;
   if (this->VectorMode != mmv::VectorModeDisabled && original->GetNumberOfComponents() > 1)
   {
-    in.Reduced.SetKeepAll(this->IrradianceCacheMB > 0.0);
+    in.Reduced.SetKeepAll(this->Settings.IrradianceCacheMB > 0.0);
     std::string error;
     wanted = in.Reduced.Get(original, this->VectorMode, this->VectorComponent, &error);
     if (!wanted)
@@ -480,12 +480,12 @@ void vtkMultiMaterialVolumeMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
   in.Pass->InstallInto(keys);
   in.ActivateTextures(true);
   const auto start = Clock::now();
-  if (this->TimeStages)
+  if (this->Settings.TimeStages)
   {
     glFinish();
   }
   this->Superclass::GPURender(ren, vol);
-  if (this->TimeStages)
+  if (this->Settings.TimeStages)
   {
     glFinish();
     this->LastRayCastSeconds = Seconds(start);
@@ -560,9 +560,9 @@ bool vtkMultiMaterialVolumeMapper::PrepareMultiMaterial(vtkRenderer* ren, vtkVol
 
   // 3. The irradiance volume: only when lights, opacity, materials or data change.
   this->LastRenderInteractive = vol->GetAllocatedRenderTime() < 1.0;
+  this->NumberOfUpdatedLights = 0;
   if (!this->Internals->Lights.empty() &&
-    !this->Internals->Irradiance.Update(this, ren, vol, image, input.Scalars, range,
-      this->Internals->ActiveGlobal(), this->Internals->Materials, this->Internals->Lights))
+    !this->UpdateIrradiance(ren, vol, image, input.Scalars, range, worldToObject))
   {
     return false;
   }
@@ -570,6 +570,51 @@ bool vtkMultiMaterialVolumeMapper::PrepareMultiMaterial(vtkRenderer* ren, vtkVol
   // 4. The shader variant and the per-frame uniforms.
   this->UpdateShading(ren, image, worldToObject, range);
   return true;
+}
+
+bool vtkMultiMaterialVolumeMapper::UpdateIrradiance(vtkRenderer* ren, vtkVolume* vol,
+  vtkImageData* image, vtkDataArray* scalars, const double range[2], vtkMatrix4x4* worldToObject)
+{
+  vtkInternals& in = *this->Internals;
+  mmv::IrradianceStageInputs inputs;
+  inputs.Renderer = ren;
+  inputs.Volume = vol;
+  inputs.Image = image;
+  inputs.Scalars = scalars;
+  inputs.PieceRange = range;
+  inputs.Global = in.ActiveGlobal();
+  inputs.Materials = in.Materials;
+  inputs.Lights = &in.Lights;
+  int droppedPlanes = 0;
+  inputs.Cut = mmv::MakeCutaway(this, worldToObject, &droppedPlanes);
+  if (droppedPlanes > 0)
+  {
+    this->WarnOnce("more than " + std::to_string(mmv::MaxCutPlanes) +
+      " clipping planes: the shadow rays ignore the others");
+  }
+  inputs.Settings = this->Settings;
+  inputs.Interactive = this->LastRenderInteractive;
+  inputs.Reporter = this;
+  mmv::IrradianceStageReport report;
+  const bool updated = in.Irradiance.Update(inputs, report);
+  for (const std::string& warning : report.Warnings)
+  {
+    this->WarnOnce(warning);
+  }
+  if (report.GridSet)
+  {
+    std::copy(report.Dimensions, report.Dimensions + 3, this->IrradianceDimensions);
+  }
+  this->NumberOfUpdatedLights = report.UpdatedLights;
+  if (report.UpdatedLights > 0)
+  {
+    ++this->IrradianceUpdateCount;
+    this->DiffusionPassCount += report.DiffusionPasses;
+    this->LastIrradianceSeconds = report.Seconds;
+  }
+  this->DeferredIrradianceCount += report.Deferred ? 1 : 0;
+  this->IrradianceCacheHitCount += report.CacheHit ? 1 : 0;
+  return updated;
 }
 
 bool vtkMultiMaterialVolumeMapper::UpdateSegmentTables(
@@ -603,7 +648,7 @@ bool vtkMultiMaterialVolumeMapper::UpdateSegmentTables(
   table->SetColorTransferFunction(color);
   table->SetScalarOpacity(property->GetScalarOpacity(0));
   table->SetScalarOpacityUnitDistance(property->GetScalarOpacityUnitDistance(0));
-  table->SetTableSize(this->PreIntegrationTableSize);
+  table->SetTableSize(this->Settings.PreIntegrationTableSize);
   table->SetScalarRange(const_cast<double*>(range));
   table->SetStepLength(step);
   const int builds = table->GetBuildCount();
@@ -618,7 +663,7 @@ bool vtkMultiMaterialVolumeMapper::UpdateSegmentTables(
   }
   in.Uniforms.SetTableStep(step);
   in.Textures->UpdateSegmentTables(context, table);
-  in.Textures->UpdateMaterialTable(context, in.Materials, range, this->PreIntegrationTableSize);
+  in.Textures->UpdateMaterialTable(context, in.Materials, range, this->Settings.PreIntegrationTableSize);
   return true;
 }
 
@@ -632,7 +677,7 @@ bool vtkMultiMaterialVolumeMapper::UpdateGradient(vtkOpenGLRenderWindow* context
   int dataDims[3];
   image->GetDimensions(dataDims);
   std::string smoothingProblem;
-  const double smoothing = mmv::ValidGradientSmoothing(this->GradientSmoothing, &smoothingProblem);
+  const double smoothing = mmv::ValidGradientSmoothing(this->Settings.GradientSmoothing, &smoothingProblem);
   if (!smoothingProblem.empty())
   {
     this->WarnOnce(smoothingProblem);
@@ -640,9 +685,9 @@ bool vtkMultiMaterialVolumeMapper::UpdateGradient(vtkOpenGLRenderWindow* context
   double smoothingVoxels[3];
   mmv::GradientSmoothingVoxels(smoothing, image->GetSpacing(), smoothingVoxels);
   // The steps of a series kept with their irradiance keep their gradients.
-  in.Textures->SetKeptGradientBytes(static_cast<size_t>(this->IrradianceCacheMB * 1048576.0));
+  in.Textures->SetKeptGradientBytes(static_cast<size_t>(this->Settings.IrradianceCacheMB * 1048576.0));
   if (!in.Textures->UpdateGradientTexture(context, scalars, dataDims, gradientRange,
-        this->MaxBrickMB * 1024.0 * 1024.0, smoothingVoxels))
+        this->Settings.MaxBrickMB * 1024.0 * 1024.0, smoothingVoxels))
   {
     this->WarnOnce("the gradient volume could not be created (too large for this OpenGL "
                    "context?); using VTK's shading");
@@ -659,7 +704,7 @@ void vtkMultiMaterialVolumeMapper::CollectShadedLights(
   int dropped = 0;
   std::vector<std::string> problems;
   std::string radiusProblem;
-  const double radius = mmv::ValidPointLightRadius(this->PointLightRadius, &radiusProblem);
+  const double radius = mmv::ValidPointLightRadius(this->Settings.PointLightRadius, &radiusProblem);
   if (!radiusProblem.empty())
   {
     problems.push_back(radiusProblem);
@@ -690,8 +735,8 @@ void vtkMultiMaterialVolumeMapper::UpdateShading(
   variant.NumberOfLights = this->NumberOfShadedLights;
   variant.Reflection =
     in.Materials && in.Materials->GetMaximum(mmv::Reflection) > 0.0 && in.Materials->GetSize() > 0;
-  variant.PreIntegration = this->PreIntegration;
-  const bool all = this->CompileUnusedOpticalTerms;
+  variant.PreIntegration = this->Settings.PreIntegration;
+  const bool all = this->Settings.CompileUnusedOpticalTerms;
   variant.Anisotropy = variant.NumberOfLights > 0 &&
     (all || (in.Materials && in.Materials->HasNonZero(mmv::Anisotropy)));
   variant.Emission = all || (in.Materials && in.Materials->HasNonZero(mmv::Emission));
@@ -724,15 +769,15 @@ void vtkMultiMaterialVolumeMapper::UpdateReflection(
 {
   vtkInternals& in = *this->Internals;
   in.Reflection->SetReflectiveValues(
-    in.Materials, in.ValueRange(range), this->PreIntegrationTableSize);
+    in.Materials, in.ValueRange(range), this->Settings.PreIntegrationTableSize);
   vtkNew<vtkMatrix4x4> objectToWorld;
   vtkMatrix4x4::Invert(worldToObject, objectToWorld);
   const mmv::IrradianceGrid& grid = in.Irradiance.GetGrid();
   std::vector<std::string> problems;
-  in.Reflection->Update(ren, objectToWorld, this->ReflectionSource, this->ReflectionVisibility,
-    in.Lights.empty() ? nullptr : in.Irradiance.GetPass(), grid, this->PreIntegrationTableSize,
+  in.Reflection->Update(ren, objectToWorld, this->Settings.ReflectionSource, this->Settings.ReflectionVisibility,
+    in.Lights.empty() ? nullptr : in.Irradiance.GetPass(), grid, this->Settings.PreIntegrationTableSize,
     std::min({ grid.Spacing.x, grid.Spacing.y, grid.Spacing.z }), &problems,
-    this->LastRenderInteractive && this->InteractiveIrradiance == ReuseWhileInteracting);
+    this->LastRenderInteractive && this->Settings.InteractiveIrradiance == ReuseWhileInteracting);
   for (const std::string& problem : problems)
   {
     this->WarnOnce(problem);
@@ -764,41 +809,45 @@ vtkIrradianceResolutionProbe* vtkMultiMaterialVolumeMapper::GetIrradianceResolut
   return this->Internals->Irradiance.GetProbe();
 }
 
+// Each setting's Set/Get, clamped to its row of MMV_ILLUMINATION_SETTINGS.
+#define MMV_SETTING_ACCESSORS(type, name, value, low, high, doc)                                   \
+  void vtkMultiMaterialVolumeMapper::Set##name(type v)                                             \
+  {                                                                                                \
+    v = mmv::ClampSetting(v, low, high);                                                           \
+    if (this->Settings.name != v)                                                                  \
+    {                                                                                              \
+      this->Settings.name = v;                                                                     \
+      this->Modified();                                                                            \
+    }                                                                                              \
+  }                                                                                                \
+  type vtkMultiMaterialVolumeMapper::Get##name() { return this->Settings.name; }
+MMV_ILLUMINATION_SETTINGS(MMV_SETTING_ACCESSORS)
+#undef MMV_SETTING_ACCESSORS
+
+void vtkMultiMaterialVolumeMapper::SetSettings(const mmv::IlluminationSettings& settings)
+{
+#define MMV_SET_SETTING(type, name, value, low, high, doc) this->Set##name(settings.name);
+  MMV_ILLUMINATION_SETTINGS(MMV_SET_SETTING)
+#undef MMV_SET_SETTING
+}
+
+//------------------------------------------------------------------------------
 void vtkMultiMaterialVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "IrradianceMemoryMB: " << this->IrradianceMemoryMB << "\n";
-  os << indent << "MaxBrickMB: " << this->MaxBrickMB << "\n";
-  os << indent << "IrradianceScale: " << this->IrradianceScale << "\n";
-  os << indent << "IrradianceErrorBound: " << this->IrradianceErrorBound << "\n";
-  os << indent << "GradientSmoothing: " << this->GradientSmoothing << "\n";
-  os << indent << "LightDirectionTolerance: " << this->LightDirectionTolerance << "\n";
-  os << indent << "DimLightCoarsening: " << this->DimLightCoarsening << "\n";
-  os << indent << "MultipleScattering: " << this->MultipleScattering << "\n";
-  os << indent << "ShadowEstimation: " << this->ShadowEstimation << "\n";
-  os << indent << "PieceIrradianceOnly: " << this->PieceIrradianceOnly << "\n";
+#define MMV_PRINT_SETTING(type, name, value, low, high, doc)                                       \
+  os << indent << #name ": " << this->Settings.name << "\n";
+  MMV_ILLUMINATION_SETTINGS(MMV_PRINT_SETTING)
+#undef MMV_PRINT_SETTING
   os << indent << "VectorMode: "
      << (this->VectorMode == mmv::VectorModeMagnitude
             ? "Magnitude"
             : (this->VectorMode == mmv::VectorModeComponent ? "Component" : "Disabled"))
      << "\n";
   os << indent << "VectorComponent: " << this->VectorComponent << "\n";
-  os << indent << "PiecewiseShadowSlices: " << this->PiecewiseShadowSlices << "\n";
-  os << indent << "ExponentialDiffusion: " << this->ExponentialDiffusion << "\n";
-  os << indent << "PreIntegration: " << this->PreIntegration << "\n";
-  os << indent << "PointLightRadius: " << this->PointLightRadius << "\n";
-  os << indent << "PreIntegrationTableSize: " << this->PreIntegrationTableSize << "\n";
-  os << indent << "CompileUnusedOpticalTerms: " << this->CompileUnusedOpticalTerms << "\n";
-  os << indent << "ReflectionSource: " << this->ReflectionSource << "\n";
-  os << indent << "ReflectionVisibility: " << this->ReflectionVisibility << "\n";
-  os << indent << "InteractiveIrradiance: "
-     << (this->InteractiveIrradiance == ReuseWhileInteracting ? "ReuseWhileInteracting"
-                                                              : "UpdateAlways")
-     << "\n";
   os << indent << "IrradianceResolution: " << this->Internals->Irradiance.GetResolutionReason()
      << "\n";
   os << indent << "DeferredIrradianceCount: " << this->DeferredIrradianceCount << "\n";
-  os << indent << "IrradianceCacheMB: " << this->IrradianceCacheMB << "\n";
   os << indent << "IrradianceCacheHitCount: " << this->IrradianceCacheHitCount << "\n";
   os << indent << "IrradianceDimensions: " << this->IrradianceDimensions[0] << " "
      << this->IrradianceDimensions[1] << " " << this->IrradianceDimensions[2] << "\n";

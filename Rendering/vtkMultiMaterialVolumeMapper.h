@@ -43,6 +43,7 @@
 #define vtkMultiMaterialVolumeMapper_h
 
 #include "vtkMultiMaterialParameters.h"   // ShadowEstimation
+#include "vtkMultiMaterialSettings.h"     // IlluminationSettings
 #include "vtkMultiMaterialVolumeModule.h" // export macro
 #include "vtkVolumeInputScalars.h"         // VectorModes
 #include "vtkOpenGLGPUVolumeRayCastMapper.h"
@@ -95,42 +96,72 @@ public:
   virtual void SetVectorComponent(int component);
   vtkGetMacro(VectorComponent, int);
 
-  /// Irradiance memory budget in MB (16 bits per light per voxel). Default 64.
-  vtkSetClampMacro(IrradianceMemoryMB, double, 0.001, 1.0e6);
-  vtkGetMacro(IrradianceMemoryMB, double);
-
+  ///@{
   /**
-   * GPU memory in MB for the irradiance of earlier inputs, kept so that data
-   * coming back (the steps of a series on its second loop, with ParaView's
-   * animation caching) costs a copy instead of an update
-   * (vtkIrradianceStepCache); their gradient volumes are kept within the
-   * same amount again. 0 (the default) keeps none. The irradiance is not
-   * kept for a piece of a volume in pieces.
+   * The settings, one mmv::IlluminationSettings (vtkMultiMaterialSettings.h
+   * gives each one's default, range and meaning). A setter clamps to the
+   * range and marks the mapper modified only on a change; SetSettings takes
+   * them all at once, clamped the same way.
    */
-  vtkSetClampMacro(IrradianceCacheMB, double, 0.0, 1.0e6);
-  vtkGetMacro(IrradianceCacheMB, double);
-
-  /// Irradiance resolution as a fraction of the data's (0 < x <= 1); 0 (the
-  /// default) chooses it from the memory budget, the screen and the error
-  /// probe (IrradianceErrorBound).
-  /// Values above 1 are reported (warning) and used as 1; negative or NaN
-  /// ones as 0.
-  vtkSetMacro(IrradianceScale, double);
-  vtkGetMacro(IrradianceScale, double);
-
-  /**
-   * With an automatic resolution (IrradianceScale 0): the error the
-   * irradiance may lose to a coarser grid, in dB (default
-   * mmv::DefaultIrradianceErrorBoundDB). Once per data or transfer-function
-   * change, vtkIrradianceResolutionProbe measures the opacity-weighted
-   * PSNR of coarser grids against the budget's and keeps the coarsest
-   * within this bound (smooth data gets a coarse grid, thin shells keep a
-   * fine one; camera and light moves never re-measure). 0: no probe, the
-   * budget and the screen alone choose. Negative or NaN: 0, above
-   * mmv::MaxIrradianceErrorBoundDB: that maximum (both reported).
-   */
-  vtkSetMacro(IrradianceErrorBound, double);
-  vtkGetMacro(IrradianceErrorBound, double);
+#ifndef __VTK_WRAP__
+  void SetSettings(const mmv::IlluminationSettings& settings);
+  const mmv::IlluminationSettings& GetSettings() const { return this->Settings; }
+#endif
+  void SetIrradianceMemoryMB(double megabytes);
+  double GetIrradianceMemoryMB();
+  void SetIrradianceCacheMB(double megabytes);
+  double GetIrradianceCacheMB();
+  void SetIrradianceScale(double scale);
+  double GetIrradianceScale();
+  void SetIrradianceErrorBound(double decibels);
+  double GetIrradianceErrorBound();
+  void SetGradientSmoothing(double sigma);
+  double GetGradientSmoothing();
+  void SetMultipleScattering(bool enabled);
+  bool GetMultipleScattering();
+  void MultipleScatteringOn() { this->SetMultipleScattering(true); }
+  void MultipleScatteringOff() { this->SetMultipleScattering(false); }
+  void SetShadowEstimation(int estimation);
+  int GetShadowEstimation();
+  void SetPiecewiseShadowSlices(int slices);
+  int GetPiecewiseShadowSlices();
+  void SetExponentialDiffusion(bool exponential);
+  bool GetExponentialDiffusion();
+  void ExponentialDiffusionOn() { this->SetExponentialDiffusion(true); }
+  void ExponentialDiffusionOff() { this->SetExponentialDiffusion(false); }
+  void SetLightDirectionTolerance(double degrees);
+  double GetLightDirectionTolerance();
+  void SetDimLightCoarsening(bool coarsening);
+  bool GetDimLightCoarsening();
+  void DimLightCoarseningOn() { this->SetDimLightCoarsening(true); }
+  void DimLightCoarseningOff() { this->SetDimLightCoarsening(false); }
+  void SetPreIntegration(bool enabled);
+  bool GetPreIntegration();
+  void PreIntegrationOn() { this->SetPreIntegration(true); }
+  void PreIntegrationOff() { this->SetPreIntegration(false); }
+  void SetPreIntegrationTableSize(int size);
+  int GetPreIntegrationTableSize();
+  void SetPointLightRadius(double radius);
+  double GetPointLightRadius();
+  void SetCompileUnusedOpticalTerms(bool compile);
+  bool GetCompileUnusedOpticalTerms();
+  void SetReflectionSource(int source);
+  int GetReflectionSource();
+  void SetReflectionVisibility(int visibility);
+  int GetReflectionVisibility();
+  void SetInteractiveIrradiance(int mode);
+  int GetInteractiveIrradiance();
+  void SetTimeStages(bool timed);
+  bool GetTimeStages();
+  void TimeStagesOn() { this->SetTimeStages(true); }
+  void TimeStagesOff() { this->SetTimeStages(false); }
+  void SetPieceIrradianceOnly(bool pieceOnly);
+  bool GetPieceIrradianceOnly();
+  void PieceIrradianceOnlyOn() { this->SetPieceIrradianceOnly(true); }
+  void PieceIrradianceOnlyOff() { this->SetPieceIrradianceOnly(false); }
+  void SetMaxBrickMB(double megabytes);
+  double GetMaxBrickMB();
+  ///@}
 
   /// The error probe's measurements so far (a camera move adds none).
   int GetNumberOfIrradianceProbes();
@@ -139,101 +170,6 @@ public:
   vtkIrradianceResolutionProbe* GetIrradianceResolutionProbe();
 #endif
 
-  /// Smooths the shading normal: the gradient volume is blurred by a Gaussian
-  /// whose standard deviation is this many times the largest data spacing
-  /// (round in world space). Default 0 (none: the references' model). About
-  /// 1 removes the stripes that thin shells sampled coarsely show at the
-  /// voxel spacing (docs/stability.md, "Stripes on thin shells"). Negative or NaN: reported, used as 0;
-  /// above mmv::MaxGradientSmoothing (4): reported, clamped.
-  vtkSetMacro(GradientSmoothing, double);
-  vtkGetMacro(GradientSmoothing, double);
-
-  /// Diffusion for multiple scattering (default on; skipped when every s = 0).
-  vtkSetMacro(MultipleScattering, bool);
-  vtkGetMacro(MultipleScattering, bool);
-  vtkBooleanMacro(MultipleScattering, bool);
-
-  /**
-   * How directional lights (ParaView's light kit, VTK's default light) are
-   * estimated: mmv::PiecewiseShadowRays (1, default), shadow rays swept
-   * along the light that end on the transmittance of a slice computed
-   * before (vtkShadowSweep.h; O(n^3 K) for an n^3 grid), or
-   * mmv::FullShadowRays (0), one ray per voxel to the boundary (exact,
-   * O(n^4)). Point and spot lights always take full rays. Accuracy and
-   * speed of both: docs/performance.md, "Piecewise shadow rays".
-   */
-  vtkSetClampMacro(ShadowEstimation, int, 0, 1);
-  vtkGetMacro(ShadowEstimation, int);
-
-  /// Slices a piecewise shadow ray spans at most (default
-  /// mmv::DefaultPiecewiseShadowSlices): fewer blur shadow edges more.
-  vtkSetClampMacro(PiecewiseShadowSlices, int, 1, 4096);
-  vtkGetMacro(PiecewiseShadowSlices, int);
-
-  /// The diffusion's time integration (vtkIrradianceVolumePass): on
-  /// (default, mmv::DefaultExponentialDiffusion), the exponential's
-  /// Chebyshev series, exact in time, in far fewer passes than off,
-  /// backward-Euler sub-steps (docs/performance.md, "Diffusion: exponential
-  /// series against backward Euler").
-  vtkSetMacro(ExponentialDiffusion, bool);
-  vtkGetMacro(ExponentialDiffusion, bool);
-  vtkBooleanMacro(ExponentialDiffusion, bool);
-
-  /**
-   * Degrees a light may move and keep its irradiance (ParaView's light kit
-   * follows the camera, so a rotation moves every kit light). Default
-   * mmv::DefaultLightDirectionToleranceDegrees (0): every move recomputes,
-   * and the image at rest equals a fresh render. Directional lights compare
-   * directions; point and spot lights the angle their move subtends at the
-   * volume's centre, and the spot axis. The comparison is with the placement
-   * the irradiance holds, so small moves do not add up; shading terms always
-   * use the current placement. The image error against the exact one per
-   * angle is in docs/performance.md ("Light tolerance"). Clamped to [0, 45];
-   * NaN: 0.
-   */
-  vtkSetClampMacro(LightDirectionTolerance, double, 0.0, mmv::MaxLightDirectionToleranceDegrees);
-  vtkGetMacro(LightDirectionTolerance, double);
-
-  /**
-   * Dim lights on a coarser grid (default on): a light at most
-   * mmv::DimLightRatio of the brightest light's radiance (the light kit's
-   * fill, back and head lights) gets its shadows on every
-   * mmv::DimLightStride-th irradiance point per axis, interpolated, an
-   * eighth of its shadow rays (vtkMultiMaterialParameters.h). Off: every
-   * light on the irradiance grid.
-   */
-  vtkSetMacro(DimLightCoarsening, bool);
-  vtkGetMacro(DimLightCoarsening, bool);
-  vtkBooleanMacro(DimLightCoarsening, bool);
-
-  /// Pre-integrated segments (default on); off: post-classified samples.
-  vtkSetMacro(PreIntegration, bool);
-  vtkGetMacro(PreIntegration, bool);
-  vtkBooleanMacro(PreIntegration, bool);
-
-  /// Falloff of point and spot lights. 0 (default): VTK's, by each light's
-  /// AttenuationValues (constant, linear, quadratic; the default (1, 0, 0)
-  /// means none). > 0: the paper's eq. 12 with this radius epsilon (object
-  /// units), (epsilon / distance)^2 beyond it. A negative or non-finite
-  /// value is reported (warning) and treated as 0.
-  vtkSetMacro(PointLightRadius, double);
-  vtkGetMacro(PointLightRadius, double);
-
-  /// Compile the Henyey-Greenstein and emission terms in even when every
-  /// material leaves them at 0 (default off: the shader then leaves them
-  /// out). For tests and benchmarks: at g = 0 and e = 0 the image is the same.
-  vtkSetMacro(CompileUnusedOpticalTerms, bool);
-  vtkGetMacro(CompileUnusedOpticalTerms, bool);
-
-  /// Where reflections take their environment colour c_r (eq. 17) from:
-  /// 0 (mmv::ReflectEnvironmentTexture, default), the renderer's environment
-  /// texture (cube map or equirectangular image) when one is set, else the
-  /// background; 1 (mmv::ReflectBackground), the background colour or
-  /// gradient. A texture that is not a cube map or 2D image, or is empty, is
-  /// reported (warning) and the background used (vtkMultiMaterialEnvironment).
-  vtkSetClampMacro(ReflectionSource, int, 0, 1);
-  vtkGetMacro(ReflectionSource, int);
-
   /// Pins the background gradient reflections read (bottom and top colours)
   /// instead of the renderer's at render time. ParaView's representation
   /// pins its view's background before each render: under parallel
@@ -241,53 +177,12 @@ public:
   void SetReflectionBackground(const double bottom[3], const double top[3]);
   void ClearReflectionBackground();
 
-  /// The visibility I(x, w_r) of reflections (eq. 17): 3
-  /// (mmv::AutomaticReflectionVisibility, default), per frame the cheaper of
-  /// 1 and 2 for the view's size (mmv::PerSampleMarchPixelsPerVoxel); 2
-  /// (mmv::ViewDependentReflectionVisibility), a march through the
-  /// pre-filtered extinction once per irradiance voxel when the camera or the
-  /// volume changes, interpolated by the ray cast; 1
-  /// (mmv::MarchedReflectionVisibility), the same march from every shaded
-  /// sample with r > 0 (dearer than 2 on large views while the camera turns;
-  /// docs/performance.md, "Material terms: cost");
-  /// 0 (mmv::UnoccludedReflections), none. Both marches honour the cropping
-  /// region and clipping planes (cut material does not occlude). Needs a
-  /// light (the pre-filtered volume comes with the irradiance): without one,
-  /// unoccluded (warning).
-  vtkSetClampMacro(ReflectionVisibility, int, 0, 3);
-  vtkGetMacro(ReflectionVisibility, int);
-
-  /// Pre-integration table size n (n x n). Default 256.
-  vtkSetClampMacro(PreIntegrationTableSize, int, 16, 1024);
-  vtkGetMacro(PreIntegrationTableSize, int);
-
-  /**
-   * What interactive renders (VTK's signal: the volume's allocated render
-   * time below 1 s, as during a mouse drag in ParaView or a
-   * vtkRenderWindowInteractor) do when only the lights moved, e.g. the
-   * camera-attached light kit while orbiting:
-   *  - ReuseWhileInteracting (default): keep the last irradiance (shadows lag
-   *    until the interaction ends) and ray cast only; the next still render
-   *    brings it up to date, so the image at rest equals a fresh render.
-   *    The view-dependent visibility of reflections
-   *    (mmv::ViewDependentReflectionVisibility) likewise keeps the camera
-   *    it was computed for while the camera moves;
-   *  - UpdateAlways: every frame recomputes what changed.
-   * A change of data, opacity or scattering materials updates either way.
-   */
+  /// InteractiveIrradiance's values (mmv::InteractiveIrradianceMode).
   enum InteractiveIrradianceModes
   {
-    UpdateAlways = 0,
-    ReuseWhileInteracting = 1
+    UpdateAlways = mmv::UpdateAlways,
+    ReuseWhileInteracting = mmv::ReuseWhileInteracting
   };
-  vtkSetClampMacro(InteractiveIrradiance, int, UpdateAlways, ReuseWhileInteracting);
-  vtkGetMacro(InteractiveIrradiance, int);
-
-  /// Brackets the stages with glFinish to time them (default off: it stalls
-  /// the pipeline). Counters are always kept.
-  vtkSetMacro(TimeStages, bool);
-  vtkGetMacro(TimeStages, bool);
-  vtkBooleanMacro(TimeStages, bool);
 
   ///@{
   /// What rendering did so far / in the last frame.
@@ -364,28 +259,11 @@ public:
   void SetGlobalPrefilteredVolume(vtkGlobalPrefilteredVolume* volume);
   vtkGlobalPrefilteredVolume* GetGlobalPrefilteredVolume();
 
-  /**
-   * With a global pre-filtered volume: estimate only the irradiance this
-   * piece reads, and what that depends on (default on; the region equals
-   * the whole grid's there, vtkIrradianceRegion.h), so that each rank's
-   * share of the work falls with the number of ranks. Off: every rank
-   * estimates the whole global grid.
-   */
-  vtkSetMacro(PieceIrradianceOnly, bool);
-  vtkGetMacro(PieceIrradianceOnly, bool);
-  vtkBooleanMacro(PieceIrradianceOnly, bool);
-
   /// The partitions (bricks) of the last render: those of SetPartitions, or
   /// more where a brick would exceed the largest 3D texture of the context
   /// (mmv::ChooseBrickPartitions), so that long volumes render instead of
   /// aborting in VTK's texture upload.
   vtkGetVector3Macro(BrickPartitions, int);
-
-  /// The most megabytes one brick's texture may take (default 512): larger
-  /// volumes are cut into more bricks, since a texture allocation the OpenGL
-  /// implementation refuses (llvmpipe: over 1 GiB) aborts in VTK.
-  vtkSetClampMacro(MaxBrickMB, double, 1.0, 1.0e6);
-  vtkGetMacro(MaxBrickMB, double);
 
   /// Reduces a vector (VectorMode) before VTK validates and draws the input.
   void Render(vtkRenderer* ren, vtkVolume* vol) override;
@@ -397,25 +275,7 @@ protected:
   vtkMultiMaterialVolumeMapper();
   ~vtkMultiMaterialVolumeMapper() override;
 
-  double IrradianceMemoryMB = mmv::DefaultIrradianceBudgetMB;
-  double IrradianceScale = 0.0;
-  double IrradianceErrorBound = mmv::DefaultIrradianceErrorBoundDB;
-  double GradientSmoothing = 0.0;
-  bool MultipleScattering = true;
-  int ShadowEstimation = mmv::PiecewiseShadowRays;
-  int PiecewiseShadowSlices = mmv::DefaultPiecewiseShadowSlices;
-  bool ExponentialDiffusion = mmv::DefaultExponentialDiffusion;
-  bool PreIntegration = true;
-  double PointLightRadius = 0.0;
-  int InteractiveIrradiance = ReuseWhileInteracting;
-  double LightDirectionTolerance = mmv::DefaultLightDirectionToleranceDegrees;
-  bool DimLightCoarsening = true;
-  int PreIntegrationTableSize = 256;
-  bool TimeStages = false;
-  bool CompileUnusedOpticalTerms = false;
-  int ReflectionSource = 0;     // mmv::ReflectEnvironmentTexture
-  int ReflectionVisibility = 3; // mmv::AutomaticReflectionVisibility
-  bool PieceIrradianceOnly = true;
+  mmv::IlluminationSettings Settings;
   int VectorMode = mmv::VectorModeDisabled;
   int VectorComponent = 0;
 
@@ -432,13 +292,11 @@ protected:
   int NumberOfUpdatedLights = 0;
   int DeferredIrradianceCount = 0;
   int IrradianceCacheHitCount = 0;
-  double IrradianceCacheMB = 0.0;
   bool LastRenderInteractive = false;
   bool MultiMaterialActive = false;
   bool PartitionsRequested = false;
   int RequestedPartitions[3] = { 1, 1, 1 };
   int BrickPartitions[3] = { 1, 1, 1 };
-  double MaxBrickMB = 512.0;
 
 private:
   vtkMultiMaterialVolumeMapper(const vtkMultiMaterialVolumeMapper&) = delete;
@@ -454,6 +312,10 @@ private:
     vtkOpenGLRenderWindow* context, vtkVolume* vol, vtkImageData* image, const double range[2]);
   bool UpdateGradient(vtkOpenGLRenderWindow* context, vtkImageData* image,
     vtkDataArray* scalars, const double range[2]);
+  // The irradiance stage on this frame's inputs; its report becomes the
+  // counters and warnings.
+  bool UpdateIrradiance(vtkRenderer* ren, vtkVolume* vol, vtkImageData* image,
+    vtkDataArray* scalars, const double range[2], vtkMatrix4x4* worldToObject);
   void CollectShadedLights(vtkRenderer* ren, vtkMatrix4x4* worldToObject);
   void UpdateShading(
     vtkRenderer* ren, vtkImageData* image, vtkMatrix4x4* worldToObject, const double range[2]);
@@ -466,7 +328,6 @@ private:
   class vtkInternals;
   vtkInternals* Internals;
   // The irradiance step reads the settings and keeps the counters above.
-  friend class vtkMultiMaterialIrradianceStage;
 };
 
 #endif

@@ -12,7 +12,7 @@
 #ifndef vtkMultiMaterialLightingQuality_h
 #define vtkMultiMaterialLightingQuality_h
 
-#include "vtkMultiMaterialParameters.h" // the defaults Balanced repeats
+#include "vtkMultiMaterialSettings.h" // the defaults Balanced takes
 
 namespace mmv
 {
@@ -48,9 +48,14 @@ constexpr LightingQualitySettings LightingQualityTable[3] = {
   // keep their irradiance.
   { PiecewiseShadowRays, 4, 1, 1, 2.0, 2, 28.0, 16.0, 0.0, 1 },
   // Balanced: the defaults.
-  { PiecewiseShadowRays, DefaultPiecewiseShadowSlices, DefaultExponentialDiffusion ? 1 : 0, 1,
-    DefaultLightDirectionToleranceDegrees, 3, DefaultIrradianceErrorBoundDB,
-    DefaultIrradianceBudgetMB, 0.0, 1 },
+  { DefaultIlluminationSettings.ShadowEstimation, DefaultIlluminationSettings.PiecewiseShadowSlices,
+    DefaultIlluminationSettings.ExponentialDiffusion ? 1 : 0,
+    DefaultIlluminationSettings.PieceIrradianceOnly ? 1 : 0,
+    DefaultIlluminationSettings.LightDirectionTolerance,
+    DefaultIlluminationSettings.ReflectionVisibility,
+    DefaultIlluminationSettings.IrradianceErrorBound,
+    DefaultIlluminationSettings.IrradianceMemoryMB, DefaultIlluminationSettings.IrradianceScale,
+    DefaultIlluminationSettings.DimLightCoarsening ? 1 : 0 },
   // Exact: full shadow rays on the data's own grid for every light,
   // per-sample reflection visibility, no tolerance.
   { FullShadowRays, DefaultPiecewiseShadowSlices, 1, 1, 0.0, 1, 0.0, 256.0, 1.0, 0 },

@@ -213,26 +213,12 @@ void vtkPVMultiMaterialVolumeRepresentation::UpdateMapperParameters()
   mapper->SetVectorComponent(component);
 
   // vtkSetMacro only bumps the mapper's MTime on a real change, so setting
-  // these every frame costs nothing.
-  mapper->SetIrradianceMemoryMB(this->IrradianceMemoryMB);
-  mapper->SetIrradianceScale(this->IrradianceScale);
-  mapper->SetIrradianceErrorBound(this->IrradianceErrorBound);
-  mapper->SetGradientSmoothing(this->GradientSmoothing);
-  mapper->SetMultipleScattering(this->MultipleScattering);
-  mapper->SetPreIntegration(this->PreIntegration);
+  // these every frame costs nothing. The radius depends on the data's
+  // bounds, the sampling is VTK's own.
   mapper->SetPointLightRadius(this->LightFalloff == 1 ? this->FalloffRadius() : 0.0);
-  mapper->SetReflectionSource(this->ReflectionSource);
-  mapper->SetReflectionVisibility(this->ReflectionVisibility);
   mapper->SetSampleDistance(static_cast<float>(this->SampleDistance));
   mapper->SetAutoAdjustSampleDistances(this->AutoAdjustSampleDistances);
   mapper->SetLockSampleDistanceToInputSpacing(this->LockSampleDistanceToInputSpacing);
-  mapper->SetInteractiveIrradiance(this->InteractiveIrradiance);
-  mapper->SetShadowEstimation(this->ShadowEstimation);
-  mapper->SetPiecewiseShadowSlices(this->PiecewiseShadowSlices);
-  mapper->SetExponentialDiffusion(this->ExponentialDiffusion);
-  mapper->SetPieceIrradianceOnly(this->PieceIrradianceOnly);
-  mapper->SetDimLightCoarsening(this->DimLightCoarsening);
-  mapper->SetLightDirectionTolerance(this->LightDirectionTolerance);
   // Earlier steps come back as the same data objects only from the view's
   // animation cache; without it every step is new data.
   auto* view = vtkPVView::SafeDownCast(this->GetView());
@@ -311,8 +297,36 @@ int vtkPVMultiMaterialVolumeRepresentation::MapperVectorMode(int& component)
 }
 
 //------------------------------------------------------------------------------
-// Setters only record the value: UpdateMapperParameters() hands it to the mapper
-// at the next render. Modified(), not MarkModified(): re-executing the
+// The mapper's settings go to it directly, as ParaView's own representations
+// forward to their mapper; the setting's row (vtkMultiMaterialSettings.h)
+// clamps it there.
+#define vtkPVMMVForward(name, type)                                                                \
+  void vtkPVMultiMaterialVolumeRepresentation::Set##name(type value)                               \
+  {                                                                                                \
+    if (vtkMultiMaterialVolumeMapper* mapper = this->GetMultiMaterialMapper())                     \
+    {                                                                                              \
+      mapper->Set##name(value);                                                                    \
+    }                                                                                              \
+  }
+vtkPVMMVForward(IrradianceMemoryMB, double);
+vtkPVMMVForward(IrradianceScale, double);
+vtkPVMMVForward(IrradianceErrorBound, double);
+vtkPVMMVForward(GradientSmoothing, double);
+vtkPVMMVForward(MultipleScattering, bool);
+vtkPVMMVForward(PreIntegration, bool);
+vtkPVMMVForward(InteractiveIrradiance, int);
+vtkPVMMVForward(ShadowEstimation, int);
+vtkPVMMVForward(PiecewiseShadowSlices, int);
+vtkPVMMVForward(ExponentialDiffusion, bool);
+vtkPVMMVForward(PieceIrradianceOnly, bool);
+vtkPVMMVForward(DimLightCoarsening, bool);
+vtkPVMMVForward(LightDirectionTolerance, double);
+vtkPVMMVForward(ReflectionSource, int);
+vtkPVMMVForward(ReflectionVisibility, int);
+#undef vtkPVMMVForward
+
+// What depends on the view or the data is kept here and handed over in
+// UpdateMapperParameters(). Modified(), not MarkModified(): re-executing the
 // representation would deliver a new data object and void the irradiance cache.
 #define vtkPVMMVSetter(name, type)                                                                 \
   void vtkPVMultiMaterialVolumeRepresentation::Set##name(type value)                               \
@@ -323,25 +337,10 @@ int vtkPVMultiMaterialVolumeRepresentation::MapperVectorMode(int& component)
       this->Modified();                                                                            \
     }                                                                                              \
   }
-vtkPVMMVSetter(IrradianceMemoryMB, double);
-vtkPVMMVSetter(IrradianceScale, double);
-vtkPVMMVSetter(IrradianceErrorBound, double);
-vtkPVMMVSetter(GradientSmoothing, double);
-vtkPVMMVSetter(MultipleScattering, bool);
-vtkPVMMVSetter(PreIntegration, bool);
 vtkPVMMVSetter(SampleDistance, double);
 vtkPVMMVSetter(AutoAdjustSampleDistances, bool);
 vtkPVMMVSetter(LockSampleDistanceToInputSpacing, bool);
-vtkPVMMVSetter(InteractiveIrradiance, int);
-vtkPVMMVSetter(ShadowEstimation, int);
-vtkPVMMVSetter(PiecewiseShadowSlices, int);
-vtkPVMMVSetter(ExponentialDiffusion, bool);
-vtkPVMMVSetter(PieceIrradianceOnly, bool);
-vtkPVMMVSetter(DimLightCoarsening, bool);
-vtkPVMMVSetter(LightDirectionTolerance, double);
 vtkPVMMVSetter(IrradianceCacheMB, double);
-vtkPVMMVSetter(ReflectionSource, int);
-vtkPVMMVSetter(ReflectionVisibility, int);
 vtkPVMMVSetter(LightFalloff, int);
 #undef vtkPVMMVSetter
 
@@ -673,8 +672,9 @@ void vtkPVMultiMaterialVolumeRepresentation::UpdateGlobalVolume()
   }
   int component = 0;
   const int vectorMode = this->MapperVectorMode(component);
-  const std::vector<double> key = { double(this->DataGeneration), this->IrradianceMemoryMB,
-    this->IrradianceScale, double(vectorMode), double(component), double(cells) };
+  const mmv::IlluminationSettings& own = mapper->GetSettings();
+  const std::vector<double> key = { double(this->DataGeneration), own.IrradianceMemoryMB,
+    own.IrradianceScale, double(vectorMode), double(component), double(cells) };
   if (key == this->GlobalKey && array == this->GlobalArray)
   {
     return;
@@ -683,8 +683,8 @@ void vtkPVMultiMaterialVolumeRepresentation::UpdateGlobalVolume()
   this->GlobalArray = array;
 
   mmv::GlobalPrefilterSettings settings;
-  settings.BudgetMB = this->IrradianceMemoryMB;
-  settings.Scale = this->IrradianceScale;
+  settings.BudgetMB = own.IrradianceMemoryMB;
+  settings.Scale = own.IrradianceScale;
   std::string error;
   auto* piece = vtkImageData::SafeDownCast(this->Cache);
   // A vector is lit as the mapper reduces it (VectorMode), from the colour
@@ -755,29 +755,15 @@ void vtkPVMultiMaterialVolumeRepresentation::PrintSelf(ostream& os, vtkIndent in
   this->Superclass::PrintSelf(os, indent);
   os << indent << "MaterialPreset: \"" << this->MaterialPreset << "\"\n";
   os << indent << "MaterialNodes: " << this->CustomMaterials->GetSize() << " nodes\n";
-  os << indent << "IrradianceMemoryMB: " << this->IrradianceMemoryMB << "\n";
-  os << indent << "IrradianceScale: " << this->IrradianceScale << "\n";
-  os << indent << "IrradianceErrorBound: " << this->IrradianceErrorBound << "\n";
-  os << indent << "GradientSmoothing: " << this->GradientSmoothing << "\n";
-  os << indent << "MultipleScattering: " << this->MultipleScattering << "\n";
-  os << indent << "PreIntegration: " << this->PreIntegration << "\n";
   os << indent << "PointLightRadius: " << this->PointLightRadius << "\n";
+  os << indent << "LightFalloff: " << this->LightFalloff << "\n";
   os << indent << "SampleDistance: " << this->SampleDistance << "\n";
   os << indent << "AutoAdjustSampleDistances: " << this->AutoAdjustSampleDistances << "\n";
   os << indent << "LockSampleDistanceToInputSpacing: " << this->LockSampleDistanceToInputSpacing
      << "\n";
-  os << indent << "InteractiveIrradiance: " << this->InteractiveIrradiance << "\n";
-  os << indent << "ShadowEstimation: " << this->ShadowEstimation << "\n";
-  os << indent << "PieceIrradianceOnly: " << this->PieceIrradianceOnly << "\n";
-  os << indent << "DimLightCoarsening: " << this->DimLightCoarsening << "\n";
   os << indent << "IrradianceCacheMB: " << this->IrradianceCacheMB << "\n";
-  os << indent << "PiecewiseShadowSlices: " << this->PiecewiseShadowSlices << "\n";
-  os << indent << "ExponentialDiffusion: " << this->ExponentialDiffusion << "\n";
-  os << indent << "LightDirectionTolerance: " << this->LightDirectionTolerance << "\n";
-  os << indent << "LightFalloff: " << this->LightFalloff << "\n";
   os << indent << "LightingQuality: " << this->LightingQuality << "\n";
-  os << indent << "ReflectionSource: " << this->ReflectionSource << "\n";
-  os << indent << "ReflectionVisibility: " << this->ReflectionVisibility << "\n";
+  // The mapper's settings: the mapper's PrintSelf.
   os << indent << "SamplingDimensions: " << this->SamplingDimensions[0] << " "
      << this->SamplingDimensions[1] << " " << this->SamplingDimensions[2] << "\n";
   os << indent << "ResampleInfo: " << this->ResampleInfo << "\n";

@@ -7,8 +7,9 @@
  * Everything the base class does (data delivery, ordered compositing, colour
  * and opacity transfer functions, cropping, outline LOD) is kept; the base
  * class forwards some settings by down-casting to its own mapper types, so
- * this class forwards the multi-material and sampling settings itself, in
- * UpdateMapperParameters().
+ * this class forwards the multi-material settings to the mapper as they
+ * arrive, and the sampling and what depends on the view or the data (the
+ * falloff radius, the step cache) in UpdateMapperParameters().
  *
  * Materials: MaterialNodes (13 numbers per node, see
  * vtkMaterialTransferFunction::SetNodes) or, when MaterialPreset names a
@@ -34,7 +35,6 @@
 #include "vtkGlobalPrefilteredVolume.h"           // for vtkNew ivar
 #include "vtkImageVolumeRepresentation.h"
 #include "vtkMaterialTransferFunction.h"          // for vtkNew ivar
-#include "vtkMultiMaterialParameters.h"            // ShadowEstimation defaults
 #include "vtkMultiMaterialVolumeParaViewModule.h" // export macro
 #include "vtkNew.h"                               // for vtkNew
 #include "vtkPVMaterialNodeBuffer.h"              // for ivar
@@ -79,7 +79,7 @@ public:
   vtkStringArray* GetMaterialPresetNames();
 
   ///@{
-  /// Forwarded to vtkMultiMaterialVolumeMapper.
+  /// Forwarded to vtkMultiMaterialVolumeMapper (vtkMultiMaterialSettings.h).
   void SetIrradianceMemoryMB(double megabytes);
   void SetIrradianceScale(double scale);
   void SetIrradianceErrorBound(double decibels);
@@ -215,26 +215,11 @@ private:
   std::string MaterialPreset;
   double PresetRange[2] = { 0.0, -1.0 };
 
-  double IrradianceMemoryMB = mmv::DefaultIrradianceBudgetMB;
-  double IrradianceScale = 0.0;
-  double IrradianceErrorBound = mmv::DefaultIrradianceErrorBoundDB;
-  double GradientSmoothing = 0.0;
-  bool MultipleScattering = true;
-  bool PreIntegration = true;
   double PointLightRadius = 0.0;
   double SampleDistance = 1.0;
   bool AutoAdjustSampleDistances = true;
   bool LockSampleDistanceToInputSpacing = false;
-  int InteractiveIrradiance = 1; // vtkMultiMaterialVolumeMapper::ReuseWhileInteracting
-  int ShadowEstimation = mmv::PiecewiseShadowRays;
-  int PiecewiseShadowSlices = mmv::DefaultPiecewiseShadowSlices;
-  bool ExponentialDiffusion = mmv::DefaultExponentialDiffusion;
-  bool PieceIrradianceOnly = true;
-  bool DimLightCoarsening = true;
-  double LightDirectionTolerance = mmv::DefaultLightDirectionToleranceDegrees;
   double IrradianceCacheMB = 1024.0;
-  int ReflectionSource = 0;     // mmv::ReflectEnvironmentTexture
-  int ReflectionVisibility = 3; // mmv::AutomaticReflectionVisibility (the proxy's default)
   int LightFalloff = 0;
   int LightingQuality = 1; // mmv::DefaultLightingQuality
 

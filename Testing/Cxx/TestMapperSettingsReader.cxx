@@ -14,6 +14,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <iterator>
+#include <type_traits>
+
 namespace mmvtest
 {
 namespace
@@ -51,18 +55,59 @@ TEST(MapperSettingsReader, ReadsOnlyTheMultiMaterialMapper)
   mmv::MapperSettings settings;
   ASSERT_TRUE(mmv::ReadMapperSettings(mapper, settings));
   EXPECT_EQ(settings.Materials, materials.Get());
-  EXPECT_FALSE(settings.MultipleScattering);
-  EXPECT_EQ(settings.PointLightRadius, 0.37);
-  EXPECT_EQ(settings.ReflectionSource, mmv::ReflectBackground);
-  EXPECT_EQ(settings.ReflectionVisibility, mmv::UnoccludedReflections);
+  EXPECT_FALSE(settings.Illumination.MultipleScattering);
+  EXPECT_EQ(settings.Illumination.PointLightRadius, 0.37);
+  EXPECT_EQ(settings.Illumination.ReflectionSource, mmv::ReflectBackground);
+  EXPECT_EQ(settings.Illumination.ReflectionVisibility, mmv::UnoccludedReflections);
 
   mmv::MapperSettings untouched;
-  untouched.PointLightRadius = 5.0;
+  untouched.Illumination.PointLightRadius = 5.0;
   vtkNew<vtkOpenGLGPUVolumeRayCastMapper> other;
   EXPECT_FALSE(mmv::ReadMapperSettings(other, untouched));
   EXPECT_FALSE(mmv::ReadMapperSettings(nullptr, untouched));
-  EXPECT_EQ(untouched.PointLightRadius, 5.0);
+  EXPECT_EQ(untouched.Illumination.PointLightRadius, 5.0);
   EXPECT_EQ(untouched.Materials, nullptr);
+}
+
+TEST(MapperSettings, AccessorsFollowTheTable)
+{
+  vtkNew<vtkMultiMaterialVolumeMapper> mapper;
+  const mmv::IlluminationSettings defaults;
+  int rows = 0;
+  // Every accessor starts at its row's default and clamps to its row's range.
+#define MMV_CHECK_SETTING(type, name, init, low, high, doc)                                       \
+  {                                                                                                \
+    const mmv::SettingDescription& row = mmv::IlluminationSettingDescriptions[rows++];             \
+    EXPECT_STREQ(row.Name, #name);                                                                 \
+    EXPECT_EQ(static_cast<double>(mapper->Get##name()), row.Default) << #name;                     \
+    EXPECT_EQ(static_cast<double>(defaults.name), row.Default) << #name;                           \
+    if (!std::is_same<type, bool>::value && std::isfinite(row.Max))                                \
+    {                                                                                              \
+      mapper->Set##name(static_cast<type>(row.Max + 1.0));                                         \
+      EXPECT_EQ(static_cast<double>(mapper->Get##name()), row.Max) << #name;                       \
+      mapper->Set##name(static_cast<type>(row.Min - 1.0));                                         \
+      EXPECT_EQ(static_cast<double>(mapper->Get##name()), row.Min) << #name;                       \
+    }                                                                                              \
+  }
+  MMV_ILLUMINATION_SETTINGS(MMV_CHECK_SETTING)
+#undef MMV_CHECK_SETTING
+  EXPECT_EQ(rows, static_cast<int>(std::size(mmv::IlluminationSettingDescriptions)));
+
+  // SetSettings takes them all, clamped the same way, and marks the mapper
+  // modified only when something changed.
+  mmv::IlluminationSettings wanted;
+  wanted.PiecewiseShadowSlices = 5;
+  wanted.ReflectionVisibility = mmv::MarchedReflectionVisibility;
+  wanted.MultipleScattering = false;
+  wanted.LightDirectionTolerance = 90.0; // above the row's maximum
+  mapper->SetSettings(wanted);
+  EXPECT_EQ(mapper->GetSettings().PiecewiseShadowSlices, 5);
+  EXPECT_EQ(mapper->GetReflectionVisibility(), mmv::MarchedReflectionVisibility);
+  EXPECT_FALSE(mapper->GetMultipleScattering());
+  EXPECT_EQ(mapper->GetLightDirectionTolerance(), mmv::MaxLightDirectionToleranceDegrees);
+  const vtkMTimeType time = mapper->GetMTime();
+  mapper->SetSettings(mapper->GetSettings());
+  EXPECT_EQ(mapper->GetMTime(), time);
 }
 
 TEST(MapperSettingsReader, ReferencesAdoptTheMapperInRenderToImage)

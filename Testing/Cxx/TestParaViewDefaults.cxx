@@ -1,7 +1,8 @@
 // The ParaView proxies (Plugin/MultiMaterialVolume.xml.in) repeat the C++
-// defaults as text; this keeps every copy equal to the one constant
-// (a default written in several places drifts).
+// defaults as text; this keeps every copy equal to the one table,
+// vtkMultiMaterialSettings.h (a default written in several places drifts).
 #include "vtkMultiMaterialParameters.h"
+#include "vtkMultiMaterialSettings.h"
 
 #include <gtest/gtest.h>
 
@@ -61,4 +62,34 @@ TEST(ParaViewDefaults, ProxyDefaultsAreTheCppConstants)
   const std::vector<double> bound = Defaults(xml, "IrradianceErrorBound");
   ASSERT_EQ(bound.size(), 1u);
   EXPECT_EQ(bound[0], mmv::DefaultIrradianceErrorBoundDB);
+}
+
+TEST(ParaViewDefaults, EverySettingsPropertyDefaultsToItsRow)
+{
+  const std::string xml = ReadPluginXML();
+  ASSERT_FALSE(xml.empty());
+  int found = 0;
+  for (const mmv::SettingDescription& row : mmv::IlluminationSettingDescriptions)
+  {
+    const std::string name = row.Name;
+    const std::vector<double> values = Defaults(xml, name);
+    if (name == "IrradianceCacheMB")
+    {
+      // The mapper keeps no earlier steps unless asked (0); the representation
+      // asks for this much whenever the view caches its animation.
+      ASSERT_EQ(values.size(), 1u);
+      EXPECT_GT(values[0], row.Default);
+      ++found;
+      continue;
+    }
+    for (const double value : values)
+    {
+      EXPECT_EQ(value, row.Default) << name;
+      EXPECT_GE(value, row.Min) << name;
+      EXPECT_LE(value, row.Max) << name;
+    }
+    found += values.empty() ? 0 : 1;
+  }
+  // The panel's settings (sampling and data selection are VTK's own).
+  EXPECT_GE(found, 16);
 }
