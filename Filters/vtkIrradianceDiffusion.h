@@ -55,7 +55,7 @@ struct DiffusionSettings
   /// How the diffusion is integrated in time. False (this struct's default,
   /// and the reference renderer's): MaxSubSteps backward-Euler steps (CG on
   /// the CPU, Chebyshev-accelerated Jacobi on the GPU), first order in time.
-  /// True (what the filter, the mapper and the pass use by default,
+  /// True (what the filter, the mapper and the estimator use by default,
   /// mmv::DefaultExponentialDiffusion): the exponential exp(-T C^-1 A)
   /// applied as a truncated Chebyshev series (ExponentialChebyshevCoefficients),
   /// exact in time and in several times fewer GPU passes (docs/performance.md,
@@ -197,7 +197,7 @@ VTKMULTIMATERIALVOLUMEFILTERS_EXPORT void RestrictToDiffusionGrid(const int dims
  * it there with the blocks' capacities (DiffuseIrradiance), and add the
  * change it made to every voxel with s > 0 (clamped at 0), interpolated
  * trilinearly over the corner blocks that scatter. With a factor of 1 this
- * equals DiffuseIrradiance. The GPU pass (vtkIrradianceVolumePass) computes
+ * equals DiffuseIrradiance. The GPU pass (vtkIrradianceEstimator) computes
  * the same.
  *
  * Adding the change keeps the direct light's detail finer than a block,

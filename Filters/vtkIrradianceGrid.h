@@ -1,8 +1,8 @@
 /**
  * @file   vtkIrradianceGrid.h
  * @brief  Geometry and pre-filtered data of the irradiance volume, shared by
- *         the CPU filter (vtkIrradianceVolumeFilter) and the GPU pass
- *         (vtkIrradianceVolumePass) so both estimate irradiance on the same grid
+ *         the CPU filter (vtkIrradianceVolumeFilter) and the GPU estimator
+ *         (vtkIrradianceEstimator) so both estimate irradiance on the same grid
  *         from the same samples.
  *
  * The grid spans the same bounds as the data's points: voxel (0,0,0) sits on

@@ -1,7 +1,7 @@
 /**
  * @class   vtkIrradianceInputCache
  * @brief   What vtkMultiMaterialVolumeMapper's irradiance volume was computed
- *          from, and the inputs of vtkIrradianceVolumePass kept between frames.
+ *          from, and the inputs of vtkIrradianceEstimator kept between frames.
  *
  * Three caches, each behind a key of named fields, so that a frame recomputes
  * only what changed (the paper's Algorithm 1):
@@ -11,7 +11,7 @@
  *    irradiance;
  *  - the data pre-filtered onto the irradiance grid, normalised to [0, 1] over
  *    the scalar range with NaN and Inf cleaned up, and a version that names
- *    its values (the pass re-uploads on a new version, without comparing);
+ *    its values (the estimator re-uploads on a new version, without comparing);
  *  - what the last computed irradiance was computed from: the volume (data,
  *    opacity, materials, settings, cutaway), each light, and the grid; what
  *    a new update recomputes is vtkIrradianceUpdatePlan's decision (Plan()).
@@ -88,7 +88,7 @@ public:
   /// (Plan(...).KeepsVolume()).
   bool SameVolume(const VolumeKey& volume) const;
   /// Records a successfully computed irradiance: `lights` are the placements
-  /// it holds (vtkIrradianceVolumePass::GetComputedLights()).
+  /// it holds (vtkIrradianceEstimator::GetComputedLights()).
   void Store(const VolumeKey& volume, const std::vector<mmv::LightSource>& lights,
     const int dims[3]);
   /// Forgets the stored volume key (graphics resources released, a failed

@@ -31,7 +31,7 @@ namespace mmv
 {
 
 /// Voxels [Bounds[2a], Bounds[2a + 1]] along each axis a (inclusive), the
-/// box layout of vtkIrradianceVolumePass's draws; empty when a minimum
+/// box layout of vtkIrradianceEstimator's draws; empty when a minimum
 /// exceeds its maximum.
 struct IndexBox
 {

@@ -24,7 +24,7 @@
  * placement, so small moves cannot add up.
  *
  * vtkIrradianceInputCache keeps the held inputs, the irradiance stage makes
- * the plan and vtkIrradianceVolumePass executes its light marks. Pure CPU:
+ * the plan and vtkIrradianceEstimator executes its light marks. Pure CPU:
  * no OpenGL, unit-tested on its own.
  */
 #ifndef vtkIrradianceUpdatePlan_h
@@ -59,7 +59,7 @@ public:
     bool ExponentialDiffusion = mmv::DefaultExponentialDiffusion;
     /// mmv::Cutaway::Key(): what cropping and clipping remove casts no shadow.
     std::vector<double> Cut;
-    /// The irradiance voxels the pass estimates for (vtkIrradianceRegion.h).
+    /// The irradiance voxels the estimator estimates for (vtkIrradianceRegion.h).
     int Region[6] = { 0, -1, 0, -1, 0, -1 };
 
     /// Equal when no field changed (VolumeChanges() is empty); a NaN never
@@ -132,7 +132,7 @@ public:
   const std::vector<bool>& GetLights() const { return this->MarkedLights; }
   int GetNumberOfLights() const;
   /// The lights that are new or beyond their tolerance, whatever else
-  /// changed: what vtkIrradianceVolumePass recomputes when its own inputs
+  /// changed: what vtkIrradianceEstimator recomputes when its own inputs
   /// (the values the keys stand for) turn out unchanged.
   const std::vector<bool>& GetMovedLights() const { return this->MovedLights; }
   /// With `multipleScattering` on, the updated lights are diffused.

@@ -30,7 +30,7 @@
  *     half-angle (vtkMultiMaterialLightModel.h).
  *  4. Multiple scattering: diffusion with per-voxel s from the material TF,
  *     its change computed on a grid coarsened to the diffusion length
- *     (mmv::DiffuseIrradianceOnDiffusionGrid, as the GPU pass does), skipped
+ *     (mmv::DiffuseIrradianceOnDiffusionGrid, as the GPU estimator does), skipped
  *     when every s is zero or MultipleScattering is off.
  *  5. Empty voxels next to computed ones take the mean of their computed
  *     neighbours, so trilinear lookups at material boundaries are not darkened

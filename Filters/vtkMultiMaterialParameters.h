@@ -349,7 +349,7 @@ enum ShadowEstimation : int
 constexpr int DefaultPiecewiseShadowSlices = 16;
 
 /// Default time integration of the diffusion (ExponentialDiffusion of the
-/// mapper, the pass and the CPU filter): the exponential's Chebyshev series,
+/// mapper, the estimator and the CPU filter): the exponential's Chebyshev series,
 /// exact in time. It is as accurate as backward Euler in fewer passes
 /// (docs/performance.md, "Diffusion: exponential series against backward
 /// Euler").

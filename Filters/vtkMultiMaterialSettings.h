@@ -78,10 +78,9 @@
 #ifndef vtkMultiMaterialSettings_h
 #define vtkMultiMaterialSettings_h
 
-#include "vtkMultiMaterialEnvironmentLookup.h" // ReflectionSource, ReflectionVisibility
-#include "vtkMultiMaterialParameters.h"        // ShadowEstimation, defaults
+#include "vtkMultiMaterialParameters.h"      // ShadowEstimation, defaults
+#include "vtkMultiMaterialReflectionModes.h" // ReflectionSource, ReflectionVisibility
 
-#include <algorithm>
 #include <limits>
 
 namespace mmv

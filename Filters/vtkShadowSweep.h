@@ -1,7 +1,7 @@
 /**
  * @file   vtkShadowSweep.h
  * @brief  The order in which piecewise shadow rays fill the irradiance grid
- *         for one directional light; the CPU filter and the GPU pass share it.
+ *         for one directional light; the CPU filter and the GPU estimator share it.
  *
  * A full shadow ray crosses the whole grid, so estimating a directional
  * light costs O(n^4) for an n^3 grid. Piecewise shadow rays (as in Hernell,

@@ -6,7 +6,7 @@
  * only. This subclass links a compute shader into the same program object,
  * so that vtkOpenGLShaderCache::ReadyShaderProgram() binds it (its
  * bookkeeping of the bound program stays right) and the SetUniform*()
- * methods work unchanged. vtkIrradianceVolumePass dispatches its voxel
+ * methods work unchanged. vtkIrradianceEstimator dispatches its voxel
  * passes with it where the context has OpenGL 4.3.
  */
 #ifndef vtkIrradianceComputeProgram_h

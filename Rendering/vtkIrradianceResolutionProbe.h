@@ -28,7 +28,7 @@
 #include "vtkIrradianceGrid.h"            // IrradianceGrid
 #include "vtkIrradianceInputCache.h"      // VolumeKey
 #include "vtkIrradianceProbeRule.h"       // ProbeSignature
-#include "vtkIrradianceVolumePass.h"      // vtkNew
+#include "vtkIrradianceEstimator.h"      // vtkNew
 #include "vtkMultiMaterialLightModel.h"   // LightSource
 #include "vtkMultiMaterialVolumeModule.h" // export macro
 #include "vtkNew.h"
@@ -54,7 +54,7 @@ public:
   /// Estimates the irradiance of `lights` on `grid` (normalised pre-filtered
   /// data `prefiltered`, its version) into `pass`, as the mapper's frame
   /// does but without multiple scattering. False: it failed (reported).
-  using ComputeFunction = std::function<bool(vtkIrradianceVolumePass* pass,
+  using ComputeFunction = std::function<bool(vtkIrradianceEstimator* pass,
     const mmv::IrradianceGrid& grid, const std::vector<float>& prefiltered,
     unsigned long version, const std::vector<mmv::LightSource>& lights)>;
 
@@ -140,7 +140,7 @@ private:
     const ComputeFunction& compute);
 
   vtkNew<vtkIrradianceInputCache> Prefilter;
-  vtkNew<vtkIrradianceVolumePass> Pass;
+  vtkNew<vtkIrradianceEstimator> Pass;
   bool HasResult = false;
   Key Measured;
   mmv::ProbeSignature MeasuredSignature;

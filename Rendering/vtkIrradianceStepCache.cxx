@@ -2,7 +2,7 @@
 
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
-#include "vtkIrradianceVolumePass.h"
+#include "vtkIrradianceEstimator.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkTextureCopy.h"
 #include "vtkTextureObject.h"
@@ -60,7 +60,7 @@ vtkIrradianceStepCache::Key vtkIrradianceStepCache::MakeKey(
 }
 
 //------------------------------------------------------------------------------
-std::vector<vtkTextureObject*> vtkIrradianceStepCache::PassTextures(vtkIrradianceVolumePass* pass)
+std::vector<vtkTextureObject*> vtkIrradianceStepCache::PassTextures(vtkIrradianceEstimator* pass)
 {
   std::vector<vtkTextureObject*> textures;
   for (int t = 0; t < pass->GetNumberOfIrradianceTextures(); ++t)
@@ -76,7 +76,7 @@ std::vector<vtkTextureObject*> vtkIrradianceStepCache::PassTextures(vtkIrradianc
 
 //------------------------------------------------------------------------------
 bool vtkIrradianceStepCache::Restore(vtkOpenGLRenderWindow* context, const Key& key,
-  vtkIrradianceVolumePass* pass, std::vector<mmv::LightSource>& computed)
+  vtkIrradianceEstimator* pass, std::vector<mmv::LightSource>& computed)
 {
   auto entry = std::find_if(this->Entries.begin(), this->Entries.end(),
     [&key](const Entry& e) { return e.EntryKey == key; });
@@ -92,13 +92,13 @@ bool vtkIrradianceStepCache::Restore(vtkOpenGLRenderWindow* context, const Key& 
   }
   if (!fits)
   {
-    return false; // the pass's textures were allocated for another grid
+    return false; // the estimator's textures were allocated for another grid
   }
   for (size_t t = 0; t < targets.size(); ++t)
   {
     mmv::CopyTexture3D(entry->Textures[t], targets[t]);
   }
-  // The pass's record of what its textures hold is no longer true.
+  // The estimator's record of what its textures hold is no longer true.
   pass->InvalidateComputedLights();
   computed = entry->ComputedLights;
   this->Entries.splice(this->Entries.begin(), this->Entries, entry);
@@ -107,7 +107,7 @@ bool vtkIrradianceStepCache::Restore(vtkOpenGLRenderWindow* context, const Key& 
 
 //------------------------------------------------------------------------------
 bool vtkIrradianceStepCache::Store(vtkOpenGLRenderWindow* context, const Key& key,
-  vtkIrradianceVolumePass* pass, const std::vector<mmv::LightSource>& computed,
+  vtkIrradianceEstimator* pass, const std::vector<mmv::LightSource>& computed,
   size_t budgetBytes)
 {
   for (auto entry = this->Entries.begin(); entry != this->Entries.end();)

@@ -8,7 +8,7 @@
  * second loop through a series hands the mapper the same scalar arrays
  * again. An entry holds copies of the irradiance (and tint) textures for one
  * input and everything the irradiance depends on; a later frame with the
- * same key gets them copied back into the pass instead of recomputing.
+ * same key gets them copied back into the estimator instead of recomputing.
  * Entries beyond the memory budget are dropped, least recently used first.
  *
  * The key names the data by its scalar array and that array's modification
@@ -30,7 +30,7 @@
 
 class vtkDataArray;
 class vtkImageData;
-class vtkIrradianceVolumePass;
+class vtkIrradianceEstimator;
 class vtkOpenGLRenderWindow;
 class vtkTextureObject;
 class vtkWindow;
@@ -66,17 +66,17 @@ public:
     const std::vector<mmv::LightSource>& lights, const int dims[3]);
 
   /// Copies the entry of `key`, if there is one, into `pass`'s textures
-  /// (when they have its sizes) and has the pass recompute every light at
+  /// (when they have its sizes) and has the estimator recompute every light at
   /// its next update; `computed` gets the light placements the copy holds.
-  /// False: no such entry, or the pass's textures have other sizes.
-  bool Restore(vtkOpenGLRenderWindow* context, const Key& key, vtkIrradianceVolumePass* pass,
+  /// False: no such entry, or the estimator's textures have other sizes.
+  bool Restore(vtkOpenGLRenderWindow* context, const Key& key, vtkIrradianceEstimator* pass,
     std::vector<mmv::LightSource>& computed);
 
   /// Keeps a copy of `pass`'s textures, which hold the light placements
   /// `computed`, under `key` if it fits in `budgetBytes`, dropping the
   /// entries lit otherwise, then the least recently used to make room. False: nothing kept (no budget,
   /// too large, or no copy support).
-  bool Store(vtkOpenGLRenderWindow* context, const Key& key, vtkIrradianceVolumePass* pass,
+  bool Store(vtkOpenGLRenderWindow* context, const Key& key, vtkIrradianceEstimator* pass,
     const std::vector<mmv::LightSource>& computed, size_t budgetBytes);
 
 
@@ -97,7 +97,7 @@ private:
     std::vector<mmv::LightSource> ComputedLights;
     size_t Bytes = 0;
   };
-  static std::vector<vtkTextureObject*> PassTextures(vtkIrradianceVolumePass* pass);
+  static std::vector<vtkTextureObject*> PassTextures(vtkIrradianceEstimator* pass);
   void Drop(std::list<Entry>::iterator entry);
 
   std::list<Entry> Entries; // most recently used first

@@ -73,7 +73,7 @@ double SecondsSince(Clock::time_point start)
 }
 
 /// The scalar opacity at `n` points over `range` (> 0 marks a voxel
-/// non-empty for the pass; the probe's weights).
+/// non-empty for the estimator; the probe's weights).
 std::vector<float> SampleOpacityTable(vtkPiecewiseFunction* opacity, const double range[2], int n)
 {
   std::vector<float> table(n);
@@ -93,7 +93,7 @@ void vtkMultiMaterialIrradianceStage::ReleaseGraphicsResources(vtkWindow* window
 {
   this->Steps.ReleaseGraphicsResources(window);
   this->HeldKept = false;
-  this->Pass->ReleaseGraphicsResources(window);
+  this->Estimator->ReleaseGraphicsResources(window);
   this->Probe->ReleaseGraphicsResources(window);
   this->Cache->Invalidate();
 }
@@ -185,7 +185,7 @@ void vtkMultiMaterialIrradianceStage::ApplyProbe(vtkRenderer* ren, vtkVolume* vo
   int estimates = 0;
   const double probed = this->Probe->Choose(window, volumeKey, image, scalars, range, budget,
     maxAxis, bound, opacityTable, signature,
-    [&](vtkIrradianceVolumePass* pass, const mmv::IrradianceGrid& grid,
+    [&](vtkIrradianceEstimator* pass, const mmv::IrradianceGrid& grid,
       const std::vector<float>& prefiltered, unsigned long version,
       const std::vector<mmv::LightSource>& lights) {
       // Each grid the probe lights has about 2^-1.5 the voxels of the one
@@ -297,32 +297,32 @@ bool vtkMultiMaterialIrradianceStage::Update(
   {
     this->Out->Warnings.push_back(mmv::NonFiniteScalarsMessage);
   }
-  this->Pass->SetRegion(region.Bounds);
-  // The plan compared the lights with what the textures hold: the pass
+  this->Estimator->SetRegion(region.Bounds);
+  // The plan compared the lights with what the textures hold: the estimator
   // recomputes those it marks (and every light where its inputs changed).
-  this->Pass->SetLightsToUpdate(plan.GetMovedLights());
-  this->ReportProgressOf(this->Pass, 0.0, 1.0);
-  const bool estimated = this->ComputeOn(this->Pass,
+  this->Estimator->SetLightsToUpdate(plan.GetMovedLights());
+  this->ReportProgressOf(this->Estimator, 0.0, 1.0);
+  const bool estimated = this->ComputeOn(this->Estimator,
     vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow()), vol, range, cutaway,
     this->Cache->GetGrid(), this->Cache->GetPrefiltered(), this->Cache->GetPrefilteredVersion(),
     sources, this->In->Settings.MultipleScattering);
-  this->Pass->SetProgressCallback(nullptr);
+  this->Estimator->SetProgressCallback(nullptr);
   if (!estimated)
   {
     this->Cache->Invalidate();
     this->In->Reporter->SetProgressText(nullptr);
     return false;
   }
-  this->HeldLights = this->Pass->GetComputedLights();
+  this->HeldLights = this->Estimator->GetComputedLights();
   this->Cache->Store(volumeKey, this->HeldLights, dims);
   this->HeldKept = stepBudget > 0 &&
-    this->Steps.Store(window, stepKey(), this->Pass, this->HeldLights, stepBudget);
+    this->Steps.Store(window, stepKey(), this->Estimator, this->HeldLights, stepBudget);
   stages.Tables = this->TablesSeconds;
-  stages.Shadows = this->Pass->GetLastEstimationSeconds();
-  stages.Diffusion = this->Pass->GetLastDiffusionSeconds();
-  stages.Setup = this->Pass->GetLastSetupSeconds();
-  stages.Write = this->Pass->GetLastWriteSeconds();
-  stages.Pass = this->Pass->GetLastRenderSeconds();
+  stages.Shadows = this->Estimator->GetLastEstimationSeconds();
+  stages.Diffusion = this->Estimator->GetLastDiffusionSeconds();
+  stages.Setup = this->Estimator->GetLastSetupSeconds();
+  stages.Write = this->Estimator->GetLastWriteSeconds();
+  stages.Pass = this->Estimator->GetLastRenderSeconds();
   stages.Total = SecondsSince(start);
   this->Stages = stages;
   if (this->In->Reporter->GetProgress() < 1.0)
@@ -339,7 +339,7 @@ bool vtkMultiMaterialIrradianceStage::KeepsHeld(const vtkIrradianceUpdatePlan& p
   const vtkIrradianceUpdatePlan::Inputs& now, vtkOpenGLRenderWindow* window, vtkVolume* vol,
   const double range[2], size_t stepBudget, const std::function<vtkIrradianceStepCache::Key()>& stepKey)
 {
-  if (this->Pass->GetNumberOfIrradianceTextures() == 0)
+  if (this->Estimator->GetNumberOfIrradianceTextures() == 0)
   {
     return false; // nothing computed yet, or released
   }
@@ -349,7 +349,7 @@ bool vtkMultiMaterialIrradianceStage::KeepsHeld(const vtkIrradianceUpdatePlan& p
     if (stepBudget > 0 && !this->HeldKept)
     {
       this->HeldKept =
-        this->Steps.Store(window, stepKey(), this->Pass, this->HeldLights, stepBudget);
+        this->Steps.Store(window, stepKey(), this->Estimator, this->HeldLights, stepBudget);
     }
     return true;
   }
@@ -373,7 +373,7 @@ bool vtkMultiMaterialIrradianceStage::KeepsHeld(const vtkIrradianceUpdatePlan& p
   // Data seen before with everything else the same (a series' earlier step):
   // its kept irradiance is copied back.
   std::vector<mmv::LightSource> restored;
-  if (stepBudget > 0 && this->Steps.Restore(window, stepKey(), this->Pass, restored))
+  if (stepBudget > 0 && this->Steps.Restore(window, stepKey(), this->Estimator, restored))
   {
     this->Cache->Store(now.Volume, restored, now.Dimensions);
     this->HeldLights = restored;
@@ -387,9 +387,9 @@ bool vtkMultiMaterialIrradianceStage::KeepsHeld(const vtkIrradianceUpdatePlan& p
 }
 
 void vtkMultiMaterialIrradianceStage::ReportProgressOf(
-  vtkIrradianceVolumePass* pass, double from, double to)
+  vtkIrradianceEstimator* pass, double from, double to)
 {
-  // Without an observer the pass runs without progress, and without the
+  // Without an observer the estimator runs without progress, and without the
   // glFinish each report takes.
   if (!this->In->Reporter->HasObserver(vtkCommand::ProgressEvent))
   {
@@ -418,7 +418,7 @@ void vtkMultiMaterialIrradianceStage::ReportProgress(double progress)
   this->Context->GetShaderCache()->ReleaseCurrentShader();
 }
 
-bool vtkMultiMaterialIrradianceStage::ComputeOn(vtkIrradianceVolumePass* pass,
+bool vtkMultiMaterialIrradianceStage::ComputeOn(vtkIrradianceEstimator* pass,
   vtkOpenGLRenderWindow* window, vtkVolume* vol, const double range[2],
   const mmv::Cutaway& cutaway, const mmv::IrradianceGrid& grid,
   const std::vector<float>& prefiltered, unsigned long version,
@@ -467,7 +467,7 @@ bool vtkMultiMaterialIrradianceStage::ComputeOn(vtkIrradianceVolumePass* pass,
 
 void vtkMultiMaterialIrradianceStage::Record(const mmv::IrradianceResolution& resolution)
 {
-  vtkIrradianceVolumePass* pass = this->Pass;
+  vtkIrradianceEstimator* pass = this->Estimator;
   const int* dims = resolution.Dimensions;
   this->Out->GridSet = true;
   std::copy(dims, dims + 3, this->Out->Dimensions);

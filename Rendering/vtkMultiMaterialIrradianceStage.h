@@ -8,7 +8,7 @@
  * changed since the held irradiance, decided once), keeps the irradiance
  * when the plan allows it (current, or only the lights moved while
  * interacting: InteractiveIrradiance), and otherwise has
- * vtkIrradianceVolumePass recompute the lights the plan marks, with VTK
+ * vtkIrradianceEstimator recompute the lights the plan marks, with VTK
  * progress events.
  * Settings in, report out: it reads one mmv::IrradianceStageInputs (the
  * mapper's settings among them) and says what it did in an
@@ -23,7 +23,7 @@
 #include "vtkIrradianceResolutionProbe.h" // vtkNew
 #include "vtkIrradianceStepCache.h"       // member
 #include "vtkIrradianceUpdatePlan.h"      // the update's decisions
-#include "vtkIrradianceVolumePass.h"      // vtkNew
+#include "vtkIrradianceEstimator.h"      // vtkNew
 #include "vtkMultiMaterialCutaway.h"      // Cutaway
 #include "vtkMultiMaterialLights.h"       // ShadingLight
 #include "vtkMultiMaterialSettings.h"     // IlluminationSettings
@@ -48,7 +48,7 @@ class vtkWindow;
 namespace mmv
 {
 /// Wall seconds of each stage of the last irradiance update (the probe and
-/// the pre-filter count only when they ran; the pass's own stages end with
+/// the pre-filter count only when they ran; the estimator's own stages end with
 /// glFinish).
 struct VTKMULTIMATERIALVOLUME_EXPORT IrradianceStageSeconds
 {
@@ -57,7 +57,7 @@ struct VTKMULTIMATERIALVOLUME_EXPORT IrradianceStageSeconds
   double Tables = 0.0;    // the shadow rays' pre-integrated table
   double Shadows = 0.0;   // the transmittance toward every updated light
   double Diffusion = 0.0; // multiple scattering
-  double Setup = 0.0;     // the pass's uploads and texture allocations
+  double Setup = 0.0;     // the estimator's uploads and texture allocations
   double Write = 0.0;     // the final write into the irradiance textures
   double Pass = 0.0;      // the whole GPU pass (shadows, diffusion, final write)
   double Total = 0.0;     // the whole update
@@ -88,7 +88,7 @@ struct IrradianceStageReport
 {
   int UpdatedLights = 0;   // lights whose irradiance was recomputed
   int DiffusionPasses = 0; // of that update
-  double Seconds = 0.0;    // the pass's time, when lights were recomputed
+  double Seconds = 0.0;    // the estimator's time, when lights were recomputed
   bool Deferred = false;   // an interactive frame kept a stale irradiance
   bool CacheHit = false;   // an earlier input's irradiance was copied back
   bool GridSet = false;    // Dimensions hold the grid now in use
@@ -109,7 +109,7 @@ public:
   /// GPU could not compute it (reported).
   bool Update(const mmv::IrradianceStageInputs& inputs, mmv::IrradianceStageReport& report);
 
-  vtkIrradianceVolumePass* GetPass() { return this->Pass; }
+  vtkIrradianceEstimator* GetEstimator() { return this->Estimator; }
   vtkIrradianceResolutionProbe* GetProbe() { return this->Probe; }
 
   /// The irradiance grid of the pre-filtered data.
@@ -145,28 +145,28 @@ private:
     const std::function<vtkIrradianceStepCache::Key()>& stepKey);
   /// Has `pass` report the mapper's progress from `from` to `to` (nothing
   /// while no one observes it).
-  void ReportProgressOf(vtkIrradianceVolumePass* pass, double from, double to);
+  void ReportProgressOf(vtkIrradianceEstimator* pass, double from, double to);
   /// The mapper's progress, with VTK's OpenGL state kept across the report.
   void ReportProgress(double progress);
   /// Estimates `sources` on `grid` into `pass` (the frame's pass, or the
   /// probe's without scattering).
-  bool ComputeOn(vtkIrradianceVolumePass* pass, vtkOpenGLRenderWindow* window, vtkVolume* vol,
+  bool ComputeOn(vtkIrradianceEstimator* pass, vtkOpenGLRenderWindow* window, vtkVolume* vol,
     const double range[2], const mmv::Cutaway& cutaway, const mmv::IrradianceGrid& grid,
     const std::vector<float>& prefiltered, unsigned long version,
     const std::vector<mmv::LightSource>& sources, bool scattering);
   void Record(const mmv::IrradianceResolution& resolution);
 
-  // What the irradiance volume was computed from, and the pass's inputs
+  // What the irradiance volume was computed from, and the estimator's inputs
   // kept between frames (pre-filtered data, material samples).
   vtkNew<vtkIrradianceInputCache> Cache;
   vtkNew<vtkPreIntegrationTable> ShadowTable;
-  vtkNew<vtkIrradianceVolumePass> Pass;
+  vtkNew<vtkIrradianceEstimator> Estimator;
   vtkNew<vtkIrradianceResolutionProbe> Probe;
   vtkIrradianceStepCache Steps;
-  // The light placements the pass's textures hold: its own record after an
-  // update, the copy's after a restore (the pass's record is then stale).
+  // The light placements the estimator's textures hold: its own record after an
+  // update, the copy's after a restore (the estimator's record is then stale).
   std::vector<mmv::LightSource> HeldLights;
-  // Whether Steps holds a copy of what the pass's textures hold now.
+  // Whether Steps holds a copy of what the estimator's textures hold now.
   bool HeldKept = false;
   std::string ResolutionReason;
   mmv::IrradianceStageSeconds Stages;

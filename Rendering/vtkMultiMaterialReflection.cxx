@@ -1,7 +1,7 @@
 #include "vtkMultiMaterialReflection.h"
 
 #include "vtkIrradianceGrid.h"
-#include "vtkIrradianceVolumePass.h"
+#include "vtkIrradianceEstimator.h"
 #include "vtkMaterialTransferFunction.h"
 #include "vtkMultiMaterialParameters.h"
 #include "vtkCamera.h"
@@ -56,7 +56,7 @@ void vtkMultiMaterialReflection::SetReflectiveValues(
 }
 
 void vtkMultiMaterialReflection::Update(vtkRenderer* ren, vtkMatrix4x4* objectToWorld,
-  int source, int visibility, vtkIrradianceVolumePass* pass, const mmv::IrradianceGrid& grid,
+  int source, int visibility, vtkIrradianceEstimator* pass, const mmv::IrradianceGrid& grid,
   int tableSize, double stepLength, std::vector<std::string>* problems, bool keepWhileCameraMoves)
 {
   this->Environment->Update(ren, objectToWorld, source, problems);

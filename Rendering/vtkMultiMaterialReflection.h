@@ -5,7 +5,7 @@
  *
  * Consumer of two producers: the environment (vtkMultiMaterialEnvironment
  * from the renderer, bound by vtkMultiMaterialEnvironmentTexture) and the pre-filtered extinction of the irradiance pass
- * (vtkIrradianceVolumePass: its scalars and shadow-opacity table, marched as
+ * (vtkIrradianceEstimator: its scalars and shadow-opacity table, marched as
  * its shadow rays march them). Gives the shader variant its
  * MMV_ENVIRONMENT and MMV_REFLECTION_VISIBILITY, binds the textures and sets
  * the uniforms of Shaders/mmvReflection.glsl.
@@ -28,7 +28,7 @@
 #include <string> // problems
 #include <vector> // problems
 
-class vtkIrradianceVolumePass;
+class vtkIrradianceEstimator;
 class vtkMaterialTransferFunction;
 class vtkMatrix4x4;
 class vtkMultiMaterialEnvironment;
@@ -61,7 +61,7 @@ public:
    * long as the volume is the same; the next frame without it recomputes.
    */
   void Update(vtkRenderer* ren, vtkMatrix4x4* objectToWorld, int source, int visibility,
-    vtkIrradianceVolumePass* pass, const mmv::IrradianceGrid& grid, int tableSize,
+    vtkIrradianceEstimator* pass, const mmv::IrradianceGrid& grid, int tableSize,
     double stepLength, std::vector<std::string>* problems, bool keepWhileCameraMoves = false);
 
   /**
@@ -112,7 +112,7 @@ private:
   vtkNew<vtkReflectionVisibilityPass> VisibilityPass;
   int Visibility = 0;
   bool Cutaway = false;
-  vtkIrradianceVolumePass* Pass = nullptr; // not owned
+  vtkIrradianceEstimator* Pass = nullptr; // not owned
   float ToIndex[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
   float ToObject[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
   float Eye[4] = { 0, 0, 1, 0 };

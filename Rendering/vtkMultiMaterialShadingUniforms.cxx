@@ -3,7 +3,7 @@
 
 #include "vtkGlobalPrefilteredVolume.h"
 #include "vtkImageData.h"
-#include "vtkIrradianceVolumePass.h"
+#include "vtkIrradianceEstimator.h"
 #include "vtkMatrix4x4.h"
 #include "vtkMultiMaterialLightUniforms.h"
 #include "vtkMultiMaterialParameters.h"
@@ -63,7 +63,7 @@ void vtkMultiMaterialShadingUniforms::SetGeometry(
 }
 
 void vtkMultiMaterialShadingUniforms::Apply(vtkShaderProgram* program,
-  vtkMultiMaterialTextures* textures, int tableSize, vtkIrradianceVolumePass* irradiance) const
+  vtkMultiMaterialTextures* textures, int tableSize, vtkIrradianceEstimator* irradiance) const
 {
   program->SetUniformi("mmv_preintColor", textures->GetSegmentColorTexture()->GetTextureUnit());
   program->SetUniformi(
@@ -133,7 +133,7 @@ void vtkMultiMaterialShadingUniforms::Apply(vtkShaderProgram* program,
 }
 
 void vtkMultiMaterialShadingUniforms::ActivateTextures(
-  bool on, vtkMultiMaterialTextures* textures, vtkIrradianceVolumePass* irradiance) const
+  bool on, vtkMultiMaterialTextures* textures, vtkIrradianceEstimator* irradiance) const
 {
   const int count = this->Variant.NumberOfLights > 0
     ? std::min(irradiance->GetNumberOfIrradianceTextures(), 2)

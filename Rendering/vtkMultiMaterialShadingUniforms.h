@@ -21,7 +21,7 @@
 
 class vtkGlobalPrefilteredVolume;
 class vtkImageData;
-class vtkIrradianceVolumePass;
+class vtkIrradianceEstimator;
 class vtkMatrix4x4;
 class vtkMultiMaterialReflection;
 class vtkMultiMaterialTextures;
@@ -63,11 +63,11 @@ public:
 
   /// Sets every uniform of the variant on `program`.
   void Apply(vtkShaderProgram* program, vtkMultiMaterialTextures* textures, int tableSize,
-    vtkIrradianceVolumePass* irradiance) const;
+    vtkIrradianceEstimator* irradiance) const;
 
   /// Binds (on) or releases (off) the textures the uniforms name.
   void ActivateTextures(
-    bool on, vtkMultiMaterialTextures* textures, vtkIrradianceVolumePass* irradiance) const;
+    bool on, vtkMultiMaterialTextures* textures, vtkIrradianceEstimator* irradiance) const;
 
 private:
   mmv::ShaderVariant Variant;

@@ -7,7 +7,7 @@
 #include "vtkMultiMaterialEnvironment.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
-#include "vtkIrradianceVolumePass.h"
+#include "vtkIrradianceEstimator.h"
 #include "vtkLightCollection.h"
 #include "vtkMaterialTransferFunction.h"
 #include "vtkMatrix4x4.h"
@@ -18,7 +18,7 @@
 #include "vtkMultiMaterialParameters.h"
 #include "vtkMultiMaterialReflection.h"
 #include "vtkReflectionVisibilityPass.h"
-#include "vtkMultiMaterialRenderPass.h"
+#include "vtkMultiMaterialShaderHook.h"
 #include "vtkMultiMaterialShaderAssembly.h"
 #include "vtkMultiMaterialShadingUniforms.h"
 #include "vtkMultiMaterialThreads.h"
@@ -74,7 +74,7 @@ public:
   {
     return this->Global && this->Global->GetValid() ? this->Global.Get() : nullptr;
   }
-  // The value range the pass's and the gradient's normalisation use: the
+  // The value range the estimator's and the gradient's normalisation use: the
   // global one when the input is one piece of a volume, else the piece's.
   const double* ValueRange(const double pieceRange[2]) const
   {
@@ -84,7 +84,7 @@ public:
   vtkNew<vtkPreIntegrationTable> SegmentTable;
   vtkNew<vtkMultiMaterialTextures> Textures;
   vtkMultiMaterialIrradianceStage Irradiance;
-  vtkNew<vtkMultiMaterialRenderPass> Pass;
+  vtkNew<vtkMultiMaterialShaderHook> ShaderHook;
   vtkNew<vtkColorTransferFunction> GrayAsColor;
   vtkMTimeType GrayTime = 0;
 
@@ -125,11 +125,11 @@ public:
   void SetUniforms(vtkShaderProgram* program)
   {
     this->Uniforms.Apply(program, this->Textures, this->SegmentTable->GetTableSize(),
-      this->Irradiance.GetPass());
+      this->Irradiance.GetEstimator());
   }
   void ActivateTextures(bool on)
   {
-    this->Uniforms.ActivateTextures(on, this->Textures, this->Irradiance.GetPass());
+    this->Uniforms.ActivateTextures(on, this->Textures, this->Irradiance.GetEstimator());
   }
 };
 
@@ -138,18 +138,18 @@ vtkMultiMaterialVolumeMapper::vtkMultiMaterialVolumeMapper()
   : Internals(new vtkInternals)
 {
   vtkMultiMaterialLiveObjects::Constructed("vtkMultiMaterialVolumeMapper");
-  this->Internals->Pass->SetOwner(this);
+  this->Internals->ShaderHook->SetOwner(this);
   vtkInternals* internals = this->Internals;
-  this->Internals->Pass->SetParameterCallback(
+  this->Internals->ShaderHook->SetParameterCallback(
     [internals](vtkShaderProgram* program) { internals->SetUniforms(program); });
 }
 
 vtkMultiMaterialVolumeMapper::~vtkMultiMaterialVolumeMapper()
 {
-  // The pass may outlive us in a volume's keys: leave it inert.
-  this->Internals->Pass->SetOwner(nullptr);
-  this->Internals->Pass->SetParameterCallback(nullptr);
-  this->Internals->Pass->SetFragmentReplacements({});
+  // The hook may outlive us in a volume's keys: leave it inert.
+  this->Internals->ShaderHook->SetOwner(nullptr);
+  this->Internals->ShaderHook->SetParameterCallback(nullptr);
+  this->Internals->ShaderHook->SetFragmentReplacements({});
   delete this->Internals;
   vtkMultiMaterialLiveObjects::Destroyed("vtkMultiMaterialVolumeMapper");
 }
@@ -225,17 +225,17 @@ bool vtkMultiMaterialVolumeMapper::ReadIrradiance(
     return false;
   }
   context->MakeCurrent();
-  return this->Internals->Irradiance.GetPass()->ReadBack(context, light, values);
+  return this->Internals->Irradiance.GetEstimator()->ReadBack(context, light, values);
 }
 
-vtkIrradianceVolumePass* vtkMultiMaterialVolumeMapper::GetIrradianceVolumePass()
+vtkIrradianceEstimator* vtkMultiMaterialVolumeMapper::GetIrradianceEstimator()
 {
-  return this->Internals->Irradiance.GetPass();
+  return this->Internals->Irradiance.GetEstimator();
 }
 
 std::string vtkMultiMaterialVolumeMapper::GetLastFragmentShaderSource()
 {
-  return this->Internals->Pass->GetLastFragmentSource();
+  return this->Internals->ShaderHook->GetLastFragmentSource();
 }
 
 size_t vtkMultiMaterialVolumeMapper::GetIrradianceCacheBytes()
@@ -250,7 +250,7 @@ int vtkMultiMaterialVolumeMapper::GetGradientUploadCount()
 
 vtkIdType vtkMultiMaterialVolumeMapper::GetMultiMaterialMemoryBytes()
 {
-  return this->Internals->Irradiance.GetPass()->GetTextureMemoryBytes() +
+  return this->Internals->Irradiance.GetEstimator()->GetTextureMemoryBytes() +
     this->Internals->Textures->GetMemoryBytes();
 }
 
@@ -471,13 +471,13 @@ void vtkMultiMaterialVolumeMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
   if (!this->MultiMaterialActive)
   {
     // Exactly the base class: no pass in the volume's keys.
-    in.Pass->SetFragmentReplacements({});
-    in.Pass->RemoveFrom(keys);
+    in.ShaderHook->SetFragmentReplacements({});
+    in.ShaderHook->RemoveFrom(keys);
     this->Superclass::GPURender(ren, vol);
     return;
   }
 
-  in.Pass->InstallInto(keys);
+  in.ShaderHook->InstallInto(keys);
   in.ActivateTextures(true);
   const auto start = Clock::now();
   if (this->Settings.TimeStages)
@@ -740,10 +740,10 @@ void vtkMultiMaterialVolumeMapper::UpdateShading(
   variant.Anisotropy = variant.NumberOfLights > 0 &&
     (all || (in.Materials && in.Materials->HasNonZero(mmv::Anisotropy)));
   variant.Emission = all || (in.Materials && in.Materials->HasNonZero(mmv::Emission));
-  // Tints only where the pass computed them (a non-white transmission
-  // colour); not forced by CompileUnusedOpticalTerms: without the pass's
+  // Tints only where the estimator computed them (a non-white transmission
+  // colour); not forced by CompileUnusedOpticalTerms: without the estimator's
   // tint textures there is nothing to bind.
-  vtkIrradianceVolumePass* pass = in.Irradiance.GetPass();
+  vtkIrradianceEstimator* pass = in.Irradiance.GetEstimator();
   variant.RGBIrradiance = variant.NumberOfLights > 0 && in.Materials &&
     in.Materials->HasChromaticTransmission() && pass &&
     pass->GetTintTexture(variant.NumberOfLights - 1) != nullptr;
@@ -754,9 +754,9 @@ void vtkMultiMaterialVolumeMapper::UpdateShading(
     variant.ReflectionVisibility = in.Reflection->GetVisibility();
     variant.ReflectionCutaway = in.Reflection->GetCutaway();
   }
-  if (variant != in.Uniforms.GetVariant() || in.Pass->GetFragmentReplacements().empty())
+  if (variant != in.Uniforms.GetVariant() || in.ShaderHook->GetFragmentReplacements().empty())
   {
-    in.Pass->SetFragmentReplacements(mmv::RayCastReplacements(variant));
+    in.ShaderHook->SetFragmentReplacements(mmv::RayCastReplacements(variant));
   }
   in.Uniforms.SetVariant(variant);
   in.Uniforms.SetLights(in.Lights);
@@ -775,7 +775,7 @@ void vtkMultiMaterialVolumeMapper::UpdateReflection(
   const mmv::IrradianceGrid& grid = in.Irradiance.GetGrid();
   std::vector<std::string> problems;
   in.Reflection->Update(ren, objectToWorld, this->Settings.ReflectionSource, this->Settings.ReflectionVisibility,
-    in.Lights.empty() ? nullptr : in.Irradiance.GetPass(), grid, this->Settings.PreIntegrationTableSize,
+    in.Lights.empty() ? nullptr : in.Irradiance.GetEstimator(), grid, this->Settings.PreIntegrationTableSize,
     std::min({ grid.Spacing.x, grid.Spacing.y, grid.Spacing.z }), &problems,
     this->LastRenderInteractive && this->Settings.InteractiveIrradiance == ReuseWhileInteracting);
   for (const std::string& problem : problems)

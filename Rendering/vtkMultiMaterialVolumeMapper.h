@@ -54,7 +54,7 @@
 class vtkDataArray;
 class vtkGlobalPrefilteredVolume;
 class vtkImageData;
-class vtkIrradianceVolumePass;
+class vtkIrradianceEstimator;
 class vtkIrradianceResolutionProbe;
 class vtkMaterialTransferFunction;
 class vtkMatrix4x4;
@@ -211,7 +211,7 @@ public:
   /// The irradiance (and diffusion) resolution in use, and why it was chosen.
   const char* GetIrradianceResolutionReason();
   /// Seconds of each stage of the last irradiance update: the error probe,
-  /// the pre-filter, the shadow table, the shadows, the diffusion, the pass
+  /// the pre-filter, the shadow table, the shadows, the diffusion, the estimator
   /// and the whole update.
   std::string GetLastIrradianceStages();
 
@@ -232,9 +232,9 @@ public:
   /// renderer's active lights), x fastest. Needs the render window.
   bool ReadIrradiance(vtkRenderWindow* window, int light, std::vector<float>& values);
 
-  /// Benchmark hook: the pass that estimates the irradiance (its
+  /// Benchmark hook: the estimator that estimates the irradiance (its
   /// LayeredRendering and SkipEmptyVoxels switches, its diffusion grid).
-  vtkIrradianceVolumePass* GetIrradianceVolumePass();
+  vtkIrradianceEstimator* GetIrradianceEstimator();
 
   /// Test hook: the fragment shader of the last shader build.
   std::string GetLastFragmentShaderSource();

@@ -5,7 +5,7 @@
  *          3D texture, recomputed only when its inputs change.
  *
  * One GL resource: an R16 3D texture at irradiance resolution, filled by one
- * instanced layered draw (as vtkIrradianceVolumePass fills its targets) of
+ * instanced layered draw (as vtkIrradianceEstimator fills its targets) of
  * Shaders/mmvReflectionVisibilityFS.glsl, which marches the irradiance pass's
  * pre-filtered extinction along the mirror direction of each voxel. The
  * caller (vtkMultiMaterialReflection) composes the march's defines, sets its
@@ -42,7 +42,7 @@ public:
    * mmvReflectionVisibilityFS.glsl; `setUniforms` sets its uniforms, with
    * the textures it samples active. `region` (i0, i1, j0, j1, k0, k1,
    * inclusive), when given, limits the draw to the voxels a piece reads
-   * (vtkIrradianceVolumePass::GetRegion): each voxel is its own march, so
+   * (vtkIrradianceEstimator::GetRegion): each voxel is its own march, so
    * they equal the whole texture's; the others keep what they held (it
    * belongs in `key`). Needs the context current. False (with an error)
    * when the context cannot draw it.

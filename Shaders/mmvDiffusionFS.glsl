@@ -12,7 +12,7 @@
 //   x_new = x_previous + omega * (J(x) - x_previous).
 // A sub-step stops once every |J(x) - x| <= (1 - rho) tol, which bounds the
 // error |x - x*| by tol (J contracts by rho); checked only in sub-steps whose
-// error bound asks for many sweeps (vtkIrradianceVolumePass.cxx).
+// error bound asks for many sweeps (vtkIrradianceEstimator.cxx).
 //
 // With MMV_FILL_PASS defined (the final write): empty voxels bordering
 // non-empty ones take the mean of those neighbours, as the CPU filter's

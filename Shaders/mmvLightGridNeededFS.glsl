@@ -1,7 +1,7 @@
 // Which points of a strided light grid (mmvLightGrid.glsl) a non-empty
 // irradiance voxel needs: 1 where the trilinear interpolation to some
 // non-empty voxel reads the point, else 0. The CPU twin and what it mirrors:
-// vtkIrradianceVolumePass's LightGridNeededOnCPU. Per axis, the voxels that
+// vtkIrradianceEstimator's LightGridNeededOnCPU. Per axis, the voxels that
 // read point p are one run of indices, given by `neededRanges` (made on the
 // CPU from the same per-axis arithmetic, so float rounding cannot move a
 // boundary); the point is needed when a voxel of the box they span is

@@ -20,7 +20,7 @@
 #include "vtkMaterialLibrary.h"
 #include "vtkMultiMaterialLightingQuality.h"
 #include "vtkMultiMaterialLiveObjects.h"
-#include "vtkIrradianceVolumePass.h"
+#include "vtkIrradianceEstimator.h"
 #include "vtkMultiMaterialVolumeMapper.h"
 #include "vtkObjectFactory.h"
 #include "vtkPResampleToImage.h"
@@ -414,7 +414,7 @@ double vtkPVMultiMaterialVolumeRepresentation::GetLastIrradianceSeconds()
 double vtkPVMultiMaterialVolumeRepresentation::GetLastEstimatedIrradianceVoxels()
 {
   vtkMultiMaterialVolumeMapper* mapper = this->GetMultiMaterialMapper();
-  return mapper ? static_cast<double>(mapper->GetIrradianceVolumePass()->GetLastEstimatedVoxels())
+  return mapper ? static_cast<double>(mapper->GetIrradianceEstimator()->GetLastEstimatedVoxels())
                 : 0.0;
 }
 

@@ -32,7 +32,7 @@
 #include "vtkImageErrorMetrics.h"
 #include "vtkWindowToImageFilter.h"
 #include "vtkIrradianceResolutionProbe.h"
-#include "vtkIrradianceVolumePass.h"
+#include "vtkIrradianceEstimator.h"
 #include "vtkLight.h"
 #include "vtkLightKit.h"
 #include "vtkMultiMaterialParameters.h"
@@ -526,7 +526,7 @@ int RunLightKitOrbit(const mmvbench::SceneSpec& scene, int size, const std::stri
     {
       b.Renderer->GetActiveCamera()->Azimuth(10.0);
       frame.push_back(timed(b.Window));
-      vtkIrradianceVolumePass* irradiance = b.Ours->GetIrradianceVolumePass();
+      vtkIrradianceEstimator* irradiance = b.Ours->GetIrradianceEstimator();
       pass.push_back(b.Ours->GetLastIrradianceSeconds());
       estimation.push_back(irradiance->GetLastEstimationSeconds());
       diffusion.push_back(irradiance->GetLastDiffusionSeconds());
@@ -675,7 +675,7 @@ int main(int argc, char* argv[])
     // by update (the machine may be shared): 5 lights, scale 0.5.
     ours.SetLightCount(5);
     ours.Ours->SetIrradianceScale(0.5);
-    vtkIrradianceVolumePass* pass = ours.Ours->GetIrradianceVolumePass();
+    vtkIrradianceEstimator* pass = ours.Ours->GetIrradianceEstimator();
     std::ofstream csv(out + "/compute_vs_fragment.csv");
     csv << "scattering,compute_update_s,fragment_update_s,fragment_over_compute,renderer\n";
     std::string renderer;
@@ -687,7 +687,7 @@ int main(int argc, char* argv[])
       {
         std::vector<double> pair;
         for (int kind :
-          { vtkIrradianceVolumePass::ComputeDispatches, vtkIrradianceVolumePass::FragmentDraws })
+          { vtkIrradianceEstimator::ComputeDispatches, vtkIrradianceEstimator::FragmentDraws })
         {
           pass->SetComputeShaders(kind);
           std::vector<double> update;
@@ -808,7 +808,7 @@ int main(int argc, char* argv[])
             std::vector<double> update;
             benches[e]->Frames(1, [&]() { benches[e]->PlaceLights(); }, &update);
             pair[e] = update.back();
-            passes[e] = benches[e]->Ours->GetIrradianceVolumePass()->GetDiffusionPasses();
+            passes[e] = benches[e]->Ours->GetIrradianceEstimator()->GetDiffusionPasses();
           }
           times[0].push_back(pair[0]);
           times[1].push_back(pair[1]);
@@ -829,7 +829,7 @@ int main(int argc, char* argv[])
         vtkNew<vtkImageErrorMetrics> metrics;
         metrics->Compute(images[0], images[1]);
         int dims[3];
-        ours.Ours->GetIrradianceVolumePass()->GetDiffusionGridDimensions(dims);
+        ours.Ours->GetIrradianceEstimator()->GetDiffusionGridDimensions(dims);
         renderer = mmvtest::RendererString(ours.Window);
         csv << s << "," << scale << "," << Join(dims) << "," << passes[0] << "," << passes[1]
             << "," << Median(times[0]) << "," << Median(times[1]) << "," << Median(ratios) << ","
@@ -892,11 +892,11 @@ int main(int argc, char* argv[])
     phong.SetLightCount(c.Lights);
     ours.SetScattering(c.S);
     ours.Ours->SetIrradianceScale(c.Scale);
-    vtkIrradianceVolumePass* pass = ours.Ours->GetIrradianceVolumePass();
+    vtkIrradianceEstimator* pass = ours.Ours->GetIrradianceEstimator();
     pass->SetLayeredRendering(c.Layered);
     pass->SetSkipEmptyVoxels(c.SkipEmpty);
-    pass->SetComputeShaders(c.Compute ? vtkIrradianceVolumePass::ComputeDispatches
-                                      : vtkIrradianceVolumePass::FragmentDraws);
+    pass->SetComputeShaders(c.Compute ? vtkIrradianceEstimator::ComputeDispatches
+                                      : vtkIrradianceEstimator::FragmentDraws);
     // Warm-up: shaders, tables, uploads for this configuration.
     ours.Window->Render();
     phong.Window->Render();
@@ -971,10 +971,10 @@ int main(int argc, char* argv[])
   };
   ours.SetLightCount(5);
   phong.SetLightCount(5);
-  ours.Ours->GetIrradianceVolumePass()->SetLayeredRendering(true);
-  ours.Ours->GetIrradianceVolumePass()->SetComputeShaders(
-    vtkIrradianceVolumePass::ComputeUnlessSoftware);
-  ours.Ours->GetIrradianceVolumePass()->SetSkipEmptyVoxels(true);
+  ours.Ours->GetIrradianceEstimator()->SetLayeredRendering(true);
+  ours.Ours->GetIrradianceEstimator()->SetComputeShaders(
+    vtkIrradianceEstimator::ComputeUnlessSoftware);
+  ours.Ours->GetIrradianceEstimator()->SetSkipEmptyVoxels(true);
   const std::vector<double> accuracyScales =
     quick ? std::vector<double>{ 1.0, 0.5 } : std::vector<double>{ 1.0, 0.75, 0.5, 0.35, 0.25 };
   for (double s : { 0.0, 8.0 })
@@ -1043,7 +1043,7 @@ int main(int argc, char* argv[])
         std::vector<double> shadowRays;
         std::vector<double> diffusions;
         std::vector<double> phongFrames;
-        vtkIrradianceVolumePass* pass = ours.Ours->GetIrradianceVolumePass();
+        vtkIrradianceEstimator* pass = ours.Ours->GetIrradianceEstimator();
         for (int r = 0; r < reps; ++r)
         {
           ours.Frames(1, [&]() { ours.PlaceLights(); }, &updates);

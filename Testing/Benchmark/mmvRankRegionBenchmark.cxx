@@ -25,7 +25,7 @@
 #include "vtkExtractVOI.h"
 #include "vtkGlobalPrefilteredVolume.h"
 #include "vtkImageData.h"
-#include "vtkIrradianceVolumePass.h"
+#include "vtkIrradianceEstimator.h"
 #include "vtkLightKit.h"
 #include "vtkMultiMaterialVolumeMapper.h"
 #include "vtkNew.h"
@@ -198,13 +198,13 @@ int main(int argc, char* argv[])
               const double seconds = mapper->GetLastIrradianceSeconds();
               if (seconds >= rankMax)
               {
-                rankShadows = mapper->GetIrradianceVolumePass()->GetLastEstimationSeconds();
-                rankDiffusion = mapper->GetIrradianceVolumePass()->GetLastDiffusionSeconds();
+                rankShadows = mapper->GetIrradianceEstimator()->GetLastEstimationSeconds();
+                rankDiffusion = mapper->GetIrradianceEstimator()->GetLastDiffusionSeconds();
               }
               rankMax = std::max(rankMax, seconds);
               rankSum += seconds;
               rankVoxels = std::max(rankVoxels,
-                static_cast<double>(mapper->GetIrradianceVolumePass()->GetLastEstimatedVoxels()));
+                static_cast<double>(mapper->GetIrradianceEstimator()->GetLastEstimatedVoxels()));
             }
             slowest[mode].push_back(rankMax);
             estimation[mode].push_back(rankShadows);

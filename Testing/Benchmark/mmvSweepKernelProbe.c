@@ -2,7 +2,7 @@
 // fragment draw (instanced quads + geometry shader writing gl_Layer, what
 // the irradiance pass did) and as a compute dispatch with imageStore, for
 // RGBA32F and RGBA16F and three work-group shapes; EGL on the first device,
-// no VTK. The measurement behind vtkIrradianceVolumePass's compute
+// no VTK. The measurement behind vtkIrradianceEstimator's compute
 // dispatches (docs/performance.md, "On a GPU: NVIDIA H100").
 //   mmvSweepKernelProbe [NX NY NZ]   (default 128 128 64)
 #include <GL/glew.h>

@@ -98,7 +98,7 @@ def run(name, preset, path, args, writer):
             start = time.time()
             view.SMProxy.StillRender()
             frames[strided].append(time.time() - start)
-            irradiance = orbit.volume_props(view)[0].GetMapper().GetIrradianceVolumePass()
+            irradiance = orbit.volume_props(view)[0].GetMapper().GetIrradianceEstimator()
             shadows[strided].append(irradiance.GetLastEstimationSeconds())
             rays[strided] = irradiance.GetLastEstimatedVoxels()
             images[strided] = grab(view)

@@ -3,7 +3,7 @@
 // shadow sweep reads on the way to a region, found by following the
 // shader's reads one voxel at a time, lies in the box its chunk draws; and
 // the boxes stay small where the region allows. The GPU pass's region
-// equals its whole grid bit for bit (TestIrradianceVolumePass.cxx).
+// equals its whole grid bit for bit (TestIrradianceEstimator.cxx).
 #include "vtkIrradianceRegion.h"
 #include "vtkShadowSweep.h"
 

@@ -19,7 +19,7 @@
 #include "vtkLightKit.h"
 #include "vtkMultiMaterialLiveObjects.h"
 #include "vtkMultiMaterialLights.h"
-#include "vtkMultiMaterialRenderPass.h"
+#include "vtkMultiMaterialShaderHook.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLRenderPass.h"
 #include "vtkPointData.h"
@@ -802,8 +802,8 @@ TEST(MultiMaterialVolumeMapper, DimLightsOnACoarserGridKeepTheImage)
   ASSERT_EQ(dims[0], Dims) << strided.Mapper->GetIrradianceResolutionReason();
   const double psnr = mmvtest::PSNR(strided.Pixels(), exact.Pixels());
   const double rays = static_cast<double>(
-                        strided.Mapper->GetIrradianceVolumePass()->GetLastEstimatedVoxels()) /
-    exact.Mapper->GetIrradianceVolumePass()->GetLastEstimatedVoxels();
+                        strided.Mapper->GetIrradianceEstimator()->GetLastEstimatedVoxels()) /
+    exact.Mapper->GetIrradianceEstimator()->GetLastEstimatedVoxels();
   std::printf("light kit on a thin shell: dim lights strided %.1f dB, %.2f of the shadow rays\n",
     psnr, rays);
   // A shell one voxel thick at opacity 0.9 is the worst case: its
@@ -1163,7 +1163,7 @@ TEST(MultiMaterialVolumeMapper, KeptScratchGivesTheImagesOfFreshScratch)
   // update); nothing of an earlier update may leak into a later one.
   ProbeScene kept(ThinShell, 0.8);
   ProbeScene fresh(ThinShell, 0.8);
-  fresh.Mapper->GetIrradianceVolumePass()->KeepScratchOff();
+  fresh.Mapper->GetIrradianceEstimator()->KeepScratchOff();
   for (ProbeScene* scene : { &kept, &fresh })
   {
     scene->Materials->AddNode(1.0, 0.1, 0.9, 0.0, 1.0, 1.0, 8.0, 0.0);
@@ -1187,7 +1187,7 @@ TEST(MultiMaterialVolumeMapper, KeptScratchGivesTheImagesOfFreshScratch)
       scene->Window->Render();
     }
     EXPECT_EQ(mmvtest::PSNR(kept.Pixels(), fresh.Pixels()), INFINITY) << "change " << step;
-    EXPECT_EQ(fresh.Mapper->GetIrradianceVolumePass()->GetScratchMemoryBytes(), 0);
+    EXPECT_EQ(fresh.Mapper->GetIrradianceEstimator()->GetScratchMemoryBytes(), 0);
     ++step;
   }
   EXPECT_GE(kept.Mapper->GetIrradianceUpdateCount(), 5);
@@ -1201,10 +1201,10 @@ TEST(MultiMaterialVolumeMapper, KeptScratchGivesTheImagesOfFreshScratch)
   {
     lightGridVoxels *= mmv::LightGridDimension(d, mmv::DimLightStride);
   }
-  EXPECT_GT(kept.Mapper->GetIrradianceVolumePass()->GetScratchMemoryBytes(), 2 * 16 * voxels);
+  EXPECT_GT(kept.Mapper->GetIrradianceEstimator()->GetScratchMemoryBytes(), 2 * 16 * voxels);
   kept.Mapper->MultipleScatteringOff();
   kept.Window->Render();
-  EXPECT_EQ(kept.Mapper->GetIrradianceVolumePass()->GetScratchMemoryBytes(),
+  EXPECT_EQ(kept.Mapper->GetIrradianceEstimator()->GetScratchMemoryBytes(),
     16 * (voxels + lightGridVoxels));
 }
 
@@ -1246,12 +1246,12 @@ protected:
 };
 vtkStandardNewMacro(ForeignRenderPass);
 
-vtkMultiMaterialRenderPass* FindPass(vtkInformation* keys)
+vtkMultiMaterialShaderHook* FindPass(vtkInformation* keys)
 {
   vtkInformationObjectBaseVectorKey* key = vtkOpenGLRenderPass::RenderPasses();
   for (int i = 0; keys && keys->Has(key) && i < key->Length(keys); ++i)
   {
-    if (auto* pass = vtkMultiMaterialRenderPass::SafeDownCast(key->Get(keys, i)))
+    if (auto* pass = vtkMultiMaterialShaderHook::SafeDownCast(key->Get(keys, i)))
     {
       return pass;
     }
@@ -1314,7 +1314,7 @@ TEST(MultiMaterialVolumeMapper, MappersVolumesAndPassesAreFreed)
       vtkOpenGLRenderPass::RenderPasses()->Append(keys, foreign);
       scene.Window->Render();
       ASSERT_TRUE(mapper->GetMultiMaterialActive());
-      vtkMultiMaterialRenderPass* pass = FindPass(keys);
+      vtkMultiMaterialShaderHook* pass = FindPass(keys);
       ASSERT_NE(pass, nullptr) << "the render installs the pass in the volume's keys";
       EXPECT_EQ(vtkOpenGLRenderPass::RenderPasses()->Length(keys), 2);
       EXPECT_EQ(vtkOpenGLRenderPass::RenderPasses()->Get(keys, 1), foreign.Get());
@@ -1365,7 +1365,7 @@ vtkSmartPointer<vtkMultiMaterialVolumeMapper> RenderOnce(vtkImageData* image)
   EXPECT_TRUE(mapper->GetMultiMaterialActive());
   EXPECT_EQ(mapper->GetIrradianceUpdateCount(), 1);
   EXPECT_EQ(vtkMultiMaterialLiveObjects::GetCount("vtkMultiMaterialVolumeMapper"),
-    vtkMultiMaterialLiveObjects::GetCount("vtkMultiMaterialRenderPass"));
+    vtkMultiMaterialLiveObjects::GetCount("vtkMultiMaterialShaderHook"));
   lit.Scene.Window->Finalize();
   return mapper;
 }

@@ -38,8 +38,8 @@ MODULE_CLASSES = {
     ],
     "vtkMultiMaterialVolume": [
         "vtkIrradianceComputeProgram",
-        "vtkIrradianceVolumePass",
-        "vtkMultiMaterialRenderPass",
+        "vtkIrradianceEstimator",
+        "vtkMultiMaterialShaderHook",
         "vtkMultiMaterialTextures",
         "vtkMultiMaterialVolumeMapper",
     ],

@@ -15,7 +15,7 @@ import mmv_testing as mmv
 
 LIVE = m.vtkMultiMaterialLiveObjects
 CLASSES = ("vtkPVMultiMaterialVolumeRepresentation", "vtkMultiMaterialVolumeMapper",
-           "vtkMultiMaterialRenderPass", "vtkPreIntegrationTable", "vtkIrradianceInputCache")
+           "vtkMultiMaterialShaderHook", "vtkPreIntegrationTable", "vtkIrradianceInputCache")
 GROUPS = ("sources", "representations", "lookup_tables", "piecewise_functions", "views")
 ROUNDS = 4
 
@@ -76,7 +76,7 @@ leaked = census()
 print("one representation kept: %s" % leaked)
 checker.check(leaked["vtkPVMultiMaterialVolumeRepresentation"] == 1 and
               leaked["vtkMultiMaterialVolumeMapper"] == 1 and
-              leaked["vtkMultiMaterialRenderPass"] == 1,
+              leaked["vtkMultiMaterialShaderHook"] == 1,
               "the census sees the kept representation: %s" % differences(leaked, start))
 del kept[:]
 released = census()

@@ -1,17 +1,17 @@
 /**
- * @file   vtkIrradianceVolumePassInternals.h
- * @brief  The state vtkIrradianceVolumePass keeps between updates and the
- *         helpers its voxel passes share; private to the pass's sources:
- *         vtkIrradianceVolumePass.cxx (inputs, the update's order, results),
- *         vtkIrradianceVolumePassRunner.cxx (programs, draws, dispatches,
- *         textures), vtkIrradianceVolumePassShadows.cxx (shadow rays and
- *         tints) and vtkIrradianceVolumePassDiffusion.cxx (multiple
+ * @file   vtkIrradianceEstimatorInternals.h
+ * @brief  The state vtkIrradianceEstimator keeps between updates and the
+ *         helpers its voxel passes share; private to the estimator's sources:
+ *         vtkIrradianceEstimator.cxx (inputs, the update's order, results),
+ *         vtkIrradianceEstimatorRunner.cxx (programs, draws, dispatches,
+ *         textures), vtkIrradianceEstimatorShadows.cxx (shadow rays and
+ *         tints) and vtkIrradianceEstimatorDiffusion.cxx (multiple
  *         scattering).
  */
-#ifndef vtkIrradianceVolumePassInternals_h
-#define vtkIrradianceVolumePassInternals_h
+#ifndef vtkIrradianceEstimatorInternals_h
+#define vtkIrradianceEstimatorInternals_h
 
-#include "vtkIrradianceVolumePass.h"
+#include "vtkIrradianceEstimator.h"
 
 #include "vtkIrradianceComputeProgram.h"
 #include "vtkIrradianceDiffusion.h"
@@ -142,7 +142,7 @@ inline bool EnsureFloatTexture(
   return texture->Allocate3D(d[0], d[1], d[2], 4, VTK_FLOAT);
 }
 
-/// The pass's lights first .. first + 3 (one output texture's channels)
+/// The estimator's lights first .. first + 3 (one output texture's channels)
 /// through the ray cast's light layout, and which of them to compute.
 inline void SetLightUniforms(
   vtkShaderProgram* program, const std::vector<mmv::LightSource>& lights, int first, int mask)
@@ -229,7 +229,7 @@ private:
 
 /// One voxel pass's programs: the layered fragment draw (built on first use)
 /// and the compute dispatch (where OpenGL 4.3 is there and asked for).
-struct VoxelPass
+struct VoxelPrograms
 {
   std::unique_ptr<vtkOpenGLQuadHelper> Quad;
   vtkSmartPointer<vtkIrradianceComputeProgram> Compute;
@@ -270,7 +270,7 @@ struct VoxelPass
 } // namespace voxelpass
 } // namespace mmv
 
-class vtkIrradianceVolumePass::vtkInternals
+class vtkIrradianceEstimator::vtkInternals
 {
 public:
   // Inputs, copied by SetInputs().
@@ -361,7 +361,7 @@ public:
   std::vector<float> TintTable;
   vtkSmartPointer<vtkTextureObject> TintTableTexture;
   std::vector<vtkSmartPointer<vtkTextureObject>> Tint;
-  mmv::voxelpass::VoxelPass TintQuad;
+  mmv::voxelpass::VoxelPrograms TintQuad;
   void TintDimensions(int dims[3]) const
   {
     for (int a = 0; a < 3; ++a)
@@ -396,16 +396,16 @@ public:
   std::vector<unsigned char> LightGridNeededOnCPU(
     const std::vector<float>& classes, int stride) const;
   vtkSmartPointer<vtkOpenGLFramebufferObject> Framebuffer;
-  mmv::voxelpass::VoxelPass ShadowQuad;
-  mmv::voxelpass::VoxelPass PiecewiseQuad;
-  mmv::voxelpass::VoxelPass RestrictQuad;
-  mmv::voxelpass::VoxelPass SweepQuad;
-  mmv::voxelpass::VoxelPass ExponentialQuad;
-  mmv::voxelpass::VoxelPass ProlongQuad;
-  mmv::voxelpass::VoxelPass FillQuad;
-  mmv::voxelpass::VoxelPass UpsampleQuad;
-  mmv::voxelpass::VoxelPass ClassifyQuad;
-  mmv::voxelpass::VoxelPass NeededQuad;
+  mmv::voxelpass::VoxelPrograms ShadowQuad;
+  mmv::voxelpass::VoxelPrograms PiecewiseQuad;
+  mmv::voxelpass::VoxelPrograms RestrictQuad;
+  mmv::voxelpass::VoxelPrograms SweepQuad;
+  mmv::voxelpass::VoxelPrograms ExponentialQuad;
+  mmv::voxelpass::VoxelPrograms ProlongQuad;
+  mmv::voxelpass::VoxelPrograms FillQuad;
+  mmv::voxelpass::VoxelPrograms UpsampleQuad;
+  mmv::voxelpass::VoxelPrograms ClassifyQuad;
+  mmv::voxelpass::VoxelPrograms NeededQuad;
   // Compute dispatches instead of fragment draws (this update), and the
   // atomic counter that stands in for the occlusion query there.
   bool Compute = false;
@@ -431,13 +431,13 @@ public:
   void EnsureFramebuffer(vtkOpenGLRenderWindow* context);
   bool AllocateTargets(
     vtkOpenGLRenderWindow* context, bool diffusion, bool layered, bool& reallocated);
-  vtkShaderProgram* Ready(vtkOpenGLRenderWindow* context, mmv::voxelpass::VoxelPass& pass,
+  vtkShaderProgram* Ready(vtkOpenGLRenderWindow* context, mmv::voxelpass::VoxelPrograms& pass,
     const std::string& body, const std::string& defines, bool lightModel);
-  void DrawLayers(vtkOpenGLRenderWindow* context, mmv::voxelpass::VoxelPass& pass, vtkTextureObject* target,
+  void DrawLayers(vtkOpenGLRenderWindow* context, mmv::voxelpass::VoxelPrograms& pass, vtkTextureObject* target,
     bool layered, const int* box = nullptr, int writeMask = 0xF);
-  void Dispatch(vtkOpenGLRenderWindow* context, mmv::voxelpass::VoxelPass& pass, vtkTextureObject* target,
+  void Dispatch(vtkOpenGLRenderWindow* context, mmv::voxelpass::VoxelPrograms& pass, vtkTextureObject* target,
     const int* box, int writeMask, bool countWrites);
-  unsigned int CountWrites(vtkOpenGLRenderWindow* context, mmv::voxelpass::VoxelPass& pass,
+  unsigned int CountWrites(vtkOpenGLRenderWindow* context, mmv::voxelpass::VoxelPrograms& pass,
     vtkTextureObject* target, bool layered, const int* box);
   void SetTransferUniforms(vtkShaderProgram* program) const;
   std::string ShadowRayDefines() const;

@@ -1,5 +1,5 @@
 /**
- * @class   vtkIrradianceVolumePass
+ * @class   vtkIrradianceEstimator
  * @brief   The irradiance volume on the GPU (Zhang & Ma §5.1, §5.2, Algorithm 1
  *          lines 7-9): shadow rays at voxel centres and diffusion passes, in GLSL.
  *
@@ -46,8 +46,8 @@
  * Needs OpenGL 3.2 core (layered rendering into 3D textures); Render() returns
  * false with an error when the context cannot do it.
  */
-#ifndef vtkIrradianceVolumePass_h
-#define vtkIrradianceVolumePass_h
+#ifndef vtkIrradianceEstimator_h
+#define vtkIrradianceEstimator_h
 
 // The wrappers never see the GLM-typed API: parsing GLM's templates makes
 // ParaView's client-server wrapping take minutes, and no wrapped language
@@ -71,11 +71,11 @@ class vtkShaderProgram;
 class vtkTextureObject;
 class vtkWindow;
 
-class VTKMULTIMATERIALVOLUME_EXPORT vtkIrradianceVolumePass : public vtkObject
+class VTKMULTIMATERIALVOLUME_EXPORT vtkIrradianceEstimator : public vtkObject
 {
 public:
-  static vtkIrradianceVolumePass* New();
-  vtkTypeMacro(vtkIrradianceVolumePass, vtkObject);
+  static vtkIrradianceEstimator* New();
+  vtkTypeMacro(vtkIrradianceEstimator, vtkObject);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   /**
@@ -107,7 +107,7 @@ public:
   const mmv::Cutaway& GetCutaway() const;
 #endif
 
-  /// The uniforms of Shaders/mmvCutaway.glsl for the pass's cutaway on its
+  /// The uniforms of Shaders/mmvCutaway.glsl for the estimator's cutaway on its
   /// grid, for other marches through the pre-filtered volume (the
   /// reflections' visibility); nothing while nothing is cut.
   void SetCutawayUniforms(vtkShaderProgram* program) const;
@@ -174,7 +174,7 @@ public:
    * How directional lights are estimated (mmv::ShadowEstimation): 1,
    * piecewise shadow rays swept along the light (default; vtkShadowSweep.h),
    * or 0, full shadow rays. Point and spot lights always take full rays.
-   * Piecewise rays need glTextureBarrier (OpenGL 4.5); without it the pass
+   * Piecewise rays need glTextureBarrier (OpenGL 4.5); without it the estimator
    * warns once and takes full rays.
    */
   vtkSetClampMacro(ShadowEstimation, int, 0, 1);
@@ -201,9 +201,9 @@ public:
    * Which lights the next Render() recomputes besides those its own inputs
    * recompute (all of them when the volume, tables, settings or textures
    * changed): vtkIrradianceUpdatePlan::GetMovedLights() of a plan made from
-   * the placements GetComputedLights() holds, so the pass does not compare
+   * the placements GetComputedLights() holds, so the estimator does not compare
    * the lights again. Without marks (the default; they hold for one
-   * Render()) the pass marks them with vtkIrradianceUpdatePlan::MarkLights.
+   * Render()) the estimator marks them with vtkIrradianceUpdatePlan::MarkLights.
    */
   void SetLightsToUpdate(const std::vector<bool>& marks);
 #endif
@@ -343,8 +343,8 @@ public:
   void ReleaseGraphicsResources(vtkWindow* window);
 
 protected:
-  vtkIrradianceVolumePass();
-  ~vtkIrradianceVolumePass() override;
+  vtkIrradianceEstimator();
+  ~vtkIrradianceEstimator() override;
 
   bool MultipleScattering = true;
   double DiffusionTime = 1.0;
@@ -368,8 +368,8 @@ protected:
   double LastWriteSeconds = 0.0;
 
 private:
-  vtkIrradianceVolumePass(const vtkIrradianceVolumePass&) = delete;
-  void operator=(const vtkIrradianceVolumePass&) = delete;
+  vtkIrradianceEstimator(const vtkIrradianceEstimator&) = delete;
+  void operator=(const vtkIrradianceEstimator&) = delete;
 
   // The steps of Render().
   bool CanRender(vtkOpenGLRenderWindow* context);

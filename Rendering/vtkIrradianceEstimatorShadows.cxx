@@ -1,6 +1,6 @@
-// vtkIrradianceVolumePass: the transmittance toward each light (full and
+// vtkIrradianceEstimator: the transmittance toward each light (full and
 // piecewise shadow rays) and the tints of a non-white transmission colour.
-#include "vtkIrradianceVolumePassInternals.h"
+#include "vtkIrradianceEstimatorInternals.h"
 
 #include "mmvIrradianceFS.h"
 #include "mmvIrradianceTintFS.h"
@@ -13,7 +13,7 @@ using namespace mmv::voxelpass;
 
 //------------------------------------------------------------------------------
 // The uniforms of the transfers between the irradiance and diffusion grids.
-void vtkIrradianceVolumePass::vtkInternals::SetTransferUniforms(vtkShaderProgram* program) const
+void vtkIrradianceEstimator::vtkInternals::SetTransferUniforms(vtkShaderProgram* program) const
 {
   program->SetUniform1iv("dims", 3, this->Grid.Dimensions);
   program->SetUniform1iv("factor", 3, this->Coarse.Factor);
@@ -23,7 +23,7 @@ void vtkIrradianceVolumePass::vtkInternals::SetTransferUniforms(vtkShaderProgram
 //------------------------------------------------------------------------------
 // The shadow rays' constants, and MMV_CUTAWAY while something is cut: without
 // it the cutaway test compiles away (Shaders/mmvCutaway.glsl).
-std::string vtkIrradianceVolumePass::vtkInternals::ShadowRayDefines() const
+std::string vtkIrradianceEstimator::vtkInternals::ShadowRayDefines() const
 {
   return mmv::ShadowRayGLSLPrelude() + (this->Cut.IsEmpty() ? "" : mmv::CutawayGLSLDefine);
 }
@@ -31,7 +31,7 @@ std::string vtkIrradianceVolumePass::vtkInternals::ShadowRayDefines() const
 //------------------------------------------------------------------------------
 // The uniforms of Shaders/mmvShadowRay.glsl (and the class texture), shared by
 // the full and the piecewise shadow rays; their textures must be active.
-void vtkIrradianceVolumePass::vtkInternals::SetShadowRayUniforms(vtkShaderProgram* program) const
+void vtkIrradianceEstimator::vtkInternals::SetShadowRayUniforms(vtkShaderProgram* program) const
 {
   glm::mat3 toIndex(this->Grid.PhysicalToIndexMatrix());
   program->SetUniformi("scalars", this->ScalarTexture->GetTextureUnit());
@@ -48,7 +48,7 @@ void vtkIrradianceVolumePass::vtkInternals::SetShadowRayUniforms(vtkShaderProgra
 }
 
 //------------------------------------------------------------------------------
-void vtkIrradianceVolumePass::vtkInternals::LightGridDimensions(int stride, int dims[3]) const
+void vtkIrradianceEstimator::vtkInternals::LightGridDimensions(int stride, int dims[3]) const
 {
   for (int a = 0; a < 3; ++a)
   {
@@ -56,7 +56,7 @@ void vtkIrradianceVolumePass::vtkInternals::LightGridDimensions(int stride, int 
   }
 }
 
-void vtkIrradianceVolumePass::vtkInternals::LightGridRatio(int stride, double ratio[3]) const
+void vtkIrradianceEstimator::vtkInternals::LightGridRatio(int stride, double ratio[3]) const
 {
   int dims[3];
   this->LightGridDimensions(stride, dims);
@@ -67,19 +67,19 @@ void vtkIrradianceVolumePass::vtkInternals::LightGridRatio(int stride, double ra
   }
 }
 
-vtkTextureObject* vtkIrradianceVolumePass::vtkInternals::LightGridTarget(int stride) const
+vtkTextureObject* vtkIrradianceEstimator::vtkInternals::LightGridTarget(int stride) const
 {
   return stride > 1 ? this->LightGridScratch.Get() : this->FineScratch[0].Get();
 }
 
 // (On the irradiance grid the shaders read `classes` instead; any texture
 // serves the unused sampler.)
-vtkTextureObject* vtkIrradianceVolumePass::vtkInternals::LightGridClasses(int stride) const
+vtkTextureObject* vtkIrradianceEstimator::vtkInternals::LightGridClasses(int stride) const
 {
   return stride > 1 ? this->LightGridClassTexture.Get() : this->ClassTexture.Get();
 }
 
-int vtkIrradianceVolumePass::vtkInternals::MaxLightGridStride() const
+int vtkIrradianceEstimator::vtkInternals::MaxLightGridStride() const
 {
   int stride = 1;
   for (const mmv::LightSource& light : this->Lights)
@@ -89,7 +89,7 @@ int vtkIrradianceVolumePass::vtkInternals::MaxLightGridStride() const
   return stride;
 }
 
-void vtkIrradianceVolumePass::vtkInternals::SetLightGridUniforms(
+void vtkIrradianceEstimator::vtkInternals::SetLightGridUniforms(
   vtkShaderProgram* program, int stride) const
 {
   int dims[3];
@@ -107,7 +107,7 @@ void vtkIrradianceVolumePass::vtkInternals::SetLightGridUniforms(
 //------------------------------------------------------------------------------
 // Full shadow rays of the lights of `mask` whose grid stride is `stride`,
 // into their channels of that grid's target.
-bool vtkIrradianceVolumePass::vtkInternals::ShadowPass(vtkOpenGLRenderWindow* context, int group,
+bool vtkIrradianceEstimator::vtkInternals::ShadowPass(vtkOpenGLRenderWindow* context, int group,
   int mask, int stride, bool skipEmpty, bool layered)
 {
   vtkShaderProgram* program = this->Ready(context, this->ShadowQuad,
@@ -141,7 +141,7 @@ bool vtkIrradianceVolumePass::vtkInternals::ShadowPass(vtkOpenGLRenderWindow* co
 }
 
 //------------------------------------------------------------------------------
-bool vtkIrradianceVolumePass::vtkInternals::UpsamplePass(
+bool vtkIrradianceEstimator::vtkInternals::UpsamplePass(
   vtkOpenGLRenderWindow* context, int mask, int stride, bool layered)
 {
   vtkShaderProgram* program =
@@ -170,7 +170,7 @@ bool vtkIrradianceVolumePass::vtkInternals::UpsamplePass(
 //------------------------------------------------------------------------------
 // The tint of light `light` into its tint texture (mmvIrradianceTintFS.glsl):
 // full shadow rays of the selective extinction from every tint voxel.
-bool vtkIrradianceVolumePass::vtkInternals::TintPass(
+bool vtkIrradianceEstimator::vtkInternals::TintPass(
   vtkOpenGLRenderWindow* context, int light, bool layered)
 {
   vtkShaderProgram* program = this->Ready(context, this->TintQuad,
@@ -211,7 +211,7 @@ bool vtkIrradianceVolumePass::vtkInternals::TintPass(
 // FineScratch[0] (vtkShadowSweep.h): one draw per chunk of slices, nearest
 // the light first; a texture barrier lets each chunk read what the earlier
 // ones wrote into the same texture.
-bool vtkIrradianceVolumePass::vtkInternals::PiecewiseShadowPass(vtkOpenGLRenderWindow* context,
+bool vtkIrradianceEstimator::vtkInternals::PiecewiseShadowPass(vtkOpenGLRenderWindow* context,
   int light, int slicesPerChunk, bool skipEmpty, bool layered)
 {
   vtkShaderProgram* program = this->Ready(context, this->PiecewiseQuad,

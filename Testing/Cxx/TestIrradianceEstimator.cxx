@@ -1,4 +1,4 @@
-// vtkIrradianceVolumePass (the GPU irradiance volume) against the CPU
+// vtkIrradianceEstimator (the GPU irradiance volume) against the CPU
 // reference vtkIrradianceVolumeFilter, a closed form (Beer-Lambert through a
 // slab), the diffusion's maximum principle, the light -> texture layout and
 // releasing/re-creating its resources. Needs an OpenGL 3.2 context (Xvfb +
@@ -9,7 +9,7 @@
 #include "vtkIrradianceGrid.h"
 #include "vtkIrradianceRegion.h"
 #include "vtkIrradianceVolumeFilter.h"
-#include "vtkIrradianceVolumePass.h"
+#include "vtkIrradianceEstimator.h"
 #include "vtkMultiMaterialLights.h"
 #include "vtkMultiMaterialParameters.h"
 
@@ -177,7 +177,7 @@ mmv::IrradianceGrid GridOf(const Scene& scene)
 }
 
 /// The pass's inputs, built the way the CPU filter builds its own.
-void SetPassInputs(const Scene& scene, vtkIrradianceVolumePass* pass)
+void SetPassInputs(const Scene& scene, vtkIrradianceEstimator* pass)
 {
   const mmv::IrradianceGrid grid = GridOf(scene);
   vtkDataArray* scalars = scene.Image->GetPointData()->GetScalars();
@@ -291,7 +291,7 @@ double MaxDifference(const std::vector<float>& a, const std::vector<float>& b,
 /// Compares every light of the pass with the CPU filter (integrating the
 /// diffusion as the pass does); returns the largest difference.
 double CompareWithFilter(
-  const Context& ctx, const Scene& scene, vtkIrradianceVolumePass* pass, bool multipleScattering)
+  const Context& ctx, const Scene& scene, vtkIrradianceEstimator* pass, bool multipleScattering)
 {
   const auto cpu = RunFilter(scene, multipleScattering, pass->GetExponentialDiffusion());
   double worst = 0.0;
@@ -311,7 +311,7 @@ double CompareWithFilter(
 
 } // namespace
 
-TEST(IrradianceVolumePass, MatchesCPUFilter)
+TEST(IrradianceEstimator, MatchesCPUFilter)
 {
   const Context& ctx = SharedContext();
   ASSERT_NE(ctx.GL, nullptr);
@@ -320,7 +320,7 @@ TEST(IrradianceVolumePass, MatchesCPUFilter)
   // non-default AttenuationValues and Exponent).
   scene.Radius = 1.5;
   {
-    vtkNew<vtkIrradianceVolumePass> eq12;
+    vtkNew<vtkIrradianceEstimator> eq12;
     SetPassInputs(scene, eq12);
     ASSERT_TRUE(eq12->Render(ctx.GL));
     std::cout << "GPU vs CPU max |difference| (eq. 12, radius 1.5): "
@@ -328,7 +328,7 @@ TEST(IrradianceVolumePass, MatchesCPUFilter)
     eq12->ReleaseGraphicsResources(ctx.GL);
   }
   scene.Radius = 0.0;
-  vtkNew<vtkIrradianceVolumePass> pass;
+  vtkNew<vtkIrradianceEstimator> pass;
   SetPassInputs(scene, pass);
   ASSERT_TRUE(pass->Render(ctx.GL));
   EXPECT_EQ(pass->GetNumberOfIrradianceTextures(), 1);
@@ -350,13 +350,13 @@ TEST(IrradianceVolumePass, MatchesCPUFilter)
 // Both estimations of the directional light, on the GPU against the CPU, for
 // chunks of 1, 3 and 8 slices; and piecewise against full rays: the blocks'
 // sharp edges are where the in-plane interpolation shows.
-TEST(IrradianceVolumePass, PiecewiseAndFullShadowRaysMatchTheCPU)
+TEST(IrradianceEstimator, PiecewiseAndFullShadowRaysMatchTheCPU)
 {
   const Context& ctx = SharedContext();
   ASSERT_NE(ctx.GL, nullptr);
   Scene scene = TwoBlocks(0.0);
   scene.Estimation = mmv::FullShadowRays;
-  vtkNew<vtkIrradianceVolumePass> full;
+  vtkNew<vtkIrradianceEstimator> full;
   SetPassInputs(scene, full);
   ASSERT_TRUE(full->Render(ctx.GL));
   EXPECT_LE(CompareWithFilter(ctx, scene, full, false), 0.01);
@@ -366,7 +366,7 @@ TEST(IrradianceVolumePass, PiecewiseAndFullShadowRaysMatchTheCPU)
   for (const int slices : { 1, 3, 8 })
   {
     scene.Slices = slices;
-    vtkNew<vtkIrradianceVolumePass> piecewise;
+    vtkNew<vtkIrradianceEstimator> piecewise;
     SetPassInputs(scene, piecewise);
     ASSERT_TRUE(piecewise->Render(ctx.GL));
     const double cpu = CompareWithFilter(ctx, scene, piecewise, false);
@@ -384,7 +384,7 @@ TEST(IrradianceVolumePass, PiecewiseAndFullShadowRaysMatchTheCPU)
   full->ReleaseGraphicsResources(ctx.GL);
 }
 
-TEST(IrradianceVolumePass, MatchesCPUFilterOnReducedOrientedGrid)
+TEST(IrradianceEstimator, MatchesCPUFilterOnReducedOrientedGrid)
 {
   // Shared grid code (extent not starting at 0, direction matrix, a coarser
   // irradiance grid with pre-filtering) gives the CPU's grid and samples.
@@ -397,7 +397,7 @@ TEST(IrradianceVolumePass, MatchesCPUFilterOnReducedOrientedGrid)
   const double s = std::sin(0.3);
   scene.Image->SetDirectionMatrix(c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0);
   scene.Scale = 0.6;
-  vtkNew<vtkIrradianceVolumePass> pass;
+  vtkNew<vtkIrradianceEstimator> pass;
   SetPassInputs(scene, pass);
   ASSERT_TRUE(pass->Render(ctx.GL));
   const mmv::IrradianceGrid grid = GridOf(scene);
@@ -428,7 +428,7 @@ Scene HomogeneousSlab(const std::array<int, 3>& dims, double sigma)
 /// The largest relative error of the pass's light 0 against Beer-Lambert in
 /// the slab of HomogeneousSlab(dims, sigma).
 double WorstBeerLambertError(
-  const Context& ctx, vtkIrradianceVolumePass* pass, const std::array<int, 3>& dims, double sigma)
+  const Context& ctx, vtkIrradianceEstimator* pass, const std::array<int, 3>& dims, double sigma)
 {
   std::vector<float> gpu;
   if (!pass->ReadBack(ctx.GL, 0, gpu))
@@ -448,13 +448,13 @@ double WorstBeerLambertError(
 }
 }
 
-TEST(IrradianceVolumePass, HomogeneousSlabFollowsBeerLambert)
+TEST(IrradianceEstimator, HomogeneousSlabFollowsBeerLambert)
 {
   const Context& ctx = SharedContext();
   ASSERT_NE(ctx.GL, nullptr);
   const std::array<int, 3> dims = { 8, 8, 32 };
   const Scene scene = HomogeneousSlab(dims, 0.1);
-  vtkNew<vtkIrradianceVolumePass> pass;
+  vtkNew<vtkIrradianceEstimator> pass;
   SetPassInputs(scene, pass);
   ASSERT_TRUE(pass->Render(ctx.GL));
   EXPECT_LE(WorstBeerLambertError(ctx, pass, dims, 0.1), 0.01);
@@ -465,7 +465,7 @@ TEST(IrradianceVolumePass, HomogeneousSlabFollowsBeerLambert)
 // interpolated: through a homogeneous slab the transmittance is still
 // Beer-Lambert's (the interpolation of an exponential over two voxels errs
 // by (2 sigma)^2 / 8 = 0.5 %), by piecewise and by full shadow rays.
-TEST(IrradianceVolumePass, StridedLightGridFollowsBeerLambert)
+TEST(IrradianceEstimator, StridedLightGridFollowsBeerLambert)
 {
   const Context& ctx = SharedContext();
   ASSERT_NE(ctx.GL, nullptr);
@@ -475,7 +475,7 @@ TEST(IrradianceVolumePass, StridedLightGridFollowsBeerLambert)
   for (const int estimation : { mmv::PiecewiseShadowRays, mmv::FullShadowRays })
   {
     scene.Estimation = estimation;
-    vtkNew<vtkIrradianceVolumePass> pass;
+    vtkNew<vtkIrradianceEstimator> pass;
     SetPassInputs(scene, pass);
     ASSERT_TRUE(pass->Render(ctx.GL));
     EXPECT_LE(WorstBeerLambertError(ctx, pass, dims, 0.1), 0.01) << "estimation " << estimation;
@@ -488,7 +488,7 @@ TEST(IrradianceVolumePass, StridedLightGridFollowsBeerLambert)
 // Lights of both grids in one texture: the light on the irradiance grid
 // keeps exactly the values it has alone, the strided ones stay within the
 // interpolation error of their transmittance, from an eighth of the rays.
-TEST(IrradianceVolumePass, StridedLightsBesideOthersChangeOnlyTheirOwnChannel)
+TEST(IrradianceEstimator, StridedLightsBesideOthersChangeOnlyTheirOwnChannel)
 {
   const Context& ctx = SharedContext();
   ASSERT_NE(ctx.GL, nullptr);
@@ -496,12 +496,12 @@ TEST(IrradianceVolumePass, StridedLightsBesideOthersChangeOnlyTheirOwnChannel)
   {
     Scene scene = TwoBlocks(0.0);
     scene.Estimation = estimation;
-    vtkNew<vtkIrradianceVolumePass> exact;
+    vtkNew<vtkIrradianceEstimator> exact;
     SetPassInputs(scene, exact);
     ASSERT_TRUE(exact->Render(ctx.GL));
     const vtkIdType exactVoxels = exact->GetLastEstimatedVoxels();
     scene.Strides = { 2, 1, 2 };
-    vtkNew<vtkIrradianceVolumePass> strided;
+    vtkNew<vtkIrradianceEstimator> strided;
     SetPassInputs(scene, strided);
     ASSERT_TRUE(strided->Render(ctx.GL));
     std::vector<std::vector<float>> a;
@@ -568,7 +568,7 @@ TEST(OpticalModel, RGBShadowOfATintedSlabOnTheGPUMatchesTheClosedFormAndTheCPU)
   scene.Material->AddNode(0.0, 0.2, 0.7, 0.2, 20.0, ct, 0.0, 0.0, 0.0, 0.0, transmission[0],
     transmission[1], transmission[2]);
   scene.Lights.push_back(Directional(0.0, 0.0, 1.0));
-  vtkNew<vtkIrradianceVolumePass> pass;
+  vtkNew<vtkIrradianceEstimator> pass;
   SetPassInputs(scene, pass);
   ASSERT_TRUE(pass->IsTinted());
   ASSERT_TRUE(pass->Render(ctx.GL));
@@ -636,14 +636,14 @@ TEST(OpticalModel, RGBShadowOfATintedSlabOnTheGPUMatchesTheClosedFormAndTheCPU)
   pass->ReleaseGraphicsResources(ctx.GL);
 }
 
-TEST(IrradianceVolumePass, DiffusionKeepsMaximumPrinciple)
+TEST(IrradianceEstimator, DiffusionKeepsMaximumPrinciple)
 {
   const Context& ctx = SharedContext();
   ASSERT_NE(ctx.GL, nullptr);
   for (double s : { 1.0, 20.0, 1000.0 })
   {
     const Scene scene = TwoBlocks(s);
-    vtkNew<vtkIrradianceVolumePass> pass;
+    vtkNew<vtkIrradianceEstimator> pass;
     SetPassInputs(scene, pass);
     pass->SetMultipleScattering(false);
     ASSERT_TRUE(pass->Render(ctx.GL));
@@ -684,14 +684,14 @@ TEST(IrradianceVolumePass, DiffusionKeepsMaximumPrinciple)
   }
 }
 
-TEST(IrradianceVolumePass, FiveLightsUseTwoTextures)
+TEST(IrradianceEstimator, FiveLightsUseTwoTextures)
 {
   const Context& ctx = SharedContext();
   ASSERT_NE(ctx.GL, nullptr);
   Scene scene = TwoBlocks(0.0);
   scene.Lights.push_back(Directional(-1.0, 0.0, 0.0));
   scene.Lights.push_back(Directional(0.0, 0.0, -1.0)); // light 4
-  vtkNew<vtkIrradianceVolumePass> pass;
+  vtkNew<vtkIrradianceEstimator> pass;
   SetPassInputs(scene, pass);
   ASSERT_TRUE(pass->Render(ctx.GL));
   ASSERT_EQ(pass->GetNumberOfIrradianceTextures(), 2);
@@ -725,12 +725,12 @@ TEST(IrradianceVolumePass, FiveLightsUseTwoTextures)
   pass->ReleaseGraphicsResources(ctx.GL);
 }
 
-TEST(IrradianceVolumePass, RendersAgainAfterRelease)
+TEST(IrradianceEstimator, RendersAgainAfterRelease)
 {
   const Context& ctx = SharedContext();
   ASSERT_NE(ctx.GL, nullptr);
   const Scene scene = TwoBlocks(1.0);
-  vtkNew<vtkIrradianceVolumePass> pass;
+  vtkNew<vtkIrradianceEstimator> pass;
   SetPassInputs(scene, pass);
   ASSERT_TRUE(pass->Render(ctx.GL));
   std::vector<float> before;
@@ -746,11 +746,11 @@ TEST(IrradianceVolumePass, RendersAgainAfterRelease)
   pass->ReleaseGraphicsResources(ctx.GL);
 }
 
-TEST(IrradianceVolumePass, RejectsMissingInputs)
+TEST(IrradianceEstimator, RejectsMissingInputs)
 {
   const Context& ctx = SharedContext();
   ASSERT_NE(ctx.GL, nullptr);
-  vtkNew<vtkIrradianceVolumePass> pass;
+  vtkNew<vtkIrradianceEstimator> pass;
   pass->GlobalWarningDisplayOff();
   EXPECT_FALSE(pass->Render(ctx.GL));
   EXPECT_EQ(pass->GetIrradianceTexture(0), nullptr);
@@ -759,12 +759,12 @@ TEST(IrradianceVolumePass, RejectsMissingInputs)
   pass->GlobalWarningDisplayOn();
 }
 
-TEST(IrradianceVolumePass, MovingALightKeepsTheUploadedVolume)
+TEST(IrradianceEstimator, MovingALightKeepsTheUploadedVolume)
 {
   const Context& ctx = SharedContext();
   ASSERT_NE(ctx.GL, nullptr);
   Scene scene = TwoBlocks(0.0);
-  vtkNew<vtkIrradianceVolumePass> pass;
+  vtkNew<vtkIrradianceEstimator> pass;
   SetPassInputs(scene, pass);
   ASSERT_TRUE(pass->Render(ctx.GL));
   EXPECT_EQ(pass->GetNumberOfVolumeUploads(), 1);
@@ -798,7 +798,7 @@ TEST(IrradianceVolumePass, MovingALightKeepsTheUploadedVolume)
   pass->ReleaseGraphicsResources(ctx.GL);
 }
 
-TEST(IrradianceVolumePass, DiffusionMatchesCPUSolverForEveryStrength)
+TEST(IrradianceEstimator, DiffusionMatchesCPUSolverForEveryStrength)
 {
   // The GPU's diffusion on the diffusion grid against the CPU's on the same
   // grid (mmv::DiffuseIrradianceOnDiffusionGrid), with both integrators:
@@ -821,7 +821,7 @@ TEST(IrradianceVolumePass, DiffusionMatchesCPUSolverForEveryStrength)
       mmv::DiffusionSettings settings;
       settings.Exponential = exponential;
       const Scene scene = TwoBlocks(s);
-      vtkNew<vtkIrradianceVolumePass> pass;
+      vtkNew<vtkIrradianceEstimator> pass;
       SetPassInputs(scene, pass);
       pass->SetExponentialDiffusion(exponential);
       ASSERT_TRUE(pass->Render(ctx.GL));
@@ -879,12 +879,12 @@ TEST(IrradianceVolumePass, DiffusionMatchesCPUSolverForEveryStrength)
   }
 }
 
-TEST(IrradianceVolumePass, OnlyMovedLightsAreRecomputed)
+TEST(IrradianceEstimator, OnlyMovedLightsAreRecomputed)
 {
   const Context& ctx = SharedContext();
   ASSERT_NE(ctx.GL, nullptr);
   Scene scene = TwoBlocks(8.0);
-  vtkNew<vtkIrradianceVolumePass> pass;
+  vtkNew<vtkIrradianceEstimator> pass;
   SetPassInputs(scene, pass);
   ASSERT_TRUE(pass->Render(ctx.GL));
   EXPECT_EQ(pass->GetNumberOfUpdatedLights(), 3);
@@ -916,7 +916,7 @@ TEST(IrradianceVolumePass, OnlyMovedLightsAreRecomputed)
   pass->ReleaseGraphicsResources(ctx.GL);
 }
 
-TEST(IrradianceVolumePass, LayeredAndPerSliceDrawsAgree)
+TEST(IrradianceEstimator, LayeredAndPerSliceDrawsAgree)
 {
   const Context& ctx = SharedContext();
   ASSERT_NE(ctx.GL, nullptr);
@@ -924,7 +924,7 @@ TEST(IrradianceVolumePass, LayeredAndPerSliceDrawsAgree)
   std::vector<std::vector<float>> results;
   for (bool layered : { true, false })
   {
-    vtkNew<vtkIrradianceVolumePass> pass;
+    vtkNew<vtkIrradianceEstimator> pass;
     pass->SetLayeredRendering(layered);
     SetPassInputs(scene, pass);
     ASSERT_TRUE(pass->Render(ctx.GL));
@@ -941,7 +941,7 @@ TEST(IrradianceVolumePass, LayeredAndPerSliceDrawsAgree)
   }
 }
 
-TEST(IrradianceVolumePass, ComputeAndFragmentPassesAgree)
+TEST(IrradianceEstimator, ComputeAndFragmentPassesAgree)
 {
   // The same voxel passes as compute dispatches (the default where OpenGL
   // 4.3 is there, as on llvmpipe) and as layered fragment draws: full and
@@ -970,9 +970,9 @@ TEST(IrradianceVolumePass, ComputeAndFragmentPassesAgree)
       int passes[2] = { 0, 0 };
       for (const bool compute : { true, false })
       {
-        vtkNew<vtkIrradianceVolumePass> pass;
-        pass->SetComputeShaders(compute ? vtkIrradianceVolumePass::ComputeDispatches
-                                         : vtkIrradianceVolumePass::FragmentDraws);
+        vtkNew<vtkIrradianceEstimator> pass;
+        pass->SetComputeShaders(compute ? vtkIrradianceEstimator::ComputeDispatches
+                                         : vtkIrradianceEstimator::FragmentDraws);
         SetPassInputs(scene, pass);
         ASSERT_TRUE(pass->Render(ctx.GL));
         EXPECT_EQ(pass->GetComputeShadersUsed(), compute);
@@ -1038,7 +1038,7 @@ Scene ManyClasses()
 // fragment draws and as compute dispatches, with multiple scattering on (the
 // CPU classifies too, for the diffusion plan) and off (the GPU alone; the
 // non-empty voxels are then counted from a histogram of the values).
-TEST(IrradianceVolumePass, GPUClassesAndNeededPointsMatchTheCPU)
+TEST(IrradianceEstimator, GPUClassesAndNeededPointsMatchTheCPU)
 {
   const Context& ctx = SharedContext();
   ASSERT_NE(ctx.GL, nullptr);
@@ -1052,9 +1052,9 @@ TEST(IrradianceVolumePass, GPUClassesAndNeededPointsMatchTheCPU)
     for (const bool multipleScattering : { true, false })
     {
       Scene scene = ManyClasses();
-      vtkNew<vtkIrradianceVolumePass> pass;
-      pass->SetComputeShaders(compute ? vtkIrradianceVolumePass::ComputeDispatches
-                                       : vtkIrradianceVolumePass::FragmentDraws);
+      vtkNew<vtkIrradianceEstimator> pass;
+      pass->SetComputeShaders(compute ? vtkIrradianceEstimator::ComputeDispatches
+                                       : vtkIrradianceEstimator::FragmentDraws);
       pass->SetMultipleScattering(multipleScattering);
       for (const int edit : { 0, 1 })
       {
@@ -1136,9 +1136,9 @@ TEST(IrradianceVolumePass, GPUClassesAndNeededPointsMatchTheCPU)
         pass->SetMultipleScattering(true);
         ASSERT_TRUE(pass->Render(ctx.GL));
         EXPECT_TRUE(pass->GetClassifiedOnCPU());
-        vtkNew<vtkIrradianceVolumePass> fresh;
-        fresh->SetComputeShaders(compute ? vtkIrradianceVolumePass::ComputeDispatches
-                                          : vtkIrradianceVolumePass::FragmentDraws);
+        vtkNew<vtkIrradianceEstimator> fresh;
+        fresh->SetComputeShaders(compute ? vtkIrradianceEstimator::ComputeDispatches
+                                          : vtkIrradianceEstimator::FragmentDraws);
         SetPassInputs(scene, fresh);
         ASSERT_TRUE(fresh->Render(ctx.GL));
         EXPECT_GT(fresh->GetDiffusionPasses(), 0);
@@ -1163,11 +1163,11 @@ TEST(IrradianceVolumePass, GPUClassesAndNeededPointsMatchTheCPU)
 // the values) gives way to a voxel-by-voxel count where it would not be
 // exact: a table with a positive entry below 1e-30, and NaN values. Each
 // count equals the CPU's classes.
-TEST(IrradianceVolumePass, NonEmptyCountsOfUnusualTablesAndValuesEqualTheCPUs)
+TEST(IrradianceEstimator, NonEmptyCountsOfUnusualTablesAndValuesEqualTheCPUs)
 {
   const Context& ctx = SharedContext();
   ASSERT_NE(ctx.GL, nullptr);
-  auto expectCPUCount = [&](vtkIrradianceVolumePass* pass, const char* what) {
+  auto expectCPUCount = [&](vtkIrradianceEstimator* pass, const char* what) {
     std::vector<float> cpu;
     pass->ClassifyOnCPU(cpu);
     const vtkIdType nonEmpty = std::count_if(cpu.begin(), cpu.end(), [](float c) { return c >= 0.0f; });
@@ -1184,7 +1184,7 @@ TEST(IrradianceVolumePass, NonEmptyCountsOfUnusualTablesAndValuesEqualTheCPUs)
     scene.Opacity->AddPoint(1.5, 0.0);
     scene.Opacity->AddPoint(2.5, 0.0);
     scene.Opacity->AddPoint(3.0, 0.5);
-    vtkNew<vtkIrradianceVolumePass> pass;
+    vtkNew<vtkIrradianceEstimator> pass;
     pass->SetMultipleScattering(false);
     SetPassInputs(scene, pass);
     ASSERT_TRUE(pass->Render(ctx.GL));
@@ -1199,7 +1199,7 @@ TEST(IrradianceVolumePass, NonEmptyCountsOfUnusualTablesAndValuesEqualTheCPUs)
     {
       values->SetTuple1(v, std::nan(""));
     }
-    vtkNew<vtkIrradianceVolumePass> pass;
+    vtkNew<vtkIrradianceEstimator> pass;
     pass->SetMultipleScattering(false);
     SetPassInputs(scene, pass);
     ASSERT_TRUE(pass->Render(ctx.GL));
@@ -1208,13 +1208,13 @@ TEST(IrradianceVolumePass, NonEmptyCountsOfUnusualTablesAndValuesEqualTheCPUs)
   }
 }
 
-TEST(IrradianceVolumePass, AutomaticComputeShadersSkipCPURasterizers)
+TEST(IrradianceEstimator, AutomaticComputeShadersSkipCPURasterizers)
 {
   const Context& ctx = SharedContext();
   ASSERT_NE(ctx.GL, nullptr);
   const Scene scene = TwoBlocks(0.0);
-  vtkNew<vtkIrradianceVolumePass> pass;
-  EXPECT_EQ(pass->GetComputeShaders(), vtkIrradianceVolumePass::ComputeUnlessSoftware);
+  vtkNew<vtkIrradianceEstimator> pass;
+  EXPECT_EQ(pass->GetComputeShaders(), vtkIrradianceEstimator::ComputeUnlessSoftware);
   SetPassInputs(scene, pass);
   ASSERT_TRUE(pass->Render(ctx.GL));
   ctx.GL->MakeCurrent();
@@ -1227,7 +1227,7 @@ TEST(IrradianceVolumePass, AutomaticComputeShadersSkipCPURasterizers)
   pass->ReleaseGraphicsResources(ctx.GL);
 }
 
-TEST(IrradianceVolumePass, LeavesTheRenderersStateAsItFoundIt)
+TEST(IrradianceEstimator, LeavesTheRenderersStateAsItFoundIt)
 {
   // The diffusion sweeps scissor to the blocks that scatter; the renderer's
   // scissor box and viewport must come back (a lost box clipped the ray cast
@@ -1240,7 +1240,7 @@ TEST(IrradianceVolumePass, LeavesTheRenderersStateAsItFoundIt)
   state->vtkglViewport(1, 2, 50, 60);
   // s = 100: sub-steps long enough to be checked on their residual.
   const Scene scene = TwoBlocks(100.0);
-  vtkNew<vtkIrradianceVolumePass> pass;
+  vtkNew<vtkIrradianceEstimator> pass;
   SetPassInputs(scene, pass);
   // No OpenGL error on the way (VTK reports them through the output
   // window): a residual check once bound an inactive texture's unit -1.
@@ -1290,14 +1290,14 @@ double MaxDifferenceIn(const std::vector<float>& a, const std::vector<float>& b,
 // the sweeps' tolerance with backward Euler; and fewer voxels estimated
 // where the diffusion's reach leaves some out. As layered fragment draws
 // (llvmpipe's default) and as compute dispatches (a GPU's).
-TEST(IrradianceVolumePass, ARegionEqualsTheWholeGridInsideIt)
+TEST(IrradianceEstimator, ARegionEqualsTheWholeGridInsideIt)
 {
   const Context& ctx = SharedContext();
   ASSERT_NE(ctx.GL, nullptr);
   const int regions[][6] = { { 0, 7, 0, 23, 0, 23 }, { 0, 23, 0, 23, 14, 23 },
     { 0, 23, 6, 11, 0, 23 }, { 3, 9, 10, 20, 2, 8 } };
-  const int modes[] = { vtkIrradianceVolumePass::FragmentDraws,
-    vtkIrradianceVolumePass::ComputeDispatches };
+  const int modes[] = { vtkIrradianceEstimator::FragmentDraws,
+    vtkIrradianceEstimator::ComputeDispatches };
   for (const double scattering : { 0.0, 1.0 })
   {
     for (const bool exponential : { true, false })
@@ -1308,13 +1308,13 @@ TEST(IrradianceVolumePass, ARegionEqualsTheWholeGridInsideIt)
         // The second block tinted: its shadows get a colour.
         scene.Material->AddNode(
           2.0, 0.2, 0.7, 0.2, 20.0, 2.0, scattering, 0.0, 0.0, 0.0, 0.9, 0.5, 0.2);
-        vtkNew<vtkIrradianceVolumePass> whole;
+        vtkNew<vtkIrradianceEstimator> whole;
         SetPassInputs(scene, whole);
         whole->SetExponentialDiffusion(exponential);
         whole->SetComputeShaders(compute);
         ASSERT_TRUE(whole->IsTinted());
         ASSERT_TRUE(whole->Render(ctx.GL));
-        ASSERT_EQ(whole->GetComputeShadersUsed(), compute == vtkIrradianceVolumePass::ComputeDispatches);
+        ASSERT_EQ(whole->GetComputeShadersUsed(), compute == vtkIrradianceEstimator::ComputeDispatches);
         const mmv::IrradianceGrid grid = GridOf(scene);
         int tintDims[3];
         whole->GetTintDimensions(tintDims);
@@ -1331,7 +1331,7 @@ TEST(IrradianceVolumePass, ARegionEqualsTheWholeGridInsideIt)
             << (compute ? ", compute" : ", fragment") << ", region "
             << region[0] << "-" << region[1] << " " << region[2] << "-" << region[3] << " "
             << region[4] << "-" << region[5]);
-          vtkNew<vtkIrradianceVolumePass> part;
+          vtkNew<vtkIrradianceEstimator> part;
           SetPassInputs(scene, part);
           part->SetExponentialDiffusion(exponential);
           part->SetComputeShaders(compute);
@@ -1388,7 +1388,7 @@ TEST(IrradianceVolumePass, ARegionEqualsTheWholeGridInsideIt)
 // a dangling pointer, a new program that got its address was taken for
 // bound and dispatched unbound, computing nothing (found by
 // ARegionEqualsTheWholeGridInsideIt).
-TEST(IrradianceVolumePass, ComputePassesCreatedAgainInOneContextStillCompute)
+TEST(IrradianceEstimator, ComputePassesCreatedAgainInOneContextStillCompute)
 {
   const Context& ctx = SharedContext();
   ASSERT_NE(ctx.GL, nullptr);
@@ -1397,9 +1397,9 @@ TEST(IrradianceVolumePass, ComputePassesCreatedAgainInOneContextStillCompute)
   std::vector<float> first;
   for (int round = 0; round < 6; ++round)
   {
-    vtkNew<vtkIrradianceVolumePass> pass;
+    vtkNew<vtkIrradianceEstimator> pass;
     SetPassInputs(scene, pass);
-    pass->SetComputeShaders(vtkIrradianceVolumePass::ComputeDispatches);
+    pass->SetComputeShaders(vtkIrradianceEstimator::ComputeDispatches);
     ASSERT_TRUE(pass->IsTinted());
     ASSERT_TRUE(pass->Render(ctx.GL));
     std::vector<float> values;

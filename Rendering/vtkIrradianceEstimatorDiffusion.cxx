@@ -1,6 +1,6 @@
-// vtkIrradianceVolumePass: multiple scattering, the diffusion of the
+// vtkIrradianceEstimator: multiple scattering, the diffusion of the
 // transmittance on the diffusion grid.
-#include "vtkIrradianceVolumePassInternals.h"
+#include "vtkIrradianceEstimatorInternals.h"
 
 #include "mmvDiffusionFS.h"
 #include "mmvDiffusionGridFS.h"
@@ -14,7 +14,7 @@ using namespace mmv::voxelpass;
 // (NeedsCPUClasses). Otherwise no voxel has a strength the diffusion would
 // use (it is off, or the table has no s > 0), and the plan is the one for
 // zero strength everywhere, made without touching the voxels.
-void vtkIrradianceVolumePass::vtkInternals::PlanDiffusion(
+void vtkIrradianceEstimator::vtkInternals::PlanDiffusion(
   double time, bool exponential, bool multipleScattering)
 {
   this->Diffusion.Exponential = exponential;
@@ -104,7 +104,7 @@ void vtkIrradianceVolumePass::vtkInternals::PlanDiffusion(
 // backward-Euler sub-steps each solved by Chebyshev-accelerated Jacobi sweeps
 // (their number from the error bound, mmv::ChebyshevSweeps), then the
 // prolongation of the change. Returns the passes drawn, or -1 on failure.
-int vtkIrradianceVolumePass::vtkInternals::Diffuse(
+int vtkIrradianceEstimator::vtkInternals::Diffuse(
   vtkOpenGLRenderWindow* context, bool layered, int mask)
 {
   const bool exponential = !this->ExponentialSeries.empty();
@@ -150,7 +150,7 @@ int vtkIrradianceVolumePass::vtkInternals::Diffuse(
 //------------------------------------------------------------------------------
 // The diffusion grid's strength texture (activated here, deactivated by the
 // caller), dimensions and 1 / h^2, for the sweeps and the exponential's steps.
-void vtkIrradianceVolumePass::vtkInternals::SetDiffusionGridUniforms(vtkShaderProgram* program)
+void vtkIrradianceEstimator::vtkInternals::SetDiffusionGridUniforms(vtkShaderProgram* program)
 {
   const glm::vec3 invH2(1.0 / (this->Coarse.Spacing[0] * this->Coarse.Spacing[0]),
     1.0 / (this->Coarse.Spacing[1] * this->Coarse.Spacing[1]),
@@ -164,7 +164,7 @@ void vtkIrradianceVolumePass::vtkInternals::SetDiffusionGridUniforms(vtkShaderPr
 //------------------------------------------------------------------------------
 // Backward-Euler sub-steps on the diffusion grid, each solved by Chebyshev-
 // accelerated Jacobi sweeps; `current` receives the texture of the result.
-int vtkIrradianceVolumePass::vtkInternals::BackwardEulerSweeps(vtkOpenGLRenderWindow* context,
+int vtkIrradianceEstimator::vtkInternals::BackwardEulerSweeps(vtkOpenGLRenderWindow* context,
   vtkShaderProgram* sweep, bool layered, int mask, int& current)
 {
   auto& coarse = this->CoarseScratch;
@@ -247,7 +247,7 @@ int vtkIrradianceVolumePass::vtkInternals::BackwardEulerSweeps(vtkOpenGLRenderWi
 // recurrence (Shaders/mmvDiffusionFS.glsl, MMV_EXPONENTIAL): b_k = c_k u0 +
 // 2 B b_k+1 - b_k+2 from k = n down to 1, then c_0 u0 + B b_1 - b_2; u0 is
 // the restricted irradiance (texture 0). `current` receives the result.
-int vtkIrradianceVolumePass::vtkInternals::ExponentialSweeps(vtkOpenGLRenderWindow* context,
+int vtkIrradianceEstimator::vtkInternals::ExponentialSweeps(vtkOpenGLRenderWindow* context,
   vtkShaderProgram* sweep, bool layered, int& current)
 {
   auto& coarse = this->CoarseScratch;

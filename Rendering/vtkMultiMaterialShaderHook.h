@@ -1,5 +1,5 @@
 /**
- * @class   vtkMultiMaterialRenderPass
+ * @class   vtkMultiMaterialShaderHook
  * @brief   Carries the mapper's shader replacements and uniform/texture binding
  *          into vtkOpenGLGPUVolumeRayCastMapper.
  *
@@ -10,12 +10,12 @@
  * and every draw (SetShaderParameters), whatever prop holds the volume, so
  * vtkMultiMaterialVolumeMapper installs one from inside GPURender().
  *
- * The pass acts only for its owner mapper and is inert otherwise; its shader
+ * The hook acts only for its owner mapper and is inert otherwise; its shader
  * stage MTime changes only when the replacements change, so a camera move or
  * a new light colour never rebuilds the shader.
  */
-#ifndef vtkMultiMaterialRenderPass_h
-#define vtkMultiMaterialRenderPass_h
+#ifndef vtkMultiMaterialShaderHook_h
+#define vtkMultiMaterialShaderHook_h
 
 #include "vtkMultiMaterialVolumeModule.h" // export macro
 #include "vtkOpenGLRenderPass.h"
@@ -28,11 +28,11 @@
 class vtkAbstractMapper;
 class vtkInformation;
 
-class VTKMULTIMATERIALVOLUME_EXPORT vtkMultiMaterialRenderPass : public vtkOpenGLRenderPass
+class VTKMULTIMATERIALVOLUME_EXPORT vtkMultiMaterialShaderHook : public vtkOpenGLRenderPass
 {
 public:
-  static vtkMultiMaterialRenderPass* New();
-  vtkTypeMacro(vtkMultiMaterialRenderPass, vtkOpenGLRenderPass);
+  static vtkMultiMaterialShaderHook* New();
+  vtkTypeMacro(vtkMultiMaterialShaderHook, vtkOpenGLRenderPass);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   using Replacements = std::vector<std::pair<std::string, std::string>>;
@@ -59,7 +59,7 @@ public:
   void InstallInto(vtkInformation* keys);
   /// Takes this pass out of `keys`' RenderPasses() list.
   /// Both leave every reference count as balanced as they found it, unlike
-  /// VTK 9.2's key Append()/Clear() (see the .cxx), so the pass dies with the
+  /// VTK 9.2's key Append()/Clear() (see the .cxx), so the hook dies with the
   /// volume or the mapper, whichever goes last.
   void RemoveFrom(vtkInformation* keys);
 
@@ -75,12 +75,12 @@ public:
   void Render(const vtkRenderState*) override {}
 
 protected:
-  vtkMultiMaterialRenderPass();
-  ~vtkMultiMaterialRenderPass() override;
+  vtkMultiMaterialShaderHook();
+  ~vtkMultiMaterialShaderHook() override;
 
 private:
-  vtkMultiMaterialRenderPass(const vtkMultiMaterialRenderPass&) = delete;
-  void operator=(const vtkMultiMaterialRenderPass&) = delete;
+  vtkMultiMaterialShaderHook(const vtkMultiMaterialShaderHook&) = delete;
+  void operator=(const vtkMultiMaterialShaderHook&) = delete;
 
   vtkAbstractMapper* Owner = nullptr;
   Replacements FragmentReplacements;

@@ -1,4 +1,4 @@
-#include "vtkIrradianceVolumePassInternals.h"
+#include "vtkIrradianceEstimatorInternals.h"
 
 using namespace mmv::voxelpass;
 
@@ -17,20 +17,20 @@ int PopCount(int mask)
 }
 
 //------------------------------------------------------------------------------
-vtkStandardNewMacro(vtkIrradianceVolumePass);
+vtkStandardNewMacro(vtkIrradianceEstimator);
 
-vtkIrradianceVolumePass::vtkIrradianceVolumePass()
+vtkIrradianceEstimator::vtkIrradianceEstimator()
   : Internals(new vtkInternals)
 {
 }
 
-vtkIrradianceVolumePass::~vtkIrradianceVolumePass()
+vtkIrradianceEstimator::~vtkIrradianceEstimator()
 {
   delete this->Internals;
 }
 
 //------------------------------------------------------------------------------
-void vtkIrradianceVolumePass::SetInputs(const mmv::IrradianceGrid& grid,
+void vtkIrradianceEstimator::SetInputs(const mmv::IrradianceGrid& grid,
   const std::vector<float>& normalizedScalars, int tableSize, const float* shadowTable,
   double stepLength, const float* opacityTable, const float* scatteringTable,
   const std::vector<mmv::LightSource>& lights, unsigned long scalarsVersion)
@@ -108,7 +108,7 @@ void vtkIrradianceVolumePass::SetInputs(const mmv::IrradianceGrid& grid,
 }
 
 //------------------------------------------------------------------------------
-void vtkIrradianceVolumePass::SetCutaway(const mmv::Cutaway& cutaway)
+void vtkIrradianceEstimator::SetCutaway(const mmv::Cutaway& cutaway)
 {
   vtkInternals& internals = *this->Internals;
   if (cutaway.Key() != internals.Cut.Key())
@@ -119,12 +119,12 @@ void vtkIrradianceVolumePass::SetCutaway(const mmv::Cutaway& cutaway)
   }
 }
 
-const mmv::Cutaway& vtkIrradianceVolumePass::GetCutaway() const
+const mmv::Cutaway& vtkIrradianceEstimator::GetCutaway() const
 {
   return this->Internals->Cut;
 }
 
-void vtkIrradianceVolumePass::SetCutawayUniforms(vtkShaderProgram* program) const
+void vtkIrradianceEstimator::SetCutawayUniforms(vtkShaderProgram* program) const
 {
   if (!this->Internals->Cut.IsEmpty())
   {
@@ -133,7 +133,7 @@ void vtkIrradianceVolumePass::SetCutawayUniforms(vtkShaderProgram* program) cons
 }
 
 //------------------------------------------------------------------------------
-void vtkIrradianceVolumePass::SetRegion(const int bounds[6])
+void vtkIrradianceEstimator::SetRegion(const int bounds[6])
 {
   mmv::IndexBox region;
   std::copy(bounds, bounds + 6, region.Bounds);
@@ -144,19 +144,19 @@ void vtkIrradianceVolumePass::SetRegion(const int bounds[6])
   }
 }
 
-void vtkIrradianceVolumePass::ResetRegion()
+void vtkIrradianceEstimator::ResetRegion()
 {
   this->SetRegion(mmv::IndexBox::Everything().Bounds);
 }
 
-void vtkIrradianceVolumePass::GetRegion(int bounds[6]) const
+void vtkIrradianceEstimator::GetRegion(int bounds[6]) const
 {
   const mmv::IndexBox region = this->Internals->Region();
   std::copy(region.Bounds, region.Bounds + 6, bounds);
 }
 
 //------------------------------------------------------------------------------
-bool vtkIrradianceVolumePass::Render(vtkOpenGLRenderWindow* context)
+bool vtkIrradianceEstimator::Render(vtkOpenGLRenderWindow* context)
 {
   vtkInternals& internals = *this->Internals;
   this->NumberOfComputedVoxels = 0;
@@ -241,7 +241,7 @@ bool vtkIrradianceVolumePass::Render(vtkOpenGLRenderWindow* context)
 }
 
 //------------------------------------------------------------------------------
-bool vtkIrradianceVolumePass::CanRender(vtkOpenGLRenderWindow* context)
+bool vtkIrradianceEstimator::CanRender(vtkOpenGLRenderWindow* context)
 {
   if (!context || !this->Internals->HasInputs)
   {
@@ -263,7 +263,7 @@ bool vtkIrradianceVolumePass::CanRender(vtkOpenGLRenderWindow* context)
 //------------------------------------------------------------------------------
 // Settings that changed since the last update recompute every light; returns
 // the shadow estimation this context can run.
-int vtkIrradianceVolumePass::PrepareSettings(bool& diffusion)
+int vtkIrradianceEstimator::PrepareSettings(bool& diffusion)
 {
   vtkInternals& internals = *this->Internals;
   // (Multiple scattering turned on over a volume the CPU did not classify
@@ -318,7 +318,7 @@ int vtkIrradianceVolumePass::PrepareSettings(bool& diffusion)
 // transmittance (directional lights by piecewise rays unless full rays are
 // asked for, the others by full rays, each into its own channel), the
 // diffusion, the final write and the tints.
-bool vtkIrradianceVolumePass::UpdateGroup(vtkOpenGLRenderWindow* context, int group,
+bool vtkIrradianceEstimator::UpdateGroup(vtkOpenGLRenderWindow* context, int group,
   const std::vector<bool>& updated, int estimation, bool diffusion)
 {
   vtkInternals& internals = *this->Internals;
@@ -417,12 +417,12 @@ bool vtkIrradianceVolumePass::UpdateGroup(vtkOpenGLRenderWindow* context, int gr
 }
 
 //------------------------------------------------------------------------------
-void vtkIrradianceVolumePass::SetProgressCallback(std::function<void(double)> callback)
+void vtkIrradianceEstimator::SetProgressCallback(std::function<void(double)> callback)
 {
   this->Progress = std::move(callback);
 }
 
-void vtkIrradianceVolumePass::ReportProgress(vtkOpenGLRenderWindow* context, double units)
+void vtkIrradianceEstimator::ReportProgress(vtkOpenGLRenderWindow* context, double units)
 {
   if (!this->Progress || !(this->ProgressTotal > 0.0))
   {
@@ -441,7 +441,7 @@ void vtkIrradianceVolumePass::ReportProgress(vtkOpenGLRenderWindow* context, dou
 }
 
 //------------------------------------------------------------------------------
-void vtkIrradianceVolumePass::GetDiffusionGridDimensions(int dims[3]) const
+void vtkIrradianceEstimator::GetDiffusionGridDimensions(int dims[3]) const
 {
   for (int a = 0; a < 3; ++a)
   {
@@ -449,55 +449,55 @@ void vtkIrradianceVolumePass::GetDiffusionGridDimensions(int dims[3]) const
   }
 }
 
-int vtkIrradianceVolumePass::GetDiffusionSubSteps() const
+int vtkIrradianceEstimator::GetDiffusionSubSteps() const
 {
   return this->Internals->SubSteps;
 }
 
-int vtkIrradianceVolumePass::GetDiffusionSweepsPerStep() const
+int vtkIrradianceEstimator::GetDiffusionSweepsPerStep() const
 {
   return this->Internals->SweepsPerStep;
 }
 
-double vtkIrradianceVolumePass::GetDiffusionLength() const
+double vtkIrradianceEstimator::GetDiffusionLength() const
 {
   return this->Internals->Coarse.DiffusionLength;
 }
 
 //------------------------------------------------------------------------------
-vtkTextureObject* vtkIrradianceVolumePass::GetIrradianceTexture(int i) const
+vtkTextureObject* vtkIrradianceEstimator::GetIrradianceTexture(int i) const
 {
   const auto& textures = this->Internals->Irradiance;
   return i >= 0 && i < static_cast<int>(textures.size()) ? textures[i].Get() : nullptr;
 }
 
-vtkTextureObject* vtkIrradianceVolumePass::GetScalarTexture() const
+vtkTextureObject* vtkIrradianceEstimator::GetScalarTexture() const
 {
   return this->Internals->Uploaded ? this->Internals->ScalarTexture.Get() : nullptr;
 }
 
-vtkTextureObject* vtkIrradianceVolumePass::GetShadowTableTexture() const
+vtkTextureObject* vtkIrradianceEstimator::GetShadowTableTexture() const
 {
   return this->Internals->Uploaded ? this->Internals->TableTexture.Get() : nullptr;
 }
 
-int vtkIrradianceVolumePass::GetNumberOfIrradianceTextures() const
+int vtkIrradianceEstimator::GetNumberOfIrradianceTextures() const
 {
   return static_cast<int>(this->Internals->Irradiance.size());
 }
 
-void vtkIrradianceVolumePass::SetLightsToUpdate(const std::vector<bool>& marks)
+void vtkIrradianceEstimator::SetLightsToUpdate(const std::vector<bool>& marks)
 {
   this->Internals->GivenMarks = marks;
   this->Modified();
 }
 
-const std::vector<mmv::LightSource>& vtkIrradianceVolumePass::GetComputedLights() const
+const std::vector<mmv::LightSource>& vtkIrradianceEstimator::GetComputedLights() const
 {
   return this->Internals->ComputedLights;
 }
 
-void vtkIrradianceVolumePass::InvalidateComputedLights()
+void vtkIrradianceEstimator::InvalidateComputedLights()
 {
   this->Internals->VolumeChanged = true;
   this->Modified();
@@ -549,7 +549,7 @@ bool ReadBackTexture(vtkOpenGLRenderWindow* context, vtkOpenGLFramebufferObject*
 }
 
 //------------------------------------------------------------------------------
-bool vtkIrradianceVolumePass::ReadBack(
+bool vtkIrradianceEstimator::ReadBack(
   vtkOpenGLRenderWindow* context, int light, std::vector<float>& values)
 {
   std::vector<std::vector<float>> lights;
@@ -561,7 +561,7 @@ bool vtkIrradianceVolumePass::ReadBack(
   return true;
 }
 
-bool vtkIrradianceVolumePass::ReadBackLights(vtkOpenGLRenderWindow* context, int first, int last,
+bool vtkIrradianceEstimator::ReadBackLights(vtkOpenGLRenderWindow* context, int first, int last,
   std::vector<std::vector<float>>& values)
 {
   vtkInternals& internals = *this->Internals;
@@ -604,12 +604,12 @@ bool vtkIrradianceVolumePass::ReadBackLights(vtkOpenGLRenderWindow* context, int
 }
 
 //------------------------------------------------------------------------------
-vtkIdType vtkIrradianceVolumePass::GetNumberOfVolumeUploads() const
+vtkIdType vtkIrradianceEstimator::GetNumberOfVolumeUploads() const
 {
   return this->Internals->VolumeUploads;
 }
 
-bool vtkIrradianceVolumePass::ReadBackClasses(
+bool vtkIrradianceEstimator::ReadBackClasses(
   vtkOpenGLRenderWindow* context, std::vector<float>& classes)
 {
   vtkInternals& internals = *this->Internals;
@@ -617,19 +617,19 @@ bool vtkIrradianceVolumePass::ReadBackClasses(
     ReadBackTexture(context, internals.Framebuffer, internals.ClassTexture, GL_FLOAT, classes);
 }
 
-void vtkIrradianceVolumePass::ClassifyOnCPU(std::vector<float>& classes) const
+void vtkIrradianceEstimator::ClassifyOnCPU(std::vector<float>& classes) const
 {
   const vtkInternals& internals = *this->Internals;
   vtkInternals::ClassifyValues(
     internals.Scalars, internals.OpacityTable, internals.ScatteringTable, classes);
 }
 
-bool vtkIrradianceVolumePass::GetClassifiedOnCPU() const
+bool vtkIrradianceEstimator::GetClassifiedOnCPU() const
 {
   return this->Internals->ClassesOnCPU;
 }
 
-bool vtkIrradianceVolumePass::ReadBackLightGridNeeded(
+bool vtkIrradianceEstimator::ReadBackLightGridNeeded(
   vtkOpenGLRenderWindow* context, std::vector<unsigned char>& needed, int dims[3])
 {
   vtkInternals& internals = *this->Internals;
@@ -639,7 +639,7 @@ bool vtkIrradianceVolumePass::ReadBackLightGridNeeded(
       GL_UNSIGNED_BYTE, needed);
 }
 
-void vtkIrradianceVolumePass::LightGridNeededOnCPU(
+void vtkIrradianceEstimator::LightGridNeededOnCPU(
   std::vector<unsigned char>& needed, int dims[3]) const
 {
   const vtkInternals& internals = *this->Internals;
@@ -650,7 +650,7 @@ void vtkIrradianceVolumePass::LightGridNeededOnCPU(
   needed = internals.LightGridNeededOnCPU(classes, stride);
 }
 
-vtkIdType vtkIrradianceVolumePass::GetTextureMemoryBytes() const
+vtkIdType vtkIrradianceEstimator::GetTextureMemoryBytes() const
 {
   vtkIdType bytes = 0;
   for (const auto& texture : this->Internals->Irradiance)
@@ -667,7 +667,7 @@ vtkIdType vtkIrradianceVolumePass::GetTextureMemoryBytes() const
   return bytes;
 }
 
-vtkIdType vtkIrradianceVolumePass::GetScratchMemoryBytes() const
+vtkIdType vtkIrradianceEstimator::GetScratchMemoryBytes() const
 {
   vtkIdType bytes = 0;
   auto add = [&bytes](const vtkSmartPointer<vtkTextureObject>& texture) {
@@ -683,7 +683,7 @@ vtkIdType vtkIrradianceVolumePass::GetScratchMemoryBytes() const
 }
 
 //------------------------------------------------------------------------------
-void vtkIrradianceVolumePass::SetTintTable(const float* tintTable)
+void vtkIrradianceEstimator::SetTintTable(const float* tintTable)
 {
   vtkInternals& internals = *this->Internals;
   std::vector<float> table;
@@ -699,23 +699,23 @@ void vtkIrradianceVolumePass::SetTintTable(const float* tintTable)
   }
 }
 
-bool vtkIrradianceVolumePass::IsTinted() const
+bool vtkIrradianceEstimator::IsTinted() const
 {
   return !this->Internals->TintTable.empty();
 }
 
-vtkTextureObject* vtkIrradianceVolumePass::GetTintTexture(int light) const
+vtkTextureObject* vtkIrradianceEstimator::GetTintTexture(int light) const
 {
   const auto& tint = this->Internals->Tint;
   return light >= 0 && light < static_cast<int>(tint.size()) ? tint[light].Get() : nullptr;
 }
 
-void vtkIrradianceVolumePass::GetTintDimensions(int dims[3]) const
+void vtkIrradianceEstimator::GetTintDimensions(int dims[3]) const
 {
   this->Internals->TintDimensions(dims);
 }
 
-bool vtkIrradianceVolumePass::ReadBackTint(
+bool vtkIrradianceEstimator::ReadBackTint(
   vtkOpenGLRenderWindow* context, int light, std::vector<float>& rgb)
 {
   vtkInternals& internals = *this->Internals;
@@ -744,13 +744,13 @@ bool vtkIrradianceVolumePass::ReadBackTint(
 }
 
 //------------------------------------------------------------------------------
-void vtkIrradianceVolumePass::ReleaseGraphicsResources(vtkWindow* window)
+void vtkIrradianceEstimator::ReleaseGraphicsResources(vtkWindow* window)
 {
   this->Internals->Release(window);
 }
 
 //------------------------------------------------------------------------------
-void vtkIrradianceVolumePass::PrintSelf(ostream& os, vtkIndent indent)
+void vtkIrradianceEstimator::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   const vtkInternals& internals = *this->Internals;

@@ -1,7 +1,7 @@
-// vtkIrradianceVolumePass: running its voxel passes (programs, layered draws
+// vtkIrradianceEstimator: running its voxel passes (programs, layered draws
 // or compute dispatches, the textures they read and write) and the final
 // write into the irradiance textures.
-#include "vtkIrradianceVolumePassInternals.h"
+#include "vtkIrradianceEstimatorInternals.h"
 
 #include "vtkIrradianceUpdatePlan.h"
 
@@ -18,7 +18,7 @@
 using namespace mmv::voxelpass;
 
 //------------------------------------------------------------------------------
-vtkIdType vtkIrradianceVolumePass::vtkInternals::ClassifyValues(const std::vector<float>& scalars,
+vtkIdType vtkIrradianceEstimator::vtkInternals::ClassifyValues(const std::vector<float>& scalars,
   const std::vector<float>& opacity, const std::vector<float>& scattering,
   std::vector<float>& classes)
 {
@@ -39,14 +39,14 @@ vtkIdType vtkIrradianceVolumePass::vtkInternals::ClassifyValues(const std::vecto
   return nonEmptyVoxels;
 }
 
-void vtkIrradianceVolumePass::vtkInternals::Classify()
+void vtkIrradianceEstimator::vtkInternals::Classify()
 {
   this->NonEmptyVoxels =
     ClassifyValues(this->Scalars, this->OpacityTable, this->ScatteringTable, this->Classes);
   this->ClassesOnCPU = true;
 }
 
-bool vtkIrradianceVolumePass::vtkInternals::NeedsCPUClasses(
+bool vtkIrradianceEstimator::vtkInternals::NeedsCPUClasses(
   bool multipleScattering, double time) const
 {
   // Without an s > 0 in the table every class is -1 or 0: no strength, and
@@ -57,7 +57,7 @@ bool vtkIrradianceVolumePass::vtkInternals::NeedsCPUClasses(
 }
 
 //------------------------------------------------------------------------------
-void vtkIrradianceVolumePass::vtkInternals::EnsureFramebuffer(vtkOpenGLRenderWindow* context)
+void vtkIrradianceEstimator::vtkInternals::EnsureFramebuffer(vtkOpenGLRenderWindow* context)
 {
   if (!this->Framebuffer)
   {
@@ -75,7 +75,7 @@ void vtkIrradianceVolumePass::vtkInternals::EnsureFramebuffer(vtkOpenGLRenderWin
 // 1e-30 (where the product with the weight could underflow); the other
 // tables, and NaN values and weights below 1e-20, are counted voxel by
 // voxel.
-void vtkIrradianceVolumePass::vtkInternals::CountNonEmptyVoxels()
+void vtkIrradianceEstimator::vtkInternals::CountNonEmptyVoxels()
 {
   const std::vector<float>& opacity = this->OpacityTable;
   const int n = static_cast<int>(opacity.size());
@@ -141,7 +141,7 @@ void vtkIrradianceVolumePass::vtkInternals::CountNonEmptyVoxels()
 //------------------------------------------------------------------------------
 // The classes on the GPU (Shaders/mmvClassifyFS.glsl): an opacity edit
 // uploads the (opacity, scattering) table, not a class volume.
-bool vtkIrradianceVolumePass::vtkInternals::ClassifyOnGPU(
+bool vtkIrradianceEstimator::vtkInternals::ClassifyOnGPU(
   vtkOpenGLRenderWindow* context, bool layered)
 {
   const int n = this->TableSize;
@@ -179,7 +179,7 @@ bool vtkIrradianceVolumePass::vtkInternals::ClassifyOnGPU(
 // What this Render() draws for the region; the diffusion's passes each read
 // their input's neighbours (every sweep of every sub-step for backward
 // Euler, which may stop earlier).
-void vtkIrradianceVolumePass::vtkInternals::PlanRegion(bool diffusion)
+void vtkIrradianceEstimator::vtkInternals::PlanRegion(bool diffusion)
 {
   const int passes = this->ExponentialSeries.empty()
     ? this->SubSteps * this->SweepsPerStep
@@ -189,7 +189,7 @@ void vtkIrradianceVolumePass::vtkInternals::PlanRegion(bool diffusion)
 }
 
 //------------------------------------------------------------------------------
-bool vtkIrradianceVolumePass::vtkInternals::Upload(vtkOpenGLRenderWindow* context, bool layered)
+bool vtkIrradianceEstimator::vtkInternals::Upload(vtkOpenGLRenderWindow* context, bool layered)
 {
   if (this->Uploaded && this->ScalarTexture)
   {
@@ -232,7 +232,7 @@ bool vtkIrradianceVolumePass::vtkInternals::Upload(vtkOpenGLRenderWindow* contex
 }
 
 //------------------------------------------------------------------------------
-bool vtkIrradianceVolumePass::vtkInternals::AllocateTargets(
+bool vtkIrradianceEstimator::vtkInternals::AllocateTargets(
   vtkOpenGLRenderWindow* context, bool diffusion, bool layered, bool& reallocated)
 {
   const int* d = this->Grid.Dimensions;
@@ -341,7 +341,7 @@ bool vtkIrradianceVolumePass::vtkInternals::AllocateTargets(
 // fetch in the shadow passes. The voxels that read point p along an axis
 // are those whose point below is p - 1 or p: one run of indices, as that
 // point never decreases along the axis.
-void vtkIrradianceVolumePass::vtkInternals::LightGridNeededRanges(
+void vtkIrradianceEstimator::vtkInternals::LightGridNeededRanges(
   int stride, std::array<std::vector<int>, 3>& range) const
 {
   const int* d = this->Grid.Dimensions;
@@ -369,7 +369,7 @@ void vtkIrradianceVolumePass::vtkInternals::LightGridNeededRanges(
   }
 }
 
-std::vector<unsigned char> vtkIrradianceVolumePass::vtkInternals::LightGridNeededOnCPU(
+std::vector<unsigned char> vtkIrradianceEstimator::vtkInternals::LightGridNeededOnCPU(
   const std::vector<float>& classes, int stride) const
 {
   const int* d = this->Grid.Dimensions;
@@ -420,7 +420,7 @@ std::vector<unsigned char> vtkIrradianceVolumePass::vtkInternals::LightGridNeede
 
 // On the GPU (Shaders/mmvLightGridNeededFS.glsl): a pass over the light
 // grid reads the classes of the voxels that interpolate from each point.
-bool vtkIrradianceVolumePass::vtkInternals::MarkLightGridNeeded(
+bool vtkIrradianceEstimator::vtkInternals::MarkLightGridNeeded(
   vtkOpenGLRenderWindow* context, int stride, bool layered)
 {
   int c[3];
@@ -470,8 +470,8 @@ bool vtkIrradianceVolumePass::vtkInternals::MarkLightGridNeeded(
 }
 
 //------------------------------------------------------------------------------
-vtkShaderProgram* vtkIrradianceVolumePass::vtkInternals::Ready(vtkOpenGLRenderWindow* context,
-  VoxelPass& pass, const std::string& body, const std::string& defines, bool lightModel)
+vtkShaderProgram* vtkIrradianceEstimator::vtkInternals::Ready(vtkOpenGLRenderWindow* context,
+  VoxelPrograms& pass, const std::string& body, const std::string& defines, bool lightModel)
 {
   const std::string source = ComposeShader(body, defines, lightModel, this->Compute);
   if (this->Compute)
@@ -510,8 +510,8 @@ vtkShaderProgram* vtkIrradianceVolumePass::vtkInternals::Ready(vtkOpenGLRenderWi
 //------------------------------------------------------------------------------
 // Every slice of `target` in one instanced draw into the whole 3D texture
 // (layered rendering), or, with `layered` off, one draw per slice.
-void vtkIrradianceVolumePass::vtkInternals::DrawLayers(vtkOpenGLRenderWindow* context,
-  VoxelPass& pass, vtkTextureObject* target, bool layered, const int* box, int writeMask)
+void vtkIrradianceEstimator::vtkInternals::DrawLayers(vtkOpenGLRenderWindow* context,
+  VoxelPrograms& pass, vtkTextureObject* target, bool layered, const int* box, int writeMask)
 {
   if (IsEmptyBox(box))
   {
@@ -573,8 +573,8 @@ void vtkIrradianceVolumePass::vtkInternals::DrawLayers(vtkOpenGLRenderWindow* co
 // in `writeMask` keep what `target` held. With `countWrites`, the atomic
 // counter counts the voxels written. The stores are made visible to the
 // texture fetches, image accesses and draws that follow.
-void vtkIrradianceVolumePass::vtkInternals::Dispatch(vtkOpenGLRenderWindow* context,
-  VoxelPass& pass, vtkTextureObject* target, const int* box, int writeMask, bool countWrites)
+void vtkIrradianceEstimator::vtkInternals::Dispatch(vtkOpenGLRenderWindow* context,
+  VoxelPrograms& pass, vtkTextureObject* target, const int* box, int writeMask, bool countWrites)
 {
   vtkShaderProgram* program = pass.Compute;
   context->GetShaderCache()->ReadyShaderProgram(program);
@@ -605,7 +605,7 @@ void vtkIrradianceVolumePass::vtkInternals::Dispatch(vtkOpenGLRenderWindow* cont
     glBufferSubData(GL_ATOMIC_COUNTER_BUFFER, 0, sizeof(GLuint), &zero);
   }
   // The masked channels are read back from the target itself (already bound
-  // where the pass samples its own target, as the piecewise rays do).
+  // where the estimator samples its own target, as the piecewise rays do).
   const bool wasActive = target->GetTextureUnit() >= 0;
   if (!wasActive)
   {
@@ -632,8 +632,8 @@ void vtkIrradianceVolumePass::vtkInternals::Dispatch(vtkOpenGLRenderWindow* cont
 // DrawLayers that returns the number of voxels written (the others returned
 // without writing: discarded fragments): an occlusion query, or the atomic
 // counter of a compute dispatch. Waits for the GPU.
-unsigned int vtkIrradianceVolumePass::vtkInternals::CountWrites(vtkOpenGLRenderWindow* context,
-  VoxelPass& pass, vtkTextureObject* target, bool layered, const int* box)
+unsigned int vtkIrradianceEstimator::vtkInternals::CountWrites(vtkOpenGLRenderWindow* context,
+  VoxelPrograms& pass, vtkTextureObject* target, bool layered, const int* box)
 {
   GLuint written = 0;
   if (IsEmptyBox(box))
@@ -661,7 +661,7 @@ unsigned int vtkIrradianceVolumePass::vtkInternals::CountWrites(vtkOpenGLRenderW
 //------------------------------------------------------------------------------
 // The final write of the lights in `mask`: the other channels of the
 // irradiance texture keep what they hold.
-bool vtkIrradianceVolumePass::vtkInternals::FillPass(vtkOpenGLRenderWindow* context,
+bool vtkIrradianceEstimator::vtkInternals::FillPass(vtkOpenGLRenderWindow* context,
   vtkTextureObject* source, int group, int mask, bool layered)
 {
   vtkShaderProgram* program =
@@ -680,7 +680,7 @@ bool vtkIrradianceVolumePass::vtkInternals::FillPass(vtkOpenGLRenderWindow* cont
 }
 
 //------------------------------------------------------------------------------
-void vtkIrradianceVolumePass::vtkInternals::ReleaseScratch(vtkWindow* window)
+void vtkIrradianceEstimator::vtkInternals::ReleaseScratch(vtkWindow* window)
 {
   // The float scratch is 8x the result per texture: not worth keeping.
   if (this->LightGridScratch)
@@ -704,7 +704,7 @@ void vtkIrradianceVolumePass::vtkInternals::ReleaseScratch(vtkWindow* window)
 }
 
 //------------------------------------------------------------------------------
-void vtkIrradianceVolumePass::vtkInternals::Release(vtkWindow* window)
+void vtkIrradianceEstimator::vtkInternals::Release(vtkWindow* window)
 {
   this->ReleaseScratch(window);
   for (auto* texture : { &this->ScalarTexture, &this->ClassTexture, &this->TableTexture,
@@ -748,7 +748,7 @@ void vtkIrradianceVolumePass::vtkInternals::Release(vtkWindow* window)
     glDeleteBuffers(1, &this->WriteCounter);
     this->WriteCounter = 0;
   }
-  for (VoxelPass* pass : { &this->ShadowQuad, &this->PiecewiseQuad, &this->RestrictQuad,
+  for (VoxelPrograms* pass : { &this->ShadowQuad, &this->PiecewiseQuad, &this->RestrictQuad,
          &this->SweepQuad, &this->ExponentialQuad, &this->ProlongQuad, &this->FillQuad,
          &this->TintQuad, &this->UpsampleQuad, &this->ClassifyQuad, &this->NeededQuad })
   {
@@ -759,7 +759,7 @@ void vtkIrradianceVolumePass::vtkInternals::Release(vtkWindow* window)
 }
 
 //------------------------------------------------------------------------------
-std::vector<bool> vtkIrradianceVolumePass::vtkInternals::MarkLightsToUpdate(
+std::vector<bool> vtkIrradianceEstimator::vtkInternals::MarkLightsToUpdate(
   bool all, double toleranceRadians, const std::vector<bool>& given)
 {
   // A new light, or one beyond the tolerance of what its channel holds;

@@ -1,4 +1,4 @@
-#include "vtkMultiMaterialRenderPass.h"
+#include "vtkMultiMaterialShaderHook.h"
 
 #include "vtkInformation.h"
 #include "vtkInformationObjectBaseVectorKey.h"
@@ -10,22 +10,22 @@
 #include <algorithm>
 #include <vector>
 
-vtkStandardNewMacro(vtkMultiMaterialRenderPass);
+vtkStandardNewMacro(vtkMultiMaterialShaderHook);
 
-vtkMultiMaterialRenderPass::vtkMultiMaterialRenderPass()
+vtkMultiMaterialShaderHook::vtkMultiMaterialShaderHook()
 {
-  vtkMultiMaterialLiveObjects::Constructed("vtkMultiMaterialRenderPass");
+  vtkMultiMaterialLiveObjects::Constructed("vtkMultiMaterialShaderHook");
   // The base mapper sizes its image-sample draw buffers from a pass's count.
   this->SetActiveDrawBuffers(1);
   this->ReplacementTime.Modified();
 }
 
-vtkMultiMaterialRenderPass::~vtkMultiMaterialRenderPass()
+vtkMultiMaterialShaderHook::~vtkMultiMaterialShaderHook()
 {
-  vtkMultiMaterialLiveObjects::Destroyed("vtkMultiMaterialRenderPass");
+  vtkMultiMaterialLiveObjects::Destroyed("vtkMultiMaterialShaderHook");
 }
 
-void vtkMultiMaterialRenderPass::SetFragmentReplacements(const Replacements& replacements)
+void vtkMultiMaterialShaderHook::SetFragmentReplacements(const Replacements& replacements)
 {
   if (replacements != this->FragmentReplacements)
   {
@@ -75,7 +75,7 @@ void SetPasses(vtkInformation* keys, const PassList& passes)
 }
 }
 
-void vtkMultiMaterialRenderPass::InstallInto(vtkInformation* keys)
+void vtkMultiMaterialShaderHook::InstallInto(vtkInformation* keys)
 {
   PassList passes = GetPasses(keys);
   if (std::find(passes.begin(), passes.end(), this) == passes.end())
@@ -85,7 +85,7 @@ void vtkMultiMaterialRenderPass::InstallInto(vtkInformation* keys)
   }
 }
 
-void vtkMultiMaterialRenderPass::RemoveFrom(vtkInformation* keys)
+void vtkMultiMaterialShaderHook::RemoveFrom(vtkInformation* keys)
 {
   if (!keys)
   {
@@ -100,7 +100,7 @@ void vtkMultiMaterialRenderPass::RemoveFrom(vtkInformation* keys)
   }
 }
 
-bool vtkMultiMaterialRenderPass::PreReplaceShaderValues(std::string&, std::string&,
+bool vtkMultiMaterialShaderHook::PreReplaceShaderValues(std::string&, std::string&,
   std::string& fragmentShader, vtkAbstractMapper* mapper, vtkProp*)
 {
   if (mapper != this->Owner)
@@ -114,7 +114,7 @@ bool vtkMultiMaterialRenderPass::PreReplaceShaderValues(std::string&, std::strin
   return true;
 }
 
-bool vtkMultiMaterialRenderPass::PostReplaceShaderValues(std::string&, std::string&,
+bool vtkMultiMaterialShaderHook::PostReplaceShaderValues(std::string&, std::string&,
   std::string& fragmentShader, vtkAbstractMapper* mapper, vtkProp*)
 {
   if (mapper == this->Owner)
@@ -124,7 +124,7 @@ bool vtkMultiMaterialRenderPass::PostReplaceShaderValues(std::string&, std::stri
   return true;
 }
 
-bool vtkMultiMaterialRenderPass::SetShaderParameters(
+bool vtkMultiMaterialShaderHook::SetShaderParameters(
   vtkShaderProgram* program, vtkAbstractMapper* mapper, vtkProp*, vtkOpenGLVertexArrayObject*)
 {
   if (mapper == this->Owner && this->Callback && !this->FragmentReplacements.empty())
@@ -134,12 +134,12 @@ bool vtkMultiMaterialRenderPass::SetShaderParameters(
   return true;
 }
 
-vtkMTimeType vtkMultiMaterialRenderPass::GetShaderStageMTime()
+vtkMTimeType vtkMultiMaterialShaderHook::GetShaderStageMTime()
 {
   return this->ReplacementTime.GetMTime();
 }
 
-void vtkMultiMaterialRenderPass::PrintSelf(ostream& os, vtkIndent indent)
+void vtkMultiMaterialShaderHook::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Owner: " << this->Owner << "\n";
