@@ -20,10 +20,10 @@ namespace
 // without data gives +DBL_MAX (flags: +1).
 enum SummaryIndex
 {
-  SummaryHasData = 0,   // -1: this piece has data
-  SummaryFirst = 1,     // 3: first point, in the direction frame
-  SummaryNegLast = 4,   // 3: -last point
-  SummarySpacing = 7,   // 3
+  SummaryHasData = 0, // -1: this piece has data
+  SummaryFirst = 1,   // 3: first point, in the direction frame
+  SummaryNegLast = 4, // 3: -last point
+  SummarySpacing = 7, // 3
   SummaryNegSpacing = 10,
   SummaryRangeMin = 13,
   SummaryNegRangeMax = 14,
@@ -123,8 +123,8 @@ bool vtkGlobalPrefilteredVolume::SetGeometry(const double reduced[SummarySize], 
     const double hi = -reduced[SummaryNegSpacing + a];
     if (!(lo > 0.0) || hi - lo > 1e-6 * hi)
     {
-      error << "the pieces have different (or non-positive) spacings along axis " << a << ": "
-            << lo << " to " << hi;
+      error << "the pieces have different (or non-positive) spacings along axis " << a << ": " << lo
+            << " to " << hi;
     }
   }
   for (int i = 0; i < 9 && error.str().empty(); ++i)
@@ -216,7 +216,8 @@ void vtkGlobalPrefilteredVolume::AccumulatePiece(
   // A sample belongs to the piece whose points [o, o + n - 1] hold it; on a
   // shared face it belongs to the piece above, except on the volume's last
   // face.
-  auto owns = [&](const glm::dvec3& p) {
+  auto owns = [&](const glm::dvec3& p)
+  {
     for (int a = 0; a < 3; ++a)
     {
       const double last = o[a] + n[a] - 1;
@@ -228,46 +229,49 @@ void vtkGlobalPrefilteredVolume::AccumulatePiece(
     return true;
   };
   const int* samples = layout.Samples;
-  vtkSMPTools::For(0, voxels, [&](vtkIdType begin, vtkIdType end) {
-    for (vtkIdType v = begin; v < end; ++v)
+  vtkSMPTools::For(0, voxels,
+    [&](vtkIdType begin, vtkIdType end)
     {
-      const glm::dvec3 voxel = this->Grid.IndexOfVoxel(v);
-      bool near = true;
-      for (int a = 0; a < 3; ++a)
+      for (vtkIdType v = begin; v < end; ++v)
       {
-        const double centre = voxel[a] * layout.Ratio[a];
-        near = near && centre + layout.Ratio[a] >= o[a] && centre - layout.Ratio[a] <= o[a] + n[a] - 1;
-      }
-      if (!near)
-      {
-        continue;
-      }
-      double sum = 0.0;
-      int count = 0;
-      for (int k = 0; k < samples[2]; ++k)
-      {
-        for (int j = 0; j < samples[1]; ++j)
+        const glm::dvec3 voxel = this->Grid.IndexOfVoxel(v);
+        bool near = true;
+        for (int a = 0; a < 3; ++a)
         {
-          for (int i = 0; i < samples[0]; ++i)
+          const double centre = voxel[a] * layout.Ratio[a];
+          near =
+            near && centre + layout.Ratio[a] >= o[a] && centre - layout.Ratio[a] <= o[a] + n[a] - 1;
+        }
+        if (!near)
+        {
+          continue;
+        }
+        double sum = 0.0;
+        int count = 0;
+        for (int k = 0; k < samples[2]; ++k)
+        {
+          for (int j = 0; j < samples[1]; ++j)
           {
-            const int q[3] = { i, j, k };
-            glm::dvec3 p = mmv::FootprintSample(layout, voxel, q);
-            for (int a = 0; a < 3; ++a)
+            for (int i = 0; i < samples[0]; ++i)
             {
-              p[a] = std::min(std::max(p[a], 0.0), static_cast<double>(whole[a] - 1));
-            }
-            if (owns(p))
-            {
-              sum += mmv::SampleTrilinear(pieceGrid, values.data(), p - o);
-              ++count;
+              const int q[3] = { i, j, k };
+              glm::dvec3 p = mmv::FootprintSample(layout, voxel, q);
+              for (int a = 0; a < 3; ++a)
+              {
+                p[a] = std::min(std::max(p[a], 0.0), static_cast<double>(whole[a] - 1));
+              }
+              if (owns(p))
+              {
+                sum += mmv::SampleTrilinear(pieceGrid, values.data(), p - o);
+                ++count;
+              }
             }
           }
         }
+        sums[v] = static_cast<float>(sum);
+        sums[voxels + v] = static_cast<float>(count);
       }
-      sums[v] = static_cast<float>(sum);
-      sums[voxels + v] = static_cast<float>(count);
-    }
-  });
+    });
 }
 
 void vtkGlobalPrefilteredVolume::SetReducedSums(const std::vector<float>& sums)

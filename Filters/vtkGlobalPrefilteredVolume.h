@@ -91,9 +91,15 @@ public:
   vtkGetMacro(ExchangeSeconds, double);
 
 #ifndef __VTK_WRAP__
-  const mmv::IrradianceGrid& GetGrid() const { return this->Grid; }
+  const mmv::IrradianceGrid& GetGrid() const
+  {
+    return this->Grid;
+  }
   /// Pre-filtered values in data units, x fastest.
-  const std::vector<float>& GetValues() const { return this->Values; }
+  const std::vector<float>& GetValues() const
+  {
+    return this->Values;
+  }
   /// The continuous index of `piece`'s first point in the whole volume.
   glm::dvec3 PieceOffset(vtkImageData* piece) const;
 #endif

@@ -163,8 +163,7 @@ std::string LatticeShift(vtkImageData* block, size_t b, const double spacing[3],
     {
       std::ostringstream text;
       text << "block " << b << "'s origin is " << steps
-           << " lattice steps from block 0's along axis " << a
-           << ": blocks must share one lattice";
+           << " lattice steps from block 0's along axis " << a << ": blocks must share one lattice";
       return text.str();
     }
   }

@@ -150,7 +150,8 @@ std::vector<double> FilterValid(const std::vector<double>& in, int w, int h)
 }
 
 // Mean SSIM of two planes with dynamic range `peak`.
-double MeanSSIM(const std::vector<double>& x, const std::vector<double>& y, int w, int h, double peak)
+double MeanSSIM(
+  const std::vector<double>& x, const std::vector<double>& y, int w, int h, double peak)
 {
   const size_t n = x.size();
   std::vector<double> xx(n), yy(n), xy(n);
@@ -196,7 +197,8 @@ void HeatColor(double x, unsigned char rgb[3])
 
 uint32_t Crc32(const unsigned char* data, size_t n, uint32_t crc = 0)
 {
-  static const std::array<uint32_t, 256> table = [] {
+  static const std::array<uint32_t, 256> table = []
+  {
     std::array<uint32_t, 256> t{};
     for (uint32_t i = 0; i < 256; ++i)
     {
@@ -225,7 +227,8 @@ void PutU32(std::vector<unsigned char>& out, uint32_t v)
   out.push_back(static_cast<unsigned char>(v));
 }
 
-void PutChunk(std::vector<unsigned char>& out, const char type[4], const std::vector<unsigned char>& data)
+void PutChunk(
+  std::vector<unsigned char>& out, const char type[4], const std::vector<unsigned char>& data)
 {
   PutU32(out, static_cast<uint32_t>(data.size()));
   const size_t start = out.size();

@@ -66,18 +66,17 @@ public:
   {
     this->Dt = dt;
     this->InvDiag.resize(this->Size);
-    vtkSMPTools::For(0, this->Size, [&](vtkIdType begin, vtkIdType end) {
-      for (vtkIdType i = begin; i < end; ++i)
+    vtkSMPTools::For(0, this->Size,
+      [&](vtkIdType begin, vtkIdType end)
       {
-        this->InvDiag[i] = static_cast<float>(1.0 / (this->CapacityOf(i) + dt * this->RowSum(i)));
-      }
-    });
+        for (vtkIdType i = begin; i < end; ++i)
+        {
+          this->InvDiag[i] = static_cast<float>(1.0 / (this->CapacityOf(i) + dt * this->RowSum(i)));
+        }
+      });
   }
 
-  double CapacityOf(vtkIdType v) const
-  {
-    return this->Capacity.empty() ? 1.0 : this->Capacity[v];
-  }
+  double CapacityOf(vtkIdType v) const { return this->Capacity.empty() ? 1.0 : this->Capacity[v]; }
 
   /// Solves (C + dt*A) x = C b in place (x holds b on entry). Returns the
   /// iterations; `residual` receives the final relative residual.
@@ -87,17 +86,19 @@ public:
     std::vector<double> r(n), p(n), q(n);
     double bNorm2 = 0.0;
     // x0 = b: r0 = C b - (C + dt A) b = -dt A b, zero for a uniform field.
-    this->ForRows([&](vtkIdType row, double* acc) {
-      this->ApplyRow(row, x.data(), q.data(), this->Dt);
-      for (vtkIdType i = this->RowStart(row), e = i + this->Dims[0]; i < e; ++i)
+    this->ForRows(
+      [&](vtkIdType row, double* acc)
       {
-        const double rhs = this->CapacityOf(i) * x[i];
-        r[i] = rhs - q[i];
-        p[i] = 0.0;
-        acc[0] += r[i] * r[i] * this->InvDiag[i];
-        acc[1] += rhs * rhs;
-      }
-    });
+        this->ApplyRow(row, x.data(), q.data(), this->Dt);
+        for (vtkIdType i = this->RowStart(row), e = i + this->Dims[0]; i < e; ++i)
+        {
+          const double rhs = this->CapacityOf(i) * x[i];
+          r[i] = rhs - q[i];
+          p[i] = 0.0;
+          acc[0] += r[i] * r[i] * this->InvDiag[i];
+          acc[1] += rhs * rhs;
+        }
+      });
     double rz = this->Sum(0);
     bNorm2 = this->Sum(1);
     if (!(bNorm2 > 0.0))
@@ -112,34 +113,40 @@ public:
     while (rNorm2 > target2 && it < maxIterations && rz > 0.0)
     {
       // p = z + beta p, z = D^-1 r.
-      vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
-        for (vtkIdType i = begin; i < end; ++i)
+      vtkSMPTools::For(0, n,
+        [&](vtkIdType begin, vtkIdType end)
         {
-          p[i] = r[i] * this->InvDiag[i] + beta * p[i];
-        }
-      });
-      this->ForRows([&](vtkIdType row, double* acc) {
-        this->ApplyRow(row, p.data(), q.data(), this->Dt);
-        for (vtkIdType i = this->RowStart(row), e = i + this->Dims[0]; i < e; ++i)
+          for (vtkIdType i = begin; i < end; ++i)
+          {
+            p[i] = r[i] * this->InvDiag[i] + beta * p[i];
+          }
+        });
+      this->ForRows(
+        [&](vtkIdType row, double* acc)
         {
-          acc[0] += p[i] * q[i];
-        }
-      });
+          this->ApplyRow(row, p.data(), q.data(), this->Dt);
+          for (vtkIdType i = this->RowStart(row), e = i + this->Dims[0]; i < e; ++i)
+          {
+            acc[0] += p[i] * q[i];
+          }
+        });
       const double pq = this->Sum(0);
       if (!(pq > 0.0))
       {
         break;
       }
       const double alpha = rz / pq;
-      this->ForRows([&](vtkIdType row, double* acc) {
-        for (vtkIdType i = this->RowStart(row), e = i + this->Dims[0]; i < e; ++i)
+      this->ForRows(
+        [&](vtkIdType row, double* acc)
         {
-          x[i] += alpha * p[i];
-          r[i] -= alpha * q[i];
-          acc[0] += r[i] * r[i] * this->InvDiag[i];
-          acc[1] += r[i] * r[i];
-        }
-      });
+          for (vtkIdType i = this->RowStart(row), e = i + this->Dims[0]; i < e; ++i)
+          {
+            x[i] += alpha * p[i];
+            r[i] -= alpha * q[i];
+            acc[0] += r[i] * r[i] * this->InvDiag[i];
+            acc[1] += r[i] * r[i];
+          }
+        });
       const double rzNew = this->Sum(0);
       rNorm2 = this->Sum(1);
       beta = rzNew / rz;
@@ -160,39 +167,43 @@ private:
       this->Coefficient[a].assign(this->Size, 0.0f);
     }
     std::vector<double> rowMax(this->Rows, 0.0);
-    vtkSMPTools::For(0, this->Rows, [&](vtkIdType begin, vtkIdType end) {
-      for (vtkIdType row = begin; row < end; ++row)
+    vtkSMPTools::For(0, this->Rows,
+      [&](vtkIdType begin, vtkIdType end)
       {
-        const vtkIdType start = this->RowStart(row);
-        const int j = static_cast<int>(row % this->Dims[1]);
-        const int k = static_cast<int>(row / this->Dims[1]);
-        for (int i = 0; i < this->Dims[0]; ++i)
+        for (vtkIdType row = begin; row < end; ++row)
         {
-          const vtkIdType v = start + i;
-          const double s = strength[v];
-          const bool hasNext[3] = { i + 1 < this->Dims[0], j + 1 < this->Dims[1],
-            k + 1 < this->Dims[2] };
-          for (int a = 0; a < 3; ++a)
+          const vtkIdType start = this->RowStart(row);
+          const int j = static_cast<int>(row % this->Dims[1]);
+          const int k = static_cast<int>(row / this->Dims[1]);
+          for (int i = 0; i < this->Dims[0]; ++i)
           {
-            if (hasNext[a])
+            const vtkIdType v = start + i;
+            const double s = strength[v];
+            const bool hasNext[3] = { i + 1 < this->Dims[0], j + 1 < this->Dims[1],
+              k + 1 < this->Dims[2] };
+            for (int a = 0; a < 3; ++a)
             {
-              this->Coefficient[a][v] = static_cast<float>(
-                DiffusionFaceStrength(s, strength[v + this->Stride[a]]) * this->InvH2[a]);
+              if (hasNext[a])
+              {
+                this->Coefficient[a][v] = static_cast<float>(
+                  DiffusionFaceStrength(s, strength[v + this->Stride[a]]) * this->InvH2[a]);
+              }
             }
           }
         }
-      }
-    });
+      });
     // A second pass: row sums read the coefficients of neighbouring rows.
-    vtkSMPTools::For(0, this->Rows, [&](vtkIdType begin, vtkIdType end) {
-      for (vtkIdType row = begin; row < end; ++row)
+    vtkSMPTools::For(0, this->Rows,
+      [&](vtkIdType begin, vtkIdType end)
       {
-        for (vtkIdType v = this->RowStart(row), e = v + this->Dims[0]; v < e; ++v)
+        for (vtkIdType row = begin; row < end; ++row)
         {
-          rowMax[row] = std::max(rowMax[row], this->RowSum(v) / this->CapacityOf(v));
+          for (vtkIdType v = this->RowStart(row), e = v + this->Dims[0]; v < e; ++v)
+          {
+            rowMax[row] = std::max(rowMax[row], this->RowSum(v) / this->CapacityOf(v));
+          }
         }
-      }
-    });
+      });
     this->MaxRowSum = *std::max_element(rowMax.begin(), rowMax.end());
   }
 
@@ -227,17 +238,19 @@ public:
     std::vector<double>& out) const
   {
     const double invRate = 1.0 / this->MaxRowSum;
-    vtkSMPTools::For(0, this->Rows, [&](vtkIdType begin, vtkIdType end) {
-      for (vtkIdType row = begin; row < end; ++row)
+    vtkSMPTools::For(0, this->Rows,
+      [&](vtkIdType begin, vtkIdType end)
       {
-        this->ApplyRow(row, in.data(), out.data(), 1.0, false); // out = A in
-        for (vtkIdType v = this->RowStart(row), e = v + this->Dims[0]; v < e; ++v)
+        for (vtkIdType row = begin; row < end; ++row)
         {
-          const double applied = out[v] / this->CapacityOf(v); // C^-1 A in
-          out[v] = alpha * u0[v] + beta * (in[v] - invRate * applied) + gamma * prev[v];
+          this->ApplyRow(row, in.data(), out.data(), 1.0, false); // out = A in
+          for (vtkIdType v = this->RowStart(row), e = v + this->Dims[0]; v < e; ++v)
+          {
+            const double applied = out[v] / this->CapacityOf(v); // C^-1 A in
+            out[v] = alpha * u0[v] + beta * (in[v] - invRate * applied) + gamma * prev[v];
+          }
         }
-      }
-    });
+      });
   }
 
 private:
@@ -289,19 +302,21 @@ private:
   template <typename F>
   void ForRows(F&& f)
   {
-    vtkSMPTools::For(0, this->Blocks, [&](vtkIdType begin, vtkIdType end) {
-      for (vtkIdType b = begin; b < end; ++b)
+    vtkSMPTools::For(0, this->Blocks,
+      [&](vtkIdType begin, vtkIdType end)
       {
-        double acc[2] = { 0.0, 0.0 };
-        const vtkIdType last = std::min(this->Rows, (b + 1) * this->RowsPerBlock);
-        for (vtkIdType row = b * this->RowsPerBlock; row < last; ++row)
+        for (vtkIdType b = begin; b < end; ++b)
         {
-          f(row, acc);
+          double acc[2] = { 0.0, 0.0 };
+          const vtkIdType last = std::min(this->Rows, (b + 1) * this->RowsPerBlock);
+          for (vtkIdType row = b * this->RowsPerBlock; row < last; ++row)
+          {
+            f(row, acc);
+          }
+          this->Partial[2 * b] = acc[0];
+          this->Partial[2 * b + 1] = acc[1];
         }
-        this->Partial[2 * b] = acc[0];
-        this->Partial[2 * b + 1] = acc[1];
-      }
-    });
+      });
   }
 
   /// Block partials of the last ForRows, added in block order (deterministic).
@@ -317,12 +332,14 @@ private:
 
   double Dot(const std::vector<double>& u, const std::vector<double>& w)
   {
-    this->ForRows([&](vtkIdType row, double* acc) {
-      for (vtkIdType i = this->RowStart(row), e = i + this->Dims[0]; i < e; ++i)
+    this->ForRows(
+      [&](vtkIdType row, double* acc)
       {
-        acc[0] += u[i] * w[i];
-      }
-    });
+        for (vtkIdType i = this->RowStart(row), e = i + this->Dims[0]; i < e; ++i)
+        {
+          acc[0] += u[i] * w[i];
+        }
+      });
     return this->Sum(0);
   }
 
@@ -453,8 +470,8 @@ double ChebyshevWeight(int k, double rho)
   return omega;
 }
 
-DiffusionGrid PlanDiffusionGrid(const int dims[3], const double spacing[3], double maxStrength,
-  const DiffusionSettings& settings)
+DiffusionGrid PlanDiffusionGrid(
+  const int dims[3], const double spacing[3], double maxStrength, const DiffusionSettings& settings)
 {
   DiffusionGrid grid;
   grid.DiffusionLength =
@@ -482,9 +499,9 @@ DiffusionGrid PlanDiffusionGrid(const int dims[3], const double spacing[3], doub
   return grid;
 }
 
-void RestrictToDiffusionGrid(const int dims[3], const DiffusionGrid& coarse,
-  const float* strength, const float* fine, std::vector<float>* coarseStrength,
-  std::vector<float>* coarseIrradiance, std::vector<float>* coarseCapacity)
+void RestrictToDiffusionGrid(const int dims[3], const DiffusionGrid& coarse, const float* strength,
+  const float* fine, std::vector<float>* coarseStrength, std::vector<float>* coarseIrradiance,
+  std::vector<float>* coarseCapacity)
 {
   const vtkIdType count = coarse.GetNumberOfVoxels();
   if (coarseStrength)
@@ -501,57 +518,59 @@ void RestrictToDiffusionGrid(const int dims[3], const DiffusionGrid& coarse,
   }
   const int* cd = coarse.Dimensions;
   const int* f = coarse.Factor;
-  vtkSMPTools::For(0, count, [&](vtkIdType begin, vtkIdType end) {
-    for (vtkIdType c = begin; c < end; ++c)
+  vtkSMPTools::For(0, count,
+    [&](vtkIdType begin, vtkIdType end)
     {
-      const int ci = static_cast<int>(c % cd[0]);
-      const int cj = static_cast<int>((c / cd[0]) % cd[1]);
-      const int ck = static_cast<int>(c / (static_cast<vtkIdType>(cd[0]) * cd[1]));
-      double sSum = 0.0;
-      double iSum = 0.0;
-      int voxels = 0;
-      int scattering = 0;
-      for (int k = ck * f[2]; k < std::min(dims[2], (ck + 1) * f[2]); ++k)
+      for (vtkIdType c = begin; c < end; ++c)
       {
-        for (int j = cj * f[1]; j < std::min(dims[1], (cj + 1) * f[1]); ++j)
+        const int ci = static_cast<int>(c % cd[0]);
+        const int cj = static_cast<int>((c / cd[0]) % cd[1]);
+        const int ck = static_cast<int>(c / (static_cast<vtkIdType>(cd[0]) * cd[1]));
+        double sSum = 0.0;
+        double iSum = 0.0;
+        int voxels = 0;
+        int scattering = 0;
+        for (int k = ck * f[2]; k < std::min(dims[2], (ck + 1) * f[2]); ++k)
         {
-          for (int i = ci * f[0]; i < std::min(dims[0], (ci + 1) * f[0]); ++i)
+          for (int j = cj * f[1]; j < std::min(dims[1], (cj + 1) * f[1]); ++j)
           {
-            const vtkIdType v = i + static_cast<vtkIdType>(dims[0]) * (j + static_cast<vtkIdType>(dims[1]) * k);
-            ++voxels;
-            if (strength[v] > 0.0f)
+            for (int i = ci * f[0]; i < std::min(dims[0], (ci + 1) * f[0]); ++i)
             {
-              sSum += strength[v];
-              iSum += fine ? fine[v] : 0.0;
-              ++scattering;
+              const vtkIdType v =
+                i + static_cast<vtkIdType>(dims[0]) * (j + static_cast<vtkIdType>(dims[1]) * k);
+              ++voxels;
+              if (strength[v] > 0.0f)
+              {
+                sSum += strength[v];
+                iSum += fine ? fine[v] : 0.0;
+                ++scattering;
+              }
             }
           }
         }
+        if (coarseStrength)
+        {
+          (*coarseStrength)[c] = static_cast<float>(sSum / voxels);
+        }
+        if (coarseIrradiance && scattering > 0)
+        {
+          (*coarseIrradiance)[c] = static_cast<float>(iSum / scattering);
+        }
+        if (coarseCapacity)
+        {
+          (*coarseCapacity)[c] = static_cast<float>(static_cast<double>(scattering) / voxels);
+        }
       }
-      if (coarseStrength)
-      {
-        (*coarseStrength)[c] = static_cast<float>(sSum / voxels);
-      }
-      if (coarseIrradiance && scattering > 0)
-      {
-        (*coarseIrradiance)[c] = static_cast<float>(iSum / scattering);
-      }
-      if (coarseCapacity)
-      {
-        (*coarseCapacity)[c] = static_cast<float>(static_cast<double>(scattering) / voxels);
-      }
-    }
-  });
+    });
 }
 
-DiffusionReport DiffuseIrradiance(const int dims[3], const double spacing[3],
-  const float* strength, float* irradiance, const DiffusionSettings& settings,
-  const float* capacity)
+DiffusionReport DiffuseIrradiance(const int dims[3], const double spacing[3], const float* strength,
+  float* irradiance, const DiffusionSettings& settings, const float* capacity)
 {
   DiffusionReport report;
   report.Skipped = true;
-  if (!dims || !spacing || !strength || !irradiance || dims[0] < 1 || dims[1] < 1 ||
-    dims[2] < 1 || !(settings.Time > 0.0))
+  if (!dims || !spacing || !strength || !irradiance || dims[0] < 1 || dims[1] < 1 || dims[2] < 1 ||
+    !(settings.Time > 0.0))
   {
     return report;
   }
@@ -590,8 +609,8 @@ DiffusionReport DiffuseIrradiance(const int dims[3], const double spacing[3],
     {
       // A voxel that exchanges nothing (no face coefficient) keeps its value
       // exactly, not the truncated series' (1 - tail) of it.
-      irradiance[v] = system.Exchanges(v) ? static_cast<float>(std::max(0.0, current[v]))
-                                           : irradiance[v];
+      irradiance[v] =
+        system.Exchanges(v) ? static_cast<float>(std::max(0.0, current[v])) : irradiance[v];
     }
     return report;
   }
@@ -602,8 +621,8 @@ DiffusionReport DiffuseIrradiance(const int dims[3], const double spacing[3],
   std::vector<double> x(irradiance, irradiance + n);
   for (int step = 0; step < report.SubSteps; ++step)
   {
-    report.Iterations +=
-      system.Solve(x, settings.Tolerance, std::max(1, settings.MaxIterations), report.FinalResidual);
+    report.Iterations += system.Solve(
+      x, settings.Tolerance, std::max(1, settings.MaxIterations), report.FinalResidual);
   }
   std::copy(x.begin(), x.end(), irradiance);
   return report;
@@ -615,8 +634,7 @@ DiffusionReport DiffuseIrradianceOnDiffusionGrid(const int dims[3], const double
 {
   DiffusionReport report;
   report.Skipped = true;
-  if (!dims || !spacing || !strength || !irradiance || dims[0] < 1 || dims[1] < 1 ||
-    dims[2] < 1)
+  if (!dims || !spacing || !strength || !irradiance || dims[0] < 1 || dims[1] < 1 || dims[2] < 1)
   {
     return report;
   }
@@ -632,61 +650,64 @@ DiffusionReport DiffuseIrradianceOnDiffusionGrid(const int dims[3], const double
   std::vector<float> capacity;
   RestrictToDiffusionGrid(dims, coarse, strength, irradiance, &coarseStrength, &before, &capacity);
   std::vector<float> after = before;
-  report = DiffuseIrradiance(coarse.Dimensions, coarse.Spacing, coarseStrength.data(),
-    after.data(), settings, capacity.data());
+  report = DiffuseIrradiance(coarse.Dimensions, coarse.Spacing, coarseStrength.data(), after.data(),
+    settings, capacity.data());
   if (report.Skipped)
   {
     return report;
   }
   // Where the fine grid scatters, add the change, interpolated trilinearly.
   const int* cd = coarse.Dimensions;
-  vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
-    for (vtkIdType v = begin; v < end; ++v)
+  vtkSMPTools::For(0, n,
+    [&](vtkIdType begin, vtkIdType end)
     {
-      if (!(strength[v] > 0.0f))
+      for (vtkIdType v = begin; v < end; ++v)
       {
-        continue;
-      }
-      const int index[3] = { static_cast<int>(v % dims[0]),
-        static_cast<int>((v / dims[0]) % dims[1]),
-        static_cast<int>(v / (static_cast<vtkIdType>(dims[0]) * dims[1])) };
-      int lo[3];
-      int hi[3];
-      double w[3];
-      for (int a = 0; a < 3; ++a)
-      {
-        const double u = coarse.CoarseCoordinate(a, index[a]);
-        lo[a] = std::min(static_cast<int>(u), cd[a] - 1);
-        hi[a] = std::min(lo[a] + 1, cd[a] - 1);
-        w[a] = u - lo[a];
-      }
-      // Trilinear over the corners that scatter, renormalised: a corner
-      // block without scattering voxels has no light to give.
-      double sum = 0.0;
-      double weights = 0.0;
-      for (int corner = 0; corner < 8; ++corner)
-      {
-        double weight = 1.0;
-        int c[3];
+        if (!(strength[v] > 0.0f))
+        {
+          continue;
+        }
+        const int index[3] = { static_cast<int>(v % dims[0]),
+          static_cast<int>((v / dims[0]) % dims[1]),
+          static_cast<int>(v / (static_cast<vtkIdType>(dims[0]) * dims[1])) };
+        int lo[3];
+        int hi[3];
+        double w[3];
         for (int a = 0; a < 3; ++a)
         {
-          const bool upper = (corner >> a) & 1;
-          c[a] = upper ? hi[a] : lo[a];
-          weight *= upper ? w[a] : 1.0 - w[a];
+          const double u = coarse.CoarseCoordinate(a, index[a]);
+          lo[a] = std::min(static_cast<int>(u), cd[a] - 1);
+          hi[a] = std::min(lo[a] + 1, cd[a] - 1);
+          w[a] = u - lo[a];
         }
-        const vtkIdType id = c[0] + static_cast<vtkIdType>(cd[0]) * (c[1] + static_cast<vtkIdType>(cd[1]) * c[2]);
-        if (weight > 0.0 && capacity[id] > 0.0f)
+        // Trilinear over the corners that scatter, renormalised: a corner
+        // block without scattering voxels has no light to give.
+        double sum = 0.0;
+        double weights = 0.0;
+        for (int corner = 0; corner < 8; ++corner)
         {
-          sum += weight * (after[id] - before[id]);
-          weights += weight;
+          double weight = 1.0;
+          int c[3];
+          for (int a = 0; a < 3; ++a)
+          {
+            const bool upper = (corner >> a) & 1;
+            c[a] = upper ? hi[a] : lo[a];
+            weight *= upper ? w[a] : 1.0 - w[a];
+          }
+          const vtkIdType id =
+            c[0] + static_cast<vtkIdType>(cd[0]) * (c[1] + static_cast<vtkIdType>(cd[1]) * c[2]);
+          if (weight > 0.0 && capacity[id] > 0.0f)
+          {
+            sum += weight * (after[id] - before[id]);
+            weights += weight;
+          }
+        }
+        if (weights > 0.0)
+        {
+          irradiance[v] = static_cast<float>(std::max(0.0, irradiance[v] + sum / weights));
         }
       }
-      if (weights > 0.0)
-      {
-        irradiance[v] = static_cast<float>(std::max(0.0, irradiance[v] + sum / weights));
-      }
-    }
-  });
+    });
   return report;
 }
 

@@ -17,7 +17,7 @@
 #define vtkIrradianceDiffusion_h
 
 #include "vtkMultiMaterialVolumeFiltersModule.h" // export macro
-#include "vtkType.h"                      // vtkIdType
+#include "vtkType.h"                             // vtkIdType
 
 #include <vector> // restriction
 
@@ -26,10 +26,10 @@ namespace mmv
 
 struct DiffusionSettings
 {
-  double Time = 1.0;           // T, in the units of s
-  int MaxSubSteps = 8;         // backward-Euler steps used to reach T
-  double Tolerance = 1.0e-7;   // relative residual of each CG solve
-  int MaxIterations = 2000;    // per CG solve
+  double Time = 1.0;         // T, in the units of s
+  int MaxSubSteps = 8;       // backward-Euler steps used to reach T
+  double Tolerance = 1.0e-7; // relative residual of each CG solve
+  int MaxIterations = 2000;  // per CG solve
   /// Diffusion-grid voxels per diffusion length L = sqrt(2 s_max T): the
   /// scattered light is no sharper than L, so the change the diffusion makes
   /// is computed on the irradiance grid coarsened by the whole factor nearest
@@ -66,8 +66,8 @@ struct DiffusionSettings
 struct DiffusionReport
 {
   int SubSteps = 0;
-  int Iterations = 0;          // CG iterations summed over sub-steps
-  double FinalResidual = 0.0;  // relative residual of the last solve
+  int Iterations = 0;         // CG iterations summed over sub-steps
+  double FinalResidual = 0.0; // relative residual of the last solve
   /// True when `irradiance` was left untouched (and the counts above are 0):
   ///  - an argument is null, a dimension is below 1, or Time is not > 0
   ///    (NaN included);
@@ -100,8 +100,8 @@ inline double DiffusionFaceStrength(double a, double b)
 
 /// The largest row sum of the diffusion operator over the capacity (a
 /// Gershgorin bound of its rates), in 1 / unit time; 0 when nothing can move.
-VTKMULTIMATERIALVOLUMEFILTERS_EXPORT double MaxDiffusionRate(const int dims[3], const double spacing[3],
-  const float* strength, const float* capacity = nullptr);
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT double MaxDiffusionRate(const int dims[3],
+  const double spacing[3], const float* strength, const float* capacity = nullptr);
 
 /// Backward-Euler sub-steps to reach `settings.Time` on a grid whose largest
 /// rate is `maxRate`: as many as an explicit scheme would need, capped.
@@ -207,8 +207,8 @@ VTKMULTIMATERIALVOLUMEFILTERS_EXPORT void RestrictToDiffusionGrid(const int dims
  * renderer adds its change to each sample's own direct light, and adding the
  * change matches it better on the benchmark scenes. The change it is.
  */
-VTKMULTIMATERIALVOLUMEFILTERS_EXPORT DiffusionReport DiffuseIrradianceOnDiffusionGrid(const int dims[3],
-  const double spacing[3], const float* strength, float* irradiance,
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT DiffusionReport DiffuseIrradianceOnDiffusionGrid(
+  const int dims[3], const double spacing[3], const float* strength, float* irradiance,
   const DiffusionSettings& settings = DiffusionSettings(), DiffusionGrid* usedGrid = nullptr);
 
 } // namespace mmv

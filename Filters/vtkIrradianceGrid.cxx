@@ -46,12 +46,10 @@ double Interpolate(const int dims[3], const float* values, const glm::dvec3& ind
   const vtkIdType sz = static_cast<vtkIdType>(dims[0]) * dims[1];
   auto at = [&](int i, int j, int k) { return static_cast<double>(values[i + j * sy + k * sz]); };
   // Taps of weight 0 along an axis are skipped (Lerp), so read lazily.
-  auto row = [&](int j, int k) {
-    return w[0] == 0.0 ? at(i0[0], j, k) : Lerp(at(i0[0], j, k), at(i1[0], j, k), w[0]);
-  };
-  auto plane = [&](int k) {
-    return w[1] == 0.0 ? row(i0[1], k) : Lerp(row(i0[1], k), row(i1[1], k), w[1]);
-  };
+  auto row = [&](int j, int k)
+  { return w[0] == 0.0 ? at(i0[0], j, k) : Lerp(at(i0[0], j, k), at(i1[0], j, k), w[0]); };
+  auto plane = [&](int k)
+  { return w[1] == 0.0 ? row(i0[1], k) : Lerp(row(i0[1], k), row(i1[1], k), w[1]); };
   return w[2] == 0.0 ? plane(i0[2]) : Lerp(plane(i0[2]), plane(i1[2]), w[2]);
 }
 
@@ -63,12 +61,14 @@ namespace mmv
 std::vector<float> CopyComponent(vtkDataArray* scalars, int component)
 {
   std::vector<float> values(scalars->GetNumberOfTuples());
-  vtkSMPTools::For(0, scalars->GetNumberOfTuples(), [&](vtkIdType begin, vtkIdType end) {
-    for (vtkIdType i = begin; i < end; ++i)
+  vtkSMPTools::For(0, scalars->GetNumberOfTuples(),
+    [&](vtkIdType begin, vtkIdType end)
     {
-      values[i] = static_cast<float>(scalars->GetComponent(i, component));
-    }
-  });
+      for (vtkIdType i = begin; i < end; ++i)
+      {
+        values[i] = static_cast<float>(scalars->GetComponent(i, component));
+      }
+    });
   return values;
 }
 
@@ -84,7 +84,8 @@ double IrradianceBytesPerVoxel(int numberOfLights, bool tinted)
   const int rest = lights % IrradianceLightsPerTexture;
   const int channels =
     full * IrradianceLightsPerTexture + (rest > 0 ? IrradianceTextureChannels(rest) : 0);
-  return IrradianceBytesPerVoxelPerLight * channels + (tinted ? TintBytesPerVoxelPerLight * lights : 0.0);
+  return IrradianceBytesPerVoxelPerLight * channels +
+    (tinted ? TintBytesPerVoxelPerLight * lights : 0.0);
 }
 
 void ComputeIrradianceDimensions(const int dataDims[3], int numberOfLights, double budgetMB,
@@ -99,7 +100,8 @@ void ComputeIrradianceDimensions(const int dataDims[3], int numberOfLights, doub
     lo[a] = std::min(2, d[a]);
     active += d[a] > 1 ? 1 : 0;
   }
-  auto apply = [&](double s) {
+  auto apply = [&](double s)
+  {
     for (int a = 0; a < 3; ++a)
     {
       const int n = static_cast<int>(std::lround(d[a] * s));
@@ -113,9 +115,8 @@ void ComputeIrradianceDimensions(const int dataDims[3], int numberOfLights, doub
   }
   const double bytesPerVoxel = IrradianceBytesPerVoxel(numberOfLights, tinted);
   const double budgetVoxels = std::max(0.0, budgetMB) * 1024.0 * 1024.0 / bytesPerVoxel;
-  auto voxels = [&]() {
-    return static_cast<double>(irradianceDims[0]) * irradianceDims[1] * irradianceDims[2];
-  };
+  auto voxels = [&]()
+  { return static_cast<double>(irradianceDims[0]) * irradianceDims[1] * irradianceDims[2]; };
   const double dataVoxels = static_cast<double>(d[0]) * d[1] * d[2];
   // Start from the continuous answer (only axes longer than 1 shrink), then
   // step down until the rounded dimensions fit or reach their minimum.
@@ -274,13 +275,14 @@ AxisTaps MakeAxisTaps(const FootprintLayout& layout, int axis, int dataDim, int 
       glm::dvec3 voxel(0.0);
       voxel[axis] = o;
       const int sample[3] = { q, q, q };
-      const double x = std::min(
-        std::max(FootprintSample(layout, voxel, sample)[axis], 0.0), static_cast<double>(dataDim - 1));
+      const double x = std::min(std::max(FootprintSample(layout, voxel, sample)[axis], 0.0),
+        static_cast<double>(dataDim - 1));
       const int i0 = std::min(static_cast<int>(x), dataDim - 1);
       const int i1 = std::min(i0 + 1, dataDim - 1);
       const double w = x - i0;
       const double share = 1.0 / layout.Samples[axis];
-      auto add = [&](int i, double weight) {
+      auto add = [&](int i, double weight)
+      {
         if (!reached[i])
         {
           reached[i] = 1;
@@ -332,8 +334,9 @@ void PrefilterScalars(vtkImageData* image, vtkDataArray* scalars, int component,
   // in[(i, j, k)] with strides (1, n0, n0 n1) -> out along `axis`. Every
   // output is written, so the buffers are not zeroed first: a CT-sized time
   // step would otherwise clear about 200 MB of them.
-  auto filter = [](const auto* in, const int inDims[3], int axis, const AxisTaps& t, int outLength,
-                  auto* out) {
+  auto filter =
+    [](const auto* in, const int inDims[3], int axis, const AxisTaps& t, int outLength, auto* out)
+  {
     using Out = std::remove_pointer_t<decltype(out)>;
     int outDims[3] = { inDims[0], inDims[1], inDims[2] };
     outDims[axis] = outLength;
@@ -342,29 +345,32 @@ void PrefilterScalars(vtkImageData* image, vtkDataArray* scalars, int component,
       static_cast<vtkIdType>(outDims[0]) * outDims[1] };
     const int b = (axis + 1) % 3;
     const int c = (axis + 2) % 3;
-    vtkSMPTools::For(0, outDims[c], [&](vtkIdType begin, vtkIdType end) {
-      for (vtkIdType z = begin; z < end; ++z)
+    vtkSMPTools::For(0, outDims[c],
+      [&](vtkIdType begin, vtkIdType end)
       {
-        for (int y = 0; y < outDims[b]; ++y)
+        for (vtkIdType z = begin; z < end; ++z)
         {
-          const vtkIdType inBase = z * inStride[c] + y * inStride[b];
-          const vtkIdType outBase = z * outStride[c] + y * outStride[b];
-          for (int o = 0; o < outLength; ++o)
+          for (int y = 0; y < outDims[b]; ++y)
           {
-            double sum = 0.0;
-            for (int n = t.First[o]; n < t.First[o + 1]; ++n)
+            const vtkIdType inBase = z * inStride[c] + y * inStride[b];
+            const vtkIdType outBase = z * outStride[c] + y * outStride[b];
+            for (int o = 0; o < outLength; ++o)
             {
-              sum += t.Weight[n] * static_cast<double>(in[inBase + t.Index[n] * inStride[axis]]);
+              double sum = 0.0;
+              for (int n = t.First[o]; n < t.First[o + 1]; ++n)
+              {
+                sum += t.Weight[n] * static_cast<double>(in[inBase + t.Index[n] * inStride[axis]]);
+              }
+              out[outBase + o * outStride[axis]] = static_cast<Out>(sum);
             }
-            out[outBase + o * outStride[axis]] = static_cast<Out>(sum);
           }
         }
-      }
-    });
+      });
   };
   const std::unique_ptr<double[]> alongX(
     new double[static_cast<size_t>(g[0]) * dataDims[1] * dataDims[2]]);
-  const std::unique_ptr<double[]> alongY(new double[static_cast<size_t>(g[0]) * g[1] * dataDims[2]]);
+  const std::unique_ptr<double[]> alongY(
+    new double[static_cast<size_t>(g[0]) * g[1] * dataDims[2]]);
   int dims[3] = { dataDims[0], dataDims[1], dataDims[2] };
   filter(values.data(), dims, 0, taps[0], g[0], alongX.get());
   dims[0] = g[0];
@@ -415,7 +421,7 @@ double ValidIrradianceErrorBound(double bound, std::string* why)
   {
     *why = "IrradianceErrorBound " + std::to_string(bound) +
       (above ? " dB is above " + std::to_string(MaxIrradianceErrorBoundDB) +
-          " (no coarser grid can reach it); using that"
+            " (no coarser grid can reach it); using that"
              : " must be >= 0 dB; using 0 (no error probe)");
   }
   return above ? MaxIrradianceErrorBoundDB : 0.0;

@@ -15,7 +15,7 @@
 #define vtkIrradianceGrid_h
 
 #include "vtkMultiMaterialVolumeFiltersModule.h" // export macro
-#include "vtkType.h"                      // vtkIdType
+#include "vtkType.h"                             // vtkIdType
 
 #include <glm/glm.hpp>
 
@@ -31,9 +31,9 @@ namespace mmv
 struct IrradianceGrid
 {
   int Dimensions[3] = { 0, 0, 0 };
-  glm::dvec3 Origin{ 0.0 };   // physical position of voxel (0,0,0)
-  glm::dvec3 Spacing{ 1.0 };  // along the index axes
-  glm::dmat3 Direction{ 1.0 }; // columns: index axes in physical space
+  glm::dvec3 Origin{ 0.0 };             // physical position of voxel (0,0,0)
+  glm::dvec3 Spacing{ 1.0 };            // along the index axes
+  glm::dmat3 Direction{ 1.0 };          // columns: index axes in physical space
   glm::dvec3 DataVoxelsPerVoxel{ 1.0 }; // irradiance spacing / data spacing
 
   vtkIdType GetNumberOfVoxels() const
@@ -45,8 +45,8 @@ struct IrradianceGrid
   {
     const vtkIdType nx = this->Dimensions[0];
     const vtkIdType nxy = nx * this->Dimensions[1];
-    return glm::dvec3(static_cast<double>(v % nx), static_cast<double>((v / nx) % this->Dimensions[1]),
-      static_cast<double>(v / nxy));
+    return glm::dvec3(static_cast<double>(v % nx),
+      static_cast<double>((v / nx) % this->Dimensions[1]), static_cast<double>(v / nxy));
   }
   /// Linear part of the index -> physical map: Direction * diag(Spacing).
   glm::dmat3 IndexToPhysicalMatrix() const
@@ -107,7 +107,8 @@ VTKMULTIMATERIALVOLUMEFILTERS_EXPORT double ValidIrradianceScale(double scale, s
 /// Checks an IrradianceErrorBound (dB; 0: no error probe): NaN or negative
 /// returns 0, above mmv::MaxIrradianceErrorBoundDB returns that maximum, and
 /// `why` (if given) says so; valid values come back unchanged.
-VTKMULTIMATERIALVOLUMEFILTERS_EXPORT double ValidIrradianceErrorBound(double bound, std::string* why);
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT double ValidIrradianceErrorBound(
+  double bound, std::string* why);
 
 /// The irradiance resolution a frame uses, and why (for logs and the UI).
 struct IrradianceResolution
@@ -155,7 +156,8 @@ VTKMULTIMATERIALVOLUMEFILTERS_EXPORT double SampleTrilinear(
   const IrradianceGrid& grid, const float* values, const glm::dvec3& index);
 
 /// One component of the scalars as floats (one virtual call per value, once).
-VTKMULTIMATERIALVOLUMEFILTERS_EXPORT std::vector<float> CopyComponent(vtkDataArray* scalars, int component);
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT std::vector<float> CopyComponent(
+  vtkDataArray* scalars, int component);
 
 /**
  * Where PrefilterScalars samples the data: voxel j's footprint is centred on
@@ -181,8 +183,9 @@ VTKMULTIMATERIALVOLUMEFILTERS_EXPORT glm::dvec3 FootprintSample(
  * clamped to the data bounds); an exact copy when the grid equals the data
  * grid. Values stay in data units. Multithreaded (vtkSMPTools).
  */
-VTKMULTIMATERIALVOLUMEFILTERS_EXPORT void PrefilterScalars(vtkImageData* image, vtkDataArray* scalars,
-  int component, const IrradianceGrid& grid, std::vector<float>& prefiltered);
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT void PrefilterScalars(vtkImageData* image,
+  vtkDataArray* scalars, int component, const IrradianceGrid& grid,
+  std::vector<float>& prefiltered);
 
 /**
  * NaN and -Inf in `values` become `low`, +Inf becomes `high` (the finite

@@ -19,9 +19,9 @@
 #ifndef vtkIrradianceInputCache_h
 #define vtkIrradianceInputCache_h
 
-#include "vtkIrradianceGrid.h"            // mmv::IrradianceGrid
-#include "vtkIrradianceUpdatePlan.h"      // VolumeKey, the held inputs
-#include "vtkMultiMaterialLightModel.h"   // mmv::LightSource
+#include "vtkIrradianceGrid.h"                   // mmv::IrradianceGrid
+#include "vtkIrradianceUpdatePlan.h"             // VolumeKey, the held inputs
+#include "vtkMultiMaterialLightModel.h"          // mmv::LightSource
 #include "vtkMultiMaterialVolumeFiltersModule.h" // export macro
 #include "vtkObject.h"
 
@@ -77,8 +77,8 @@ public:
   /// What an update to `now` recomputes against the irradiance stored last,
   /// with each light kept within `toleranceRadians` of its stored placement
   /// (about the pre-filtered grid's centre).
-  vtkIrradianceUpdatePlan Plan(const vtkIrradianceUpdatePlan::Inputs& now,
-    double toleranceRadians) const;
+  vtkIrradianceUpdatePlan Plan(
+    const vtkIrradianceUpdatePlan::Inputs& now, double toleranceRadians) const;
   /// Whether the irradiance stored last was computed from `volume` and a grid
   /// of `dims`, with each light within `toleranceRadians` of `lights`
   /// (Plan(...).IsCurrent()).
@@ -89,8 +89,8 @@ public:
   bool SameVolume(const VolumeKey& volume) const;
   /// Records a successfully computed irradiance: `lights` are the placements
   /// it holds (vtkIrradianceEstimator::GetComputedLights()).
-  void Store(const VolumeKey& volume, const std::vector<mmv::LightSource>& lights,
-    const int dims[3]);
+  void Store(
+    const VolumeKey& volume, const std::vector<mmv::LightSource>& lights, const int dims[3]);
   /// Forgets the stored volume key (graphics resources released, a failed
   /// computation): the next frame recomputes.
   void Invalidate() { this->HasVolume = false; }

@@ -38,10 +38,10 @@ constexpr double ProbePeakRatio = 2.0;
 struct ProbeSignature
 {
   bool Empty = true;       // no value casts a shadow
-  double SupportLow = 0.0;  // the lowest and highest data value with extinction
+  double SupportLow = 0.0; // the lowest and highest data value with extinction
   double SupportHigh = 0.0;
-  double PeakDepth = 0.0;  // the largest optical depth per unit length
-  double Width = 0.0;      // the sampled range's width: the support's scale
+  double PeakDepth = 0.0; // the largest optical depth per unit length
+  double Width = 0.0;     // the sampled range's width: the support's scale
 };
 
 /**

@@ -158,8 +158,7 @@ inline IndexBox ResampledBox(const IndexBox& box, const int dims[3], const int o
   for (int a = 0; a < 3; ++a)
   {
     const double ratio = dims[a] > 1 ? static_cast<double>(otherDims[a] - 1) / (dims[a] - 1) : 0.0;
-    other.Bounds[2 * a] =
-      std::max(0, static_cast<int>(std::floor(box.Bounds[2 * a] * ratio)) - 1);
+    other.Bounds[2 * a] = std::max(0, static_cast<int>(std::floor(box.Bounds[2 * a] * ratio)) - 1);
     other.Bounds[2 * a + 1] =
       std::min(otherDims[a] - 1, static_cast<int>(std::floor(box.Bounds[2 * a + 1] * ratio)) + 2);
   }

@@ -37,26 +37,29 @@ double VisibleIrradiancePSNR(const IrradianceGrid& fine,
     double Weight = 0.0;
   };
   vtkSMPThreadLocal<Sums> local;
-  vtkSMPTools::For(0, fineVoxels, [&](vtkIdType begin, vtkIdType end) {
-    Sums& sums = local.Local();
-    for (vtkIdType v = begin; v < end; ++v)
+  vtkSMPTools::For(0, fineVoxels,
+    [&](vtkIdType begin, vtkIdType end)
     {
-      const double w = weights[v];
-      if (!(w > 0.0))
+      Sums& sums = local.Local();
+      for (vtkIdType v = begin; v < end; ++v)
       {
-        continue;
+        const double w = weights[v];
+        if (!(w > 0.0))
+        {
+          continue;
+        }
+        const glm::dvec3 index = toCoarse * fine.IndexOfVoxel(v) + offset;
+        double error = 0.0;
+        for (size_t l = 0; l < lights; ++l)
+        {
+          const double d =
+            SampleTrilinear(coarse, coarseValues[l].data(), index) - fineValues[l][v];
+          error += d * d;
+        }
+        sums.WeightedError += w * error;
+        sums.Weight += w * static_cast<double>(lights);
       }
-      const glm::dvec3 index = toCoarse * fine.IndexOfVoxel(v) + offset;
-      double error = 0.0;
-      for (size_t l = 0; l < lights; ++l)
-      {
-        const double d = SampleTrilinear(coarse, coarseValues[l].data(), index) - fineValues[l][v];
-        error += d * d;
-      }
-      sums.WeightedError += w * error;
-      sums.Weight += w * static_cast<double>(lights);
-    }
-  });
+    });
   Sums total;
   for (const Sums& s : local)
   {

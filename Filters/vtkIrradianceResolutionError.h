@@ -14,7 +14,7 @@
 #ifndef vtkIrradianceResolutionError_h
 #define vtkIrradianceResolutionError_h
 
-#include "vtkIrradianceGrid.h"            // IrradianceGrid
+#include "vtkIrradianceGrid.h"                   // IrradianceGrid
 #include "vtkMultiMaterialVolumeFiltersModule.h" // export macro
 
 #include <vector>

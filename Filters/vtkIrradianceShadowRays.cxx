@@ -39,7 +39,6 @@ double ExitDistance(const mmv::IrradianceGrid& grid, const glm::dvec3& p, const 
   return std::max(t, 0.0);
 }
 
-
 /// The march of MarchTransmittance and MarchTint, for a grey (double) or a
 /// per-channel (glm::dvec3) transmittance T: `opacity(t1, t2)` is a
 /// segment's opacity, Largest(T) decides the early stop. One loop, so the
@@ -62,9 +61,8 @@ T March(const RayContext& ctx, const glm::dvec3& start, const glm::dvec3& indexD
   const double h = ctx.Step;
   const vtkIdType steps = static_cast<vtkIdType>(std::floor(end / h + mmv::ShadowStepTolerance));
   // A segment's opacity, 0 where its midpoint is cut away.
-  const auto alphaAt = [&](double t1, double t2, const glm::dvec3& middle) {
-    return mmv::mmvIsCut(ctx.Cut, middle) ? T(0.0) : opacity(t1, t2);
-  };
+  const auto alphaAt = [&](double t1, double t2, const glm::dvec3& middle)
+  { return mmv::mmvIsCut(ctx.Cut, middle) ? T(0.0) : opacity(t1, t2); };
   double previous = startValue;
   for (vtkIdType n = 1; n <= steps; ++n)
   {
@@ -132,11 +130,13 @@ double ShadowTransmittance(const RayContext& ctx, const mmv::LightSource& light,
 glm::dvec3 MarchTint(const RayContext& ctx, const glm::dvec3& start, const glm::dvec3& indexDir,
   double end, double startValue)
 {
-  return March(ctx, start, indexDir, end, startValue, glm::dvec3(1.0), [&](double t1, double t2) {
-    double rgb[3] = { 0.0, 0.0, 0.0 };
-    ctx.Table->LookupShadowTint(t1, t2, rgb);
-    return glm::dvec3(rgb[0], rgb[1], rgb[2]);
-  });
+  return March(ctx, start, indexDir, end, startValue, glm::dvec3(1.0),
+    [&](double t1, double t2)
+    {
+      double rgb[3] = { 0.0, 0.0, 0.0 };
+      ctx.Table->LookupShadowTint(t1, t2, rgb);
+      return glm::dvec3(rgb[0], rgb[1], rgb[2]);
+    });
 }
 
 /// The grid of the tint: every `divisor`-th point of `grid` (end points shared).
@@ -154,7 +154,6 @@ mmv::IrradianceGrid MakeTintGrid(const mmv::IrradianceGrid& grid, int divisor)
   }
   return tint;
 }
-
 
 /// Bilinear value of `values` in slice `plane` of axis `axis` at the in-slice
 /// coordinates of index `q` (clamped to the slice). Not mmv::SampleTrilinear:
@@ -181,8 +180,8 @@ double SampleSlice(const int dims[3], const float* values, int axis, int plane, 
 }
 } // namespace
 
-void ComputeTint(const RayContext& ctx, const mmv::LightSource& light, int divisor, float* out,
-  vtkIdType& rays)
+void ComputeTint(
+  const RayContext& ctx, const mmv::LightSource& light, int divisor, float* out, vtkIdType& rays)
 {
   const mmv::IrradianceGrid& grid = *ctx.Irradiance;
   const mmv::IrradianceGrid tintGrid = MakeTintGrid(grid, divisor);
@@ -192,39 +191,44 @@ void ComputeTint(const RayContext& ctx, const mmv::LightSource& light, int divis
   {
     channel.assign(static_cast<std::size_t>(n), 1.0f);
   }
-  vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
-    for (vtkIdType t = begin; t < end; ++t)
+  vtkSMPTools::For(0, n,
+    [&](vtkIdType begin, vtkIdType end)
     {
-      const glm::dvec3 x = tintGrid.IndexToPhysical(tintGrid.IndexOfVoxel(t));
-      const glm::dvec3 start = grid.PhysicalToIndex(x);
-      double lightDistance = 0.0;
-      const glm::dvec3 indexDir = ctx.PhysicalToIndex * mmv::mmvDirectionToLight(light, x, lightDistance);
-      double exit = ExitDistance(grid, start, indexDir);
-      if (lightDistance >= 0.0)
+      for (vtkIdType t = begin; t < end; ++t)
       {
-        exit = std::min(exit, lightDistance);
+        const glm::dvec3 x = tintGrid.IndexToPhysical(tintGrid.IndexOfVoxel(t));
+        const glm::dvec3 start = grid.PhysicalToIndex(x);
+        double lightDistance = 0.0;
+        const glm::dvec3 indexDir =
+          ctx.PhysicalToIndex * mmv::mmvDirectionToLight(light, x, lightDistance);
+        double exit = ExitDistance(grid, start, indexDir);
+        if (lightDistance >= 0.0)
+        {
+          exit = std::min(exit, lightDistance);
+        }
+        const glm::dvec3 k =
+          MarchTint(ctx, start, indexDir, exit, mmv::SampleTrilinear(grid, ctx.Prefiltered, start));
+        for (int c = 0; c < 3; ++c)
+        {
+          channels[c][t] = static_cast<float>(k[c]);
+        }
       }
-      const glm::dvec3 k = MarchTint(
-        ctx, start, indexDir, exit, mmv::SampleTrilinear(grid, ctx.Prefiltered, start));
-      for (int c = 0; c < 3; ++c)
-      {
-        channels[c][t] = static_cast<float>(k[c]);
-      }
-    }
-  });
+    });
   rays += n;
   const glm::dmat3 toTint = tintGrid.PhysicalToIndexMatrix() * grid.IndexToPhysicalMatrix();
-  vtkSMPTools::For(0, grid.GetNumberOfVoxels(), [&](vtkIdType begin, vtkIdType end) {
-    for (vtkIdType v = begin; v < end; ++v)
+  vtkSMPTools::For(0, grid.GetNumberOfVoxels(),
+    [&](vtkIdType begin, vtkIdType end)
     {
-      const glm::dvec3 index = toTint * grid.IndexOfVoxel(v);
-      for (int c = 0; c < 3; ++c)
+      for (vtkIdType v = begin; v < end; ++v)
       {
-        out[3 * v + c] =
-          static_cast<float>(mmv::SampleTrilinear(tintGrid, channels[c].data(), index));
+        const glm::dvec3 index = toTint * grid.IndexOfVoxel(v);
+        for (int c = 0; c < 3; ++c)
+        {
+          out[3 * v + c] =
+            static_cast<float>(mmv::SampleTrilinear(tintGrid, channels[c].data(), index));
+        }
       }
-    }
-  });
+    });
 }
 
 bool SweepPiecewiseShadowRays(vtkAlgorithm* self, const RayContext& ctx,
@@ -248,32 +252,34 @@ bool SweepPiecewiseShadowRays(vtkAlgorithm* self, const RayContext& ctx,
     sweep.GetChunk(chunk, first, last, plane);
     const int read = sweep.GetReadSlice(chunk);
     const vtkIdType sliceSize = static_cast<vtkIdType>(dims[b]) * dims[c];
-    vtkSMPTools::For(0, sliceSize * (last - first + 1), [&](vtkIdType begin, vtkIdType end) {
-      vtkIdType local = 0;
-      for (vtkIdType n = begin; n < end; ++n)
+    vtkSMPTools::For(0, sliceSize * (last - first + 1),
+      [&](vtkIdType begin, vtkIdType end)
       {
-        const int slice = first + static_cast<int>(n / sliceSize);
-        const vtkIdType v = slice * stride[a] + (n % dims[b]) * stride[b] +
-          ((n % sliceSize) / dims[b]) * stride[c];
-        if (!nonEmpty[v] && slice != read)
+        vtkIdType local = 0;
+        for (vtkIdType n = begin; n < end; ++n)
         {
-          continue;
+          const int slice = first + static_cast<int>(n / sliceSize);
+          const vtkIdType v =
+            slice * stride[a] + (n % dims[b]) * stride[b] + ((n % sliceSize) / dims[b]) * stride[c];
+          if (!nonEmpty[v] && slice != read)
+          {
+            continue;
+          }
+          ++local;
+          const glm::dvec3 start = grid.IndexOfVoxel(v);
+          double exit = ExitDistance(grid, start, indexDir);
+          double far = 1.0;
+          double distance = 0.0;
+          if (mmv::ReachesSweepPlane(start[a], indexDir[a], plane, exit, distance))
+          {
+            exit = distance;
+            far = SampleSlice(dims, transmittance.data(), a, plane, start + distance * indexDir);
+          }
+          transmittance[v] = static_cast<float>(
+            MarchTransmittance(ctx, start, indexDir, exit, ctx.Prefiltered[v], far));
         }
-        ++local;
-        const glm::dvec3 start = grid.IndexOfVoxel(v);
-        double exit = ExitDistance(grid, start, indexDir);
-        double far = 1.0;
-        double distance = 0.0;
-        if (mmv::ReachesSweepPlane(start[a], indexDir[a], plane, exit, distance))
-        {
-          exit = distance;
-          far = SampleSlice(dims, transmittance.data(), a, plane, start + distance * indexDir);
-        }
-        transmittance[v] =
-          static_cast<float>(MarchTransmittance(ctx, start, indexDir, exit, ctx.Prefiltered[v], far));
-      }
-      cast += local;
-    });
+        cast += local;
+      });
     rays += cast.exchange(0);
     self->UpdateProgress(progress + progressSpan * (chunk + 1) / chunks);
     if (self->GetAbortExecute())
@@ -295,20 +301,23 @@ bool CastShadowRays(vtkAlgorithm* self, const RayContext& ctx, const mmv::LightS
   {
     const vtkIdType first = n * chunk / ChunksPerLight;
     const vtkIdType last = n * (chunk + 1) / ChunksPerLight;
-    vtkSMPTools::For(first, last, [&](vtkIdType begin, vtkIdType end) {
-      vtkIdType local = 0;
-      for (vtkIdType c = begin; c < end; ++c)
+    vtkSMPTools::For(first, last,
+      [&](vtkIdType begin, vtkIdType end)
       {
-        const vtkIdType v = computed[c];
-        const double geometry = mmv::mmvLightGeometryTerm(light, grid.IndexToPhysical(grid.IndexOfVoxel(v)));
-        if (geometry > 0.0) // outside a spot light's cone: no ray
+        vtkIdType local = 0;
+        for (vtkIdType c = begin; c < end; ++c)
         {
-          irradiance[v] = static_cast<float>(geometry * ShadowTransmittance(ctx, light, v));
-          ++local;
+          const vtkIdType v = computed[c];
+          const double geometry =
+            mmv::mmvLightGeometryTerm(light, grid.IndexToPhysical(grid.IndexOfVoxel(v)));
+          if (geometry > 0.0) // outside a spot light's cone: no ray
+          {
+            irradiance[v] = static_cast<float>(geometry * ShadowTransmittance(ctx, light, v));
+            ++local;
+          }
         }
-      }
-      cast += local;
-    });
+        cast += local;
+      });
     rays += cast.exchange(0);
     self->UpdateProgress(progress + progressSpan * (chunk + 1) / ChunksPerLight);
     if (self->GetAbortExecute())

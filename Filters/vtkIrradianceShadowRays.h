@@ -40,8 +40,8 @@ struct RayContext
  * trilinearly to the irradiance grid: 3 components per irradiance voxel,
  * what the ray cast reads from its tint texture. Adds the rays cast to `rays`.
  */
-void ComputeTint(const RayContext& ctx, const mmv::LightSource& light, int divisor, float* out,
-  vtkIdType& rays);
+void ComputeTint(
+  const RayContext& ctx, const mmv::LightSource& light, int divisor, float* out, vtkIdType& rays);
 
 /**
  * Piecewise shadow rays of directional light `light` (vtkShadowSweep.h) into

@@ -90,7 +90,8 @@ vtkIrradianceUpdatePlan vtkIrradianceUpdatePlan::Make(
   {
     plan.Changes |= LightCount;
   }
-  plan.TextureLayoutChanged = TextureLayout(held->Lights.size()) != TextureLayout(now.Lights.size());
+  plan.TextureLayoutChanged =
+    TextureLayout(held->Lights.size()) != TextureLayout(now.Lights.size());
   // The lights are compared even when all of them are recomputed: Lights
   // says whether one moved, whatever else changed.
   plan.MovedLights = MarkLights(held->Lights, now.Lights, false, toleranceRadians, centre);

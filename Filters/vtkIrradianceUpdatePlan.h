@@ -101,8 +101,8 @@ public:
    * or spot light's move is measured as the angle it subtends at `centre`
    * (the held grid's centre).
    */
-  static vtkIrradianceUpdatePlan Make(const Inputs* held, const Inputs& now,
-    double toleranceRadians, const glm::dvec3& centre);
+  static vtkIrradianceUpdatePlan Make(
+    const Inputs* held, const Inputs& now, double toleranceRadians, const glm::dvec3& centre);
 
   /**
    * Which of `now` are recomputed against the placements `held` their

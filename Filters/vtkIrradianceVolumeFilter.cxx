@@ -11,15 +11,14 @@
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
 #include "vtkMaterialTransferFunction.h"
-#include "vtkMultiMaterialLightModel.h"
 #include "vtkMultiMaterialCutaway.h"
-#include "vtkPlane.h"
-#include "vtkPlaneCollection.h"
-#include "vtkVolumeMapper.h"
+#include "vtkMultiMaterialLightModel.h"
 #include "vtkMultiMaterialLights.h"
 #include "vtkMultiMaterialParameters.h"
 #include "vtkObjectFactory.h"
 #include "vtkPiecewiseFunction.h"
+#include "vtkPlane.h"
+#include "vtkPlaneCollection.h"
 #include "vtkPointData.h"
 #include "vtkPreIntegrationTable.h"
 #include "vtkSMPTools.h"
@@ -27,6 +26,7 @@
 #include "vtkSmartPointer.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkVolumeInputScalars.h"
+#include "vtkVolumeMapper.h"
 
 #include <algorithm>
 #include <atomic>
@@ -38,7 +38,6 @@
 namespace
 {
 using mmv::shadowrays::RayContext;
-
 
 /// Origin, spacing and direction of `grid` in VTK's row-major form.
 struct GridGeometry
@@ -135,36 +134,38 @@ void FillEmptyNeighborVoxels(
 {
   const int* dims = grid.Dimensions;
   const vtkIdType stride[3] = { 1, dims[0], static_cast<vtkIdType>(dims[0]) * dims[1] };
-  vtkSMPTools::For(0, grid.GetNumberOfVoxels(), [&](vtkIdType begin, vtkIdType end) {
-    for (vtkIdType v = begin; v < end; ++v)
+  vtkSMPTools::For(0, grid.GetNumberOfVoxels(),
+    [&](vtkIdType begin, vtkIdType end)
     {
-      if (nonEmpty[v])
+      for (vtkIdType v = begin; v < end; ++v)
       {
-        continue;
-      }
-      const glm::dvec3 index = grid.IndexOfVoxel(v);
-      double sum = 0.0;
-      int count = 0;
-      for (int a = 0; a < 3; ++a)
-      {
-        // Only computed voxels are read, and those are never written here.
-        if (index[a] > 0 && nonEmpty[v - stride[a]])
+        if (nonEmpty[v])
         {
-          sum += values[v - stride[a]];
-          ++count;
+          continue;
         }
-        if (index[a] + 1 < dims[a] && nonEmpty[v + stride[a]])
+        const glm::dvec3 index = grid.IndexOfVoxel(v);
+        double sum = 0.0;
+        int count = 0;
+        for (int a = 0; a < 3; ++a)
         {
-          sum += values[v + stride[a]];
-          ++count;
+          // Only computed voxels are read, and those are never written here.
+          if (index[a] > 0 && nonEmpty[v - stride[a]])
+          {
+            sum += values[v - stride[a]];
+            ++count;
+          }
+          if (index[a] + 1 < dims[a] && nonEmpty[v + stride[a]])
+          {
+            sum += values[v + stride[a]];
+            ++count;
+          }
+        }
+        if (count > 0)
+        {
+          values[v] = static_cast<float>(sum / count);
         }
       }
-      if (count > 0)
-      {
-        values[v] = static_cast<float>(sum / count);
-      }
-    }
-  });
+    });
 }
 
 /// The shadow-opacity table for segments of length `step` over the data range.
@@ -188,7 +189,6 @@ bool PrepareTable(vtkPreIntegrationTable* table, vtkPiecewiseFunction* otf,
   return table->Update();
 }
 
-
 /**
  * Multiple scattering (eq. 15) of every active light's irradiance. s is the
  * material's scattering at the pre-filtered value, 0 in empty voxels, and is
@@ -207,9 +207,8 @@ int DiffuseLights(const mmv::IrradianceGrid& grid, const std::vector<float>& pre
   bool any = false;
   for (const vtkIdType v : computed)
   {
-    strength[v] = static_cast<float>(mtf
-        ? mtf->EvaluateParameter(prefiltered[v], mmv::Scattering)
-        : mmv::MaterialParameterTable[mmv::Scattering].Default);
+    strength[v] = static_cast<float>(mtf ? mtf->EvaluateParameter(prefiltered[v], mmv::Scattering)
+                                         : mmv::MaterialParameterTable[mmv::Scattering].Default);
     any = any || strength[v] > 0.0f;
   }
   if (!any)
@@ -267,8 +266,8 @@ bool ShadowLights(vtkAlgorithm* self, const RayContext& ctx, const std::vector<L
     bool finished = true;
     if (mmv::UsesPiecewiseShadowRays(estimation, tasks[l].Source))
     {
-      finished = mmv::shadowrays::SweepPiecewiseShadowRays(self, ctx, tasks[l].Source, slicesPerChunk, nonEmpty,
-        progress, span, transmittance, rays);
+      finished = mmv::shadowrays::SweepPiecewiseShadowRays(
+        self, ctx, tasks[l].Source, slicesPerChunk, nonEmpty, progress, span, transmittance, rays);
       float* irradiance = arrays[l]->GetPointer(0);
       for (const vtkIdType v : computed)
       {
@@ -469,8 +468,8 @@ vtkMTimeType vtkIrradianceVolumeFilter::GetMTime()
   return mtime;
 }
 
-void vtkIrradianceVolumeFilter::ComputeIrradianceDimensions(const int dataDims[3],
-  int numberOfLights, double budgetMB, double scale, int irradianceDims[3])
+void vtkIrradianceVolumeFilter::ComputeIrradianceDimensions(
+  const int dataDims[3], int numberOfLights, double budgetMB, double scale, int irradianceDims[3])
 {
   mmv::ComputeIrradianceDimensions(dataDims, numberOfLights, budgetMB, scale, irradianceDims);
 }
@@ -531,8 +530,8 @@ vtkDataArray* vtkIrradianceVolumeFilter::InputScalars(vtkInformationVector** inp
   }
   if (!(this->ScalarOpacityUnitDistance > 0.0))
   {
-    vtkErrorMacro("ScalarOpacityUnitDistance must be positive, got "
-      << this->ScalarOpacityUnitDistance << ".");
+    vtkErrorMacro(
+      "ScalarOpacityUnitDistance must be positive, got " << this->ScalarOpacityUnitDistance << ".");
     return nullptr;
   }
   int association = vtkDataObject::FIELD_ASSOCIATION_POINTS;
@@ -592,7 +591,8 @@ int vtkIrradianceVolumeFilter::RequestData(
   // Step 1: geometry of the irradiance grid.
   this->UpdateIrradianceDimensions(input);
   const mmv::IrradianceGrid grid = mmv::MakeIrradianceGrid(input, this->IrradianceDimensions);
-  output->SetExtent(0, grid.Dimensions[0] - 1, 0, grid.Dimensions[1] - 1, 0, grid.Dimensions[2] - 1);
+  output->SetExtent(
+    0, grid.Dimensions[0] - 1, 0, grid.Dimensions[1] - 1, 0, grid.Dimensions[2] - 1);
   SetGridGeometry(grid, output);
 
   // Step 2: pre-filter and find the voxels worth computing.
@@ -655,9 +655,8 @@ int vtkIrradianceVolumeFilter::RequestData(
   // Steps 4 and 5: multiple scattering, then the empty neighbours.
   if (this->MultipleScattering)
   {
-    this->DiffusionIterations =
-      DiffuseLights(grid, prefiltered, computed, this->Internals->Material, tasks, arrays,
-        this->ExponentialDiffusion);
+    this->DiffusionIterations = DiffuseLights(grid, prefiltered, computed,
+      this->Internals->Material, tasks, arrays, this->ExponentialDiffusion);
   }
   for (size_t l = 0; l < tasks.size(); ++l)
   {

@@ -50,12 +50,12 @@
 #define vtkIrradianceVolumeFilter_h
 
 #include "vtkImageAlgorithm.h"
-#ifndef __VTK_WRAP__ // GLM: the wrappers take minutes to parse it
-#include "vtkMultiMaterialCutaway.h"    // mmv::Cutaway
+#ifndef __VTK_WRAP__                 // GLM: the wrappers take minutes to parse it
+#include "vtkMultiMaterialCutaway.h" // mmv::Cutaway
 #endif
-#include "vtkMultiMaterialParameters.h" // ShadowEstimation
+#include "vtkMultiMaterialParameters.h"          // ShadowEstimation
 #include "vtkMultiMaterialVolumeFiltersModule.h" // export macro
-#include "vtkSmartPointer.h"                      // InputScalars
+#include "vtkSmartPointer.h"                     // InputScalars
 
 class vtkDataArray;
 class vtkImageData;

@@ -46,7 +46,8 @@ inline bool ParseJSON(const std::string& text, Json& out, std::string& why)
 }
 
 /// Reads a finite number; `what` names it in the message.
-inline bool ReadFiniteNumber(const Json& value, const std::string& what, double& out, std::string& why)
+inline bool ReadFiniteNumber(
+  const Json& value, const std::string& what, double& out, std::string& why)
 {
   if (!value.is_number())
   {

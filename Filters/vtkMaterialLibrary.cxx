@@ -267,8 +267,8 @@ bool vtkMaterialLibrary::AddPreset(
 bool vtkMaterialLibrary::RemovePreset(const char* name)
 {
   std::vector<Preset>& presets = this->Internals->Presets;
-  auto it = std::find_if(presets.begin(), presets.end(),
-    [name](const Preset& p) { return name && p.Name == name; });
+  auto it = std::find_if(
+    presets.begin(), presets.end(), [name](const Preset& p) { return name && p.Name == name; });
   if (it == presets.end())
   {
     return false;

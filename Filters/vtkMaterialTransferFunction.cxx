@@ -63,7 +63,8 @@ bool ReadFlatNodes(
     nodes[i].Value = node[0];
     for (int p = 0; p < mmv::MaterialParameterCount; ++p)
     {
-      nodes[i].Parameters[p] = p + 1 < stride ? node[p + 1] : mmv::MaterialParameterTable[p].Default;
+      nodes[i].Parameters[p] =
+        p + 1 < stride ? node[p + 1] : mmv::MaterialParameterTable[p].Default;
     }
     if (!IsValidNode(nodes[i], why))
     {
@@ -206,8 +207,7 @@ int vtkMaterialTransferFunction::AddNode(double value, double ambient, double di
   return this->AddNode(value, parameters);
 }
 
-int vtkMaterialTransferFunction::AddNode(
-  double value, const double parameters[NumberOfParameters])
+int vtkMaterialTransferFunction::AddNode(double value, const double parameters[NumberOfParameters])
 {
   if (!parameters)
   {
@@ -421,8 +421,7 @@ double vtkMaterialTransferFunction::EvaluateParameter(double value, int paramete
   return parameters[parameter];
 }
 
-void vtkMaterialTransferFunction::GetTable(
-  double xStart, double xEnd, int size, float* table) const
+void vtkMaterialTransferFunction::GetTable(double xStart, double xEnd, int size, float* table) const
 {
   if (size <= 0 || !table)
   {
@@ -486,10 +485,12 @@ bool vtkMaterialTransferFunction::HasNonZero(int parameter) const
 bool vtkMaterialTransferFunction::HasChromaticTransmission() const
 {
   const std::vector<Node>& nodes = this->Internals->Nodes;
-  return std::any_of(nodes.begin(), nodes.end(), [](const Node& n) {
-    return mmv::IsChromaticTransmission(n.Parameters[mmv::TransmissionR],
-      n.Parameters[mmv::TransmissionG], n.Parameters[mmv::TransmissionB]);
-  });
+  return std::any_of(nodes.begin(), nodes.end(),
+    [](const Node& n)
+    {
+      return mmv::IsChromaticTransmission(n.Parameters[mmv::TransmissionR],
+        n.Parameters[mmv::TransmissionG], n.Parameters[mmv::TransmissionB]);
+    });
 }
 
 bool vtkMaterialTransferFunction::GetNonZeroRange(int parameter, double range[2]) const
@@ -547,8 +548,8 @@ bool vtkMaterialTransferFunction::ApplyPreset(const char* name, double rangeMin,
   // Checked here so the error is reported by this object, not the library.
   if (!library->HasPreset(name))
   {
-    vtkErrorMacro("ApplyPreset: unknown material preset \"" << name
-                                                            << "\"; the function is unchanged.");
+    vtkErrorMacro(
+      "ApplyPreset: unknown material preset \"" << name << "\"; the function is unchanged.");
     return false;
   }
   Node node;

@@ -17,8 +17,8 @@ std::vector<double> Cutaway::Key() const
   std::vector<double> key{ double(this->NumberOfPlanes), double(this->Cropping) };
   for (int p = 0; p < this->NumberOfPlanes; ++p)
   {
-    key.insert(key.end(), { this->Planes[p].x, this->Planes[p].y, this->Planes[p].z,
-                            this->Planes[p].w });
+    key.insert(
+      key.end(), { this->Planes[p].x, this->Planes[p].y, this->Planes[p].z, this->Planes[p].w });
   }
   if (this->Cropping)
   {

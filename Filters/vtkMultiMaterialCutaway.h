@@ -103,9 +103,9 @@ VTKMULTIMATERIALVOLUMEFILTERS_EXPORT Cutaway MakeCutaway(
 
 /// The same from the settings themselves (the CPU filter's), planes in world
 /// coordinates (worldToObject null: identity).
-VTKMULTIMATERIALVOLUMEFILTERS_EXPORT Cutaway MakeCutaway(bool cropping, const double croppingPlanes[6],
-  int croppingFlags, vtkPlaneCollection* planes, const vtkMatrix4x4* worldToObject,
-  int* dropped = nullptr);
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT Cutaway MakeCutaway(bool cropping,
+  const double croppingPlanes[6], int croppingFlags, vtkPlaneCollection* planes,
+  const vtkMatrix4x4* worldToObject, int* dropped = nullptr);
 
 VTKMULTIMATERIALVOLUMEFILTERS_EXPORT IndexCutaway ToIndexSpace(
   const Cutaway& cutaway, const IrradianceGrid& grid);

@@ -6,9 +6,9 @@
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
 #include "vtkMatrix4x4.h"
-#include "vtkNew.h"
 #include "vtkMultiMaterialShading.h"
 #include "vtkMultiMaterialVolumeSampling.h"
+#include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkRenderer.h"
@@ -67,15 +67,16 @@ bool vtkMultiMaterialEnvironment::ClearBackgroundOverride()
 }
 
 //------------------------------------------------------------------------------
-void vtkMultiMaterialEnvironment::Update(vtkRenderer* ren, vtkMatrix4x4* objectToWorld,
-  int source, std::vector<std::string>* problems)
+void vtkMultiMaterialEnvironment::Update(
+  vtkRenderer* ren, vtkMatrix4x4* objectToWorld, int source, std::vector<std::string>* problems)
 {
   vtkNew<vtkMatrix4x4> worldToObject;
   vtkMatrix4x4::Invert(objectToWorld, worldToObject);
   this->ViewUp = mmv::ViewUpInObject(ren->GetActiveCamera(), worldToObject);
   const double* bottom = ren->GetBackground();
   const double* top = ren->GetGradientBackground() ? ren->GetBackground2() : bottom;
-  this->Bottom = this->Override ? this->OverrideBottom : glm::dvec3(bottom[0], bottom[1], bottom[2]);
+  this->Bottom =
+    this->Override ? this->OverrideBottom : glm::dvec3(bottom[0], bottom[1], bottom[2]);
   this->Top = this->Override ? this->OverrideTop : glm::dvec3(top[0], top[1], top[2]);
 
   this->Kind = mmv::BackgroundEnvironment;
@@ -191,7 +192,8 @@ glm::dvec3 vtkMultiMaterialEnvironment::SampleImage(
   int image, const glm::dvec2& st, bool repeat) const
 {
   const int* dims = this->Images[image]->GetDimensions();
-  auto wrap = [repeat](int i, int n) {
+  auto wrap = [repeat](int i, int n)
+  {
     if (repeat)
     {
       return ((i % n) + n) % n;

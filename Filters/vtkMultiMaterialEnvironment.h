@@ -28,7 +28,7 @@
 #ifndef vtkMultiMaterialEnvironment_h
 #define vtkMultiMaterialEnvironment_h
 
-#include "vtkMultiMaterialEnvironmentLookup.h"    // mmv::ReflectionSource, EnvironmentKind
+#include "vtkMultiMaterialEnvironmentLookup.h"   // mmv::ReflectionSource, EnvironmentKind
 #include "vtkMultiMaterialVolumeFiltersModule.h" // export macro
 #include "vtkObject.h"
 #include "vtkSmartPointer.h" // images
@@ -54,8 +54,8 @@ public:
    * space by `objectToWorld` (the volume's matrix). Problems with the texture
    * (the background is used instead) are appended to `problems`.
    */
-  void Update(vtkRenderer* ren, vtkMatrix4x4* objectToWorld, int source,
-    std::vector<std::string>* problems);
+  void Update(
+    vtkRenderer* ren, vtkMatrix4x4* objectToWorld, int source, std::vector<std::string>* problems);
 
   /**
    * Pins the background gradient Update() reads (bottom and top colours)

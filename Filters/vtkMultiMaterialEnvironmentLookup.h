@@ -37,9 +37,9 @@ constexpr double ReflectionVisibilityOffsetVoxels = 2.0;
 /// What the environment term samples (the shader variant's MMV_ENVIRONMENT).
 enum EnvironmentKind
 {
-  BackgroundEnvironment = 0,      // vertical gradient of the background colours
-  CubeMapEnvironment = 1,         // samplerCube
-  EquirectangularEnvironment = 2  // sampler2D, longitude x latitude
+  BackgroundEnvironment = 0,     // vertical gradient of the background colours
+  CubeMapEnvironment = 1,        // samplerCube
+  EquirectangularEnvironment = 2 // sampler2D, longitude x latitude
 };
 
 /// Direction d in the environment's frame (right, up, front components).
@@ -55,8 +55,7 @@ inline glm::dvec2 EquirectangularCoord(const glm::dvec3& e)
 {
   const double pi = 3.14159265358979323846;
   const double horizontal = std::sqrt(e.x * e.x + e.z * e.z);
-  return glm::dvec2(
-    0.5 * std::atan2(e.x, e.z) / pi + 0.5, std::atan2(e.y, horizontal) / pi + 0.5);
+  return glm::dvec2(0.5 * std::atan2(e.x, e.z) / pi + 0.5, std::atan2(e.y, horizontal) / pi + 0.5);
 }
 
 /// The cube-map face (0..5: +x, -x, +y, -y, +z, -z, VTK's input order) and

@@ -42,15 +42,15 @@ namespace mmv
 struct LightSource
 {
   LightKind Kind = DirectionalLight;
-  glm::dvec3 Position{ 0.0 };      // point/spot: where the light is
-  glm::dvec3 ToLight{ 0.0, 0.0, 1.0 }; // directional: unit vector toward the light
+  glm::dvec3 Position{ 0.0 };            // point/spot: where the light is
+  glm::dvec3 ToLight{ 0.0, 0.0, 1.0 };   // directional: unit vector toward the light
   glm::dvec3 SpotAxis{ 0.0, 0.0, -1.0 }; // spot: unit axis of the cone
-  double CosCone = -1.0;           // spot: cos of the cone half-angle
-  double SpotExponent = 0.0;       // spot: vtkLight::Exponent (0: hard cone)
+  double CosCone = -1.0;                 // spot: cos of the cone half-angle
+  double SpotExponent = 0.0;             // spot: vtkLight::Exponent (0: hard cone)
   /// point/spot: vtkLight::AttenuationValues (constant, linear, quadratic),
   /// with distances in object units; used when Radius == 0.
   glm::dvec3 Attenuation{ 1.0, 0.0, 0.0 };
-  double Radius = 0.0;             // point/spot: epsilon of eq. 12; 0: Attenuation
+  double Radius = 0.0; // point/spot: epsilon of eq. 12; 0: Attenuation
   /// The GPU estimates the light's transmittance on every GridStride-th
   /// point of the irradiance grid (mmv::LightGridStride) and interpolates it.
   int GridStride = 1;
@@ -110,7 +110,8 @@ inline double mmvSpotFactor(
 }
 
 /// eq. 14: the hard cone, 1 inside (edge included, as VTK) and 0 outside.
-inline double mmvSpotVisibility(const glm::dvec3& lightToPoint, const glm::dvec3& axis, double cosCone)
+inline double mmvSpotVisibility(
+  const glm::dvec3& lightToPoint, const glm::dvec3& axis, double cosCone)
 {
   return mmvSpotFactor(lightToPoint, axis, cosCone, 0.0);
 }
@@ -118,8 +119,8 @@ inline double mmvSpotVisibility(const glm::dvec3& lightToPoint, const glm::dvec3
 /// Unit direction and distance from point x toward the light. Directional
 /// lights are infinitely far: distance -1. A point on a positional light gets
 /// +z (any unit vector would do: its shadow ray has length 0).
-inline glm::dvec3 mmvDirectionToLight(
-  int kind, const glm::dvec3& position, const glm::dvec3& toLight, const glm::dvec3& x, double& distance)
+inline glm::dvec3 mmvDirectionToLight(int kind, const glm::dvec3& position,
+  const glm::dvec3& toLight, const glm::dvec3& x, double& distance)
 {
   if (kind == DirectionalLight)
   {
@@ -131,7 +132,8 @@ inline glm::dvec3 mmvDirectionToLight(
   return distance > 0.0 ? d / distance : glm::dvec3(0.0, 0.0, 1.0);
 }
 
-inline glm::dvec3 mmvDirectionToLight(const LightSource& light, const glm::dvec3& x, double& distance)
+inline glm::dvec3 mmvDirectionToLight(
+  const LightSource& light, const glm::dvec3& x, double& distance)
 {
   return mmvDirectionToLight(light.Kind, light.Position, light.ToLight, x, distance);
 }

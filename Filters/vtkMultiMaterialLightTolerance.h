@@ -57,9 +57,9 @@ inline bool LightWithinTolerance(const LightSource& computed, const LightSource&
   {
     return false;
   }
-  const double tolerance =
-    std::isfinite(toleranceRadians) ? std::max(toleranceRadians, LightRoundingRadians)
-                                    : LightRoundingRadians;
+  const double tolerance = std::isfinite(toleranceRadians)
+    ? std::max(toleranceRadians, LightRoundingRadians)
+    : LightRoundingRadians;
   if (now.Kind == DirectionalLight)
   {
     return AngleBetween(computed.ToLight, now.ToLight) <= tolerance;

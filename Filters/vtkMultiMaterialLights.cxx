@@ -216,7 +216,8 @@ std::vector<ShadingLight> CollectLights(vtkLightCollection* lights,
   {
     order[i] = i;
   }
-  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return strength[a] > strength[b]; });
+  std::stable_sort(
+    order.begin(), order.end(), [&](int a, int b) { return strength[a] > strength[b]; });
   order.resize(maxLights);
   std::sort(order.begin(), order.end());
   std::vector<ShadingLight> kept;
@@ -231,9 +232,8 @@ std::vector<ShadingLight> CollectLights(vtkLightCollection* lights,
 std::vector<LightSource> IrradianceLightSources(
   const std::vector<ShadingLight>& lights, const int dims[3], bool strideDimLights)
 {
-  auto brightness = [](const ShadingLight& light) {
-    return std::max(light.Radiance.x, std::max(light.Radiance.y, light.Radiance.z));
-  };
+  auto brightness = [](const ShadingLight& light)
+  { return std::max(light.Radiance.x, std::max(light.Radiance.y, light.Radiance.z)); };
   double brightest = 0.0;
   for (const ShadingLight& light : lights)
   {

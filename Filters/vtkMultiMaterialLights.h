@@ -55,9 +55,9 @@ VTKMULTIMATERIALVOLUMEFILTERS_EXPORT LightSource MakeLightSource(vtkLight* light
  * `maxLights` of them, only the strongest (intensity times brightest colour
  * channel) are kept and `dropped` (if given) receives how many were left out.
  */
-VTKMULTIMATERIALVOLUMEFILTERS_EXPORT std::vector<ShadingLight> CollectLights(vtkLightCollection* lights,
-  const vtkMatrix4x4* worldToObject, double radius, int maxLights, int* dropped = nullptr,
-  std::vector<std::string>* problems = nullptr);
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT std::vector<ShadingLight> CollectLights(
+  vtkLightCollection* lights, const vtkMatrix4x4* worldToObject, double radius, int maxLights,
+  int* dropped = nullptr, std::vector<std::string>* problems = nullptr);
 
 /**
  * The lights' geometry for the irradiance volume on a grid of `dims`. With

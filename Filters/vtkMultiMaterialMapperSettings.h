@@ -13,7 +13,7 @@
 #ifndef vtkMultiMaterialMapperSettings_h
 #define vtkMultiMaterialMapperSettings_h
 
-#include "vtkMultiMaterialSettings.h"           // IlluminationSettings
+#include "vtkMultiMaterialSettings.h"            // IlluminationSettings
 #include "vtkMultiMaterialVolumeFiltersModule.h" // export macro
 
 class vtkAbstractVolumeMapper;

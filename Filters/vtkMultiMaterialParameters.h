@@ -96,7 +96,7 @@ struct MaterialParameterInfo
   const char* Key;      // JSON key and ParaView label stem
   const char* GLSLName; // stem of its texel macros in the GLSL prelude
   double Default;
-  double SoftMin;       // editor range
+  double SoftMin; // editor range
   double SoftMax;
   double HardMax;       // larger values are rejected as input errors
   double HardMin = 0.0; // smaller values are rejected as input errors
@@ -261,8 +261,8 @@ static_assert(MaterialTexelLayout[Ambient].Channel == 0 &&
 /// Writes the parameters `values` of table entry `entry` (of `entries`)
 /// into RGBA texels laid out as MaterialTexelLayout (rows of `entries`
 /// texels); channels no parameter uses stay as they are.
-inline void PackMaterialTexels(const float values[MaterialParameterCount], int entry, int entries,
-  float* texels)
+inline void PackMaterialTexels(
+  const float values[MaterialParameterCount], int entry, int entries, float* texels)
 {
   for (int p = 0; p < MaterialParameterCount; ++p)
   {
@@ -481,7 +481,8 @@ inline std::string MaterialGLSLPrelude()
 inline std::string ShadowRayGLSLPrelude()
 {
   // Enough digits that the float the shader sees is the nearest to ours.
-  auto literal = [](double value) {
+  auto literal = [](double value)
+  {
     char buffer[32];
     std::snprintf(buffer, sizeof(buffer), "%.9e", value);
     return std::string(buffer);

@@ -122,37 +122,41 @@ struct MajorantGrid
     {
       this->Bricks[a] = std::max(1, (dims[a] - 2) / BrickCells + 1);
     }
-    const vtkIdType count = static_cast<vtkIdType>(this->Bricks[0]) * this->Bricks[1] * this->Bricks[2];
+    const vtkIdType count =
+      static_cast<vtkIdType>(this->Bricks[0]) * this->Bricks[1] * this->Bricks[2];
     this->Max.assign(count, 0.0);
-    vtkSMPTools::For(0, count, [&](vtkIdType first, vtkIdType last) {
-      for (vtkIdType b = first; b < last; ++b)
+    vtkSMPTools::For(0, count,
+      [&](vtkIdType first, vtkIdType last)
       {
-        const int bi[3] = { static_cast<int>(b % this->Bricks[0]),
-          static_cast<int>((b / this->Bricks[0]) % this->Bricks[1]),
-          static_cast<int>(b / (static_cast<vtkIdType>(this->Bricks[0]) * this->Bricks[1])) };
-        int lo[3], hi[3];
-        for (int a = 0; a < 3; ++a)
+        for (vtkIdType b = first; b < last; ++b)
         {
-          lo[a] = bi[a] * BrickCells;
-          hi[a] = std::min(lo[a] + BrickCells, dims[a] - 1);
-        }
-        double smin = std::numeric_limits<double>::max();
-        double smax = -smin;
-        for (int k = lo[2]; k <= hi[2]; ++k)
-        {
-          for (int j = lo[1]; j <= hi[1]; ++j)
+          const int bi[3] = { static_cast<int>(b % this->Bricks[0]),
+            static_cast<int>((b / this->Bricks[0]) % this->Bricks[1]),
+            static_cast<int>(b / (static_cast<vtkIdType>(this->Bricks[0]) * this->Bricks[1])) };
+          int lo[3], hi[3];
+          for (int a = 0; a < 3; ++a)
           {
-            const double* row = field.Values + (static_cast<vtkIdType>(k) * dims[1] + j) * dims[0];
-            for (int i = lo[0]; i <= hi[0]; ++i)
+            lo[a] = bi[a] * BrickCells;
+            hi[a] = std::min(lo[a] + BrickCells, dims[a] - 1);
+          }
+          double smin = std::numeric_limits<double>::max();
+          double smax = -smin;
+          for (int k = lo[2]; k <= hi[2]; ++k)
+          {
+            for (int j = lo[1]; j <= hi[1]; ++j)
             {
-              smin = std::min(smin, row[i]);
-              smax = std::max(smax, row[i]);
+              const double* row =
+                field.Values + (static_cast<vtkIdType>(k) * dims[1] + j) * dims[0];
+              for (int i = lo[0]; i <= hi[0]; ++i)
+              {
+                smin = std::min(smin, row[i]);
+                smax = std::max(smax, row[i]);
+              }
             }
           }
+          this->Max[b] = tables.MaxExtinction(smin, smax);
         }
-        this->Max[b] = tables.MaxExtinction(smin, smax);
-      }
-    });
+      });
   }
 };
 
@@ -221,7 +225,8 @@ struct Medium
     double tNext[3], tDelta[3];
     for (int a = 0; a < 3; ++a)
     {
-      brick[a] = std::min(std::max(static_cast<int>(start[a] / BrickCells), 0), this->Majorant.Bricks[a] - 1);
+      brick[a] = std::min(
+        std::max(static_cast<int>(start[a] / BrickCells), 0), this->Majorant.Bricks[a] - 1);
       if (q[a] > 0.0)
       {
         step[a] = 1;
@@ -244,10 +249,12 @@ struct Medium
     double t = t0;
     while (t < t1)
     {
-      const int a = tNext[0] < tNext[1] ? (tNext[0] < tNext[2] ? 0 : 2) : (tNext[1] < tNext[2] ? 1 : 2);
+      const int a =
+        tNext[0] < tNext[1] ? (tNext[0] < tNext[2] ? 0 : 2) : (tNext[1] < tNext[2] ? 1 : 2);
       const double tEnd = std::min(tNext[a], t1);
-      const vtkIdType b =
-        brick[0] + this->Majorant.Bricks[0] * (brick[1] + static_cast<vtkIdType>(this->Majorant.Bricks[1]) * brick[2]);
+      const vtkIdType b = brick[0] +
+        this->Majorant.Bricks[0] *
+          (brick[1] + static_cast<vtkIdType>(this->Majorant.Bricks[1]) * brick[2]);
       if (tEnd > t && !visit(t, tEnd, this->Majorant.Max[b]))
       {
         return;
@@ -268,29 +275,31 @@ struct Medium
     bool hit = false;
     const dvec3 p = this->ToIndex(x);
     const dvec3 q = this->ObjectToIndex * d;
-    this->Traverse(x, d, tMax, [&](double t0, double t1, double majorant) {
-      if (majorant <= 0.0)
+    this->Traverse(x, d, tMax,
+      [&](double t0, double t1, double majorant)
       {
-        return true;
-      }
-      double t = t0;
-      for (;;)
-      {
-        t -= std::log1p(-rng.Uniform()) / majorant;
-        if (t >= t1)
+        if (majorant <= 0.0)
         {
-          return true; // memoryless: start afresh in the next brick
+          return true;
         }
-        const dvec3 pt = p + t * q;
-        if (rng.Uniform() * majorant < this->Tables.Extinction(this->Data.Sample(pt)))
+        double t = t0;
+        for (;;)
         {
-          event.T = t;
-          event.P = pt;
-          hit = true;
-          return false;
+          t -= std::log1p(-rng.Uniform()) / majorant;
+          if (t >= t1)
+          {
+            return true; // memoryless: start afresh in the next brick
+          }
+          const dvec3 pt = p + t * q;
+          if (rng.Uniform() * majorant < this->Tables.Extinction(this->Data.Sample(pt)))
+          {
+            event.T = t;
+            event.P = pt;
+            hit = true;
+            return false;
+          }
         }
-      }
-    });
+      });
     return hit;
   }
 
@@ -300,32 +309,34 @@ struct Medium
     double transmittance = 1.0;
     const dvec3 p = this->ToIndex(x);
     const dvec3 q = this->ObjectToIndex * d;
-    this->Traverse(x, d, tMax, [&](double t0, double t1, double majorant) {
-      if (majorant <= 0.0)
+    this->Traverse(x, d, tMax,
+      [&](double t0, double t1, double majorant)
       {
-        return true;
-      }
-      double t = t0;
-      for (;;)
-      {
-        t -= std::log1p(-rng.Uniform()) / majorant;
-        if (t >= t1)
+        if (majorant <= 0.0)
         {
           return true;
         }
-        transmittance *= 1.0 - this->Tables.Extinction(this->Data.Sample(p + t * q)) / majorant;
-        if (transmittance < 0.1)
+        double t = t0;
+        for (;;)
         {
-          // Russian roulette keeps the estimate unbiased and the walk short.
-          if (rng.Uniform() < 0.5)
+          t -= std::log1p(-rng.Uniform()) / majorant;
+          if (t >= t1)
           {
-            transmittance = 0.0;
-            return false;
+            return true;
           }
-          transmittance *= 2.0;
+          transmittance *= 1.0 - this->Tables.Extinction(this->Data.Sample(p + t * q)) / majorant;
+          if (transmittance < 0.1)
+          {
+            // Russian roulette keeps the estimate unbiased and the walk short.
+            if (rng.Uniform() < 0.5)
+            {
+              transmittance = 0.0;
+              return false;
+            }
+            transmittance *= 2.0;
+          }
         }
-      }
-    });
+      });
     return transmittance;
   }
 
@@ -345,7 +356,8 @@ struct Medium
 
   dvec3 Environment(const dvec3& d) const
   {
-    return mmv::mmvEnvironment(d, this->EnvironmentUp, this->EnvironmentBottom, this->EnvironmentTop);
+    return mmv::mmvEnvironment(
+      d, this->EnvironmentUp, this->EnvironmentBottom, this->EnvironmentTop);
   }
 
   dvec3 Trace(const dvec3& x0, const dvec3& d0, double tMax, const dvec3& background, Random& rng,
@@ -356,10 +368,10 @@ struct Medium
 struct Scatterer
 {
   bool Surface = false;
-  double G = 0.0;         // anisotropy
-  dvec3 N{ 0.0 };         // surface: unit normal on the side of wo
-  double Ks = 0.0;        // surface: specular weight
-  double Exponent = 1.0;  // surface: Blinn exponent
+  double G = 0.0;        // anisotropy
+  dvec3 N{ 0.0 };        // surface: unit normal on the side of wo
+  double Ks = 0.0;       // surface: specular weight
+  double Exponent = 1.0; // surface: Blinn exponent
 
   // Scattered radiance per unit incident irradiance from wi toward wo
   // (both pointing away from the event), without the albedo.
@@ -389,7 +401,8 @@ struct Scatterer
     const double u3 = rng.Uniform();
     if (!this->Surface)
     {
-      wi = mmv::DirectionAround(-wo, mmv::SampleHenyeyGreensteinCosine(this->G, u1), 2.0 * M_PI * u2);
+      wi =
+        mmv::DirectionAround(-wo, mmv::SampleHenyeyGreensteinCosine(this->G, u1), 2.0 * M_PI * u2);
       return 1.0;
     }
     if (u3 < this->Ks)
@@ -411,8 +424,9 @@ struct Scatterer
     const dvec3 h = glm::normalize(wo + wi);
     const double cosH = std::max(0.0, glm::dot(this->N, h));
     const double oh = std::abs(glm::dot(wo, h));
-    const double specularPdf =
-      oh > 0.0 ? (this->Exponent + 1.0) / (2.0 * M_PI) * std::pow(cosH, this->Exponent) / (4.0 * oh) : 0.0;
+    const double specularPdf = oh > 0.0
+      ? (this->Exponent + 1.0) / (2.0 * M_PI) * std::pow(cosH, this->Exponent) / (4.0 * oh)
+      : 0.0;
     const double pdf = (1.0 - this->Ks) * cosI / M_PI + this->Ks * specularPdf;
     return pdf > 0.0 ? this->Evaluate(wo, wi) / pdf : 0.0;
   }
@@ -466,14 +480,17 @@ dvec3 Medium::Trace(const dvec3& x0, const dvec3& d0, double tMax, const dvec3& 
     {
       const dvec3 gradient = this->Gradient(event.P);
       const double length = glm::length(gradient);
-      const double perVoxel = length * this->SmallestSpacing / vtkMultiMaterialPathTracer::SurfaceGradientPerVoxel;
+      const double perVoxel =
+        length * this->SmallestSpacing / vtkMultiMaterialPathTracer::SurfaceGradientPerVoxel;
       if (length > 0.0 && rng.Uniform() < -std::expm1(-perVoxel))
       {
         scatterer.Surface = true;
         scatterer.N = -gradient / length;
         scatterer.N = glm::dot(scatterer.N, wo) < 0.0 ? -scatterer.N : scatterer.N;
-        scatterer.Ks = std::min(std::max(this->Tables.Lerp(this->Tables.Material, P, mmv::Specular, i, w), 0.0), 1.0);
-        scatterer.Exponent = std::max(this->Tables.Lerp(this->Tables.Material, P, mmv::Shininess, i, w), 0.0);
+        scatterer.Ks = std::min(
+          std::max(this->Tables.Lerp(this->Tables.Material, P, mmv::Specular, i, w), 0.0), 1.0);
+        scatterer.Exponent =
+          std::max(this->Tables.Lerp(this->Tables.Material, P, mmv::Shininess, i, w), 0.0);
       }
     }
     // Next-event estimation to every light.
@@ -491,8 +508,8 @@ dvec3 Medium::Trace(const dvec3& x0, const dvec3& d0, double tMax, const dvec3& 
       {
         continue;
       }
-      const double transmittance =
-        this->Transmittance(x, l, distance >= 0.0 ? distance : std::numeric_limits<double>::max(), rng);
+      const double transmittance = this->Transmittance(
+        x, l, distance >= 0.0 ? distance : std::numeric_limits<double>::max(), rng);
       radiance += throughput * light.Radiance * (geometry * f * transmittance);
     }
     dvec3 wi;
@@ -581,46 +598,49 @@ long long TracePixels(const Medium& medium, const vtkMatrix4x4* ndcToObject, int
   double* outError = output.Error;
   unsigned char* bytes = output.Colors;
   std::atomic<long long> events(0);
-  vtkSMPTools::For(0, height, 1, [&](vtkIdType firstRow, vtkIdType lastRow) {
-    long long localEvents = 0;
-    for (vtkIdType j = firstRow; j < lastRow; ++j)
+  vtkSMPTools::For(0, height, 1,
+    [&](vtkIdType firstRow, vtkIdType lastRow)
     {
-      const double y = (j + 0.5) / height * 2.0 - 1.0;
-      // VTK draws the gradient background bottom (Background) to top.
-      const dvec3 background = glm::mix(medium.EnvironmentBottom, medium.EnvironmentTop, (j + 0.5) / height);
-      for (int i = 0; i < width; ++i)
+      long long localEvents = 0;
+      for (vtkIdType j = firstRow; j < lastRow; ++j)
       {
-        const vtkIdType id = j * width + i;
-        const double x = (i + 0.5) / width * 2.0 - 1.0;
-        dvec3 origin, direction;
-        double length;
-        mmv::PixelRay(ndcToObject, x, y, origin, direction, length);
-        Random rng(PixelSeed(seed, id), static_cast<std::uint64_t>(id));
-        // Welford's running mean and squared deviations: pixels whose paths
-        // all agree get exactly zero error (sum-of-squares would round).
-        dvec3 mean(0.0), squares(0.0);
-        for (int k = 0; k < samples; ++k)
+        const double y = (j + 0.5) / height * 2.0 - 1.0;
+        // VTK draws the gradient background bottom (Background) to top.
+        const dvec3 background =
+          glm::mix(medium.EnvironmentBottom, medium.EnvironmentTop, (j + 0.5) / height);
+        for (int i = 0; i < width; ++i)
         {
-          const dvec3 l = length > 0.0
-            ? medium.Trace(origin, direction, length, background, rng, localEvents)
-            : background;
-          const dvec3 delta = l - mean;
-          mean += delta / double(k + 1);
-          squares += delta * (l - mean);
-        }
-        // Unbiased sample variance of one path, over samples for the mean's.
-        const dvec3 variance = samples > 1 ? squares / double(samples - 1) : dvec3(0.0);
-        for (int c = 0; c < 3; ++c)
-        {
-          out[3 * id + c] = mean[c];
-          outError[3 * id + c] = std::sqrt(variance[c] / samples);
-          bytes[3 * id + c] =
-            static_cast<unsigned char>(std::lround(std::min(std::max(mean[c], 0.0), 1.0) * 255.0));
+          const vtkIdType id = j * width + i;
+          const double x = (i + 0.5) / width * 2.0 - 1.0;
+          dvec3 origin, direction;
+          double length;
+          mmv::PixelRay(ndcToObject, x, y, origin, direction, length);
+          Random rng(PixelSeed(seed, id), static_cast<std::uint64_t>(id));
+          // Welford's running mean and squared deviations: pixels whose paths
+          // all agree get exactly zero error (sum-of-squares would round).
+          dvec3 mean(0.0), squares(0.0);
+          for (int k = 0; k < samples; ++k)
+          {
+            const dvec3 l = length > 0.0
+              ? medium.Trace(origin, direction, length, background, rng, localEvents)
+              : background;
+            const dvec3 delta = l - mean;
+            mean += delta / double(k + 1);
+            squares += delta * (l - mean);
+          }
+          // Unbiased sample variance of one path, over samples for the mean's.
+          const dvec3 variance = samples > 1 ? squares / double(samples - 1) : dvec3(0.0);
+          for (int c = 0; c < 3; ++c)
+          {
+            out[3 * id + c] = mean[c];
+            outError[3 * id + c] = std::sqrt(variance[c] / samples);
+            bytes[3 * id + c] = static_cast<unsigned char>(
+              std::lround(std::min(std::max(mean[c], 0.0), 1.0) * 255.0));
+          }
         }
       }
-    }
-    events += localEvents;
-  });
+      events += localEvents;
+    });
   return events;
 }
 }
@@ -684,7 +704,8 @@ vtkImageData* vtkMultiMaterialPathTracer::Render(vtkRenderer* ren, int width, in
   medium.ObjectToIndex = glm::inverse(indexToObject);
   medium.GradientToObject = glm::transpose(medium.ObjectToIndex);
   const double* spacing = image->GetSpacing();
-  medium.SmallestSpacing = std::min({ std::abs(spacing[0]), std::abs(spacing[1]), std::abs(spacing[2]) });
+  medium.SmallestSpacing =
+    std::min({ std::abs(spacing[0]), std::abs(spacing[1]), std::abs(spacing[2]) });
   medium.MaxBounces = this->MaxBounces;
   medium.SurfaceScattering = this->SurfaceScattering;
 
@@ -700,7 +721,8 @@ vtkImageData* vtkMultiMaterialPathTracer::Render(vtkRenderer* ren, int width, in
   }
   vtkNew<vtkMatrix4x4> worldToObject;
   vtkMatrix4x4::Invert(objectToWorld, worldToObject);
-  const double radius = this->PointLightRadius > 0.0 ? this->PointLightRadius : medium.SmallestSpacing;
+  const double radius =
+    this->PointLightRadius > 0.0 ? this->PointLightRadius : medium.SmallestSpacing;
   medium.Lights = mmv::CollectLights(ren->GetLights(), worldToObject, radius, INT_MAX);
   vtkCamera* camera = ren->GetActiveCamera();
   medium.EnvironmentUp = mmv::ViewUpInObject(camera, worldToObject);
@@ -714,15 +736,19 @@ vtkImageData* vtkMultiMaterialPathTracer::Render(vtkRenderer* ren, int width, in
   mmv::NDCToObject(camera, width, height, worldToObject, ndcToObject);
 
   const vtkIdType pixels = static_cast<vtkIdType>(width) * height;
-  auto makeArray = [pixels](const char* name, auto array) {
+  auto makeArray = [pixels](const char* name, auto array)
+  {
     array->SetName(name);
     array->SetNumberOfComponents(3);
     array->SetNumberOfTuples(pixels);
     return array;
   };
-  vtkSmartPointer<vtkDoubleArray> radiance = makeArray("Radiance", vtkSmartPointer<vtkDoubleArray>::New());
-  vtkSmartPointer<vtkDoubleArray> error = makeArray("StandardError", vtkSmartPointer<vtkDoubleArray>::New());
-  vtkSmartPointer<vtkUnsignedCharArray> colors = makeArray("Colors", vtkSmartPointer<vtkUnsignedCharArray>::New());
+  vtkSmartPointer<vtkDoubleArray> radiance =
+    makeArray("Radiance", vtkSmartPointer<vtkDoubleArray>::New());
+  vtkSmartPointer<vtkDoubleArray> error =
+    makeArray("StandardError", vtkSmartPointer<vtkDoubleArray>::New());
+  vtkSmartPointer<vtkUnsignedCharArray> colors =
+    makeArray("Colors", vtkSmartPointer<vtkUnsignedCharArray>::New());
   const int samples = this->SamplesPerPixel;
   const PixelOutput pixelOutput{ radiance->GetPointer(0), error->GetPointer(0),
     colors->GetPointer(0) };

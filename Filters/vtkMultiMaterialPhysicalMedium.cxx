@@ -23,18 +23,20 @@ bool PhysicalMediumToMaterial(double albedo, double g, double extinctionPerVoxel
 {
   if (!std::isfinite(albedo) || albedo < 0.0 || albedo > PhysicalMediumMaxAlbedo)
   {
-    return Reject(why, "albedo must be in [0, " + std::to_string(PhysicalMediumMaxAlbedo) +
-        "], got " + std::to_string(albedo));
+    return Reject(why,
+      "albedo must be in [0, " + std::to_string(PhysicalMediumMaxAlbedo) + "], got " +
+        std::to_string(albedo));
   }
   if (!std::isfinite(g) || g < 0.0 || g > PhysicalMediumMaxAnisotropy)
   {
-    return Reject(why, "anisotropy g must be in [0, " + std::to_string(PhysicalMediumMaxAnisotropy) +
+    return Reject(why,
+      "anisotropy g must be in [0, " + std::to_string(PhysicalMediumMaxAnisotropy) +
         "] (backward scattering was not calibrated), got " + std::to_string(g));
   }
   if (!std::isfinite(extinctionPerVoxel) || !(extinctionPerVoxel > 0.0))
   {
-    return Reject(why, "extinction per voxel must be a positive number, got " +
-        std::to_string(extinctionPerVoxel));
+    return Reject(why,
+      "extinction per voxel must be a positive number, got " + std::to_string(extinctionPerVoxel));
   }
   // Fitted to the path tracer (docs/how-it-works.md, "Physical media"); a =
   // albedo, tau = extinction per voxel.
@@ -60,8 +62,8 @@ bool PhysicalMediumToMaterial(double albedo, double g, double extinctionPerVoxel
   parameters[Attenuation] = std::pow(1.0 - a * g, f.AttenuationPower);
   // The diffusion reaches farther the more is scattered and the thinner the
   // medium (s in voxel^2); capped at the parameter's largest accepted value.
-  parameters[Scattering] = std::min(
-    f.ScatteringScale * std::pow(a, f.ScatteringAlbedoPower) / std::pow(tau, f.ScatteringDepthPower),
+  parameters[Scattering] = std::min(f.ScatteringScale * std::pow(a, f.ScatteringAlbedoPower) /
+      std::pow(tau, f.ScatteringDepthPower),
     MaterialParameterTable[Scattering].HardMax);
   parameters[Reflection] = 0.0;
   parameters[Anisotropy] = g;

@@ -92,8 +92,7 @@ constexpr PhysicalPreset PhysicalPresets[] = {
  * outside that domain or not finite.
  */
 VTKMULTIMATERIALVOLUMEFILTERS_EXPORT bool PhysicalMediumToMaterial(double albedo, double g,
-  double extinctionPerVoxel, double parameters[MaterialParameterCount],
-  std::string* why = nullptr);
+  double extinctionPerVoxel, double parameters[MaterialParameterCount], std::string* why = nullptr);
 
 } // namespace mmv
 

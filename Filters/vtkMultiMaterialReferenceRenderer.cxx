@@ -14,7 +14,6 @@
 #include "vtkMatrix3x3.h"
 #include "vtkMatrix4x4.h"
 #include "vtkMultiMaterialCutaway.h"
-#include "vtkVolumeMapper.h"
 #include "vtkMultiMaterialLights.h"
 #include "vtkMultiMaterialParameters.h"
 #include "vtkMultiMaterialPhaseFunction.h"
@@ -27,6 +26,7 @@
 #include "vtkSMPTools.h"
 #include "vtkUnsignedCharArray.h"
 #include "vtkVolume.h"
+#include "vtkVolumeMapper.h"
 #include "vtkVolumeProperty.h"
 
 #include <algorithm>
@@ -48,15 +48,14 @@ using glm::dvec4;
 // from evaluating the piecewise-linear functions directly.
 constexpr int TableSize = 65536;
 
-
 // Every transfer function, tabulated over the scalar range.
 struct TransferTables
 {
   double Min = 0.0;
-  double Scale = 1.0; // table index per data unit
-  std::vector<double> Color;    // rgb
-  std::vector<double> Mu;       // extinction per object unit
-  std::vector<double> Sigma;    // shadow extinction, attenuation * mu
+  double Scale = 1.0;        // table index per data unit
+  std::vector<double> Color; // rgb
+  std::vector<double> Mu;    // extinction per object unit
+  std::vector<double> Sigma; // shadow extinction, attenuation * mu
   // The selective extinction c_t mu (-ln T) per channel, 3 per value; empty
   // when every transmission colour is white (grey shadows).
   std::vector<double> SigmaTint;
@@ -101,8 +100,8 @@ struct Scene
   std::vector<std::vector<float>> ScatteringDelta;
   bool Reflection = false;
   const vtkMultiMaterialEnvironment* Environment = nullptr; // c_r
-  bool ReflectionVisibility = false; // I(x, w_r) by a shadow ray along w_r
-  double ReflectionOffset = 0.0;     // object units along n (self-occlusion)
+  bool ReflectionVisibility = false;                        // I(x, w_r) by a shadow ray along w_r
+  double ReflectionOffset = 0.0;                            // object units along n (self-occlusion)
 
   dvec3 ToIndex(const dvec3& x) const { return this->ObjectToIndex * (x - this->Origin); }
 
@@ -147,7 +146,8 @@ struct Scene
   // colour (vtkMultiMaterialParameters.h), per sample like the grey part,
   // at full resolution (the GPU stores it at half: the compression the
   // comparisons measure); (1, 1, 1) when grey.
-  double DirectIrradiance(const mmv::LightSource& light, const dvec3& x, dvec3* tint = nullptr) const
+  double DirectIrradiance(
+    const mmv::LightSource& light, const dvec3& x, dvec3* tint = nullptr) const
   {
     if (tint)
     {
@@ -258,9 +258,8 @@ struct Scene
       arriving[k] = this->Radiances[k] * tint[k];
     }
     const dvec3* radiances = tinted ? arriving : this->Radiances.data();
-    return mmv::mmvShadeSample(material, m[mmv::Anisotropy], reflection, m[mmv::Emission],
-      segment, x, n, v, surface, this->Sources.data(), radiances, irradiance, count,
-      environment);
+    return mmv::mmvShadeSample(material, m[mmv::Anisotropy], reflection, m[mmv::Emission], segment,
+      x, n, v, surface, this->Sources.data(), radiances, irradiance, count, environment);
   }
 
   // Eq. 17's I(x, w_r) c_r(w_r) (Shaders/mmvReflection.glsl): the
@@ -336,14 +335,6 @@ double Seconds(std::chrono::steady_clock::time_point start)
 vtkMultiMaterialReferenceRenderer::vtkMultiMaterialReferenceRenderer() = default;
 vtkMultiMaterialReferenceRenderer::~vtkMultiMaterialReferenceRenderer() = default;
 
-
-
-
-
-
-
-
-
 void vtkMultiMaterialReferenceRenderer::SetCutawayMapper(vtkVolumeMapper* mapper)
 {
   if (this->CutawayMapper != mapper)
@@ -386,8 +377,8 @@ namespace
 {
 /// The transfer functions at TableSize values over `range`: colour,
 /// extinction, attenuated extinction and every material parameter.
-void TabulateTransferFunctions(vtkVolumeProperty* property,
-  vtkMaterialTransferFunction* materials, const double range[2], TransferTables& tables)
+void TabulateTransferFunctions(vtkVolumeProperty* property, vtkMaterialTransferFunction* materials,
+  const double range[2], TransferTables& tables)
 {
   tables.Min = range[0];
   tables.Scale = (TableSize - 1) / (range[1] - range[0]);
@@ -452,8 +443,8 @@ void PlaceLights(Scene& scene, vtkRenderer* ren, vtkMatrix4x4* worldToObject, vt
   input->GetDimensions(dims);
   scene.Cut = mmv::ToIndexSpace(
     mmv::MakeCutaway(cutawayMapper, worldToObject), mmv::MakeIrradianceGrid(input, dims));
-  scene.Lights = mmv::CollectLights(
-    ren->GetLights(), worldToObject, radius, mmv::MaxLights, nullptr, &problems);
+  scene.Lights =
+    mmv::CollectLights(ren->GetLights(), worldToObject, radius, mmv::MaxLights, nullptr, &problems);
   for (const mmv::ShadingLight& light : scene.Lights)
   {
     scene.Sources.push_back(light.Source);
@@ -477,8 +468,8 @@ void PlaceEnvironment(Scene& scene, vtkRenderer* ren, vtkMatrix4x4* objectToWorl
 /// Multiple scattering: per light, the diffused minus the direct irradiance
 /// of every voxel (the reference renderer adds it back). False: nothing
 /// scatters.
-bool ComputeScatteringDeltas(Scene& scene, const std::vector<double>& values,
-  bool exponential, std::atomic<vtkIdType>& shadowRays)
+bool ComputeScatteringDeltas(Scene& scene, const std::vector<double>& values, bool exponential,
+  std::atomic<vtkIdType>& shadowRays)
 {
   const vtkIdType count = static_cast<vtkIdType>(values.size());
   std::vector<float> strength(count, 0.0f);
@@ -503,15 +494,17 @@ bool ComputeScatteringDeltas(Scene& scene, const std::vector<double>& values,
   for (const mmv::ShadingLight& light : scene.Lights)
   {
     std::vector<float> direct(count);
-    vtkSMPTools::For(0, count, [&](vtkIdType first, vtkIdType last) {
-      for (vtkIdType v = first; v < last; ++v)
+    vtkSMPTools::For(0, count,
+      [&](vtkIdType first, vtkIdType last)
       {
-        const dvec3 p(v % dims[0], (v / dims[0]) % dims[1], v / (vtkIdType(dims[0]) * dims[1]));
-        direct[v] = static_cast<float>(
-          scene.DirectIrradiance(light.Source, scene.Origin + scene.IndexToObject * p));
-      }
-      shadowRays += last - first;
-    });
+        for (vtkIdType v = first; v < last; ++v)
+        {
+          const dvec3 p(v % dims[0], (v / dims[0]) % dims[1], v / (vtkIdType(dims[0]) * dims[1]));
+          direct[v] = static_cast<float>(
+            scene.DirectIrradiance(light.Source, scene.Origin + scene.IndexToObject * p));
+        }
+        shadowRays += last - first;
+      });
     std::vector<float> diffused = direct;
     mmv::DiffusionSettings settings;
     settings.Exponential = exponential;
@@ -536,38 +529,40 @@ void TracePixels(const Scene& scene, vtkRenderer* ren, vtkMatrix4x4* ndcToObject
   const double* bg2 = ren->GetGradientBackground() ? ren->GetBackground2() : bg1;
   const dvec3 background1(bg1[0], bg1[1], bg1[2]);
   const dvec3 background2(bg2[0], bg2[1], bg2[2]);
-  vtkSMPTools::For(0, height, 1, [&](vtkIdType firstRow, vtkIdType lastRow) {
-    vtkIdType localSamples = 0;
-    vtkIdType localShadowRays = 0;
-    for (vtkIdType j = firstRow; j < lastRow; ++j)
+  vtkSMPTools::For(0, height, 1,
+    [&](vtkIdType firstRow, vtkIdType lastRow)
     {
-      const double y = (j + 0.5) / height * 2.0 - 1.0;
-      const dvec3 background = glm::mix(background1, background2, (j + 0.5) / height);
-      for (int i = 0; i < width; ++i)
+      vtkIdType localSamples = 0;
+      vtkIdType localShadowRays = 0;
+      for (vtkIdType j = firstRow; j < lastRow; ++j)
       {
-        const double x = (i + 0.5) / width * 2.0 - 1.0;
-        dvec3 nearPoint, direction;
-        double length;
-        mmv::PixelRay(ndcToObject, x, y, nearPoint, direction, length);
-        dvec4 c(0.0);
-        if (length > 0.0)
+        const double y = (j + 0.5) / height * 2.0 - 1.0;
+        const dvec3 background = glm::mix(background1, background2, (j + 0.5) / height);
+        for (int i = 0; i < width; ++i)
         {
-          c = scene.Trace(
-            nearPoint, direction, 0.0, length, minTransmittance, localSamples, localShadowRays);
-        }
-        const dvec3 rgb = dvec3(c) + (1.0 - c.w) * background;
-        const vtkIdType id = j * width + i;
-        for (int k = 0; k < 3; ++k)
-        {
-          out[3 * id + k] = rgb[k];
-          bytes[3 * id + k] =
-            static_cast<unsigned char>(std::lround(std::min(std::max(rgb[k], 0.0), 1.0) * 255.0));
+          const double x = (i + 0.5) / width * 2.0 - 1.0;
+          dvec3 nearPoint, direction;
+          double length;
+          mmv::PixelRay(ndcToObject, x, y, nearPoint, direction, length);
+          dvec4 c(0.0);
+          if (length > 0.0)
+          {
+            c = scene.Trace(
+              nearPoint, direction, 0.0, length, minTransmittance, localSamples, localShadowRays);
+          }
+          const dvec3 rgb = dvec3(c) + (1.0 - c.w) * background;
+          const vtkIdType id = j * width + i;
+          for (int k = 0; k < 3; ++k)
+          {
+            out[3 * id + k] = rgb[k];
+            bytes[3 * id + k] =
+              static_cast<unsigned char>(std::lround(std::min(std::max(rgb[k], 0.0), 1.0) * 255.0));
+          }
         }
       }
-    }
-    samples += localSamples;
-    shadowRays += localShadowRays;
-  });
+      samples += localSamples;
+      shadowRays += localShadowRays;
+    });
 }
 }
 
@@ -589,8 +584,8 @@ vtkImageData* vtkMultiMaterialReferenceRenderer::Render(vtkRenderer* ren, int wi
     vtkErrorMacro(<< why);
     return nullptr;
   }
-  SetUpSampling(scene, range, image->GetSpacing(), this->SampleDistance,
-    this->ShadowSampleDistance, this->MinimumTransmittance);
+  SetUpSampling(scene, range, image->GetSpacing(), this->SampleDistance, this->ShadowSampleDistance,
+    this->MinimumTransmittance);
   vtkMaterialTransferFunction* materials = this->Materials;
   TabulateTransferFunctions(this->Property, materials, range, scene.Tables);
 

@@ -107,7 +107,8 @@ constexpr double Unbounded = std::numeric_limits<double>::infinity();
   X(double, GradientSmoothing, 0.0, -mmv::Unbounded, mmv::Unbounded,                               \
     "gradient blur, x the largest spacing")                                                        \
   X(bool, MultipleScattering, true, 0, 1, "diffusion of the irradiance")                           \
-  X(int, ShadowEstimation, mmv::PiecewiseShadowRays, 0, 1, "full (0) or piecewise (1) shadow rays") \
+  X(int, ShadowEstimation, mmv::PiecewiseShadowRays, 0, 1,                                         \
+    "full (0) or piecewise (1) shadow rays")                                                       \
   X(int, PiecewiseShadowSlices, mmv::DefaultPiecewiseShadowSlices, 1, 4096,                        \
     "slices a piecewise shadow ray spans")                                                         \
   X(bool, ExponentialDiffusion, mmv::DefaultExponentialDiffusion, 0, 1,                            \

@@ -50,8 +50,8 @@ inline glm::dvec3 mmvEmission(double emission, const glm::dvec4& segment)
 }
 
 /// Vertical gradient environment around `up` (unit vectors).
-inline glm::dvec3 mmvEnvironment(const glm::dvec3& d, const glm::dvec3& up,
-  const glm::dvec3& bottom, const glm::dvec3& top)
+inline glm::dvec3 mmvEnvironment(
+  const glm::dvec3& d, const glm::dvec3& up, const glm::dvec3& bottom, const glm::dvec3& top)
 {
   return glm::mix(bottom, top, glm::clamp(0.5 + 0.5 * glm::dot(d, up), 0.0, 1.0));
 }

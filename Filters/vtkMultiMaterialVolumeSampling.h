@@ -125,8 +125,8 @@ inline std::string LoadScalarField(vtkImageData* image, std::vector<double>& val
 
 /// The property's colour (gray or RGB; white without either) tabulated at
 /// `size` points over `range`, rgb per entry.
-inline void TabulateColor(vtkVolumeProperty* property, const double range[2], int size,
-  std::vector<double>& rgb)
+inline void TabulateColor(
+  vtkVolumeProperty* property, const double range[2], int size, std::vector<double>& rgb)
 {
   rgb.assign(3 * static_cast<size_t>(size), 1.0);
   if (property->GetColorChannels(0) == 1 && property->GetGrayTransferFunction(0))
@@ -179,8 +179,8 @@ inline glm::dvec3 ViewUpInObject(vtkCamera* camera, vtkMatrix4x4* worldToObject)
 }
 
 /// NDC -> object matrix of the camera at width x height, for PixelRay().
-inline void NDCToObject(vtkCamera* camera, int width, int height, vtkMatrix4x4* worldToObject,
-  vtkMatrix4x4* ndcToObject)
+inline void NDCToObject(
+  vtkCamera* camera, int width, int height, vtkMatrix4x4* worldToObject, vtkMatrix4x4* ndcToObject)
 {
   vtkNew<vtkMatrix4x4> ndcToWorld;
   ndcToWorld->DeepCopy(

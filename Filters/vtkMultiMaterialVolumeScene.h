@@ -11,7 +11,7 @@
 #ifndef vtkMultiMaterialVolumeScene_h
 #define vtkMultiMaterialVolumeScene_h
 
-#include "vtkMultiMaterialMapperSettings.h"       // mmv::MapperSettings
+#include "vtkMultiMaterialMapperSettings.h"      // mmv::MapperSettings
 #include "vtkMultiMaterialVolumeFiltersModule.h" // export macro
 #include "vtkObject.h"
 #include "vtkSmartPointer.h" // members

@@ -46,9 +46,8 @@ double LinearOpacityDepth(double a0, double a1, double width)
     // ends exactly at `top`, which the closed form below handles (no
     // recursion: an end equal to `top` is not above it).
     const double f = (top - a0) / (a1 - a0);
-    return a0 > top
-      ? f * width * clamped + LinearOpacityDepth(top, a1, (1.0 - f) * width)
-      : LinearOpacityDepth(a0, top, f * width) + (1.0 - f) * width * clamped;
+    return a0 > top ? f * width * clamped + LinearOpacityDepth(top, a1, (1.0 - f) * width)
+                    : LinearOpacityDepth(a0, top, f * width) + (1.0 - f) * width * clamped;
   }
   if (std::abs(a1 - a0) < 1e-8)
   {
@@ -83,9 +82,9 @@ struct CellData
   // The selective (tint) extinction c_t mu (-ln T) per channel: 3 per node,
   // 3 per prefix sum; empty when the material's transmission is white.
   std::vector<double> NodeTint, PrefixTint;
-  std::vector<char> NodeOpaque;                   // alpha(t_k) > 0
-  std::vector<double> Up;   // first non-zero opacity at or above t_k (data units), +inf if none
-  std::vector<double> Down; // first non-zero opacity at or below t_k going down, -inf if none
+  std::vector<char> NodeOpaque; // alpha(t_k) > 0
+  std::vector<double> Up;       // first non-zero opacity at or above t_k (data units), +inf if none
+  std::vector<double> Down;     // first non-zero opacity at or below t_k going down, -inf if none
   // Per cell k = [t_k, t_k+1] (n-1 entries): mean extinction, and prefix sums
   // of the means (n entries).
   std::vector<double> CellMu;
@@ -222,8 +221,8 @@ struct DiagonalFiller
       this->Shadow[down] = static_cast<float>(sigma);
       for (int c = 0; this->Tint && c < 3; ++c)
       {
-        const double tint = -std::expm1(
-          -scale * (this->C.PrefixTint[3 * hi + c] - this->C.PrefixTint[3 * lo + c]));
+        const double tint =
+          -std::expm1(-scale * (this->C.PrefixTint[3 * hi + c] - this->C.PrefixTint[3 * lo + c]));
         this->Tint[4 * up + c] = static_cast<float>(tint);
         this->Tint[4 * down + c] = static_cast<float>(tint);
       }
@@ -395,8 +394,8 @@ void SampleNodes(const TransferFunctions& tf, double first, CellData& cells)
   for (int k = 0; k < n; ++k)
   {
     double alpha, tint[3];
-    tf.Sample(first + k * cells.D, alpha, cells.NodeMu[k], cells.NodeSigma[k],
-      &cells.NodeRGB[3 * k], tint);
+    tf.Sample(
+      first + k * cells.D, alpha, cells.NodeMu[k], cells.NodeSigma[k], &cells.NodeRGB[3 * k], tint);
     for (int c = 0; tf.Tinted && c < 3; ++c)
     {
       cells.NodeTint[3 * k + c] = tint[c];
@@ -473,8 +472,7 @@ double IntegratePiece(const TransferFunctions& tf, double a, double b, CellData&
   const double half = 0.5 * (b - a);
   PieceDepth pieceDepth{ tf.Opacity, tf.UnitDistance, a, b, tf.Opacity->GetValue(a),
     tf.Opacity->GetValue(b), true };
-  double x[GaussOrder], mu[GaussOrder], sigma[GaussOrder], rgb[GaussOrder][3],
-    tint[GaussOrder][3];
+  double x[GaussOrder], mu[GaussOrder], sigma[GaussOrder], rgb[GaussOrder][3], tint[GaussOrder][3];
   double muGauss = 0.0;
   nonZero = false;
   for (int g = 0; g < GaussOrder; ++g)

@@ -21,7 +21,7 @@
 #ifndef vtkShadowSweep_h
 #define vtkShadowSweep_h
 
-#include "vtkIrradianceRegion.h"       // IndexBox
+#include "vtkIrradianceRegion.h"        // IndexBox
 #include "vtkMultiMaterialLightModel.h" // LightSource
 #include "vtkMultiMaterialParameters.h" // ShadowEstimation
 
@@ -44,15 +44,21 @@ inline bool UsesPiecewiseShadowRays(int estimation, const LightSource& light)
 
 struct ShadowSweep
 {
-  int Axis = 2;              // the dominant index axis of the direction toward the light
+  int Axis = 2;               // the dominant index axis of the direction toward the light
   bool TowardPositive = true; // the light lies toward +Axis: the sweep starts at the last slice
-  int Slices = 1;            // grid dimension along Axis
-  int SlicesPerChunk = 1;    // K
+  int Slices = 1;             // grid dimension along Axis
+  int SlicesPerChunk = 1;     // K
 
-  int GetNumberOfChunks() const { return (this->Slices + this->SlicesPerChunk - 1) / this->SlicesPerChunk; }
+  int GetNumberOfChunks() const
+  {
+    return (this->Slices + this->SlicesPerChunk - 1) / this->SlicesPerChunk;
+  }
 
   /// The slice at `depth` slices from the light's side.
-  int SliceAtDepth(int depth) const { return this->TowardPositive ? this->Slices - 1 - depth : depth; }
+  int SliceAtDepth(int depth) const
+  {
+    return this->TowardPositive ? this->Slices - 1 - depth : depth;
+  }
 
   /**
    * Chunk `c`: its slices [first, last] (index order) and the slice whose
@@ -72,8 +78,9 @@ struct ShadowSweep
   /// its empty voxels are computed too, the chunk's other empty voxels not.
   int GetReadSlice(int c) const
   {
-    return c + 1 < this->GetNumberOfChunks() ? this->SliceAtDepth((c + 1) * this->SlicesPerChunk - 1)
-                                             : -1;
+    return c + 1 < this->GetNumberOfChunks()
+      ? this->SliceAtDepth((c + 1) * this->SlicesPerChunk - 1)
+      : -1;
   }
 };
 
@@ -143,8 +150,7 @@ inline std::vector<IndexBox> PlanSweepBoxes(
       {
         for (int t = 0; t < 2; ++t)
         {
-          const double q =
-            needed.Bounds[2 * e + t] + (plane - needed.Bounds[2 * axis + s]) * slope;
+          const double q = needed.Bounds[2 * e + t] + (plane - needed.Bounds[2 * axis + s]) * slope;
           lo = std::min(lo, q);
           hi = std::max(hi, q);
         }
@@ -166,7 +172,8 @@ inline std::vector<IndexBox> PlanSweepBoxes(
  * exit distance `exit`, within the tolerances of vtkMultiMaterialParameters.h.
  * GLSL: mmvReachesSweepPlane (Shaders/mmvPiecewiseShadowFS.glsl).
  */
-inline bool ReachesSweepPlane(double start, double direction, int plane, double exit, double& distance)
+inline bool ReachesSweepPlane(
+  double start, double direction, int plane, double exit, double& distance)
 {
   distance = 0.0;
   if (plane < 0 || direction == 0.0)

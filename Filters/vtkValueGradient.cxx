@@ -18,27 +18,31 @@ void ComputeValueGradients(vtkDataArray* scalars, int component, const int dims[
   const vtkIdType count = stride[2] * dims[2];
   const double scale = range[1] > range[0] ? 1.0 / (range[1] - range[0]) : 0.0;
   std::vector<float> values(count);
-  vtkSMPTools::For(0, count, [&](vtkIdType begin, vtkIdType end) {
-    for (vtkIdType v = begin; v < end; ++v)
+  vtkSMPTools::For(0, count,
+    [&](vtkIdType begin, vtkIdType end)
     {
-      values[v] = static_cast<float>((scalars->GetComponent(v, component) - range[0]) * scale);
-    }
-  });
-  gradients.resize(3 * count);
-  vtkSMPTools::For(0, count, [&](vtkIdType begin, vtkIdType end) {
-    for (vtkIdType v = begin; v < end; ++v)
-    {
-      const int index[3] = { static_cast<int>(v % dims[0]),
-        static_cast<int>((v / dims[0]) % dims[1]), static_cast<int>(v / stride[2]) };
-      for (int a = 0; a < 3; ++a)
+      for (vtkIdType v = begin; v < end; ++v)
       {
-        const vtkIdType below = index[a] > 0 ? v - stride[a] : v;
-        const vtkIdType above = index[a] + 1 < dims[a] ? v + stride[a] : v;
-        const float g = 0.5f * (values[above] - values[below]);
-        gradients[3 * v + a] = std::isfinite(g) ? g : 0.0f;
+        values[v] = static_cast<float>((scalars->GetComponent(v, component) - range[0]) * scale);
       }
-    }
-  });
+    });
+  gradients.resize(3 * count);
+  vtkSMPTools::For(0, count,
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      for (vtkIdType v = begin; v < end; ++v)
+      {
+        const int index[3] = { static_cast<int>(v % dims[0]),
+          static_cast<int>((v / dims[0]) % dims[1]), static_cast<int>(v / stride[2]) };
+        for (int a = 0; a < 3; ++a)
+        {
+          const vtkIdType below = index[a] > 0 ? v - stride[a] : v;
+          const vtkIdType above = index[a] + 1 < dims[a] ? v + stride[a] : v;
+          const float g = 0.5f * (values[above] - values[below]);
+          gradients[3 * v + a] = std::isfinite(g) ? g : 0.0f;
+        }
+      }
+    });
 }
 
 double ValidGradientSmoothing(double sigma, std::string* why)
@@ -59,8 +63,8 @@ double ValidGradientSmoothing(double sigma, std::string* why)
 
 void GradientSmoothingVoxels(double sigma, const double spacing[3], double voxels[3])
 {
-  const double largest = std::max({ std::abs(spacing[0]), std::abs(spacing[1]),
-    std::abs(spacing[2]) });
+  const double largest =
+    std::max({ std::abs(spacing[0]), std::abs(spacing[1]), std::abs(spacing[2]) });
   for (int a = 0; a < 3; ++a)
   {
     const double h = std::abs(spacing[a]);
@@ -93,30 +97,31 @@ void SmoothVectors(
       w /= total;
     }
     source = values;
-    vtkSMPTools::For(0, count, [&](vtkIdType begin, vtkIdType end) {
-      for (vtkIdType v = begin; v < end; ++v)
+    vtkSMPTools::For(0, count,
+      [&](vtkIdType begin, vtkIdType end)
       {
-        const int i = static_cast<int>((v / stride[a]) % dims[a]);
-        for (int c = 0; c < components; ++c)
+        for (vtkIdType v = begin; v < end; ++v)
         {
-          double sum = 0.0;
-          for (int t = -radius; t <= radius; ++t)
+          const int i = static_cast<int>((v / stride[a]) % dims[a]);
+          for (int c = 0; c < components; ++c)
           {
-            const int n = std::min(std::max(i + t, 0), dims[a] - 1);
-            sum += weights[t + radius] * source[components * (v + (n - i) * stride[a]) + c];
+            double sum = 0.0;
+            for (int t = -radius; t <= radius; ++t)
+            {
+              const int n = std::min(std::max(i + t, 0), dims[a] - 1);
+              sum += weights[t + radius] * source[components * (v + (n - i) * stride[a]) + c];
+            }
+            values[components * v + c] = static_cast<float>(sum);
           }
-          values[components * v + c] = static_cast<float>(sum);
         }
-      }
-    });
+      });
   }
 }
 
 std::vector<float> ResampleVectors(
   const std::vector<float>& values, int components, const int dims[3], const int newDims[3])
 {
-  std::vector<float> out(
-    static_cast<size_t>(components) * newDims[0] * newDims[1] * newDims[2]);
+  std::vector<float> out(static_cast<size_t>(components) * newDims[0] * newDims[1] * newDims[2]);
   double ratio[3];
   for (int a = 0; a < 3; ++a)
   {
@@ -124,55 +129,59 @@ std::vector<float> ResampleVectors(
   }
   const vtkIdType sy = dims[0];
   const vtkIdType sz = static_cast<vtkIdType>(dims[0]) * dims[1];
-  vtkSMPTools::For(0, newDims[2], [&](vtkIdType k0, vtkIdType k1) {
-    for (vtkIdType k = k0; k < k1; ++k)
+  vtkSMPTools::For(0, newDims[2],
+    [&](vtkIdType k0, vtkIdType k1)
     {
-      for (int j = 0; j < newDims[1]; ++j)
+      for (vtkIdType k = k0; k < k1; ++k)
       {
-        for (int i = 0; i < newDims[0]; ++i)
+        for (int j = 0; j < newDims[1]; ++j)
         {
-          const double p[3] = { i * ratio[0], j * ratio[1], k * ratio[2] };
-          int lo[3];
-          int hi[3];
-          double w[3];
-          for (int a = 0; a < 3; ++a)
+          for (int i = 0; i < newDims[0]; ++i)
           {
-            lo[a] = std::min(static_cast<int>(p[a]), dims[a] - 1);
-            hi[a] = std::min(lo[a] + 1, dims[a] - 1);
-            w[a] = p[a] - lo[a];
-          }
-          const size_t target =
-            components * (i + static_cast<size_t>(newDims[0]) * (j + static_cast<size_t>(newDims[1]) * k));
-          for (int c = 0; c < components; ++c)
-          {
-            double sum = 0.0;
-            for (int corner = 0; corner < 8; ++corner)
+            const double p[3] = { i * ratio[0], j * ratio[1], k * ratio[2] };
+            int lo[3];
+            int hi[3];
+            double w[3];
+            for (int a = 0; a < 3; ++a)
             {
-              const int x = corner & 1 ? hi[0] : lo[0];
-              const int y = corner & 2 ? hi[1] : lo[1];
-              const int z = corner & 4 ? hi[2] : lo[2];
-              const double weight = (corner & 1 ? w[0] : 1 - w[0]) *
-                (corner & 2 ? w[1] : 1 - w[1]) * (corner & 4 ? w[2] : 1 - w[2]);
-              sum += weight * values[components * (x + y * sy + z * sz) + c];
+              lo[a] = std::min(static_cast<int>(p[a]), dims[a] - 1);
+              hi[a] = std::min(lo[a] + 1, dims[a] - 1);
+              w[a] = p[a] - lo[a];
             }
-            out[target + c] = static_cast<float>(sum);
+            const size_t target = components *
+              (i + static_cast<size_t>(newDims[0]) * (j + static_cast<size_t>(newDims[1]) * k));
+            for (int c = 0; c < components; ++c)
+            {
+              double sum = 0.0;
+              for (int corner = 0; corner < 8; ++corner)
+              {
+                const int x = corner & 1 ? hi[0] : lo[0];
+                const int y = corner & 2 ? hi[1] : lo[1];
+                const int z = corner & 4 ? hi[2] : lo[2];
+                const double weight = (corner & 1 ? w[0] : 1 - w[0]) *
+                  (corner & 2 ? w[1] : 1 - w[1]) * (corner & 4 ? w[2] : 1 - w[2]);
+                sum += weight * values[components * (x + y * sy + z * sz) + c];
+              }
+              out[target + c] = static_cast<float>(sum);
+            }
           }
         }
       }
-    }
-  });
+    });
   return out;
 }
 
 std::vector<unsigned short> PackHalfFloats(const std::vector<float>& values)
 {
   std::vector<unsigned short> halves(values.size());
-  vtkSMPTools::For(0, static_cast<vtkIdType>(values.size()), [&](vtkIdType begin, vtkIdType end) {
-    for (vtkIdType i = begin; i < end; ++i)
+  vtkSMPTools::For(0, static_cast<vtkIdType>(values.size()),
+    [&](vtkIdType begin, vtkIdType end)
     {
-      halves[i] = static_cast<unsigned short>(glm::packHalf1x16(values[i]));
-    }
-  });
+      for (vtkIdType i = begin; i < end; ++i)
+      {
+        halves[i] = static_cast<unsigned short>(glm::packHalf1x16(values[i]));
+      }
+    });
   return halves;
 }
 

@@ -37,8 +37,8 @@ namespace mmv
  * differences give 0 along that axis: NaN must not reach the shading.
  * Multithreaded (vtkSMPTools).
  */
-VTKMULTIMATERIALVOLUMEFILTERS_EXPORT void ComputeValueGradients(vtkDataArray* scalars, int component,
-  const int dims[3], const double range[2], std::vector<float>& gradients);
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT void ComputeValueGradients(vtkDataArray* scalars,
+  int component, const int dims[3], const double range[2], std::vector<float>& gradients);
 
 /**
  * The shading normal's optional smoothing (GradientSmoothing of the mapper):
@@ -58,7 +58,8 @@ VTKMULTIMATERIALVOLUMEFILTERS_EXPORT void GradientSmoothingVoxels(
  * 3 sigma, the volume's faces repeated outward; axes with sigma 0 are left
  * alone. The gradient of thin shells sampled coarsely (the MR head's 3.2 mm
  * in x and y) turns at every voxel face; in the image that shows as stripes
- * at the voxel spacing (docs/stability.md, "Stripes on thin shells"), which a sigma of one voxel removes.
+ * at the voxel spacing (docs/stability.md, "Stripes on thin shells"), which a sigma of one voxel
+ * removes.
  */
 VTKMULTIMATERIALVOLUMEFILTERS_EXPORT void SmoothVectors(
   std::vector<float>& values, int components, const int dims[3], const double sigma[3]);
@@ -68,8 +69,8 @@ VTKMULTIMATERIALVOLUMEFILTERS_EXPORT void SmoothVectors(
  * resampled trilinearly to a `newDims` grid spanning the same points (point j
  * of an axis at old point j (dims - 1) / (newDims - 1)).
  */
-VTKMULTIMATERIALVOLUMEFILTERS_EXPORT std::vector<float> ResampleVectors(const std::vector<float>& values,
-  int components, const int dims[3], const int newDims[3]);
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT std::vector<float> ResampleVectors(
+  const std::vector<float>& values, int components, const int dims[3], const int newDims[3]);
 
 /// The values as IEEE half floats (GL_HALF_FLOAT), converted on every core:
 /// the gradient texture is RGB16F, and a driver given 32-bit floats converts

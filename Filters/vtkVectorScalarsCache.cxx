@@ -40,8 +40,7 @@ vtkDataArray* vtkVectorScalarsCache::Get(
   }
   if (found == this->Entries.end())
   {
-    vtkSmartPointer<vtkDataArray> reduced =
-      mmv::MakeVectorScalars(vectors, mode, component, error);
+    vtkSmartPointer<vtkDataArray> reduced = mmv::MakeVectorScalars(vectors, mode, component, error);
     if (!reduced)
     {
       return nullptr;

@@ -28,8 +28,7 @@ vtkSmartPointer<vtkImageData> MakeCellCentreImage(vtkImageData* image, vtkDataAr
   }
   auto centres = vtkSmartPointer<vtkImageData>::New();
   // Cell (i, j, k) spans points i..i+1: its centre is continuous index i + 0.5.
-  centres->SetExtent(
-    extent[0], extent[1] - 1, extent[2], extent[3] - 1, extent[4], extent[5] - 1);
+  centres->SetExtent(extent[0], extent[1] - 1, extent[2], extent[3] - 1, extent[4], extent[5] - 1);
   centres->SetSpacing(image->GetSpacing());
   centres->SetDirectionMatrix(image->GetDirectionMatrix());
   double origin[3];
@@ -47,7 +46,8 @@ vtkSmartPointer<vtkImageData> MakeCellCentreImage(vtkImageData* image, vtkDataAr
 vtkSmartPointer<vtkDataArray> MakeVectorScalars(
   vtkDataArray* vectors, int mode, int component, std::string* error)
 {
-  auto fail = [error](const std::string& message) {
+  auto fail = [error](const std::string& message)
+  {
     if (error)
     {
       *error = message;

@@ -62,7 +62,8 @@ void MaterialNodeModel::SetCurrent(int index)
 bool MaterialNodeModel::IsStandIn(int node, int parameter) const
 {
   return std::any_of(this->LoadProblems.begin(), this->LoadProblems.end(),
-    [&](const LoadProblem& p) { return p.Parameter >= 0 && p.Node == node && p.Parameter == parameter; });
+    [&](const LoadProblem& p)
+    { return p.Parameter >= 0 && p.Node == node && p.Parameter == parameter; });
 }
 
 //-----------------------------------------------------------------------------
@@ -235,8 +236,7 @@ bool MaterialNodeModel::SetParameterText(int index, int parameter, const std::st
   {
     return false;
   }
-  this->Notice =
-    ParameterTextNotice(parameter, text, this->Nodes[index][parameter + 1]);
+  this->Notice = ParameterTextNotice(parameter, text, this->Nodes[index][parameter + 1]);
   if (!this->Notice.empty())
   {
     return false;

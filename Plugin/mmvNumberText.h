@@ -113,7 +113,8 @@ inline NumberText ParseNumberText(const std::string& text, double min, double ma
     const bool tiny = e != std::string::npos && e + 1 < s.size() && s[e + 1] == '-';
     value = tiny ? 0.0 : (s[0] == '-' ? -HUGE_VAL : HUGE_VAL);
   }
-  if (whole && !letters && (parsed.ec == std::errc() || parsed.ec == std::errc::result_out_of_range))
+  if (whole && !letters &&
+    (parsed.ec == std::errc() || parsed.ec == std::errc::result_out_of_range))
   {
     result.Value = value;
     result.State = (std::isfinite(value) && value >= min && value <= max)

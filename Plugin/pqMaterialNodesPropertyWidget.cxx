@@ -107,7 +107,8 @@ QString presetDescription(const char* name, const double parameters[ParameterCou
   QStringList values;
   for (int p = 0; p < ParameterCount; ++p)
   {
-    values << QStringLiteral("%1 %2").arg(QString::fromLatin1(mmv::MaterialParameterTable[p].Key))
+    values << QStringLiteral("%1 %2")
+                .arg(QString::fromLatin1(mmv::MaterialParameterTable[p].Key))
                 .arg(parameters[p]);
   }
   return pqMaterialNodesPropertyWidget::tr(
@@ -122,7 +123,6 @@ bool validRange(const double r[2])
 }
 }
 
-
 //-----------------------------------------------------------------------------
 class pqMaterialNodesPropertyWidget::pqInternals
 {
@@ -131,7 +131,7 @@ public:
   QString Preset; // MaterialPreset: a preset name, or "Custom" (the nodes apply)
   bool HasPresetProperty = false;
   QString CustomPreset = QStringLiteral("Custom"); // MaterialPreset's "use the nodes" value
-  int ShownParameter = mmv::Diffuse; // parameter whose curve the track draws
+  int ShownParameter = mmv::Diffuse;               // parameter whose curve the track draws
 
   bool HasDataRange = false;
   double DataRange[2] = { 0, 1 };
@@ -145,13 +145,13 @@ public:
   QComboBox* Presets = nullptr;
   QToolButton* Remove = nullptr;
   QLabel* Status = nullptr;
-  QString Refusal; // the last typed value a spin box refused
+  QString Refusal;          // the last typed value a spin box refused
   QLabel* Notice = nullptr; // shows the model's load problems or Refusal, in red
   QString NoticeText;       // the whole notice (the label may show it elided)
   QGridLayout* Grid = nullptr;
   std::vector<std::pair<QLabel*, QWidget*>> Rows; // Value, then the parameters
   int Columns = 0;                                // label/editor pairs per grid row
-  bool Updating = false; // editors being filled from the nodes
+  bool Updating = false;                          // editors being filled from the nodes
 
   // Numbers MaterialNodes held that the renderer rejects, as loaded: the
   // editors show the model's stand-ins (never a NaN clamped to 1000) and
@@ -164,8 +164,8 @@ public:
     {
       if (problem.Parameter < 0)
       {
-        text << pqMaterialNodesPropertyWidget::tr("a node at value %1 is left out")
-                  .arg(problem.Value);
+        text
+          << pqMaterialNodesPropertyWidget::tr("a node at value %1 is left out").arg(problem.Value);
       }
       else
       {
@@ -343,8 +343,8 @@ QHBoxLayout* pqMaterialNodesPropertyWidget::createSelectionRow()
       continue;
     }
     internals.Presets->addItem(QIcon(presetSwatch(parameters, swatch)), QString::fromUtf8(name));
-    internals.Presets->setItemData(internals.Presets->count() - 1,
-      presetDescription(name, parameters), Qt::ToolTipRole);
+    internals.Presets->setItemData(
+      internals.Presets->count() - 1, presetDescription(name, parameters), Qt::ToolTipRole);
   }
   row->addWidget(internals.Presets, 1);
   internals.Status = new QLabel(this);
@@ -388,12 +388,12 @@ void pqMaterialNodesPropertyWidget::createEditors()
                              .arg(info.SoftMin)
                              .arg(info.SoftMax)
                              .arg(info.HardMax));
-    spin->Refused = [&internals, p, spin](const QString& text) {
-      internals.Refusal = QString::fromStdString(
-        mmv::MaterialNodeModel::ParameterTextNotice(p, text.trimmed().toStdString(), spin->value()));
+    spin->Refused = [&internals, p, spin](const QString& text)
+    {
+      internals.Refusal = QString::fromStdString(mmv::MaterialNodeModel::ParameterTextNotice(
+        p, text.trimmed().toStdString(), spin->value()));
       internals.showNotice();
-      vtkVLogF(PARAVIEW_LOG_APPLICATION_VERBOSITY(), "%s",
-        internals.Refusal.toUtf8().constData());
+      vtkVLogF(PARAVIEW_LOG_APPLICATION_VERBOSITY(), "%s", internals.Refusal.toUtf8().constData());
     };
     internals.Spin[p] = spin;
     auto* label = new QLabel(editorLabel(p), this);
@@ -432,8 +432,10 @@ void pqMaterialNodesPropertyWidget::setMaterialNodes(const QList<QVariant>& valu
   const QStringList problems = internals.loadProblems();
   if (!problems.isEmpty())
   {
-    vtkVLogF(PARAVIEW_LOG_APPLICATION_VERBOSITY(), "MaterialNodes: %d invalid number(s) shown as "
-      "stand-ins: %s", static_cast<int>(problems.size()), problems.join("; ").toUtf8().constData());
+    vtkVLogF(PARAVIEW_LOG_APPLICATION_VERBOSITY(),
+      "MaterialNodes: %d invalid number(s) shown as "
+      "stand-ins: %s",
+      static_cast<int>(problems.size()), problems.join("; ").toUtf8().constData());
   }
   this->updateEditors();
 }
@@ -518,7 +520,8 @@ int pqMaterialNodesPropertyWidget::insertNode(double value, bool* changed)
     // commitNodes() then switches MaterialPreset to Custom.
     double range[2];
     pqInternals::colorMapRange(this->proxy(), range);
-    fromPreset = internals.Model.TakePreset(internals.Preset.toUtf8().constData(), range[0], range[1]);
+    fromPreset =
+      internals.Model.TakePreset(internals.Preset.toUtf8().constData(), range[0], range[1]);
   }
   bool inserted = false;
   const int index = internals.Model.Insert(value, &inserted);
@@ -579,8 +582,7 @@ void pqMaterialNodesPropertyWidget::applyPreset(const QString& name)
     // itself (and keeps it there when the range changes); the nodes stay
     // for when the user goes back to them.
     internals.Preset = name;
-    vtkVLogF(
-      PARAVIEW_LOG_APPLICATION_VERBOSITY(), "MaterialPreset set to '%s'", key.constData());
+    vtkVLogF(PARAVIEW_LOG_APPLICATION_VERBOSITY(), "MaterialPreset set to '%s'", key.constData());
     this->updateEditors();
     Q_EMIT this->materialPresetChanged();
     return;
@@ -600,8 +602,8 @@ void pqMaterialNodesPropertyWidget::commitNodes()
   internals.Model.ClearLoadProblems();
   internals.Refusal.clear();
   this->updateEditors();
-  vtkVLogF(PARAVIEW_LOG_APPLICATION_VERBOSITY(), "MaterialNodes edited: %d nodes",
-    this->nodeCount());
+  vtkVLogF(
+    PARAVIEW_LOG_APPLICATION_VERBOSITY(), "MaterialNodes edited: %d nodes", this->nodeCount());
   // The property links turn these into property changes (changeAvailable,
   // then one changeFinished: the panel applies them as one undoable step).
   Q_EMIT this->materialNodesChanged();
@@ -697,13 +699,12 @@ void pqMaterialNodesPropertyWidget::updateEditors()
     internals.Spin[p]->setProblem(selected ? internals.cellProblem(p) : QString());
   }
   internals.showNotice();
-  internals.Value->setText(selected
-      ? pqDoubleLineEdit::formatDoubleUsingGlobalPrecisionAndNotation(
-          internals.Model.GetNodes()[current][0])
-      : QString());
+  internals.Value->setText(selected ? pqDoubleLineEdit::formatDoubleUsingGlobalPrecisionAndNotation(
+                                        internals.Model.GetNodes()[current][0])
+                                    : QString());
   internals.Status->setText(selected ? tr("%1 / %2").arg(current + 1).arg(this->nodeCount())
-      : preset                          ? tr("preset %1").arg(internals.Preset)
-                                        : tr("%n node(s)", nullptr, this->nodeCount()));
+      : preset                       ? tr("preset %1").arg(internals.Preset)
+                                     : tr("%n node(s)", nullptr, this->nodeCount()));
   internals.Updating = prev;
   internals.updateTrack();
 }

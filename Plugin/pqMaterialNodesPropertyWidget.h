@@ -51,8 +51,8 @@ class pqMaterialNodesPropertyWidget : public pqPropertyWidget
 
   Q_PROPERTY(QList<QVariant> materialNodes READ materialNodes WRITE setMaterialNodes NOTIFY
       materialNodesChanged)
-  Q_PROPERTY(QString materialPreset READ materialPreset WRITE setMaterialPreset NOTIFY
-      materialPresetChanged)
+  Q_PROPERTY(
+    QString materialPreset READ materialPreset WRITE setMaterialPreset NOTIFY materialPresetChanged)
   // Read-only views for tests (QtTesting's <pqcheck> compares Qt properties).
   Q_PROPERTY(int nodeCount READ nodeCount)
   Q_PROPERTY(int currentNode READ currentNode WRITE setCurrentNode)

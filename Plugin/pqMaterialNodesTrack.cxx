@@ -32,8 +32,8 @@ pqMaterialNodesTrack::pqMaterialNodesTrack(
 QRectF pqMaterialNodesTrack::plotRect() const
 {
   const int text = this->fontMetrics().height();
-  return QRectF(Radius + 3, 3, this->width() - 2 * (Radius + 3),
-    this->height() - 3 - text - 2 * Radius - 6);
+  return QRectF(
+    Radius + 3, 3, this->width() - 2 * (Radius + 3), this->height() - 3 - text - 2 * Radius - 6);
 }
 
 //-----------------------------------------------------------------------------
@@ -127,8 +127,8 @@ void pqMaterialNodesTrack::paintHandles(QPainter& painter, const double range[2]
       }
     }
     painter.setBrush(fill);
-    painter.setPen(selected ? QPen(pal.color(QPalette::Highlight), 2.5)
-                            : QPen(pal.color(QPalette::Dark), 1));
+    painter.setPen(
+      selected ? QPen(pal.color(QPalette::Highlight), 2.5) : QPen(pal.color(QPalette::Dark), 1));
     painter.drawEllipse(QPointF(x, hy), Radius, Radius);
   }
 }
@@ -173,7 +173,8 @@ void pqMaterialNodesTrack::paintEvent(QPaintEvent*)
       const double x = plot.left() + plot.width() * c / columns;
       const double v =
         this->Model.EvaluateParameter(this->toValue(x, range), this->View.ShownParameter);
-      const double t = std::min(1.0, std::max(0.0, (v - info.SoftMin) / (info.SoftMax - info.SoftMin)));
+      const double t =
+        std::min(1.0, std::max(0.0, (v - info.SoftMin) / (info.SoftMax - info.SoftMin)));
       const QPointF p(x, plot.bottom() - t * plot.height());
       c == 0 ? curve.moveTo(p) : curve.lineTo(p);
     }
@@ -198,8 +199,8 @@ void pqMaterialNodesTrack::paintEvent(QPaintEvent*)
                                                 "use the nodes")
                 .arg(this->View.ActivePreset);
   }
-  painter.drawText(plot.adjusted(3, 1, -3, 0), Qt::AlignTop | Qt::AlignLeft | Qt::TextWordWrap,
-    caption);
+  painter.drawText(
+    plot.adjusted(3, 1, -3, 0), Qt::AlignTop | Qt::AlignLeft | Qt::TextWordWrap, caption);
 
   // Range labels under the handle strip.
   const QRectF labels(plot.left(), this->handleY() + Radius + 2, plot.width(),
@@ -296,7 +297,8 @@ void pqMaterialNodesTrack::keyPressEvent(QKeyEvent* event)
       if (n > 0)
       {
         const int step = event->key() == Qt::Key_Left ? -1 : 1;
-        const int next = current < 0 ? (step > 0 ? 0 : n - 1) : std::min(n - 1, std::max(0, current + step));
+        const int next =
+          current < 0 ? (step > 0 ? 0 : n - 1) : std::min(n - 1, std::max(0, current + step));
         this->Owner->setCurrentNode(next);
         event->accept();
         return;

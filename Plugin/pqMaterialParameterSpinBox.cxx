@@ -87,6 +87,6 @@ void pqMaterialParameterSpinBox::setProblem(const QString& why)
   }
   this->Problem = why;
   this->setToolTip(why.isEmpty() ? this->NormalToolTip : why);
-  this->setStyleSheet(why.isEmpty() ? QString()
-                                    : QStringLiteral("QDoubleSpinBox { border: 2px solid red; }"));
+  this->setStyleSheet(
+    why.isEmpty() ? QString() : QStringLiteral("QDoubleSpinBox { border: 2px solid red; }"));
 }

@@ -49,8 +49,8 @@ void vtkIrradianceEstimator::SetInputs(const mmv::IrradianceGrid& grid,
   }
   if (static_cast<int>(lights.size()) > mmv::MaxLights)
   {
-    vtkWarningMacro("" << lights.size() << " lights given; only the first " << mmv::MaxLights
-                       << " are used.");
+    vtkWarningMacro(
+      "" << lights.size() << " lights given; only the first " << mmv::MaxLights << " are used.");
   }
   internals.Lights.assign(
     lights.begin(), lights.begin() + std::min<size_t>(lights.size(), mmv::MaxLights));
@@ -71,9 +71,8 @@ void vtkIrradianceEstimator::SetInputs(const mmv::IrradianceGrid& grid,
   const bool sameScalars = scalarsVersion != 0 ? scalarsVersion == internals.ScalarsVersion
                                                : internals.Scalars == normalizedScalars;
   const bool sameVolume = internals.HasInputs && SameGrid(internals.Grid, grid) &&
-    internals.StepLength == stepLength && sameScalars &&
-    internals.ShadowTable == shadow && internals.OpacityTable == opacity &&
-    internals.ScatteringTable == scattering;
+    internals.StepLength == stepLength && sameScalars && internals.ShadowTable == shadow &&
+    internals.OpacityTable == opacity && internals.ScatteringTable == scattering;
   if (!sameVolume)
   {
     if (!sameScalars || !SameGrid(internals.Grid, grid))
@@ -207,14 +206,14 @@ bool vtkIrradianceEstimator::Render(vtkOpenGLRenderWindow* context)
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     // Only the lights that moved (or all, when the volume changed) are
     // recomputed: each light keeps its own channel.
-    const std::vector<bool> updated = internals.MarkLightsToUpdate(
-      internals.VolumeChanged || reallocated,
-      mmv::LightToleranceRadians(this->LightDirectionTolerance), given);
+    const std::vector<bool> updated =
+      internals.MarkLightsToUpdate(internals.VolumeChanged || reallocated,
+        mmv::LightToleranceRadians(this->LightDirectionTolerance), given);
     // Progress counts a light's shadows and its share of a diffusion as one
     // unit each.
     this->ProgressDone = 0.0;
-    this->ProgressTotal = static_cast<double>(
-      std::count(updated.begin(), updated.end(), true) * (diffusion ? 2 : 1));
+    this->ProgressTotal =
+      static_cast<double>(std::count(updated.begin(), updated.end(), true) * (diffusion ? 2 : 1));
     for (int group = 0; ok && group < this->GetNumberOfIrradianceTextures(); ++group)
     {
       ok = this->UpdateGroup(context, group, updated, estimation, diffusion);
@@ -253,8 +252,8 @@ bool vtkIrradianceEstimator::CanRender(vtkOpenGLRenderWindow* context)
   context->GetOpenGLVersion(major, minor);
   if (major * 10 + minor < 32)
   {
-    vtkErrorMacro("The irradiance volume needs OpenGL 3.2, the context has " << major << "."
-                                                                             << minor << ".");
+    vtkErrorMacro(
+      "The irradiance volume needs OpenGL 3.2, the context has " << major << "." << minor << ".");
     return false;
   }
   return true;
@@ -300,8 +299,8 @@ int vtkIrradianceEstimator::PrepareSettings(bool& diffusion)
     internals.MultipleScatteringUsed = this->MultipleScattering;
     internals.VolumeChanged = true;
   }
-  diffusion = this->MultipleScattering && this->DiffusionTime > 0.0 &&
-    internals.CoarseMaxRate > 0.0;
+  diffusion =
+    this->MultipleScattering && this->DiffusionTime > 0.0 && internals.CoarseMaxRate > 0.0;
   const mmv::IndexBox region = internals.Region();
   if (region != internals.RegionUsed)
   {
@@ -352,7 +351,8 @@ bool vtkIrradianceEstimator::UpdateGroup(vtkOpenGLRenderWindow* context, int gro
     return true;
   }
   auto stage = std::chrono::steady_clock::now();
-  auto elapsed = [&stage]() {
+  auto elapsed = [&stage]()
+  {
     glFinish();
     const auto now = std::chrono::steady_clock::now();
     const double seconds = std::chrono::duration<double>(now - stage).count();
@@ -509,8 +509,8 @@ namespace
 // Slices 0 .. depth-1 of a 3D texture in turn as the read buffer of the
 // pass's framebuffer; `read(z)` reads the slice with glReadPixels.
 template <typename ReadSlice>
-void ForEachTextureSlice(vtkOpenGLRenderWindow* context,
-  vtkOpenGLFramebufferObject* framebuffer, vtkTextureObject* texture, int depth, ReadSlice&& read)
+void ForEachTextureSlice(vtkOpenGLRenderWindow* context, vtkOpenGLFramebufferObject* framebuffer,
+  vtkTextureObject* texture, int depth, ReadSlice&& read)
 {
   vtkOpenGLState* state = context->GetState();
   state->PushFramebufferBindings();
@@ -537,13 +537,12 @@ bool ReadBackTexture(vtkOpenGLRenderWindow* context, vtkOpenGLFramebufferObject*
   {
     return false;
   }
-  const int d[3] = { static_cast<int>(texture->GetWidth()),
-    static_cast<int>(texture->GetHeight()), static_cast<int>(texture->GetDepth()) };
+  const int d[3] = { static_cast<int>(texture->GetWidth()), static_cast<int>(texture->GetHeight()),
+    static_cast<int>(texture->GetDepth()) };
   const size_t sliceSize = static_cast<size_t>(d[0]) * d[1];
   values.assign(sliceSize * d[2], T());
-  ForEachTextureSlice(context, framebuffer, texture, d[2], [&](int z) {
-    glReadPixels(0, 0, d[0], d[1], GL_RED, type, values.data() + z * sliceSize);
-  });
+  ForEachTextureSlice(context, framebuffer, texture, d[2],
+    [&](int z) { glReadPixels(0, 0, d[0], d[1], GL_RED, type, values.data() + z * sliceSize); });
   return true;
 }
 }
@@ -561,8 +560,8 @@ bool vtkIrradianceEstimator::ReadBack(
   return true;
 }
 
-bool vtkIrradianceEstimator::ReadBackLights(vtkOpenGLRenderWindow* context, int first, int last,
-  std::vector<std::vector<float>>& values)
+bool vtkIrradianceEstimator::ReadBackLights(
+  vtkOpenGLRenderWindow* context, int first, int last, std::vector<std::vector<float>>& values)
 {
   vtkInternals& internals = *this->Internals;
   const int computed = static_cast<int>(internals.Lights.size());
@@ -583,22 +582,24 @@ bool vtkIrradianceEstimator::ReadBackLights(vtkOpenGLRenderWindow* context, int 
     {
       continue;
     }
-    ForEachTextureSlice(context, internals.Framebuffer, texture, d[2], [&](int z) {
-      glReadPixels(0, 0, d[0], d[1], GL_RGBA, GL_FLOAT, rgba.data());
-      for (int c = 0; c < LightsPerTexture; ++c)
+    ForEachTextureSlice(context, internals.Framebuffer, texture, d[2],
+      [&](int z)
       {
-        const int light = t * LightsPerTexture + c;
-        if (light < first || light >= last)
+        glReadPixels(0, 0, d[0], d[1], GL_RGBA, GL_FLOAT, rgba.data());
+        for (int c = 0; c < LightsPerTexture; ++c)
         {
-          continue;
+          const int light = t * LightsPerTexture + c;
+          if (light < first || light >= last)
+          {
+            continue;
+          }
+          float* out = values[light - first].data() + z * sliceSize;
+          for (vtkIdType p = 0; p < sliceSize; ++p)
+          {
+            out[p] = rgba[4 * p + c];
+          }
         }
-        float* out = values[light - first].data() + z * sliceSize;
-        for (vtkIdType p = 0; p < sliceSize; ++p)
-        {
-          out[p] = rgba[4 * p + c];
-        }
-      }
-    });
+      });
   }
   return true;
 }
@@ -635,8 +636,8 @@ bool vtkIrradianceEstimator::ReadBackLightGridNeeded(
   vtkInternals& internals = *this->Internals;
   internals.LightGridDimensions(internals.MaxLightGridStride(), dims);
   return internals.MaxLightGridStride() > 1 &&
-    ReadBackTexture(context, internals.Framebuffer, internals.LightGridClassTexture,
-      GL_UNSIGNED_BYTE, needed);
+    ReadBackTexture(
+      context, internals.Framebuffer, internals.LightGridClassTexture, GL_UNSIGNED_BYTE, needed);
 }
 
 void vtkIrradianceEstimator::LightGridNeededOnCPU(
@@ -670,7 +671,8 @@ vtkIdType vtkIrradianceEstimator::GetTextureMemoryBytes() const
 vtkIdType vtkIrradianceEstimator::GetScratchMemoryBytes() const
 {
   vtkIdType bytes = 0;
-  auto add = [&bytes](const vtkSmartPointer<vtkTextureObject>& texture) {
+  auto add = [&bytes](const vtkSmartPointer<vtkTextureObject>& texture)
+  {
     // RGBA32F: 4 channels of 4 bytes.
     bytes += texture ? static_cast<vtkIdType>(texture->GetWidth()) * texture->GetHeight() *
         texture->GetDepth() * 16
@@ -689,7 +691,8 @@ void vtkIrradianceEstimator::SetTintTable(const float* tintTable)
   std::vector<float> table;
   if (tintTable && internals.TableSize > 0)
   {
-    table.assign(tintTable, tintTable + 4 * static_cast<size_t>(internals.TableSize) * internals.TableSize);
+    table.assign(
+      tintTable, tintTable + 4 * static_cast<size_t>(internals.TableSize) * internals.TableSize);
   }
   if (table != internals.TintTable)
   {
@@ -730,16 +733,18 @@ bool vtkIrradianceEstimator::ReadBackTint(
   const vtkIdType sliceSize = static_cast<vtkIdType>(d[0]) * d[1];
   std::vector<float> rgba(4 * sliceSize);
   rgb.assign(3 * sliceSize * d[2], 0.0f);
-  ForEachTextureSlice(context, internals.Framebuffer, texture, d[2], [&](int z) {
-    glReadPixels(0, 0, d[0], d[1], GL_RGBA, GL_FLOAT, rgba.data());
-    for (vtkIdType p = 0; p < sliceSize; ++p)
+  ForEachTextureSlice(context, internals.Framebuffer, texture, d[2],
+    [&](int z)
     {
-      for (int c = 0; c < 3; ++c)
+      glReadPixels(0, 0, d[0], d[1], GL_RGBA, GL_FLOAT, rgba.data());
+      for (vtkIdType p = 0; p < sliceSize; ++p)
       {
-        rgb[3 * (z * sliceSize + p) + c] = rgba[4 * p + c];
+        for (int c = 0; c < 3; ++c)
+        {
+          rgb[3 * (z * sliceSize + p) + c] = rgba[4 * p + c];
+        }
       }
-    }
-  });
+    });
   return true;
 }
 

@@ -53,9 +53,9 @@
 // ParaView's client-server wrapping take minutes, and no wrapped language
 // could call it anyway.
 #ifndef __VTK_WRAP__
-#include "vtkIrradianceGrid.h"         // IrradianceGrid
-#ifndef __VTK_WRAP__ // GLM: the wrappers take minutes to parse it
-#include "vtkMultiMaterialCutaway.h"    // Cutaway
+#include "vtkIrradianceGrid.h"       // IrradianceGrid
+#ifndef __VTK_WRAP__                 // GLM: the wrappers take minutes to parse it
+#include "vtkMultiMaterialCutaway.h" // Cutaway
 #endif
 #include "vtkMultiMaterialLightModel.h" // LightSource
 #endif
@@ -277,8 +277,8 @@ public:
 #ifndef __VTK_WRAP__
   /// Lights first to last - 1, one vector each, reading each texture once
   /// (vtkIrradianceResolutionProbe compares whole fields).
-  bool ReadBackLights(vtkOpenGLRenderWindow* context, int first, int last,
-    std::vector<std::vector<float>>& values);
+  bool ReadBackLights(
+    vtkOpenGLRenderWindow* context, int first, int last, std::vector<std::vector<float>>& values);
 #endif
 
   ///@{

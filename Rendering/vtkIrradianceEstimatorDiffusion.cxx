@@ -36,7 +36,8 @@ void vtkIrradianceEstimator::vtkInternals::PlanDiffusion(
   }
   const double spacing[3] = { this->Grid.DataVoxelsPerVoxel[0], this->Grid.DataVoxelsPerVoxel[1],
     this->Grid.DataVoxelsPerVoxel[2] };
-  this->Coarse = mmv::PlanDiffusionGrid(this->Grid.Dimensions, spacing, maxStrength, this->Diffusion);
+  this->Coarse =
+    mmv::PlanDiffusionGrid(this->Grid.Dimensions, spacing, maxStrength, this->Diffusion);
   std::vector<float> coarseStrength;
   std::vector<float> capacity;
   if (this->ClassesOnCPU)
@@ -111,9 +112,11 @@ int vtkIrradianceEstimator::vtkInternals::Diffuse(
   vtkShaderProgram* restriction =
     this->Ready(context, this->RestrictQuad, mmvDiffusionGridFS, "#define MMV_RESTRICT\n", false);
   vtkShaderProgram* sweep = exponential
-    ? this->Ready(context, this->ExponentialQuad, mmvDiffusionFS, "#define MMV_EXPONENTIAL\n", false)
+    ? this->Ready(
+        context, this->ExponentialQuad, mmvDiffusionFS, "#define MMV_EXPONENTIAL\n", false)
     : this->Ready(context, this->SweepQuad, mmvDiffusionFS, "", false);
-  vtkShaderProgram* prolong = this->Ready(context, this->ProlongQuad, mmvDiffusionGridFS, "", false);
+  vtkShaderProgram* prolong =
+    this->Ready(context, this->ProlongQuad, mmvDiffusionGridFS, "", false);
   if (!restriction || !sweep || !prolong)
   {
     return -1;
@@ -130,8 +133,9 @@ int vtkIrradianceEstimator::vtkInternals::Diffuse(
   }
 
   int current = 0;
-  const int sweeps = exponential ? this->ExponentialSweeps(context, sweep, layered, current)
-                                 : this->BackwardEulerSweeps(context, sweep, layered, mask, current);
+  const int sweeps = exponential
+    ? this->ExponentialSweeps(context, sweep, layered, current)
+    : this->BackwardEulerSweeps(context, sweep, layered, mask, current);
 
   context->GetShaderCache()->ReadyShaderProgram(prolong);
   ScopedTextures bound{ this->FineScratch[0], this->ClassTexture, coarse[current],
@@ -164,8 +168,8 @@ void vtkIrradianceEstimator::vtkInternals::SetDiffusionGridUniforms(vtkShaderPro
 //------------------------------------------------------------------------------
 // Backward-Euler sub-steps on the diffusion grid, each solved by Chebyshev-
 // accelerated Jacobi sweeps; `current` receives the texture of the result.
-int vtkIrradianceEstimator::vtkInternals::BackwardEulerSweeps(vtkOpenGLRenderWindow* context,
-  vtkShaderProgram* sweep, bool layered, int mask, int& current)
+int vtkIrradianceEstimator::vtkInternals::BackwardEulerSweeps(
+  vtkOpenGLRenderWindow* context, vtkShaderProgram* sweep, bool layered, int mask, int& current)
 {
   auto& coarse = this->CoarseScratch;
   context->GetShaderCache()->ReadyShaderProgram(sweep);
@@ -247,8 +251,8 @@ int vtkIrradianceEstimator::vtkInternals::BackwardEulerSweeps(vtkOpenGLRenderWin
 // recurrence (Shaders/mmvDiffusionFS.glsl, MMV_EXPONENTIAL): b_k = c_k u0 +
 // 2 B b_k+1 - b_k+2 from k = n down to 1, then c_0 u0 + B b_1 - b_2; u0 is
 // the restricted irradiance (texture 0). `current` receives the result.
-int vtkIrradianceEstimator::vtkInternals::ExponentialSweeps(vtkOpenGLRenderWindow* context,
-  vtkShaderProgram* sweep, bool layered, int& current)
+int vtkIrradianceEstimator::vtkInternals::ExponentialSweeps(
+  vtkOpenGLRenderWindow* context, vtkShaderProgram* sweep, bool layered, int& current)
 {
   auto& coarse = this->CoarseScratch;
   context->GetShaderCache()->ReadyShaderProgram(sweep);

@@ -32,7 +32,6 @@
 #include "vtkTextureObject.h"
 #include "vtk_glew.h"
 
-
 #include <glm/gtc/type_ptr.hpp>
 
 #include <algorithm>
@@ -81,7 +80,8 @@ inline float LookupTable(const std::vector<float>& table, float t)
 inline std::string ComposeShader(
   const std::string& body, const std::string& defines, bool lightModel, bool compute)
 {
-  std::string source = compute ? "#version 430 core\n#define MMV_COMPUTE\n" : "//VTK::System::Dec\n";
+  std::string source =
+    compute ? "#version 430 core\n#define MMV_COMPUTE\n" : "//VTK::System::Dec\n";
   source += mmv::MaterialGLSLPrelude();
   source += mmv::CutawayGLSLPrelude();
   source += defines;
@@ -324,9 +324,9 @@ public:
   int SubSteps = 0;
   int SweepsPerStep = 0;
   std::vector<double> ExponentialSeries; // c_k of the exponential integrator
-  double SpectralRadius = 0.0; // of the Jacobi iteration, for the Chebyshev weights
-  mmv::IndexBox ScatteringBox; // diffusion-grid blocks with s > 0
-  unsigned int ResidualQuery = 0; // occlusion query counting unconverged blocks
+  double SpectralRadius = 0.0;           // of the Jacobi iteration, for the Chebyshev weights
+  mmv::IndexBox ScatteringBox;           // diffusion-grid blocks with s > 0
+  unsigned int ResidualQuery = 0;        // occlusion query counting unconverged blocks
 
   // The caller's region (SetRegion; every voxel until then or after
   // ResetRegion), the one the textures hold, and what this Render() draws.
@@ -433,10 +433,10 @@ public:
     vtkOpenGLRenderWindow* context, bool diffusion, bool layered, bool& reallocated);
   vtkShaderProgram* Ready(vtkOpenGLRenderWindow* context, mmv::voxelpass::VoxelPrograms& pass,
     const std::string& body, const std::string& defines, bool lightModel);
-  void DrawLayers(vtkOpenGLRenderWindow* context, mmv::voxelpass::VoxelPrograms& pass, vtkTextureObject* target,
-    bool layered, const int* box = nullptr, int writeMask = 0xF);
-  void Dispatch(vtkOpenGLRenderWindow* context, mmv::voxelpass::VoxelPrograms& pass, vtkTextureObject* target,
-    const int* box, int writeMask, bool countWrites);
+  void DrawLayers(vtkOpenGLRenderWindow* context, mmv::voxelpass::VoxelPrograms& pass,
+    vtkTextureObject* target, bool layered, const int* box = nullptr, int writeMask = 0xF);
+  void Dispatch(vtkOpenGLRenderWindow* context, mmv::voxelpass::VoxelPrograms& pass,
+    vtkTextureObject* target, const int* box, int writeMask, bool countWrites);
   unsigned int CountWrites(vtkOpenGLRenderWindow* context, mmv::voxelpass::VoxelPrograms& pass,
     vtkTextureObject* target, bool layered, const int* box);
   void SetTransferUniforms(vtkShaderProgram* program) const;
@@ -457,10 +457,10 @@ public:
   /// irradiance grid).
   int MaxLightGridStride() const;
 
-  bool ShadowPass(vtkOpenGLRenderWindow* context, int group, int mask, int stride, bool skipEmpty,
-    bool layered);
-  bool PiecewiseShadowPass(vtkOpenGLRenderWindow* context, int light, int slicesPerChunk,
-    bool skipEmpty, bool layered);
+  bool ShadowPass(
+    vtkOpenGLRenderWindow* context, int group, int mask, int stride, bool skipEmpty, bool layered);
+  bool PiecewiseShadowPass(
+    vtkOpenGLRenderWindow* context, int light, int slicesPerChunk, bool skipEmpty, bool layered);
   /// The lights of `mask` of a strided light grid, interpolated into their
   /// channels of FineScratch[0] over the estimated box.
   bool UpsamplePass(vtkOpenGLRenderWindow* context, int mask, int stride, bool layered);
@@ -470,8 +470,8 @@ public:
     vtkOpenGLRenderWindow* context, vtkShaderProgram* sweep, bool layered, int mask, int& current);
   int ExponentialSweeps(
     vtkOpenGLRenderWindow* context, vtkShaderProgram* sweep, bool layered, int& current);
-  bool FillPass(vtkOpenGLRenderWindow* context, vtkTextureObject* source, int group, int mask,
-    bool layered);
+  bool FillPass(
+    vtkOpenGLRenderWindow* context, vtkTextureObject* source, int group, int mask, bool layered);
   /// Which lights this update recomputes: all of them (`all`), or those
   /// the caller marked (SetLightsToUpdate), or else the new ones and those
   /// beyond `toleranceRadians` of the placement their channel holds;

@@ -7,9 +7,9 @@
 
 #include "mmvClassifyFS.h"
 #include "mmvDiffusionFS.h"
-#include "mmvLightGridNeededFS.h"
 #include "mmvLayerGS.h"
 #include "mmvLayerVS.h"
+#include "mmvLightGridNeededFS.h"
 #include "vtkSMPTools.h"
 
 #include <atomic>
@@ -26,7 +26,8 @@ vtkIdType vtkIrradianceEstimator::vtkInternals::ClassifyValues(const std::vector
   // On all cores: the whole grid at every opacity edit that needs it.
   std::atomic<vtkIdType> nonEmptyVoxels(0);
   vtkSMPTools::For(0, static_cast<vtkIdType>(scalars.size()),
-    [&](vtkIdType begin, vtkIdType end) {
+    [&](vtkIdType begin, vtkIdType end)
+    {
       vtkIdType count = 0;
       for (vtkIdType v = begin; v < end; ++v)
       {
@@ -52,8 +53,8 @@ bool vtkIrradianceEstimator::vtkInternals::NeedsCPUClasses(
   // Without an s > 0 in the table every class is -1 or 0: no strength, and
   // the plan for none is the plan.
   return multipleScattering && time > 0.0 &&
-    std::any_of(this->ScatteringTable.begin(), this->ScatteringTable.end(),
-      [](float s) { return s > 0.0f; });
+    std::any_of(
+      this->ScatteringTable.begin(), this->ScatteringTable.end(), [](float s) { return s > 0.0f; });
 }
 
 //------------------------------------------------------------------------------
@@ -87,7 +88,8 @@ void vtkIrradianceEstimator::vtkInternals::CountNonEmptyVoxels()
     std::vector<vtkIdType> histogram(2 * static_cast<size_t>(n), 0);
     std::mutex merge;
     vtkSMPTools::For(0, static_cast<vtkIdType>(this->Scalars.size()),
-      [&](vtkIdType begin, vtkIdType end) {
+      [&](vtkIdType begin, vtkIdType end)
+      {
         std::vector<vtkIdType> local(histogram.size(), 0);
         for (vtkIdType v = begin; v < end; ++v)
         {
@@ -115,7 +117,8 @@ void vtkIrradianceEstimator::vtkInternals::CountNonEmptyVoxels()
   {
     std::atomic<vtkIdType> count(0);
     vtkSMPTools::For(0, static_cast<vtkIdType>(this->Scalars.size()),
-      [&](vtkIdType begin, vtkIdType end) {
+      [&](vtkIdType begin, vtkIdType end)
+      {
         vtkIdType local = 0;
         for (vtkIdType v = begin; v < end; ++v)
         {
@@ -202,8 +205,8 @@ bool vtkIrradianceEstimator::vtkInternals::Upload(vtkOpenGLRenderWindow* context
   if (!scalarsKept)
   {
     this->ScalarTexture = NewTexture(context, GL_R32F, GL_RED, GL_FLOAT, true);
-    this->ScalarsUploaded = this->ScalarTexture->Create3DFromRaw(
-      d[0], d[1], d[2], 1, VTK_FLOAT, this->Scalars.data());
+    this->ScalarsUploaded =
+      this->ScalarTexture->Create3DFromRaw(d[0], d[1], d[2], 1, VTK_FLOAT, this->Scalars.data());
   }
   bool classes = true;
   if (!HasSize(this->ClassTexture, d))
@@ -255,8 +258,8 @@ bool vtkIrradianceEstimator::vtkInternals::AllocateTargets(
       // hands out garbage (NaN after the conversion) where llvmpipe zeroes.
       static const GLenum internal[] = { GL_R16, GL_RG16, GL_RGBA16, GL_RGBA16 };
       static const GLenum format[] = { GL_RED, GL_RG, GL_RGBA, GL_RGBA };
-      texture = NewTexture(
-        context, internal[channels - 1], format[channels - 1], GL_UNSIGNED_SHORT, true);
+      texture =
+        NewTexture(context, internal[channels - 1], format[channels - 1], GL_UNSIGNED_SHORT, true);
       std::vector<unsigned short> zeros(channels * static_cast<size_t>(d[0]) * d[1] * d[2], 0);
       ok = ok &&
         texture->Create3DFromRaw(d[0], d[1], d[2], channels, VTK_UNSIGNED_SHORT, zeros.data());
@@ -388,33 +391,35 @@ std::vector<unsigned char> vtkIrradianceEstimator::vtkInternals::LightGridNeeded
   }
   std::vector<unsigned char> needed(static_cast<size_t>(c[0]) * c[1] * c[2], 0);
   // In parallel over the light grid's planes: each writes only its own.
-  vtkSMPTools::For(0, c[2], [&](vtkIdType zBegin, vtkIdType zEnd) {
-    for (int z = static_cast<int>(zBegin); z < zEnd; ++z)
+  vtkSMPTools::For(0, c[2],
+    [&](vtkIdType zBegin, vtkIdType zEnd)
     {
-      for (int k = 0; k < d[2]; ++k)
+      for (int z = static_cast<int>(zBegin); z < zEnd; ++z)
       {
-        const bool reads = below[2][k] == z || std::min(below[2][k] + 1, c[2] - 1) == z;
-        for (int j = 0; reads && j < d[1]; ++j)
+        for (int k = 0; k < d[2]; ++k)
         {
-          const size_t rowOfVoxels = (static_cast<size_t>(k) * d[1] + j) * d[0];
-          for (int i = 0; i < d[0]; ++i)
+          const bool reads = below[2][k] == z || std::min(below[2][k] + 1, c[2] - 1) == z;
+          for (int j = 0; reads && j < d[1]; ++j)
           {
-            if (classes[rowOfVoxels + i] < 0.0f)
+            const size_t rowOfVoxels = (static_cast<size_t>(k) * d[1] + j) * d[0];
+            for (int i = 0; i < d[0]; ++i)
             {
-              continue;
-            }
-            for (int dj = 0; dj < 2; ++dj)
-            {
-              const int y = std::min(below[1][j] + dj, c[1] - 1);
-              const size_t row = (static_cast<size_t>(z) * c[1] + y) * c[0];
-              needed[row + below[0][i]] = 255; // GL_R8 reads it as 1
-              needed[row + std::min(below[0][i] + 1, c[0] - 1)] = 255;
+              if (classes[rowOfVoxels + i] < 0.0f)
+              {
+                continue;
+              }
+              for (int dj = 0; dj < 2; ++dj)
+              {
+                const int y = std::min(below[1][j] + dj, c[1] - 1);
+                const size_t row = (static_cast<size_t>(z) * c[1] + y) * c[0];
+                needed[row + below[0][i]] = 255; // GL_R8 reads it as 1
+                needed[row + std::min(below[0][i] + 1, c[0] - 1)] = 255;
+              }
             }
           }
         }
       }
-    }
-  });
+    });
   return needed;
 }
 
@@ -526,8 +531,8 @@ void vtkIrradianceEstimator::vtkInternals::DrawLayers(vtkOpenGLRenderWindow* con
   // `box` (i0, i1, j0, j1, k0, k1, inclusive) limits the draw to the voxels
   // that can change: a scissor in x and y, a range of layers in z.
   vtkOpenGLState* state = context->GetState();
-  state->vtkglColorMask((writeMask & 1) != 0, (writeMask & 2) != 0, (writeMask & 4) != 0,
-    (writeMask & 8) != 0);
+  state->vtkglColorMask(
+    (writeMask & 1) != 0, (writeMask & 2) != 0, (writeMask & 4) != 0, (writeMask & 8) != 0);
   const int first = box ? box[4] : 0;
   const int last = box ? box[5] : static_cast<int>(target->GetDepth()) - 1;
   state->vtkglViewport(0, 0, target->GetWidth(), target->GetHeight());
@@ -661,8 +666,8 @@ unsigned int vtkIrradianceEstimator::vtkInternals::CountWrites(vtkOpenGLRenderWi
 //------------------------------------------------------------------------------
 // The final write of the lights in `mask`: the other channels of the
 // irradiance texture keep what they hold.
-bool vtkIrradianceEstimator::vtkInternals::FillPass(vtkOpenGLRenderWindow* context,
-  vtkTextureObject* source, int group, int mask, bool layered)
+bool vtkIrradianceEstimator::vtkInternals::FillPass(
+  vtkOpenGLRenderWindow* context, vtkTextureObject* source, int group, int mask, bool layered)
 {
   vtkShaderProgram* program =
     this->Ready(context, this->FillQuad, mmvDiffusionFS, "#define MMV_FILL_PASS\n", false);
@@ -690,8 +695,8 @@ void vtkIrradianceEstimator::vtkInternals::ReleaseScratch(vtkWindow* window)
   }
   for (auto* scratch : { this->FineScratch.data(), this->CoarseScratch.data() })
   {
-    const size_t count = scratch == this->FineScratch.data() ? this->FineScratch.size()
-                                                             : this->CoarseScratch.size();
+    const size_t count =
+      scratch == this->FineScratch.data() ? this->FineScratch.size() : this->CoarseScratch.size();
     for (size_t i = 0; i < count; ++i)
     {
       if (scratch[i])
@@ -707,9 +712,9 @@ void vtkIrradianceEstimator::vtkInternals::ReleaseScratch(vtkWindow* window)
 void vtkIrradianceEstimator::vtkInternals::Release(vtkWindow* window)
 {
   this->ReleaseScratch(window);
-  for (auto* texture : { &this->ScalarTexture, &this->ClassTexture, &this->TableTexture,
-         &this->CoarseStrengthTexture, &this->LightGridClassTexture, &this->ClassTableTexture,
-         &this->LightGridRangeTexture })
+  for (auto* texture :
+    { &this->ScalarTexture, &this->ClassTexture, &this->TableTexture, &this->CoarseStrengthTexture,
+      &this->LightGridClassTexture, &this->ClassTableTexture, &this->LightGridRangeTexture })
   {
     if (*texture)
     {

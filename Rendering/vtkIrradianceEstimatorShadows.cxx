@@ -96,8 +96,8 @@ void vtkIrradianceEstimator::vtkInternals::SetLightGridUniforms(
   this->LightGridDimensions(stride, dims);
   double ratio[3];
   this->LightGridRatio(stride, ratio);
-  const float toIndex[3] = { static_cast<float>(1.0 / ratio[0]),
-    static_cast<float>(1.0 / ratio[1]), static_cast<float>(1.0 / ratio[2]) };
+  const float toIndex[3] = { static_cast<float>(1.0 / ratio[0]), static_cast<float>(1.0 / ratio[1]),
+    static_cast<float>(1.0 / ratio[2]) };
   program->SetUniform1iv("targetDims", 3, dims);
   program->SetUniform3f("targetToIndex", toIndex);
   program->SetUniformi("strided", stride > 1 ? 1 : 0);
@@ -107,8 +107,8 @@ void vtkIrradianceEstimator::vtkInternals::SetLightGridUniforms(
 //------------------------------------------------------------------------------
 // Full shadow rays of the lights of `mask` whose grid stride is `stride`,
 // into their channels of that grid's target.
-bool vtkIrradianceEstimator::vtkInternals::ShadowPass(vtkOpenGLRenderWindow* context, int group,
-  int mask, int stride, bool skipEmpty, bool layered)
+bool vtkIrradianceEstimator::vtkInternals::ShadowPass(
+  vtkOpenGLRenderWindow* context, int group, int mask, int stride, bool skipEmpty, bool layered)
 {
   vtkShaderProgram* program = this->Ready(context, this->ShadowQuad,
     std::string(mmvShadowRay) + mmvLightGrid + mmvIrradianceFS, this->ShadowRayDefines(), true);
@@ -173,9 +173,9 @@ bool vtkIrradianceEstimator::vtkInternals::UpsamplePass(
 bool vtkIrradianceEstimator::vtkInternals::TintPass(
   vtkOpenGLRenderWindow* context, int light, bool layered)
 {
-  vtkShaderProgram* program = this->Ready(context, this->TintQuad,
-    std::string(mmvShadowRay) + mmvIrradianceTintFS, this->ShadowRayDefines() + "#define MMV_TINT\n",
-    true);
+  vtkShaderProgram* program =
+    this->Ready(context, this->TintQuad, std::string(mmvShadowRay) + mmvIrradianceTintFS,
+      this->ShadowRayDefines() + "#define MMV_TINT\n", true);
   if (!program)
   {
     return false;
@@ -200,8 +200,7 @@ bool vtkIrradianceEstimator::vtkInternals::TintPass(
   program->SetUniform3f("origin", glm::value_ptr(origin));
   program->SetUniformMatrix3x3("indexToWorld", glm::value_ptr(toWorld));
   SetLightUniforms(program, this->Lights, light, 1);
-  const mmv::IndexBox box =
-    mmv::ResampledBox(this->Plan.Region, this->Grid.Dimensions, tintDims);
+  const mmv::IndexBox box = mmv::ResampledBox(this->Plan.Region, this->Grid.Dimensions, tintDims);
   this->DrawLayers(context, this->TintQuad, this->Tint[light], layered, DrawBox(box, tintDims));
   return true;
 }
@@ -211,8 +210,8 @@ bool vtkIrradianceEstimator::vtkInternals::TintPass(
 // FineScratch[0] (vtkShadowSweep.h): one draw per chunk of slices, nearest
 // the light first; a texture barrier lets each chunk read what the earlier
 // ones wrote into the same texture.
-bool vtkIrradianceEstimator::vtkInternals::PiecewiseShadowPass(vtkOpenGLRenderWindow* context,
-  int light, int slicesPerChunk, bool skipEmpty, bool layered)
+bool vtkIrradianceEstimator::vtkInternals::PiecewiseShadowPass(
+  vtkOpenGLRenderWindow* context, int light, int slicesPerChunk, bool skipEmpty, bool layered)
 {
   vtkShaderProgram* program = this->Ready(context, this->PiecewiseQuad,
     std::string(mmvShadowRay) + mmvLightGrid + mmvPiecewiseShadowFS, this->ShadowRayDefines(),
@@ -239,8 +238,7 @@ bool vtkIrradianceEstimator::vtkInternals::PiecewiseShadowPass(vtkOpenGLRenderWi
   const mmv::IndexBox estimated = stride > 1
     ? mmv::ResampledBox(this->Plan.Estimated, this->Grid.Dimensions, d)
     : this->Plan.Estimated;
-  const std::vector<mmv::IndexBox> boxes =
-    mmv::PlanSweepBoxes(sweep, d, toLightIndex, estimated);
+  const std::vector<mmv::IndexBox> boxes = mmv::PlanSweepBoxes(sweep, d, toLightIndex, estimated);
   glm::vec3 toLight(source.ToLight);
   const int channel = light % LightsPerTexture;
   vtkTextureObject* target = this->LightGridTarget(stride);

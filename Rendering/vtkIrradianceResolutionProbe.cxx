@@ -5,8 +5,8 @@
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLRenderWindow.h"
 
-#include <chrono>
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -29,8 +29,8 @@ bool vtkIrradianceResolutionProbe::Key::operator==(const Key& o) const
 {
   return std::equal(this->DataDimensions, this->DataDimensions + 3, o.DataDimensions) &&
     std::equal(this->DataSpacing, this->DataSpacing + 3, o.DataSpacing) &&
-    this->BudgetMB == o.BudgetMB && this->BoundDB == o.BoundDB &&
-    this->TableSize == o.TableSize && this->ShadowEstimation == o.ShadowEstimation &&
+    this->BudgetMB == o.BudgetMB && this->BoundDB == o.BoundDB && this->TableSize == o.TableSize &&
+    this->ShadowEstimation == o.ShadowEstimation &&
     this->PiecewiseShadowSlices == o.PiecewiseShadowSlices && this->Cut == o.Cut;
 }
 
@@ -101,9 +101,8 @@ double vtkIrradianceResolutionProbe::Choose(vtkOpenGLRenderWindow* context,
   this->MeasuredSignature = signature();
   this->Seen = key;
   this->HasResult = true;
-  if (!this->Measure(
-        context, image, scalars, key.DataTime, range, budgetMB, maxAxis, boundDB, opacityTable,
-        compute))
+  if (!this->Measure(context, image, scalars, key.DataTime, range, budgetMB, maxAxis, boundDB,
+        opacityTable, compute))
   {
     // Keep the reference: the frame's own computation reports the failure.
     this->Scale = this->Candidates.empty() ? 1.0 : this->Candidates.front().Scale;
@@ -117,9 +116,8 @@ double vtkIrradianceResolutionProbe::Choose(vtkOpenGLRenderWindow* context,
 }
 
 bool vtkIrradianceResolutionProbe::Measure(vtkOpenGLRenderWindow* context, vtkImageData* image,
-  vtkDataArray* scalars, vtkMTimeType dataTime, const double range[2], double budgetMB,
-  int maxAxis, double boundDB, const std::vector<float>& opacityTable,
-  const ComputeFunction& compute)
+  vtkDataArray* scalars, vtkMTimeType dataTime, const double range[2], double budgetMB, int maxAxis,
+  double boundDB, const std::vector<float>& opacityTable, const ComputeFunction& compute)
 {
   this->Candidates.clear();
   const std::vector<mmv::LightSource> lights = ProbeLights();
@@ -134,8 +132,8 @@ bool vtkIrradianceResolutionProbe::Measure(vtkOpenGLRenderWindow* context, vtkIm
   {
     if (dataDims[a] > 1)
     {
-      reference.Scale = std::max(
-        reference.Scale, static_cast<double>(reference.Dimensions[a]) / dataDims[a]);
+      reference.Scale =
+        std::max(reference.Scale, static_cast<double>(reference.Dimensions[a]) / dataDims[a]);
     }
   }
   reference.Scale = reference.Scale > 0.0 ? reference.Scale : 1.0;
@@ -143,7 +141,8 @@ bool vtkIrradianceResolutionProbe::Measure(vtkOpenGLRenderWindow* context, vtkIm
   this->Candidates.push_back(reference);
   this->Scale = reference.Scale;
 
-  auto estimate = [&](const int wanted[3], std::vector<std::vector<float>>& values) {
+  auto estimate = [&](const int wanted[3], std::vector<std::vector<float>>& values)
+  {
     int dims[3];
     for (int a = 0; a < 3; ++a)
     {

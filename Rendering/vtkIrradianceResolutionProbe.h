@@ -25,10 +25,10 @@
 #ifndef vtkIrradianceResolutionProbe_h
 #define vtkIrradianceResolutionProbe_h
 
+#include "vtkIrradianceEstimator.h"       // vtkNew
 #include "vtkIrradianceGrid.h"            // IrradianceGrid
 #include "vtkIrradianceInputCache.h"      // VolumeKey
 #include "vtkIrradianceProbeRule.h"       // ProbeSignature
-#include "vtkIrradianceEstimator.h"      // vtkNew
 #include "vtkMultiMaterialLightModel.h"   // LightSource
 #include "vtkMultiMaterialVolumeModule.h" // export macro
 #include "vtkNew.h"
@@ -55,8 +55,8 @@ public:
   /// data `prefiltered`, its version) into `pass`, as the mapper's frame
   /// does but without multiple scattering. False: it failed (reported).
   using ComputeFunction = std::function<bool(vtkIrradianceEstimator* pass,
-    const mmv::IrradianceGrid& grid, const std::vector<float>& prefiltered,
-    unsigned long version, const std::vector<mmv::LightSource>& lights)>;
+    const mmv::IrradianceGrid& grid, const std::vector<float>& prefiltered, unsigned long version,
+    const std::vector<mmv::LightSource>& lights)>;
 
   /// One grid the probe measured.
   struct Candidate
@@ -79,9 +79,9 @@ public:
    * texture). On failure returns the reference scale.
    */
   double Choose(vtkOpenGLRenderWindow* context, const vtkIrradianceInputCache::VolumeKey& key,
-    vtkImageData* image, vtkDataArray* scalars, const double range[2], double budgetMB,
-    int maxAxis, double boundDB, const std::vector<float>& opacityTable,
-    const SignatureFunction& signature, const ComputeFunction& compute);
+    vtkImageData* image, vtkDataArray* scalars, const double range[2], double budgetMB, int maxAxis,
+    double boundDB, const std::vector<float>& opacityTable, const SignatureFunction& signature,
+    const ComputeFunction& compute);
 
   /**
    * Whether the kept choice holds for these inputs (so Choose() returns it
@@ -98,17 +98,26 @@ public:
   /// The probe's light (object space).
   static std::vector<mmv::LightSource> ProbeLights();
   /// What the last measurement found, reference first.
-  const std::vector<Candidate>& GetCandidates() const { return this->Candidates; }
+  const std::vector<Candidate>& GetCandidates() const
+  {
+    return this->Candidates;
+  }
 #endif
   /// One line on the last choice, for the resolution reason.
-  const std::string& GetSummary() const { return this->Summary; }
+  const std::string& GetSummary() const
+  {
+    return this->Summary;
+  }
   /// Measurements made (a camera or light move must not add one).
   vtkGetMacro(NumberOfProbes, int);
   /// Wall seconds of the last measurement.
   vtkGetMacro(LastProbeSeconds, double);
 
   /// Forgets the result (graphics released): the next Choose() measures.
-  void Invalidate() { this->HasResult = false; }
+  void Invalidate()
+  {
+    this->HasResult = false;
+  }
   void ReleaseGraphicsResources(vtkWindow* window);
 
 protected:
@@ -136,8 +145,7 @@ private:
     double budgetMB, double boundDB);
   bool Measure(vtkOpenGLRenderWindow* context, vtkImageData* image, vtkDataArray* scalars,
     vtkMTimeType dataTime, const double range[2], double budgetMB, int maxAxis, double boundDB,
-    const std::vector<float>& opacityTable,
-    const ComputeFunction& compute);
+    const std::vector<float>& opacityTable, const ComputeFunction& compute);
 
   vtkNew<vtkIrradianceInputCache> Prefilter;
   vtkNew<vtkIrradianceEstimator> Pass;

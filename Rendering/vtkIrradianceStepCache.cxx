@@ -13,13 +13,12 @@
 bool vtkIrradianceStepCache::Key::operator==(const Key& o) const
 {
   return this->Volume == o.Volume && this->MaterialsTime == o.MaterialsTime &&
-    this->Scalars == o.Scalars &&
-    this->ScalarsTime == o.ScalarsTime &&
+    this->Scalars == o.Scalars && this->ScalarsTime == o.ScalarsTime &&
     std::equal(this->DataDimensions, this->DataDimensions + 3, o.DataDimensions) &&
     std::equal(this->Origin, this->Origin + 3, o.Origin) &&
     std::equal(this->Spacing, this->Spacing + 3, o.Spacing) &&
-    std::equal(this->IrradianceDimensions, this->IrradianceDimensions + 3,
-      o.IrradianceDimensions) &&
+    std::equal(
+      this->IrradianceDimensions, this->IrradianceDimensions + 3, o.IrradianceDimensions) &&
     this->Lights == o.Lights;
 }
 
@@ -30,15 +29,14 @@ bool vtkIrradianceStepCache::Key::SameLighting(const Key& o) const
   vtkIrradianceInputCache::VolumeKey b = o.Volume;
   a.Range[0] = a.Range[1] = b.Range[0] = b.Range[1] = 0.0;
   return a == b && this->MaterialsTime == o.MaterialsTime &&
-    std::equal(this->IrradianceDimensions, this->IrradianceDimensions + 3,
-      o.IrradianceDimensions) &&
+    std::equal(
+      this->IrradianceDimensions, this->IrradianceDimensions + 3, o.IrradianceDimensions) &&
     this->Lights == o.Lights;
 }
 
 vtkIrradianceStepCache::Key vtkIrradianceStepCache::MakeKey(
-  const vtkIrradianceInputCache::VolumeKey& volume, vtkMTimeType materialsTime,
-  vtkImageData* image, vtkDataArray* scalars, const std::vector<mmv::LightSource>& lights,
-  const int dims[3])
+  const vtkIrradianceInputCache::VolumeKey& volume, vtkMTimeType materialsTime, vtkImageData* image,
+  vtkDataArray* scalars, const std::vector<mmv::LightSource>& lights, const int dims[3])
 {
   Key key;
   key.Volume = volume;
@@ -107,8 +105,7 @@ bool vtkIrradianceStepCache::Restore(vtkOpenGLRenderWindow* context, const Key& 
 
 //------------------------------------------------------------------------------
 bool vtkIrradianceStepCache::Store(vtkOpenGLRenderWindow* context, const Key& key,
-  vtkIrradianceEstimator* pass, const std::vector<mmv::LightSource>& computed,
-  size_t budgetBytes)
+  vtkIrradianceEstimator* pass, const std::vector<mmv::LightSource>& computed, size_t budgetBytes)
 {
   for (auto entry = this->Entries.begin(); entry != this->Entries.end();)
   {

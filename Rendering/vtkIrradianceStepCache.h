@@ -61,9 +61,9 @@ public:
   /// The key of `scalars` (point data of `image`) under `volume` and
   /// materials of modification time `materialsTime`, lit by `lights` on a
   /// grid of `dims`.
-  static Key MakeKey(const vtkIrradianceInputCache::VolumeKey& volume,
-    vtkMTimeType materialsTime, vtkImageData* image, vtkDataArray* scalars,
-    const std::vector<mmv::LightSource>& lights, const int dims[3]);
+  static Key MakeKey(const vtkIrradianceInputCache::VolumeKey& volume, vtkMTimeType materialsTime,
+    vtkImageData* image, vtkDataArray* scalars, const std::vector<mmv::LightSource>& lights,
+    const int dims[3]);
 
   /// Copies the entry of `key`, if there is one, into `pass`'s textures
   /// (when they have its sizes) and has the estimator recompute every light at
@@ -74,18 +74,16 @@ public:
 
   /// Keeps a copy of `pass`'s textures, which hold the light placements
   /// `computed`, under `key` if it fits in `budgetBytes`, dropping the
-  /// entries lit otherwise, then the least recently used to make room. False: nothing kept (no budget,
-  /// too large, or no copy support).
+  /// entries lit otherwise, then the least recently used to make room. False: nothing kept (no
+  /// budget, too large, or no copy support).
   bool Store(vtkOpenGLRenderWindow* context, const Key& key, vtkIrradianceEstimator* pass,
     const std::vector<mmv::LightSource>& computed, size_t budgetBytes);
-
 
   /// Drops entries until the rest fit in `budgetBytes` (0: all).
   void Trim(size_t budgetBytes);
 
   size_t GetBytes() const { return this->Bytes; }
   int GetNumberOfEntries() const { return static_cast<int>(this->Entries.size()); }
-
 
   void ReleaseGraphicsResources(vtkWindow* window);
 

@@ -16,8 +16,8 @@ vtkMultiMaterialEnvironment* vtkMultiMaterialEnvironmentTexture::GetEnvironment(
   return this->Environment;
 }
 
-void vtkMultiMaterialEnvironmentTexture::Update(vtkRenderer* ren, vtkMatrix4x4* objectToWorld,
-  int source, std::vector<std::string>* problems)
+void vtkMultiMaterialEnvironmentTexture::Update(
+  vtkRenderer* ren, vtkMatrix4x4* objectToWorld, int source, std::vector<std::string>* problems)
 {
   this->Renderer = ren;
   this->Environment->Update(ren, objectToWorld, source, problems);
@@ -46,7 +46,8 @@ void vtkMultiMaterialEnvironmentTexture::Deactivate()
 
 void vtkMultiMaterialEnvironmentTexture::SetUniforms(vtkShaderProgram* program) const
 {
-  auto uniform = [program](const char* name, const glm::dvec3& v) {
+  auto uniform = [program](const char* name, const glm::dvec3& v)
+  {
     const float f[3] = { static_cast<float>(v.x), static_cast<float>(v.y),
       static_cast<float>(v.z) };
     program->SetUniform3f(name, f);

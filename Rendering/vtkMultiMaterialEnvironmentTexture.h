@@ -35,8 +35,8 @@ public:
 
   /// vtkMultiMaterialEnvironment::Update() of the environment, and the
   /// renderer whose context Activate() uses.
-  void Update(vtkRenderer* ren, vtkMatrix4x4* objectToWorld, int source,
-    std::vector<std::string>* problems);
+  void Update(
+    vtkRenderer* ren, vtkMatrix4x4* objectToWorld, int source, std::vector<std::string>* problems);
 
   /// The CPU environment of the last Update().
   vtkMultiMaterialEnvironment* GetEnvironment();

@@ -1,5 +1,6 @@
 #include "vtkMultiMaterialIrradianceStage.h"
 
+#include "vtkAlgorithm.h"
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
 #include "vtkGlobalPrefilteredVolume.h"
@@ -10,7 +11,6 @@
 #include "vtkMatrix4x4.h"
 #include "vtkMultiMaterialLightTolerance.h"
 #include "vtkMultiMaterialVolumeGeometry.h"
-#include "vtkAlgorithm.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLShaderCache.h"
 #include "vtkOpenGLState.h"
@@ -157,7 +157,8 @@ void vtkMultiMaterialIrradianceStage::ApplyProbe(vtkRenderer* ren, vtkVolume* vo
   const int n = this->In->Settings.PreIntegrationTableSize;
   // Sampled only when the volume key changed, over the opacity function's
   // own range (vtkIrradianceProbeRule.h).
-  const auto signature = [&]() {
+  const auto signature = [&]()
+  {
     vtkPiecewiseFunction* opacity = property->GetScalarOpacity(0);
     double own[2];
     opacity->GetRange(own);
@@ -187,7 +188,8 @@ void vtkMultiMaterialIrradianceStage::ApplyProbe(vtkRenderer* ren, vtkVolume* vo
     maxAxis, bound, opacityTable, signature,
     [&](vtkIrradianceEstimator* pass, const mmv::IrradianceGrid& grid,
       const std::vector<float>& prefiltered, unsigned long version,
-      const std::vector<mmv::LightSource>& lights) {
+      const std::vector<mmv::LightSource>& lights)
+    {
       // Each grid the probe lights has about 2^-1.5 the voxels of the one
       // before: after n of them, about 0.35^n of its work is left.
       const double shrink = std::exp2(-1.5);
@@ -206,8 +208,8 @@ void vtkMultiMaterialIrradianceStage::ApplyProbe(vtkRenderer* ren, vtkVolume* vo
   if (measures)
   {
     this->In->Reporter->SetProgressText(nullptr);
-    vtkDebugWithObjectMacro(this->In->Reporter, << this->Probe->GetSummary() << " in "
-                                          << this->Probe->GetLastProbeSeconds() << " s");
+    vtkDebugWithObjectMacro(this->In->Reporter,
+      << this->Probe->GetSummary() << " in " << this->Probe->GetLastProbeSeconds() << " s");
   }
   if (probed < resolution.Scale)
   {
@@ -245,7 +247,8 @@ bool vtkMultiMaterialIrradianceStage::Update(
     global ? 0 : static_cast<size_t>(this->In->Settings.IrradianceCacheMB * 1048576.0);
   this->Steps.Trim(stepBudget);
 
-  this->Cache->SampleMaterials(this->In->Materials, range, this->In->Settings.PreIntegrationTableSize);
+  this->Cache->SampleMaterials(
+    this->In->Materials, range, this->In->Settings.PreIntegrationTableSize);
   const vtkMTimeType dataTime =
     global ? global->GetMTime() : std::max(image->GetMTime(), scalars->GetMTime());
   // What cropping and clipping remove casts no shadow: part of the key, so a
@@ -258,7 +261,8 @@ bool vtkMultiMaterialIrradianceStage::Update(
     this->ChooseGrid(ren, vol, image, scalars, range, volumeKey, cutaway);
   const int* dims = resolution.Dimensions;
   // A piece of a volume in pieces: only what its ray cast reads.
-  const mmv::IndexBox region = ReadRegion(image, global, this->In->Settings.PieceIrradianceOnly, dims);
+  const mmv::IndexBox region =
+    ReadRegion(image, global, this->In->Settings.PieceIrradianceOnly, dims);
   std::copy(region.Bounds, region.Bounds + 6, volumeKey.Region);
   const std::vector<mmv::LightSource> sources =
     mmv::IrradianceLightSources(*inputs.Lights, dims, this->In->Settings.DimLightCoarsening);
@@ -271,7 +275,8 @@ bool vtkMultiMaterialIrradianceStage::Update(
   const vtkIrradianceUpdatePlan plan =
     this->Cache->Plan(now, mmv::LightToleranceRadians(this->In->Settings.LightDirectionTolerance));
   // The key of the kept steps, made only where they are looked up or stored.
-  const auto stepKey = [&]() {
+  const auto stepKey = [&]()
+  {
     return vtkIrradianceStepCache::MakeKey(volumeKey,
       this->In->Materials ? this->In->Materials->GetMTime() : 0, image, scalars, sources, dims);
   };
@@ -286,7 +291,8 @@ bool vtkMultiMaterialIrradianceStage::Update(
 
   // Pre-filtered data: only when the data or the grid changed.
   const Clock::time_point prefilterStart = Clock::now();
-  const bool nonFinite = this->Cache->UpdatePrefiltered(image, scalars, global, dims, dataTime, range);
+  const bool nonFinite =
+    this->Cache->UpdatePrefiltered(image, scalars, global, dims, dataTime, range);
   mmv::IrradianceStageSeconds stages;
   stages.Prefilter = SecondsSince(prefilterStart);
   if (this->Probe->GetNumberOfProbes() != probesBefore)
@@ -302,10 +308,10 @@ bool vtkMultiMaterialIrradianceStage::Update(
   // recomputes those it marks (and every light where its inputs changed).
   this->Estimator->SetLightsToUpdate(plan.GetMovedLights());
   this->ReportProgressOf(this->Estimator, 0.0, 1.0);
-  const bool estimated = this->ComputeOn(this->Estimator,
-    vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow()), vol, range, cutaway,
-    this->Cache->GetGrid(), this->Cache->GetPrefiltered(), this->Cache->GetPrefilteredVersion(),
-    sources, this->In->Settings.MultipleScattering);
+  const bool estimated =
+    this->ComputeOn(this->Estimator, vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow()),
+      vol, range, cutaway, this->Cache->GetGrid(), this->Cache->GetPrefiltered(),
+      this->Cache->GetPrefilteredVersion(), sources, this->In->Settings.MultipleScattering);
   this->Estimator->SetProgressCallback(nullptr);
   if (!estimated)
   {
@@ -337,7 +343,8 @@ bool vtkMultiMaterialIrradianceStage::Update(
 
 bool vtkMultiMaterialIrradianceStage::KeepsHeld(const vtkIrradianceUpdatePlan& plan,
   const vtkIrradianceUpdatePlan::Inputs& now, vtkOpenGLRenderWindow* window, vtkVolume* vol,
-  const double range[2], size_t stepBudget, const std::function<vtkIrradianceStepCache::Key()>& stepKey)
+  const double range[2], size_t stepBudget,
+  const std::function<vtkIrradianceStepCache::Key()>& stepKey)
 {
   if (this->Estimator->GetNumberOfIrradianceTextures() == 0)
   {
@@ -356,8 +363,7 @@ bool vtkMultiMaterialIrradianceStage::KeepsHeld(const vtkIrradianceUpdatePlan& p
   // Interactive frames keep the last irradiance while only the lights or the
   // screen-chosen grid moved; the still frame after them updates it.
   if (this->In->Interactive &&
-    this->In->Settings.InteractiveIrradiance == mmv::ReuseWhileInteracting &&
-    plan.KeepsVolume())
+    this->In->Settings.InteractiveIrradiance == mmv::ReuseWhileInteracting && plan.KeepsVolume())
   {
     this->Out->Deferred = true;
     return true;
@@ -419,9 +425,8 @@ void vtkMultiMaterialIrradianceStage::ReportProgress(double progress)
 }
 
 bool vtkMultiMaterialIrradianceStage::ComputeOn(vtkIrradianceEstimator* pass,
-  vtkOpenGLRenderWindow* window, vtkVolume* vol, const double range[2],
-  const mmv::Cutaway& cutaway, const mmv::IrradianceGrid& grid,
-  const std::vector<float>& prefiltered, unsigned long version,
+  vtkOpenGLRenderWindow* window, vtkVolume* vol, const double range[2], const mmv::Cutaway& cutaway,
+  const mmv::IrradianceGrid& grid, const std::vector<float>& prefiltered, unsigned long version,
   const std::vector<mmv::LightSource>& sources, bool scattering)
 {
   vtkPiecewiseFunction* opacity = vol->GetProperty()->GetScalarOpacity(0);
@@ -459,7 +464,8 @@ bool vtkMultiMaterialIrradianceStage::ComputeOn(vtkIrradianceEstimator* pass,
   pass->SetTintTable(shadow->GetShadowTintTable()); // nullptr: grey, no tints
   if (!pass->Render(window))
   {
-    vtkErrorWithObjectMacro(this->In->Reporter, "the irradiance volume could not be computed on the GPU");
+    vtkErrorWithObjectMacro(
+      this->In->Reporter, "the irradiance volume could not be computed on the GPU");
     return false;
   }
   return true;
@@ -489,10 +495,9 @@ void vtkMultiMaterialIrradianceStage::Record(const mmv::IrradianceResolution& re
            << " sweeps)";
   }
   this->ResolutionReason = reason.str();
-  vtkDebugWithObjectMacro(this->In->Reporter, << "irradiance " << this->ResolutionReason << ", "
-                                        << this->Out->UpdatedLights << " of "
-                                        << this->In->Lights->size() << " lights updated in "
-                                        << this->Out->Seconds << " s");
+  vtkDebugWithObjectMacro(this->In->Reporter,
+    << "irradiance " << this->ResolutionReason << ", " << this->Out->UpdatedLights << " of "
+    << this->In->Lights->size() << " lights updated in " << this->Out->Seconds << " s");
 }
 
 std::string mmv::IrradianceStageSeconds::Report() const

@@ -18,18 +18,18 @@
 #ifndef vtkMultiMaterialIrradianceStage_h
 #define vtkMultiMaterialIrradianceStage_h
 
+#include "vtkIrradianceEstimator.h"       // vtkNew
 #include "vtkIrradianceGrid.h"            // IrradianceResolution
 #include "vtkIrradianceInputCache.h"      // vtkNew
 #include "vtkIrradianceResolutionProbe.h" // vtkNew
 #include "vtkIrradianceStepCache.h"       // member
 #include "vtkIrradianceUpdatePlan.h"      // the update's decisions
-#include "vtkIrradianceEstimator.h"      // vtkNew
 #include "vtkMultiMaterialCutaway.h"      // Cutaway
 #include "vtkMultiMaterialLights.h"       // ShadingLight
 #include "vtkMultiMaterialSettings.h"     // IlluminationSettings
 #include "vtkMultiMaterialVolumeModule.h" // export macro
 #include "vtkNew.h"
-#include "vtkPreIntegrationTable.h"       // vtkNew
+#include "vtkPreIntegrationTable.h" // vtkNew
 
 #include <functional> // the kept steps' key, made on demand
 #include <string>
@@ -72,13 +72,13 @@ struct IrradianceStageInputs
   vtkVolume* Volume = nullptr;
   vtkImageData* Image = nullptr; // the input, or one piece of Global
   vtkDataArray* Scalars = nullptr;
-  const double* PieceRange = nullptr;     // the input's finite range
+  const double* PieceRange = nullptr;           // the input's finite range
   vtkGlobalPrefilteredVolume* Global = nullptr; // the whole volume of a piece; null: none
   vtkMaterialTransferFunction* Materials = nullptr;
   const std::vector<ShadingLight>* Lights = nullptr;
-  Cutaway Cut;                   // cropping and clipping, in object space
+  Cutaway Cut; // cropping and clipping, in object space
   IlluminationSettings Settings;
-  bool Interactive = false;      // an interactive render (allocated time below 1 s)
+  bool Interactive = false; // an interactive render (allocated time below 1 s)
   /// Receives VTK's progress events and names the errors (the mapper).
   vtkAlgorithm* Reporter = nullptr;
 };
@@ -96,7 +96,6 @@ struct IrradianceStageReport
   std::vector<std::string> Warnings;
 };
 }
-
 
 class VTKMULTIMATERIALVOLUME_EXPORT vtkMultiMaterialIrradianceStage
 {

@@ -45,8 +45,8 @@ void SetLightUniforms(vtkShaderProgram* program, const LightSource* lights,
     cosCone[l] = static_cast<float>(light.CosCone);
     spotExponent[l] = static_cast<float>(light.SpotExponent);
     radius[l] = static_cast<float>(light.Radius);
-    const glm::dvec3 values[5] = { light.Position, light.ToLight, light.SpotAxis,
-      light.Attenuation, radiance ? radiance[l] : glm::dvec3(0.0) };
+    const glm::dvec3 values[5] = { light.Position, light.ToLight, light.SpotAxis, light.Attenuation,
+      radiance ? radiance[l] : glm::dvec3(0.0) };
     for (int f = 0; f < 5; ++f)
     {
       for (int a = 0; a < 3; ++a)

@@ -19,6 +19,5 @@ bool ReadMultiMaterialVolumeMapper(vtkAbstractVolumeMapper* mapper, mmv::MapperS
 
 // Registered when this library loads (it is always shared: see the top-level
 // CMakeLists.txt), before any mapper can exist.
-const bool ReaderRegistered =
-  (mmv::SetMapperSettingsReader(&ReadMultiMaterialVolumeMapper), true);
+const bool ReaderRegistered = (mmv::SetMapperSettingsReader(&ReadMultiMaterialVolumeMapper), true);
 }

@@ -1,13 +1,13 @@
 #include "vtkMultiMaterialReflection.h"
 
-#include "vtkIrradianceGrid.h"
-#include "vtkIrradianceEstimator.h"
-#include "vtkMaterialTransferFunction.h"
-#include "vtkMultiMaterialParameters.h"
 #include "vtkCamera.h"
+#include "vtkIrradianceEstimator.h"
+#include "vtkIrradianceGrid.h"
+#include "vtkMaterialTransferFunction.h"
 #include "vtkMatrix4x4.h"
 #include "vtkMultiMaterialEnvironment.h"
 #include "vtkMultiMaterialEnvironmentTexture.h"
+#include "vtkMultiMaterialParameters.h"
 #include "vtkMultiMaterialShaderAssembly.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLRenderWindow.h"
@@ -55,9 +55,9 @@ void vtkMultiMaterialReflection::SetReflectiveValues(
   }
 }
 
-void vtkMultiMaterialReflection::Update(vtkRenderer* ren, vtkMatrix4x4* objectToWorld,
-  int source, int visibility, vtkIrradianceEstimator* pass, const mmv::IrradianceGrid& grid,
-  int tableSize, double stepLength, std::vector<std::string>* problems, bool keepWhileCameraMoves)
+void vtkMultiMaterialReflection::Update(vtkRenderer* ren, vtkMatrix4x4* objectToWorld, int source,
+  int visibility, vtkIrradianceEstimator* pass, const mmv::IrradianceGrid& grid, int tableSize,
+  double stepLength, std::vector<std::string>* problems, bool keepWhileCameraMoves)
 {
   this->Environment->Update(ren, objectToWorld, source, problems);
   if (visibility == mmv::AutomaticReflectionVisibility)
@@ -115,9 +115,8 @@ void vtkMultiMaterialReflection::Update(vtkRenderer* ren, vtkMatrix4x4* objectTo
   }
 }
 
-bool vtkMultiMaterialReflection::UpdateVisibilityPass(vtkRenderer* ren,
-  vtkMatrix4x4* objectToWorld, const mmv::IrradianceGrid& grid, bool keepWhileCameraMoves,
-  std::vector<std::string>* problems)
+bool vtkMultiMaterialReflection::UpdateVisibilityPass(vtkRenderer* ren, vtkMatrix4x4* objectToWorld,
+  const mmv::IrradianceGrid& grid, bool keepWhileCameraMoves, std::vector<std::string>* problems)
 {
   auto* context = vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow());
   vtkCamera* camera = ren->GetActiveCamera();
@@ -158,13 +157,15 @@ bool vtkMultiMaterialReflection::UpdateVisibilityPass(vtkRenderer* ren,
   key.insert(key.end(), cut.begin(), cut.end());
   key.insert(key.end(), this->ToIndex, this->ToIndex + 9);
   key.insert(key.end(), this->Origin, this->Origin + 3);
-  key.insert(key.end(), { double(this->Offset), double(this->TableSize), double(this->StepLength),
-                          double(this->ReflectiveRange[0]), double(this->ReflectiveRange[1]) });
+  key.insert(key.end(),
+    { double(this->Offset), double(this->TableSize), double(this->StepLength),
+      double(this->ReflectiveRange[0]), double(this->ReflectiveRange[1]) });
   // A piece of a volume in parallel reads only the irradiance pass's region.
   int region[6];
   this->Pass->GetRegion(region);
   key.insert(key.end(), region, region + 6);
-  if (keepWhileCameraMoves && key == this->VolumeKey && this->VisibilityPass->GetVisibilityTexture())
+  if (keepWhileCameraMoves && key == this->VolumeKey &&
+    this->VisibilityPass->GetVisibilityTexture())
   {
     return true; // an earlier camera's, until the interaction ends
   }
@@ -174,7 +175,9 @@ bool vtkMultiMaterialReflection::UpdateVisibilityPass(vtkRenderer* ren,
   this->Pass->GetScalarTexture()->Activate();
   this->Pass->GetShadowTableTexture()->Activate();
   const bool ok = this->VisibilityPass->Update(context, grid.Dimensions, region,
-    mmv::ReflectionMarchDefines(this->Cutaway), key, [this](vtkShaderProgram* program) {
+    mmv::ReflectionMarchDefines(this->Cutaway), key,
+    [this](vtkShaderProgram* program)
+    {
       this->SetMarchUniforms(program);
       program->SetUniformMatrix3x3("mmv_visibilityToObject", const_cast<float*>(this->ToObject));
       program->SetUniform4f("mmv_eye", this->Eye);
@@ -254,8 +257,8 @@ void vtkMultiMaterialReflection::SetUniforms(vtkShaderProgram* program) const
   {
     const float dims[3] = { float(this->Dimensions[0]), float(this->Dimensions[1]),
       float(this->Dimensions[2]) };
-    program->SetUniformi("mmv_reflectionVisibility",
-      this->VisibilityPass->GetVisibilityTexture()->GetTextureUnit());
+    program->SetUniformi(
+      "mmv_reflectionVisibility", this->VisibilityPass->GetVisibilityTexture()->GetTextureUnit());
     program->SetUniformMatrix3x3("mmv_visibilityToIndex", const_cast<float*>(this->ToIndex));
     program->SetUniform3f("mmv_visibilityOrigin", this->Origin);
     program->SetUniform3f("mmv_visibilityDims", dims);

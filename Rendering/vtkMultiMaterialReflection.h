@@ -4,8 +4,8 @@
  *          caster: where c_r comes from and how I(x, w_r) is estimated.
  *
  * Consumer of two producers: the environment (vtkMultiMaterialEnvironment
- * from the renderer, bound by vtkMultiMaterialEnvironmentTexture) and the pre-filtered extinction of the irradiance pass
- * (vtkIrradianceEstimator: its scalars and shadow-opacity table, marched as
+ * from the renderer, bound by vtkMultiMaterialEnvironmentTexture) and the pre-filtered extinction
+ * of the irradiance pass (vtkIrradianceEstimator: its scalars and shadow-opacity table, marched as
  * its shadow rays march them). Gives the shader variant its
  * MMV_ENVIRONMENT and MMV_REFLECTION_VISIBILITY, binds the textures and sets
  * the uniforms of Shaders/mmvReflection.glsl.
@@ -61,8 +61,8 @@ public:
    * long as the volume is the same; the next frame without it recomputes.
    */
   void Update(vtkRenderer* ren, vtkMatrix4x4* objectToWorld, int source, int visibility,
-    vtkIrradianceEstimator* pass, const mmv::IrradianceGrid& grid, int tableSize,
-    double stepLength, std::vector<std::string>* problems, bool keepWhileCameraMoves = false);
+    vtkIrradianceEstimator* pass, const mmv::IrradianceGrid& grid, int tableSize, double stepLength,
+    std::vector<std::string>* problems, bool keepWhileCameraMoves = false);
 
   /**
    * Where the materials can reflect, for the view-dependent pass to skip

@@ -45,8 +45,7 @@ struct ShaderVariant
     return this->NumberOfLights == o.NumberOfLights && this->Reflection == o.Reflection &&
       this->PreIntegration == o.PreIntegration && this->Anisotropy == o.Anisotropy &&
       this->Emission == o.Emission && this->RGBIrradiance == o.RGBIrradiance &&
-      this->Environment == o.Environment &&
-      this->ReflectionVisibility == o.ReflectionVisibility &&
+      this->Environment == o.Environment && this->ReflectionVisibility == o.ReflectionVisibility &&
       this->ReflectionCutaway == o.ReflectionCutaway;
   }
   bool operator!=(const ShaderVariant& o) const { return !(*this == o); }
@@ -61,8 +60,8 @@ VTKMULTIMATERIALVOLUME_EXPORT std::string VariantDefines(const ShaderVariant& va
 VTKMULTIMATERIALVOLUME_EXPORT std::string ReflectionMarchDefines(bool cutaway);
 
 /// Fragment-shader replacements (tag, text) for composite ray casting.
-VTKMULTIMATERIALVOLUME_EXPORT std::vector<std::pair<std::string, std::string>>
-RayCastReplacements(const ShaderVariant& variant);
+VTKMULTIMATERIALVOLUME_EXPORT std::vector<std::pair<std::string, std::string>> RayCastReplacements(
+  const ShaderVariant& variant);
 
 } // namespace mmv
 

@@ -100,8 +100,8 @@ void vtkMultiMaterialShaderHook::RemoveFrom(vtkInformation* keys)
   }
 }
 
-bool vtkMultiMaterialShaderHook::PreReplaceShaderValues(std::string&, std::string&,
-  std::string& fragmentShader, vtkAbstractMapper* mapper, vtkProp*)
+bool vtkMultiMaterialShaderHook::PreReplaceShaderValues(
+  std::string&, std::string&, std::string& fragmentShader, vtkAbstractMapper* mapper, vtkProp*)
 {
   if (mapper != this->Owner)
   {
@@ -114,8 +114,8 @@ bool vtkMultiMaterialShaderHook::PreReplaceShaderValues(std::string&, std::strin
   return true;
 }
 
-bool vtkMultiMaterialShaderHook::PostReplaceShaderValues(std::string&, std::string&,
-  std::string& fragmentShader, vtkAbstractMapper* mapper, vtkProp*)
+bool vtkMultiMaterialShaderHook::PostReplaceShaderValues(
+  std::string&, std::string&, std::string& fragmentShader, vtkAbstractMapper* mapper, vtkProp*)
 {
   if (mapper == this->Owner)
   {

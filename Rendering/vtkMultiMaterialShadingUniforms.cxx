@@ -1,6 +1,5 @@
 #include "vtkMultiMaterialShadingUniforms.h"
 
-
 #include "vtkGlobalPrefilteredVolume.h"
 #include "vtkImageData.h"
 #include "vtkIrradianceEstimator.h"
@@ -66,8 +65,7 @@ void vtkMultiMaterialShadingUniforms::Apply(vtkShaderProgram* program,
   vtkMultiMaterialTextures* textures, int tableSize, vtkIrradianceEstimator* irradiance) const
 {
   program->SetUniformi("mmv_preintColor", textures->GetSegmentColorTexture()->GetTextureUnit());
-  program->SetUniformi(
-    "mmv_preintBeta", textures->GetSegmentPositionTexture()->GetTextureUnit());
+  program->SetUniformi("mmv_preintBeta", textures->GetSegmentPositionTexture()->GetTextureUnit());
   program->SetUniformi("mmv_material", textures->GetMaterialTexture()->GetTextureUnit());
   program->SetUniformf("mmv_tableSize", static_cast<float>(tableSize));
   program->SetUniformf("mmv_tableStep", this->TableStep);
@@ -89,8 +87,7 @@ void vtkMultiMaterialShadingUniforms::Apply(vtkShaderProgram* program,
   const int count = this->Variant.NumberOfLights;
   if (count > 0)
   {
-    program->SetUniformi(
-      "mmv_irradiance0", irradiance->GetIrradianceTexture(0)->GetTextureUnit());
+    program->SetUniformi("mmv_irradiance0", irradiance->GetIrradianceTexture(0)->GetTextureUnit());
     if (count > 4)
     {
       program->SetUniformi(
@@ -135,9 +132,8 @@ void vtkMultiMaterialShadingUniforms::Apply(vtkShaderProgram* program,
 void vtkMultiMaterialShadingUniforms::ActivateTextures(
   bool on, vtkMultiMaterialTextures* textures, vtkIrradianceEstimator* irradiance) const
 {
-  const int count = this->Variant.NumberOfLights > 0
-    ? std::min(irradiance->GetNumberOfIrradianceTextures(), 2)
-    : 0;
+  const int count =
+    this->Variant.NumberOfLights > 0 ? std::min(irradiance->GetNumberOfIrradianceTextures(), 2) : 0;
   if (on)
   {
     textures->Activate();

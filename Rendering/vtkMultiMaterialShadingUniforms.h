@@ -13,9 +13,9 @@
 #ifndef vtkMultiMaterialShadingUniforms_h
 #define vtkMultiMaterialShadingUniforms_h
 
-#include "vtkMultiMaterialLights.h"          // ShadingLight
-#include "vtkMultiMaterialShaderAssembly.h"  // ShaderVariant
-#include "vtkMultiMaterialVolumeModule.h"    // export macro
+#include "vtkMultiMaterialLights.h"         // ShadingLight
+#include "vtkMultiMaterialShaderAssembly.h" // ShaderVariant
+#include "vtkMultiMaterialVolumeModule.h"   // export macro
 
 #include <vector>
 
@@ -48,8 +48,8 @@ public:
   /// Maps of the input `image` into the whole volume's index space, its
   /// irradiance texture (`irradianceDims`, or the global grid of `global`
   /// when the input is a piece of it) and the gradient fade.
-  void SetGeometry(vtkImageData* image, const int irradianceDims[3],
-    vtkGlobalPrefilteredVolume* global);
+  void SetGeometry(
+    vtkImageData* image, const int irradianceDims[3], vtkGlobalPrefilteredVolume* global);
 
   /// Whether the data are cell scalars: the ray caster's texture coordinate
   /// then spans the cells (texel centres at the cell centres) and the

@@ -18,7 +18,7 @@
 #include "vtkMultiMaterialVolumeModule.h" // export macro
 #include "vtkNew.h"
 #include "vtkObject.h"
-#include "vtkSmartPointer.h" // kept gradients
+#include "vtkSmartPointer.h"  // kept gradients
 #include "vtkTextureObject.h" // kept gradients
 
 #include <cstddef>
@@ -106,8 +106,8 @@ private:
     vtkSmartPointer<vtkTextureObject> Texture;
     size_t Bytes = 0;
   };
-  bool RestoreKeptGradient(vtkDataArray* scalars, const int dims[3], const double range[2],
-    const double smoothing[3]);
+  bool RestoreKeptGradient(
+    vtkDataArray* scalars, const int dims[3], const double range[2], const double smoothing[3]);
   void KeepGradient(vtkOpenGLRenderWindow* context);
   void TrimKeptGradients(size_t bytes);
   std::list<KeptGradient> Kept; // most recently used first

@@ -1,12 +1,12 @@
 #include "vtkMultiMaterialVolumeGeometry.h"
 
+#include "vtkCamera.h"
 #include "vtkImageData.h"
 #include "vtkMatrix3x3.h"
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
-#include "vtkCamera.h"
 #include "vtkVolume.h"
 
 #include <algorithm>
@@ -85,8 +85,8 @@ void PieceToGlobalIrradianceMap(const IrradianceGrid& grid, const double offset[
   }
 }
 
-double ExpectedSampleDistance(vtkVolume* vol, vtkImageData* image, double sampleDistance, bool autoAdjust, bool lock,
-  double spacingAdjusted)
+double ExpectedSampleDistance(vtkVolume* vol, vtkImageData* image, double sampleDistance,
+  bool autoAdjust, bool lock, double spacingAdjusted)
 {
   if (!autoAdjust)
   {
@@ -118,7 +118,8 @@ double ProjectedPixelsPerVoxel(vtkRenderer* ren, vtkVolume* vol, vtkImageData* i
   double center[3];
   image->GetCenter(center);
   vtkMatrix4x4* m = vol->GetMatrix();
-  auto toDisplay = [&](const double p[3], double out[2]) {
+  auto toDisplay = [&](const double p[3], double out[2])
+  {
     double world[4] = { p[0], p[1], p[2], 1.0 };
     m->MultiplyPoint(world, world);
     ren->SetWorldPoint(world[0] / world[3], world[1] / world[3], world[2] / world[3], 1.0);

@@ -27,8 +27,8 @@ VTKMULTIMATERIALVOLUME_EXPORT void SamePointsMap(double n, double m, float& scal
 /// mmvWholeTexCoord): object space -> the whole volume's point index
 /// (column-major 4x4), and the texture-coordinate gradient -> object space as
 /// VTK's whole-volume inverse texture matrix gives it (column-major 3x3).
-VTKMULTIMATERIALVOLUME_EXPORT void WholeVolumeMaps(vtkImageData* image,
-  float physicalToIndex[16], float gradientToObject[9], float dimensions[3], float spacing[3]);
+VTKMULTIMATERIALVOLUME_EXPORT void WholeVolumeMaps(vtkImageData* image, float physicalToIndex[16],
+  float gradientToObject[9], float dimensions[3], float spacing[3]);
 
 /// Scale and bias from the texture coordinates of a piece of `pieceDims`
 /// points, whose first point is point `offset` of the whole volume, to those

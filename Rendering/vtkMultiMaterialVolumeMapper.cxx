@@ -4,43 +4,43 @@
 #include "vtkColorTransferFunction.h"
 #include "vtkDataArray.h"
 #include "vtkGlobalPrefilteredVolume.h"
-#include "vtkMultiMaterialEnvironment.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkIrradianceEstimator.h"
 #include "vtkLightCollection.h"
 #include "vtkMaterialTransferFunction.h"
 #include "vtkMatrix4x4.h"
+#include "vtkMultiMaterialEnvironment.h"
 #include "vtkMultiMaterialInputCheck.h"
 #include "vtkMultiMaterialIrradianceStage.h"
 #include "vtkMultiMaterialLights.h"
 #include "vtkMultiMaterialLiveObjects.h"
 #include "vtkMultiMaterialParameters.h"
 #include "vtkMultiMaterialReflection.h"
-#include "vtkReflectionVisibilityPass.h"
-#include "vtkMultiMaterialShaderHook.h"
 #include "vtkMultiMaterialShaderAssembly.h"
+#include "vtkMultiMaterialShaderHook.h"
 #include "vtkMultiMaterialShadingUniforms.h"
-#include "vtkMultiMaterialThreads.h"
 #include "vtkMultiMaterialTextures.h"
+#include "vtkMultiMaterialThreads.h"
 #include "vtkMultiMaterialVolumeGeometry.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
 #include "vtkPreIntegrationTable.h"
+#include "vtkReflectionVisibilityPass.h"
 #include "vtkRenderer.h"
 #include "vtkShaderProgram.h"
 #include "vtkSmartPointer.h"
 #include "vtkTextureObject.h"
 #include "vtkValueGradient.h"
+#include "vtkVectorScalarsCache.h"
 #include "vtkVolume.h"
 #include "vtkVolumeBricking.h"
-#include "vtkVectorScalarsCache.h"
-#include "vtkVolumeInputScalars.h"
 #include "vtkVolumeInputHelper.h"
-#include "vtkVolumeTexture.h"
+#include "vtkVolumeInputScalars.h"
 #include "vtkVolumeProperty.h"
+#include "vtkVolumeTexture.h"
 #include "vtk_glew.h"
 
 #include <algorithm>
@@ -105,8 +105,8 @@ public:
   vtkImageData* CellCentreImage(vtkImageData* image, vtkDataArray* scalars)
   {
     const vtkMTimeType time = std::max(image->GetMTime(), scalars->GetMTime());
-    if (!this->CellCentres || image != this->CellCentresOf ||
-      scalars != this->CellCentresScalars || time != this->CellCentresTime)
+    if (!this->CellCentres || image != this->CellCentresOf || scalars != this->CellCentresScalars ||
+      time != this->CellCentresTime)
     {
       this->CellCentres = mmv::MakeCellCentreImage(image, scalars);
       this->CellCentresOf = image;
@@ -120,12 +120,12 @@ public:
   // the same vector, so that kept steps' irradiance matches its key.
   vtkVectorScalarsCache Reduced;
   std::string LastVectorError; // reported once until it changes
-  int DrawnComponents = 0;      // of the scalars the ray caster drew last
+  int DrawnComponents = 0;     // of the scalars the ray caster drew last
 
   void SetUniforms(vtkShaderProgram* program)
   {
-    this->Uniforms.Apply(program, this->Textures, this->SegmentTable->GetTableSize(),
-      this->Irradiance.GetEstimator());
+    this->Uniforms.Apply(
+      program, this->Textures, this->SegmentTable->GetTableSize(), this->Irradiance.GetEstimator());
   }
   void ActivateTextures(bool on)
   {
@@ -286,11 +286,12 @@ bool vtkMultiMaterialVolumeMapper::FitBricksToTextureLimit(vtkRenderer* ren)
   const int maxSize = vtkTextureObject::GetMaximumTextureSize3D(context);
   int parts[3];
   int cellFlag = 0;
-  vtkDataArray* scalars = vtkAbstractMapper::GetScalars(image, this->ScalarMode,
-    this->ArrayAccessMode, this->ArrayId, this->ArrayName, cellFlag);
+  vtkDataArray* scalars = vtkAbstractMapper::GetScalars(
+    image, this->ScalarMode, this->ArrayAccessMode, this->ArrayId, this->ArrayName, cellFlag);
   const double bytesPerPoint =
     scalars ? scalars->GetDataTypeSize() * scalars->GetNumberOfComponents() : 4.0;
-  if (maxSize <= 0 || !mmv::ChooseBrickPartitions(dims, maxSize, this->RequestedPartitions, parts) ||
+  if (maxSize <= 0 ||
+    !mmv::ChooseBrickPartitions(dims, maxSize, this->RequestedPartitions, parts) ||
     !mmv::LimitBrickBytes(dims, bytesPerPoint, this->Settings.MaxBrickMB * 1024.0 * 1024.0, parts))
   {
     vtkErrorMacro("the volume (" << dims[0] << " x " << dims[1] << " x " << dims[2]
@@ -310,9 +311,9 @@ bool vtkMultiMaterialVolumeMapper::FitBricksToTextureLimit(vtkRenderer* ren)
   {
     std::ostringstream message;
     message << "the volume (" << dims[0] << " x " << dims[1] << " x " << dims[2]
-            << " points) is larger than the largest 3D texture of this OpenGL context ("
-            << maxSize << ") or MaxBrickMB (" << this->Settings.MaxBrickMB << "): rendered in " << parts[0] << " x " << parts[1] << " x " << parts[2]
-            << " bricks";
+            << " points) is larger than the largest 3D texture of this OpenGL context (" << maxSize
+            << ") or MaxBrickMB (" << this->Settings.MaxBrickMB << "): rendered in " << parts[0]
+            << " x " << parts[1] << " x " << parts[2] << " bricks";
     this->WarnOnce(message.str());
   }
   return true;
@@ -380,9 +381,10 @@ bool vtkMultiMaterialVolumeMapper::SelectVectorScalars(vtkRenderer* ren)
   this->GetInputAlgorithm(0, 0)->Update();
   input = this->GetInput();
   int cellFlag = 0;
-  vtkDataArray* original = input ? vtkAbstractMapper::GetScalars(input, this->ScalarMode,
-                                     this->ArrayAccessMode, this->ArrayId, this->ArrayName, cellFlag)
-                                 : nullptr;
+  vtkDataArray* original = input
+    ? vtkAbstractMapper::GetScalars(
+        input, this->ScalarMode, this->ArrayAccessMode, this->ArrayId, this->ArrayName, cellFlag)
+    : nullptr;
   if (!original || (cellFlag != 0 && cellFlag != 1))
   {
     return true; // the base class reports missing or field scalars
@@ -415,8 +417,8 @@ bool vtkMultiMaterialVolumeMapper::SelectVectorScalars(vtkRenderer* ren)
     return true;
   }
   int copyFlag = 0;
-  vtkDataArray* current = vtkAbstractMapper::GetScalars(copy, this->ScalarMode,
-    this->ArrayAccessMode, this->ArrayId, this->ArrayName, copyFlag);
+  vtkDataArray* current = vtkAbstractMapper::GetScalars(
+    copy, this->ScalarMode, this->ArrayAccessMode, this->ArrayId, this->ArrayName, copyFlag);
   if (!current)
   {
     return true;
@@ -438,8 +440,7 @@ bool vtkMultiMaterialVolumeMapper::SelectVectorScalars(vtkRenderer* ren)
   // components: start its resources afresh (DataInputs.
   // SwitchingFromAScalarToAVectorArrayDoesNotCrash).
   const int components = wanted->GetNumberOfComponents();
-  if (in.DrawnComponents != 0 && components != in.DrawnComponents && ren &&
-    ren->GetRenderWindow())
+  if (in.DrawnComponents != 0 && components != in.DrawnComponents && ren && ren->GetRenderWindow())
   {
     this->ReleaseGraphicsResources(ren->GetRenderWindow());
   }
@@ -663,12 +664,13 @@ bool vtkMultiMaterialVolumeMapper::UpdateSegmentTables(
   }
   in.Uniforms.SetTableStep(step);
   in.Textures->UpdateSegmentTables(context, table);
-  in.Textures->UpdateMaterialTable(context, in.Materials, range, this->Settings.PreIntegrationTableSize);
+  in.Textures->UpdateMaterialTable(
+    context, in.Materials, range, this->Settings.PreIntegrationTableSize);
   return true;
 }
 
-bool vtkMultiMaterialVolumeMapper::UpdateGradient(vtkOpenGLRenderWindow* context,
-  vtkImageData* image, vtkDataArray* scalars, const double range[2])
+bool vtkMultiMaterialVolumeMapper::UpdateGradient(
+  vtkOpenGLRenderWindow* context, vtkImageData* image, vtkDataArray* scalars, const double range[2])
 {
   vtkInternals& in = *this->Internals;
   // Pieces of one volume share the gradient's normalisation (and so its
@@ -677,7 +679,8 @@ bool vtkMultiMaterialVolumeMapper::UpdateGradient(vtkOpenGLRenderWindow* context
   int dataDims[3];
   image->GetDimensions(dataDims);
   std::string smoothingProblem;
-  const double smoothing = mmv::ValidGradientSmoothing(this->Settings.GradientSmoothing, &smoothingProblem);
+  const double smoothing =
+    mmv::ValidGradientSmoothing(this->Settings.GradientSmoothing, &smoothingProblem);
   if (!smoothingProblem.empty())
   {
     this->WarnOnce(smoothingProblem);
@@ -685,7 +688,8 @@ bool vtkMultiMaterialVolumeMapper::UpdateGradient(vtkOpenGLRenderWindow* context
   double smoothingVoxels[3];
   mmv::GradientSmoothingVoxels(smoothing, image->GetSpacing(), smoothingVoxels);
   // The steps of a series kept with their irradiance keep their gradients.
-  in.Textures->SetKeptGradientBytes(static_cast<size_t>(this->Settings.IrradianceCacheMB * 1048576.0));
+  in.Textures->SetKeptGradientBytes(
+    static_cast<size_t>(this->Settings.IrradianceCacheMB * 1048576.0));
   if (!in.Textures->UpdateGradientTexture(context, scalars, dataDims, gradientRange,
         this->Settings.MaxBrickMB * 1024.0 * 1024.0, smoothingVoxels))
   {
@@ -774,8 +778,9 @@ void vtkMultiMaterialVolumeMapper::UpdateReflection(
   vtkMatrix4x4::Invert(worldToObject, objectToWorld);
   const mmv::IrradianceGrid& grid = in.Irradiance.GetGrid();
   std::vector<std::string> problems;
-  in.Reflection->Update(ren, objectToWorld, this->Settings.ReflectionSource, this->Settings.ReflectionVisibility,
-    in.Lights.empty() ? nullptr : in.Irradiance.GetEstimator(), grid, this->Settings.PreIntegrationTableSize,
+  in.Reflection->Update(ren, objectToWorld, this->Settings.ReflectionSource,
+    this->Settings.ReflectionVisibility, in.Lights.empty() ? nullptr : in.Irradiance.GetEstimator(),
+    grid, this->Settings.PreIntegrationTableSize,
     std::min({ grid.Spacing.x, grid.Spacing.y, grid.Spacing.z }), &problems,
     this->LastRenderInteractive && this->Settings.InteractiveIrradiance == ReuseWhileInteracting);
   for (const std::string& problem : problems)
@@ -820,7 +825,10 @@ vtkIrradianceResolutionProbe* vtkMultiMaterialVolumeMapper::GetIrradianceResolut
       this->Modified();                                                                            \
     }                                                                                              \
   }                                                                                                \
-  type vtkMultiMaterialVolumeMapper::Get##name() { return this->Settings.name; }
+  type vtkMultiMaterialVolumeMapper::Get##name()                                                   \
+  {                                                                                                \
+    return this->Settings.name;                                                                    \
+  }
 MMV_ILLUMINATION_SETTINGS(MMV_SETTING_ACCESSORS)
 #undef MMV_SETTING_ACCESSORS
 

@@ -45,8 +45,8 @@
 #include "vtkMultiMaterialParameters.h"   // ShadowEstimation
 #include "vtkMultiMaterialSettings.h"     // IlluminationSettings
 #include "vtkMultiMaterialVolumeModule.h" // export macro
-#include "vtkVolumeInputScalars.h"         // VectorModes
 #include "vtkOpenGLGPUVolumeRayCastMapper.h"
+#include "vtkVolumeInputScalars.h" // VectorModes
 
 #include <string> // shader source
 #include <vector> // ReadIrradiance
@@ -105,7 +105,10 @@ public:
    */
 #ifndef __VTK_WRAP__
   void SetSettings(const mmv::IlluminationSettings& settings);
-  const mmv::IlluminationSettings& GetSettings() const { return this->Settings; }
+  const mmv::IlluminationSettings& GetSettings() const
+  {
+    return this->Settings;
+  }
 #endif
   void SetIrradianceMemoryMB(double megabytes);
   double GetIrradianceMemoryMB();
@@ -119,26 +122,50 @@ public:
   double GetGradientSmoothing();
   void SetMultipleScattering(bool enabled);
   bool GetMultipleScattering();
-  void MultipleScatteringOn() { this->SetMultipleScattering(true); }
-  void MultipleScatteringOff() { this->SetMultipleScattering(false); }
+  void MultipleScatteringOn()
+  {
+    this->SetMultipleScattering(true);
+  }
+  void MultipleScatteringOff()
+  {
+    this->SetMultipleScattering(false);
+  }
   void SetShadowEstimation(int estimation);
   int GetShadowEstimation();
   void SetPiecewiseShadowSlices(int slices);
   int GetPiecewiseShadowSlices();
   void SetExponentialDiffusion(bool exponential);
   bool GetExponentialDiffusion();
-  void ExponentialDiffusionOn() { this->SetExponentialDiffusion(true); }
-  void ExponentialDiffusionOff() { this->SetExponentialDiffusion(false); }
+  void ExponentialDiffusionOn()
+  {
+    this->SetExponentialDiffusion(true);
+  }
+  void ExponentialDiffusionOff()
+  {
+    this->SetExponentialDiffusion(false);
+  }
   void SetLightDirectionTolerance(double degrees);
   double GetLightDirectionTolerance();
   void SetDimLightCoarsening(bool coarsening);
   bool GetDimLightCoarsening();
-  void DimLightCoarseningOn() { this->SetDimLightCoarsening(true); }
-  void DimLightCoarseningOff() { this->SetDimLightCoarsening(false); }
+  void DimLightCoarseningOn()
+  {
+    this->SetDimLightCoarsening(true);
+  }
+  void DimLightCoarseningOff()
+  {
+    this->SetDimLightCoarsening(false);
+  }
   void SetPreIntegration(bool enabled);
   bool GetPreIntegration();
-  void PreIntegrationOn() { this->SetPreIntegration(true); }
-  void PreIntegrationOff() { this->SetPreIntegration(false); }
+  void PreIntegrationOn()
+  {
+    this->SetPreIntegration(true);
+  }
+  void PreIntegrationOff()
+  {
+    this->SetPreIntegration(false);
+  }
   void SetPreIntegrationTableSize(int size);
   int GetPreIntegrationTableSize();
   void SetPointLightRadius(double radius);
@@ -153,12 +180,24 @@ public:
   int GetInteractiveIrradiance();
   void SetTimeStages(bool timed);
   bool GetTimeStages();
-  void TimeStagesOn() { this->SetTimeStages(true); }
-  void TimeStagesOff() { this->SetTimeStages(false); }
+  void TimeStagesOn()
+  {
+    this->SetTimeStages(true);
+  }
+  void TimeStagesOff()
+  {
+    this->SetTimeStages(false);
+  }
   void SetPieceIrradianceOnly(bool pieceOnly);
   bool GetPieceIrradianceOnly();
-  void PieceIrradianceOnlyOn() { this->SetPieceIrradianceOnly(true); }
-  void PieceIrradianceOnlyOff() { this->SetPieceIrradianceOnly(false); }
+  void PieceIrradianceOnlyOn()
+  {
+    this->SetPieceIrradianceOnly(true);
+  }
+  void PieceIrradianceOnlyOff()
+  {
+    this->SetPieceIrradianceOnly(false);
+  }
   void SetMaxBrickMB(double megabytes);
   double GetMaxBrickMB();
   ///@}
@@ -310,8 +349,8 @@ private:
   bool SelectVectorScalars(vtkRenderer* ren);
   bool UpdateSegmentTables(
     vtkOpenGLRenderWindow* context, vtkVolume* vol, vtkImageData* image, const double range[2]);
-  bool UpdateGradient(vtkOpenGLRenderWindow* context, vtkImageData* image,
-    vtkDataArray* scalars, const double range[2]);
+  bool UpdateGradient(vtkOpenGLRenderWindow* context, vtkImageData* image, vtkDataArray* scalars,
+    const double range[2]);
   // The irradiance stage on this frame's inputs; its report becomes the
   // counters and warnings.
   bool UpdateIrradiance(vtkRenderer* ren, vtkVolume* vol, vtkImageData* image,

@@ -49,9 +49,9 @@ bool SameTextureSize(vtkTextureObject* a, vtkTextureObject* b)
 
 void CopyTexture3D(vtkTextureObject* from, vtkTextureObject* to)
 {
-  glCopyImageSubData(from->GetHandle(), GL_TEXTURE_3D, 0, 0, 0, 0, to->GetHandle(),
-    GL_TEXTURE_3D, 0, 0, 0, 0, static_cast<GLsizei>(from->GetWidth()),
-    static_cast<GLsizei>(from->GetHeight()), static_cast<GLsizei>(from->GetDepth()));
+  glCopyImageSubData(from->GetHandle(), GL_TEXTURE_3D, 0, 0, 0, 0, to->GetHandle(), GL_TEXTURE_3D,
+    0, 0, 0, 0, static_cast<GLsizei>(from->GetWidth()), static_cast<GLsizei>(from->GetHeight()),
+    static_cast<GLsizei>(from->GetDepth()));
 }
 
 vtkSmartPointer<vtkTextureObject> NewTextureLike(
@@ -71,4 +71,3 @@ vtkSmartPointer<vtkTextureObject> NewTextureLike(
   return texture;
 }
 }
-

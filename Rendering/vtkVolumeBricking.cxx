@@ -56,7 +56,8 @@ bool ChooseBrickPartitions(
 bool LimitBrickBytes(
   const int pointDims[3], double bytesPerPoint, double maxBrickBytes, int partitions[3])
 {
-  auto brickBytes = [&]() {
+  auto brickBytes = [&]()
+  {
     double bytes = bytesPerPoint;
     for (int a = 0; a < 3; ++a)
     {

@@ -15,8 +15,8 @@ namespace mmv
 namespace
 {
 template <typename T>
-void AllReduce(vtkMultiProcessController* controller, const T* send, T* receive, vtkIdType length,
-  int operation)
+void AllReduce(
+  vtkMultiProcessController* controller, const T* send, T* receive, vtkIdType length, int operation)
 {
   if (controller && controller->GetNumberOfProcesses() > 1)
   {
@@ -43,12 +43,12 @@ bool ExchangeGlobalPrefilter(vtkMultiProcessController* controller, vtkImageData
   double summary[vtkGlobalPrefilteredVolume::SummarySize];
   double reduced[vtkGlobalPrefilteredVolume::SummarySize];
   vtkGlobalPrefilteredVolume::SummarizePiece(piece, scalars, summary);
-  AllReduce(controller, summary, reduced, vtkGlobalPrefilteredVolume::SummarySize,
-    vtkCommunicator::MIN_OP);
+  AllReduce(
+    controller, summary, reduced, vtkGlobalPrefilteredVolume::SummarySize, vtkCommunicator::MIN_OP);
   vtkIdType bytes = static_cast<vtkIdType>(sizeof(summary));
   // Every rank reduced the same summary, so every rank returns here or none.
-  if (!result->SetGeometry(reduced, settings.BudgetMB, settings.ExpectedLights, settings.Scale,
-        settings.MaxVoxels))
+  if (!result->SetGeometry(
+        reduced, settings.BudgetMB, settings.ExpectedLights, settings.Scale, settings.MaxVoxels))
   {
     error = result->GetLastError();
     result->SetBytesExchanged(bytes);

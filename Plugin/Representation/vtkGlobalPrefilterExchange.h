@@ -32,8 +32,8 @@ namespace mmv
 struct GlobalPrefilterSettings
 {
   double BudgetMB = mmv::DefaultIrradianceBudgetMB; // the irradiance memory budget
-  int ExpectedLights = 4;   // lights the budget is shared by (not known before rendering)
-  double Scale = 0.0;       // IrradianceScale; 0: from the budget
+  int ExpectedLights = 4; // lights the budget is shared by (not known before rendering)
+  double Scale = 0.0;     // IrradianceScale; 0: from the budget
   vtkIdType MaxVoxels = 128 * 128 * 128; // bound on the exchanged grid
 };
 

@@ -33,7 +33,8 @@ struct Internal
   double (*Value)(const mmv::LightingQualitySettings&);
 };
 const Internal Internals[] = {
-  { "ShadowEstimation", [](const mmv::LightingQualitySettings& r) { return double(r.ShadowEstimation); } },
+  { "ShadowEstimation",
+    [](const mmv::LightingQualitySettings& r) { return double(r.ShadowEstimation); } },
   { "PiecewiseShadowSlices",
     [](const mmv::LightingQualitySettings& r) { return double(r.PiecewiseShadowSlices); } },
   { "ExponentialDiffusion",
@@ -46,7 +47,8 @@ const Internal Internals[] = {
     [](const mmv::LightingQualitySettings& r) { return double(r.ReflectionVisibility); } },
   { "IrradianceErrorBound",
     [](const mmv::LightingQualitySettings& r) { return r.IrradianceErrorBound; } },
-  { "IrradianceMemoryMB", [](const mmv::LightingQualitySettings& r) { return r.IrradianceMemoryMB; } },
+  { "IrradianceMemoryMB",
+    [](const mmv::LightingQualitySettings& r) { return r.IrradianceMemoryMB; } },
   { "IrradianceScale", [](const mmv::LightingQualitySettings& r) { return r.IrradianceScale; } },
   { "DimLightCoarsening",
     [](const mmv::LightingQualitySettings& r) { return double(r.DimLightCoarsening); } },
@@ -104,7 +106,8 @@ public:
     }
     else if (const Internal* internal = FindInternal(info->PropertyName))
     {
-      if (row && vtkSMPropertyHelper(display, internal->Name).GetAsDouble() != internal->Value(*row))
+      if (row &&
+        vtkSMPropertyHelper(display, internal->Name).GetAsDouble() != internal->Value(*row))
       {
         vtkSMPropertyHelper(display, QualityProperty).Set(mmv::LightingQualityCustom);
       }

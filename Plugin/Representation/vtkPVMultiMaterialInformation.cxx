@@ -19,16 +19,19 @@ struct NumberGetter
   double (*Get)(Representation*);
 };
 const NumberGetter NumberGetters[] = {
-  { "IrradianceUpdateCount", [](Representation* r) { return double(r->GetIrradianceUpdateCount()); } },
+  { "IrradianceUpdateCount",
+    [](Representation* r) { return double(r->GetIrradianceUpdateCount()); } },
   { "IrradianceCacheHitCount",
     [](Representation* r) { return double(r->GetIrradianceCacheHitCount()); } },
   { "DiffusionPassCount", [](Representation* r) { return double(r->GetDiffusionPassCount()); } },
   { "PreIntegrationCount", [](Representation* r) { return double(r->GetPreIntegrationCount()); } },
   { "RayCastCount", [](Representation* r) { return double(r->GetRayCastCount()); } },
-  { "NumberOfShadedLights", [](Representation* r) { return double(r->GetNumberOfShadedLights()); } },
+  { "NumberOfShadedLights",
+    [](Representation* r) { return double(r->GetNumberOfShadedLights()); } },
   { "DeferredIrradianceCount",
     [](Representation* r) { return double(r->GetDeferredIrradianceCount()); } },
-  { "IrradianceProbeCount", [](Representation* r) { return double(r->GetIrradianceProbeCount()); } },
+  { "IrradianceProbeCount",
+    [](Representation* r) { return double(r->GetIrradianceProbeCount()); } },
   { "MultiMaterialActive", [](Representation* r) { return double(r->GetMultiMaterialActive()); } },
   { "LastIrradianceSeconds", [](Representation* r) { return r->GetLastIrradianceSeconds(); } },
   { "LastEstimatedIrradianceVoxels",
@@ -40,7 +43,8 @@ struct TextGetter
   const char* (*Get)(Representation*);
 };
 const TextGetter TextGetters[] = {
-  { "IrradianceResolutionInfo", [](Representation* r) { return r->GetIrradianceResolutionInfo(); } },
+  { "IrradianceResolutionInfo",
+    [](Representation* r) { return r->GetIrradianceResolutionInfo(); } },
   { "LastIrradianceStages", [](Representation* r) { return r->GetLastIrradianceStages(); } },
   { "GlobalIrradianceInfo", [](Representation* r) { return r->GetGlobalIrradianceInfo(); } },
   { "ResampleInfo", [](Representation* r) { return r->GetResampleInfo(); } },

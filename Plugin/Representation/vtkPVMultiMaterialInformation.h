@@ -22,8 +22,7 @@
 #include <string> // for the names
 #include <vector> // for the values
 
-class VTKMULTIMATERIALVOLUMEPARAVIEW_EXPORT vtkPVMultiMaterialInformation
-  : public vtkPVInformation
+class VTKMULTIMATERIALVOLUMEPARAVIEW_EXPORT vtkPVMultiMaterialInformation : public vtkPVInformation
 {
 public:
   static vtkPVMultiMaterialInformation* New();

@@ -1,32 +1,32 @@
 #include "vtkPVMultiMaterialVolumeRepresentation.h"
 
-#include "vtkColorTransferFunction.h"
-#include "vtkDataObject.h"
 #include "vtkCellData.h"
+#include "vtkColorTransferFunction.h"
+#include "vtkCommand.h"
+#include "vtkCommunicator.h"
 #include "vtkCompositeDataSet.h"
+#include "vtkDataObject.h"
 #include "vtkGlobalPrefilterExchange.h"
 #include "vtkImageBlockMerge.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
-#include "vtkStreamingDemandDrivenPipeline.h"
-#include "vtkUniformGridAMR.h"
-#include "vtkCommand.h"
-#include "vtkCommunicator.h"
-#include "vtkMultiProcessController.h"
-#include "vtkPVRenderView.h"
-#include "vtkPVView.h"
-#include "vtkRenderer.h"
+#include "vtkIrradianceEstimator.h"
 #include "vtkMaterialLibrary.h"
 #include "vtkMultiMaterialLightingQuality.h"
 #include "vtkMultiMaterialLiveObjects.h"
-#include "vtkIrradianceEstimator.h"
 #include "vtkMultiMaterialVolumeMapper.h"
+#include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
 #include "vtkPResampleToImage.h"
-#include "vtkRectilinearGrid.h"
-#include "vtkResampleToImage.h"
+#include "vtkPVRenderView.h"
+#include "vtkPVView.h"
 #include "vtkPointData.h"
+#include "vtkRectilinearGrid.h"
+#include "vtkRenderer.h"
+#include "vtkResampleToImage.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkUniformGridAMR.h"
 #include "vtkVolumeInputScalars.h"
 #include "vtkVolumeProperty.h"
 
@@ -98,8 +98,7 @@ vtkMultiMaterialVolumeMapper* vtkPVMultiMaterialVolumeRepresentation::GetMultiMa
 //------------------------------------------------------------------------------
 void vtkPVMultiMaterialVolumeRepresentation::SetNumberOfMaterialNodeValues(int count)
 {
-  if (this->PendingNodes.Announce(count) &&
-    this->PendingNodes.Apply(this, this->CustomMaterials))
+  if (this->PendingNodes.Announce(count) && this->PendingNodes.Apply(this, this->CustomMaterials))
   {
     this->Modified();
   }
@@ -134,8 +133,8 @@ void vtkPVMultiMaterialVolumeRepresentation::SetMaterialPreset(const char* name)
     vtkNew<vtkMaterialLibrary> library;
     if (!library->HasPreset(value.c_str()))
     {
-      vtkErrorMacro("Unknown material preset \"" << value << "\". Keeping \""
-                                                  << this->MaterialPreset << "\".");
+      vtkErrorMacro(
+        "Unknown material preset \"" << value << "\". Keeping \"" << this->MaterialPreset << "\".");
       return;
     }
   }
@@ -444,8 +443,7 @@ int vtkPVMultiMaterialVolumeRepresentation::GetMultiMaterialActive()
 }
 
 //------------------------------------------------------------------------------
-int vtkPVMultiMaterialVolumeRepresentation::FillInputPortInformation(
-  int port, vtkInformation* info)
+int vtkPVMultiMaterialVolumeRepresentation::FillInputPortInformation(int port, vtkInformation* info)
 {
   this->Superclass::FillInputPortInformation(port, info);
   info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkMultiBlockDataSet");
@@ -601,8 +599,8 @@ int vtkPVMultiMaterialVolumeRepresentation::RequestResampledData(vtkInformation*
   vtkInformation* info = substitute->GetInformationObject(0);
   info->Copy(inInfo);
   info->Set(vtkDataObject::DATA_OBJECT(), image);
-  int wholeExtent[6] = { 0, this->SamplingDimensions[0] - 1, 0,
-    this->SamplingDimensions[1] - 1, 0, this->SamplingDimensions[2] - 1 };
+  int wholeExtent[6] = { 0, this->SamplingDimensions[0] - 1, 0, this->SamplingDimensions[1] - 1, 0,
+    this->SamplingDimensions[2] - 1 };
   info->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(),
     totalCells > 0 ? wholeExtent : image->GetExtent(), 6);
   vtkInformationVector* inputs[1] = { substitute };
@@ -737,8 +735,8 @@ void vtkPVMultiMaterialVolumeRepresentation::UpdateGlobalVolume()
     // Every rank knows; one message is enough.
     if (controller->GetLocalProcessId() == 0)
     {
-      vtkErrorMacro("the pieces cannot be lit together (" << error
-                                                          << "); each rank lights its own piece");
+      vtkErrorMacro(
+        "the pieces cannot be lit together (" << error << "); each rank lights its own piece");
     }
   }
   this->GlobalInfo = text.str();

@@ -31,8 +31,8 @@
 #ifndef vtkPVMultiMaterialVolumeRepresentation_h
 #define vtkPVMultiMaterialVolumeRepresentation_h
 
-#include "vtkDoubleArray.h" // for vtkNew ivar
-#include "vtkGlobalPrefilteredVolume.h"           // for vtkNew ivar
+#include "vtkDoubleArray.h"             // for vtkNew ivar
+#include "vtkGlobalPrefilteredVolume.h" // for vtkNew ivar
 #include "vtkImageVolumeRepresentation.h"
 #include "vtkMaterialTransferFunction.h"          // for vtkNew ivar
 #include "vtkMultiMaterialVolumeParaViewModule.h" // export macro

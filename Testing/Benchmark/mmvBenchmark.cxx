@@ -71,13 +71,13 @@ double Median(std::vector<double> v)
 struct MethodSpec
 {
   std::string Name;
-  std::string Family;          // "ours", "vtk-phong" or "vtk-scattering"
+  std::string Family;           // "ours", "vtk-phong" or "vtk-scattering"
   double IrradianceScale = 0.0; // ours; 0: chosen from the memory budget
   double SampleVoxels = 1.0;    // sample distance in smallest-spacing units
   bool PreIntegration = true;
   bool Scattering = true;
   bool BackwardEuler = false; // ours: the diffusion's former default integrator
-  double Blending = 0.0; // VTK volumetric scattering
+  double Blending = 0.0;      // VTK volumetric scattering
   double Reach = 0.0;
 };
 
@@ -385,8 +385,8 @@ int main(int argc, char* argv[])
          "interaction_ms,light_change_ms,light_irradiance_ms,preint_table_256_ms,gpu_memory_mb,"
          "psnr,ssim,rmse,reference_s,size,frames,light_frames\n";
   std::ofstream machine(opt.Out + "/machine.txt");
-  machine << "cores " << std::thread::hardware_concurrency() << "\nsize " << opt.Size
-          << "\nframes " << opt.Frames << "\nlight_frames " << opt.LightFrames << "\n";
+  machine << "cores " << std::thread::hardware_concurrency() << "\nsize " << opt.Size << "\nframes "
+          << opt.Frames << "\nlight_frames " << opt.LightFrames << "\n";
 
   const std::vector<std::vector<MethodSpec>> windows = MakeMethods(opt.Quick);
   bool rendererReported = false;
@@ -543,8 +543,8 @@ int main(int argc, char* argv[])
             << 1e3 * r.FirstFrame << "," << 1e3 * r.PreIntegration << "," << 1e3 * r.Irradiance
             << "," << 1e3 * Median(r.InteractionRayCast) << "," << 1e3 * Median(r.Interaction)
             << "," << 1e3 * Median(r.LightChange) << "," << 1e3 * Median(r.LightIrradiance) << ","
-            << 1e3 * preintTable << "," << r.MemoryBytes / (1024.0 * 1024.0) << "," << r.PSNR
-            << "," << r.SSIM << "," << r.RMSE << "," << reference->GetLastRenderSeconds() << ","
+            << 1e3 * preintTable << "," << r.MemoryBytes / (1024.0 * 1024.0) << "," << r.PSNR << ","
+            << r.SSIM << "," << r.RMSE << "," << reference->GetLastRenderSeconds() << ","
             << opt.Size << "," << opt.Frames << "," << opt.LightFrames << "\n";
         std::cout << std::setw(30) << std::left << m.Name << std::right << std::fixed
                   << std::setprecision(1) << " frame " << std::setw(7)

@@ -65,7 +65,6 @@ inline std::vector<std::string> SplitList(const std::string& text)
   return items;
 }
 
-
 /// One volume in its own window, drawn by VTK's GPU ray caster or by ours
 /// (`Ours`, the same object as `Mapper`, or nullptr).
 struct VolumeWindow
@@ -112,17 +111,22 @@ inline SceneSpec MakeSynthetic()
   // Values grow with opacity (blob 0.2, slab 0.5, metal 0.85) so the thin
   // shells an object's edge passes through belong to fainter materials.
   auto ramp = [](double distance) { return std::min(std::max(0.5 - distance, 0.0), 1.0); };
-  s.Image = mmvtest::MakeVolume(64, [&](double x, double y, double z) {
-    const double metal = std::sqrt((x - 20) * (x - 20) + (y - 34) * (y - 34) + (z - 30) * (z - 30)) - 11.0;
-    const double blob = std::sqrt((x - 44) * (x - 44) + 0.6 * (y - 30) * (y - 30) + (z - 32) * (z - 32)) - 13.0;
-    const double slab = std::max({ std::abs(x - 32) - 27.0, std::abs(y - 32) - 27.0, std::abs(z - 9) - 4.0 });
-    return std::max({ 0.85 * ramp(metal), 0.2 * ramp(blob), 0.5 * ramp(slab) });
-  });
+  s.Image = mmvtest::MakeVolume(64,
+    [&](double x, double y, double z)
+    {
+      const double metal =
+        std::sqrt((x - 20) * (x - 20) + (y - 34) * (y - 34) + (z - 30) * (z - 30)) - 11.0;
+      const double blob =
+        std::sqrt((x - 44) * (x - 44) + 0.6 * (y - 30) * (y - 30) + (z - 32) * (z - 32)) - 13.0;
+      const double slab =
+        std::max({ std::abs(x - 32) - 27.0, std::abs(y - 32) - 27.0, std::abs(z - 9) - 4.0 });
+      return std::max({ 0.85 * ramp(metal), 0.2 * ramp(blob), 0.5 * ramp(slab) });
+    });
   s.Color = vtkSmartPointer<vtkColorTransferFunction>::New();
   s.Color->AddRGBPoint(0.0, 0.95, 0.7, 0.35);
-  s.Color->AddRGBPoint(0.3, 0.95, 0.7, 0.35);  // scattering blob: amber
+  s.Color->AddRGBPoint(0.3, 0.95, 0.7, 0.35); // scattering blob: amber
   s.Color->AddRGBPoint(0.4, 0.3, 0.5, 0.9);
-  s.Color->AddRGBPoint(0.6, 0.3, 0.5, 0.9);    // plastic: blue
+  s.Color->AddRGBPoint(0.6, 0.3, 0.5, 0.9); // plastic: blue
   s.Color->AddRGBPoint(0.7, 0.85, 0.85, 0.88);
   s.Color->AddRGBPoint(1.0, 0.85, 0.85, 0.88); // metal
   s.Opacity = vtkSmartPointer<vtkPiecewiseFunction>::New();
@@ -221,7 +225,8 @@ inline SceneSpec MakeOrbital()
   // psi_320 ~ r^2 exp(-r/3) (3 cos^2 theta - 1), r in Bohr radii over
   // [-24, 24]^3; the fourth root of the density spreads its range.
   double peak = 0.0;
-  auto density = [](double x, double y, double z) {
+  auto density = [](double x, double y, double z)
+  {
     const double r2 = x * x + y * y + z * z;
     const double psi = (3.0 * z * z - r2) * std::exp(-std::sqrt(r2) / 3.0);
     return psi * psi;
@@ -237,16 +242,16 @@ inline SceneSpec MakeOrbital()
       }
     }
   }
-  s.Image = mmvtest::MakeVolume(64, [&](double i, double j, double k) {
-    return std::pow(density(i * h - 24, j * h - 24, k * h - 24) / peak, 0.25);
-  });
+  s.Image = mmvtest::MakeVolume(64,
+    [&](double i, double j, double k)
+    { return std::pow(density(i * h - 24, j * h - 24, k * h - 24) / peak, 0.25); });
   s.Color = vtkSmartPointer<vtkColorTransferFunction>::New();
   s.Color->AddRGBPoint(0.0, 0.35, 0.55, 1.0);
-  s.Color->AddRGBPoint(0.3, 0.35, 0.55, 1.0);  // haze: blue
+  s.Color->AddRGBPoint(0.3, 0.35, 0.55, 1.0); // haze: blue
   s.Color->AddRGBPoint(0.5, 0.4, 0.9, 0.5);
-  s.Color->AddRGBPoint(0.65, 0.4, 0.9, 0.5);   // shell: green
+  s.Color->AddRGBPoint(0.65, 0.4, 0.9, 0.5); // shell: green
   s.Color->AddRGBPoint(0.8, 1.0, 0.85, 0.4);
-  s.Color->AddRGBPoint(1.0, 1.0, 0.85, 0.4);   // core: gold
+  s.Color->AddRGBPoint(1.0, 1.0, 0.85, 0.4); // core: gold
   s.Opacity = vtkSmartPointer<vtkPiecewiseFunction>::New();
   s.Opacity->AddPoint(0.0, 0.0);
   s.Opacity->AddPoint(0.15, 0.0);
@@ -305,7 +310,8 @@ inline double FrameScene(const SceneSpec& scene, vtkCamera* camera, vtkLight* li
     std::sqrt((bounds[1] - bounds[0]) * (bounds[1] - bounds[0]) +
       (bounds[3] - bounds[2]) * (bounds[3] - bounds[2]) +
       (bounds[5] - bounds[4]) * (bounds[5] - bounds[4]));
-  auto unit = [](const double v[3], double out[3]) {
+  auto unit = [](const double v[3], double out[3])
+  {
     const double n = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
     for (int i = 0; i < 3; ++i)
     {
@@ -317,8 +323,8 @@ inline double FrameScene(const SceneSpec& scene, vtkCamera* camera, vtkLight* li
   const double distance = 0.95 * radius / std::sin(15.0 * M_PI / 180.0);
   camera->SetViewAngle(30.0);
   camera->SetFocalPoint(const_cast<double*>(center));
-  camera->SetPosition(center[0] + distance * view[0], center[1] + distance * view[1],
-    center[2] + distance * view[2]);
+  camera->SetPosition(
+    center[0] + distance * view[0], center[1] + distance * view[1], center[2] + distance * view[2]);
   camera->SetViewUp(const_cast<double*>(scene.ViewUp));
   camera->OrthogonalizeViewUp();
   camera->SetClippingRange(distance - 1.05 * radius, distance + 1.05 * radius);
@@ -356,8 +362,8 @@ inline void ShadeWithDefaultMaterial(vtkVolumeProperty* property)
 
 /// The scene's background (its gradient unless `gradient` is false), only
 /// `light`, and `camera`: every method and the references see the same.
-inline void SetUpRenderer(
-  const SceneSpec& scene, vtkRenderer* renderer, vtkCamera* camera, vtkLight* light, bool gradient = true)
+inline void SetUpRenderer(const SceneSpec& scene, vtkRenderer* renderer, vtkCamera* camera,
+  vtkLight* light, bool gradient = true)
 {
   renderer->SetBackground(const_cast<double*>(scene.Background));
   if (gradient)

@@ -65,8 +65,8 @@ inline double Median(std::vector<double> v)
 
 // The scene's materials with every node's s and c_t scaled, and g set
 // (NaN: kept).
-inline void ScaleMaterials(vtkMaterialTransferFunction* source, double scattering, double attenuation,
-  vtkMaterialTransferFunction* target, double anisotropy = std::nan(""))
+inline void ScaleMaterials(vtkMaterialTransferFunction* source, double scattering,
+  double attenuation, vtkMaterialTransferFunction* target, double anisotropy = std::nan(""))
 {
   const int stride = vtkMaterialTransferFunction::NodeStride;
   std::vector<double> nodes(static_cast<size_t>(source->GetSize()) * stride);
@@ -148,8 +148,8 @@ struct Truth
 // Over the volume's pixels (`mask`: the truth's paths met the medium there),
 // the RMSE (0-255) of test against truth as is (`raw`), and after the
 // least-squares brightness factor k (returned).
-inline double GainCompensated(vtkImageData* test, vtkImageData* truth, const std::vector<bool>& mask,
-  double& k, double& raw)
+inline double GainCompensated(
+  vtkImageData* test, vtkImageData* truth, const std::vector<bool>& mask, double& k, double& raw)
 {
   vtkDataArray* a = test->GetPointData()->GetScalars();
   vtkDataArray* b = truth->GetPointData()->GetScalars();
@@ -197,8 +197,8 @@ inline double Brightest(vtkImageData* image)
 // The (x, y) >= 0 minimising |x (A - Z) + y (B - Z) - (T - Z)|^2 over all
 // pixels and channels; Z (`offset`, optional: 0) is what every image holds
 // whatever x and y (the background, terms not fitted).
-inline void NonNegativeLeastSquares(
-  vtkImageData* a, vtkImageData* b, vtkImageData* t, double& x, double& y, vtkImageData* offset = nullptr)
+inline void NonNegativeLeastSquares(vtkImageData* a, vtkImageData* b, vtkImageData* t, double& x,
+  double& y, vtkImageData* offset = nullptr)
 {
   vtkDataArray* A = a->GetPointData()->GetScalars();
   vtkDataArray* B = b->GetPointData()->GetScalars();
@@ -220,9 +220,8 @@ inline void NonNegativeLeastSquares(
       tt += w * w;
     }
   }
-  auto error = [&](double p, double q) {
-    return p * p * aa + q * q * bb + 2 * p * q * ab - 2 * p * at - 2 * q * bt + tt;
-  };
+  auto error = [&](double p, double q)
+  { return p * p * aa + q * q * bb + 2 * p * q * ab - 2 * p * at - 2 * q * bt + tt; };
   const double det = aa * bb - ab * ab;
   x = y = 0.0;
   if (det > 1e-12 * aa * bb)
@@ -276,7 +275,8 @@ inline void FitTwoScales(const std::function<void(double, double, vtkImageData*)
 
 // Every node's ka and kd of `materials` multiplied (in place), within their
 // hard limits.
-inline void ScaleAmbientDiffuse(vtkMaterialTransferFunction* materials, double ambient, double diffuse)
+inline void ScaleAmbientDiffuse(
+  vtkMaterialTransferFunction* materials, double ambient, double diffuse)
 {
   const int stride = vtkMaterialTransferFunction::NodeStride;
   std::vector<double> nodes(static_cast<size_t>(materials->GetSize()) * stride);

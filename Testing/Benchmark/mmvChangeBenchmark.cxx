@@ -28,8 +28,8 @@
 #include "vtkImageData.h"
 #include "vtkImageResample.h"
 #include "vtkLightKit.h"
-#include "vtkMath.h"
 #include "vtkMaterialTransferFunction.h"
+#include "vtkMath.h"
 #include "vtkMultiMaterialVolumeMapper.h"
 #include "vtkNew.h"
 #include "vtkOpenGLGPUVolumeRayCastMapper.h"
@@ -58,8 +58,8 @@ namespace
 {
 // pv_lightkit_orbit.py's transfer functions: (value, opacity) and
 // (value, r, g, b) over the MR head's range, shared by every method.
-const double OpacityPoints[][2] = { { 0.0, 0.0 }, { 500.0, 0.0 }, { 800.0, 0.12 },
-  { 1100.0, 0.2 }, { 1400.0, 0.8 }, { 3926.0, 0.9 } };
+const double OpacityPoints[][2] = { { 0.0, 0.0 }, { 500.0, 0.0 }, { 800.0, 0.12 }, { 1100.0, 0.2 },
+  { 1400.0, 0.8 }, { 3926.0, 0.9 } };
 const double ColorPoints[][4] = { { 0.0, 0.0, 0.0, 0.0 }, { 500.0, 0.35, 0.3, 0.28 },
   { 900.0, 0.78, 0.68, 0.62 }, { 1400.0, 0.93, 0.9, 0.82 }, { 3926.0, 1.0, 1.0, 1.0 } };
 const double ValueRange[2] = { 0.0, 3926.0 };
@@ -237,8 +237,7 @@ struct Record
 
 /// The sequences of one volume; appends rows to `csv`.
 void RunVolume(const std::string& volume, const std::vector<vtkSmartPointer<vtkImageData>>& series,
-  int size, int changes, const std::string& wanted, std::ofstream& csv,
-  const std::string& renderer)
+  int size, int changes, const std::string& wanted, std::ofstream& csv, const std::string& renderer)
 {
   TransferFunctions tf;
   std::vector<std::pair<std::string, std::string>> methods;
@@ -266,7 +265,8 @@ void RunVolume(const std::string& volume, const std::vector<vtkSmartPointer<vtkI
   int turn = 0;
   // One change, then one still frame per view in a rotating order; `smoke`
   // only in still frames and the series (as in pv_lighting_changes.py).
-  auto each = [&](const std::string& sequence, const auto& apply) {
+  auto each = [&](const std::string& sequence, const auto& apply)
+  {
     apply();
     const size_t shift = turn++ % views.size();
     for (size_t i = 0; i < views.size(); ++i)
@@ -290,14 +290,16 @@ void RunVolume(const std::string& volume, const std::vector<vtkSmartPointer<vtkI
   }
   for (int c = 0; c < changes; ++c)
   {
-    each("orbit", [&] {
-      for (auto& v : views)
+    each("orbit",
+      [&]
       {
-        v->Renderer->GetActiveCamera()->Azimuth(10.0);
-        v->Renderer->GetActiveCamera()->OrthogonalizeViewUp();
-        v->Renderer->ResetCameraClippingRange();
-      }
-    });
+        for (auto& v : views)
+        {
+          v->Renderer->GetActiveCamera()->Azimuth(10.0);
+          v->Renderer->GetActiveCamera()->OrthogonalizeViewUp();
+          v->Renderer->ResetCameraClippingRange();
+        }
+      });
   }
   for (int c = 0; c < changes; ++c)
   {
@@ -335,12 +337,14 @@ void RunVolume(const std::string& volume, const std::vector<vtkSmartPointer<vtkI
   {
     for (size_t k = loop == 0 ? 1 : 0; k < series.size(); ++k)
     {
-      each(loop == 0 ? "series" : "series-2", [&] {
-        for (auto& v : views)
+      each(loop == 0 ? "series" : "series-2",
+        [&]
         {
-          v->Mapper->SetInputData(series[k]);
-        }
-      });
+          for (auto& v : views)
+          {
+            v->Mapper->SetInputData(series[k]);
+          }
+        });
     }
   }
   std::printf("%-6s %-9s %-12s %9s %9s %9s %5s\n", "volume", "sequence", "method", "median s",
@@ -357,9 +361,9 @@ void RunVolume(const std::string& volume, const std::vector<vtkSmartPointer<vtkI
       const double median = Median(it->second.Seconds);
       const double phong = Median(records[{ sequence, "vtk-phong" }].Seconds);
       const double still = Median(records[{ "still", m.first }].Seconds);
-      csv << volume << "," << sequence << "," << m.first << "," << it->second.Seconds.size()
-          << "," << median << "," << median / phong << "," << median / still << ","
-          << it->second.Updates << ",\"" << renderer << "\"\n";
+      csv << volume << "," << sequence << "," << m.first << "," << it->second.Seconds.size() << ","
+          << median << "," << median / phong << "," << median / still << "," << it->second.Updates
+          << ",\"" << renderer << "\"\n";
       std::printf("%-6s %-9s %-12s %9.4f %9.2f %9.2f %5d\n", volume.c_str(), sequence,
         m.first.c_str(), median, median / phong, median / still, it->second.Updates);
     }

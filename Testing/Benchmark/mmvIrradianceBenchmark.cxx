@@ -30,9 +30,8 @@
 #include "vtkCommand.h"
 #include "vtkImageData.h"
 #include "vtkImageErrorMetrics.h"
-#include "vtkWindowToImageFilter.h"
-#include "vtkIrradianceResolutionProbe.h"
 #include "vtkIrradianceEstimator.h"
+#include "vtkIrradianceResolutionProbe.h"
 #include "vtkLight.h"
 #include "vtkLightKit.h"
 #include "vtkMultiMaterialParameters.h"
@@ -43,14 +42,15 @@
 #include "vtkRenderer.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
+#include "vtkWindowToImageFilter.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <fstream>
+#include <iostream>
 #include <limits>
 #include <memory>
-#include <iostream>
 #include <sstream>
 #include <string>
 #include <sys/stat.h>
@@ -67,9 +67,9 @@ double Median(std::vector<double> v)
 
 /// Directions toward the lights: the first five roughly where ParaView's
 /// light kit puts its key, fill, back and head lights around a front view.
-const double LightDirections[8][3] = { { 0.3, -0.8, 0.9 }, { -0.6, -0.9, -0.3 },
-  { 0.9, 0.8, 0.2 }, { -0.9, 0.8, 0.2 }, { 0.0, -1.0, 0.1 }, { 0.5, 0.2, -0.9 },
-  { -0.4, 0.3, 0.9 }, { 0.8, -0.3, -0.4 } };
+const double LightDirections[8][3] = { { 0.3, -0.8, 0.9 }, { -0.6, -0.9, -0.3 }, { 0.9, 0.8, 0.2 },
+  { -0.9, 0.8, 0.2 }, { 0.0, -1.0, 0.1 }, { 0.5, 0.2, -0.9 }, { -0.4, 0.3, 0.9 },
+  { 0.8, -0.3, -0.4 } };
 
 /// One window rendering the CT-sized scene with N scene lights.
 struct Bench : mmvbench::VolumeWindow
@@ -145,7 +145,8 @@ struct Bench : mmvbench::VolumeWindow
       const double x = c * d[0] - s * d[1];
       const double y = s * d[0] + c * d[1];
       this->Lights[l]->SetFocalPoint(this->Center);
-      this->Lights[l]->SetPosition(this->Center[0] + x, this->Center[1] + y, this->Center[2] + d[2]);
+      this->Lights[l]->SetPosition(
+        this->Center[0] + x, this->Center[1] + y, this->Center[2] + d[2]);
     }
   }
 
@@ -257,7 +258,8 @@ int RunLightTolerance(const mmvbench::SceneSpec& scene, int size, const std::str
   std::ofstream csv(out + "/light_tolerance.csv");
   csv << "material,angle_deg,psnr_kept_vs_exact_db,kept_frame_s,exact_frame_s,renderer\n";
   std::printf("material  angle deg  kept vs exact dB  kept frame s  exact frame s\n");
-  auto timed = [](vtkRenderWindow* window) {
+  auto timed = [](vtkRenderWindow* window)
+  {
     const auto start = std::chrono::steady_clock::now();
     window->Render();
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -300,8 +302,8 @@ int RunLightTolerance(const mmvbench::SceneSpec& scene, int size, const std::str
       metrics->Compute(Grab(kept.Window), Grab(exact.Window));
       csv << material << "," << angle << "," << metrics->GetPSNR() << "," << keptSeconds << ","
           << exactSeconds << ",\"" << renderer << "\"\n";
-      std::printf("%-9s %9.2f %17.1f %13.3f %14.3f\n", material.c_str(), angle,
-        metrics->GetPSNR(), keptSeconds, exactSeconds);
+      std::printf("%-9s %9.2f %17.1f %13.3f %14.3f\n", material.c_str(), angle, metrics->GetPSNR(),
+        keptSeconds, exactSeconds);
       kept.Renderer->GetActiveCamera()->Azimuth(-angle);
     }
   }
@@ -370,8 +372,7 @@ int RunErrorProbe(const std::string& head, int ctSize, int smallSize, const std:
     const double still =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     automatic->Renderer->GetActiveCamera()->Azimuth(-10.0);
-    const std::vector<vtkIrradianceResolutionProbe::Candidate> candidates =
-      probe->GetCandidates();
+    const std::vector<vtkIrradianceResolutionProbe::Candidate> candidates = probe->GetCandidates();
     vtkSmartPointer<vtkImageData> reference;
     for (const auto& candidate : candidates)
     {
@@ -412,8 +413,8 @@ int RunErrorProbe(const std::string& head, int ctSize, int smallSize, const std:
 /// frame; VTK's Phong, VTK's volumetric scattering, ours by default and with
 /// `skin`, round-robin per step. Then the image at rest against a fresh
 /// window at the same camera. Writes OUT/lightkit_orbit_cxx.csv.
-int RunLightKitOrbit(const mmvbench::SceneSpec& scene, int size, const std::string& out,
-  int steps, int interactive)
+int RunLightKitOrbit(
+  const mmvbench::SceneSpec& scene, int size, const std::string& out, int steps, int interactive)
 {
   enum Method
   {
@@ -425,7 +426,8 @@ int RunLightKitOrbit(const mmvbench::SceneSpec& scene, int size, const std::stri
   const char* names[] = { "vtk-phong", "vtk-scattering", "mmv-default", "mmv-skin" };
   double range[2];
   scene.Image->GetScalarRange(range);
-  auto make = [&](int method) {
+  auto make = [&](int method)
+  {
     auto bench = std::make_unique<Bench>(scene, size, method >= OursDefault);
     UseLightKit(*bench);
     if (method == Scattering)
@@ -453,7 +455,8 @@ int RunLightKitOrbit(const mmvbench::SceneSpec& scene, int size, const std::stri
   const std::string renderer = mmvtest::RendererString(benches[0]->Window);
   std::cout << "== light-kit orbit: " << steps << " steps x " << interactive
             << " interactive frames + 1 still, renderer " << renderer << std::endl;
-  auto timed = [](vtkRenderWindow* window) {
+  auto timed = [](vtkRenderWindow* window)
+  {
     const auto start = std::chrono::steady_clock::now();
     window->Render();
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -503,10 +506,11 @@ int RunLightKitOrbit(const mmvbench::SceneSpec& scene, int size, const std::stri
       psnr = metrics->GetPSNR();
     }
     const double i = Median(inter[m]), st = Median(settled[m]), sl = Median(still[m]);
-    const double pi = Median(inter[Phong]), pst = Median(settled[Phong]), psl = Median(still[Phong]);
+    const double pi = Median(inter[Phong]), pst = Median(settled[Phong]),
+                 psl = Median(still[Phong]);
     csv << names[m] << "," << steps << "," << interactive << "," << i << "," << st << "," << sl
-        << "," << i / pi << "," << st / pst << "," << sl / psl << "," << psnr << ",\""
-        << renderer << "\"\n";
+        << "," << i / pi << "," << st / pst << "," << sl / psl << "," << psnr << ",\"" << renderer
+        << "\"\n";
     std::printf("%-15s %12.4f %10.4f %8.4f %10.2f %14.2f %12.2f %16.1f\n", names[m], i, st, sl,
       i / pi, st / pst, sl / psl, psnr);
   }
@@ -516,7 +520,8 @@ int RunLightKitOrbit(const mmvbench::SceneSpec& scene, int size, const std::stri
   // stage ends with glFinish), after a 10-degree turn of the camera.
   std::ofstream stages(out + "/lightkit_still_stages.csv");
   stages << "method,frame_s,irradiance_pass_s,estimation_s,diffusion_s,ray_cast_s,rest_s\n";
-  std::printf("still frame of   frame s  irradiance pass (estimation, diffusion)  ray cast  rest\n");
+  std::printf(
+    "still frame of   frame s  irradiance pass (estimation, diffusion)  ray cast  rest\n");
   for (int m = OursDefault; m <= OursSkin; ++m)
   {
     Bench& b = *benches[m];
@@ -552,7 +557,7 @@ int main(int argc, char* argv[])
   int size = 400;
   int reps = 3;
   bool quick = false;
-  std::string only; // one section: updates, resolution or estimation
+  std::string only;                 // one section: updates, resolution or estimation
   double imageSampleDistance = 1.0; // raycast: > 1 as in ParaView's interactive frames
   int raycastLights = 5;            // raycast: scene lights
   int orbitSteps = 6;               // orbit: camera steps of 10 degrees
@@ -630,9 +635,12 @@ int main(int argc, char* argv[])
             << " updates per configuration" << std::endl;
 
   std::vector<Config> configs;
-  const std::vector<int> lightCounts = quick ? std::vector<int>{ 1, 5 } : std::vector<int>{ 1, 2, 5, 8 };
-  const std::vector<double> strengths = quick ? std::vector<double>{ 0, 8 } : std::vector<double>{ 0, 8, 20, 100 };
-  const std::vector<double> scales = quick ? std::vector<double>{ 0.25, 0.5 } : std::vector<double>{ 0.25, 0.35, 0.5, 0.75, 1.0 };
+  const std::vector<int> lightCounts =
+    quick ? std::vector<int>{ 1, 5 } : std::vector<int>{ 1, 2, 5, 8 };
+  const std::vector<double> strengths =
+    quick ? std::vector<double>{ 0, 8 } : std::vector<double>{ 0, 8, 20, 100 };
+  const std::vector<double> scales =
+    quick ? std::vector<double>{ 0.25, 0.5 } : std::vector<double>{ 0.25, 0.35, 0.5, 0.75, 1.0 };
   for (int lights : lightCounts)
   {
     configs.push_back({ "lights", lights, 8.0, 0.5 });
@@ -691,7 +699,8 @@ int main(int argc, char* argv[])
         {
           pass->SetComputeShaders(kind);
           std::vector<double> update;
-          ours.Frames(1, [&]() { ours.PlaceLights(); }, &update);
+          ours.Frames(
+            1, [&]() { ours.PlaceLights(); }, &update);
           pair.push_back(update.back());
         }
         if (r > 0)
@@ -744,7 +753,8 @@ int main(int argc, char* argv[])
               observed ? ours.Ours->AddObserver(vtkCommand::ProgressEvent, observer) : 0;
             reports = 0;
             std::vector<double> update;
-            ours.Frames(1, [&]() { ours.PlaceLights(); }, &update);
+            ours.Frames(
+              1, [&]() { ours.PlaceLights(); }, &update);
             pair[observed ? 0 : 1] = update.back();
             if (observed)
             {
@@ -806,7 +816,8 @@ int main(int argc, char* argv[])
           for (int e = 0; e < 2; ++e)
           {
             std::vector<double> update;
-            benches[e]->Frames(1, [&]() { benches[e]->PlaceLights(); }, &update);
+            benches[e]->Frames(
+              1, [&]() { benches[e]->PlaceLights(); }, &update);
             pair[e] = update.back();
             passes[e] = benches[e]->Ours->GetIrradianceEstimator()->GetDiffusionPasses();
           }
@@ -831,8 +842,8 @@ int main(int argc, char* argv[])
         int dims[3];
         ours.Ours->GetIrradianceEstimator()->GetDiffusionGridDimensions(dims);
         renderer = mmvtest::RendererString(ours.Window);
-        csv << s << "," << scale << "," << Join(dims) << "," << passes[0] << "," << passes[1]
-            << "," << Median(times[0]) << "," << Median(times[1]) << "," << Median(ratios) << ","
+        csv << s << "," << scale << "," << Join(dims) << "," << passes[0] << "," << passes[1] << ","
+            << Median(times[0]) << "," << Median(times[1]) << "," << Median(ratios) << ","
             << metrics->GetPSNR() << ",\"" << renderer << "\"\n";
         std::printf("s = %g, scale %g, diffusion grid %s: exponential %d passes %.4f s, backward "
                     "Euler %d passes %.4f s, ratio %.2f, PSNR %.1f dB (%s)\n",
@@ -879,9 +890,10 @@ int main(int argc, char* argv[])
   csv << "sweep,lights,scattering,irradiance_scale,layered_draws,skip_empty_voxels,compute_shaders,"
          "irradiance_dims,diffusion_dims,sub_steps,sweeps_per_step,computed_voxels,"
          "update_s,ours_raycast_frame_s,phong_frame_s,update_over_phong\n";
-  std::cout << "sweep        lights    s  scale layered skip   cs  irradiance   diffusion    update s  "
-               "ray cast s  phong s  update/phong"
-            << std::endl;
+  std::cout
+    << "sweep        lights    s  scale layered skip   cs  irradiance   diffusion    update s  "
+       "ray cast s  phong s  update/phong"
+    << std::endl;
   for (const Config& c : configs)
   {
     if (!Wanted(only, "updates"))
@@ -911,7 +923,8 @@ int main(int argc, char* argv[])
     std::vector<double> phongFrames;
     for (int r = 0; r < reps; ++r)
     {
-      ours.Frames(1, [&]() { ours.PlaceLights(); }, &updates);
+      ours.Frames(
+        1, [&]() { ours.PlaceLights(); }, &updates);
       casts.push_back(ours.Frames(1, [&]() { ours.Renderer->GetActiveCamera()->Azimuth(0.5); }));
       phongFrames.push_back(phong.Frames(1, [&]() { phong.PlaceLights(); }));
     }
@@ -923,17 +936,18 @@ int main(int argc, char* argv[])
     const double update = Median(updates);
     const double phongFrame = Median(phongFrames);
     csv << c.Sweep << "," << c.Lights << "," << c.S << "," << c.Scale << "," << c.Layered << ","
-        << c.SkipEmpty << "," << pass->GetComputeShadersUsed() << "," << Join(irradiance) << "," << (diffuses ? Join(diffusion) : "-")
-        << "," << (diffuses ? pass->GetDiffusionSubSteps() : 0) << ","
+        << c.SkipEmpty << "," << pass->GetComputeShadersUsed() << "," << Join(irradiance) << ","
+        << (diffuses ? Join(diffusion) : "-") << ","
+        << (diffuses ? pass->GetDiffusionSubSteps() : 0) << ","
         << (diffuses ? pass->GetDiffusionSweepsPerStep() : 0) << ","
         << pass->GetNumberOfComputedVoxels() << "," << update << "," << Median(casts) << ","
         << phongFrame << "," << update / phongFrame << "\n";
     csv.flush();
     std::printf("%-12s %6d %4g %6.2f %7d %5d %4d  %-11s  %-11s %8.3f  %9.3f  %7.3f  %8.2f\n",
       c.Sweep.c_str(), c.Lights, c.S, c.Scale, int(c.Layered), int(c.SkipEmpty),
-      int(pass->GetComputeShadersUsed()),
-      Join(irradiance).c_str(), diffuses ? Join(diffusion).c_str() : "-", update, Median(casts),
-      phongFrame, update / phongFrame);
+      int(pass->GetComputeShadersUsed()), Join(irradiance).c_str(),
+      diffuses ? Join(diffusion).c_str() : "-", update, Median(casts), phongFrame,
+      update / phongFrame);
     std::fflush(stdout);
   }
   std::cout << "== wrote " << out << "/irradiance_updates.csv" << std::endl;
@@ -944,8 +958,10 @@ int main(int argc, char* argv[])
   std::ofstream acc(out + "/ct_resolution.csv");
   acc << "scattering,irradiance_scale,irradiance_dims,still_frame_s,phong_frame_s,"
          "still_over_phong,psnr_vs_full_db\n";
-  std::cout << "s  scale  irradiance    still s  phong s  still/phong  PSNR vs full (dB)" << std::endl;
-  auto capture = [](vtkRenderWindow* window) {
+  std::cout << "s  scale  irradiance    still s  phong s  still/phong  PSNR vs full (dB)"
+            << std::endl;
+  auto capture = [](vtkRenderWindow* window)
+  {
     vtkNew<vtkWindowToImageFilter> grab;
     grab->SetInput(window);
     grab->ReadFrontBufferOff();
@@ -956,7 +972,8 @@ int main(int argc, char* argv[])
   };
   // The image with the lights at a fixed place: the first becomes `full`,
   // the reference; later ones return their PSNR against it.
-  auto scoreAtRest = [&](vtkSmartPointer<vtkImageData>& full) {
+  auto scoreAtRest = [&](vtkSmartPointer<vtkImageData>& full)
+  {
     ours.PlaceLights(0.5);
     ours.Window->Render();
     vtkSmartPointer<vtkImageData> image = capture(ours.Window);
@@ -1001,8 +1018,8 @@ int main(int argc, char* argv[])
       ours.Ours->GetIrradianceDimensions(irradiance);
       const double stillFrame = Median(still);
       const double phongFrame = Median(phongFrames);
-      acc << s << "," << scale << "," << Join(irradiance) << "," << stillFrame << ","
-          << phongFrame << "," << stillFrame / phongFrame << "," << psnr << "\n";
+      acc << s << "," << scale << "," << Join(irradiance) << "," << stillFrame << "," << phongFrame
+          << "," << stillFrame / phongFrame << "," << psnr << "\n";
       acc.flush();
       std::printf("%-3g %5.2f  %-12s %7.3f  %7.3f  %11.2f  %8.1f\n", s, scale,
         Join(irradiance).c_str(), stillFrame, phongFrame, stillFrame / phongFrame, psnr);
@@ -1046,7 +1063,8 @@ int main(int argc, char* argv[])
         vtkIrradianceEstimator* pass = ours.Ours->GetIrradianceEstimator();
         for (int r = 0; r < reps; ++r)
         {
-          ours.Frames(1, [&]() { ours.PlaceLights(); }, &updates);
+          ours.Frames(
+            1, [&]() { ours.PlaceLights(); }, &updates);
           shadowRays.push_back(pass->GetLastEstimationSeconds());
           diffusions.push_back(pass->GetLastDiffusionSeconds());
           phongFrames.push_back(phong.Frames(1, [&]() { phong.PlaceLights(); }));
@@ -1058,8 +1076,8 @@ int main(int argc, char* argv[])
         const double phongFrame = Median(phongFrames);
         const char* name = k == 0 ? "full" : "piecewise";
         est << s << "," << scale << "," << Join(irradiance) << "," << name << "," << k << ","
-            << update << "," << Median(shadowRays) << "," << Median(diffusions) << ","
-            << phongFrame << "," << update / phongFrame << "," << psnr << "\n";
+            << update << "," << Median(shadowRays) << "," << Median(diffusions) << "," << phongFrame
+            << "," << update / phongFrame << "," << psnr << "\n";
         est.flush();
         std::printf("%-3g %5.2f  %-12s %-10s %3d %8.3f (rays %6.3f, diffusion %6.3f)  %7.3f  "
                     "%11.2f  %8.1f\n",

@@ -52,8 +52,8 @@
 #include "vtkXMLImageDataWriter.h"
 
 #include <cstdlib>
-#include <functional>
 #include <fstream>
+#include <functional>
 #include <iomanip>
 #include <iostream>
 #include <sys/stat.h>
@@ -132,8 +132,7 @@ bool Parse(int argc, char* argv[], Options& o)
     o.Cache = o.Out + "/truth-cache";
   }
   return o.Size >= 8 && o.TruthSamples >= 2 && o.Frames >= 1 && !o.Out.empty() &&
-    (o.Shape == "ball" || o.Shape == "cube") &&
-    !o.Scattering.empty() && !o.Attenuation.empty();
+    (o.Shape == "ball" || o.Shape == "cube") && !o.Scattering.empty() && !o.Attenuation.empty();
 }
 
 struct Medium
@@ -152,7 +151,8 @@ struct Medium
 };
 
 // The material node list of the ball: one material everywhere.
-void SetMaterial(vtkMaterialTransferFunction* materials, const double p[mmv::MaterialParameterCount])
+void SetMaterial(
+  vtkMaterialTransferFunction* materials, const double p[mmv::MaterialParameterCount])
 {
   materials->RemoveAllNodes();
   materials->AddNode(0.0, p);
@@ -174,13 +174,14 @@ mmvbench::SceneSpec MakeMedium(const Medium& m, const std::string& shape)
   s.Name = shape;
   const double c = 0.5 * (BallDimensions - 1);
   const bool cube = shape == "cube";
-  s.Image = mmvtest::MakeVolume(BallDimensions, [&](double x, double y, double z) {
-    // Distance to the centre: Euclidean (ball) or the largest per axis (cube).
-    const double r = cube
-      ? std::max({ std::abs(x - c), std::abs(y - c), std::abs(z - c) })
-      : std::sqrt((x - c) * (x - c) + (y - c) * (y - c) + (z - c) * (z - c));
-    return std::min(std::max(BallRadius - r + 0.5, 0.0), 1.0);
-  });
+  s.Image = mmvtest::MakeVolume(BallDimensions,
+    [&](double x, double y, double z)
+    {
+      // Distance to the centre: Euclidean (ball) or the largest per axis (cube).
+      const double r = cube ? std::max({ std::abs(x - c), std::abs(y - c), std::abs(z - c) })
+                            : std::sqrt((x - c) * (x - c) + (y - c) * (y - c) + (z - c) * (z - c));
+      return std::min(std::max(BallRadius - r + 0.5, 0.0), 1.0);
+    });
   s.Color = vtkSmartPointer<vtkColorTransferFunction>::New();
   s.Color->AddRGBPoint(0.0, m.Albedo, m.Albedo, m.Albedo);
   s.Color->AddRGBPoint(1.0, m.Albedo, m.Albedo, m.Albedo);
@@ -210,8 +211,8 @@ vtkSmartPointer<vtkImageData> Truth(const Options& opt, const Medium& m, Window&
   const mmvbench::SceneSpec& scene, double& seconds)
 {
   std::ostringstream path;
-  path << opt.Cache << "/" << opt.Shape << "_" << m.Key() << "_size" << opt.Size << "_spp" << opt.TruthSamples
-       << ".vti";
+  path << opt.Cache << "/" << opt.Shape << "_" << m.Key() << "_size" << opt.Size << "_spp"
+       << opt.TruthSamples << ".vti";
   struct stat info;
   if (stat(path.str().c_str(), &info) == 0)
   {
@@ -276,7 +277,8 @@ void FitAmbientDiffuse(const std::function<void(double, double)>& set, Window& w
   vtkImageData* truth, double& ka, double& kd)
 {
   mmvcal::FitTwoScales(
-    [&](double a, double b, vtkImageData* image) {
+    [&](double a, double b, vtkImageData* image)
+    {
       set(a, b);
       window.Frames(0, image);
     },
@@ -354,21 +356,23 @@ int main(int argc, char* argv[])
         vtkImageErrorMetrics::WritePNG(
           (opt.Out + "/" + opt.Shape + "_" + medium.Key() + "_truth.png").c_str(), truth);
 
-        auto evaluate = [&](Result& r, Window& w, int frames) {
+        auto evaluate = [&](Result& r, Window& w, int frames)
+        {
           r.Image = vtkSmartPointer<vtkImageData>::New();
           r.Seconds = w.Frames(frames, r.Image);
           r.RMSE = RMSE(r.Image, truth);
           r.GainRMSE = GainCompensated(r.Image, truth, mask, r.Gain, r.VolumeRMSE);
         };
-        auto report = [&](const Result& r) {
+        auto report = [&](const Result& r)
+        {
           const double* p = r.Parameters;
           csv << albedo << "," << g << "," << depth << "," << medium.ExtinctionPerVoxel() << ","
               << r.Family << "," << r.Setting << "," << p[mmv::Ambient] << "," << p[mmv::Diffuse]
-              << "," << p[mmv::Specular] << "," << p[mmv::Shininess] << ","
-              << p[mmv::Attenuation] << "," << p[mmv::Scattering] << "," << 1e3 * r.Seconds << ","
-              << r.RMSE << "," << r.VolumeRMSE << "," << r.Gain << "," << r.GainRMSE << ","
-              << floor << "," << opt.TruthSamples << "," << truthSeconds << "," << opt.Size
-              << "," << opt.Shape << "\n";
+              << "," << p[mmv::Specular] << "," << p[mmv::Shininess] << "," << p[mmv::Attenuation]
+              << "," << p[mmv::Scattering] << "," << 1e3 * r.Seconds << "," << r.RMSE << ","
+              << r.VolumeRMSE << "," << r.Gain << "," << r.GainRMSE << "," << floor << ","
+              << opt.TruthSamples << "," << truthSeconds << "," << opt.Size << "," << opt.Shape
+              << "\n";
           csv.flush();
           std::cout << "  " << std::setw(15) << r.Family << " " << std::setw(40) << r.Setting
                     << std::setprecision(3) << " " << std::setw(7) << 1e3 * r.Seconds
@@ -378,7 +382,8 @@ int main(int argc, char* argv[])
             (opt.Out + "/" + opt.Shape + "_" + medium.Key() + "_" + r.Family + ".png").c_str(),
             r.Image);
         };
-        auto oursWith = [&](const std::string& family, const double p[mmv::MaterialParameterCount]) {
+        auto oursWith = [&](const std::string& family, const double p[mmv::MaterialParameterCount])
+        {
           Result r;
           r.Family = family;
           std::copy(p, p + mmv::MaterialParameterCount, r.Parameters);
@@ -407,7 +412,8 @@ int main(int argc, char* argv[])
               q[mmv::Scattering] = s;
               q[mmv::Attenuation] = ct;
               FitAmbientDiffuse(
-                [&](double ka, double kd) {
+                [&](double ka, double kd)
+                {
                   q[mmv::Ambient] = ka;
                   q[mmv::Diffuse] = kd;
                   SetMaterial(materials, q);
@@ -479,8 +485,8 @@ int main(int argc, char* argv[])
           vtkWindow.Property->SetScatteringAnisotropy(setting[2]);
           Result r;
           r.Family = "vtk-scattering";
-          r.Setting =
-            Setting({ { "blending", setting[0] }, { "reach", setting[1] }, { "anisotropy", setting[2] } });
+          r.Setting = Setting(
+            { { "blending", setting[0] }, { "reach", setting[1] }, { "anisotropy", setting[2] } });
           r.Parameters[mmv::Ambient] = mmv::MaterialParameterTable[mmv::Ambient].Default;
           r.Parameters[mmv::Diffuse] = mmv::MaterialParameterTable[mmv::Diffuse].Default;
           r.Parameters[mmv::Specular] = mmv::MaterialParameterTable[mmv::Specular].Default;

@@ -249,18 +249,17 @@ int main(int argc, char* argv[])
       const double cpu25 = Quantile(in->CPUSeconds, 0.25);
       const double cpu75 = Quantile(in->CPUSeconds, 0.75);
       std::cout << std::setw(10) << name << std::setw(13) << in->Spec->Name << "  wall "
-                << std::fixed << std::setprecision(1) << 1e3 * median << " ms (" << 1e3 * p25
-                << "-" << 1e3 * p75 << ") x" << std::setprecision(3) << median / base
-                << "  cpu " << std::setprecision(1) << 1e3 * cpu << " ms (" << 1e3 * cpu25 << "-"
-                << 1e3 * cpu75 << ") x" << std::setprecision(3) << cpu / cpuBase
-                << "  irradiance update " << std::setprecision(1)
-                << 1e3 * in->FirstIrradianceSeconds << " ms\n";
+                << std::fixed << std::setprecision(1) << 1e3 * median << " ms (" << 1e3 * p25 << "-"
+                << 1e3 * p75 << ") x" << std::setprecision(3) << median / base << "  cpu "
+                << std::setprecision(1) << 1e3 * cpu << " ms (" << 1e3 * cpu25 << "-" << 1e3 * cpu75
+                << ") x" << std::setprecision(3) << cpu / cpuBase << "  irradiance update "
+                << std::setprecision(1) << 1e3 * in->FirstIrradianceSeconds << " ms\n";
       csv << name << "," << in->Spec->Name << "," << in->Spec->Anisotropy << ","
           << in->Spec->Emission << "," << (in->Spec->CompileUnused ? 1 : 0) << ","
-          << in->Seconds.size() << "," << std::setprecision(4) << 1e3 * median << ","
-          << 1e3 * p25 << "," << 1e3 * p75 << "," << median / base << "," << 1e3 * cpu << ","
-          << 1e3 * cpu25 << "," << 1e3 * cpu75 << "," << cpu / cpuBase << ",\"" << renderer
-          << "\"," << (in->Spec->Tinted ? 1 : 0) << "," << 1e3 * in->FirstIrradianceSeconds << ","
+          << in->Seconds.size() << "," << std::setprecision(4) << 1e3 * median << "," << 1e3 * p25
+          << "," << 1e3 * p75 << "," << median / base << "," << 1e3 * cpu << "," << 1e3 * cpu25
+          << "," << 1e3 * cpu75 << "," << cpu / cpuBase << ",\"" << renderer << "\","
+          << (in->Spec->Tinted ? 1 : 0) << "," << 1e3 * in->FirstIrradianceSeconds << ","
           << in->Mapper->GetMultiMaterialMemoryBytes() << "\n";
     }
     csv.flush();

@@ -202,7 +202,8 @@ int main(int argc, char* argv[])
     tracer->SetMaterialTransferFunction(scene.Materials);
 
     double cpu = 0.0; // CPU seconds of the last render
-    auto render = [&](int spp, ImageError& e) {
+    auto render = [&](int spp, ImageError& e)
+    {
       tracer->SetSamplesPerPixel(spp);
       const double start = CPUSeconds();
       vtkImageData* image = tracer->Render(renderer, opt.Size, opt.Size);
@@ -222,7 +223,8 @@ int main(int argc, char* argv[])
 
     const double perSpp = (secondsB - secondsA) / (3.0 * opt.Samples);
     const double setup = std::max(0.0, secondsA - opt.Samples * perSpp);
-    const double sppTarget = 4.0 * opt.Samples * (b.Relative / opt.Target) * (b.Relative / opt.Target);
+    const double sppTarget =
+      4.0 * opt.Samples * (b.Relative / opt.Target) * (b.Relative / opt.Target);
     const double secondsTarget = setup + sppTarget * perSpp;
     // The same from CPU time: what the target costs on `threads` cores of
     // their own, whatever else shared them during the run.
@@ -253,14 +255,14 @@ int main(int argc, char* argv[])
               << secondsA << " s e " << 100.0 * a.Relative << " %; " << 4 * opt.Samples << " spp "
               << secondsB << " s e " << 100.0 * b.Relative << " % (ratio "
               << a.Relative / b.Relative << ", 1/sqrt N: 2); setup " << setup << " s, "
-              << 1e3 * perSpp << " ms/spp, " << eventsPerPath << " events/path -> "
-              << sppTarget << " spp, " << secondsTarget << " s for " << 100.0 * opt.Target
-              << " % (" << dedicatedTarget << " s on " << threads << " cores of its own)";
+              << 1e3 * perSpp << " ms/spp, " << eventsPerPath << " events/path -> " << sppTarget
+              << " spp, " << secondsTarget << " s for " << 100.0 * opt.Target << " % ("
+              << dedicatedTarget << " s on " << threads << " cores of its own)";
     if (opt.Verify)
     {
       std::cout << "; verified " << verifiedSpp << " spp: " << verifiedSeconds << " s ("
-                << verifiedDedicated << " s on its own cores), e "
-                << 100.0 * verified.Relative << " %";
+                << verifiedDedicated << " s on its own cores), e " << 100.0 * verified.Relative
+                << " %";
     }
     std::cout << std::endl;
   }

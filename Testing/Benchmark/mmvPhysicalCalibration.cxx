@@ -31,8 +31,8 @@
 // direction (the volume lit from behind, where forward scattering shows);
 // --black-background makes the background black for every method and the
 // truth, so the truth has no sky (its escaping paths gather nothing): what
-// remains is the light's transport alone, which sizes the sky's share. Errors are over the 8-bit images, as displayed:
-// RMSE (0-255), PSNR and SSIM over the whole image, and over the volume's
+// remains is the light's transport alone, which sizes the sky's share. Errors are over the 8-bit
+// images, as displayed: RMSE (0-255), PSNR and SSIM over the whole image, and over the volume's
 // pixels (where the truth's paths met the medium) the RMSE as is and after the
 // best single brightness factor k (least squares, k = <M, T> / <M, M>), which
 // separates a wrong exposure from a wrong distribution of light. The truth's own noise floor
@@ -176,7 +176,6 @@ bool Parse(int argc, char* argv[], Options& o)
     !o.ScatteringScales.empty() && !o.AttenuationScales.empty();
 }
 
-
 struct Row
 {
   std::string Family;
@@ -190,7 +189,6 @@ struct Row
   double GainRMSE = 0.0;
   vtkSmartPointer<vtkImageData> Image;
 };
-
 
 // Every node of the scene's materials replaced by the mapping of the medium
 // it describes: albedo = the node's mean colour, its g, and the extinction
@@ -224,8 +222,8 @@ bool MapMaterials(
     std::string why;
     double surface[mmv::MaterialParameterCount];
     std::copy(node + 1, node + 1 + mmv::MaterialParameterCount, surface);
-    if (!mmv::PhysicalMediumToMaterial(albedo, node[1 + mmv::Anisotropy],
-          std::max(extinction, 1e-3), node + 1, &why))
+    if (!mmv::PhysicalMediumToMaterial(
+          albedo, node[1 + mmv::Anisotropy], std::max(extinction, 1e-3), node + 1, &why))
     {
       std::cerr << "node at " << node[0] << ": " << why << "\n";
       return false;
@@ -300,7 +298,8 @@ int main(int argc, char* argv[])
     tracer->SetVolumeProperty(oursWindow.Property);
     tracer->SetMaterialTransferFunction(scene.Materials);
     tracer->SetSamplesPerPixel(opt.TruthSamples);
-    vtkSmartPointer<vtkImageData> truthImage = tracer->Render(oursWindow.Renderer, opt.Size, opt.Size);
+    vtkSmartPointer<vtkImageData> truthImage =
+      tracer->Render(oursWindow.Renderer, opt.Size, opt.Size);
     if (!truthImage)
     {
       return 1;
@@ -314,7 +313,8 @@ int main(int argc, char* argv[])
     vtkImageErrorMetrics::WritePNG((opt.Out + "/" + name + "_truth.png").c_str(), truth);
 
     std::vector<Row> rows;
-    auto measure = [&](const std::string& family, const std::string& setting, Window& window) {
+    auto measure = [&](const std::string& family, const std::string& setting, Window& window)
+    {
       Row r;
       r.Family = family;
       r.Setting = setting;
@@ -326,9 +326,9 @@ int main(int argc, char* argv[])
       r.SSIM = metrics->GetSSIM();
       r.GainRMSE = GainCompensated(r.Image, truth, volumePixels, r.Gain, r.VolumeRMSE);
       csv << name << "," << family << "," << setting << "," << 1e3 * r.Seconds << "," << r.RMSE
-          << "," << r.PSNR << "," << r.SSIM << "," << r.VolumeRMSE << ","
-          << r.Gain << "," << r.GainRMSE << ","
-          << floorRMSE << "," << opt.TruthSamples << "," << truthSeconds << "," << opt.Size << "\n";
+          << "," << r.PSNR << "," << r.SSIM << "," << r.VolumeRMSE << "," << r.Gain << ","
+          << r.GainRMSE << "," << floorRMSE << "," << opt.TruthSamples << "," << truthSeconds << ","
+          << opt.Size << "\n";
       csv.flush();
       std::cout << "  " << std::setw(15) << family << " " << std::setw(28) << setting << " "
                 << std::setw(7) << std::setprecision(3) << 1e3 * r.Seconds << " ms  RMSE "
@@ -339,8 +339,10 @@ int main(int argc, char* argv[])
 
     // Ours with every node's ka and kd scaled by the factors that fit the
     // truth best at (s, c_t), less the (0, 0) render (background, specular).
-    auto fitExposure = [&](double s, double ct) {
-      auto render = [&](double ambient, double diffuse, vtkImageData* image) {
+    auto fitExposure = [&](double s, double ct)
+    {
+      auto render = [&](double ambient, double diffuse, vtkImageData* image)
+      {
         ScaleMaterials(scene.Materials, s, ct, materials);
         ScaleAmbientDiffuse(materials, ambient, diffuse);
         oursWindow.Frames(0, image);
@@ -385,7 +387,8 @@ int main(int argc, char* argv[])
       {
         return 1;
       }
-      measure("ours-mapped-surface", "PhysicalMediumToMaterial with the scene's kd ks ke r", oursWindow);
+      measure(
+        "ours-mapped-surface", "PhysicalMediumToMaterial with the scene's kd ks ke r", oursWindow);
     }
     if (opt.VTK)
     {
@@ -403,7 +406,8 @@ int main(int argc, char* argv[])
             phong->SetGlobalIlluminationReach(static_cast<float>(reach));
             window.Property->SetScatteringAnisotropy(g);
             measure("vtk-scattering",
-              Setting({ { "blending", blending }, { "reach", reach }, { "anisotropy", g } }), window);
+              Setting({ { "blending", blending }, { "reach", reach }, { "anisotropy", g } }),
+              window);
           }
         }
       }

@@ -1,12 +1,10 @@
-// Each MPI rank's share of the irradiance update (docs/scaling.md, "Each rank estimates its own voxels"),
-// measured without MPI: the CT-sized head split into P slabs along one axis
-// as ParaView splits it among P ranks (pieces sharing their boundary
-// points), combined into the global pre-filtered volume as the ranks'
-// exchange combines it, then each piece rendered in turn by its own mapper
-// under ParaView's light kit (5 lights). The ranks run one after the other
-// in one process, so each rank's time is its own work, not the
-// oversubscription of this 2-core machine. Per piece: the irradiance update
-// (the pass's glFinish-bracketed timer) and the voxels x lights it
+// Each MPI rank's share of the irradiance update (docs/scaling.md, "Each rank estimates its own
+// voxels"), measured without MPI: the CT-sized head split into P slabs along one axis as ParaView
+// splits it among P ranks (pieces sharing their boundary points), combined into the global
+// pre-filtered volume as the ranks' exchange combines it, then each piece rendered in turn by its
+// own mapper under ParaView's light kit (5 lights). The ranks run one after the other in one
+// process, so each rank's time is its own work, not the oversubscription of this 2-core machine.
+// Per piece: the irradiance update (the pass's glFinish-bracketed timer) and the voxels x lights it
 // estimated, with PieceIrradianceOnly on (each rank what its piece reads)
 // and off (each rank the whole global grid), interleaved.
 //
@@ -223,8 +221,8 @@ int main(int argc, char* argv[])
                     << (mode ? "piece" : "whole") << ": slowest rank " << Median(slowest[mode])
                     << " s (shadow rays " << Median(estimation[mode]) << " s, diffusion "
                     << Median(diffusion[mode]) << " s), all ranks " << Median(sum[mode])
-                    << " s, largest rank's voxels " << Median(voxels[mode]) << " of "
-                    << wholeVoxels << std::endl;
+                    << " s, largest rank's voxels " << Median(voxels[mode]) << " of " << wholeVoxels
+                    << std::endl;
         }
         csv.flush();
       }

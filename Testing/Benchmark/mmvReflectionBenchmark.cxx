@@ -1,5 +1,5 @@
-// Frame time of the environment reflection (eq. 17; docs/performance.md, "Material terms: cost") on the
-// benchmark scenes, against the same scene without reflection:
+// Frame time of the environment reflection (eq. 17; docs/performance.md, "Material terms: cost") on
+// the benchmark scenes, against the same scene without reflection:
 //
 //   r=0              the scene's materials, r = 0 on every node: no
 //                    reflection code in the shader
@@ -32,16 +32,16 @@
 
 #include "vtkCamera.h"
 #include "vtkImageData.h"
-#include "vtkPointData.h"
-#include "vtkTexture.h"
-#include "vtkUnsignedCharArray.h"
 #include "vtkLight.h"
 #include "vtkMaterialTransferFunction.h"
 #include "vtkMultiMaterialParameters.h"
 #include "vtkMultiMaterialVolumeMapper.h"
 #include "vtkNew.h"
+#include "vtkPointData.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
+#include "vtkTexture.h"
+#include "vtkUnsignedCharArray.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
 
@@ -303,18 +303,17 @@ int main(int argc, char* argv[])
       const std::string dims =
         std::to_string(d[0]) + "x" + std::to_string(d[1]) + "x" + std::to_string(d[2]);
       std::cout << std::setw(10) << name << std::setw(18) << in->Spec->Name << "  wall "
-                << std::fixed << std::setprecision(1) << 1e3 * median << " ms (" << 1e3 * p25
-                << "-" << 1e3 * p75 << ") x" << std::setprecision(3) << median / base
-                << "  cpu " << std::setprecision(1) << 1e3 * cpu << " ms (" << 1e3 * cpu25 << "-"
-                << 1e3 * cpu75 << ") x" << std::setprecision(3) << cpu / cpuBase << "  irradiance "
-                << dims << ", visibility pass updates "
-                << in->Mapper->GetReflectionVisibilityUpdateCount() << "\n";
-      csv << name << "," << opt.Size << "," << in->Spec->Name << "," << in->Spec->Reflection
-          << "," << in->Spec->Visibility << ","
-          << in->Seconds.size() << "," << std::setprecision(4) << 1e3 * median << ","
-          << 1e3 * p25 << "," << 1e3 * p75 << "," << median / base << "," << 1e3 * cpu << ","
-          << 1e3 * cpu25 << "," << 1e3 * cpu75 << "," << cpu / cpuBase << "," << dims << ","
-          << in->Mapper->GetReflectionVisibilityUpdateCount() << ",\"" << renderer
+                << std::fixed << std::setprecision(1) << 1e3 * median << " ms (" << 1e3 * p25 << "-"
+                << 1e3 * p75 << ") x" << std::setprecision(3) << median / base << "  cpu "
+                << std::setprecision(1) << 1e3 * cpu << " ms (" << 1e3 * cpu25 << "-" << 1e3 * cpu75
+                << ") x" << std::setprecision(3) << cpu / cpuBase << "  irradiance " << dims
+                << ", visibility pass updates " << in->Mapper->GetReflectionVisibilityUpdateCount()
+                << "\n";
+      csv << name << "," << opt.Size << "," << in->Spec->Name << "," << in->Spec->Reflection << ","
+          << in->Spec->Visibility << "," << in->Seconds.size() << "," << std::setprecision(4)
+          << 1e3 * median << "," << 1e3 * p25 << "," << 1e3 * p75 << "," << median / base << ","
+          << 1e3 * cpu << "," << 1e3 * cpu25 << "," << 1e3 * cpu75 << "," << cpu / cpuBase << ","
+          << dims << "," << in->Mapper->GetReflectionVisibilityUpdateCount() << ",\"" << renderer
           << "\"\n";
     }
     csv.flush();

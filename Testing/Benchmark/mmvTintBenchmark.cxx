@@ -1,11 +1,10 @@
 // The error of storing the tint of a non-white transmission colour at half
 // the irradiance resolution per axis (mmv::TintResolutionDivisor;
-// docs/performance.md, "Material terms: cost"), on the benchmark scenes with every node's T = (1, 0.6, 0.3):
-// the CPU irradiance filter's RGB irradiance E * K with the tint on the
-// irradiance grid itself (divisor 1, uncompressed) against the stored one
-// (divisor 2), over the voxels that hold irradiance (E > 0), per channel:
-// PSNR (peak 1, the unshadowed light) and the largest absolute error; and
-// the filter's seconds for each.
+// docs/performance.md, "Material terms: cost"), on the benchmark scenes with every node's T = (1,
+// 0.6, 0.3): the CPU irradiance filter's RGB irradiance E * K with the tint on the irradiance grid
+// itself (divisor 1, uncompressed) against the stored one (divisor 2), over the voxels that hold
+// irradiance (E > 0), per channel: PSNR (peak 1, the unshadowed light) and the largest absolute
+// error; and the filter's seconds for each.
 //
 //   mmvTintBenchmark [--out FILE.csv] [--scenes synthetic,headsq] [--scale S]
 //                    [--head FILE.vti]
@@ -81,8 +80,8 @@ Result Run(const mmvbench::SceneSpec& scene, vtkMaterialTransferFunction* materi
   filter->GetOutput()->GetDimensions(r.Dims);
   auto* grey =
     vtkFloatArray::SafeDownCast(filter->GetOutput()->GetPointData()->GetArray("Irradiance_0"));
-  auto* tint = vtkFloatArray::SafeDownCast(
-    filter->GetOutput()->GetPointData()->GetArray("IrradianceTint_0"));
+  auto* tint =
+    vtkFloatArray::SafeDownCast(filter->GetOutput()->GetPointData()->GetArray("IrradianceTint_0"));
   if (grey && tint)
   {
     r.Grey.assign(grey->GetPointer(0), grey->GetPointer(0) + grey->GetNumberOfValues());
@@ -174,9 +173,9 @@ int main(int argc, char* argv[])
                 << " dB, max error " << std::setprecision(4) << worst << " over " << voxels
                 << " voxels; filter " << std::setprecision(2) << full.Seconds << " s (full tint), "
                 << half.Seconds << " s (half), " << grey.Seconds << " s (grey)\n";
-      csv << name << "," << dims << "," << tintDims << "," << "rgb"[c] << "," << psnr << ","
-          << worst << "," << voxels << "," << full.Seconds << "," << half.Seconds << ","
-          << grey.Seconds << "\n";
+      csv << name << "," << dims << "," << tintDims << ","
+          << "rgb"[c] << "," << psnr << "," << worst << "," << voxels << "," << full.Seconds << ","
+          << half.Seconds << "," << grey.Seconds << "\n";
     }
   }
   return 0;

@@ -69,28 +69,30 @@ vtkSmartPointer<vtkImageData> MakeVolume(int n)
   vtkNew<vtkFloatArray> values;
   values->SetNumberOfTuples(static_cast<vtkIdType>(n) * n * n);
   float* out = values->GetPointer(0);
-  vtkSMPTools::For(0, n, [&](vtkIdType k0, vtkIdType k1) {
-    for (vtkIdType k = k0; k < k1; ++k)
+  vtkSMPTools::For(0, n,
+    [&](vtkIdType k0, vtkIdType k1)
     {
-      for (int j = 0; j < n; ++j)
+      for (vtkIdType k = k0; k < k1; ++k)
       {
-        for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j)
         {
-          // Unit cube coordinates: shells around the centre, a plate above.
-          const double x = double(i) / (n - 1) - 0.5;
-          const double y = double(j) / (n - 1) - 0.5;
-          const double z = double(k) / (n - 1) - 0.5;
-          const double r = std::sqrt(x * x + y * y + z * z);
-          double v = 0.0;
-          v += (std::abs(r - 0.3) < 0.03) ? 60.0 : 0.0;
-          v += (r < 0.15) ? 100.0 : 0.0;
-          v += (y > 0.38 && y < 0.43 && std::abs(x) < 0.3 && std::abs(z) < 0.3) ? 100.0 : 0.0;
-          out[i + static_cast<vtkIdType>(n) * (j + static_cast<vtkIdType>(n) * k)] =
-            static_cast<float>(v);
+          for (int i = 0; i < n; ++i)
+          {
+            // Unit cube coordinates: shells around the centre, a plate above.
+            const double x = double(i) / (n - 1) - 0.5;
+            const double y = double(j) / (n - 1) - 0.5;
+            const double z = double(k) / (n - 1) - 0.5;
+            const double r = std::sqrt(x * x + y * y + z * z);
+            double v = 0.0;
+            v += (std::abs(r - 0.3) < 0.03) ? 60.0 : 0.0;
+            v += (r < 0.15) ? 100.0 : 0.0;
+            v += (y > 0.38 && y < 0.43 && std::abs(x) < 0.3 && std::abs(z) < 0.3) ? 100.0 : 0.0;
+            out[i + static_cast<vtkIdType>(n) * (j + static_cast<vtkIdType>(n) * k)] =
+              static_cast<float>(v);
+          }
         }
       }
-    }
-  });
+    });
   values->SetName("density");
   image->GetPointData()->SetScalars(values);
   return image;

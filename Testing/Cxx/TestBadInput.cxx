@@ -4,16 +4,16 @@
 #include "mmvTestScenes.h"
 #include "mmvTestUtilities.h"
 
+#include "vtkCellData.h"
 #include "vtkCharArray.h"
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
+#include "vtkExecutive.h"
 #include "vtkIrradianceVolumeFilter.h"
 #include "vtkMaterialLibrary.h"
 #include "vtkMaterialTransferFunction.h"
 #include "vtkMatrix3x3.h"
 #include "vtkMultiMaterialVolumeMapper.h"
-#include "vtkCellData.h"
-#include "vtkExecutive.h"
 
 #include <gtest/gtest.h>
 
@@ -28,7 +28,8 @@ const double Center[3] = { 16.0, 16.0, 16.0 };
 
 float Sphere(int i, int j, int k)
 {
-  const double r = std::sqrt((i - 16.0) * (i - 16.0) + (j - 16.0) * (j - 16.0) + (k - 16.0) * (k - 16.0));
+  const double r =
+    std::sqrt((i - 16.0) * (i - 16.0) + (j - 16.0) * (j - 16.0) + (k - 16.0) * (k - 16.0));
   return static_cast<float>(std::max(0.0, 12.0 - r) * 10.0); // 0 .. 120
 }
 
@@ -44,7 +45,9 @@ struct Result
 
 // Renders `image` with a lit multi-material mapper and a 0..120 colour and
 // opacity ramp; `setup` may change the scene before the render.
-Result Render(vtkImageData* image, const std::function<void(mmvtest::Scene&, vtkMultiMaterialVolumeMapper*)>& setup = nullptr, bool light = true)
+Result Render(vtkImageData* image,
+  const std::function<void(mmvtest::Scene&, vtkMultiMaterialVolumeMapper*)>& setup = nullptr,
+  bool light = true)
 {
   Result result;
   mmvtest::Scene scene;
@@ -123,7 +126,8 @@ double PixelCentre(int p, int size)
 // Transmittance T = exp(integral of ln(1 - alpha(v)) dz) along the ray at
 // (x, y) through a 33 x 33 x depth volume of voxel values voxel(i, j, k),
 // trilinearly interpolated as the GPU texture is.
-double Transmittance(const std::function<float(int, int, int)>& voxel, int depth, double x, double y)
+double Transmittance(
+  const std::function<float(int, int, int)>& voxel, int depth, double x, double y)
 {
   if (x < 0.0 || y < 0.0 || x > 32.0 || y > 32.0)
   {
@@ -131,7 +135,8 @@ double Transmittance(const std::function<float(int, int, int)>& voxel, int depth
   }
   const int i = std::min(static_cast<int>(x), 31), j = std::min(static_cast<int>(y), 31);
   const double fx = x - i, fy = y - j;
-  auto plane = [&](int k) {
+  auto plane = [&](int k)
+  {
     return (1 - fy) * ((1 - fx) * voxel(i, j, k) + fx * voxel(i + 1, j, k)) +
       fy * ((1 - fx) * voxel(i, j + 1, k) + fx * voxel(i + 1, j + 1, k));
   };
@@ -154,8 +159,8 @@ double Transmittance(const std::function<float(int, int, int)>& voxel, int depth
 // I_c = C * I_alpha, so front-to-back compositing telescopes to
 //   pixel = ka * C * (1 - T).
 // Returns the largest |rendered - expected| over all pixels and channels.
-double AmbientClosedFormError(const Result& r, const std::function<float(int, int, int)>& voxel,
-  int depth, int size)
+double AmbientClosedFormError(
+  const Result& r, const std::function<float(int, int, int)>& voxel, int depth, int size)
 {
   double worst = 0.0;
   for (int py = 0; py < size; ++py)
@@ -198,7 +203,8 @@ TEST(BadInput, NonFiniteVoxels)
   const Result r = Render(image);
   EXPECT_TRUE(r.Active);
   EXPECT_NEAR(r.CenterLuminance, reference.CenterLuminance, 2.0 / 255) << r.Message;
-  std::printf("non-finite voxels: active %d, warnings %d, errors %d, max pixel difference %d (%s)\n",
+  std::printf(
+    "non-finite voxels: active %d, warnings %d, errors %d, max pixel difference %d (%s)\n",
     r.Active, r.Warnings, r.Errors, MaxDifference(r.Pixels, reference.Pixels), r.Message.c_str());
   EXPECT_EQ(r.Warnings, 1) << "NaN/Inf must be reported";
 
@@ -218,7 +224,8 @@ TEST(BadInput, NonFiniteVoxels)
     filter->SetIrradianceScale(scale);
     filter->AddLight(light);
     filter->Update();
-    auto* irradiance = vtkFloatArray::SafeDownCast(filter->GetOutput()->GetPointData()->GetArray("Irradiance_0"));
+    auto* irradiance =
+      vtkFloatArray::SafeDownCast(filter->GetOutput()->GetPointData()->GetArray("Irradiance_0"));
     ASSERT_NE(irradiance, nullptr);
     for (vtkIdType p = 0; p < irradiance->GetNumberOfTuples(); ++p)
     {
@@ -242,7 +249,8 @@ TEST(BadInput, ConstantVolume)
   EXPECT_EQ(ambient.Errors, 0) << ambient.Message;
   // Measured: 0.49/255, the 8-bit rounding; 1.5/255 fails on a 3% error in ka.
   const double ambientError = AmbientClosedFormError(ambient, constant, 33, 64);
-  std::printf("constant volume, unlit: max |pixel - ka C (1 - T)| = %.2f/255\n", 255 * ambientError);
+  std::printf(
+    "constant volume, unlit: max |pixel - ka C (1 - T)| = %.2f/255\n", 255 * ambientError);
   EXPECT_LE(ambientError, 1.5 / 255);
 
   // Lit: without a gradient only the light's ambient term is left, scaled by
@@ -256,10 +264,12 @@ TEST(BadInput, ConstantVolume)
   // (The continuous integral, ka C sigma / (sigma + sigma / l_z), is its limit
   // for h -> 0: measured 6/255 below the render at h = 1, 1/255 at h = 0.1.)
   const double h = 1.0;
-  const Result lit = Render(image, [h](mmvtest::Scene&, vtkMultiMaterialVolumeMapper* m) {
-    m->AutoAdjustSampleDistancesOff();
-    m->SetSampleDistance(h);
-  });
+  const Result lit = Render(image,
+    [h](mmvtest::Scene&, vtkMultiMaterialVolumeMapper* m)
+    {
+      m->AutoAdjustSampleDistancesOff();
+      m->SetSampleDistance(h);
+    });
   EXPECT_TRUE(lit.Active);
   EXPECT_EQ(lit.Warnings + lit.Errors, 0) << lit.Message;
   const double toLight[3] = { 50.0 - Center[0], 80.0 - Center[1], 100.0 - Center[2] };
@@ -294,7 +304,8 @@ TEST(BadInput, EmptyVolume)
   const Result r = Render(image);
   EXPECT_FALSE(r.Active);
   EXPECT_LT(r.CenterLuminance, 1.0 / 255) << "nothing to draw";
-  std::printf("empty volume: warnings %d, errors %d (%s)\n", r.Warnings, r.Errors, r.Message.c_str());
+  std::printf(
+    "empty volume: warnings %d, errors %d (%s)\n", r.Warnings, r.Errors, r.Message.c_str());
 
   // The filter reports empty input and produces an empty output.
   vtkNew<vtkIrradianceVolumeFilter> filter;
@@ -324,7 +335,8 @@ void SliceCase(int depth)
     image->GetPointData()->SetScalars(values);
     // A 16x16 window: face-on, the zero-thickness slice makes llvmpipe spend
     // ~0.25 ms per pixel in the ray cast (16 s at 64x64).
-    const auto small = [](mmvtest::Scene& s, vtkMultiMaterialVolumeMapper*) { s.Window->SetSize(16, 16); };
+    const auto small = [](mmvtest::Scene& s, vtkMultiMaterialVolumeMapper*)
+    { s.Window->SetSize(16, 16); };
     const Result r = Render(image, small);
     std::printf("depth %d: active %d, warnings %d, errors %d, centre %.3f (%s)\n", depth, r.Active,
       r.Warnings, r.Errors, r.CenterLuminance, r.Message.c_str());
@@ -401,9 +413,8 @@ TEST(BadInput, CellDataAreShadedWithMaterials)
     values->SetValue(c, Sphere(2 * (c % 16), 2 * ((c / 16) % 16), 2 * (c / 256)));
   }
   image->GetCellData()->SetScalars(values);
-  const Result r = Render(image, [](mmvtest::Scene&, vtkMultiMaterialVolumeMapper* m) {
-    m->SetScalarModeToUseCellData();
-  });
+  const Result r = Render(image,
+    [](mmvtest::Scene&, vtkMultiMaterialVolumeMapper* m) { m->SetScalarModeToUseCellData(); });
   EXPECT_TRUE(r.Active) << r.Message;
   EXPECT_EQ(r.Warnings + r.Errors, 0) << r.Message;
   EXPECT_GT(r.CenterLuminance, 0.05);
@@ -417,7 +428,8 @@ TEST(BadInput, EveryScalarType)
          VTK_UNSIGNED_LONG_LONG, VTK_FLOAT, VTK_DOUBLE })
   {
     auto image = SphereVolume();
-    vtkSmartPointer<vtkDataArray> typed = vtkSmartPointer<vtkDataArray>::Take(vtkDataArray::CreateDataArray(type));
+    vtkSmartPointer<vtkDataArray> typed =
+      vtkSmartPointer<vtkDataArray>::Take(vtkDataArray::CreateDataArray(type));
     typed->DeepCopy(image->GetPointData()->GetScalars());
     image->GetPointData()->SetScalars(typed);
     const Result r = Render(image);
@@ -456,9 +468,9 @@ TEST(BadInput, MultiComponentDataFallsBack)
       values->SetTypedTuple(p, t);
     }
     image->GetPointData()->SetScalars(values);
-    const Result r = Render(image, [independent](mmvtest::Scene& s, vtkMultiMaterialVolumeMapper*) {
-      s.Property->SetIndependentComponents(independent);
-    });
+    const Result r = Render(image,
+      [independent](mmvtest::Scene& s, vtkMultiMaterialVolumeMapper*)
+      { s.Property->SetIndependentComponents(independent); });
     EXPECT_FALSE(r.Active);
     EXPECT_EQ(r.Warnings, 1) << r.Message;
     EXPECT_NE(r.Message.find("one-component"), std::string::npos) << r.Message;
@@ -484,9 +496,8 @@ TEST(BadInput, PartitionedVolume)
   // SetPartitions: the bricks are shaded with materials, from the very first
   // frame, as the whole volume is (TestVolumeBricking measures how closely).
   const Result whole = Render(SphereVolume());
-  const Result r = Render(SphereVolume(), [](mmvtest::Scene&, vtkMultiMaterialVolumeMapper* m) {
-    m->SetPartitions(2, 1, 1);
-  });
+  const Result r = Render(SphereVolume(),
+    [](mmvtest::Scene&, vtkMultiMaterialVolumeMapper* m) { m->SetPartitions(2, 1, 1); });
   EXPECT_TRUE(r.Active);
   EXPECT_EQ(r.Warnings, 0) << r.Message;
   EXPECT_LE(MaxDifference(r.Pixels, whole.Pixels), 8);
@@ -522,7 +533,8 @@ TEST(BadInput, MalformedMaterialNodes)
   for (const Case& c : cases)
   {
     counter.Reset();
-    EXPECT_FALSE(materials->SetNodes(c.Count, c.Nodes.empty() ? nullptr : c.Nodes.data())) << c.What;
+    EXPECT_FALSE(materials->SetNodes(c.Count, c.Nodes.empty() ? nullptr : c.Nodes.data()))
+      << c.What;
     EXPECT_EQ(counter.Errors(), 1) << c.What;
     EXPECT_EQ(materials->GetSize(), 1) << c.What;
     EXPECT_EQ(materials->GetMTime(), time) << c.What << " must leave the function unchanged";
@@ -559,13 +571,15 @@ TEST(BadInput, UnknownPresetAndMalformedJSON)
     EXPECT_EQ(counter.Errors(), 1) << json;
     EXPECT_EQ(materials->GetSize(), 1) << json;
   }
-  for (const char* json : { "", "{", "[{]", "{}", "[{\"name\": 3}]", "{\"name\": \"x\", \"ambient\": -1}",
-         "{\"name\": \"x\", \"color\": [1, 2]}", "{\"name\": \"x\", \"unknown\": 0}",
-         "[{\"name\": \"ok\"}, {\"name\": \"bad\", \"diffuse\": \"x\"}]" })
+  for (const char* json :
+    { "", "{", "[{]", "{}", "[{\"name\": 3}]", "{\"name\": \"x\", \"ambient\": -1}",
+      "{\"name\": \"x\", \"color\": [1, 2]}", "{\"name\": \"x\", \"unknown\": 0}",
+      "[{\"name\": \"ok\"}, {\"name\": \"bad\", \"diffuse\": \"x\"}]" })
   {
     counter.Reset();
     EXPECT_FALSE(library->AddPresetsFromJSON(json)) << json;
     EXPECT_EQ(counter.Errors(), 1) << json;
-    EXPECT_EQ(library->GetNumberOfPresets(), presets) << json << " must leave the library unchanged";
+    EXPECT_EQ(library->GetNumberOfPresets(), presets)
+      << json << " must leave the library unchanged";
   }
 }

@@ -1,7 +1,8 @@
 // Bad light values (docs/stability.md, "Bad input"): negative, NaN or all-zero
 // attenuation, cone angles of 0, NaN or 180 and above, NaN spot exponents,
-// a negative or NaN PointLightRadius and an IrradianceScale outside [0, 1]. Each must give one clear warning and render exactly what
-// its documented fallback renders: never NaN, never a silently black image.
+// a negative or NaN PointLightRadius and an IrradianceScale outside [0, 1]. Each must give one
+// clear warning and render exactly what its documented fallback renders: never NaN, never a
+// silently black image.
 #include "mmvTestScenes.h"
 #include "mmvTestUtilities.h"
 
@@ -48,10 +49,13 @@ vtkSmartPointer<vtkLight> Spot()
 
 vtkSmartPointer<vtkImageData> Ball()
 {
-  return mmvtest::MakeVolume(33, [](int i, int j, int k) {
-    const double r = std::sqrt((i - 16.0) * (i - 16.0) + (j - 16.0) * (j - 16.0) + (k - 16.0) * (k - 16.0));
-    return static_cast<float>(std::max(0.0, 12.0 - r) * 10.0);
-  });
+  return mmvtest::MakeVolume(33,
+    [](int i, int j, int k)
+    {
+      const double r =
+        std::sqrt((i - 16.0) * (i - 16.0) + (j - 16.0) * (j - 16.0) + (k - 16.0) * (k - 16.0));
+      return static_cast<float>(std::max(0.0, 12.0 - r) * 10.0);
+    });
 }
 
 /// Renders the lit ball twice (the warning must not repeat) and returns the
@@ -137,53 +141,68 @@ void Attenuation(vtkLight* l, double c, double q, double r)
 TEST(BadLightValues, AttenuationFallsBackToNoFalloff)
 {
   const LightSetup none = [](vtkLight*) {};
-  ExpectFallback("attenuation (-1, 0, 0)", [](vtkLight* l) { Attenuation(l, -1.0, 0.0, 0.0); },
-    none, "AttenuationValues");
-  ExpectFallback("attenuation (1, -0.1, 0)", [](vtkLight* l) { Attenuation(l, 1.0, -0.1, 0.0); },
-    none, "AttenuationValues");
-  ExpectFallback("attenuation (NaN, 0.1, 0)", [](vtkLight* l) { Attenuation(l, NaN, 0.1, 0.0); },
-    none, "AttenuationValues");
-  ExpectFallback("attenuation (0, 0, 0)", [](vtkLight* l) { Attenuation(l, 0.0, 0.0, 0.0); },
-    none, "AttenuationValues");
+  ExpectFallback(
+    "attenuation (-1, 0, 0)", [](vtkLight* l) { Attenuation(l, -1.0, 0.0, 0.0); }, none,
+    "AttenuationValues");
+  ExpectFallback(
+    "attenuation (1, -0.1, 0)", [](vtkLight* l) { Attenuation(l, 1.0, -0.1, 0.0); }, none,
+    "AttenuationValues");
+  ExpectFallback(
+    "attenuation (NaN, 0.1, 0)", [](vtkLight* l) { Attenuation(l, NaN, 0.1, 0.0); }, none,
+    "AttenuationValues");
+  ExpectFallback(
+    "attenuation (0, 0, 0)", [](vtkLight* l) { Attenuation(l, 0.0, 0.0, 0.0); }, none,
+    "AttenuationValues");
 }
 
 TEST(BadLightValues, ConeAngleOutsideZeroTo180IsAPointLight)
 {
   const LightSetup point = [](vtkLight* l) { l->SetConeAngle(120.0); };
-  ExpectFallback("cone 0", [](vtkLight* l) { l->SetConeAngle(0.0); }, point, "ConeAngle");
-  ExpectFallback("cone -10", [](vtkLight* l) { l->SetConeAngle(-10.0); }, point, "ConeAngle");
-  ExpectFallback("cone 180", [](vtkLight* l) { l->SetConeAngle(180.0); }, point, "ConeAngle");
-  ExpectFallback("cone 270", [](vtkLight* l) { l->SetConeAngle(270.0); }, point, "ConeAngle");
-  ExpectFallback("cone NaN", [](vtkLight* l) { l->SetConeAngle(NaN); }, point, "ConeAngle");
+  ExpectFallback(
+    "cone 0", [](vtkLight* l) { l->SetConeAngle(0.0); }, point, "ConeAngle");
+  ExpectFallback(
+    "cone -10", [](vtkLight* l) { l->SetConeAngle(-10.0); }, point, "ConeAngle");
+  ExpectFallback(
+    "cone 180", [](vtkLight* l) { l->SetConeAngle(180.0); }, point, "ConeAngle");
+  ExpectFallback(
+    "cone 270", [](vtkLight* l) { l->SetConeAngle(270.0); }, point, "ConeAngle");
+  ExpectFallback(
+    "cone NaN", [](vtkLight* l) { l->SetConeAngle(NaN); }, point, "ConeAngle");
 }
 
 TEST(BadLightValues, NaNExponentIsOne)
 {
   // vtkLight::SetExponent clamps to [0, 128] itself; NaN gets through.
   const LightSetup one = [](vtkLight* l) { l->SetExponent(1.0); };
-  ExpectFallback("exponent NaN", [](vtkLight* l) { l->SetExponent(NaN); }, one, "Exponent");
+  ExpectFallback(
+    "exponent NaN", [](vtkLight* l) { l->SetExponent(NaN); }, one, "Exponent");
 }
 
 TEST(BadLightValues, NegativeOrNaNPointLightRadiusIsZero)
 {
   const LightSetup none = [](vtkLight*) {};
   const MapperSetup zero = [](vtkMultiMaterialVolumeMapper* m) { m->SetPointLightRadius(0.0); };
-  ExpectFallback("PointLightRadius -5", none, none, "PointLightRadius",
+  ExpectFallback(
+    "PointLightRadius -5", none, none, "PointLightRadius",
     [](vtkMultiMaterialVolumeMapper* m) { m->SetPointLightRadius(-5.0); }, zero);
-  ExpectFallback("PointLightRadius NaN", none, none, "PointLightRadius",
+  ExpectFallback(
+    "PointLightRadius NaN", none, none, "PointLightRadius",
     [](vtkMultiMaterialVolumeMapper* m) { m->SetPointLightRadius(NaN); }, zero);
 }
 
 TEST(BadLightValues, IrradianceScaleOutsideZeroToOne)
 {
   const LightSetup none = [](vtkLight*) {};
-  ExpectFallback("IrradianceScale 5", none, none, "IrradianceScale",
+  ExpectFallback(
+    "IrradianceScale 5", none, none, "IrradianceScale",
     [](vtkMultiMaterialVolumeMapper* m) { m->SetIrradianceScale(5.0); },
     [](vtkMultiMaterialVolumeMapper* m) { m->SetIrradianceScale(1.0); });
-  ExpectFallback("IrradianceScale -1", none, none, "IrradianceScale",
+  ExpectFallback(
+    "IrradianceScale -1", none, none, "IrradianceScale",
     [](vtkMultiMaterialVolumeMapper* m) { m->SetIrradianceScale(-1.0); },
     [](vtkMultiMaterialVolumeMapper* m) { m->SetIrradianceScale(0.0); });
-  ExpectFallback("IrradianceScale NaN", none, none, "IrradianceScale",
+  ExpectFallback(
+    "IrradianceScale NaN", none, none, "IrradianceScale",
     [](vtkMultiMaterialVolumeMapper* m) { m->SetIrradianceScale(NaN); },
     [](vtkMultiMaterialVolumeMapper* m) { m->SetIrradianceScale(0.0); });
 }
@@ -210,11 +229,11 @@ std::vector<float> FilterIrradiance(const FilterSetup& setup, int& warnings, std
   filter->Update();
   warnings = counter.Warnings();
   message = counter.LastMessage();
-  auto* array = vtkFloatArray::SafeDownCast(
-    filter->GetOutput()->GetPointData()->GetArray("Irradiance_0"));
-  return array ? std::vector<float>(array->GetPointer(0),
-                   array->GetPointer(0) + array->GetNumberOfTuples())
-               : std::vector<float>();
+  auto* array =
+    vtkFloatArray::SafeDownCast(filter->GetOutput()->GetPointData()->GetArray("Irradiance_0"));
+  return array
+    ? std::vector<float>(array->GetPointer(0), array->GetPointer(0) + array->GetNumberOfTuples())
+    : std::vector<float>();
 }
 } // namespace
 

@@ -106,8 +106,8 @@ TEST(OpticalModel, RGBShadowOfATintedSlabIsTheClosedFormOnTheCPU)
   {
     for (int divisor : { 1, 2 })
     {
-      SCOPED_TRACE("estimation " + std::to_string(estimation) + " divisor " +
-        std::to_string(divisor));
+      SCOPED_TRACE(
+        "estimation " + std::to_string(estimation) + " divisor " + std::to_string(divisor));
       auto filter = SlabFilter(material, divisor, estimation);
       vtkFloatArray* grey = Array(filter, "Irradiance_0");
       vtkFloatArray* tint = Array(filter, "IrradianceTint_0");

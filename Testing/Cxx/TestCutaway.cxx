@@ -33,17 +33,19 @@ constexpr double Target = 35.0; // dB
 /// x and y in [8, 24]. Both of value 1 in empty space (0).
 vtkSmartPointer<vtkImageData> PlateAboveFloor(bool withPlate)
 {
-  return mmvtest::MakeVolume(Dims, [withPlate](int i, int j, int k) {
-    if (k >= 3 && k <= 6)
+  return mmvtest::MakeVolume(Dims,
+    [withPlate](int i, int j, int k)
     {
-      return 1.0f;
-    }
-    if (withPlate && k >= 20 && k <= 23 && i >= 8 && i <= 24 && j >= 8 && j <= 24)
-    {
-      return 1.0f;
-    }
-    return 0.0f;
-  });
+      if (k >= 3 && k <= 6)
+      {
+        return 1.0f;
+      }
+      if (withPlate && k >= 20 && k <= 23 && i >= 8 && i <= 24 && j >= 8 && j <= 24)
+      {
+        return 1.0f;
+      }
+      return 0.0f;
+    });
 }
 
 using Cut = std::function<void(vtkMultiMaterialVolumeMapper*)>;
@@ -91,7 +93,8 @@ TEST(Cutaway, CroppingCastsNoShadow)
 {
   // ParaView's UseCropping with CroppingScale (1, 1, 0.5): the lower half.
   const double psnr = CutVersusNoPlate(
-    [](vtkMultiMaterialVolumeMapper* m) {
+    [](vtkMultiMaterialVolumeMapper* m)
+    {
       m->CroppingOn();
       m->SetCroppingRegionPlanes(0.0, 32.0, 0.0, 32.0, 0.0, 16.0);
       m->SetCroppingRegionFlagsToSubVolume();
@@ -102,8 +105,8 @@ TEST(Cutaway, CroppingCastsNoShadow)
 
 TEST(Cutaway, ClippingPlaneCastsNoShadow)
 {
-  const double psnr = CutVersusNoPlate(
-    [](vtkMultiMaterialVolumeMapper* m) { m->AddClippingPlane(Plane(16.0, -1.0)); },
+  const double psnr = CutVersusNoPlate([](vtkMultiMaterialVolumeMapper* m)
+    { m->AddClippingPlane(Plane(16.0, -1.0)); },
     "clipping plane");
   EXPECT_GE(psnr, Target);
 }
@@ -140,16 +143,16 @@ TEST(Cutaway, AddingAndRemovingACutMatchesFreshRenders)
   // cut: one scene goes uncut -> clipped -> cropped -> uncut, each frame
   // against a fresh scene with the same cut.
   const Cut none = [](vtkMultiMaterialVolumeMapper*) {};
-  const Cut clip = [](vtkMultiMaterialVolumeMapper* m) {
-    m->AddClippingPlane(Plane(16.0, -1.0));
-  };
-  const Cut crop = [](vtkMultiMaterialVolumeMapper* m) {
+  const Cut clip = [](vtkMultiMaterialVolumeMapper* m) { m->AddClippingPlane(Plane(16.0, -1.0)); };
+  const Cut crop = [](vtkMultiMaterialVolumeMapper* m)
+  {
     m->RemoveAllClippingPlanes();
     m->CroppingOn();
     m->SetCroppingRegionPlanes(0.0, 32.0, 0.0, 32.0, 0.0, 16.0);
     m->SetCroppingRegionFlagsToSubVolume();
   };
-  const Cut uncut = [](vtkMultiMaterialVolumeMapper* m) {
+  const Cut uncut = [](vtkMultiMaterialVolumeMapper* m)
+  {
     m->RemoveAllClippingPlanes();
     m->CroppingOff();
   };
@@ -230,9 +233,9 @@ TEST(Cutaway, CpuFilterMatchesGpuPassWithCroppingAndClipping)
   uncut->MultipleScatteringOff();
   uncut->SetLights(scene.Renderer->GetLights());
   uncut->Update();
-  const double shadowed = vtkFloatArray::SafeDownCast(
-    uncut->GetOutput()->GetPointData()->GetArray("Irradiance_0"))
-                            ->GetValue(voxel);
+  const double shadowed =
+    vtkFloatArray::SafeDownCast(uncut->GetOutput()->GetPointData()->GetArray("Irradiance_0"))
+      ->GetValue(voxel);
   std::printf("the same voxel without the cutaway: %.3f\n", shadowed);
   EXPECT_LT(shadowed, 0.2 * floorUnderPlate);
 }
@@ -241,7 +244,8 @@ TEST(Cutaway, ReferenceRendererCutsAsTheMapper)
 {
   // The reference renderer (the ground truth): the cropped plate scene
   // against the reference of the scene without the plate.
-  auto reference = [](PlateScene& scene) {
+  auto reference = [](PlateScene& scene)
+  {
     scene.Window->Render();
     vtkNew<vtkMultiMaterialReferenceRenderer> ref;
     vtkImageData* image = ref->RenderToImage(scene.Renderer, scene.Volume);
@@ -283,7 +287,8 @@ TEST(Cutaway, UniformsAreDeclaredOnceFromTheLayout)
   const std::string prelude = mmv::CutawayGLSLPrelude();
   std::ifstream file(std::string(MMV_SOURCE_DIR) + "/Shaders/mmvCutaway.glsl");
   ASSERT_TRUE(file.good());
-  const std::string shader((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  const std::string shader(
+    (std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
   EXPECT_EQ(shader.find("uniform "), std::string::npos);
   for (const mmv::CutawayUniformInfo& u : mmv::CutawayUniformLayout)
   {

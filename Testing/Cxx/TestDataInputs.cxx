@@ -47,8 +47,8 @@ float PlateAndFloor(int i, int j, int k)
   return 0.0f;
 }
 
-vtkSmartPointer<vtkFloatArray> Values(const char* name, int components,
-  const std::function<void(int, int, int, float*)>& f)
+vtkSmartPointer<vtkFloatArray> Values(
+  const char* name, int components, const std::function<void(int, int, int, float*)>& f)
 {
   auto values = vtkSmartPointer<vtkFloatArray>::New();
   values->SetName(name);
@@ -131,7 +131,7 @@ TEST(DataInputs, CellCentreImageSitsHalfASpacingIn)
   centres->GetDimensions(dims);
   EXPECT_EQ(dims[0], Cells);
   EXPECT_EQ(dims[2], Cells);
-  EXPECT_DOUBLE_EQ(centres->GetOrigin()[0], 0.0);  // -1 + 2 / 2
+  EXPECT_DOUBLE_EQ(centres->GetOrigin()[0], 0.0); // -1 + 2 / 2
   EXPECT_DOUBLE_EQ(centres->GetOrigin()[1], 4.5);
   EXPECT_DOUBLE_EQ(centres->GetOrigin()[2], 10.25);
   EXPECT_EQ(centres->GetPointData()->GetScalars(), values.Get());
@@ -164,9 +164,8 @@ TEST(DataInputs, CellDataRenderAsTheirPointDataOnTheCellCentres)
   const double psnr = PSNR(cellImage, pointImage);
 
   // A field moved by one cell along x: what a misplaced grid would look like.
-  auto moved = Values("values", 1, [](int i, int j, int k, float* v) {
-    *v = i > 0 ? PlateAndFloor(i - 1, j, k) : 0.0f;
-  });
+  auto moved = Values("values", 1,
+    [](int i, int j, int k, float* v) { *v = i > 0 ? PlateAndFloor(i - 1, j, k) : 0.0f; });
   PlateScene movedScene(AsPointDataOnCentres(moved));
   const double movedPsnr = PSNR(movedScene.Render(), pointImage);
   std::printf("cell data vs point data on the cell centres: PSNR %.1f dB (moved one cell: "
@@ -221,8 +220,7 @@ TEST(DataInputs, CpuFilterLightsCellDataAsTheGpu)
   cpu->Update();
   vtkImageData* output = cpu->GetOutput();
   EXPECT_DOUBLE_EQ(output->GetOrigin()[0], 0.5); // the cell centres' grid
-  auto* reference =
-    vtkFloatArray::SafeDownCast(output->GetPointData()->GetArray("Irradiance_0"));
+  auto* reference = vtkFloatArray::SafeDownCast(output->GetPointData()->GetArray("Irradiance_0"));
   ASSERT_NE(reference, nullptr);
   ASSERT_EQ(static_cast<vtkIdType>(gpu.size()), reference->GetNumberOfTuples());
   double worst = 0.0;
@@ -232,9 +230,8 @@ TEST(DataInputs, CpuFilterLightsCellDataAsTheGpu)
   }
   // The floor's top cell under the plate's centre lies in its shadow; one
   // at the floor's corner is lit.
-  const auto at = [&](int i, int j, int k) {
-    return reference->GetValue((static_cast<vtkIdType>(k) * Cells + j) * Cells + i);
-  };
+  const auto at = [&](int i, int j, int k)
+  { return reference->GetValue((static_cast<vtkIdType>(k) * Cells + j) * Cells + i); };
   std::printf("cell data irradiance, GPU vs CPU: max |difference| %.3g; floor under the plate "
               "%.3f, in the open %.3f\n",
     worst, at(15, 15, 6), at(4, 27, 6));
@@ -289,16 +286,21 @@ VectorRender RenderArray(vtkImageData* image, const char* name, bool cells,
 vtkSmartPointer<vtkImageData> VectorImage(bool cells)
 {
   auto vectors = Values("velocity", 3, Vector);
-  auto magnitude = Values("speed", 1, [](int i, int j, int k, float* m) {
-    float v[3];
-    Vector(i, j, k, v);
-    *m = static_cast<float>(std::sqrt(double(v[0]) * v[0] + double(v[1]) * v[1] + double(v[2]) * v[2]));
-  });
-  auto second = Values("velocity_Y", 1, [](int i, int j, int k, float* c) {
-    float v[3];
-    Vector(i, j, k, v);
-    *c = -v[1]; // positive: the opacity ramp starts at 0
-  });
+  auto magnitude = Values("speed", 1,
+    [](int i, int j, int k, float* m)
+    {
+      float v[3];
+      Vector(i, j, k, v);
+      *m = static_cast<float>(
+        std::sqrt(double(v[0]) * v[0] + double(v[1]) * v[1] + double(v[2]) * v[2]));
+    });
+  auto second = Values("velocity_Y", 1,
+    [](int i, int j, int k, float* c)
+    {
+      float v[3];
+      Vector(i, j, k, v);
+      *c = -v[1]; // positive: the opacity ramp starts at 0
+    });
   auto image = cells ? AsCellData(vectors) : AsPointDataOnCentres(vectors);
   vtkDataSetAttributes* attributes = cells
     ? static_cast<vtkDataSetAttributes*>(image->GetCellData())
@@ -341,12 +343,14 @@ TEST(DataInputs, VectorComponentRendersAsThatComponent)
   }
   vectors->Modified();
   const VectorRender component = RenderArray(image, "velocity", false,
-    [](vtkMultiMaterialVolumeMapper* m) {
+    [](vtkMultiMaterialVolumeMapper* m)
+    {
       m->SetVectorModeToComponent();
       m->SetVectorComponent(1);
     });
   const VectorRender otherComponent = RenderArray(image, "velocity", false,
-    [](vtkMultiMaterialVolumeMapper* m) {
+    [](vtkMultiMaterialVolumeMapper* m)
+    {
       m->SetVectorModeToComponent();
       m->SetVectorComponent(2);
     });
@@ -362,7 +366,8 @@ TEST(DataInputs, BadVectorComponentIsAnErrorAndDrawsNothing)
 {
   auto image = VectorImage(false);
   const VectorRender bad = RenderArray(image, "velocity", false,
-    [](vtkMultiMaterialVolumeMapper* m) {
+    [](vtkMultiMaterialVolumeMapper* m)
+    {
       m->SetVectorModeToComponent();
       m->SetVectorComponent(3);
     });
@@ -474,20 +479,22 @@ struct SeriesKind
 // as a scalar or as the vector of Vector(), each step its own data object.
 vtkSmartPointer<vtkImageData> SeriesStep(const SeriesKind& kind, int step)
 {
-  auto values = Values("values", kind.Components, [&kind, step](int i, int j, int k, float* v) {
-    if (i < step)
+  auto values = Values("values", kind.Components,
+    [&kind, step](int i, int j, int k, float* v)
     {
-      std::fill(v, v + kind.Components, 0.0f);
-    }
-    else if (kind.Components == 1)
-    {
-      *v = PlateAndFloor(i - step, j, k);
-    }
-    else
-    {
-      Vector(i - step, j, k, v);
-    }
-  });
+      if (i < step)
+      {
+        std::fill(v, v + kind.Components, 0.0f);
+      }
+      else if (kind.Components == 1)
+      {
+        *v = PlateAndFloor(i - step, j, k);
+      }
+      else
+      {
+        Vector(i - step, j, k, v);
+      }
+    });
   return kind.Cells ? AsCellData(values) : AsPointDataOnCentres(values);
 }
 } // namespace
@@ -502,7 +509,8 @@ TEST(DataInputs, KeptStepsOfVectorsAndCellDataComeBackWithoutAnUpdate)
     { "point vector, magnitude", false, 3,
       [](vtkMultiMaterialVolumeMapper* m) { m->SetVectorModeToMagnitude(); } },
     { "point vector, component 0", false, 3,
-      [](vtkMultiMaterialVolumeMapper* m) {
+      [](vtkMultiMaterialVolumeMapper* m)
+      {
         m->SetVectorModeToComponent();
         m->SetVectorComponent(0);
       } },
@@ -519,7 +527,8 @@ TEST(DataInputs, KeptStepsOfVectorsAndCellDataComeBackWithoutAnUpdate)
     {
       steps.push_back(SeriesStep(kind, 2 * s));
     }
-    const auto configure = [&kind](vtkMultiMaterialVolumeMapper* m) {
+    const auto configure = [&kind](vtkMultiMaterialVolumeMapper* m)
+    {
       kind.Cells ? m->SetScalarModeToUseCellFieldData() : m->SetScalarModeToUsePointFieldData();
       m->SelectScalarArray("values");
       if (kind.Setup)

@@ -144,8 +144,8 @@ TEST(Environment, BackgroundIsTheGradientAroundTheCamerasViewUp)
   // -x, across: halfway; 60 degrees below the view-up: a quarter of the way.
   EXPECT_LT(glm::length(environment->Lookup(glm::dvec3(2.0, 0.0, 0.0)) - top), 1e-12);
   EXPECT_LT(glm::length(environment->Lookup(glm::dvec3(-1.0, 0.0, 0.0)) - bottom), 1e-12);
-  EXPECT_LT(glm::length(environment->Lookup(glm::dvec3(0.0, 1.0, 0.0)) - 0.5 * (bottom + top)),
-    1e-12);
+  EXPECT_LT(
+    glm::length(environment->Lookup(glm::dvec3(0.0, 1.0, 0.0)) - 0.5 * (bottom + top)), 1e-12);
   const glm::dvec3 below(-0.5, 0.0, std::sqrt(0.75));
   EXPECT_LT(glm::length(environment->Lookup(below) - (0.75 * bottom + 0.25 * top)), 1e-12);
 
@@ -164,20 +164,20 @@ TEST(Environment, SRGBTexturesAreDecodedAsTheGPUDecodesThem)
   // A uniform grey of 128 / 255, encoded sRGB: linear ((c + 0.055) / 1.055)^2.4.
   const double encoded = 128.0 / 255.0;
   const double linear = std::pow((encoded + 0.055) / 1.055, 2.4);
-  auto texture = mmvtest::MakeEquirectangular(
-    [encoded](const glm::dvec3&) { return glm::dvec3(encoded); }, 8);
+  auto texture =
+    mmvtest::MakeEquirectangular([encoded](const glm::dvec3&) { return glm::dvec3(encoded); }, 8);
   vtkNew<vtkRenderer> renderer;
   renderer->SetEnvironmentTexture(texture);
   vtkNew<vtkMatrix4x4> identity;
   vtkNew<vtkMultiMaterialEnvironment> environment;
 
   environment->Update(renderer, identity, mmv::ReflectEnvironmentTexture, nullptr);
-  EXPECT_LT(glm::length(environment->Lookup(glm::dvec3(0.3, -0.2, 1.0)) - glm::dvec3(encoded)),
-    1e-12);
+  EXPECT_LT(
+    glm::length(environment->Lookup(glm::dvec3(0.3, -0.2, 1.0)) - glm::dvec3(encoded)), 1e-12);
   texture->UseSRGBColorSpaceOn();
   environment->Update(renderer, identity, mmv::ReflectEnvironmentTexture, nullptr);
-  EXPECT_LT(glm::length(environment->Lookup(glm::dvec3(0.3, -0.2, 1.0)) - glm::dvec3(linear)),
-    1e-12);
+  EXPECT_LT(
+    glm::length(environment->Lookup(glm::dvec3(0.3, -0.2, 1.0)) - glm::dvec3(linear)), 1e-12);
   EXPECT_NEAR(linear, 0.2158605, 1e-6);
 }
 

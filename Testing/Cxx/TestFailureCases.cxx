@@ -48,8 +48,8 @@ void CenterStatistics(mmvtest::Scene& scene, int w, double& mean, double& varian
 
 vtkSmartPointer<vtkFloatArray> IrradianceArray(vtkIrradianceVolumeFilter* filter, int light)
 {
-  return vtkFloatArray::SafeDownCast(filter->GetOutput()->GetPointData()->GetArray(
-    ("Irradiance_" + std::to_string(light)).c_str()));
+  return vtkFloatArray::SafeDownCast(
+    filter->GetOutput()->GetPointData()->GetArray(("Irradiance_" + std::to_string(light)).c_str()));
 }
 }
 
@@ -59,12 +59,13 @@ TEST(FailureCases, HomogeneousRegionFadesToAmbient)
 {
   // A volume of value 1 plus tiny noise; one voxel of 0 in a far corner sets
   // the scalar range to [0, 1] so the noise is ~amplitude in normalised units.
-  auto render = [](double noise, bool shaded, double& mean, double& variance) {
+  auto render = [](double noise, bool shaded, double& mean, double& variance)
+  {
     std::mt19937 random(7);
     std::uniform_real_distribution<float> u(-1.0f, 1.0f);
-    auto image = mmvtest::MakeVolume(Dims, [&](int i, int j, int k) {
-      return (i + j + k == 0) ? 0.0f : 1.0f + static_cast<float>(noise) * u(random);
-    });
+    auto image = mmvtest::MakeVolume(Dims,
+      [&](int i, int j, int k)
+      { return (i + j + k == 0) ? 0.0f : 1.0f + static_cast<float>(noise) * u(random); });
     mmvtest::Scene scene;
     scene.Color->AddRGBPoint(0.0, 1.0, 1.0, 1.0);
     scene.Opacity->AddPoint(0.0, 0.0);
@@ -105,7 +106,8 @@ TEST(FailureCases, HomogeneousRegionFadesToAmbient)
   EXPECT_GT(fadedMean, 5.0) << "the homogeneous volume must stay visible (no NaN/black)";
   EXPECT_LT(fadedVar, 1.0) << "speckles from gradient noise in a homogeneous region";
   EXPECT_LT(fadedVar, ambientVar + 1.0);
-  EXPECT_GT(noisyVar, 4.0 * (fadedVar + 0.1)) << "the measurement must see speckles when they exist";
+  EXPECT_GT(noisyVar, 4.0 * (fadedVar + 0.1))
+    << "the measurement must see speckles when they exist";
 
   // CPU mirror of the shading: a zero normal with directional = 0 is finite
   // and equals the ambient term.
@@ -145,7 +147,8 @@ TEST(FailureCases, PreIntegrationBoundsSpikeError)
   mapper->SetPreIntegrationTableSize(1024);
   scene.Volume->SetMapper(mapper);
   scene.FrameBounds(image->GetBounds());
-  auto render = [&](double step, bool preintegration) {
+  auto render = [&](double step, bool preintegration)
+  {
     mapper->SetSampleDistance(step);
     mapper->SetPreIntegration(preintegration);
     scene.Window->Render();
@@ -160,8 +163,8 @@ TEST(FailureCases, PreIntegrationBoundsSpikeError)
   {
     const double on = render(step, true);
     const double off = render(step, false);
-    std::printf("spike: step %.1f pre-integrated %.3f post-classified %.3f fine %.3f\n", step,
-      on, off, reference);
+    std::printf("spike: step %.1f pre-integrated %.3f post-classified %.3f fine %.3f\n", step, on,
+      off, reference);
     worstOn = std::max(worstOn, std::abs(on - reference));
     worstOff = std::max(worstOff, std::abs(off - reference));
   }
@@ -186,7 +189,8 @@ TEST(FailureCases, DiffusionStaysBoundedAndMonotone)
   {
     std::vector<float> strength(32, static_cast<float>(s));
     std::vector<float> out = input;
-    const mmv::DiffusionReport report = mmv::DiffuseIrradiance(dims, spacing, strength.data(), out.data());
+    const mmv::DiffusionReport report =
+      mmv::DiffuseIrradiance(dims, spacing, strength.data(), out.data());
     double sum = 0.0, sumIn = 0.0;
     for (int i = 0; i < 32; ++i)
     {
@@ -249,10 +253,13 @@ TEST(FailureCases, DiffusionStaysBoundedAndMonotone)
 // 4. Degenerate light placements: finite values in [0, 1], filter and mapper.
 TEST(FailureCases, DegenerateLightPlacements)
 {
-  auto image = mmvtest::MakeVolume(17, [](int i, int j, int k) {
-    const double r = std::sqrt((i - 8.0) * (i - 8.0) + (j - 8.0) * (j - 8.0) + (k - 8.0) * (k - 8.0));
-    return static_cast<float>(r < 7.0 ? 1.0 : 0.0);
-  });
+  auto image = mmvtest::MakeVolume(17,
+    [](int i, int j, int k)
+    {
+      const double r =
+        std::sqrt((i - 8.0) * (i - 8.0) + (j - 8.0) * (j - 8.0) + (k - 8.0) * (k - 8.0));
+      return static_cast<float>(r < 7.0 ? 1.0 : 0.0);
+    });
   vtkNew<vtkPiecewiseFunction> opacity;
   opacity->AddPoint(0.0, 0.0);
   opacity->AddPoint(1.0, 0.2);
@@ -300,7 +307,8 @@ TEST(FailureCases, DegenerateLightPlacements)
       ASSERT_LE(values->GetValue(i), 1.0f + 1e-5f);
     }
   }
-  auto at = [&](int l, int i, int j, int k) { return IrradianceArray(filter, l)->GetValue((k * 17 + j) * 17 + i); };
+  auto at = [&](int l, int i, int j, int k)
+  { return IrradianceArray(filter, l)->GetValue((k * 17 + j) * 17 + i); };
   EXPECT_GT(at(0, 8, 8, 8), 0.5f) << "the voxel holding a point light is lit";
   EXPECT_GT(at(1, 14, 8, 8), at(1, 2, 8, 8)) << "axis-parallel light comes from +x";
   EXPECT_GT(at(2, 8, 8, 2), 0.0f) << "inside the spot cone";
@@ -375,8 +383,8 @@ TEST(FailureCases, ThinWallLeakGrowsWithCoarserIrradiance)
   // lit along +x. Leak = mean irradiance behind the wall / in front of it.
   // (A 1-voxel wall is a tent after trilinear reconstruction and lets ~15%
   // through even at full resolution: that is the data, not the grid.)
-  auto image = mmvtest::MakeVolume(
-    Dims, [](int i, int, int) { return (i == 15 || i == 16) ? 1.0f : 0.1f; });
+  auto image =
+    mmvtest::MakeVolume(Dims, [](int i, int, int) { return (i == 15 || i == 16) ? 1.0f : 0.1f; });
   vtkNew<vtkPiecewiseFunction> opacity;
   opacity->AddPoint(0.0, 0.0);
   opacity->AddPoint(0.1, 0.001);
@@ -422,8 +430,8 @@ TEST(FailureCases, ThinWallLeakGrowsWithCoarserIrradiance)
     const double leak = (behind / nBehind) / (front / nFront);
     int d[3];
     out->GetDimensions(d);
-    std::printf("thin wall: scale %.3f (grid %d, voxel %.2f data voxels) leak %.4f\n", scale,
-      d[0], 32.0 / (d[0] - 1), leak);
+    std::printf("thin wall: scale %.3f (grid %d, voxel %.2f data voxels) leak %.4f\n", scale, d[0],
+      32.0 / (d[0] - 1), leak);
     leaks.push_back(leak);
   }
   EXPECT_LT(leaks[0], 0.05) << "irradiance at the data resolution must not leak";
@@ -446,8 +454,8 @@ TEST(FailureCases, ExtremeShininessAndBackLightsStayFinite)
     {
       for (const glm::dvec3& l : { glm::dvec3(0, 0, -1), glm::dvec3(0, 0, 1), glm::dvec3(1, 0, 0) })
       {
-        const glm::dvec3 c = mmv::mmvBlinnPhong(glm::dvec4(0.2, 0.7, 1.0, shininess),
-          glm::dvec4(0.5, 0.5, 0.5, 0.5), n, v, l, 1.0);
+        const glm::dvec3 c = mmv::mmvBlinnPhong(
+          glm::dvec4(0.2, 0.7, 1.0, shininess), glm::dvec4(0.5, 0.5, 0.5, 0.5), n, v, l, 1.0);
         for (int i = 0; i < 3; ++i)
         {
           ASSERT_TRUE(std::isfinite(c[i])) << "shininess " << shininess;
@@ -460,10 +468,13 @@ TEST(FailureCases, ExtremeShininessAndBackLightsStayFinite)
   // GPU: a sphere with a constant core (zero gradient), lit from the camera,
   // from exactly behind (l = -v) and from the side; every pixel of the
   // sphere's disk must be lit (NaN would composite to black).
-  auto image = mmvtest::MakeVolume(Dims, [](int i, int j, int k) {
-    const double r = std::sqrt((i - 16.0) * (i - 16.0) + (j - 16.0) * (j - 16.0) + (k - 16.0) * (k - 16.0));
-    return static_cast<float>(std::min(1.0, std::max(0.0, 12.0 - r) / 4.0));
-  });
+  auto image = mmvtest::MakeVolume(Dims,
+    [](int i, int j, int k)
+    {
+      const double r =
+        std::sqrt((i - 16.0) * (i - 16.0) + (j - 16.0) * (j - 16.0) + (k - 16.0) * (k - 16.0));
+      return static_cast<float>(std::min(1.0, std::max(0.0, 12.0 - r) / 4.0));
+    });
   for (double shininess : { 0.0, 1000.0 })
   {
     mmvtest::Scene scene;
@@ -551,7 +562,8 @@ TEST(FailureCases, SixteenBitIrradianceHasNoBanding)
         {
           const float u = values[(k * Dims + j) * Dims + i - 1];
           step16 = std::max(step16, std::abs(double(v) - u));
-          step8 = std::max(step8, std::abs(std::lround(v * 255.0) - std::lround(u * 255.0)) / 255.0);
+          step8 =
+            std::max(step8, std::abs(std::lround(v * 255.0) - std::lround(u * 255.0)) / 255.0);
         }
       }
     }

@@ -41,8 +41,8 @@ vtkSmartPointer<vtkImageData> Piece(vtkImageData* whole, const int extent[6])
       for (int i = extent[0]; i <= extent[1]; ++i)
       {
         int ijk[3] = { i, j, k };
-        values->SetValue(id++, whole->GetPointData()->GetScalars()->GetComponent(
-                                 whole->ComputePointId(ijk), 0));
+        values->SetValue(
+          id++, whole->GetPointData()->GetScalars()->GetComponent(whole->ComputePointId(ijk), 0));
       }
     }
   }

@@ -1,11 +1,10 @@
-// GradientSmoothing (the demo's banding, docs/stability.md, "Stripes on thin shells"): the MR head's skin is a
-// thin shell sampled every 3.2 mm in x and y, and the gradient of its
-// trilinear reconstruction turns at every voxel face, which the shading
-// draws as stripes at the voxel spacing on the cheek and neck
-// (docs/stability.md, "Stripes on thin shells": not the sampling, the pre-integration or the irradiance).
-// Smoothing the shading normal by a Gaussian of one voxel must remove most
-// of that high-frequency energy without changing the image's brightness,
-// and bad values must be reported and render as no smoothing.
+// GradientSmoothing (the demo's banding, docs/stability.md, "Stripes on thin shells"): the MR
+// head's skin is a thin shell sampled every 3.2 mm in x and y, and the gradient of its trilinear
+// reconstruction turns at every voxel face, which the shading draws as stripes at the voxel spacing
+// on the cheek and neck (docs/stability.md, "Stripes on thin shells": not the sampling, the
+// pre-integration or the irradiance). Smoothing the shading normal by a Gaussian of one voxel must
+// remove most of that high-frequency energy without changing the image's brightness, and bad values
+// must be reported and render as no smoothing.
 #include "mmvTestScenes.h"
 #include "mmvTestUtilities.h"
 
@@ -114,9 +113,8 @@ Texture Measure(const std::vector<unsigned char>& rgb)
   {
     lum[p] = (rgb[3 * p] + rgb[3 * p + 1] + rgb[3 * p + 2]) / 3.0;
   }
-  auto at = [&](int x, int y) {
-    return lum[std::min(std::max(y, 0), Size - 1) * Size + std::min(std::max(x, 0), Size - 1)];
-  };
+  auto at = [&](int x, int y)
+  { return lum[std::min(std::max(y, 0), Size - 1) * Size + std::min(std::max(x, 0), Size - 1)]; };
   Texture t;
   int n = 0;
   for (int y = static_cast<int>(0.35 * Size); y < static_cast<int>(0.60 * Size); ++y)

@@ -69,8 +69,8 @@ struct HybridScene : mmvtest::Scene
   }
 };
 
-void ExpectNear(const std::vector<double>& pixel, const double expected[3], double tolerance,
-  const char* what)
+void ExpectNear(
+  const std::vector<double>& pixel, const double expected[3], double tolerance, const char* what)
 {
   for (int c = 0; c < 3; ++c)
   {
@@ -93,7 +93,8 @@ TEST(OpticalModel, HybridSurfaceShareClosedForm)
   }
   // Linear near 0: the share, and with it the normal-based terms, vanish with
   // the gradient instead of switching on at a threshold.
-  EXPECT_NEAR(mmv::mmvSurfaceShare(1e-3 * G0, G0) / mmv::mmvSurfaceShare(1e-4 * G0, G0), 10.0, 0.01);
+  EXPECT_NEAR(
+    mmv::mmvSurfaceShare(1e-3 * G0, G0) / mmv::mmvSurfaceShare(1e-4 * G0, G0), 10.0, 0.01);
 
   // The shading's two limits, per light (unit irradiance and radiance):
   // w = 1: (ka + kd n.l) I_c + ks (n.h)^e I_a, the phase function absent;
@@ -107,11 +108,11 @@ TEST(OpticalModel, HybridSurfaceShareClosedForm)
   light.ToLight = l;
   const glm::dvec3 radiance(1.0);
   const double irradiance = 1.0;
-  const glm::dvec3 surface = mmv::mmvShadeSample(material, G, 0.0, 0.0, segment, glm::dvec3(0.0),
-    n, v, 1.0, &light, &radiance, &irradiance, 1, glm::dvec3(0.0));
+  const glm::dvec3 surface = mmv::mmvShadeSample(material, G, 0.0, 0.0, segment, glm::dvec3(0.0), n,
+    v, 1.0, &light, &radiance, &irradiance, 1, glm::dvec3(0.0));
   const double highlight = std::pow(std::sqrt(0.75), 10.0); // n.h = cos 30 degrees
-  const glm::dvec3 particle = mmv::mmvShadeSample(material, G, 0.0, 0.0, segment,
-    glm::dvec3(0.0), n, v, 0.0, &light, &radiance, &irradiance, 1, glm::dvec3(0.0));
+  const glm::dvec3 particle = mmv::mmvShadeSample(material, G, 0.0, 0.0, segment, glm::dvec3(0.0),
+    n, v, 0.0, &light, &radiance, &irradiance, 1, glm::dvec3(0.0));
   const double phase = mmv::mmvHenyeyGreensteinRelative(G, -0.5);
   for (int c = 0; c < 3; ++c)
   {
@@ -205,21 +206,24 @@ TEST(OpticalModel, HybridSpeckleInANoisyHomogeneousRegionVanishesWithTheNoise)
   // weights the normal by w, proportional to the gradient for small a.
   constexpr int N = 33;
   constexpr int View = 48;
-  auto render = [](double amplitude) {
+  auto render = [](double amplitude)
+  {
     std::mt19937 random(11);
     std::uniform_real_distribution<float> u(-1.0f, 1.0f);
-    auto image = mmvtest::MakeVolume(N, [&](int i, int j, int k) {
-      if (i + j + k == 0)
+    auto image = mmvtest::MakeVolume(N,
+      [&](int i, int j, int k)
       {
-        return 0.0f;
-      }
-      if (i + j + k == 3 * (N - 1))
-      {
-        return 2.0f;
-      }
-      const float noise = u(random);
-      return 1.0f + static_cast<float>(amplitude) * noise;
-    });
+        if (i + j + k == 0)
+        {
+          return 0.0f;
+        }
+        if (i + j + k == 3 * (N - 1))
+        {
+          return 2.0f;
+        }
+        const float noise = u(random);
+        return 1.0f + static_cast<float>(amplitude) * noise;
+      });
     HybridScene scene(image, View);
     scene.Opacity->AddPoint(0.0, 0.0);
     scene.Opacity->AddPoint(0.5, 0.05);
@@ -233,7 +237,8 @@ TEST(OpticalModel, HybridSpeckleInANoisyHomogeneousRegionVanishesWithTheNoise)
     return scene.Pixels();
   };
   const std::vector<unsigned char> clean = render(0.0);
-  auto speckle = [&](double amplitude, double& meanShift) {
+  auto speckle = [&](double amplitude, double& meanShift)
+  {
     const std::vector<unsigned char> noisy = render(amplitude);
     double sum = 0.0;
     double sum2 = 0.0;

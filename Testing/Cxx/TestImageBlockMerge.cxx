@@ -36,7 +36,8 @@ vtkSmartPointer<vtkImageData> Block(const int global[6], const int originShift[3
     originShift ? originShift[2] : 0 };
   auto image = vtkSmartPointer<vtkImageData>::New();
   image->SetSpacing(spacing);
-  image->SetOrigin(1.0 + shift[0] * spacing[0], 2.0 + shift[1] * spacing[1], 3.0 + shift[2] * spacing[2]);
+  image->SetOrigin(
+    1.0 + shift[0] * spacing[0], 2.0 + shift[1] * spacing[1], 3.0 + shift[2] * spacing[2]);
   image->SetExtent(global[0] - shift[0], global[1] - shift[0], global[2] - shift[1],
     global[3] - shift[1], global[4] - shift[2], global[5] - shift[2]);
   vtkNew<vtkFloatArray> values;

@@ -11,8 +11,8 @@
 
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <functional>
@@ -59,7 +59,8 @@ vtkSmartPointer<vtkImageData> ByteImage(int w, int h, const std::function<int(in
     {
       for (int c = 0; c < 3; ++c)
       {
-        rgb->SetValue((static_cast<vtkIdType>(y) * w + x) * 3 + c, static_cast<unsigned char>(f(x, y, c)));
+        rgb->SetValue(
+          (static_cast<vtkIdType>(y) * w + x) * 3 + c, static_cast<unsigned char>(f(x, y, c)));
       }
     }
   }
@@ -79,21 +80,23 @@ double Pattern(int x, int y, int c)
 // The pattern blurred by a (2r+1)^2 box filter (clamped at the border).
 vtkSmartPointer<vtkImageData> Blurred(int size, int r)
 {
-  return FloatImage(size, size, [size, r](int x, int y, int c) {
-    double s = 0.0;
-    int n = 0;
-    for (int dy = -r; dy <= r; ++dy)
+  return FloatImage(size, size,
+    [size, r](int x, int y, int c)
     {
-      for (int dx = -r; dx <= r; ++dx)
+      double s = 0.0;
+      int n = 0;
+      for (int dy = -r; dy <= r; ++dy)
       {
-        const int xx = std::min(std::max(x + dx, 0), size - 1);
-        const int yy = std::min(std::max(y + dy, 0), size - 1);
-        s += Pattern(xx, yy, c);
-        ++n;
+        for (int dx = -r; dx <= r; ++dx)
+        {
+          const int xx = std::min(std::max(x + dx, 0), size - 1);
+          const int yy = std::min(std::max(y + dy, 0), size - 1);
+          s += Pattern(xx, yy, c);
+          ++n;
+        }
       }
-    }
-    return s / n;
-  });
+      return s / n;
+    });
 }
 }
 
@@ -130,7 +133,8 @@ TEST(ImageErrorMetrics, ConstantOffsetFloat)
 TEST(ImageErrorMetrics, ConstantOffsetBytes)
 {
   auto a = ByteImage(20, 16, [](int x, int y, int c) { return (x * 7 + y * 3 + c * 40) % 200; });
-  auto b = ByteImage(20, 16, [](int x, int y, int c) { return (x * 7 + y * 3 + c * 40) % 200 + 5; });
+  auto b =
+    ByteImage(20, 16, [](int x, int y, int c) { return (x * 7 + y * 3 + c * 40) % 200 + 5; });
   vtkNew<vtkImageErrorMetrics> metrics;
   ASSERT_TRUE(metrics->Compute(b, a));
   EXPECT_DOUBLE_EQ(metrics->GetRMSE(), 5.0);

@@ -32,7 +32,8 @@ struct Field
   }
   size_t Index(int i, int j, int k) const
   {
-    return static_cast<size_t>(i) + static_cast<size_t>(Dims[0]) * (j + static_cast<size_t>(Dims[1]) * k);
+    return static_cast<size_t>(i) +
+      static_cast<size_t>(Dims[0]) * (j + static_cast<size_t>(Dims[1]) * k);
   }
   mmv::DiffusionReport Diffuse(const mmv::DiffusionSettings& settings = mmv::DiffusionSettings())
   {
@@ -147,7 +148,8 @@ TEST(IrradianceDiffusion, ZeroStrengthWallInsulates)
       }
     }
   }
-  auto halfSum = [&](int begin, int end) {
+  auto halfSum = [&](int begin, int end)
+  {
     double sum = 0.0;
     for (int k = 0; k < 5; ++k)
       for (int j = 0; j < 6; ++j)
@@ -249,8 +251,8 @@ TEST(IrradianceDiffusion, ExponentialMatchesErfProfileWithoutTimeError)
     const double exact = 0.5 * std::erfc(x / (2.0 * std::sqrt(s * settings.Time)));
     maxError = std::max(maxError, std::abs(f.Irradiance[i] - exact));
   }
-  std::printf("exponential: max error %.4f against erfc, %d Chebyshev terms\n", maxError,
-    report.Iterations);
+  std::printf(
+    "exponential: max error %.4f against erfc, %d Chebyshev terms\n", maxError, report.Iterations);
   EXPECT_LT(maxError, 0.0025);
   EXPECT_EQ(report.SubSteps, 1);
 }
@@ -295,7 +297,8 @@ TEST(IrradianceDiffusion, MatchesFineExplicitReference)
   const double dt = time / steps;
   std::vector<float>& u = reference.Irradiance;
   std::vector<double> next(u.size());
-  auto coeff = [&](size_t a, size_t b) {
+  auto coeff = [&](size_t a, size_t b)
+  {
     const double sa = reference.Strength[a], sb = reference.Strength[b];
     return sa > 0.0 && sb > 0.0 ? 2.0 * sa * sb / (sa + sb) : 0.0;
   };
@@ -343,8 +346,8 @@ TEST(IrradianceDiffusion, InvalidInputIsSkipped)
   settings.Time = 0.0;
   EXPECT_TRUE(f.Diffuse(settings).Skipped);
   const int badDims[3] = { 0, 4, 4 };
-  EXPECT_TRUE(mmv::DiffuseIrradiance(badDims, f.Spacing, f.Strength.data(), f.Irradiance.data())
-                .Skipped);
+  EXPECT_TRUE(
+    mmv::DiffuseIrradiance(badDims, f.Spacing, f.Strength.data(), f.Irradiance.data()).Skipped);
   // s > 0 only on isolated voxels: no face couples two of them.
   std::fill(f.Strength.begin(), f.Strength.end(), 0.0f);
   f.Strength[f.Index(1, 1, 1)] = 5.0f;

@@ -6,10 +6,10 @@
 #include "mmvTestUtilities.h"
 #include "mmvTestWindow.h"
 #include "vtkIrradianceDiffusion.h"
+#include "vtkIrradianceEstimator.h"
 #include "vtkIrradianceGrid.h"
 #include "vtkIrradianceRegion.h"
 #include "vtkIrradianceVolumeFilter.h"
-#include "vtkIrradianceEstimator.h"
 #include "vtkMultiMaterialLights.h"
 #include "vtkMultiMaterialParameters.h"
 
@@ -139,13 +139,15 @@ vtkSmartPointer<vtkLight> Positional(
 Scene TwoBlocks(double scattering)
 {
   Scene scene;
-  scene.Image = MakeImage({ 24, 24, 24 }, { 1.0, 1.0, 1.0 }, [](int i, int j, int k) {
-    if (j < 4 || j > 19 || k < 5 || k > 19)
+  scene.Image = MakeImage({ 24, 24, 24 }, { 1.0, 1.0, 1.0 },
+    [](int i, int j, int k)
     {
-      return 0.0f;
-    }
-    return i >= 4 && i < 12 ? 1.0f : (i >= 12 && i < 20 ? 2.0f : 0.0f);
-  });
+      if (j < 4 || j > 19 || k < 5 || k > 19)
+      {
+        return 0.0f;
+      }
+      return i >= 4 && i < 12 ? 1.0f : (i >= 12 && i < 20 ? 2.0f : 0.0f);
+    });
   scene.Opacity = vtkSmartPointer<vtkPiecewiseFunction>::New();
   scene.Opacity->AddPoint(0.0, 0.0);
   scene.Opacity->AddPoint(0.5, 0.1);
@@ -224,8 +226,8 @@ void SetPassInputs(const Scene& scene, vtkIrradianceEstimator* pass)
 }
 
 /// The CPU reference at full resolution: one array per light.
-std::vector<std::vector<float>> RunFilter(const Scene& scene, bool multipleScattering,
-  bool exponential = mmv::DefaultExponentialDiffusion)
+std::vector<std::vector<float>> RunFilter(
+  const Scene& scene, bool multipleScattering, bool exponential = mmv::DefaultExponentialDiffusion)
 {
   vtkNew<vtkIrradianceVolumeFilter> filter;
   filter->SetExponentialDiffusion(exponential);
@@ -273,9 +275,8 @@ std::vector<bool> OnConeEdge(const mmv::IrradianceGrid& grid, const mmv::LightSo
   return edge;
 }
 
-
-double MaxDifference(const std::vector<float>& a, const std::vector<float>& b,
-  const std::vector<bool>& skip)
+double MaxDifference(
+  const std::vector<float>& a, const std::vector<float>& b, const std::vector<bool>& skip)
 {
   double diff = 0.0;
   for (size_t v = 0; v < a.size(); ++v)
@@ -373,8 +374,8 @@ TEST(IrradianceEstimator, PiecewiseAndFullShadowRaysMatchTheCPU)
     std::vector<float> swept;
     ASSERT_TRUE(piecewise->ReadBack(ctx.GL, 0, swept));
     const double vsFull = MaxDifference(swept, exact, std::vector<bool>(exact.size(), false));
-    std::cout << "K = " << slices << ": GPU vs CPU " << cpu << ", piecewise vs full rays "
-              << vsFull << std::endl;
+    std::cout << "K = " << slices << ": GPU vs CPU " << cpu << ", piecewise vs full rays " << vsFull
+              << std::endl;
     // Measured 0.135 / 0.142 / 0.131 for K = 1 / 3 / 8 (GPU vs CPU: 8e-6):
     // the shadow edge of a block blurs by about a voxel.
     EXPECT_LT(vsFull, 0.2);
@@ -540,7 +541,8 @@ TEST(IrradianceEstimator, StridedLightsBesideOthersChangeOnlyTheirOwnChannel)
     }
     // 24^3 points against 13^3 for two of the three lights.
     const double expected = (24.0 * 24 * 24 + 2.0 * 13 * 13 * 13) / (3.0 * 24 * 24 * 24);
-    EXPECT_LT(static_cast<double>(strided->GetLastEstimatedVoxels()) / exactVoxels, expected + 0.05);
+    EXPECT_LT(
+      static_cast<double>(strided->GetLastEstimatedVoxels()) / exactVoxels, expected + 0.05);
     exact->ReleaseGraphicsResources(ctx.GL);
     strided->ReleaseGraphicsResources(ctx.GL);
   }
@@ -594,8 +596,8 @@ TEST(OpticalModel, RGBShadowOfATintedSlabOnTheGPUMatchesTheClosedFormAndTheCPU)
   filter->SetIrradianceScale(1.0);
   filter->AddLight(scene.Lights[0]);
   filter->Update();
-  auto* cpuTint = vtkFloatArray::SafeDownCast(
-    filter->GetOutput()->GetPointData()->GetArray("IrradianceTint_0"));
+  auto* cpuTint =
+    vtkFloatArray::SafeDownCast(filter->GetOutput()->GetPointData()->GetArray("IrradianceTint_0"));
   ASSERT_NE(cpuTint, nullptr);
 
   double closedForm = 0.0, againstCPU = 0.0;
@@ -613,8 +615,7 @@ TEST(OpticalModel, RGBShadowOfATintedSlabOnTheGPUMatchesTheClosedFormAndTheCPU)
         for (int c = 0; c < 3; ++c)
         {
           const double expected = std::exp(-tau * mmv::TransmissionWeight(transmission[c]));
-          closedForm =
-            std::max(closedForm, std::abs(grey[v] * tint[3 * t + c] / expected - 1.0));
+          closedForm = std::max(closedForm, std::abs(grey[v] * tint[3 * t + c] / expected - 1.0));
           againstCPU =
             std::max(againstCPU, std::abs(tint[3 * t + c] - cpuTint->GetComponent(v, c)));
         }
@@ -829,8 +830,8 @@ TEST(IrradianceEstimator, DiffusionMatchesCPUSolverForEveryStrength)
       int coarse[3];
       pass->GetDiffusionGridDimensions(coarse);
       std::cout << "s " << s << (exponential ? ", exponential" : ", backward Euler")
-                << ": diffusion grid " << coarse[0] << "x" << coarse[1] << "x" << coarse[2]
-                << ", " << pass->GetDiffusionSubSteps() << " sub-steps x "
+                << ": diffusion grid " << coarse[0] << "x" << coarse[1] << "x" << coarse[2] << ", "
+                << pass->GetDiffusionSubSteps() << " sub-steps x "
                 << pass->GetDiffusionSweepsPerStep() << " passes at most, "
                 << pass->GetDiffusionPasses() << " drawn, GPU vs CPU max |difference| " << diff
                 << std::endl;
@@ -972,7 +973,7 @@ TEST(IrradianceEstimator, ComputeAndFragmentPassesAgree)
       {
         vtkNew<vtkIrradianceEstimator> pass;
         pass->SetComputeShaders(compute ? vtkIrradianceEstimator::ComputeDispatches
-                                         : vtkIrradianceEstimator::FragmentDraws);
+                                        : vtkIrradianceEstimator::FragmentDraws);
         SetPassInputs(scene, pass);
         ASSERT_TRUE(pass->Render(ctx.GL));
         EXPECT_EQ(pass->GetComputeShadersUsed(), compute);
@@ -1007,10 +1008,12 @@ namespace
 Scene ManyClasses()
 {
   Scene scene;
-  scene.Image = MakeImage({ 23, 17, 13 }, { 1.0, 1.0, 1.0 }, [](int i, int j, int k) {
-    const bool shell = i < 3 || j < 2 || k < 2; // empty margins on three sides
-    return shell ? 0.0f : 0.3f * static_cast<float>((i * 7 + j * 3 + k * 5) % 11);
-  });
+  scene.Image = MakeImage({ 23, 17, 13 }, { 1.0, 1.0, 1.0 },
+    [](int i, int j, int k)
+    {
+      const bool shell = i < 3 || j < 2 || k < 2; // empty margins on three sides
+      return shell ? 0.0f : 0.3f * static_cast<float>((i * 7 + j * 3 + k * 5) % 11);
+    });
   scene.Opacity = vtkSmartPointer<vtkPiecewiseFunction>::New();
   scene.Opacity->AddPoint(0.0, 0.0);
   scene.Opacity->AddPoint(0.7, 0.0);
@@ -1054,7 +1057,7 @@ TEST(IrradianceEstimator, GPUClassesAndNeededPointsMatchTheCPU)
       Scene scene = ManyClasses();
       vtkNew<vtkIrradianceEstimator> pass;
       pass->SetComputeShaders(compute ? vtkIrradianceEstimator::ComputeDispatches
-                                       : vtkIrradianceEstimator::FragmentDraws);
+                                      : vtkIrradianceEstimator::FragmentDraws);
       pass->SetMultipleScattering(multipleScattering);
       for (const int edit : { 0, 1 })
       {
@@ -1138,7 +1141,7 @@ TEST(IrradianceEstimator, GPUClassesAndNeededPointsMatchTheCPU)
         EXPECT_TRUE(pass->GetClassifiedOnCPU());
         vtkNew<vtkIrradianceEstimator> fresh;
         fresh->SetComputeShaders(compute ? vtkIrradianceEstimator::ComputeDispatches
-                                          : vtkIrradianceEstimator::FragmentDraws);
+                                         : vtkIrradianceEstimator::FragmentDraws);
         SetPassInputs(scene, fresh);
         ASSERT_TRUE(fresh->Render(ctx.GL));
         EXPECT_GT(fresh->GetDiffusionPasses(), 0);
@@ -1167,10 +1170,12 @@ TEST(IrradianceEstimator, NonEmptyCountsOfUnusualTablesAndValuesEqualTheCPUs)
 {
   const Context& ctx = SharedContext();
   ASSERT_NE(ctx.GL, nullptr);
-  auto expectCPUCount = [&](vtkIrradianceEstimator* pass, const char* what) {
+  auto expectCPUCount = [&](vtkIrradianceEstimator* pass, const char* what)
+  {
     std::vector<float> cpu;
     pass->ClassifyOnCPU(cpu);
-    const vtkIdType nonEmpty = std::count_if(cpu.begin(), cpu.end(), [](float c) { return c >= 0.0f; });
+    const vtkIdType nonEmpty =
+      std::count_if(cpu.begin(), cpu.end(), [](float c) { return c >= 0.0f; });
     EXPECT_GT(nonEmpty, 100) << what;
     EXPECT_LT(nonEmpty, static_cast<vtkIdType>(cpu.size()) - 100) << what;
     EXPECT_EQ(pass->GetNumberOfComputedVoxels(), nonEmpty) << what;
@@ -1261,8 +1266,8 @@ TEST(IrradianceEstimator, LeavesTheRenderersStateAsItFoundIt)
 
 /// Largest |a - b| over the voxels of `box` in a grid of `dims` (`components`
 /// values per voxel).
-double MaxDifferenceIn(const std::vector<float>& a, const std::vector<float>& b,
-  const int dims[3], const int box[6], int components = 1)
+double MaxDifferenceIn(const std::vector<float>& a, const std::vector<float>& b, const int dims[3],
+  const int box[6], int components = 1)
 {
   double diff = 0.0;
   for (int k = box[4]; k <= box[5]; ++k)
@@ -1274,8 +1279,8 @@ double MaxDifferenceIn(const std::vector<float>& a, const std::vector<float>& b,
         const size_t v = i + static_cast<size_t>(dims[0]) * (j + static_cast<size_t>(dims[1]) * k);
         for (int c = 0; c < components; ++c)
         {
-          diff = std::max(diff,
-            std::abs(static_cast<double>(a[components * v + c]) - b[components * v + c]));
+          diff = std::max(
+            diff, std::abs(static_cast<double>(a[components * v + c]) - b[components * v + c]));
         }
       }
     }
@@ -1314,11 +1319,13 @@ TEST(IrradianceEstimator, ARegionEqualsTheWholeGridInsideIt)
         whole->SetComputeShaders(compute);
         ASSERT_TRUE(whole->IsTinted());
         ASSERT_TRUE(whole->Render(ctx.GL));
-        ASSERT_EQ(whole->GetComputeShadersUsed(), compute == vtkIrradianceEstimator::ComputeDispatches);
+        ASSERT_EQ(
+          whole->GetComputeShadersUsed(), compute == vtkIrradianceEstimator::ComputeDispatches);
         const mmv::IrradianceGrid grid = GridOf(scene);
         int tintDims[3];
         whole->GetTintDimensions(tintDims);
-        std::vector<std::vector<float>> expected(scene.Lights.size()), expectedTint(scene.Lights.size());
+        std::vector<std::vector<float>> expected(scene.Lights.size()),
+          expectedTint(scene.Lights.size());
         for (size_t l = 0; l < scene.Lights.size(); ++l)
         {
           ASSERT_TRUE(whole->ReadBack(ctx.GL, static_cast<int>(l), expected[l]));
@@ -1328,9 +1335,9 @@ TEST(IrradianceEstimator, ARegionEqualsTheWholeGridInsideIt)
         {
           SCOPED_TRACE(::testing::Message()
             << "s " << scattering << (exponential ? " exponential" : " backward Euler")
-            << (compute ? ", compute" : ", fragment") << ", region "
-            << region[0] << "-" << region[1] << " " << region[2] << "-" << region[3] << " "
-            << region[4] << "-" << region[5]);
+            << (compute ? ", compute" : ", fragment") << ", region " << region[0] << "-"
+            << region[1] << " " << region[2] << "-" << region[3] << " " << region[4] << "-"
+            << region[5]);
           vtkNew<vtkIrradianceEstimator> part;
           SetPassInputs(scene, part);
           part->SetExponentialDiffusion(exponential);
@@ -1355,8 +1362,8 @@ TEST(IrradianceEstimator, ARegionEqualsTheWholeGridInsideIt)
           std::cout << "region " << region[0] << "-" << region[1] << " " << region[2] << "-"
                     << region[3] << " " << region[4] << "-" << region[5] << ", s " << scattering
                     << (exponential ? " exponential" : " backward Euler")
-                    << (compute ? ", compute" : ", fragment") << ": max difference "
-                    << worst << " (tint " << worstTint << "), voxels estimated "
+                    << (compute ? ", compute" : ", fragment") << ": max difference " << worst
+                    << " (tint " << worstTint << "), voxels estimated "
                     << part->GetLastEstimatedVoxels() << " of " << whole->GetLastEstimatedVoxels()
                     << "\n";
           EXPECT_EQ(worstTint, 0.0);

@@ -13,8 +13,8 @@
 
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <vector>
 
@@ -73,7 +73,7 @@ TEST(IrradianceInputCache, PrefilteredDataIsNormalisedAndCleanedOnce)
   const float nonFinite[3] = { std::numeric_limits<float>::quiet_NaN(),
     std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity() };
   const float cleaned[3] = { 0.0f, 1.0f, 0.0f }; // NaN: empty; +-Inf: the range's ends
-  constexpr int Middle = 1 + 4 * (1 + 4 * 1); // voxel (1, 1, 1)
+  constexpr int Middle = 1 + 4 * (1 + 4 * 1);    // voxel (1, 1, 1)
   for (int c = 0; c < 3; ++c)
   {
     values->SetValue(Middle, nonFinite[c]);
@@ -87,7 +87,8 @@ TEST(IrradianceInputCache, PrefilteredDataIsNormalisedAndCleanedOnce)
     {
       if (id != Middle)
       {
-        EXPECT_FLOAT_EQ(v[id], static_cast<float>(id % 4) / 3.0f) << "case " << c << " voxel " << id;
+        EXPECT_FLOAT_EQ(v[id], static_cast<float>(id % 4) / 3.0f)
+          << "case " << c << " voxel " << id;
       }
     }
   }
@@ -195,7 +196,8 @@ TEST(IrradianceInputCache, LightsWithinTheToleranceKeepTheStoredIrradiance)
   // A directional light turned by 0.5 degrees, tolerance 1 degree: kept;
   // by 1.5 degrees: recomputed.
   const double one = mmv::LightToleranceRadians(1.0);
-  auto turned = [&](double degrees) {
+  auto turned = [&](double degrees)
+  {
     std::vector<mmv::LightSource> l = lights;
     const double a = glm::radians(degrees);
     l[0].ToLight = glm::dvec3(std::sin(a), 0.0, std::cos(a));

@@ -30,7 +30,8 @@ TEST(IrradianceProbeRule, SignatureIsTheSupportAndThePeakOpticalDepth)
   // Table entries every 5 data units: [200, 300] is entries 20 ... 40.
   std::vector<float> attenuation(N, 1.0f);
   attenuation[30] = 2.0f;
-  const mmv::ProbeSignature s = mmv::MakeProbeSignature(Box(200.0, 300.0, 0.5), attenuation, Range, 2.0);
+  const mmv::ProbeSignature s =
+    mmv::MakeProbeSignature(Box(200.0, 300.0, 0.5), attenuation, Range, 2.0);
   EXPECT_FALSE(s.Empty);
   EXPECT_DOUBLE_EQ(s.SupportLow, 200.0);
   EXPECT_DOUBLE_EQ(s.SupportHigh, 300.0);
@@ -45,7 +46,8 @@ TEST(IrradianceProbeRule, SignatureIsTheSupportAndThePeakOpticalDepth)
 TEST(IrradianceProbeRule, AnOpacityDragWithinTheSupportKeepsTheChoice)
 {
   const std::vector<float> none;
-  const mmv::ProbeSignature measured = mmv::MakeProbeSignature(Box(200.0, 300.0, 0.5), none, Range, 1.0);
+  const mmv::ProbeSignature measured =
+    mmv::MakeProbeSignature(Box(200.0, 300.0, 0.5), none, Range, 1.0);
   // The opacity value dragged: the optical depth within a factor 2 keeps it.
   for (double peak : { 0.3, 0.4, 0.6, 0.7 })
   {
@@ -68,7 +70,8 @@ TEST(IrradianceProbeRule, AnOpacityDragWithinTheSupportKeepsTheChoice)
 TEST(IrradianceProbeRule, TheSupportMovingFartherThanItsToleranceMeasuresAgain)
 {
   const std::vector<float> none;
-  const mmv::ProbeSignature measured = mmv::MakeProbeSignature(Box(200.0, 300.0, 0.5), none, Range, 1.0);
+  const mmv::ProbeSignature measured =
+    mmv::MakeProbeSignature(Box(200.0, 300.0, 0.5), none, Range, 1.0);
   // One table step (5 units) either way is within 10.
   EXPECT_FALSE(mmv::ProbeSignatureChanged(
     measured, mmv::MakeProbeSignature(Box(195.0, 305.0, 0.5), none, Range, 1.0)));
@@ -92,7 +95,8 @@ TEST(IrradianceProbeRule, SmallChangesAddUpAgainstTheMeasuredSignature)
   // A drag in steps each within the rule of the previous one ends outside it
   // of the measured one: the caller compares with the measured signature.
   const std::vector<float> none;
-  const mmv::ProbeSignature measured = mmv::MakeProbeSignature(Box(200.0, 300.0, 0.5), none, Range, 1.0);
+  const mmv::ProbeSignature measured =
+    mmv::MakeProbeSignature(Box(200.0, 300.0, 0.5), none, Range, 1.0);
   mmv::ProbeSignature previous = measured;
   bool changed = false;
   for (double low = 205.0; low <= 240.0; low += 5.0)

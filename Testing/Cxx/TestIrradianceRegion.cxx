@@ -24,8 +24,8 @@ using Voxel = std::array<int, 3>;
 /// The slice voxels Shaders/mmvPiecewiseShadowFS.glsl's mmvSampleSlice
 /// fetches for a ray from `v` toward `toLight` that reaches slice `plane`
 /// (rays that leave the grid first read nothing: a superset is checked).
-void SliceReads(const int dims[3], int axis, int plane, const Voxel& v,
-  const glm::dvec3& toLight, std::set<Voxel>& reads)
+void SliceReads(const int dims[3], int axis, int plane, const Voxel& v, const glm::dvec3& toLight,
+  std::set<Voxel>& reads)
 {
   const double distance = (plane - v[axis]) / toLight[axis];
   int low[3];
@@ -57,8 +57,8 @@ void SliceReads(const int dims[3], int axis, int plane, const Voxel& v,
 /// Follows the reads from `region` chunk by chunk toward the light and
 /// checks that each needed voxel lies in its chunk's box. Returns the
 /// number of voxels the boxes draw.
-long long CheckSweepBoxes(const int dims[3], const glm::dvec3& toLight, int slicesPerChunk,
-  const mmv::IndexBox& region)
+long long CheckSweepBoxes(
+  const int dims[3], const glm::dvec3& toLight, int slicesPerChunk, const mmv::IndexBox& region)
 {
   const mmv::ShadowSweep sweep = mmv::PlanShadowSweep(dims, toLight, slicesPerChunk);
   const std::vector<mmv::IndexBox> boxes = mmv::PlanSweepBoxes(sweep, dims, toLight, region);
@@ -127,8 +127,8 @@ TEST(IrradianceRegion, SweepBoxesHoldEveryVoxelTheRegionReadsOnTheWayToTheLight)
       }
       for (const int k : { 1, 3, 16 })
       {
-        SCOPED_TRACE(::testing::Message() << "grid " << grid[0] << "x" << grid[1] << "x"
-                                          << grid[2] << ", trial " << trial << ", K " << k);
+        SCOPED_TRACE(::testing::Message() << "grid " << grid[0] << "x" << grid[1] << "x" << grid[2]
+                                          << ", trial " << trial << ", K " << k);
         CheckSweepBoxes(grid.data(), toLight, k, region);
       }
     }
@@ -139,7 +139,8 @@ TEST(IrradianceRegion, SweepBoxesOfAWholeGridAreItsSlabs)
 {
   const int dims[3] = { 10, 12, 14 };
   const mmv::ShadowSweep sweep = mmv::PlanShadowSweep(dims, glm::dvec3(0.3, -0.2, 0.9), 4);
-  const auto boxes = mmv::PlanSweepBoxes(sweep, dims, glm::dvec3(0.3, -0.2, 0.9), mmv::IndexBox::Whole(dims));
+  const auto boxes =
+    mmv::PlanSweepBoxes(sweep, dims, glm::dvec3(0.3, -0.2, 0.9), mmv::IndexBox::Whole(dims));
   ASSERT_EQ(boxes.size(), 4u);
   for (int chunk = 0; chunk < 4; ++chunk)
   {
@@ -179,8 +180,8 @@ TEST(IrradianceRegion, PieceBoxCoversItsPointsAndOneVoxelMore)
   const mmv::IndexBox box = mmv::PieceIrradianceBox(grid, offset, piece);
   const int expected[6] = { 9, 22, 0, 16, 2, 6 };
   EXPECT_TRUE(std::equal(expected, expected + 6, box.Bounds))
-    << box.Bounds[0] << " " << box.Bounds[1] << " " << box.Bounds[2] << " " << box.Bounds[3]
-    << " " << box.Bounds[4] << " " << box.Bounds[5];
+    << box.Bounds[0] << " " << box.Bounds[1] << " " << box.Bounds[2] << " " << box.Bounds[3] << " "
+    << box.Bounds[4] << " " << box.Bounds[5];
 }
 
 TEST(IrradianceRegion, DiffusionPlanReachesOneBlockFurtherPerPass)

@@ -99,8 +99,8 @@ TEST(IrradianceResolutionError, MismatchedInputsAreNaN)
   EXPECT_TRUE(std::isnan(mmv::VisibleIrradiancePSNR(fine, { f }, weights, coarse, { c, c })));
   EXPECT_TRUE(std::isnan(mmv::VisibleIrradiancePSNR(fine, { c }, weights, coarse, { c })));
   EXPECT_TRUE(std::isnan(mmv::VisibleIrradiancePSNR(fine, {}, weights, coarse, {})));
-  EXPECT_TRUE(std::isnan(mmv::VisibleIrradiancePSNR(
-    fine, { f }, std::vector<float>(3, 1.0f), coarse, { c })));
+  EXPECT_TRUE(std::isnan(
+    mmv::VisibleIrradiancePSNR(fine, { f }, std::vector<float>(3, 1.0f), coarse, { c })));
 }
 
 TEST(IrradianceResolutionError, OpacityWeightsInterpolateTheTable)

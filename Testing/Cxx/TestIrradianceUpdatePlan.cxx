@@ -276,7 +276,8 @@ TEST(IrradianceUpdatePlan, MarkLightsComparesEachChannelWithWhatItHolds)
   const std::vector<mmv::LightSource> held = { Turned(0.0), Turned(40.0) };
   std::vector<mmv::LightSource> now = { Turned(0.0), Turned(45.0), Turned(90.0) };
   const double one = mmv::LightToleranceRadians(1.0);
-  EXPECT_EQ(Plan::MarkLights(held, now, false, one, Centre), std::vector<bool>({ false, true, true }));
+  EXPECT_EQ(
+    Plan::MarkLights(held, now, false, one, Centre), std::vector<bool>({ false, true, true }));
   EXPECT_EQ(Plan::MarkLights(held, now, true, one, Centre), std::vector<bool>(3, true));
   // Anything but the placement must match exactly, whatever the tolerance.
   now = held;

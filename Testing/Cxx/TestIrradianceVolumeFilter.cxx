@@ -4,6 +4,7 @@
 #include "vtkIrradianceGrid.h"
 #include "vtkIrradianceVolumeFilter.h"
 
+#include "mmvTestUtilities.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
 #include "vtkExecutive.h"
@@ -11,12 +12,11 @@
 #include "vtkImageData.h"
 #include "vtkLight.h"
 #include "vtkMaterialTransferFunction.h"
+#include "vtkMultiMaterialParameters.h"
 #include "vtkNew.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
 #include "vtkSmartPointer.h"
-#include "mmvTestUtilities.h"
-#include "vtkMultiMaterialParameters.h"
 
 #include <gtest/gtest.h>
 
@@ -94,7 +94,8 @@ vtkFloatArray* Irradiance(vtkIrradianceVolumeFilter* filter, int light)
 }
 
 /// Distance from p along unit direction d to the box [lo, hi].
-double DistanceToBoxExit(const double p[3], const double d[3], const double lo[3], const double hi[3])
+double DistanceToBoxExit(
+  const double p[3], const double d[3], const double lo[3], const double hi[3])
 {
   double t = std::numeric_limits<double>::infinity();
   for (int a = 0; a < 3; ++a)
@@ -153,7 +154,8 @@ double SlabError(const double toLight[3], double scale, const double origin[3] =
   EXPECT_EQ(filter->GetNumberOfComputedVoxels(), out->GetNumberOfPoints());
   EXPECT_EQ(filter->GetNumberOfShadowRays(), out->GetNumberOfPoints());
   // Depth in the data's own (index-aligned) frame, where the box is simple.
-  const double len = std::sqrt(toLight[0] * toLight[0] + toLight[1] * toLight[1] + toLight[2] * toLight[2]);
+  const double len =
+    std::sqrt(toLight[0] * toLight[0] + toLight[1] * toLight[1] + toLight[2] * toLight[2]);
   double dWorld[3] = { toLight[0] / len, toLight[1] / len, toLight[2] / len };
   double d[3] = { dWorld[0], dWorld[1], dWorld[2] };
   if (direction) // into the frame of the index axes: D^T d
@@ -230,7 +232,7 @@ TEST(IrradianceVolumeFilter, PiecewiseRaysOnAnObliqueLightStayNearTheClosedForm)
   std::cout << "piecewise slab, largest |error|: K = 1: " << k1 << ", K = 8: " << k8 << std::endl;
   EXPECT_LT(k1, 0.08);
   EXPECT_LT(k8, 0.045);
-  EXPECT_LT(k8, k1); // longer pieces interpolate less often
+  EXPECT_LT(k8, k1);     // longer pieces interpolate less often
   EXPECT_GT(k1, 1.0e-3); // the interpolation is really there
   EXPECT_LT(SlabError(toLight, 1.0, nullptr, nullptr, 12), SlabTolerance);
 }
@@ -268,7 +270,8 @@ vtkSmartPointer<vtkIrradianceVolumeFilter> TransparentSlabFilter(double radius)
 
 double Distance2(const double a[3], const double b[3])
 {
-  return (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]);
+  return (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
+    (a[2] - b[2]) * (a[2] - b[2]);
 }
 
 } // namespace
@@ -296,7 +299,8 @@ TEST(IrradianceVolumeFilter, PointLightFalloffOutsideAndInsideTheVolume)
       const double d2 = Distance2(p, lights[l]);
       const double expected = eps * eps / std::max(eps * eps, d2);
       ASSERT_TRUE(std::isfinite(irradiance->GetValue(v)));
-      ASSERT_NEAR(irradiance->GetValue(v), expected, 0.01 * expected) << "light " << l << " voxel " << v;
+      ASSERT_NEAR(irradiance->GetValue(v), expected, 0.01 * expected)
+        << "light " << l << " voxel " << v;
       clamped += d2 <= eps * eps ? 1 : 0;
     }
   }
@@ -353,11 +357,13 @@ TEST(IrradianceVolumeFilter, EmptyVoxelsAreSkippedAndTheirNeighboursFilled)
 {
   // A ball of value 1 in empty space (value 0, opacity 0).
   const double centre = 11.5, radius = 7.0;
-  auto image = MakeImage({ 24, 24, 24 }, 1.0, [&](const double p[3]) {
-    const double d2 =
-      (p[0] - centre) * (p[0] - centre) + (p[1] - centre) * (p[1] - centre) + (p[2] - centre) * (p[2] - centre);
-    return d2 < radius * radius ? 1.0f : 0.0f;
-  });
+  auto image = MakeImage({ 24, 24, 24 }, 1.0,
+    [&](const double p[3])
+    {
+      const double d2 = (p[0] - centre) * (p[0] - centre) + (p[1] - centre) * (p[1] - centre) +
+        (p[2] - centre) * (p[2] - centre);
+      return d2 < radius * radius ? 1.0f : 0.0f;
+    });
   vtkNew<vtkPiecewiseFunction> otf;
   otf->AddPoint(0.0, 0.0);
   otf->AddPoint(0.5, 0.0);
@@ -385,7 +391,8 @@ TEST(IrradianceVolumeFilter, EmptyVoxelsAreSkippedAndTheirNeighboursFilled)
   vtkFloatArray* irradiance = Irradiance(filter, 0);
   ASSERT_NE(irradiance, nullptr);
   // The fill rule's value of empty voxel v, and whether it has neighbours.
-  auto expectedFill = [&](vtkIdType v, bool& bordered) {
+  auto expectedFill = [&](vtkIdType v, bool& bordered)
+  {
     const int ijk[3] = { static_cast<int>(v % 24), static_cast<int>((v / 24) % 24),
       static_cast<int>(v / 576) };
     const vtkIdType stride[3] = { 1, 24, 576 };
@@ -490,7 +497,8 @@ TEST(IrradianceVolumeFilter, SwitchedOffLightsCostNothing)
 TEST(IrradianceVolumeFilter, MultipleScatteringChangesOnlyScatteringVoxels)
 {
   // Value 1 (s = 0) for x < 8, value 2 (s = 5) beyond.
-  auto image = MakeImage({ 16, 12, 10 }, 1.0, [](const double p[3]) { return p[0] < 7.5 ? 1.0f : 2.0f; });
+  auto image =
+    MakeImage({ 16, 12, 10 }, 1.0, [](const double p[3]) { return p[0] < 7.5 ? 1.0f : 2.0f; });
   vtkNew<vtkMaterialTransferFunction> material;
   material->AddNode(1.0, 0.2, 0.7, 0.2, 20.0, 1.0, 0.0, 0.0);
   material->AddNode(2.0, 0.2, 0.7, 0.2, 20.0, 1.0, 5.0, 0.0);
@@ -522,7 +530,8 @@ TEST(IrradianceVolumeFilter, MultipleScatteringChangesOnlyScatteringVoxels)
     }
     else
     {
-      maxChange = std::max(maxChange, std::abs(static_cast<double>(multiple->GetValue(v)) - single->GetValue(v)));
+      maxChange = std::max(
+        maxChange, std::abs(static_cast<double>(multiple->GetValue(v)) - single->GetValue(v)));
       sumSingle += single->GetValue(v);
       sumMultiple += multiple->GetValue(v);
     }
@@ -712,27 +721,29 @@ TEST(IrradianceVolumeFilter, AbortStopsWithoutIrradiance)
 {
   for (const int estimation : { mmv::FullShadowRays, mmv::PiecewiseShadowRays })
   {
-  auto image = MakeImage({ 16, 16, 16 }, 1.0, [](const double*) { return 1.0f; });
-  vtkNew<vtkIrradianceVolumeFilter> filter;
-  filter->SetShadowEstimation(estimation);
-  filter->SetPiecewiseShadowSlices(2);
-  filter->SetInputData(image);
-  filter->SetScalarOpacity(ConstantOpacity(0.1));
-  const double toLight[3] = { 1.0, 1.0, 1.0 };
-  filter->AddLight(DirectionalLight(toLight));
-  vtkNew<vtkCallbackCommand> abort;
-  abort->SetCallback([](vtkObject* caller, unsigned long, void*, void*) {
-    auto* algorithm = static_cast<vtkAlgorithm*>(caller);
-    if (algorithm->GetProgress() > 0.3)
-    {
-      algorithm->SetAbortExecute(1);
-    }
-  });
-  filter->AddObserver(vtkCommand::ProgressEvent, abort);
-  filter->Update();
-  // Stopped between chunks: some rays, not all, and no partial result.
-  EXPECT_GT(filter->GetNumberOfShadowRays(), 0);
-  EXPECT_LT(filter->GetNumberOfShadowRays(), image->GetNumberOfPoints());
-  EXPECT_EQ(Irradiance(filter, 0), nullptr);
+    auto image = MakeImage({ 16, 16, 16 }, 1.0, [](const double*) { return 1.0f; });
+    vtkNew<vtkIrradianceVolumeFilter> filter;
+    filter->SetShadowEstimation(estimation);
+    filter->SetPiecewiseShadowSlices(2);
+    filter->SetInputData(image);
+    filter->SetScalarOpacity(ConstantOpacity(0.1));
+    const double toLight[3] = { 1.0, 1.0, 1.0 };
+    filter->AddLight(DirectionalLight(toLight));
+    vtkNew<vtkCallbackCommand> abort;
+    abort->SetCallback(
+      [](vtkObject* caller, unsigned long, void*, void*)
+      {
+        auto* algorithm = static_cast<vtkAlgorithm*>(caller);
+        if (algorithm->GetProgress() > 0.3)
+        {
+          algorithm->SetAbortExecute(1);
+        }
+      });
+    filter->AddObserver(vtkCommand::ProgressEvent, abort);
+    filter->Update();
+    // Stopped between chunks: some rays, not all, and no partial result.
+    EXPECT_GT(filter->GetNumberOfShadowRays(), 0);
+    EXPECT_LT(filter->GetNumberOfShadowRays(), image->GetNumberOfPoints());
+    EXPECT_EQ(Irradiance(filter, 0), nullptr);
   }
 }

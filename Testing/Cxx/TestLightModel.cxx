@@ -18,7 +18,8 @@ mmv::LightSource MakePoint(const glm::dvec3& position, double radius)
   return light;
 }
 
-mmv::LightSource MakeSpot(const glm::dvec3& position, const glm::dvec3& axis, double cosCone, double radius)
+mmv::LightSource MakeSpot(
+  const glm::dvec3& position, const glm::dvec3& axis, double cosCone, double radius)
 {
   mmv::LightSource light = MakePoint(position, radius);
   light.Kind = mmv::SpotLight;
@@ -70,7 +71,8 @@ TEST(LightModel, AttenuationWithoutConstantTermStaysFiniteAtTheLight)
   // (0, 0, 1) is the physical inverse square law: 1/d^2, clamped at the light.
   const glm::dvec3 inverseSquare(0.0, 0.0, 1.0);
   EXPECT_DOUBLE_EQ(mmv::mmvAttenuationFalloff(inverseSquare, 16.0), 1.0 / 16.0);
-  EXPECT_DOUBLE_EQ(mmv::mmvAttenuationFalloff(inverseSquare, 0.0), 1.0 / mmv::MinAttenuationDenominator);
+  EXPECT_DOUBLE_EQ(
+    mmv::mmvAttenuationFalloff(inverseSquare, 0.0), 1.0 / mmv::MinAttenuationDenominator);
   EXPECT_DOUBLE_EQ(mmv::mmvAttenuationFalloff(glm::dvec3(0.0, 1.0, 0.0), 1.0e-12),
     1.0 / mmv::MinAttenuationDenominator);
 }
@@ -80,7 +82,8 @@ TEST(LightModel, SpotExponentIsVTKsAngularFalloff)
   const glm::dvec3 axis(0.0, 0.0, -1.0);
   // (3, 0, -4)/5: cos 0.8 to the axis, inside a cone of cos 0.6.
   EXPECT_DOUBLE_EQ(mmv::mmvSpotFactor(glm::dvec3(3.0, 0.0, -4.0), axis, 0.6, 1.0), 0.8);
-  EXPECT_DOUBLE_EQ(mmv::mmvSpotFactor(glm::dvec3(3.0, 0.0, -4.0), axis, 0.6, 2.5), std::pow(0.8, 2.5));
+  EXPECT_DOUBLE_EQ(
+    mmv::mmvSpotFactor(glm::dvec3(3.0, 0.0, -4.0), axis, 0.6, 2.5), std::pow(0.8, 2.5));
   // Exponent 0: the hard cone of eq. 14.
   EXPECT_EQ(mmv::mmvSpotFactor(glm::dvec3(3.0, 0.0, -4.0), axis, 0.6, 0.0), 1.0);
   // Outside stays 0 whatever the exponent.
@@ -151,10 +154,11 @@ TEST(LightModel, SpotGeometryTermIsPointTermInsideTheConeAndZeroOutside)
   const glm::dvec3 position(0.0, 0.0, 10.0);
   const mmv::LightSource point = MakePoint(position, 1.0);
   const mmv::LightSource spot = MakeSpot(position, glm::dvec3(0.0, 0.0, -1.0), 0.6, 1.0);
-  const glm::dvec3 inside(3.0, 0.0, 0.0);  // cos = 10/sqrt(109) = 0.958
-  const glm::dvec3 edge(4.0, 0.0, 7.0);    // cos = 0.6 exactly
+  const glm::dvec3 inside(3.0, 0.0, 0.0); // cos = 10/sqrt(109) = 0.958
+  const glm::dvec3 edge(4.0, 0.0, 7.0);   // cos = 0.6 exactly
   const glm::dvec3 outside(20.0, 0.0, 0.0);
-  EXPECT_DOUBLE_EQ(mmv::mmvLightGeometryTerm(spot, inside), mmv::mmvLightGeometryTerm(point, inside));
+  EXPECT_DOUBLE_EQ(
+    mmv::mmvLightGeometryTerm(spot, inside), mmv::mmvLightGeometryTerm(point, inside));
   EXPECT_DOUBLE_EQ(mmv::mmvLightGeometryTerm(spot, inside), 1.0 / 109.0);
   EXPECT_DOUBLE_EQ(mmv::mmvLightGeometryTerm(spot, edge), 1.0 / 25.0); // edge: lit, as VTK
   EXPECT_EQ(mmv::mmvLightGeometryTerm(spot, outside), 0.0);

@@ -75,7 +75,7 @@ TEST(MapperSettings, AccessorsFollowTheTable)
   const mmv::IlluminationSettings defaults;
   int rows = 0;
   // Every accessor starts at its row's default and clamps to its row's range.
-#define MMV_CHECK_SETTING(type, name, init, low, high, doc)                                       \
+#define MMV_CHECK_SETTING(type, name, init, low, high, doc)                                        \
   {                                                                                                \
     const mmv::SettingDescription& row = mmv::IlluminationSettingDescriptions[rows++];             \
     EXPECT_STREQ(row.Name, #name);                                                                 \

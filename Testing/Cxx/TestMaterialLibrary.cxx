@@ -1,11 +1,11 @@
 // Tests of vtkMaterialLibrary: the built-in presets against their JSON files,
 // editing, validation (all-or-nothing, one error per rejected call), JSON and
 // file round trips.
+#include "mmvTestUtilities.h"
 #include "vtkMaterialLibrary.h"
 #include "vtkMultiMaterialParameters.h"
 #include "vtkNew.h"
 #include "vtkSmartPointer.h"
-#include "mmvTestUtilities.h"
 
 #include <gtest/gtest.h>
 
@@ -85,7 +85,7 @@ double NumberInFile(const std::string& text, const std::string& key)
   std::smatch match;
   const std::regex pattern("\"" + key + "\"\\s*:\\s*([-+0-9.eE]+)");
   return std::regex_search(text, match, pattern) ? std::strtod(match[1].str().c_str(), nullptr)
-                                                  : std::numeric_limits<double>::quiet_NaN();
+                                                 : std::numeric_limits<double>::quiet_NaN();
 }
 
 std::vector<double> ColorInFile(const std::string& text)
@@ -201,9 +201,8 @@ TEST(MaterialLibrary, PresetNamesAndUnknownLookups)
   vtkNew<vtkMaterialLibrary> library;
   // Built-ins are embedded in file-name order.
   EXPECT_EQ(NamesOf(library),
-    (std::vector<std::string>{
-      "bone", "fog", "glass", "glow", "leaf", "matte", "metal", "plastic", "skin", "smoke", "soot",
-      "tissue" }));
+    (std::vector<std::string>{ "bone", "fog", "glass", "glow", "leaf", "matte", "metal", "plastic",
+      "skin", "smoke", "soot", "tissue" }));
   EXPECT_EQ(library->GetPresetName(-1), nullptr);
   EXPECT_EQ(library->GetPresetName(12), nullptr);
 
@@ -242,9 +241,8 @@ TEST(MaterialLibrary, AddReplaceRemove)
   EXPECT_FALSE(library->HasPreset("glass"));
   EXPECT_EQ(library->GetNumberOfPresets(), 12);
   EXPECT_EQ(NamesOf(library),
-    (std::vector<std::string>{
-      "bone", "fog", "glow", "leaf", "matte", "metal", "plastic", "skin", "smoke", "soot", "tissue",
-      "chrome" }));
+    (std::vector<std::string>{ "bone", "fog", "glow", "leaf", "matte", "metal", "plastic", "skin",
+      "smoke", "soot", "tissue", "chrome" }));
   EXPECT_FALSE(library->RemovePreset("glass"));
   EXPECT_FALSE(library->RemovePreset(nullptr));
   EXPECT_EQ(errors.Errors(), 0);
@@ -392,7 +390,8 @@ TEST(MaterialLibrary, ReadsASinglePresetFile)
   ASSERT_TRUE(library->ReadJSONFile(path.c_str()));
   EXPECT_EQ(library->GetNumberOfPresets(), 13);
   // Missing keys take the table defaults; a missing colour is white.
-  EXPECT_EQ(PresetOf(library, "wax"), (std::vector<double>{ 0.4, 0.7, 0.2, 20.0, 1.0, 12.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0 }));
+  EXPECT_EQ(PresetOf(library, "wax"),
+    (std::vector<double>{ 0.4, 0.7, 0.2, 20.0, 1.0, 12.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0 }));
   EXPECT_EQ(ColorOf(library, "wax"), (std::vector<double>{ 1.0, 1.0, 1.0 }));
   std::remove(path.c_str());
 }
@@ -404,7 +403,8 @@ TEST(MaterialLibrary, FileErrors)
   mmvtest::ErrorCounter errors(library);
   EXPECT_FALSE(library->ReadJSONFile(TempPath("no_such_library.json").c_str()));
   EXPECT_EQ(errors.Errors(), 1);
-  EXPECT_NE(errors.LastMessage().find("no_such_library.json"), std::string::npos) << errors.LastMessage();
+  EXPECT_NE(errors.LastMessage().find("no_such_library.json"), std::string::npos)
+    << errors.LastMessage();
   EXPECT_FALSE(library->ReadJSONFile(nullptr));
   EXPECT_EQ(errors.Errors(), 2);
 

@@ -98,8 +98,8 @@ TEST(MaterialNodeModel, OlderLayoutsTakeTheTableDefaultsForTheMissingFields)
 TEST(MaterialNodeModel, NonFiniteValueLeavesTheNodeOutAndIsReported)
 {
   Model model;
-  model.SetFlat(Concat({ NodeAt(1.0, 0.5), NodeAt(NaN, 0.5), NodeAt(
-    std::numeric_limits<double>::infinity(), 0.5) }));
+  model.SetFlat(Concat(
+    { NodeAt(1.0, 0.5), NodeAt(NaN, 0.5), NodeAt(std::numeric_limits<double>::infinity(), 0.5) }));
   ASSERT_EQ(model.GetNumberOfNodes(), 1);
   EXPECT_EQ(model.GetNodes()[0][0], 1.0);
   ASSERT_EQ(model.GetLoadProblems().size(), 2u);
@@ -112,9 +112,9 @@ TEST(MaterialNodeModel, NonFiniteValueLeavesTheNodeOutAndIsReported)
 TEST(MaterialNodeModel, RejectedParametersShowStandInsAndAreReported)
 {
   Model model;
-  std::vector<double> bad = NodeAt(2.0, NaN);                                // NaN: the default
-  bad[1 + mmv::Shininess] = 5.0e4;                                           // above HardMax
-  bad[1 + mmv::Anisotropy] = -3.0;                                           // below HardMin
+  std::vector<double> bad = NodeAt(2.0, NaN); // NaN: the default
+  bad[1 + mmv::Shininess] = 5.0e4;            // above HardMax
+  bad[1 + mmv::Anisotropy] = -3.0;            // below HardMin
   model.SetFlat(Concat({ NodeAt(7.0, 0.5), bad }));
   ASSERT_EQ(model.GetNumberOfNodes(), 2);
   const auto& node = model.GetNodes()[0]; // sorted: the bad node (value 2) first
@@ -297,8 +297,8 @@ TEST(MaterialNodeModel, TrackRangeCoversTheDataAndEveryNode)
 TEST(MaterialNodeModel, TypedTextIsRefusedOrMovedWithANotice)
 {
   mmv::MaterialNodeModel model;
-  std::vector<double> flat = { 0.38, 0.1, 0.7, 0.2, 10, 1, 0, 0, 0, 0, 1, 1, 1,
-                               0.8, 0.1, 0.7, 0.2, 10, 1, 0, 0, 0, 0, 1, 1, 1 };
+  std::vector<double> flat = { 0.38, 0.1, 0.7, 0.2, 10, 1, 0, 0, 0, 0, 1, 1, 1, 0.8, 0.1, 0.7, 0.2,
+    10, 1, 0, 0, 0, 0, 1, 1, 1 };
   model.SetFlat(flat);
   const double range[2] = { 0.0, 1.0 };
 

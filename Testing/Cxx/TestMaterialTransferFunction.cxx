@@ -1,12 +1,12 @@
 // Tests of vtkMaterialTransferFunction: interpolation, node editing,
 // validation (rejected edits change nothing and raise exactly one error),
 // MTime, GPU tables, JSON and presets.
+#include "mmvTestUtilities.h"
 #include "vtkMaterialLibrary.h"
 #include "vtkMaterialTransferFunction.h"
 #include "vtkMultiMaterialParameters.h"
 #include "vtkNew.h"
 #include "vtkSmartPointer.h"
-#include "mmvTestUtilities.h"
 
 #include <gtest/gtest.h>
 
@@ -80,15 +80,15 @@ TEST(MaterialTransferFunction, InterpolatesLinearlyBetweenNodes)
   vtkNew<vtkMaterialTransferFunction> tf;
   AddTwoNodes(tf);
   const std::vector<double> mid = Evaluated(tf, 5.0);
-  const std::vector<double> expectedMid = { 0.5, 0.375, 0.5, 30.0, 1.0, 4.0, 0.5, 0.0, 2.0,
-    0.75, 0.75, 0.5 };
+  const std::vector<double> expectedMid = { 0.5, 0.375, 0.5, 30.0, 1.0, 4.0, 0.5, 0.0, 2.0, 0.75,
+    0.75, 0.5 };
   for (int p = 0; p < P; ++p)
   {
     EXPECT_EQ(mid[p], expectedMid[p]) << "parameter " << mmv::MaterialParameterTable[p].Key;
   }
   const std::vector<double> quarter = Evaluated(tf, 2.5);
-  const std::vector<double> expectedQuarter = { 0.25, 0.4375, 0.75, 20.0, 0.5, 3.0, 0.375, -0.25, 1.5,
-    0.875, 0.625, 0.375 };
+  const std::vector<double> expectedQuarter = { 0.25, 0.4375, 0.75, 20.0, 0.5, 3.0, 0.375, -0.25,
+    1.5, 0.875, 0.625, 0.375 };
   for (int p = 0; p < P; ++p)
   {
     EXPECT_EQ(quarter[p], expectedQuarter[p]) << "parameter " << mmv::MaterialParameterTable[p].Key;
@@ -136,8 +136,7 @@ TEST(MaterialTransferFunction, SingleNodeIsConstant)
   tf->AddNode(4.0, 0.1, 0.2, 0.3, 40.0, 0.5, 6.0, 0.7);
   // The 8-argument AddNode scatters isotropically, does not glow and casts
   // grey shadows: g = e = 0, T = (1, 1, 1).
-  const std::vector<double> node = { 0.1, 0.2, 0.3, 40.0, 0.5, 6.0, 0.7, 0.0, 0.0, 1.0, 1.0,
-    1.0 };
+  const std::vector<double> node = { 0.1, 0.2, 0.3, 40.0, 0.5, 6.0, 0.7, 0.0, 0.0, 1.0, 1.0, 1.0 };
   EXPECT_EQ(Evaluated(tf, -100.0), node);
   EXPECT_EQ(Evaluated(tf, 4.0), node);
   EXPECT_EQ(Evaluated(tf, 100.0), node);
@@ -217,7 +216,7 @@ TEST(MaterialTransferFunction, SetNodesGetNodesRoundTrip)
   vtkNew<vtkMaterialTransferFunction> tf;
   // Out of order on purpose: SetNodes sorts.
   const std::vector<double> input = {
-    7.0, 0.7, 0.6, 0.5, 70.0, 1.7, 7.0, 0.07, 0.7, 7.5, 0.9, 0.8, 0.7, //
+    7.0, 0.7, 0.6, 0.5, 70.0, 1.7, 7.0, 0.07, 0.7, 7.5, 0.9, 0.8, 0.7,  //
     -2.0, 0.2, 0.3, 0.4, 2.0, 0.2, 0.5, 0.02, -0.2, 0.0, 1.0, 1.0, 1.0, //
     3.0, 0.3, 0.4, 0.6, 30.0, 1.3, 3.0, 0.03, 0.3, 0.25, 0.0, 0.5, 1.0, //
   };
@@ -226,7 +225,7 @@ TEST(MaterialTransferFunction, SetNodesGetNodesRoundTrip)
   const std::vector<double> expected = {
     -2.0, 0.2, 0.3, 0.4, 2.0, 0.2, 0.5, 0.02, -0.2, 0.0, 1.0, 1.0, 1.0, //
     3.0, 0.3, 0.4, 0.6, 30.0, 1.3, 3.0, 0.03, 0.3, 0.25, 0.0, 0.5, 1.0, //
-    7.0, 0.7, 0.6, 0.5, 70.0, 1.7, 7.0, 0.07, 0.7, 7.5, 0.9, 0.8, 0.7, //
+    7.0, 0.7, 0.6, 0.5, 70.0, 1.7, 7.0, 0.07, 0.7, 7.5, 0.9, 0.8, 0.7,  //
   };
   EXPECT_EQ(AllNodes(tf), expected);
   for (int i = 0; i < 3; ++i)
@@ -375,12 +374,14 @@ TEST(MaterialTransferFunction, MTimeIncreasesOnEverySuccessfulEdit)
     { "ApplyPreset", [&] { return tf->ApplyPreset("metal", 0.0, 1.0); } },
     { "ReadJSONFile", [&] { return tf->ReadJSONFile(path.c_str()); } },
     { "DeepCopy",
-      [&] {
+      [&]
+      {
         tf->DeepCopy(other);
         return true;
       } },
     { "RemoveAllNodes",
-      [&] {
+      [&]
+      {
         tf->RemoveAllNodes();
         return true;
       } },
@@ -438,11 +439,11 @@ TEST(MaterialTransferFunction, GetTableMatchesEvaluate)
     }
   }
   // Spot checks against hand-computed values: clamped, at a node, interpolated.
-  EXPECT_EQ(table[0 * P + mmv::Shininess], 10.0f);   // x = -2
-  EXPECT_EQ(table[6 * P + mmv::Shininess], 100.0f);  // x = 4, node
-  EXPECT_EQ(table[9 * P + mmv::Shininess], 75.0f);   // x = 7, between 100 and 50
-  EXPECT_EQ(table[16 * P + mmv::Scattering], 6.0f);  // x = 14, clamped
-  EXPECT_EQ(table[4 * P + mmv::Scattering], 7.0f);   // x = 2, between 2 and 12
+  EXPECT_EQ(table[0 * P + mmv::Shininess], 10.0f);  // x = -2
+  EXPECT_EQ(table[6 * P + mmv::Shininess], 100.0f); // x = 4, node
+  EXPECT_EQ(table[9 * P + mmv::Shininess], 75.0f);  // x = 7, between 100 and 50
+  EXPECT_EQ(table[16 * P + mmv::Scattering], 6.0f); // x = 14, clamped
+  EXPECT_EQ(table[4 * P + mmv::Scattering], 7.0f);  // x = 2, between 2 and 12
 
   // size 1 samples xStart.
   float one[P];
@@ -493,7 +494,7 @@ TEST(MaterialTransferFunction, GetNonZeroRangeSpansTheNeighbouringNodes)
   EXPECT_EQ(range[0], -infinity);
   EXPECT_EQ(range[1], 40.0);
   EXPECT_FALSE(tf->GetNonZeroRange(mmv::Scattering, range)); // s = 0 everywhere
-  EXPECT_EQ(range[0], -infinity);                              // untouched
+  EXPECT_EQ(range[0], -infinity);                            // untouched
   mmvtest::ErrorCounter errors(tf);
   EXPECT_FALSE(tf->GetNonZeroRange(P, range));
   EXPECT_EQ(errors.Errors(), 1);
@@ -535,8 +536,8 @@ TEST(MaterialTransferFunction, JSONRoundTripIsExact)
   const std::string json = tf->ToJSON();
   for (int p = 0; p < P; ++p)
   {
-    EXPECT_NE(json.find(std::string("\"") + mmv::MaterialParameterTable[p].Key + "\""),
-      std::string::npos);
+    EXPECT_NE(
+      json.find(std::string("\"") + mmv::MaterialParameterTable[p].Key + "\""), std::string::npos);
   }
   vtkNew<vtkMaterialTransferFunction> back;
   mmvtest::ErrorCounter errors(back);
@@ -635,7 +636,8 @@ TEST(MaterialTransferFunction, FileErrors)
 
   EXPECT_FALSE(tf->ReadJSONFile(TempPath("no_such_file.json").c_str()));
   EXPECT_EQ(errors.Errors(), 1);
-  EXPECT_NE(errors.LastMessage().find("no_such_file.json"), std::string::npos) << errors.LastMessage();
+  EXPECT_NE(errors.LastMessage().find("no_such_file.json"), std::string::npos)
+    << errors.LastMessage();
   EXPECT_FALSE(tf->ReadJSONFile(nullptr));
   EXPECT_EQ(errors.Errors(), 2);
 

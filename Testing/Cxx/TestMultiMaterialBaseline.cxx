@@ -32,10 +32,14 @@ constexpr int N = 48;
 // faint skin band and the narrow metal band on the way to the others.
 float SceneValue(int i, int j, int k)
 {
-  auto smooth = [](double signedDistance) { return std::min(1.0, std::max(0.0, 0.5 - signedDistance)); };
-  const double sphere = std::sqrt((i - 16.0) * (i - 16.0) + (j - 28.0) * (j - 28.0) + (k - 24.0) * (k - 24.0)) - 9.0;
-  const double box = std::max({ std::abs(i - 33.0) - 7.0, std::abs(j - 27.0) - 8.0, std::abs(k - 24.0) - 7.0 });
-  const double slab = std::max({ std::abs(i - 24.0) - 20.0, std::abs(j - 11.0) - 4.0, std::abs(k - 24.0) - 20.0 });
+  auto smooth = [](double signedDistance)
+  { return std::min(1.0, std::max(0.0, 0.5 - signedDistance)); };
+  const double sphere =
+    std::sqrt((i - 16.0) * (i - 16.0) + (j - 28.0) * (j - 28.0) + (k - 24.0) * (k - 24.0)) - 9.0;
+  const double box =
+    std::max({ std::abs(i - 33.0) - 7.0, std::abs(j - 27.0) - 8.0, std::abs(k - 24.0) - 7.0 });
+  const double slab =
+    std::max({ std::abs(i - 24.0) - 20.0, std::abs(j - 11.0) - 4.0, std::abs(k - 24.0) - 20.0 });
   const double s = smooth(sphere);
   const double b = smooth(box);
   const double l = smooth(slab);
@@ -54,7 +58,7 @@ struct BaselineScene : mmvtest::Scene
     this->Color->AddRGBPoint(0.0, 0.0, 0.0, 0.0);
     this->Color->AddRGBPoint(0.8, 0.95, 0.7, 0.55); // skin
     this->Color->AddRGBPoint(1.2, 0.95, 0.7, 0.55);
-    this->Color->AddRGBPoint(1.9, 0.8, 0.8, 0.85);  // metal: grey
+    this->Color->AddRGBPoint(1.9, 0.8, 0.8, 0.85); // metal: grey
     this->Color->AddRGBPoint(2.1, 0.8, 0.8, 0.85);
     this->Color->AddRGBPoint(2.8, 0.85, 0.15, 0.1); // plastic: red
     this->Color->AddRGBPoint(3.0, 0.85, 0.15, 0.1);
@@ -70,9 +74,9 @@ struct BaselineScene : mmvtest::Scene
     this->Opacity->AddPoint(2.7, 0.0);
     this->Opacity->AddPoint(2.85, 0.9);
     this->Opacity->AddPoint(3.0, 0.9);
-    this->Materials->AddNode(1.0, 0.25, 0.7, 0.3, 15.0, 0.5, 8.0, 0.0);   // skin
-    this->Materials->AddNode(2.0, 0.1, 0.3, 0.9, 120.0, 1.0, 0.0, 0.6);   // metal
-    this->Materials->AddNode(3.0, 0.15, 0.7, 0.6, 60.0, 1.0, 0.0, 0.0);   // plastic
+    this->Materials->AddNode(1.0, 0.25, 0.7, 0.3, 15.0, 0.5, 8.0, 0.0); // skin
+    this->Materials->AddNode(2.0, 0.1, 0.3, 0.9, 120.0, 1.0, 0.0, 0.6); // metal
+    this->Materials->AddNode(3.0, 0.15, 0.7, 0.6, 60.0, 1.0, 0.0, 0.0); // plastic
     this->Mapper->SetInputData(image);
     this->Mapper->SetMaterialTransferFunction(this->Materials);
     this->Mapper->SetIrradianceScale(1.0);

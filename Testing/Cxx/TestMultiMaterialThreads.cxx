@@ -21,18 +21,20 @@ size_t ThreadsOfALoop(vtkIdType n)
 {
   std::mutex mutex;
   std::set<std::thread::id> threads;
-  vtkSMPTools::For(0, n, 1, [&](vtkIdType begin, vtkIdType end) {
-    volatile double sink = 0.0;
-    for (vtkIdType i = begin; i < end; ++i)
+  vtkSMPTools::For(0, n, 1,
+    [&](vtkIdType begin, vtkIdType end)
     {
-      for (int k = 0; k < 20000; ++k)
+      volatile double sink = 0.0;
+      for (vtkIdType i = begin; i < end; ++i)
       {
-        sink = sink + 1e-9 * k;
+        for (int k = 0; k < 20000; ++k)
+        {
+          sink = sink + 1e-9 * k;
+        }
       }
-    }
-    std::lock_guard<std::mutex> lock(mutex);
-    threads.insert(std::this_thread::get_id());
-  });
+      std::lock_guard<std::mutex> lock(mutex);
+      threads.insert(std::this_thread::get_id());
+    });
   return threads.size();
 }
 }
@@ -51,10 +53,12 @@ TEST(MultiMaterialThreads, LoopsUseSeveralThreadsAndTheBackendIsRestored)
   EXPECT_EQ(ThreadsOfALoop(256), 1u); // Sequential: the calling thread
   std::string inside;
   size_t threads = 0;
-  mmv::RunOnAllCores([&]() {
-    inside = vtkSMPTools::GetBackend();
-    threads = ThreadsOfALoop(256);
-  });
+  mmv::RunOnAllCores(
+    [&]()
+    {
+      inside = vtkSMPTools::GetBackend();
+      threads = ThreadsOfALoop(256);
+    });
   EXPECT_EQ(inside, "STDThread");
   EXPECT_GE(threads, 2u);
   EXPECT_EQ(std::string(vtkSMPTools::GetBackend()), before);
@@ -65,14 +69,18 @@ TEST(MultiMaterialThreads, AParallelSumEqualsTheSequentialOne)
   std::vector<double> values(1 << 20);
   std::iota(values.begin(), values.end(), 0.0);
   std::vector<double> doubled(values.size());
-  mmv::RunOnAllCores([&]() {
-    vtkSMPTools::For(0, static_cast<vtkIdType>(values.size()), [&](vtkIdType b, vtkIdType e) {
-      for (vtkIdType i = b; i < e; ++i)
-      {
-        doubled[i] = 2.0 * values[i];
-      }
+  mmv::RunOnAllCores(
+    [&]()
+    {
+      vtkSMPTools::For(0, static_cast<vtkIdType>(values.size()),
+        [&](vtkIdType b, vtkIdType e)
+        {
+          for (vtkIdType i = b; i < e; ++i)
+          {
+            doubled[i] = 2.0 * values[i];
+          }
+        });
     });
-  });
   const double sum = std::accumulate(doubled.begin(), doubled.end(), 0.0);
   const double n = static_cast<double>(values.size());
   EXPECT_DOUBLE_EQ(sum, n * (n - 1.0));

@@ -3,27 +3,27 @@
 // Xvfb with Mesa llvmpipe in CI.
 #include "mmvTestScenes.h"
 
+#include "vtkCallbackCommand.h"
+#include "vtkCamera.h"
+#include "vtkCommand.h"
+#include "vtkDataArray.h"
+#include "vtkInformation.h"
+#include "vtkInformationObjectBaseVectorKey.h"
 #include "vtkIrradianceGrid.h"
 #include "vtkIrradianceResolutionProbe.h"
 #include "vtkIrradianceVolumeFilter.h"
-#include "vtkMaterialTransferFunction.h"
-#include "vtkMath.h"
-#include "vtkMultiMaterialVolumeMapper.h"
-#include "vtkOpenGLGPUVolumeRayCastMapper.h"
-#include "vtkCallbackCommand.h"
-#include "vtkCommand.h"
-#include "vtkCamera.h"
-#include "vtkInformation.h"
-#include "vtkInformationObjectBaseVectorKey.h"
 #include "vtkLightCollection.h"
 #include "vtkLightKit.h"
-#include "vtkMultiMaterialLiveObjects.h"
+#include "vtkMaterialTransferFunction.h"
+#include "vtkMath.h"
 #include "vtkMultiMaterialLights.h"
+#include "vtkMultiMaterialLiveObjects.h"
 #include "vtkMultiMaterialShaderHook.h"
+#include "vtkMultiMaterialVolumeMapper.h"
 #include "vtkObjectFactory.h"
+#include "vtkOpenGLGPUVolumeRayCastMapper.h"
 #include "vtkOpenGLRenderPass.h"
 #include "vtkPointData.h"
-#include "vtkDataArray.h"
 #include "vtkRenderer.h"
 #include "vtk_glew.h"
 
@@ -31,10 +31,10 @@
 
 #include <cmath>
 #include <cstdio>
-#include <unistd.h>
 #include <functional>
 #include <initializer_list>
 #include <string>
+#include <unistd.h>
 #include <utility>
 #include <vector>
 
@@ -90,7 +90,8 @@ TEST(MultiMaterialVolumeMapper, LightFromCameraSideMatchesClosedForm)
   const double expected = 0.5 * (1.0 - std::exp(-2.0 * Mu * D));
   for (int c = 0; c < 3; ++c)
   {
-    EXPECT_NEAR(scene.Center(c), CubeColor[c] * expected, 0.03 * CubeColor[c] * expected + 1.0 / 255)
+    EXPECT_NEAR(
+      scene.Center(c), CubeColor[c] * expected, 0.03 * CubeColor[c] * expected + 1.0 / 255)
       << "channel " << c;
   }
   EXPECT_TRUE(scene.Mapper->GetMultiMaterialActive());
@@ -106,7 +107,8 @@ TEST(MultiMaterialVolumeMapper, LightFromBehindMatchesClosedForm)
   const double expected = Mu * D * std::exp(-Mu * D);
   for (int c = 0; c < 3; ++c)
   {
-    EXPECT_NEAR(scene.Center(c), CubeColor[c] * expected, 0.03 * CubeColor[c] * expected + 1.0 / 255)
+    EXPECT_NEAR(
+      scene.Center(c), CubeColor[c] * expected, 0.03 * CubeColor[c] * expected + 1.0 / 255)
       << "channel " << c;
   }
 }
@@ -189,14 +191,16 @@ TEST(MultiMaterialVolumeMapper, IrradianceUpdatesReportProgress)
   std::vector<std::pair<double, std::string>> events;
   vtkNew<vtkCallbackCommand> observer;
   observer->SetClientData(&events);
-  observer->SetCallback([](vtkObject* caller, unsigned long, void* client, void* data) {
-    auto* algorithm = vtkAlgorithm::SafeDownCast(caller);
-    if (algorithm && algorithm->GetProgressText())
+  observer->SetCallback(
+    [](vtkObject* caller, unsigned long, void* client, void* data)
     {
-      static_cast<std::vector<std::pair<double, std::string>>*>(client)->emplace_back(
-        *static_cast<double*>(data), algorithm->GetProgressText());
-    }
-  });
+      auto* algorithm = vtkAlgorithm::SafeDownCast(caller);
+      if (algorithm && algorithm->GetProgressText())
+      {
+        static_cast<std::vector<std::pair<double, std::string>>*>(client)->emplace_back(
+          *static_cast<double*>(data), algorithm->GetProgressText());
+      }
+    });
   scene.Mapper->AddObserver(vtkCommand::ProgressEvent, observer);
   const double from[3] = { 16.0, 16.0, 1000.0 };
   vtkLight* light = scene.AddDirectionalLight(from, CubeCenter);
@@ -252,14 +256,16 @@ TEST(MultiMaterialVolumeMapper, IrradianceProgressRisesPerLight)
   std::vector<double> progress;
   vtkNew<vtkCallbackCommand> observer;
   observer->SetClientData(&progress);
-  observer->SetCallback([](vtkObject* caller, unsigned long, void* client, void* data) {
-    auto* algorithm = vtkAlgorithm::SafeDownCast(caller);
-    if (algorithm && algorithm->GetProgressText() &&
-      std::string(algorithm->GetProgressText()) == "Irradiance volume")
+  observer->SetCallback(
+    [](vtkObject* caller, unsigned long, void* client, void* data)
     {
-      static_cast<std::vector<double>*>(client)->push_back(*static_cast<double*>(data));
-    }
-  });
+      auto* algorithm = vtkAlgorithm::SafeDownCast(caller);
+      if (algorithm && algorithm->GetProgressText() &&
+        std::string(algorithm->GetProgressText()) == "Irradiance volume")
+      {
+        static_cast<std::vector<double>*>(client)->push_back(*static_cast<double*>(data));
+      }
+    });
   scene.Mapper->AddObserver(vtkCommand::ProgressEvent, observer);
   // Five lights: two irradiance textures (four lights each).
   const double from[5][3] = { { 16, 16, 1000 }, { 1000, 16, 16 }, { 16, 1000, 16 },
@@ -269,7 +275,8 @@ TEST(MultiMaterialVolumeMapper, IrradianceProgressRisesPerLight)
   {
     lights.push_back(scene.AddDirectionalLight(f, CubeCenter));
   }
-  const auto expectRising = [&progress](size_t reports, const char* what) {
+  const auto expectRising = [&progress](size_t reports, const char* what)
+  {
     ASSERT_FALSE(progress.empty()) << what;
     EXPECT_EQ(progress.front(), 0.0) << what;
     EXPECT_EQ(progress.back(), 1.0) << what;
@@ -367,7 +374,8 @@ TEST(MultiMaterialVolumeMapper, ReflectionCodeOnlyWhenSomeMaterialReflects)
 
 TEST(MultiMaterialVolumeMapper, OtherBlendModesMatchTheBaseClass)
 {
-  auto render = [](vtkOpenGLGPUVolumeRayCastMapper* mapper) {
+  auto render = [](vtkOpenGLGPUVolumeRayCastMapper* mapper)
+  {
     mmvtest::Scene scene;
     auto image = mmvtest::MakeVolume(
       17, [](int i, int j, int k) { return static_cast<float>(i + 2 * j + 3 * k); });
@@ -397,10 +405,13 @@ TEST(MultiMaterialVolumeMapper, ReleaseAndNewWindowRenderTheSameImage)
   vtkNew<vtkMultiMaterialVolumeMapper> mapper;
   vtkNew<vtkMaterialTransferFunction> materials;
   materials->AddNode(1.0, 0.3, 0.7, 0.4, 20.0, 1.0, 2.0, 0.0);
-  auto image = mmvtest::MakeVolume(Dims, [](int i, int j, int k) {
-    const double r = std::sqrt((i - 16.0) * (i - 16.0) + (j - 16.0) * (j - 16.0) + (k - 16.0) * (k - 16.0));
-    return static_cast<float>(r < 10.0 ? 1.0 : 0.0);
-  });
+  auto image = mmvtest::MakeVolume(Dims,
+    [](int i, int j, int k)
+    {
+      const double r =
+        std::sqrt((i - 16.0) * (i - 16.0) + (j - 16.0) * (j - 16.0) + (k - 16.0) * (k - 16.0));
+      return static_cast<float>(r < 10.0 ? 1.0 : 0.0);
+    });
   mapper->SetInputData(image);
   mapper->SetMaterialTransferFunction(materials);
   for (int round = 0; round < 2; ++round)
@@ -435,10 +446,13 @@ TEST(MultiMaterialVolumeMapper, ReleaseAndNewWindowRenderTheSameImage)
 TEST(MultiMaterialVolumeMapper, GpuIrradianceMatchesCpuFilter)
 {
   // A sphere lit by a directional and a point light; no diffusion.
-  auto image = mmvtest::MakeVolume(Dims, [](int i, int j, int k) {
-    const double r = std::sqrt((i - 16.0) * (i - 16.0) + (j - 14.0) * (j - 14.0) + (k - 17.0) * (k - 17.0));
-    return static_cast<float>(std::max(0.0, 12.0 - r));
-  });
+  auto image = mmvtest::MakeVolume(Dims,
+    [](int i, int j, int k)
+    {
+      const double r =
+        std::sqrt((i - 16.0) * (i - 16.0) + (j - 14.0) * (j - 14.0) + (k - 17.0) * (k - 17.0));
+      return static_cast<float>(std::max(0.0, 12.0 - r));
+    });
   mmvtest::Scene scene;
   scene.Color->AddRGBPoint(0.0, 1.0, 1.0, 1.0);
   scene.Opacity->AddPoint(0.0, 0.0);
@@ -502,7 +516,8 @@ TEST(MultiMaterialVolumeMapper, InteractiveFramesKeepTheIrradianceAndTheStillFra
 {
   // ParaView's default lighting: the light kit, attached to the camera, so
   // every camera move moves the lights.
-  auto addKit = [](mmvtest::Scene& scene) {
+  auto addKit = [](mmvtest::Scene& scene)
+  {
     vtkNew<vtkLightKit> kit;
     kit->AddLightsToRenderer(scene.Renderer);
   };
@@ -542,7 +557,8 @@ TEST(MultiMaterialVolumeMapper, InteractiveFramesKeepTheIrradianceAndTheStillFra
   fresh.Window->Render();
   const std::vector<unsigned char> reference = fresh.Pixels();
   ASSERT_EQ(rest.size(), reference.size());
-  auto psnr = [&](const std::vector<unsigned char>& a) {
+  auto psnr = [&](const std::vector<unsigned char>& a)
+  {
     double sum = 0.0;
     for (size_t i = 0; i < a.size(); ++i)
     {
@@ -552,8 +568,8 @@ TEST(MultiMaterialVolumeMapper, InteractiveFramesKeepTheIrradianceAndTheStillFra
     const double mse = sum / a.size();
     return mse > 0.0 ? 10.0 * std::log10(255.0 * 255.0 / mse) : 999.0;
   };
-  std::cout << "PSNR at rest vs fresh: " << psnr(rest) << " dB; stale interactive frame vs fresh: "
-            << psnr(stale) << " dB" << std::endl;
+  std::cout << "PSNR at rest vs fresh: " << psnr(rest)
+            << " dB; stale interactive frame vs fresh: " << psnr(stale) << " dB" << std::endl;
   EXPECT_GE(psnr(rest), 40.0);
   EXPECT_LT(psnr(stale), psnr(rest)) << "the interactive frames did not show stale lighting";
 
@@ -587,7 +603,8 @@ TEST(MultiMaterialVolumeMapper, LightsWithinTheToleranceKeepTheirIrradianceWitho
   const double from1[3] = { 1000.0, 16.0, 16.0 };
   scene.AddDirectionalLight(from1, CubeCenter);
   vtkLight* turning = scene.AddDirectionalLight(CubeCenter, CubeCenter);
-  auto turn = [&](double degrees) {
+  auto turn = [&](double degrees)
+  {
     const double a = degrees * vtkMath::Pi() / 180.0;
     turning->SetPosition(16.0 + 984.0 * std::sin(a), 16.0, 16.0 + 984.0 * std::cos(a));
   };
@@ -704,7 +721,8 @@ float SmoothBlob(int i, int j, int k)
 /// A spherical shell one voxel thick: its self-shadowing needs every voxel.
 float ThinShell(int i, int j, int k)
 {
-  const double r = std::sqrt((i - 16.0) * (i - 16.0) + (j - 16.0) * (j - 16.0) + (k - 16.0) * (k - 16.0));
+  const double r =
+    std::sqrt((i - 16.0) * (i - 16.0) + (j - 16.0) * (j - 16.0) + (k - 16.0) * (k - 16.0));
   return std::abs(r - 12.0) < 0.75 ? 1.0f : 0.0f;
 }
 
@@ -754,7 +772,8 @@ TEST(MultiMaterialVolumeMapper, ErrorProbeKeepsTheGridOfThinShells)
 // the irradiance grid; a grid too small to stride keeps every light.
 TEST(MultiMaterialVolumeMapper, DimLightsAreTheOnesOnACoarserGrid)
 {
-  auto lights = [](std::initializer_list<double> intensities) {
+  auto lights = [](std::initializer_list<double> intensities)
+  {
     std::vector<mmv::ShadingLight> result;
     for (const double intensity : intensities)
     {
@@ -764,7 +783,8 @@ TEST(MultiMaterialVolumeMapper, DimLightsAreTheOnesOnACoarserGrid)
     }
     return result;
   };
-  auto strides = [](const std::vector<mmv::LightSource>& sources) {
+  auto strides = [](const std::vector<mmv::LightSource>& sources)
+  {
     std::vector<int> result;
     for (const auto& source : sources)
     {
@@ -776,8 +796,8 @@ TEST(MultiMaterialVolumeMapper, DimLightsAreTheOnesOnACoarserGrid)
   const double key = 0.75;
   const auto kit = lights({ key, key / 3.0, key / 3.5, key / 3.5, key / 3.0 });
   EXPECT_EQ(strides(mmv::IrradianceLightSources(kit, big, true)),
-    (std::vector<int>{ 1, mmv::DimLightStride, mmv::DimLightStride, mmv::DimLightStride,
-      mmv::DimLightStride }));
+    (std::vector<int>{
+      1, mmv::DimLightStride, mmv::DimLightStride, mmv::DimLightStride, mmv::DimLightStride }));
   EXPECT_EQ(strides(mmv::IrradianceLightSources(kit, big, false)), (std::vector<int>(5, 1)));
   EXPECT_EQ(strides(mmv::IrradianceLightSources(lights({ 1.0, 0.6, 1.0 }), big, true)),
     (std::vector<int>{ 1, 1, 1 }));
@@ -801,11 +821,11 @@ TEST(MultiMaterialVolumeMapper, DimLightsOnACoarserGridKeepTheImage)
   strided.Mapper->GetIrradianceDimensions(dims);
   ASSERT_EQ(dims[0], Dims) << strided.Mapper->GetIrradianceResolutionReason();
   const double psnr = mmvtest::PSNR(strided.Pixels(), exact.Pixels());
-  const double rays = static_cast<double>(
-                        strided.Mapper->GetIrradianceEstimator()->GetLastEstimatedVoxels()) /
+  const double rays =
+    static_cast<double>(strided.Mapper->GetIrradianceEstimator()->GetLastEstimatedVoxels()) /
     exact.Mapper->GetIrradianceEstimator()->GetLastEstimatedVoxels();
-  std::printf("light kit on a thin shell: dim lights strided %.1f dB, %.2f of the shadow rays\n",
-    psnr, rays);
+  std::printf(
+    "light kit on a thin shell: dim lights strided %.1f dB, %.2f of the shadow rays\n", psnr, rays);
   // A shell one voxel thick at opacity 0.9 is the worst case: its
   // self-shadowing changes within a voxel (measured 34.1 dB, the error
   // probe's bound for any coarser grid; a CT's ribs give 57.7 dB,
@@ -922,7 +942,8 @@ TEST(MultiMaterialVolumeMapper, ErrorProbeKeepsItsChoiceThroughAnOpacityDrag)
     EXPECT_EQ(scene.Mapper->GetNumberOfIrradianceProbes(), 1);
     ExpectSameAsFresh(scene, drag.Value, drag.Peaks.back(), "after the drag");
     // Past the rule (optical depth more than doubled): measured again.
-    scene.Opacity->AddPoint(1.0, 1.0 - (1.0 - drag.Peaks.front()) * (1.0 - drag.Peaks.front()) * 0.8);
+    scene.Opacity->AddPoint(
+      1.0, 1.0 - (1.0 - drag.Peaks.front()) * (1.0 - drag.Peaks.front()) * 0.8);
     scene.Window->Render();
     EXPECT_EQ(scene.Mapper->GetNumberOfIrradianceProbes(), 2);
   }
@@ -1009,7 +1030,8 @@ TEST(MultiMaterialVolumeMapper, KeptStepsComeBackWithoutAnUpdate)
   {
     steps.push_back(mmvtest::MakeVolume(Dims, value));
   }
-  const auto show = [&scene, &steps](size_t k) {
+  const auto show = [&scene, &steps](size_t k)
+  {
     scene.Mapper->SetInputData(steps[k]);
     scene.Window->Render();
   };
@@ -1066,8 +1088,9 @@ TEST(MultiMaterialVolumeMapper, KeptStepsComeBackWithoutAnUpdate)
   scene.Mapper->SetIrradianceCacheMB(64.0);
   show(1);
   show(2);
-  const auto expectFresh = [&scene](const std::function<float(int, int, int)>& value,
-                             const char* what) {
+  const auto expectFresh = [&scene](
+                             const std::function<float(int, int, int)>& value, const char* what)
+  {
     ProbeScene fresh(value, 0.3);
     fresh.Materials->AddNode(1.0, 0.1, 0.9, 0.0, 1.0, 1.0, 8.0, 0.0);
     fresh.Mapper->MultipleScatteringOn();
@@ -1221,8 +1244,8 @@ struct DeletionWatch
   DeletionWatch()
   {
     this->Callback->SetClientData(this);
-    this->Callback->SetCallback(
-      [](vtkObject*, unsigned long, void* watch, void*) { ++static_cast<DeletionWatch*>(watch)->Deleted; });
+    this->Callback->SetCallback([](vtkObject*, unsigned long, void* watch, void*)
+      { ++static_cast<DeletionWatch*>(watch)->Deleted; });
   }
   void Watch(vtkObject* object)
   {

@@ -146,8 +146,8 @@ double FrontLit()
   return 0.5 * (1.0 - std::exp(-2.0 * Mu * D));
 }
 
-void ExpectColor(const std::vector<double>& pixel, double expected, double tolerance,
-  const char* what)
+void ExpectColor(
+  const std::vector<double>& pixel, double expected, double tolerance, const char* what)
 {
   for (int c = 0; c < 3; ++c)
   {
@@ -205,7 +205,8 @@ TEST(OpticalModel, HenyeyGreensteinIsNormalisedWithMeanCosineG)
     const float cf = static_cast<float>(c);
     const float denominator = 1.0f + 0.0f * 0.0f - 2.0f * 0.0f * cf;
     EXPECT_EQ((1.0f - 0.0f) / (denominator * std::sqrt(denominator)), 1.0f);
-    EXPECT_DOUBLE_EQ(mmv::mmvHenyeyGreensteinRelative(0.6, c), 4.0 * M_PI * mmv::HenyeyGreenstein(0.6, c));
+    EXPECT_DOUBLE_EQ(
+      mmv::mmvHenyeyGreensteinRelative(0.6, c), 4.0 * M_PI * mmv::HenyeyGreenstein(0.6, c));
   }
   // Straight on: (1 + g) / (1 - g)^2; straight back: (1 - g) / (1 + g)^2.
   EXPECT_NEAR(mmv::mmvHenyeyGreensteinRelative(0.6, 1.0), 10.0, 1e-12);
@@ -272,8 +273,7 @@ TEST(OpticalModel, ForwardScatteringBrightensBackLitCubeAsPredicted)
     ASSERT_TRUE(metrics->Compute(gpu, truth));
     std::cout << what << " g = " << G << ": closed form " << expected << " (g = 0: " << isotropic
               << "), reference " << r[0] << ", GPU " << p[0] << "; GPU vs reference PSNR "
-              << metrics->GetPSNR() << " dB, max error " << metrics->GetMaximumError()
-              << "/255\n";
+              << metrics->GetPSNR() << " dB, max error " << metrics->GetMaximumError() << "/255\n";
     for (int c = 0; c < 3; ++c)
     {
       EXPECT_NEAR(r[c], CubeColor[c] * expected, 0.005 * CubeColor[c] * expected) << what;
@@ -427,10 +427,13 @@ TEST(OpticalModel, TermsCompiledInWithZeroValuesChangeNoPixel)
   // out is a pure saving.
   constexpr int Ball = 25;
   Scene scene(48);
-  auto image = MakeVolume(Ball, [](int i, int j, int k) {
-    const double r = std::sqrt((i - 12.0) * (i - 12.0) + (j - 12.0) * (j - 12.0) + (k - 12.0) * (k - 12.0));
-    return static_cast<float>(std::max(0.0, 1.0 - r / 12.0));
-  });
+  auto image = MakeVolume(Ball,
+    [](int i, int j, int k)
+    {
+      const double r =
+        std::sqrt((i - 12.0) * (i - 12.0) + (j - 12.0) * (j - 12.0) + (k - 12.0) * (k - 12.0));
+      return static_cast<float>(std::max(0.0, 1.0 - r / 12.0));
+    });
   scene.Color->AddRGBPoint(0.0, 1.0, 0.6, 0.3);
   scene.Color->AddRGBPoint(0.4, 1.0, 0.6, 0.3);
   scene.Color->AddRGBPoint(0.6, 0.7, 0.8, 1.0);
@@ -559,8 +562,8 @@ TEST(OpticalModel, OlderNodeLayoutsLoadWithNewValuesAtDefaults)
   vtkNew<vtkMaterialTransferFunction> f;
   constexpr int Stride = vtkMaterialTransferFunction::NodeStride;
   ASSERT_EQ(Stride, 13);
-  const std::vector<double> current = { 0.0, 0.2, 0.7, 0.2, 20.0, 1.0, 0.5, 0.1, 0.6, 2.0, 0.9,
-    0.5, 0.25, 1.0, 0.3, 0.6, 0.1, 10.0, 2.0, 1.0, 0.0, -0.4, 0.5, 0.0, 1.0, 0.5 };
+  const std::vector<double> current = { 0.0, 0.2, 0.7, 0.2, 20.0, 1.0, 0.5, 0.1, 0.6, 2.0, 0.9, 0.5,
+    0.25, 1.0, 0.3, 0.6, 0.1, 10.0, 2.0, 1.0, 0.0, -0.4, 0.5, 0.0, 1.0, 0.5 };
   ASSERT_TRUE(f->SetNodes(26, current.data()));
   std::vector<double> back(26);
   f->GetNodes(back.data());
@@ -578,8 +581,8 @@ TEST(OpticalModel, OlderNodeLayoutsLoadWithNewValuesAtDefaults)
   EXPECT_EQ(back, expected);
   EXPECT_FALSE(f->HasChromaticTransmission());
 
-  const std::vector<double> nine = { 0.0, 0.2, 0.7, 0.2, 20.0, 1.0, 0.5, 0.1, 0.6,
-    1.0, 0.3, 0.6, 0.1, 10.0, 2.0, 1.0, 0.0, -0.4 };
+  const std::vector<double> nine = { 0.0, 0.2, 0.7, 0.2, 20.0, 1.0, 0.5, 0.1, 0.6, 1.0, 0.3, 0.6,
+    0.1, 10.0, 2.0, 1.0, 0.0, -0.4 };
   ASSERT_TRUE(f->SetNodes(18, nine.data()));
   f->GetNodes(back.data());
   expected[9] = expected[22] = 0.0;
@@ -610,8 +613,8 @@ TEST(OpticalModel, OlderNodeLayoutsLoadWithNewValuesAtDefaults)
   std::vector<double> thirteen, tens;
   for (int n = 0; n < 13; ++n)
   {
-    const std::vector<double> one = { 10.0 * n, 0.2, 0.7, 0.2, 20.0, 1.0, 0.5, 0.1, 0.3, 1.0,
-      0.5, 0.5, 1.0 };
+    const std::vector<double> one = { 10.0 * n, 0.2, 0.7, 0.2, 20.0, 1.0, 0.5, 0.1, 0.3, 1.0, 0.5,
+      0.5, 1.0 };
     if (n < 10)
     {
       thirteen.insert(thirteen.end(), one.begin(), one.end());

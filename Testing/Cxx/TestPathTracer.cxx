@@ -158,7 +158,8 @@ void MakeAbsorber(PathScene& scene)
 
 PathScene* NewSlab()
 {
-  return new PathScene(9, 9, 5, [](int, int, int) { return 1.0f; }, 0.5);
+  return new PathScene(
+    9, 9, 5, [](int, int, int) { return 1.0f; }, 0.5);
 }
 }
 
@@ -170,9 +171,12 @@ TEST(PathTracer, WhiteFurnaceSphereIsInvisible)
   for (bool surface : { false, true })
   {
     SCOPED_TRACE(surface ? "surface scattering on" : "phase function only");
-    PathScene scene(17, 17, 17,
-      [](int i, int j, int k) {
-        const double r = std::sqrt((i - 8.0) * (i - 8.0) + (j - 8.0) * (j - 8.0) + (k - 8.0) * (k - 8.0));
+    PathScene scene(
+      17, 17, 17,
+      [](int i, int j, int k)
+      {
+        const double r =
+          std::sqrt((i - 8.0) * (i - 8.0) + (j - 8.0) * (j - 8.0) + (k - 8.0) * (k - 8.0));
         return static_cast<float>(std::min(1.0, std::max(0.0, 7.0 - r)));
       },
       1.1);
@@ -201,9 +205,12 @@ TEST(PathTracer, WhiteFurnaceSphereIsInvisible)
     EXPECT_GT(scene.Tracer->GetNumberOfEvents(), 16 * 16 * 64);
   }
   // The same sphere, black: the centre pixels lose most of the sky.
-  PathScene dark(17, 17, 17,
-    [](int i, int j, int k) {
-      const double r = std::sqrt((i - 8.0) * (i - 8.0) + (j - 8.0) * (j - 8.0) + (k - 8.0) * (k - 8.0));
+  PathScene dark(
+    17, 17, 17,
+    [](int i, int j, int k)
+    {
+      const double r =
+        std::sqrt((i - 8.0) * (i - 8.0) + (j - 8.0) * (j - 8.0) + (k - 8.0) * (k - 8.0));
       return static_cast<float>(std::min(1.0, std::max(0.0, 7.0 - r)));
     },
     1.1);
@@ -341,7 +348,8 @@ TEST(PathTracer, ErrorFallsAsOneOverSqrtN)
     rms.push_back(RMSError(Array(out, "Radiance"), expected));
     const double predicted = std::sqrt(t * (1.0 - t) / n) *
       std::sqrt((Background[0] * Background[0] + Background[1] * Background[1] +
-                  Background[2] * Background[2]) / 3.0);
+                  Background[2] * Background[2]) /
+        3.0);
     // 768 values: the RMS itself is known to a few per cent.
     EXPECT_NEAR(rms.back(), predicted, 0.15 * predicted) << n << " samples";
   }
@@ -386,8 +394,7 @@ TEST(PathTracer, BadInputIsReportedNotCrashed)
       [&] { tracer->SetVolumeProperty(scene->Property); } },
     { "zero samples", [&] { tracer->SetSamplesPerPixel(0); },
       [&] { tracer->SetSamplesPerPixel(4); } },
-    { "negative bounces", [&] { tracer->SetMaxBounces(-1); },
-      [&] { tracer->SetMaxBounces(8); } },
+    { "negative bounces", [&] { tracer->SetMaxBounces(-1); }, [&] { tracer->SetMaxBounces(8); } },
   };
   for (const Case& c : cases)
   {

@@ -44,7 +44,8 @@ std::vector<std::map<std::string, std::string>> ReadCSV(const std::string& path)
   std::vector<std::map<std::string, std::string>> rows;
   std::string line;
   std::vector<std::string> header;
-  auto split = [](const std::string& text) {
+  auto split = [](const std::string& text)
+  {
     std::vector<std::string> items;
     std::stringstream list(text);
     for (std::string item; std::getline(list, item, ',');)
@@ -96,7 +97,8 @@ TEST(PhysicalMedium, LimitsOfTheFormula)
     EXPECT_DOUBLE_EQ(Map(a, 0.0, 0.25)[mmv::Attenuation], 1.0);
   }
   // Similarity: c_t = (1 - a g)^AttenuationPower.
-  EXPECT_NEAR(Map(0.9, 0.6, 0.25)[mmv::Attenuation], std::pow(0.46, mmv::PhysicalMediumCoefficients.AttenuationPower), 1e-12);
+  EXPECT_NEAR(Map(0.9, 0.6, 0.25)[mmv::Attenuation],
+    std::pow(0.46, mmv::PhysicalMediumCoefficients.AttenuationPower), 1e-12);
   // More albedo: more light (ka) and farther diffusion (s); more g: lighter
   // shadows; denser voxels: shorter diffusion in voxels.
   double previous[3] = { 0.0, 0.0, 2.0 };
@@ -134,7 +136,8 @@ TEST(PhysicalMedium, LimitsOfTheFormula)
       }
     }
   }
-  EXPECT_EQ(Map(0.5, 0.3, 1e-9)[mmv::Scattering], mmv::MaterialParameterTable[mmv::Scattering].HardMax);
+  EXPECT_EQ(
+    Map(0.5, 0.3, 1e-9)[mmv::Scattering], mmv::MaterialParameterTable[mmv::Scattering].HardMax);
 }
 
 TEST(PhysicalMedium, RejectsInputOutsideTheDomain)
@@ -239,8 +242,8 @@ TEST(PhysicalMedium, PublishedTableWasMeasuredWithThisFormula)
     ++mapped;
     const std::string key = row.at("albedo") + "/" + row.at("anisotropy") + "/" + row.at("depth");
     SCOPED_TRACE(key);
-    const std::vector<double> p = Map(
-      Number(row, "albedo"), Number(row, "anisotropy"), Number(row, "extinction_per_voxel"));
+    const std::vector<double> p =
+      Map(Number(row, "albedo"), Number(row, "anisotropy"), Number(row, "extinction_per_voxel"));
     // The CSV has 6 significant digits.
     EXPECT_NEAR(Number(row, "ka"), p[mmv::Ambient], 1e-5 * p[mmv::Ambient]);
     EXPECT_NEAR(Number(row, "attenuation"), p[mmv::Attenuation], 1e-5 * p[mmv::Attenuation]);

@@ -2,13 +2,13 @@
 // segment integrals and against closed forms for simple transfer functions.
 #include "vtkPreIntegrationTable.h"
 
+#include "mmvTestUtilities.h"
 #include "vtkColorTransferFunction.h"
 #include "vtkCommand.h"
 #include "vtkMaterialTransferFunction.h"
 #include "vtkMultiMaterialParameters.h"
 #include "vtkNew.h"
 #include "vtkPiecewiseFunction.h"
-#include "mmvTestUtilities.h"
 
 #include <gtest/gtest.h>
 

@@ -131,7 +131,8 @@ TEST(ReferenceRenderer, CompositesOverBackground)
   EXPECT_NEAR(radiance->GetComponent(0, 2), 0.6, 1e-12);
   // The centre: emission plus the background behind the slab.
   const vtkIdType id = (Size / 2) * Size + Size / 2;
-  const double expected = CubeColor[1] * 0.5 * (1.0 - std::exp(-2.0 * Mu * D)) + 0.4 * std::exp(-Mu * D);
+  const double expected =
+    CubeColor[1] * 0.5 * (1.0 - std::exp(-2.0 * Mu * D)) + 0.4 * std::exp(-Mu * D);
   EXPECT_NEAR(radiance->GetComponent(id, 1), expected, 0.005 * expected);
   vtkDataArray* bytes = out->GetPointData()->GetScalars();
   EXPECT_EQ(bytes->GetNumberOfComponents(), 3);
@@ -184,10 +185,13 @@ TEST(ReferenceRenderer, AgreesWithGPUMapper)
   vtkSMPTools::SetBackend("STDThread");
   constexpr int ImageSize = 64;
   mmvtest::Scene scene(ImageSize);
-  auto image = mmvtest::MakeVolume(Dims, [](int i, int j, int k) {
-    const double r = std::sqrt((i - 16.0) * (i - 16.0) + (j - 16.0) * (j - 16.0) + (k - 16.0) * (k - 16.0));
-    return static_cast<float>(std::max(0.0, 1.0 - r / 16.0));
-  });
+  auto image = mmvtest::MakeVolume(Dims,
+    [](int i, int j, int k)
+    {
+      const double r =
+        std::sqrt((i - 16.0) * (i - 16.0) + (j - 16.0) * (j - 16.0) + (k - 16.0) * (k - 16.0));
+      return static_cast<float>(std::max(0.0, 1.0 - r / 16.0));
+    });
   scene.Color->AddRGBPoint(0.0, 1.0, 0.6, 0.3);
   scene.Color->AddRGBPoint(0.4, 1.0, 0.6, 0.3);
   scene.Color->AddRGBPoint(0.6, 0.7, 0.8, 1.0);

@@ -11,8 +11,8 @@
 #include "vtkImageErrorMetrics.h"
 #include "vtkMaterialTransferFunction.h"
 #include "vtkMultiMaterialEnvironmentLookup.h"
-#include "vtkMultiMaterialReflection.h"
 #include "vtkMultiMaterialReferenceRenderer.h"
+#include "vtkMultiMaterialReflection.h"
 #include "vtkMultiMaterialShading.h"
 #include "vtkMultiMaterialVolumeMapper.h"
 #include "vtkNew.h"
@@ -192,8 +192,9 @@ void ExpectMirrorSphereInTwoColours(vtkTexture* texture)
     }
   }
   ASSERT_GT(checked, 1000);
-  std::cout << checked << " disc pixels (surface share " << share << "): mean strength " << sum.x / checked
-            << ", mean other colour " << sum.y / checked << ", " << wrong << " wrong\n";
+  std::cout << checked << " disc pixels (surface share " << share << "): mean strength "
+            << sum.x / checked << ", mean other colour " << sum.y / checked << ", " << wrong
+            << " wrong\n";
   // Measured (llvmpipe): strength 0.94-0.96 of the surface share (the
   // opaque shell's first samples lie within a voxel), no wrong pixel.
   EXPECT_EQ(wrong, 0);
@@ -220,7 +221,8 @@ void ExpectOccluderDimsByItsTransmittance(int visibility)
   // the slab (its faces half-way between the last sphere-exterior voxel and
   // the first slab voxel, where the opacity crosses half).
   auto white = MakeCubeMap([](const glm::dvec3&) { return glm::dvec3(1.0); });
-  auto render = [&](bool slab) {
+  auto render = [&](bool slab)
+  {
     // The same value range in both (the surface share reads the normalised
     // gradient), so only the visibility differs.
     MirrorScene scene(slab, !slab);
@@ -296,9 +298,9 @@ void ExpectOccluderDimsByItsTransmittance(int visibility)
   ASSERT_GT(clear, 100);
   std::sort(behindErrors.begin(), behindErrors.end());
   const double p95 = behindErrors[behindErrors.size() * 95 / 100];
-  std::cout << "visibility " << visibility << ": " << behind << " pixels behind the slab: mean |I - exp(-sigma L)| "
-            << behindError / behind << ", 95th percentile " << p95 << ", largest "
-            << behindErrors.back() << "; " << clear
+  std::cout << "visibility " << visibility << ": " << behind
+            << " pixels behind the slab: mean |I - exp(-sigma L)| " << behindError / behind
+            << ", 95th percentile " << p95 << ", largest " << behindErrors.back() << "; " << clear
             << " clear pixels: mean |I - 1| " << clearError / clear << "\n";
   // Measured (llvmpipe): per sample (1) mean 0.020, 95th percentile 0.059,
   // largest 0.15; view-dependent pass (2) mean 0.022, 95th percentile
@@ -340,8 +342,8 @@ vtkSmartPointer<vtkImageData> ToImage(const std::vector<unsigned char>& pixels)
 // A lit reflective ball in a smooth cube map with the slab beside it:
 // shading, reflection and its visibility together, GPU against the
 // reference renderer after `cut` (may be empty) changes the mapper.
-void ExpectReferenceAgreesWithGPU(int visibility,
-  const std::function<void(vtkVolumeMapper*)>& cut, bool perspective = false)
+void ExpectReferenceAgreesWithGPU(
+  int visibility, const std::function<void(vtkVolumeMapper*)>& cut, bool perspective = false)
 {
   vtkSMPTools::SetBackend("STDThread");
   MirrorScene scene(true);
@@ -363,10 +365,12 @@ void ExpectReferenceAgreesWithGPU(int visibility,
   scene.Materials->AddNode(-45.0, 0.1, 0.3, 0.4, 30.0, 1.0, 0.0, 0.6);
   scene.Materials->AddNode(20.0, 0.1, 0.3, 0.4, 30.0, 1.0, 0.0, 0.6);
   scene.Scene.Color->AddRGBPoint(0.0, 0.9, 0.7, 0.4);
-  auto sky = MakeCubeMap([](const glm::dvec3& e) {
-    const glm::dvec3 u = glm::normalize(e);
-    return glm::dvec3(0.5 + 0.4 * u.x, 0.5 + 0.4 * u.y, 0.5 - 0.4 * u.z);
-  });
+  auto sky = MakeCubeMap(
+    [](const glm::dvec3& e)
+    {
+      const glm::dvec3 u = glm::normalize(e);
+      return glm::dvec3(0.5 + 0.4 * u.x, 0.5 + 0.4 * u.y, 0.5 - 0.4 * u.z);
+    });
   sky->InterpolateOn();
   scene.Scene.Renderer->SetEnvironmentTexture(sky);
   if (cut)
@@ -404,7 +408,8 @@ void ExpectCutOccluderLeavesReflection(
   int visibility, const std::function<void(vtkVolumeMapper*)>& cut, const char* what)
 {
   auto white = MakeCubeMap([](const glm::dvec3&) { return glm::dvec3(1.0); });
-  auto render = [&](bool slab, bool cutting) {
+  auto render = [&](bool slab, bool cutting)
+  {
     MirrorScene scene(slab, true);
     scene.Mapper->SetReflectionVisibility(visibility);
     scene.Scene.Renderer->SetEnvironmentTexture(white);
@@ -452,10 +457,10 @@ void ExpectCutOccluderLeavesReflection(
   vtkNew<vtkImageErrorMetrics> metrics;
   ASSERT_TRUE(metrics->Compute(ToImage(cutAway), ToImage(without)));
   const double psnr = metrics->GetPSNR();
-  std::cout << "visibility " << visibility << ", " << what << ": " << count << " pixels reflecting toward the slab, mean dimming "
-            << dimmedUncut / count << " with the slab, " << dimmedCut / count << " (largest "
-            << largestCut << ") with it cut away; PSNR " << psnr
-            << " dB against the scene without it\n";
+  std::cout << "visibility " << visibility << ", " << what << ": " << count
+            << " pixels reflecting toward the slab, mean dimming " << dimmedUncut / count
+            << " with the slab, " << dimmedCut / count << " (largest " << largestCut
+            << ") with it cut away; PSNR " << psnr << " dB against the scene without it\n";
   // The slab is there: it dims (the test's premise).
   EXPECT_GT(dimmedUncut / count, 0.2);
   // Cut away: what the scene without it shows. Measured (llvmpipe): the
@@ -515,7 +520,8 @@ TEST(Reflection, ViewDependentDimsAsPerSampleInPerspective)
   // turns across the ball. In a white environment 1 - I(visibility) / I(0)
   // is the slab's dimming; the pass (eye position per voxel) must dim as
   // the per-sample march (eye direction per ray) does.
-  auto render = [](int visibility) {
+  auto render = [](int visibility)
+  {
     MirrorScene scene(true);
     scene.Mapper->SetReflectionVisibility(visibility);
     scene.Scene.Renderer->SetEnvironmentTexture(
@@ -584,7 +590,8 @@ TEST(Reflection, ViewDependentPassSkipsOnlyWhatCannotReflect)
   // The image with the skip against the same scene where the slab reflects
   // 1e-6 (invisible, but nothing skipped): the skipped voxels were never
   // read by a reflecting sample.
-  auto render = [](MirrorScene& scene) {
+  auto render = [](MirrorScene& scene)
+  {
     scene.Mapper->SetReflectionVisibility(mmv::ViewDependentReflectionVisibility);
     scene.Scene.Renderer->SetEnvironmentTexture(
       MakeCubeMap([](const glm::dvec3&) { return glm::dvec3(1.0); }));
@@ -606,8 +613,7 @@ TEST(Reflection, ViewDependentPassSkipsOnlyWhatCannotReflect)
     largest = std::max(largest, d);
     differing += d > 0 ? 1 : 0;
   }
-  std::cout << differing << " of " << a.size() << " bytes differ, by " << largest
-            << " at most\n";
+  std::cout << differing << " of " << a.size() << " bytes differ, by " << largest << " at most\n";
   // r = 1e-6 of a white environment adds less than 1/255 anywhere.
   EXPECT_LE(largest, 1);
 }
@@ -732,7 +738,8 @@ TEST(Reflection, InteractiveFramesKeepTheVisibilityAndTheStillFrameIsExact)
 TEST(Reflection, BadEnvironmentTexturesWarnAndReflectTheBackground)
 {
   // Background gradient from the renderer: what every bad texture falls back to.
-  auto render = [](vtkTexture* texture, int source, int* warnings, std::string* message) {
+  auto render = [](vtkTexture* texture, int source, int* warnings, std::string* message)
+  {
     MirrorScene scene(false);
     scene.Scene.Renderer->GradientBackgroundOn();
     scene.Scene.Renderer->SetBackground(0.1, 0.6, 0.2);
@@ -796,8 +803,8 @@ TEST(Reflection, BadEnvironmentTexturesWarnAndReflectTheBackground)
   // A good texture, but the background asked for: the same image, no warning.
   int warnings = 0;
   std::string message;
-  EXPECT_EQ(render(MakeCubeMap(TwoColours), mmv::ReflectBackground, &warnings, &message),
-    background);
+  EXPECT_EQ(
+    render(MakeCubeMap(TwoColours), mmv::ReflectBackground, &warnings, &message), background);
   EXPECT_EQ(warnings, 0) << message;
 }
 

@@ -1,23 +1,23 @@
 // The GLSL in Shaders/ against its C++ mirror: each shader function is run on
 // the GPU (llvmpipe under Xvfb in CI) over a grid of inputs, read back from a
 // float framebuffer and compared with the CPU function of the same name.
-#include "mmvTestWindow.h"
-#include "vtkMultiMaterialLightModel.h"
-#include "vtkMultiMaterialLightUniforms.h"
-#include "vtkMultiMaterialParameters.h"
-#include "vtkIrradianceDiffusion.h"
-#include "vtkMaterialTransferFunction.h"
-#include "vtkMultiMaterialShaderAssembly.h"
-#include "vtkMultiMaterialTextures.h"
-#include "vtkTextureObject.h"
 #include "mmvDiffusionFS.h"
 #include "mmvEmission.h"
 #include "mmvLightModel.h"
 #include "mmvPhaseFunction.h"
 #include "mmvShading.h"
+#include "mmvTestWindow.h"
 #include "mmvTint.h"
+#include "vtkIrradianceDiffusion.h"
+#include "vtkMaterialTransferFunction.h"
+#include "vtkMultiMaterialLightModel.h"
+#include "vtkMultiMaterialLightUniforms.h"
+#include "vtkMultiMaterialParameters.h"
 #include "vtkMultiMaterialPhaseFunction.h"
+#include "vtkMultiMaterialShaderAssembly.h"
 #include "vtkMultiMaterialShading.h"
+#include "vtkMultiMaterialTextures.h"
+#include "vtkTextureObject.h"
 
 #include "vtkNew.h"
 #include "vtkOpenGLFramebufferObject.h"
@@ -177,54 +177,56 @@ TEST(ShaderMirror, LightGeometryTermMatchesCPU)
   ASSERT_NE(runner.GL, nullptr);
 
   for (int falloff = 0; falloff < 4; ++falloff)
-  for (int kind : { mmv::DirectionalLight, mmv::PointLight, mmv::SpotLight })
-  {
-    const mmv::LightSource light = TestLight(kind, falloff);
-
-    std::vector<float> pixels;
-    ASSERT_TRUE(runner.Run(LightGeometryBody,
-      [&](vtkShaderProgram* p) {
-        p->SetUniformi("kind", kind);
-        const float pos[3] = { 0.3f, -0.2f, 1.0f };
-        const float axis[3] = { float(light.SpotAxis.x), float(light.SpotAxis.y),
-          float(light.SpotAxis.z) };
-        const glm::vec3 attenuation(light.Attenuation);
-        p->SetUniform3f("lightPosition", pos);
-        p->SetUniform3f("spotAxis", axis);
-        p->SetUniformf("cosCone", float(light.CosCone));
-        p->SetUniformf("spotExponent", float(light.SpotExponent));
-        p->SetUniform3f("attenuation", &attenuation.x);
-        p->SetUniformf("radius", float(light.Radius));
-      },
-      pixels));
-
-    int compared = 0;
-    for (int j = 0; j < Size; ++j)
+    for (int kind : { mmv::DirectionalLight, mmv::PointLight, mmv::SpotLight })
     {
-      for (int i = 0; i < Size; ++i)
-      {
-        const float* px = &pixels[4 * (j * Size + i)];
-        const glm::dvec3 x = PixelPoint(i, j);
-        const glm::dvec3 toPoint = x - light.Position;
-        // float and double disagree right on the cone edge; skip a thin band.
-        if (std::abs(glm::dot(glm::normalize(toPoint), light.SpotAxis) - light.CosCone) < 1e-4)
+      const mmv::LightSource light = TestLight(kind, falloff);
+
+      std::vector<float> pixels;
+      ASSERT_TRUE(runner.Run(
+        LightGeometryBody,
+        [&](vtkShaderProgram* p)
         {
-          continue;
+          p->SetUniformi("kind", kind);
+          const float pos[3] = { 0.3f, -0.2f, 1.0f };
+          const float axis[3] = { float(light.SpotAxis.x), float(light.SpotAxis.y),
+            float(light.SpotAxis.z) };
+          const glm::vec3 attenuation(light.Attenuation);
+          p->SetUniform3f("lightPosition", pos);
+          p->SetUniform3f("spotAxis", axis);
+          p->SetUniformf("cosCone", float(light.CosCone));
+          p->SetUniformf("spotExponent", float(light.SpotExponent));
+          p->SetUniform3f("attenuation", &attenuation.x);
+          p->SetUniformf("radius", float(light.Radius));
+        },
+        pixels));
+
+      int compared = 0;
+      for (int j = 0; j < Size; ++j)
+      {
+        for (int i = 0; i < Size; ++i)
+        {
+          const float* px = &pixels[4 * (j * Size + i)];
+          const glm::dvec3 x = PixelPoint(i, j);
+          const glm::dvec3 toPoint = x - light.Position;
+          // float and double disagree right on the cone edge; skip a thin band.
+          if (std::abs(glm::dot(glm::normalize(toPoint), light.SpotAxis) - light.CosCone) < 1e-4)
+          {
+            continue;
+          }
+          const double cpu = mmv::mmvLightGeometryTerm(light, x);
+          ASSERT_NEAR(px[0], cpu, 1e-5 * std::max(1.0, cpu))
+            << "kind " << kind << " falloff " << falloff << " pixel " << i << "," << j;
+          ASSERT_NEAR(px[1],
+            mmv::mmvSpotFactor(toPoint, light.SpotAxis, light.CosCone, light.SpotExponent), 1e-5);
+          // The prelude's generated names carry the C++ contract's values.
+          const mmv::MaterialTexel texel = mmv::MaterialTexelLayout[mmv::Anisotropy];
+          ASSERT_EQ(px[2], float(4 * texel.Row + texel.Channel));
+          ASSERT_EQ(px[3], float(mmv::SpotLight));
+          ++compared;
         }
-        const double cpu = mmv::mmvLightGeometryTerm(light, x);
-        ASSERT_NEAR(px[0], cpu, 1e-5 * std::max(1.0, cpu))
-          << "kind " << kind << " falloff " << falloff << " pixel " << i << "," << j;
-        ASSERT_NEAR(px[1],
-          mmv::mmvSpotFactor(toPoint, light.SpotAxis, light.CosCone, light.SpotExponent), 1e-5);
-        // The prelude's generated names carry the C++ contract's values.
-        const mmv::MaterialTexel texel = mmv::MaterialTexelLayout[mmv::Anisotropy];
-        ASSERT_EQ(px[2], float(4 * texel.Row + texel.Channel));
-        ASSERT_EQ(px[3], float(mmv::SpotLight));
-        ++compared;
       }
+      EXPECT_GT(compared, Size * Size * 9 / 10);
     }
-    EXPECT_GT(compared, Size * Size * 9 / 10);
-  }
 }
 
 namespace
@@ -253,8 +255,10 @@ TEST(ShaderMirror, DirectionToLightMatchesCPU)
     const mmv::LightSource light = TestLight(kind);
 
     std::vector<float> pixels;
-    ASSERT_TRUE(runner.Run(DirectionToLightBody,
-      [&](vtkShaderProgram* p) {
+    ASSERT_TRUE(runner.Run(
+      DirectionToLightBody,
+      [&](vtkShaderProgram* p)
+      {
         p->SetUniformi("kind", kind);
         const glm::vec3 position(light.Position);
         const glm::vec3 toLight(light.ToLight);
@@ -309,7 +313,8 @@ TEST(ShaderMirror, PointFalloffMatchesCPUIncludingZeroRadius)
   ASSERT_NE(runner.GL, nullptr);
   std::vector<float> pixels;
   const std::string body = "#define SIZE " + std::to_string(Size) + "\n" + PointFalloffBody;
-  ASSERT_TRUE(runner.Run(body, [](vtkShaderProgram*) {}, pixels));
+  ASSERT_TRUE(runner.Run(
+    body, [](vtkShaderProgram*) {}, pixels));
   for (int j = 0; j < Size; ++j)
   {
     for (int i = 0; i < Size; ++i)
@@ -350,7 +355,8 @@ TEST(ShaderMirror, AttenuationFalloffMatchesCPUIncludingTheLightItself)
   ASSERT_NE(runner.GL, nullptr);
   std::vector<float> pixels;
   const std::string body = "#define SIZE " + std::to_string(Size) + "\n" + AttenuationFalloffBody;
-  ASSERT_TRUE(runner.Run(body, [](vtkShaderProgram*) {}, pixels));
+  ASSERT_TRUE(runner.Run(
+    body, [](vtkShaderProgram*) {}, pixels));
   const glm::dvec3 attenuation[4] = { { 1.0, 0.0, 0.0 }, { 1.0, 0.5, 2.0 }, { 0.0, 1.0, 0.0 },
     { 0.0, 0.0, 1.0 } };
   for (int j = 0; j < Size; ++j)
@@ -418,7 +424,8 @@ TEST(ShaderMirror, BlinnPhongAndEnvironmentMatchCPU)
   ShaderRunner runner;
   ASSERT_NE(runner.GL, nullptr);
   std::vector<float> pixels;
-  ASSERT_TRUE(runner.Run(BlinnPhongBody, [](vtkShaderProgram*) {}, pixels));
+  ASSERT_TRUE(runner.Run(
+    BlinnPhongBody, [](vtkShaderProgram*) {}, pixels));
   const glm::dvec3 n(0.0, 0.0, 1.0);
   const glm::dvec3 v = glm::normalize(glm::dvec3(0.3, -0.2, 1.0));
   int highlights = 0;
@@ -464,7 +471,8 @@ TEST(ShaderMirror, HenyeyGreensteinAndEmissionMatchCPU)
   ShaderRunner runner;
   ASSERT_NE(runner.GL, nullptr);
   std::vector<float> pixels;
-  ASSERT_TRUE(runner.Run(PhaseAndEmissionBody, [](vtkShaderProgram*) {}, pixels));
+  ASSERT_TRUE(runner.Run(
+    PhaseAndEmissionBody, [](vtkShaderProgram*) {}, pixels));
   double largest = 0.0;
   for (int j = 0; j < Size; ++j)
   {
@@ -505,7 +513,8 @@ TEST(ShaderMirror, HybridSurfaceShareMatchesCPU)
   ShaderRunner runner;
   ASSERT_NE(runner.GL, nullptr);
   std::vector<float> pixels;
-  ASSERT_TRUE(runner.Run(SurfaceShareBody, [](vtkShaderProgram*) {}, pixels));
+  ASSERT_TRUE(runner.Run(
+    SurfaceShareBody, [](vtkShaderProgram*) {}, pixels));
   for (int j = 0; j < Size; ++j)
   {
     for (int i = 0; i < Size; ++i)
@@ -588,10 +597,10 @@ TEST(ShaderMirror, LightModelOfEveryLightTypeThroughTheLightUniforms)
     ++kinds[light.Kind];
     std::vector<float> pixels;
     const std::string body = "#define LIGHT " + std::to_string(k) + "\n" + LightUniformsBody;
-    ASSERT_TRUE(runner.Run(body,
-      [&](vtkShaderProgram* p) {
-        mmv::SetLightUniforms(p, lights.data(), nullptr, mmv::MaxLights, mmv::MaxLights);
-      },
+    ASSERT_TRUE(runner.Run(
+      body,
+      [&](vtkShaderProgram* p)
+      { mmv::SetLightUniforms(p, lights.data(), nullptr, mmv::MaxLights, mmv::MaxLights); },
       pixels));
     int lit = 0;
     int unlit = 0;
@@ -613,7 +622,8 @@ TEST(ShaderMirror, LightModelOfEveryLightTypeThroughTheLightUniforms)
         // float against double: relative rounding of the falloff and the
         // spot's pow(cos, exponent) (exponent 7.5: ~1e-6), far below any
         // change of the model (a different kind, falloff or cone).
-        ASSERT_NEAR(px[0], cpu, 1e-5 * std::max(1.0, cpu)) << "light " << k << " at " << i << "," << j;
+        ASSERT_NEAR(px[0], cpu, 1e-5 * std::max(1.0, cpu))
+          << "light " << k << " at " << i << "," << j;
         worst = std::max(worst, std::abs(px[0] - cpu) / std::max(1.0, cpu));
         double distance = 0.0;
         const glm::dvec3 l = mmv::mmvDirectionToLight(light, x, distance);
@@ -638,8 +648,7 @@ namespace
 {
 // Materials of the segment-shading test: (ka, kd, ks, ke) and (g, r, e).
 const glm::dvec4 Phong[6] = { { 0.2, 0.7, 0.2, 20.0 }, { 0.0, 0.5, 0.9, 120.0 },
-  { 1.0, 0.0, 0.0, 0.0 }, { 0.3, 0.3, 0.6, 5.0 }, { 0.1, 0.9, 0.4, 60.0 },
-  { 0.5, 0.2, 0.0, 1.0 } };
+  { 1.0, 0.0, 0.0, 0.0 }, { 0.3, 0.3, 0.6, 5.0 }, { 0.1, 0.9, 0.4, 60.0 }, { 0.5, 0.2, 0.0, 1.0 } };
 const glm::dvec3 Optics[6] = { { 0.0, 0.0, 0.0 }, { 0.6, 0.5, 0.0 }, { -0.5, 0.0, 2.0 },
   { 0.9, 1.0, 0.3 }, { -0.9, 0.2, 0.0 }, { 0.3, 0.0, 0.7 } };
 
@@ -663,9 +672,9 @@ SegmentInputs PixelInputs(int i, int j)
   in.Material = i % 6;
   const double theta = M_PI * (j + 0.5) / Size;
   const double phi = 2.0 * M_PI * (i + 0.5) / Size;
-  in.N = j % 7 == 0 ? glm::dvec3(0.0)
-                    : glm::dvec3(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
-                        std::cos(theta));
+  in.N = j % 7 == 0
+    ? glm::dvec3(0.0)
+    : glm::dvec3(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
   in.V = glm::normalize(glm::dvec3(0.3, -0.2, 1.0));
   in.Directional = (j % 5) / 4.0;
   in.Position = PixelPoint(i, j);
@@ -749,8 +758,10 @@ TEST(ShaderMirror, SegmentShadingMatchesTheReferenceRenderersFunction)
   for (int count : { 0, 3, mmv::MaxLights })
   {
     std::vector<float> pixels;
-    ASSERT_TRUE(runner.Run(body,
-      [&](vtkShaderProgram* p) {
+    ASSERT_TRUE(runner.Run(
+      body,
+      [&](vtkShaderProgram* p)
+      {
         p->SetUniform4fv("phong", 6, phong);
         p->SetUniform3fv("optics", 6, optics);
         mmv::SetLightUniforms(p, lights.data(), radiance.data(), count, count);
@@ -775,9 +786,9 @@ TEST(ShaderMirror, SegmentShadingMatchesTheReferenceRenderersFunction)
         {
           arriving[k] = radiance[k] * in.Tint[k];
         }
-        const glm::dvec3 cpu = mmv::mmvShadeSample(Phong[in.Material], optic.x, optic.y,
-          optic.z, in.Segment, in.Position, in.N, in.V, in.Directional, lights.data(),
-          arriving, in.Irradiance, count, in.Environment);
+        const glm::dvec3 cpu = mmv::mmvShadeSample(Phong[in.Material], optic.x, optic.y, optic.z,
+          in.Segment, in.Position, in.N, in.V, in.Directional, lights.data(), arriving,
+          in.Irradiance, count, in.Environment);
         for (int c = 0; c < 3; ++c)
         {
           // float against double: the inputs' own rounding (~1e-7), pow() of
@@ -790,8 +801,8 @@ TEST(ShaderMirror, SegmentShadingMatchesTheReferenceRenderersFunction)
           largest = std::max(largest, cpu[c]);
           worst = std::max(worst, std::abs(px[c] - cpu[c]) / std::max(1.0, std::abs(cpu[c])));
         }
-        reflecting += Optics[in.Material].y > 0.0 && in.Directional > 0.0 &&
-            glm::length(in.N) > 0.0 ? 1 : 0;
+        reflecting +=
+          Optics[in.Material].y > 0.0 && in.Directional > 0.0 && glm::length(in.N) > 0.0 ? 1 : 0;
       }
     }
     std::cout << count << " lights: largest |GPU - CPU| / max(1, CPU) " << worst << "\n";
@@ -841,15 +852,16 @@ TEST(ShaderMirror, MaterialTexturePackingMatchesTheGeneratedTexelNames)
     }
     // (ka, kd, ks, ke) are read as one texel, the vec4 mmvBlinnPhong takes.
     const std::string row = texel.Row == mmv::BlinnPhongRow ? "MMV_BLINN_PHONG_ROW" : name + "_ROW";
-    const std::string channel = texel.Row == mmv::BlinnPhongRow
-      ? std::to_string(p - mmv::Ambient)
-      : name + "_CHANNEL";
+    const std::string channel =
+      texel.Row == mmv::BlinnPhongRow ? std::to_string(p - mmv::Ambient) : name + "_CHANNEL";
     const std::string body = "#define PARAMETER_ROW " + row + "\n#define PARAMETER_CHANNEL " +
       channel + "\n" + MaterialTexelBody;
     ++read;
     std::vector<float> pixels;
-    ASSERT_TRUE(runner.Run(body,
-      [&](vtkShaderProgram* program) {
+    ASSERT_TRUE(runner.Run(
+      body,
+      [&](vtkShaderProgram* program)
+      {
         textures->GetMaterialTexture()->Activate();
         program->SetUniformi("material", textures->GetMaterialTexture()->GetTextureUnit());
       },
@@ -906,7 +918,8 @@ TEST(ShaderMirror, DiffusionFaceStrengthMatchesCPU)
   std::vector<float> pixels;
   const std::string body =
     "#define SIZE " + std::to_string(Size) + "\n" + harmonicMean + HarmonicMeanBody;
-  ASSERT_TRUE(runner.Run(body, [](vtkShaderProgram*) {}, pixels));
+  ASSERT_TRUE(runner.Run(
+    body, [](vtkShaderProgram*) {}, pixels));
   int blocked = 0;
   for (int j = 0; j < Size; ++j)
   {

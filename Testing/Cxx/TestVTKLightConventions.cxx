@@ -51,11 +51,13 @@ const double Center[3] = { 20.0, 20.0, 20.0 };
 /// smooth radial gradient gives well-defined normals.
 vtkSmartPointer<vtkImageData> Ball()
 {
-  return mmvtest::MakeVolume(Dims, [](int i, int j, int k) {
-    const double r = std::sqrt((i - Center[0]) * (i - Center[0]) +
-      (j - Center[1]) * (j - Center[1]) + (k - Center[2]) * (k - Center[2]));
-    return static_cast<float>(std::max(0.0, 16.0 - r));
-  });
+  return mmvtest::MakeVolume(Dims,
+    [](int i, int j, int k)
+    {
+      const double r = std::sqrt((i - Center[0]) * (i - Center[0]) +
+        (j - Center[1]) * (j - Center[1]) + (k - Center[2]) * (k - Center[2]));
+      return static_cast<float>(std::max(0.0, 16.0 - r));
+    });
 }
 
 /// The surface share (mmv::mmvSurfaceShare) of the ball's shell: its value
@@ -68,8 +70,8 @@ double ShellSurfaceShare()
 /// Differences over a set of pixels, in 8-bit levels.
 struct Difference
 {
-  double Mean = 0.0;      // mean |difference| (over pixels and channels)
-  double Fraction = 0.0;  // fraction of the pixels off by more than 8 levels
+  double Mean = 0.0;     // mean |difference| (over pixels and channels)
+  double Fraction = 0.0; // fraction of the pixels off by more than 8 levels
   double Max = 0.0;
   double MeanLuminance = 0.0; // VTK's
   int Pixels = 0;
@@ -112,8 +114,8 @@ struct Comparison
 };
 
 /// Renders the ball with `mapper` and lights from `addLights`; RGB bytes.
-std::vector<unsigned char> Render(vtkOpenGLGPUVolumeRayCastMapper* mapper,
-  const std::function<void(vtkRenderer*)>& addLights)
+std::vector<unsigned char> Render(
+  vtkOpenGLGPUVolumeRayCastMapper* mapper, const std::function<void(vtkRenderer*)>& addLights)
 {
   mmvtest::Scene scene(ImageSize);
   auto image = Ball();
@@ -145,8 +147,8 @@ std::vector<unsigned char> Render(vtkOpenGLGPUVolumeRayCastMapper* mapper,
 
 /// With MMV_WRITE_IMAGES set, writes ours, VTK's and their difference (x4)
 /// side by side to <name>.png in the working directory, to look at.
-void WriteImages(const std::string& name, const std::vector<unsigned char>& a,
-  const std::vector<unsigned char>& b)
+void WriteImages(
+  const std::string& name, const std::vector<unsigned char>& a, const std::vector<unsigned char>& b)
 {
   if (!std::getenv("MMV_WRITE_IMAGES"))
   {
@@ -242,8 +244,8 @@ vtkLight* AddLight(vtkRenderer* ren, const double position[3], const double foca
 // shader turns normals toward the viewer (eq. 16's two-sided rule) and VTK
 // does not, and the two gradient estimates differ most; there the mean stays
 // below 3 levels and at most 12 % of the pixels are off by more than 8.
-void ExpectMatch(const Comparison& c, double minimumLuminance, double allMean = 3.0,
-  double allFraction = 0.12)
+void ExpectMatch(
+  const Comparison& c, double minimumLuminance, double allMean = 3.0, double allFraction = 0.12)
 {
   EXPECT_GT(c.Inner.Pixels, 700);
   EXPECT_GT(c.Inner.MeanLuminance, minimumLuminance);
@@ -257,32 +259,38 @@ void ExpectMatch(const Comparison& c, double minimumLuminance, double allMean = 
 
 TEST(VTKLightConventions, HeadlightMatchesVTKPhong)
 {
-  const Comparison d = Compare([](vtkRenderer* ren) {
-    vtkNew<vtkLight> head;
-    head->SetLightTypeToHeadlight();
-    head->SetIntensity(0.9);
-    ren->AddLight(head);
-  });
+  const Comparison d = Compare(
+    [](vtkRenderer* ren)
+    {
+      vtkNew<vtkLight> head;
+      head->SetLightTypeToHeadlight();
+      head->SetIntensity(0.9);
+      ren->AddLight(head);
+    });
   ExpectMatch(d, 60.0);
 }
 
 TEST(VTKLightConventions, DirectionalLightMatchesVTKPhong)
 {
-  const Comparison d = Compare([](vtkRenderer* ren) {
-    const double from[3] = { 60.0, 50.0, 90.0 };
-    AddLight(ren, from, Center, false);
-  });
+  const Comparison d = Compare(
+    [](vtkRenderer* ren)
+    {
+      const double from[3] = { 60.0, 50.0, 90.0 };
+      AddLight(ren, from, Center, false);
+    });
   ExpectMatch(d, 40.0);
 }
 
 TEST(VTKLightConventions, PointLightWithAttenuationMatchesVTKPhong)
 {
-  const Comparison d = Compare([](vtkRenderer* ren) {
-    const double from[3] = { 35.0, 30.0, 60.0 };
-    vtkLight* light = AddLight(ren, from, Center, true, 120.0);
-    light->SetAttenuationValues(0.6, 0.01, 0.0004);
-    light->SetIntensity(1.2);
-  });
+  const Comparison d = Compare(
+    [](vtkRenderer* ren)
+    {
+      const double from[3] = { 35.0, 30.0, 60.0 };
+      vtkLight* light = AddLight(ren, from, Center, true, 120.0);
+      light->SetAttenuationValues(0.6, 0.01, 0.0004);
+      light->SetIntensity(1.2);
+    });
   ExpectMatch(d, 40.0);
 }
 
@@ -290,13 +298,15 @@ TEST(VTKLightConventions, SpotLightWithAttenuationAndExponentMatchesVTKPhong)
 {
   // The whole ball inside a 40-degree cone: VTK's angular falloff cos^6
   // and its attenuation over the ball.
-  const Comparison d = Compare([](vtkRenderer* ren) {
-    const double from[3] = { 30.0, 12.0, 70.0 };
-    vtkLight* light = AddLight(ren, from, Center, true, 40.0);
-    light->SetAttenuationValues(1.0, 0.02, 0.0002);
-    light->SetExponent(6.0);
-    light->SetIntensity(2.0);
-  });
+  const Comparison d = Compare(
+    [](vtkRenderer* ren)
+    {
+      const double from[3] = { 30.0, 12.0, 70.0 };
+      vtkLight* light = AddLight(ren, from, Center, true, 40.0);
+      light->SetAttenuationValues(1.0, 0.02, 0.0002);
+      light->SetExponent(6.0);
+      light->SetIntensity(2.0);
+    });
   ExpectMatch(d, 40.0);
 }
 
@@ -312,7 +322,8 @@ TEST(VTKLightConventions, SpotConeEdgeMatchesVTKPhong)
   const glm::dvec3 apex(from[0], from[1], from[2]);
   const glm::dvec3 axis = glm::normalize(glm::dvec3(Center[0], Center[1], Center[2]) - apex);
   int band = 0;
-  const PixelFilter nearTheEdge = [&](int x, int y) {
+  const PixelFilter nearTheEdge = [&](int x, int y)
+  {
     // The front shell (r = 11) seen at pixel (x, y) of the parallel camera.
     const double u = (x + 0.5 - 0.5 * ImageSize) * pixelSize;
     const double v = (y + 0.5 - 0.5 * ImageSize) * pixelSize;
@@ -325,7 +336,8 @@ TEST(VTKLightConventions, SpotConeEdgeMatchesVTKPhong)
     return near;
   };
   const Comparison d = Compare(
-    [&](vtkRenderer* ren) {
+    [&](vtkRenderer* ren)
+    {
       vtkLight* light = AddLight(ren, from, Center, true, cone);
       light->SetAttenuationValues(1.0, 0.0, 0.0001);
       light->SetExponent(2.0);
@@ -344,7 +356,8 @@ TEST(VTKLightConventions, ComparisonSeesTheEquation12Falloff)
   // d ~ 30-45 here) must differ from VTK's attenuation by far more than the
   // thresholds: the comparison is sensitive to the falloff.
   const Comparison d = Compare(
-    [](vtkRenderer* ren) {
+    [](vtkRenderer* ren)
+    {
       const double from[3] = { 35.0, 30.0, 60.0 };
       vtkLight* light = AddLight(ren, from, Center, true, 120.0);
       light->SetAttenuationValues(0.6, 0.01, 0.0004);

@@ -34,7 +34,8 @@ TEST(ValueGradient, LinearRampIsExactInsideAndHalfOnTheFaces)
     for (int j = 0; j < dims[1]; ++j)
       for (int i = 0; i < dims[0]; ++i)
       {
-        scalars->SetValue(Index(dims, i, j, k), static_cast<unsigned short>(3 * i + 5 * j - 2 * k + 100));
+        scalars->SetValue(
+          Index(dims, i, j, k), static_cast<unsigned short>(3 * i + 5 * j - 2 * k + 100));
       }
   const double range[2] = { 0.0, 1000.0 };
   std::vector<float> g;

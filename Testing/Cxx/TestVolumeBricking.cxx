@@ -152,7 +152,8 @@ TEST(VolumeBricking, PartitionsInClosedForm)
   ASSERT_TRUE(mmv::LimitBrickBytes(cube, 4.0, 64.0 * 1024 * 1024, parts));
   EXPECT_GE(parts[0] * parts[1] * parts[2], 16);
   EXPECT_LE(parts[0] * parts[1] * parts[2], 32);
-  EXPECT_LE(std::max({ parts[0], parts[1], parts[2] }) - std::min({ parts[0], parts[1], parts[2] }), 1);
+  EXPECT_LE(
+    std::max({ parts[0], parts[1], parts[2] }) - std::min({ parts[0], parts[1], parts[2] }), 1);
   // Nothing fits a budget below one 2 x 2 x 2 brick.
   ASSERT_TRUE(mmv::ChooseBrickPartitions(cube, 2048, none, parts));
   EXPECT_FALSE(mmv::LimitBrickBytes(cube, 4.0, 16.0, parts));
@@ -288,16 +289,18 @@ Shaded RenderPlateAndFloor(
   int px, int py, int pz, vtkImageData* input = nullptr, double maxBrickMB = 0.0)
 {
   auto volume = mmvtest::MakeVolume(33, PlateAndFloor);
-  return RenderPlateAndFloorWith(input ? input : volume.Get(), [&](vtkMultiMaterialVolumeMapper* m) {
-    if (maxBrickMB > 0.0)
+  return RenderPlateAndFloorWith(input ? input : volume.Get(),
+    [&](vtkMultiMaterialVolumeMapper* m)
     {
-      m->SetMaxBrickMB(maxBrickMB);
-    }
-    if (px * py * pz > 1)
-    {
-      m->SetPartitions(px, py, pz);
-    }
-  });
+      if (maxBrickMB > 0.0)
+      {
+        m->SetMaxBrickMB(maxBrickMB);
+      }
+      if (px * py * pz > 1)
+      {
+        m->SetPartitions(px, py, pz);
+      }
+    });
 }
 } // namespace
 
@@ -330,7 +333,8 @@ TEST(VolumeBricking, BrickBudgetBricksLargeTextures)
   values->SetNumberOfTuples(65 * 65 * 65);
   for (vtkIdType id = 0; id < values->GetNumberOfTuples(); ++id)
   {
-    values->SetValue(id, PlateAndFloor(int(id % 65) / 2, int((id / 65) % 65) / 2, int(id / 4225) / 2));
+    values->SetValue(
+      id, PlateAndFloor(int(id % 65) / 2, int((id / 65) % 65) / 2, int(id / 4225) / 2));
   }
   volume->GetPointData()->SetScalars(values);
   const Shaded whole = RenderPlateAndFloor(1, 1, 1, volume);
@@ -368,14 +372,17 @@ TEST(VolumeBricking, TintedShadowsFromTheGlobalVolumeEqualTheWholeVolumes)
   auto volume = mmvtest::MakeVolume(33, PlateAndFloor);
   vtkSmartPointer<vtkGlobalPrefilteredVolume> global = GlobalVolumeOf(volume);
   ASSERT_TRUE(global->GetValid());
-  auto tinted = [&](vtkGlobalPrefilteredVolume* g) {
-    return RenderPlateAndFloorWith(volume, [&](vtkMultiMaterialVolumeMapper* m) {
-      m->SetIrradianceScale(1.0);
-      m->GetMaterialTransferFunction()->RemoveAllNodes();
-      m->GetMaterialTransferFunction()->AddNode(
-        50.0, 0.2, 0.7, 0.3, 20.0, 1.0, 0.3, 0.0, 0.0, 0.0, 1.0, 0.6, 0.3);
-      m->SetGlobalPrefilteredVolume(g);
-    });
+  auto tinted = [&](vtkGlobalPrefilteredVolume* g)
+  {
+    return RenderPlateAndFloorWith(volume,
+      [&](vtkMultiMaterialVolumeMapper* m)
+      {
+        m->SetIrradianceScale(1.0);
+        m->GetMaterialTransferFunction()->RemoveAllNodes();
+        m->GetMaterialTransferFunction()->AddNode(
+          50.0, 0.2, 0.7, 0.3, 20.0, 1.0, 0.3, 0.0, 0.0, 0.0, 1.0, 0.6, 0.3);
+        m->SetGlobalPrefilteredVolume(g);
+      });
   };
   const Shaded alone = tinted(nullptr);
   const Shaded lit = tinted(global);
@@ -393,10 +400,12 @@ TEST(VolumeBricking, TintedShadowsFromTheGlobalVolumeEqualTheWholeVolumes)
   }
   EXPECT_EQ(differing, 0);
   // The tint shows: red (T = 1) is left, blue (T = 0.3) dimmed in the shadow.
-  const Shaded grey = RenderPlateAndFloorWith(volume, [&](vtkMultiMaterialVolumeMapper* m) {
-    m->SetIrradianceScale(1.0);
-    m->SetGlobalPrefilteredVolume(global);
-  });
+  const Shaded grey = RenderPlateAndFloorWith(volume,
+    [&](vtkMultiMaterialVolumeMapper* m)
+    {
+      m->SetIrradianceScale(1.0);
+      m->SetGlobalPrefilteredVolume(global);
+    });
   double redShift = 0.0;
   double blueShift = 0.0;
   for (size_t i = 0; i + 2 < lit.Pixels.size(); i += 3)
@@ -404,8 +413,8 @@ TEST(VolumeBricking, TintedShadowsFromTheGlobalVolumeEqualTheWholeVolumes)
     redShift += int(lit.Pixels[i]) - int(grey.Pixels[i]);
     blueShift += int(lit.Pixels[i + 2]) - int(grey.Pixels[i + 2]);
   }
-  std::cout << "tinted minus grey, summed over the image: red " << redShift << ", blue " << blueShift
-            << std::endl;
+  std::cout << "tinted minus grey, summed over the image: red " << redShift << ", blue "
+            << blueShift << std::endl;
   EXPECT_LT(blueShift, redShift - 1000.0);
 }
 
@@ -416,7 +425,8 @@ TEST(VolumeBricking, PieceLitFromTheGlobalVolumeShowsTheOtherPiecesShadow)
   // combines them. The floor's piece alone, lit from the global volume, must
   // show the plate's shadow as the whole volume cropped to that piece does.
   auto whole = mmvtest::MakeVolume(33, PlateAndFloor);
-  auto piece = [&](int y0, int y1) {
+  auto piece = [&](int y0, int y1)
+  {
     auto p = vtkSmartPointer<vtkImageData>::New();
     p->SetExtent(0, 32, y0, y1, 0, 32);
     vtkNew<vtkFloatArray> values;
@@ -440,11 +450,14 @@ TEST(VolumeBricking, PieceLitFromTheGlobalVolumeShowsTheOtherPiecesShadow)
   vtkNew<vtkGlobalPrefilteredVolume> global;
   ASSERT_TRUE(mmvtest::CombinePieces({ floorPiece, platePiece }, global));
 
-  auto render = [&](vtkImageData* input, vtkGlobalPrefilteredVolume* g) {
-    const Shaded shaded = RenderPlateAndFloorWith(input, [&](vtkMultiMaterialVolumeMapper* m) {
-      m->SetIrradianceScale(1.0);
-      m->SetGlobalPrefilteredVolume(g);
-    });
+  auto render = [&](vtkImageData* input, vtkGlobalPrefilteredVolume* g)
+  {
+    const Shaded shaded = RenderPlateAndFloorWith(input,
+      [&](vtkMultiMaterialVolumeMapper* m)
+      {
+        m->SetIrradianceScale(1.0);
+        m->SetGlobalPrefilteredVolume(g);
+      });
     EXPECT_TRUE(shaded.Active);
     return shaded.Pixels;
   };

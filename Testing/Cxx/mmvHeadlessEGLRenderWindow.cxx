@@ -1,10 +1,10 @@
 #include "mmvHeadlessEGLRenderWindow.h"
 
 #include "vtkObjectFactory.h"
-#include "vtk_glew.h"
 #include "vtkOpenGLState.h"
 #include "vtkRenderer.h"
 #include "vtkRendererCollection.h"
+#include "vtk_glew.h"
 
 #include <EGL/egl.h>
 #include <EGL/eglext.h>

@@ -56,12 +56,18 @@ inline glm::dvec3 CubeFaceDirection(int face, double s, double t)
   const double tc = 2.0 * t - 1.0;
   switch (face)
   {
-    case 0: return glm::dvec3(1.0, -tc, -sc);
-    case 1: return glm::dvec3(-1.0, -tc, sc);
-    case 2: return glm::dvec3(sc, 1.0, tc);
-    case 3: return glm::dvec3(sc, -1.0, -tc);
-    case 4: return glm::dvec3(sc, -tc, 1.0);
-    default: return glm::dvec3(-sc, -tc, -1.0);
+    case 0:
+      return glm::dvec3(1.0, -tc, -sc);
+    case 1:
+      return glm::dvec3(-1.0, -tc, sc);
+    case 2:
+      return glm::dvec3(sc, 1.0, tc);
+    case 3:
+      return glm::dvec3(sc, -1.0, -tc);
+    case 4:
+      return glm::dvec3(sc, -tc, 1.0);
+    default:
+      return glm::dvec3(-sc, -tc, -1.0);
   }
 }
 
@@ -74,9 +80,9 @@ inline vtkSmartPointer<vtkTexture> MakeCubeMap(const Colour& colour, int size = 
   texture->InterpolateOff();
   for (int face = 0; face < 6; ++face)
   {
-    texture->SetInputData(face, MakeImage(size, size, [&](double s, double t) {
-      return colour(CubeFaceDirection(face, s, t));
-    }));
+    texture->SetInputData(face,
+      MakeImage(
+        size, size, [&](double s, double t) { return colour(CubeFaceDirection(face, s, t)); }));
   }
   return texture;
 }
@@ -87,12 +93,14 @@ inline vtkSmartPointer<vtkTexture> MakeEquirectangular(const Colour& colour, int
   auto texture = vtkSmartPointer<vtkTexture>::New();
   texture->InterpolateOff();
   const double pi = 3.14159265358979323846;
-  texture->SetInputData(MakeImage(width, width / 2, [&](double u, double v) {
-    const double longitude = (u - 0.5) * 2.0 * pi;
-    const double latitude = (v - 0.5) * pi;
-    return colour(glm::dvec3(std::cos(latitude) * std::sin(longitude), std::sin(latitude),
-      std::cos(latitude) * std::cos(longitude)));
-  }));
+  texture->SetInputData(MakeImage(width, width / 2,
+    [&](double u, double v)
+    {
+      const double longitude = (u - 0.5) * 2.0 * pi;
+      const double latitude = (v - 0.5) * pi;
+      return colour(glm::dvec3(std::cos(latitude) * std::sin(longitude), std::sin(latitude),
+        std::cos(latitude) * std::cos(longitude)));
+    }));
   return texture;
 }
 }

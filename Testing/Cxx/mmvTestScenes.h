@@ -5,6 +5,7 @@
 #ifndef mmvTestScenes_h
 #define mmvTestScenes_h
 
+#include "mmvTestWindow.h"
 #include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
 #include "vtkFloatArray.h"
@@ -14,7 +15,6 @@
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
 #include "vtkRenderWindow.h"
-#include "mmvTestWindow.h"
 #include "vtkRenderer.h"
 #include "vtkSmartPointer.h"
 #include "vtkUnsignedCharArray.h"

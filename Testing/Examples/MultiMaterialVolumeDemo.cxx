@@ -5,6 +5,7 @@
 //
 // vtkMultiMaterialVolumeMapper shades skin and bone with their own materials,
 // shadows from both lights and multiple scattering in the skin.
+#include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
@@ -17,7 +18,6 @@
 #include "vtkPointData.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
-#include "vtkCamera.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
 #include "vtkWindowToImageFilter.h"

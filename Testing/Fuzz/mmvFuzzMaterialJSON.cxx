@@ -15,7 +15,8 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
 {
-  static const bool quiet = [] {
+  static const bool quiet = []
+  {
     vtkObject::GlobalWarningDisplayOff(); // rejected input is the common case
     return true;
   }();
