@@ -54,6 +54,7 @@
 #include "vtkMultiMaterialCutaway.h" // mmv::Cutaway
 #endif
 #include "vtkMultiMaterialParameters.h"          // ShadowEstimation
+#include "vtkMultiMaterialSettings.h"            // the shared defaults
 #include "vtkMultiMaterialVolumeFiltersModule.h" // export macro
 #include "vtkSmartPointer.h"                     // InputScalars
 
@@ -218,14 +219,15 @@ protected:
   // IrradianceDimensions for this input, the lights and the scale or budget.
   void UpdateIrradianceDimensions(vtkImageData* input);
   double ScalarOpacityUnitDistance = 1.0;
-  double IrradianceScale = 0.0;
-  double IrradianceMemoryMB = mmv::DefaultIrradianceBudgetMB;
-  double PointLightRadius = 0.0;
+  // The settings it shares with the mapper start at the mapper's defaults.
+  double IrradianceScale = mmv::DefaultIlluminationSettings.IrradianceScale;
+  double IrradianceMemoryMB = mmv::DefaultIlluminationSettings.IrradianceMemoryMB;
+  double PointLightRadius = mmv::DefaultIlluminationSettings.PointLightRadius;
   double ShadowStepScale = 1.0;
-  int ShadowEstimation = mmv::PiecewiseShadowRays;
-  int PiecewiseShadowSlices = mmv::DefaultPiecewiseShadowSlices;
-  bool MultipleScattering = true;
-  bool ExponentialDiffusion = mmv::DefaultExponentialDiffusion;
+  int ShadowEstimation = mmv::DefaultIlluminationSettings.ShadowEstimation;
+  int PiecewiseShadowSlices = mmv::DefaultIlluminationSettings.PiecewiseShadowSlices;
+  bool MultipleScattering = mmv::DefaultIlluminationSettings.MultipleScattering;
+  bool ExponentialDiffusion = mmv::DefaultIlluminationSettings.ExponentialDiffusion;
   bool FillEmptyNeighbors = true;
   int TintResolutionDivisor = mmv::TintResolutionDivisor;
   // Some material node has a non-white transmission colour: the budget

@@ -60,6 +60,7 @@
 #include "vtkMultiMaterialLightModel.h" // LightSource
 #endif
 #include "vtkMultiMaterialParameters.h"   // ShadowEstimation
+#include "vtkMultiMaterialSettings.h"     // the shared defaults
 #include "vtkMultiMaterialVolumeModule.h" // export macro
 #include "vtkObject.h"
 
@@ -346,17 +347,18 @@ protected:
   vtkIrradianceEstimator();
   ~vtkIrradianceEstimator() override;
 
-  bool MultipleScattering = true;
+  // The settings it shares with the mapper start at the mapper's defaults.
+  bool MultipleScattering = mmv::DefaultIlluminationSettings.MultipleScattering;
   double DiffusionTime = 1.0;
-  bool ExponentialDiffusion = mmv::DefaultExponentialDiffusion;
+  bool ExponentialDiffusion = mmv::DefaultIlluminationSettings.ExponentialDiffusion;
   bool LayeredRendering = true;
   int ComputeShaders = ComputeUnlessSoftware;
   bool ComputeShadersUsed = false;
   bool SkipEmptyVoxels = true;
   bool KeepScratch = true;
-  int ShadowEstimation = mmv::PiecewiseShadowRays;
-  int PiecewiseShadowSlices = mmv::DefaultPiecewiseShadowSlices;
-  double LightDirectionTolerance = 0.0;
+  int ShadowEstimation = mmv::DefaultIlluminationSettings.ShadowEstimation;
+  int PiecewiseShadowSlices = mmv::DefaultIlluminationSettings.PiecewiseShadowSlices;
+  double LightDirectionTolerance = mmv::DefaultIlluminationSettings.LightDirectionTolerance;
   vtkIdType NumberOfComputedVoxels = 0;
   int DiffusionPasses = 0;
   int NumberOfUpdatedLights = 0;
