@@ -9,7 +9,11 @@ must warn, draw nothing and not crash.
 
 Under `mpiexec -np N pvbatch` (--mpi-reference), -np 1 writes a reference
 image of the AMR and every N > 1 must reproduce it (PSNR >= 40 dB): each
-rank resamples its blocks into its piece of one image (vtkPResampleToImage)."""
+rank resamples its blocks into its piece of one image (vtkPResampleToImage).
+
+With --server-port N (run_client_server.py) the same checks run connected
+to a pvserver that renders (remote rendering): the representation, its
+resampling and its information properties live on the server."""
 
 import argparse
 import math
@@ -25,11 +29,23 @@ import mmv_testing as mmv
 args = mmv.parse_args()
 parser = argparse.ArgumentParser()
 parser.add_argument("--mpi-reference", action="store_true")
+parser.add_argument("--server-port", type=int)
 options, _ = parser.parse_known_args()
+if options.server_port:
+    simple.Connect("localhost", options.server_port)
+    # The server renders for any data size.
+    simple.GetSettingsProxy("RenderViewSettings").RemoteRenderThreshold = 0
 mmv.load_plugin(args)
 checker = mmv.Checker()
 errors = mmv.ErrorCapture()
-ranks = servermanager.vtkProcessModule.GetProcessModule().GetNumberOfLocalPartitions()
+# Client/server images are kept apart from the builtin session's.
+TAG = "cs" if options.server_port else ""
+if options.server_port:
+    connection = servermanager.ActiveConnection
+    checker.check(connection.IsRemote(), "connected to a pvserver")
+    ranks = connection.GetNumberOfDataPartitions()
+else:
+    ranks = servermanager.vtkProcessModule.GetProcessModule().GetNumberOfLocalPartitions()
 DIMS = [40, 40, 40]
 ARRAY = "Gaussian-Pulse"
 CENTRE = [-0.75, -0.75, 1.25]
@@ -88,7 +104,7 @@ checker.check(mmv.REPRESENTATION in available,
               "AMR is offered %s: %s" % (mmv.REPRESENTATION, available))
 checker.check(shown.Representation == mmv.REPRESENTATION,
               "the AMR display shows %s: %s" % (mmv.REPRESENTATION, shown.Representation))
-image = mmv.render_image(view, os.path.join(args.temp_dir, "PVAMR_%d.png" % ranks))
+image = mmv.render_image(view, os.path.join(args.temp_dir, "PVAMR_%s%d.png" % (TAG, ranks)))
 checker.check(mmv.info(shown, "MultiMaterialActive") == 1, "the AMR is shaded with materials")
 checker.check(mmv.check_not_blank(image, "AMR"), "the AMR is drawn")
 info = mmv.info(shown, "ResampleInfo")
@@ -96,7 +112,7 @@ print("AMR: %s" % info)
 checker.check("(3 blocks in 2 levels, 605 cells) resampled to 40x40x40 points in" in info,
               "the resampling is reported: %r" % info)
 # A render with no change resamples nothing: the report stays the same.
-mmv.render_image(view, os.path.join(args.temp_dir, "PVAMRAgain_%d.png" % ranks))
+mmv.render_image(view, os.path.join(args.temp_dir, "PVAMRAgain_%s%d.png" % (TAG, ranks)))
 checker.check(mmv.info(shown, "ResampleInfo") == info,
               "a second render does not resample again")
 simple.Hide(pulse, view)
@@ -105,7 +121,7 @@ by_hand = simple.ResampleToImage(Input=pulse)
 by_hand.SamplingDimensions = DIMS
 by_hand.UseInputBounds = 1
 manual = show(by_hand, "POINTS")
-reference = mmv.render_image(view, os.path.join(args.temp_dir, "PVAMRByHand_%d.png" % ranks))
+reference = mmv.render_image(view, os.path.join(args.temp_dir, "PVAMRByHand_%s%d.png" % (TAG, ranks)))
 value = psnr(image, reference)
 checker.check(value >= 40.0, "AMR vs ResampleToImage by hand: PSNR %.1f dB" % value)
 simple.Hide(by_hand, view)
@@ -113,7 +129,7 @@ simple.Hide(by_hand, view)
 # Other SamplingDimensions resample again (and change the image).
 shown = simple.Show(pulse, view)
 shown.SamplingDimensions = [12, 12, 12]
-coarse = mmv.render_image(view, os.path.join(args.temp_dir, "PVAMRCoarse_%d.png" % ranks))
+coarse = mmv.render_image(view, os.path.join(args.temp_dir, "PVAMRCoarse_%s%d.png" % (TAG, ranks)))
 info = mmv.info(shown, "ResampleInfo")
 checker.check("resampled to 12x12x12 points" in info,
               "new SamplingDimensions resample again: %r" % info)
@@ -164,7 +180,7 @@ def selected_blocks(keep):
 # (the whole box at twice the spacing) draws another image.
 coarse_only = selected_blocks("level == 0")
 shown = show(coarse_only, "CELLS", DIMS)
-level0 = mmv.render_image(view, os.path.join(args.temp_dir, "PVAMRLevel0_%d.png" % ranks))
+level0 = mmv.render_image(view, os.path.join(args.temp_dir, "PVAMRLevel0_%s%d.png" % (TAG, ranks)))
 value = psnr(image, level0)
 checker.check(value < 40.0, "level 0 alone draws another image than both levels: PSNR %.1f dB"
               % value)
