@@ -621,8 +621,8 @@ bool vtkIrradianceEstimator::ReadBackClasses(
 void vtkIrradianceEstimator::ClassifyOnCPU(std::vector<float>& classes) const
 {
   const vtkInternals& internals = *this->Internals;
-  vtkInternals::ClassifyValues(
-    internals.Scalars, internals.OpacityTable, internals.ScatteringTable, classes);
+  vtkInternals::ClassifyValues(internals.Scalars, internals.Grid.Dimensions, internals.OpacityTable,
+    internals.ScatteringTable, classes);
 }
 
 bool vtkIrradianceEstimator::GetClassifiedOnCPU() const

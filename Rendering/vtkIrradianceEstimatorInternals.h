@@ -60,6 +60,15 @@ constexpr int LightsPerTexture = mmv::IrradianceLightsPerTexture;
 /// sub-steps too saves sweeps but costs more in waiting than it saves.)
 constexpr int ResidualCheckMinimumSweeps = 12;
 
+/// The class of an empty voxel (Shaders/mmvClassifyFS.glsl writes the same):
+/// -1 - m, m the bits of its non-empty face neighbours (bit 2 a: the one
+/// below on axis a, 2 a + 1: above). Negative, so every pass that asks
+/// "empty?" reads them alike; the final write averages the neighbours m names.
+inline float EmptyVoxelClass(int neighbors)
+{
+  return -1.0f - static_cast<float>(neighbors);
+}
+
 /// Linear interpolation of an n-entry table over the normalised range, as a
 /// bilinear texture lookup at (x + 0.5) / n would do it.
 inline float LookupTable(const std::vector<float>& table, float t)
@@ -414,9 +423,10 @@ public:
   /// The CPU's classification of the current inputs into Classes and
   /// NonEmptyVoxels.
   void Classify();
-  /// The classes of `scalars` from the tables (s, -1 where empty); returns
-  /// the non-empty voxels.
-  static vtkIdType ClassifyValues(const std::vector<float>& scalars,
+  /// The classes of `scalars` on a grid of `dims` from the tables: s where
+  /// the voxel is non-empty, EmptyVoxelClass where it is empty. Returns the
+  /// non-empty voxels.
+  static vtkIdType ClassifyValues(const std::vector<float>& scalars, const int dims[3],
     const std::vector<float>& opacity, const std::vector<float>& scattering,
     std::vector<float>& classes);
   /// Whether the diffusion plan needs the classes on the CPU.

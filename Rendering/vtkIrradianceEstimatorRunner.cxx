@@ -19,10 +19,11 @@ using namespace mmv::voxelpass;
 
 //------------------------------------------------------------------------------
 vtkIdType vtkIrradianceEstimator::vtkInternals::ClassifyValues(const std::vector<float>& scalars,
-  const std::vector<float>& opacity, const std::vector<float>& scattering,
+  const int dims[3], const std::vector<float>& opacity, const std::vector<float>& scattering,
   std::vector<float>& classes)
 {
   classes.resize(scalars.size());
+  std::vector<unsigned char> nonEmptyVoxel(scalars.size());
   // On all cores: the whole grid at every opacity edit that needs it.
   std::atomic<vtkIdType> nonEmptyVoxels(0);
   vtkSMPTools::For(0, static_cast<vtkIdType>(scalars.size()),
@@ -32,18 +33,43 @@ vtkIdType vtkIrradianceEstimator::vtkInternals::ClassifyValues(const std::vector
       for (vtkIdType v = begin; v < end; ++v)
       {
         const bool nonEmpty = LookupTable(opacity, scalars[v]) > 0.0f;
-        classes[v] = nonEmpty ? std::max(0.0f, LookupTable(scattering, scalars[v])) : -1.0f;
+        classes[v] =
+          nonEmpty ? std::max(0.0f, LookupTable(scattering, scalars[v])) : EmptyVoxelClass(0);
+        nonEmptyVoxel[v] = nonEmpty ? 1 : 0;
         count += nonEmpty ? 1 : 0;
       }
       nonEmptyVoxels += count;
+    });
+  // Empty voxels name their non-empty face neighbours, which the final write averages.
+  const vtkIdType nx = dims[0];
+  const vtkIdType nxy = nx * dims[1];
+  vtkSMPTools::For(0, static_cast<vtkIdType>(scalars.size()),
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      for (vtkIdType v = begin; v < end; ++v)
+      {
+        if (nonEmptyVoxel[v])
+        {
+          continue;
+        }
+        const vtkIdType ijk[3] = { v % nx, (v / nx) % dims[1], v / nxy };
+        const vtkIdType step[3] = { 1, nx, nxy };
+        int neighbors = 0;
+        for (int a = 0; a < 3; ++a)
+        {
+          neighbors |= (ijk[a] > 0 && nonEmptyVoxel[v - step[a]]) ? 1 << (2 * a) : 0;
+          neighbors |= (ijk[a] + 1 < dims[a] && nonEmptyVoxel[v + step[a]]) ? 2 << (2 * a) : 0;
+        }
+        classes[v] = EmptyVoxelClass(neighbors);
+      }
     });
   return nonEmptyVoxels;
 }
 
 void vtkIrradianceEstimator::vtkInternals::Classify()
 {
-  this->NonEmptyVoxels =
-    ClassifyValues(this->Scalars, this->OpacityTable, this->ScatteringTable, this->Classes);
+  this->NonEmptyVoxels = ClassifyValues(
+    this->Scalars, this->Grid.Dimensions, this->OpacityTable, this->ScatteringTable, this->Classes);
   this->ClassesOnCPU = true;
 }
 

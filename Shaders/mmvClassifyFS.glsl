@@ -1,6 +1,9 @@
 // The class of every irradiance voxel, on the GPU: s (>= 0) where the
-// opacity table is positive at the voxel's pre-filtered value, -1 where it is
-// empty. The same arithmetic as the CPU's mmv::voxelpass::LookupTable (a
+// opacity table is positive at the voxel's pre-filtered value; where it is
+// empty, -1 - m, m the bits of its non-empty face neighbours (bit 2 a for
+// the one below on axis a, 2 a + 1 above), which the final write averages
+// (mmv::EmptyVoxelClass in vtkIrradianceEstimatorInternals.h). The same arithmetic
+// as the CPU's mmv::voxelpass::LookupTable (a
 // linear interpolation of TableSize entries over the normalised range), so
 // that an opacity edit uploads the two small tables and not a class volume.
 
@@ -20,9 +23,32 @@ vec2 mmvLookupTables(float t)
   return (1.0 - f) * a + f * b;
 }
 
+bool mmvIsNonEmpty(ivec3 voxel)
+{
+  return mmvLookupTables(texelFetch(classifyScalars, voxel, 0).r).x > 0.0;
+}
+
 void mmvVoxelMain()
 {
   ivec3 voxel = ivec3(floor(texCoord * vec2(dims[0], dims[1])), slice);
   vec2 table = mmvLookupTables(texelFetch(classifyScalars, voxel, 0).r);
-  mmvWrite(vec4(table.x > 0.0 ? max(0.0, table.y) : -1.0));
+  float voxelClass = max(0.0, table.y);
+  if (!(table.x > 0.0))
+  {
+    int neighbors = 0;
+    for (int a = 0; a < 3; ++a)
+    {
+      for (int side = 0; side < 2; ++side)
+      {
+        ivec3 neighbor = voxel;
+        neighbor[a] += 2 * side - 1;
+        if (neighbor[a] >= 0 && neighbor[a] < dims[a] && mmvIsNonEmpty(neighbor))
+        {
+          neighbors |= 1 << (2 * a + side);
+        }
+      }
+    }
+    voxelClass = -1.0 - float(neighbors);
+  }
+  mmvWrite(vec4(voxelClass));
 }

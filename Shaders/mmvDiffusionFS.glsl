@@ -16,7 +16,8 @@
 //
 // With MMV_FILL_PASS defined (the final write): empty voxels bordering
 // non-empty ones take the mean of those neighbours, as the CPU filter's
-// FillEmptyNeighborVoxels() does; the rest is copied.
+// FillEmptyNeighborVoxels() does; the rest is copied. The classification
+// gives each empty voxel the bits of its non-empty neighbours.
 
 uniform sampler3D current; // x of the previous sweep (fill pass: the result)
 uniform sampler3D classes; // s per voxel, < 0 where the voxel is empty
@@ -68,31 +69,28 @@ void mmvVoxelMain()
 {
   ivec3 voxel = ivec3(floor(texCoord * vec2(dims[0], dims[1])), slice);
   vec4 value = texelFetch(current, voxel, 0);
-  if (texelFetch(classes, voxel, 0).r < 0.0)
+  float voxelClass = texelFetch(classes, voxel, 0).r;
+  if (voxelClass < 0.0)
   {
     // Empty voxels hold 0 unless they border non-empty ones (piecewise
-    // shadow rays computed them too: later chunks read them).
-    value = vec4(0.0);
+    // shadow rays computed them too: later chunks read them), which take
+    // their mean. The loop runs over the set bits only: a software
+    // rasterizer executes a branch's body for every fragment, but leaves a
+    // loop once no fragment of the batch has bits left.
+    int neighbors = int(-voxelClass) - 1;
     vec4 sum = vec4(0.0);
     int count = 0;
-    for (int a = 0; a < 3; ++a)
+    for (int bit = 0; neighbors != 0; ++bit, neighbors >>= 1)
     {
-      for (int side = -1; side <= 1; side += 2)
+      if ((neighbors & 1) != 0)
       {
         ivec3 neighbor = voxel;
-        neighbor[a] += side;
-        if (neighbor[a] >= 0 && neighbor[a] < dims[a] &&
-          texelFetch(classes, neighbor, 0).r >= 0.0)
-        {
-          sum += texelFetch(current, neighbor, 0);
-          ++count;
-        }
+        neighbor[bit >> 1] += 2 * (bit & 1) - 1;
+        sum += texelFetch(current, neighbor, 0);
+        ++count;
       }
     }
-    if (count > 0)
-    {
-      value = sum / float(count);
-    }
+    value = count > 0 ? sum / float(count) : vec4(0.0);
   }
   mmvWrite(value);
 }

@@ -1108,6 +1108,41 @@ TEST(IrradianceEstimator, GPUClassesAndNeededPointsMatchTheCPU)
         EXPECT_LT(nonEmpty, static_cast<vtkIdType>(cpu.size()) - 100) << where;
         EXPECT_GE(strengths.size(), 4u) << where;
         EXPECT_EQ(pass->GetNumberOfComputedVoxels(), nonEmpty) << where;
+        // Empty voxels: -1 - m, m the bits of their non-empty face neighbours
+        // (2 a below on axis a, 2 a + 1 above), which the final write
+        // averages; both kinds (m = 0 and m > 0) occur here.
+        vtkIdType border = 0;
+        vtkIdType deep = 0;
+        vtkIdType wrongKind = 0;
+        const int* d = grid.Dimensions;
+        for (int k = 0; k < d[2]; ++k)
+        {
+          for (int j = 0; j < d[1]; ++j)
+          {
+            for (int i = 0; i < d[0]; ++i)
+            {
+              const size_t v = i + static_cast<size_t>(d[0]) * (j + static_cast<size_t>(d[1]) * k);
+              if (cpu[v] >= 0.0f)
+              {
+                continue;
+              }
+              int neighbors = 0;
+              const int ijk[3] = { i, j, k };
+              const size_t step[3] = { 1, static_cast<size_t>(d[0]),
+                static_cast<size_t>(d[0]) * d[1] };
+              for (int a = 0; a < 3; ++a)
+              {
+                neighbors |= (ijk[a] > 0 && cpu[v - step[a]] >= 0.0f) ? 1 << (2 * a) : 0;
+                neighbors |= (ijk[a] + 1 < d[a] && cpu[v + step[a]] >= 0.0f) ? 2 << (2 * a) : 0;
+              }
+              (neighbors != 0 ? border : deep) += 1;
+              wrongKind += cpu[v] != -1.0f - static_cast<float>(neighbors) ? 1 : 0;
+            }
+          }
+        }
+        EXPECT_EQ(wrongKind, 0) << where;
+        EXPECT_GT(border, 10) << where;
+        EXPECT_GT(deep, 10) << where;
 
         std::vector<unsigned char> gpuNeeded;
         std::vector<unsigned char> cpuNeeded;
