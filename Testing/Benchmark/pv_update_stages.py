@@ -1,0 +1,71 @@
+"""Seconds of each irradiance stage after light-kit camera moves (run with pvpython).
+
+    xvfb-run -a -s "-noreset -screen 0 1280x1024x24" scripts/pvpython \\
+        Testing/Benchmark/pv_update_stages.py --data chest.vti [--plugin SO] [--frames 6]
+
+One Multi-Material Volume (default material) of --data in a 400 x 400 view
+under ParaView's light kit, with pv_lightkit_orbit.py's colour and opacity
+maps. Each frame turns the camera 10 degrees and calls StillRender(), so
+every kit light moves and the whole irradiance is recomputed. Prints the
+medians of the frame and of the stages LastIrradianceStages reports. To
+compare two builds, alternate runs with each build's --plugin (with
+MMV_BUILD_DIR set for scripts/pvpython).
+"""
+
+import argparse
+import os
+import statistics
+import sys
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+
+from paraview import simple  # noqa: E402
+
+import pv_lightkit_orbit as orbit  # noqa: E402
+
+STAGES = ("prefilter", "setup", "shadows", "diffusion", "write", "total")
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    p.add_argument("--plugin", default=orbit.DEFAULT_PLUGIN)
+    p.add_argument("--data", required=True, help="a .vti with one point array")
+    p.add_argument("--frames", type=int, default=6)
+    args, _ = p.parse_known_args()
+
+    simple.LoadPlugin(args.plugin, remote=False, ns=globals())
+    source = simple.XMLImageDataReader(FileName=[args.data])
+    view = simple.CreateView("RenderView")
+    view.ViewSize = [400, 400]
+    view.OrientationAxesVisibility = 0
+    rep = simple.Show(source, view)
+    array = source.PointData.keys()[0]
+    simple.ColorBy(rep, ("POINTS", array))
+    rep.SetRepresentationType("Multi-Material Volume")
+    simple.GetColorTransferFunction(array).RGBPoints = orbit.RGB_POINTS
+    simple.GetOpacityTransferFunction(array).Points = orbit.OPACITY_POINTS
+    simple.ResetCamera(view)
+    simple.Render(view)
+
+    camera = view.GetActiveCamera()
+    rows = []
+    for _ in range(args.frames):
+        camera.Azimuth(10.0)
+        start = time.perf_counter()
+        view.SMProxy.StillRender()
+        row = {"frame": time.perf_counter() - start}
+        rep.UpdatePropertyInformation()
+        # "probe 0.000 s, prefilter 0.012 s, ...": name, seconds, "s".
+        for part in rep.GetProperty("LastIrradianceStages").GetData().split(", "):
+            words = part.split()
+            row[" ".join(words[:-2])] = float(words[-2])
+        rows.append(row)
+    for name in ("frame",) + STAGES:
+        print("%-10s median %.3f s" % (name, statistics.median(r.get(name, 0.0) for r in rows)))
+    print("grid: %s" % rep.GetProperty("IrradianceResolutionInfo").GetData())
+
+
+if __name__ == "__main__":
+    main()
