@@ -362,7 +362,201 @@ void SetUpInstance(Instance& in, const mmvbench::SceneSpec& scene, vtkCamera* ca
   in.Select(0, false);
 }
 
+/// The first frame of every method: set-up, stage timers, and the image
+/// compared with the ground truth (written with its error heat map).
+void MeasureFirstFrames(std::vector<std::unique_ptr<Instance>>& instances,
+  const mmvbench::SceneSpec& scene, const std::string& name, const Options& opt,
+  const std::string& imageDir, vtkImageData* truth, std::ofstream& machine, bool& rendererReported)
+{
+  vtkNew<vtkImageErrorMetrics> metrics;
+  const int bytesPerScalar = scene.Image->GetPointData()->GetScalars()->GetDataTypeSize();
+  for (auto& in : instances)
+  {
+    for (size_t v = 0; v < in->Results.size(); ++v)
+    {
+      Result& r = in->Results[v];
+      in->Select(v, false);
+      r.FirstFrame = in->Render();
+      if (!rendererReported)
+      {
+        machine << "renderer " << mmvtest::RendererString(in->RenderWindow) << "\n";
+        rendererReported = true;
+      }
+      if (in->Ours)
+      {
+        r.PreIntegration = in->Ours->GetLastPreIntegrationSeconds();
+        r.Irradiance = in->Ours->GetLastIrradianceSeconds();
+        in->Ours->GetIrradianceDimensions(r.IrradianceDims);
+        if (!in->Ours->GetMultiMaterialActive())
+        {
+          std::cerr << "warning: " << r.Spec.Name << " fell back to VTK's shading\n";
+        }
+      }
+      vtkSmartPointer<vtkImageData> image = in->Grab(opt.Size);
+      metrics->Compute(image, truth);
+      r.PSNR = metrics->GetPSNR();
+      r.SSIM = metrics->GetSSIM();
+      r.RMSE = metrics->GetRMSE();
+      // VTK's methods: the scalar texture (estimated: one value per voxel
+      // at the data's size); ours adds its own textures.
+      r.MemoryBytes = static_cast<double>(scene.Image->GetNumberOfPoints()) * bytesPerScalar +
+        (in->Ours ? static_cast<double>(in->Ours->GetMultiMaterialMemoryBytes()) : 0.0);
+      const std::string stem = imageDir + "/" + FileStem(name, r.Spec.Name);
+      vtkImageErrorMetrics::WritePNG((stem + ".png").c_str(), image);
+      metrics->WriteErrorHeatMap((stem + "_error.png").c_str(), image, truth, 64.0);
+    }
+  }
 }
+
+/// Camera moves: azimuth steps about the view-up, window after window.
+void TimeCameraMoves(
+  std::vector<std::unique_ptr<Instance>>& instances, vtkCamera* camera, int frames)
+{
+  const size_t count = instances.size();
+  for (int f = 0; f < frames; ++f)
+  {
+    camera->Azimuth(10.0);
+    for (size_t n = 0; n < count; ++n)
+    {
+      Instance& in = *instances[(n + f) % count];
+      for (size_t v = 0; v < in.Results.size(); ++v)
+      {
+        in.Select(v, true);
+        in.Results[v].Interaction.push_back(in.Render());
+        if (in.Ours)
+        {
+          in.Results[v].InteractionRayCast.push_back(in.Ours->GetLastRayCastSeconds());
+        }
+      }
+    }
+  }
+}
+
+/// Light changes: the key light turns about the view-up. The sweep window
+/// is skipped: its irradiance volume is the default window's.
+void TimeLightChanges(std::vector<std::unique_ptr<Instance>>& instances, vtkCamera* camera,
+  vtkLight* light, const double toLight[3], const double center[3], int lightFrames)
+{
+  const size_t count = instances.size();
+  for (int f = 0; f < lightFrames; ++f)
+  {
+    double l[3] = { toLight[0], toLight[1], toLight[2] };
+    Rotate(l, camera->GetViewUp(), 15.0 * (f + 1));
+    light->SetPosition(center[0] + l[0], center[1] + l[1], center[2] + l[2]);
+    for (size_t n = 0; n < count; ++n)
+    {
+      Instance& in = *instances[(n + f) % count];
+      if (in.Results.size() > 1)
+      {
+        continue;
+      }
+      in.Results[0].LightChange.push_back(in.Render());
+      if (in.Ours)
+      {
+        in.Results[0].LightIrradiance.push_back(in.Ours->GetLastIrradianceSeconds());
+      }
+    }
+  }
+}
+
+/// One CSV row and one printed line per method of the scene.
+void WriteResults(const std::vector<std::unique_ptr<Instance>>& instances, const std::string& name,
+  const Options& opt, double preintTable, double referenceSeconds, std::ofstream& csv)
+{
+  for (auto& in : instances)
+  {
+    for (const Result& r : in->Results)
+    {
+      const MethodSpec& m = r.Spec;
+      std::ostringstream dims;
+      dims << r.IrradianceDims[0] << "x" << r.IrradianceDims[1] << "x" << r.IrradianceDims[2];
+      const bool ours = in->Ours != nullptr;
+      csv << std::setprecision(6) << name << "," << m.Name << "," << m.Family << ","
+          << (ours ? m.IrradianceScale : 0.0) << "," << (ours ? dims.str() : "") << ","
+          << m.SampleVoxels << "," << (ours ? int(m.PreIntegration) : 0) << ","
+          << (ours ? int(m.Scattering) : 0) << "," << m.Blending << "," << m.Reach << ","
+          << 1e3 * r.FirstFrame << "," << 1e3 * r.PreIntegration << "," << 1e3 * r.Irradiance << ","
+          << 1e3 * Median(r.InteractionRayCast) << "," << 1e3 * Median(r.Interaction) << ","
+          << 1e3 * Median(r.LightChange) << "," << 1e3 * Median(r.LightIrradiance) << ","
+          << 1e3 * preintTable << "," << r.MemoryBytes / (1024.0 * 1024.0) << "," << r.PSNR << ","
+          << r.SSIM << "," << r.RMSE << "," << referenceSeconds << "," << opt.Size << ","
+          << opt.Frames << "," << opt.LightFrames << "\n";
+      std::cout << std::setw(30) << std::left << m.Name << std::right << std::fixed
+                << std::setprecision(1) << " frame " << std::setw(7) << 1e3 * Median(r.Interaction)
+                << " ms  light " << std::setw(8) << 1e3 * Median(r.LightChange) << " ms  PSNR "
+                << std::setw(5) << r.PSNR << " dB  SSIM " << std::setprecision(3) << r.SSIM << "\n"
+                << std::defaultfloat;
+    }
+  }
+}
+
+/// One scene: its windows, the ground truth, every method's first frame,
+/// the timed camera moves and light changes, and its rows. False if the
+/// scene or its reference could not be made.
+bool RunScene(const std::string& name, const Options& opt,
+  const std::vector<std::vector<MethodSpec>>& windows, const std::string& imageDir,
+  std::ofstream& csv, std::ofstream& machine, bool& rendererReported)
+{
+  mmvbench::SceneSpec scene = mmvbench::MakeScene(name, opt.Head);
+  if (!scene.Image)
+  {
+    std::cerr << "unknown or unreadable scene " << name << "\n";
+    return false;
+  }
+  const double* spacing = scene.Image->GetSpacing();
+  const double smallestSpacing = std::min({ spacing[0], spacing[1], spacing[2] });
+  double bounds[6];
+  scene.Image->GetBounds(bounds);
+  const double center[3] = { 0.5 * (bounds[0] + bounds[1]), 0.5 * (bounds[2] + bounds[3]),
+    0.5 * (bounds[4] + bounds[5]) };
+
+  // The shared camera and key light (mmvbench::FrameScene).
+  vtkNew<vtkCamera> camera;
+  vtkNew<vtkLight> light;
+  double radius = 0.0;
+  const double distance = mmvbench::FrameScene(scene, camera, light, radius);
+  double toLight[3] = { scene.ToLight[0], scene.ToLight[1], scene.ToLight[2] };
+  Normalize(toLight);
+
+  std::vector<std::unique_ptr<Instance>> instances;
+  for (const std::vector<MethodSpec>& methods : windows)
+  {
+    instances.push_back(std::make_unique<Instance>());
+    for (const MethodSpec& m : methods)
+    {
+      Result r;
+      r.Spec = m;
+      instances.back()->Results.push_back(r);
+    }
+    SetUpInstance(*instances.back(), scene, camera, light, opt.Size, smallestSpacing);
+  }
+  camera->SetClippingRange(distance - 1.05 * radius, distance + 1.05 * radius);
+
+  // Ground truth at the first camera position.
+  std::cout << "== " << name << ": reference " << opt.Size << "^2 ..." << std::flush;
+  vtkNew<vtkMultiMaterialReferenceRenderer> reference;
+  reference->SetInputData(scene.Image);
+  reference->SetVolumeProperty(instances.front()->Property);
+  reference->SetMaterialTransferFunction(scene.Materials);
+  reference->SetExponentialDiffusion(opt.ReferenceExponential);
+  vtkSmartPointer<vtkImageData> truth =
+    reference->Render(instances.front()->Renderer, opt.Size, opt.Size);
+  if (!truth)
+  {
+    return false;
+  }
+  std::cout << " " << reference->GetLastRenderSeconds() << " s (scattering "
+            << reference->GetLastScatteringSeconds() << " s)\n";
+  vtkImageErrorMetrics::WritePNG((imageDir + "/" + name + "_reference.png").c_str(), truth);
+
+  const double preintTable = PreIntegrationTableSeconds(scene, smallestSpacing);
+  MeasureFirstFrames(instances, scene, name, opt, imageDir, truth, machine, rendererReported);
+  TimeCameraMoves(instances, camera, opt.Frames);
+  TimeLightChanges(instances, camera, light, toLight, center, opt.LightFrames);
+  WriteResults(instances, name, opt, preintTable, reference->GetLastRenderSeconds(), csv);
+  return true;
+}
+} // namespace
 
 int main(int argc, char* argv[])
 {
@@ -392,167 +586,9 @@ int main(int argc, char* argv[])
   bool rendererReported = false;
   for (const std::string& name : opt.Scenes)
   {
-    mmvbench::SceneSpec scene = mmvbench::MakeScene(name, opt.Head);
-    if (!scene.Image)
-    {
-      std::cerr << "unknown or unreadable scene " << name << "\n";
-      return 1;
-    }
-    const double* spacing = scene.Image->GetSpacing();
-    const double smallestSpacing = std::min({ spacing[0], spacing[1], spacing[2] });
-    double bounds[6];
-    scene.Image->GetBounds(bounds);
-    const double center[3] = { 0.5 * (bounds[0] + bounds[1]), 0.5 * (bounds[2] + bounds[3]),
-      0.5 * (bounds[4] + bounds[5]) };
-
-    // The shared camera and key light (mmvbench::FrameScene).
-    vtkNew<vtkCamera> camera;
-    vtkNew<vtkLight> light;
-    double radius = 0.0;
-    const double distance = mmvbench::FrameScene(scene, camera, light, radius);
-    double toLight[3] = { scene.ToLight[0], scene.ToLight[1], scene.ToLight[2] };
-    Normalize(toLight);
-
-    std::vector<std::unique_ptr<Instance>> instances;
-    for (const std::vector<MethodSpec>& methods : windows)
-    {
-      instances.push_back(std::make_unique<Instance>());
-      for (const MethodSpec& m : methods)
-      {
-        Result r;
-        r.Spec = m;
-        instances.back()->Results.push_back(r);
-      }
-      SetUpInstance(*instances.back(), scene, camera, light, opt.Size, smallestSpacing);
-    }
-    camera->SetClippingRange(distance - 1.05 * radius, distance + 1.05 * radius);
-
-    // Ground truth at the first camera position.
-    std::cout << "== " << name << ": reference " << opt.Size << "^2 ..." << std::flush;
-    vtkNew<vtkMultiMaterialReferenceRenderer> reference;
-    reference->SetInputData(scene.Image);
-    reference->SetVolumeProperty(instances.front()->Property);
-    reference->SetMaterialTransferFunction(scene.Materials);
-    reference->SetExponentialDiffusion(opt.ReferenceExponential);
-    vtkSmartPointer<vtkImageData> truth =
-      reference->Render(instances.front()->Renderer, opt.Size, opt.Size);
-    if (!truth)
+    if (!RunScene(name, opt, windows, imageDir, csv, machine, rendererReported))
     {
       return 1;
-    }
-    std::cout << " " << reference->GetLastRenderSeconds() << " s (scattering "
-              << reference->GetLastScatteringSeconds() << " s)\n";
-    vtkImageErrorMetrics::WritePNG((imageDir + "/" + name + "_reference.png").c_str(), truth);
-
-    const double preintTable = PreIntegrationTableSeconds(scene, smallestSpacing);
-
-    // First frame per method: set-up, stage timers, and the image compared
-    // with the ground truth.
-    vtkNew<vtkImageErrorMetrics> metrics;
-    const int bytesPerScalar = scene.Image->GetPointData()->GetScalars()->GetDataTypeSize();
-    for (auto& in : instances)
-    {
-      for (size_t v = 0; v < in->Results.size(); ++v)
-      {
-        Result& r = in->Results[v];
-        in->Select(v, false);
-        r.FirstFrame = in->Render();
-        if (!rendererReported)
-        {
-          machine << "renderer " << mmvtest::RendererString(in->RenderWindow) << "\n";
-          rendererReported = true;
-        }
-        if (in->Ours)
-        {
-          r.PreIntegration = in->Ours->GetLastPreIntegrationSeconds();
-          r.Irradiance = in->Ours->GetLastIrradianceSeconds();
-          in->Ours->GetIrradianceDimensions(r.IrradianceDims);
-          if (!in->Ours->GetMultiMaterialActive())
-          {
-            std::cerr << "warning: " << r.Spec.Name << " fell back to VTK's shading\n";
-          }
-        }
-        vtkSmartPointer<vtkImageData> image = in->Grab(opt.Size);
-        metrics->Compute(image, truth);
-        r.PSNR = metrics->GetPSNR();
-        r.SSIM = metrics->GetSSIM();
-        r.RMSE = metrics->GetRMSE();
-        // VTK's methods: the scalar texture (estimated: one value per voxel
-        // at the data's size); ours adds its own textures.
-        r.MemoryBytes = static_cast<double>(scene.Image->GetNumberOfPoints()) * bytesPerScalar +
-          (in->Ours ? static_cast<double>(in->Ours->GetMultiMaterialMemoryBytes()) : 0.0);
-        const std::string stem = imageDir + "/" + FileStem(name, r.Spec.Name);
-        vtkImageErrorMetrics::WritePNG((stem + ".png").c_str(), image);
-        metrics->WriteErrorHeatMap((stem + "_error.png").c_str(), image, truth, 64.0);
-      }
-    }
-
-    // Camera moves: azimuth steps about the view-up, window after window.
-    const size_t count = instances.size();
-    for (int f = 0; f < opt.Frames; ++f)
-    {
-      camera->Azimuth(10.0);
-      for (size_t n = 0; n < count; ++n)
-      {
-        Instance& in = *instances[(n + f) % count];
-        for (size_t v = 0; v < in.Results.size(); ++v)
-        {
-          in.Select(v, true);
-          in.Results[v].Interaction.push_back(in.Render());
-          if (in.Ours)
-          {
-            in.Results[v].InteractionRayCast.push_back(in.Ours->GetLastRayCastSeconds());
-          }
-        }
-      }
-    }
-    // Light changes: the key light turns about the view-up. The sweep window
-    // is skipped: its irradiance volume is the default window's.
-    for (int f = 0; f < opt.LightFrames; ++f)
-    {
-      double l[3] = { toLight[0], toLight[1], toLight[2] };
-      Rotate(l, camera->GetViewUp(), 15.0 * (f + 1));
-      light->SetPosition(center[0] + l[0], center[1] + l[1], center[2] + l[2]);
-      for (size_t n = 0; n < count; ++n)
-      {
-        Instance& in = *instances[(n + f) % count];
-        if (in.Results.size() > 1)
-        {
-          continue;
-        }
-        in.Results[0].LightChange.push_back(in.Render());
-        if (in.Ours)
-        {
-          in.Results[0].LightIrradiance.push_back(in.Ours->GetLastIrradianceSeconds());
-        }
-      }
-    }
-
-    for (auto& in : instances)
-    {
-      for (const Result& r : in->Results)
-      {
-        const MethodSpec& m = r.Spec;
-        std::ostringstream dims;
-        dims << r.IrradianceDims[0] << "x" << r.IrradianceDims[1] << "x" << r.IrradianceDims[2];
-        const bool ours = in->Ours != nullptr;
-        csv << std::setprecision(6) << name << "," << m.Name << "," << m.Family << ","
-            << (ours ? m.IrradianceScale : 0.0) << "," << (ours ? dims.str() : "") << ","
-            << m.SampleVoxels << "," << (ours ? int(m.PreIntegration) : 0) << ","
-            << (ours ? int(m.Scattering) : 0) << "," << m.Blending << "," << m.Reach << ","
-            << 1e3 * r.FirstFrame << "," << 1e3 * r.PreIntegration << "," << 1e3 * r.Irradiance
-            << "," << 1e3 * Median(r.InteractionRayCast) << "," << 1e3 * Median(r.Interaction)
-            << "," << 1e3 * Median(r.LightChange) << "," << 1e3 * Median(r.LightIrradiance) << ","
-            << 1e3 * preintTable << "," << r.MemoryBytes / (1024.0 * 1024.0) << "," << r.PSNR << ","
-            << r.SSIM << "," << r.RMSE << "," << reference->GetLastRenderSeconds() << ","
-            << opt.Size << "," << opt.Frames << "," << opt.LightFrames << "\n";
-        std::cout << std::setw(30) << std::left << m.Name << std::right << std::fixed
-                  << std::setprecision(1) << " frame " << std::setw(7)
-                  << 1e3 * Median(r.Interaction) << " ms  light " << std::setw(8)
-                  << 1e3 * Median(r.LightChange) << " ms  PSNR " << std::setw(5) << r.PSNR
-                  << " dB  SSIM " << std::setprecision(3) << r.SSIM << "\n"
-                  << std::defaultfloat;
-      }
     }
     csv.flush();
   }

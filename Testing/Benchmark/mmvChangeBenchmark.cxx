@@ -235,11 +235,10 @@ struct Record
   int Updates = 0;
 };
 
-/// The sequences of one volume; appends rows to `csv`.
-void RunVolume(const std::string& volume, const std::vector<vtkSmartPointer<vtkImageData>>& series,
-  int size, int changes, const std::string& wanted, std::ofstream& csv, const std::string& renderer)
+/// The methods (name, preset) of `wanted`; VTK's Phong always, as every
+/// ratio's reference.
+std::vector<std::pair<std::string, std::string>> WantedMethods(const std::string& wanted)
 {
-  TransferFunctions tf;
   std::vector<std::pair<std::string, std::string>> methods;
   for (const auto& m : std::vector<std::pair<std::string, std::string>>{ { "vtk-phong", "" },
          { "mmv-default", "default" }, { "mmv-skin", "skin" }, { "mmv-smoke", "smoke" } })
@@ -249,6 +248,64 @@ void RunVolume(const std::string& volume, const std::vector<vtkSmartPointer<vtkI
       methods.push_back(m);
     }
   }
+  return methods;
+}
+
+/// Where an opacity edit of ours goes (stage timers: a glFinish per stage).
+void PrintOpacityEditStages(
+  const std::string& volume, std::vector<std::unique_ptr<View>>& views, TransferFunctions& tf)
+{
+  for (auto& v : views)
+  {
+    if (v->Ours && v->Name != "mmv-smoke")
+    {
+      v->Ours->TimeStagesOn();
+      tf.DragOpacity();
+      v->Window->Render();
+      std::printf("%s %s opacity edit stages: %s; ray cast %.4f s; prepare %.4f s\n",
+        volume.c_str(), v->Name.c_str(), v->Ours->GetLastIrradianceStages().c_str(),
+        v->Ours->GetLastRayCastSeconds(), v->Ours->GetLastPrepareSeconds());
+      v->Ours->TimeStagesOff();
+    }
+  }
+}
+
+/// The medians per sequence and method, with their ratios to VTK's Phong and
+/// to the method's own still frame: rows of `csv` and a printed table.
+void ReportRecords(const std::string& volume,
+  const std::vector<std::pair<std::string, std::string>>& methods,
+  std::map<std::pair<std::string, std::string>, Record>& records, std::ofstream& csv,
+  const std::string& renderer)
+{
+  std::printf("%-6s %-9s %-12s %9s %9s %9s %5s\n", "volume", "sequence", "method", "median s",
+    "x phong", "x still", "upd");
+  for (const char* sequence : { "still", "orbit", "opacity", "colour", "series", "series-2" })
+  {
+    for (const auto& m : methods)
+    {
+      auto it = records.find({ sequence, m.first });
+      if (it == records.end())
+      {
+        continue;
+      }
+      const double median = Median(it->second.Seconds);
+      const double phong = Median(records[{ sequence, "vtk-phong" }].Seconds);
+      const double still = Median(records[{ "still", m.first }].Seconds);
+      csv << volume << "," << sequence << "," << m.first << "," << it->second.Seconds.size() << ","
+          << median << "," << median / phong << "," << median / still << "," << it->second.Updates
+          << ",\"" << renderer << "\"\n";
+      std::printf("%-6s %-9s %-12s %9.4f %9.2f %9.2f %5d\n", volume.c_str(), sequence,
+        m.first.c_str(), median, median / phong, median / still, it->second.Updates);
+    }
+  }
+}
+
+/// The sequences of one volume; appends rows to `csv`.
+void RunVolume(const std::string& volume, const std::vector<vtkSmartPointer<vtkImageData>>& series,
+  int size, int changes, const std::string& wanted, std::ofstream& csv, const std::string& renderer)
+{
+  TransferFunctions tf;
+  const std::vector<std::pair<std::string, std::string>> methods = WantedMethods(wanted);
   std::vector<std::unique_ptr<View>> views;
   for (const auto& m : methods)
   {
@@ -309,20 +366,7 @@ void RunVolume(const std::string& volume, const std::vector<vtkSmartPointer<vtkI
   {
     each("colour", [&] { tf.Recolour(c); });
   }
-  // Where an opacity edit of ours goes (stage timers: a glFinish per stage).
-  for (auto& v : views)
-  {
-    if (v->Ours && v->Name != "mmv-smoke")
-    {
-      v->Ours->TimeStagesOn();
-      tf.DragOpacity();
-      v->Window->Render();
-      std::printf("%s %s opacity edit stages: %s; ray cast %.4f s; prepare %.4f s\n",
-        volume.c_str(), v->Name.c_str(), v->Ours->GetLastIrradianceStages().c_str(),
-        v->Ours->GetLastRayCastSeconds(), v->Ours->GetLastPrepareSeconds());
-      v->Ours->TimeStagesOff();
-    }
-  }
+  PrintOpacityEditStages(volume, views, tf);
   // The series with the irradiance of each step kept (what ParaView's
   // animation caching asks of the representation).
   for (auto& v : views)
@@ -347,27 +391,7 @@ void RunVolume(const std::string& volume, const std::vector<vtkSmartPointer<vtkI
         });
     }
   }
-  std::printf("%-6s %-9s %-12s %9s %9s %9s %5s\n", "volume", "sequence", "method", "median s",
-    "x phong", "x still", "upd");
-  for (const char* sequence : { "still", "orbit", "opacity", "colour", "series", "series-2" })
-  {
-    for (const auto& m : methods)
-    {
-      auto it = records.find({ sequence, m.first });
-      if (it == records.end())
-      {
-        continue;
-      }
-      const double median = Median(it->second.Seconds);
-      const double phong = Median(records[{ sequence, "vtk-phong" }].Seconds);
-      const double still = Median(records[{ "still", m.first }].Seconds);
-      csv << volume << "," << sequence << "," << m.first << "," << it->second.Seconds.size() << ","
-          << median << "," << median / phong << "," << median / still << "," << it->second.Updates
-          << ",\"" << renderer << "\"\n";
-      std::printf("%-6s %-9s %-12s %9.4f %9.2f %9.2f %5d\n", volume.c_str(), sequence,
-        m.first.c_str(), median, median / phong, median / still, it->second.Updates);
-    }
-  }
+  ReportRecords(volume, methods, records, csv, renderer);
 }
 
 /// A volume resampled to n^3.

@@ -300,7 +300,217 @@ struct Result
   double VolumeRMSE = 1e300;
   vtkSmartPointer<vtkImageData> Image;
 };
+
+/// What every row of one medium shares: the truth it is compared with and
+/// where the rows go.
+struct MediumContext
+{
+  const Options& Opt;
+  const Medium& M;
+  vtkImageData* Truth;
+  const std::vector<bool>& Mask;
+  double Floor;
+  double TruthSeconds;
+  std::ofstream& Csv;
+};
+
+/// The image of `w` (median time of `frames` frames) and its errors.
+void Evaluate(const MediumContext& c, Result& r, Window& w, int frames)
+{
+  r.Image = vtkSmartPointer<vtkImageData>::New();
+  r.Seconds = w.Frames(frames, r.Image);
+  r.RMSE = RMSE(r.Image, c.Truth);
+  r.GainRMSE = GainCompensated(r.Image, c.Truth, c.Mask, r.Gain, r.VolumeRMSE);
 }
+
+/// One row of medium_calibration.csv, its printed line and its image.
+void Report(const MediumContext& c, const Result& r)
+{
+  const Options& opt = c.Opt;
+  const Medium& medium = c.M;
+  const double* p = r.Parameters;
+  c.Csv << medium.Albedo << "," << medium.G << "," << medium.Depth << ","
+        << medium.ExtinctionPerVoxel() << "," << r.Family << "," << r.Setting << ","
+        << p[mmv::Ambient] << "," << p[mmv::Diffuse] << "," << p[mmv::Specular] << ","
+        << p[mmv::Shininess] << "," << p[mmv::Attenuation] << "," << p[mmv::Scattering] << ","
+        << 1e3 * r.Seconds << "," << r.RMSE << "," << r.VolumeRMSE << "," << r.Gain << ","
+        << r.GainRMSE << "," << c.Floor << "," << opt.TruthSamples << "," << c.TruthSeconds << ","
+        << opt.Size << "," << opt.Shape << "\n";
+  c.Csv.flush();
+  std::cout << "  " << std::setw(15) << r.Family << " " << std::setw(40) << r.Setting
+            << std::setprecision(3) << " " << std::setw(7) << 1e3 * r.Seconds << " ms  RMSE "
+            << std::setw(6) << r.RMSE << "  volume " << r.VolumeRMSE << ", x" << r.Gain << " -> "
+            << r.GainRMSE << std::endl;
+  vtkImageErrorMetrics::WritePNG(
+    (opt.Out + "/" + opt.Shape + "_" + medium.Key() + "_" + r.Family + ".png").c_str(), r.Image);
+}
+
+/// Ours with material `p` everywhere: evaluated and reported as `family`.
+void OursWith(const MediumContext& c, const std::string& family,
+  const double p[mmv::MaterialParameterCount], vtkMaterialTransferFunction* materials,
+  Window& window)
+{
+  Result r;
+  r.Family = family;
+  std::copy(p, p + mmv::MaterialParameterCount, r.Parameters);
+  r.Setting = Setting({ { "ka", p[mmv::Ambient] }, { "kd", p[mmv::Diffuse] },
+    { "ct", p[mmv::Attenuation] }, { "s", p[mmv::Scattering] } });
+  SetMaterial(materials, p);
+  Evaluate(c, r, window, c.Opt.Frames);
+  Report(c, r);
+}
+
+/// Ours over the (s, c_t) grid, ka and kd fitted at every point (each a
+/// row of `grid`); returns the point of the lowest volume RMSE.
+Result FitGrid(const MediumContext& c, vtkMaterialTransferFunction* materials, Window& window,
+  std::ofstream& grid)
+{
+  const Medium& medium = c.M;
+  Result best;
+  for (double s : c.Opt.Scattering)
+  {
+    for (double ct : c.Opt.Attenuation)
+    {
+      double q[mmv::MaterialParameterCount];
+      DefaultMaterial(medium.G, q);
+      q[mmv::Specular] = 0.0;
+      q[mmv::Shininess] = 1.0;
+      q[mmv::Scattering] = s;
+      q[mmv::Attenuation] = ct;
+      FitAmbientDiffuse(
+        [&](double ka, double kd)
+        {
+          q[mmv::Ambient] = ka;
+          q[mmv::Diffuse] = kd;
+          SetMaterial(materials, q);
+        },
+        window, c.Truth, q[mmv::Ambient], q[mmv::Diffuse]);
+      Result r;
+      r.Family = "ours-fit";
+      std::copy(q, q + mmv::MaterialParameterCount, r.Parameters);
+      Evaluate(c, r, window, 0);
+      grid << medium.Albedo << "," << medium.G << "," << medium.Depth << ","
+           << medium.ExtinctionPerVoxel() << "," << s << "," << ct << "," << q[mmv::Ambient] << ","
+           << q[mmv::Diffuse] << "," << r.VolumeRMSE << "\n";
+      grid.flush();
+      if (r.VolumeRMSE < best.VolumeRMSE)
+      {
+        best = r;
+      }
+    }
+  }
+  return best;
+}
+
+/// VTK's volumetric scattering at its best blending, reach and anisotropy:
+/// evaluated and reported.
+void BestVTKScattering(
+  const MediumContext& c, const mmvbench::SceneSpec& scene, vtkCamera* camera, vtkLight* light)
+{
+  vtkNew<vtkOpenGLGPUVolumeRayCastMapper> vtkMapper;
+  Window vtkWindow(scene, camera, light, c.Opt.Size, vtkMapper);
+  mmvbench::ShadeWithDefaultMaterial(vtkWindow.Property);
+  // Best over the three parameters at the mmv default
+  // exposure. (Fitting VTK's ambient and diffuse as ours are does not
+  // work: its image is not linear in them, the "fitted" renders were
+  // worse than the defaults; its exposure error shows in the
+  // gain-compensated column instead.)
+  Result best;
+  double setting[3] = {};
+  for (double blending : { 0.25, 0.5, 1.0, 2.0 })
+  {
+    for (double reach : { 0.1, 0.5, 1.0 })
+    {
+      for (double vtkG : { 0.0, 0.3, 0.6, 0.8 })
+      {
+        vtkMapper->SetVolumetricScatteringBlending(static_cast<float>(blending));
+        vtkMapper->SetGlobalIlluminationReach(static_cast<float>(reach));
+        vtkWindow.Property->SetScatteringAnisotropy(vtkG);
+        Result r;
+        Evaluate(c, r, vtkWindow, 0);
+        if (r.VolumeRMSE < best.VolumeRMSE)
+        {
+          best = r;
+          setting[0] = blending;
+          setting[1] = reach;
+          setting[2] = vtkG;
+        }
+      }
+    }
+  }
+  vtkMapper->SetVolumetricScatteringBlending(static_cast<float>(setting[0]));
+  vtkMapper->SetGlobalIlluminationReach(static_cast<float>(setting[1]));
+  vtkWindow.Property->SetScatteringAnisotropy(setting[2]);
+  Result r;
+  r.Family = "vtk-scattering";
+  r.Setting =
+    Setting({ { "blending", setting[0] }, { "reach", setting[1] }, { "anisotropy", setting[2] } });
+  r.Parameters[mmv::Ambient] = mmv::MaterialParameterTable[mmv::Ambient].Default;
+  r.Parameters[mmv::Diffuse] = mmv::MaterialParameterTable[mmv::Diffuse].Default;
+  r.Parameters[mmv::Specular] = mmv::MaterialParameterTable[mmv::Specular].Default;
+  r.Parameters[mmv::Shininess] = mmv::MaterialParameterTable[mmv::Shininess].Default;
+  Evaluate(c, r, vtkWindow, c.Opt.Frames);
+  Report(c, r);
+}
+
+/// One medium: its truth (cached), then every family's rows. False if the
+/// truth could not be rendered or the mapping rejected the medium.
+bool CalibrateMedium(
+  const Options& opt, const Medium& medium, std::ofstream& csv, std::ofstream& grid)
+{
+  mmvbench::SceneSpec scene = MakeMedium(medium, opt.Shape);
+  vtkNew<vtkCamera> camera;
+  vtkNew<vtkLight> light;
+  double radius = 0.0;
+  mmvbench::FrameScene(scene, camera, light, radius);
+  light->SetIntensity(LightIntensity);
+  vtkNew<vtkMultiMaterialVolumeMapper> ours;
+  vtkNew<vtkMaterialTransferFunction> materials;
+  materials->DeepCopy(scene.Materials);
+  ours->SetMaterialTransferFunction(materials);
+  Window window(scene, camera, light, opt.Size, ours);
+
+  double truthSeconds = 0.0;
+  std::cout << "== " << medium.Key() << ": truth ..." << std::flush;
+  vtkSmartPointer<vtkImageData> truthImage = Truth(opt, medium, window, scene, truthSeconds);
+  if (!truthImage)
+  {
+    return false;
+  }
+  const mmvcal::Truth reference(truthImage, opt.Size);
+  vtkImageData* truth = reference.Image;
+  const double floor = reference.FloorRMSE;
+  std::cout << " " << truthSeconds << " s, noise floor " << floor << "/255\n";
+  vtkImageErrorMetrics::WritePNG(
+    (opt.Out + "/" + opt.Shape + "_" + medium.Key() + "_truth.png").c_str(), truth);
+  const MediumContext c{ opt, medium, truth, reference.Mask, floor, truthSeconds, csv };
+
+  double p[mmv::MaterialParameterCount];
+  DefaultMaterial(medium.G, p);
+  OursWith(c, "ours-default", p, materials, window);
+  if (opt.Fit)
+  {
+    const Result best = FitGrid(c, materials, window, grid);
+    OursWith(c, "ours-fit", best.Parameters, materials, window);
+  }
+  if (opt.Mapped)
+  {
+    std::string why;
+    if (!mmv::PhysicalMediumToMaterial(
+          medium.Albedo, medium.G, medium.ExtinctionPerVoxel(), p, &why))
+    {
+      std::cerr << "mapping rejected the medium: " << why << "\n";
+      return false;
+    }
+    OursWith(c, "ours-mapped", p, materials, window);
+  }
+  if (opt.VTK)
+  {
+    BestVTKScattering(c, scene, camera, light);
+  }
+  return true;
+}
+} // namespace
 
 int main(int argc, char* argv[])
 {
@@ -328,171 +538,9 @@ int main(int argc, char* argv[])
     {
       for (double albedo : opt.Albedos)
       {
-        const Medium medium{ albedo, g, depth };
-        mmvbench::SceneSpec scene = MakeMedium(medium, opt.Shape);
-        vtkNew<vtkCamera> camera;
-        vtkNew<vtkLight> light;
-        double radius = 0.0;
-        mmvbench::FrameScene(scene, camera, light, radius);
-        light->SetIntensity(LightIntensity);
-        vtkNew<vtkMultiMaterialVolumeMapper> ours;
-        vtkNew<vtkMaterialTransferFunction> materials;
-        materials->DeepCopy(scene.Materials);
-        ours->SetMaterialTransferFunction(materials);
-        Window window(scene, camera, light, opt.Size, ours);
-
-        double truthSeconds = 0.0;
-        std::cout << "== " << medium.Key() << ": truth ..." << std::flush;
-        vtkSmartPointer<vtkImageData> truthImage = Truth(opt, medium, window, scene, truthSeconds);
-        if (!truthImage)
+        if (!CalibrateMedium(opt, Medium{ albedo, g, depth }, csv, grid))
         {
           return 1;
-        }
-        const mmvcal::Truth reference(truthImage, opt.Size);
-        vtkImageData* truth = reference.Image;
-        const std::vector<bool>& mask = reference.Mask;
-        const double floor = reference.FloorRMSE;
-        std::cout << " " << truthSeconds << " s, noise floor " << floor << "/255\n";
-        vtkImageErrorMetrics::WritePNG(
-          (opt.Out + "/" + opt.Shape + "_" + medium.Key() + "_truth.png").c_str(), truth);
-
-        auto evaluate = [&](Result& r, Window& w, int frames)
-        {
-          r.Image = vtkSmartPointer<vtkImageData>::New();
-          r.Seconds = w.Frames(frames, r.Image);
-          r.RMSE = RMSE(r.Image, truth);
-          r.GainRMSE = GainCompensated(r.Image, truth, mask, r.Gain, r.VolumeRMSE);
-        };
-        auto report = [&](const Result& r)
-        {
-          const double* p = r.Parameters;
-          csv << albedo << "," << g << "," << depth << "," << medium.ExtinctionPerVoxel() << ","
-              << r.Family << "," << r.Setting << "," << p[mmv::Ambient] << "," << p[mmv::Diffuse]
-              << "," << p[mmv::Specular] << "," << p[mmv::Shininess] << "," << p[mmv::Attenuation]
-              << "," << p[mmv::Scattering] << "," << 1e3 * r.Seconds << "," << r.RMSE << ","
-              << r.VolumeRMSE << "," << r.Gain << "," << r.GainRMSE << "," << floor << ","
-              << opt.TruthSamples << "," << truthSeconds << "," << opt.Size << "," << opt.Shape
-              << "\n";
-          csv.flush();
-          std::cout << "  " << std::setw(15) << r.Family << " " << std::setw(40) << r.Setting
-                    << std::setprecision(3) << " " << std::setw(7) << 1e3 * r.Seconds
-                    << " ms  RMSE " << std::setw(6) << r.RMSE << "  volume " << r.VolumeRMSE
-                    << ", x" << r.Gain << " -> " << r.GainRMSE << std::endl;
-          vtkImageErrorMetrics::WritePNG(
-            (opt.Out + "/" + opt.Shape + "_" + medium.Key() + "_" + r.Family + ".png").c_str(),
-            r.Image);
-        };
-        auto oursWith = [&](const std::string& family, const double p[mmv::MaterialParameterCount])
-        {
-          Result r;
-          r.Family = family;
-          std::copy(p, p + mmv::MaterialParameterCount, r.Parameters);
-          r.Setting = Setting({ { "ka", p[mmv::Ambient] }, { "kd", p[mmv::Diffuse] },
-            { "ct", p[mmv::Attenuation] }, { "s", p[mmv::Scattering] } });
-          SetMaterial(materials, p);
-          evaluate(r, window, opt.Frames);
-          report(r);
-        };
-
-        double p[mmv::MaterialParameterCount];
-        DefaultMaterial(g, p);
-        oursWith("ours-default", p);
-
-        if (opt.Fit)
-        {
-          Result best;
-          for (double s : opt.Scattering)
-          {
-            for (double ct : opt.Attenuation)
-            {
-              double q[mmv::MaterialParameterCount];
-              DefaultMaterial(g, q);
-              q[mmv::Specular] = 0.0;
-              q[mmv::Shininess] = 1.0;
-              q[mmv::Scattering] = s;
-              q[mmv::Attenuation] = ct;
-              FitAmbientDiffuse(
-                [&](double ka, double kd)
-                {
-                  q[mmv::Ambient] = ka;
-                  q[mmv::Diffuse] = kd;
-                  SetMaterial(materials, q);
-                },
-                window, truth, q[mmv::Ambient], q[mmv::Diffuse]);
-              Result r;
-              r.Family = "ours-fit";
-              std::copy(q, q + mmv::MaterialParameterCount, r.Parameters);
-              evaluate(r, window, 0);
-              grid << albedo << "," << g << "," << depth << "," << medium.ExtinctionPerVoxel()
-                   << "," << s << "," << ct << "," << q[mmv::Ambient] << "," << q[mmv::Diffuse]
-                   << "," << r.VolumeRMSE << "\n";
-              grid.flush();
-              if (r.VolumeRMSE < best.VolumeRMSE)
-              {
-                best = r;
-              }
-            }
-          }
-          oursWith("ours-fit", best.Parameters);
-        }
-
-        if (opt.Mapped)
-        {
-          std::string why;
-          if (!mmv::PhysicalMediumToMaterial(albedo, g, medium.ExtinctionPerVoxel(), p, &why))
-          {
-            std::cerr << "mapping rejected the medium: " << why << "\n";
-            return 1;
-          }
-          oursWith("ours-mapped", p);
-        }
-
-        if (opt.VTK)
-        {
-          vtkNew<vtkOpenGLGPUVolumeRayCastMapper> vtkMapper;
-          Window vtkWindow(scene, camera, light, opt.Size, vtkMapper);
-          mmvbench::ShadeWithDefaultMaterial(vtkWindow.Property);
-          // Best over the three parameters at the mmv default
-          // exposure. (Fitting VTK's ambient and diffuse as ours are does not
-          // work: its image is not linear in them, the "fitted" renders were
-          // worse than the defaults; its exposure error shows in the
-          // gain-compensated column instead.)
-          Result best;
-          double setting[3] = {};
-          for (double blending : { 0.25, 0.5, 1.0, 2.0 })
-          {
-            for (double reach : { 0.1, 0.5, 1.0 })
-            {
-              for (double vtkG : { 0.0, 0.3, 0.6, 0.8 })
-              {
-                vtkMapper->SetVolumetricScatteringBlending(static_cast<float>(blending));
-                vtkMapper->SetGlobalIlluminationReach(static_cast<float>(reach));
-                vtkWindow.Property->SetScatteringAnisotropy(vtkG);
-                Result r;
-                evaluate(r, vtkWindow, 0);
-                if (r.VolumeRMSE < best.VolumeRMSE)
-                {
-                  best = r;
-                  setting[0] = blending;
-                  setting[1] = reach;
-                  setting[2] = vtkG;
-                }
-              }
-            }
-          }
-          vtkMapper->SetVolumetricScatteringBlending(static_cast<float>(setting[0]));
-          vtkMapper->SetGlobalIlluminationReach(static_cast<float>(setting[1]));
-          vtkWindow.Property->SetScatteringAnisotropy(setting[2]);
-          Result r;
-          r.Family = "vtk-scattering";
-          r.Setting = Setting(
-            { { "blending", setting[0] }, { "reach", setting[1] }, { "anisotropy", setting[2] } });
-          r.Parameters[mmv::Ambient] = mmv::MaterialParameterTable[mmv::Ambient].Default;
-          r.Parameters[mmv::Diffuse] = mmv::MaterialParameterTable[mmv::Diffuse].Default;
-          r.Parameters[mmv::Specular] = mmv::MaterialParameterTable[mmv::Specular].Default;
-          r.Parameters[mmv::Shininess] = mmv::MaterialParameterTable[mmv::Shininess].Default;
-          evaluate(r, vtkWindow, opt.Frames);
-          report(r);
         }
       }
     }

@@ -238,7 +238,225 @@ bool MapMaterials(
   }
   return target->SetNodes(static_cast<int>(nodes.size()), nodes.data());
 }
+
+/// What every row of one scene shares: the truth it is compared with, and
+/// where the rows go.
+struct SceneContext
+{
+  const Options& Opt;
+  const std::string& Name;
+  vtkImageData* Truth;
+  const std::vector<bool>& VolumePixels;
+  double FloorRMSE;
+  double TruthSeconds;
+  std::ofstream& Csv;
+  vtkImageErrorMetrics* Metrics;
+  std::vector<Row>& Rows;
+};
+
+/// One row: the frames and image of `window` against the truth, written,
+/// printed and kept.
+void Measure(
+  const SceneContext& c, const std::string& family, const std::string& setting, Window& window)
+{
+  const Options& opt = c.Opt;
+  Row r;
+  r.Family = family;
+  r.Setting = setting;
+  r.Image = vtkSmartPointer<vtkImageData>::New();
+  r.Seconds = window.Frames(opt.Frames, r.Image);
+  c.Metrics->Compute(r.Image, c.Truth);
+  r.RMSE = c.Metrics->GetRMSE();
+  r.PSNR = c.Metrics->GetPSNR();
+  r.SSIM = c.Metrics->GetSSIM();
+  r.GainRMSE = GainCompensated(r.Image, c.Truth, c.VolumePixels, r.Gain, r.VolumeRMSE);
+  c.Csv << c.Name << "," << family << "," << setting << "," << 1e3 * r.Seconds << "," << r.RMSE
+        << "," << r.PSNR << "," << r.SSIM << "," << r.VolumeRMSE << "," << r.Gain << ","
+        << r.GainRMSE << "," << c.FloorRMSE << "," << opt.TruthSamples << "," << c.TruthSeconds
+        << "," << opt.Size << "\n";
+  c.Csv.flush();
+  std::cout << "  " << std::setw(15) << family << " " << std::setw(28) << setting << " "
+            << std::setw(7) << std::setprecision(3) << 1e3 * r.Seconds << " ms  RMSE "
+            << std::setw(6) << r.RMSE << "  volume " << r.VolumeRMSE << ", x" << r.Gain << " -> "
+            << r.GainRMSE << std::endl;
+  c.Rows.push_back(r);
 }
+
+/// Ours with every node's ka and kd scaled by the factors that fit the
+/// truth best at (s, c_t), less the (0, 0) render (background, specular).
+void FitExposure(const SceneContext& c, const mmvbench::SceneSpec& scene,
+  vtkMaterialTransferFunction* materials, Window& oursWindow, double s, double ct)
+{
+  auto render = [&](double ambient, double diffuse, vtkImageData* image)
+  {
+    ScaleMaterials(scene.Materials, s, ct, materials);
+    ScaleAmbientDiffuse(materials, ambient, diffuse);
+    oursWindow.Frames(0, image);
+  };
+  double ambient = 1.0, diffuse = 1.0;
+  mmvcal::FitTwoScales(render, c.Truth, 1.0, true, ambient, diffuse);
+  ScaleMaterials(scene.Materials, s, ct, materials);
+  ScaleAmbientDiffuse(materials, ambient, diffuse);
+  Measure(c, "ours-exposure",
+    Setting(
+      { { "s_scale", s }, { "ct_scale", ct }, { "ka_scale", ambient }, { "kd_scale", diffuse } }),
+    oursWindow);
+}
+
+/// Ours: s and c_t scaled, (1, 1) the default; then, with --mapped, the
+/// mapped materials. False if a node could not be mapped.
+bool MeasureOurs(const SceneContext& c, const mmvbench::SceneSpec& scene,
+  vtkMaterialTransferFunction* materials, Window& oursWindow)
+{
+  const Options& opt = c.Opt;
+  for (double s : opt.ScatteringScales)
+  {
+    for (double ct : opt.AttenuationScales)
+    {
+      if (opt.FitExposure)
+      {
+        FitExposure(c, scene, materials, oursWindow, s, ct);
+      }
+      ScaleMaterials(scene.Materials, s, ct, materials);
+      Measure(c, s == 1.0 && ct == 1.0 ? "ours-default" : "ours",
+        Setting({ { "s_scale", s }, { "ct_scale", ct } }), oursWindow);
+      if (opt.Anisotropy != 0.0)
+      {
+        ScaleMaterials(scene.Materials, s, ct, materials, 0.0);
+        Measure(c, "ours-v1", Setting({ { "s_scale", s }, { "ct_scale", ct } }), oursWindow);
+      }
+    }
+  }
+  if (opt.Mapped)
+  {
+    if (!MapMaterials(scene, materials, false))
+    {
+      return false;
+    }
+    Measure(c, "ours-mapped", "PhysicalMediumToMaterial", oursWindow);
+    if (!MapMaterials(scene, materials, true))
+    {
+      return false;
+    }
+    Measure(
+      c, "ours-mapped-surface", "PhysicalMediumToMaterial with the scene's kd ks ke r", oursWindow);
+  }
+  return true;
+}
+
+/// VTK's Phong, and its volumetric scattering over blending, reach and the
+/// property's anisotropy.
+void MeasureVTK(
+  const SceneContext& c, const mmvbench::SceneSpec& scene, vtkCamera* camera, vtkLight* light)
+{
+  vtkNew<vtkOpenGLGPUVolumeRayCastMapper> phong;
+  Window window(scene, camera, light, c.Opt.Size, phong);
+  mmvbench::ShadeWithDefaultMaterial(window.Property);
+  Measure(c, "vtk-phong", "", window);
+  for (double blending : { 0.25, 0.5, 1.0, 2.0 })
+  {
+    for (double reach : { 0.1, 0.5, 1.0 })
+    {
+      for (double g : { 0.0, 0.5, 0.8 })
+      {
+        phong->SetVolumetricScatteringBlending(static_cast<float>(blending));
+        phong->SetGlobalIlluminationReach(static_cast<float>(reach));
+        window.Property->SetScatteringAnisotropy(g);
+        Measure(c, "vtk-scattering",
+          Setting({ { "blending", blending }, { "reach", reach }, { "anisotropy", g } }), window);
+      }
+    }
+  }
+}
+
+/// Best fit per family (lowest RMSE), and its image.
+void ReportBest(const std::vector<Row>& rows, const Options& opt, const std::string& name)
+{
+  std::map<std::string, const Row*> best;
+  for (const Row& r : rows)
+  {
+    const std::string family = r.Family == "ours-default" ? "ours" : r.Family;
+    if (!best.count(family) || r.RMSE < best[family]->RMSE)
+    {
+      best[family] = &r;
+    }
+  }
+  for (const auto& b : best)
+  {
+    std::cout << "  best " << b.first << ": " << b.second->Setting << " RMSE " << b.second->RMSE
+              << " at " << 1e3 * b.second->Seconds << " ms\n";
+    vtkImageErrorMetrics::WritePNG(
+      (opt.Out + "/" + name + "_best_" + b.first + ".png").c_str(), b.second->Image);
+  }
+}
+
+/// One scene: the physical truth, every method's rows, and the best fit per
+/// family. False if the scene, its truth or a mapping failed.
+bool CalibrateScene(
+  const Options& opt, const std::string& name, std::ofstream& csv, vtkImageErrorMetrics* metrics)
+{
+  mmvbench::SceneSpec scene = mmvbench::MakeScene(name, opt.Head);
+  if (!scene.Image)
+  {
+    std::cerr << "unknown or unreadable scene " << name << "\n";
+    return false;
+  }
+  if (opt.Anisotropy != 0.0)
+  {
+    ScaleMaterials(scene.Materials, 1.0, 1.0, scene.Materials, opt.Anisotropy);
+  }
+  for (int a = 0; a < 3 && opt.BackLight; ++a)
+  {
+    scene.ToLight[a] = -scene.ToLight[a];
+  }
+  for (int a = 0; a < 3 && opt.BlackBackground; ++a)
+  {
+    scene.Background[a] = scene.Background2[a] = 0.0;
+  }
+  vtkNew<vtkCamera> camera;
+  vtkNew<vtkLight> light;
+  double radius = 0.0;
+  mmvbench::FrameScene(scene, camera, light, radius);
+
+  // The physical truth, through a window's renderer so that camera, light
+  // and background are exactly what the methods see.
+  vtkNew<vtkMultiMaterialVolumeMapper> ours;
+  vtkNew<vtkMaterialTransferFunction> materials;
+  materials->DeepCopy(scene.Materials);
+  ours->SetMaterialTransferFunction(materials);
+  Window oursWindow(scene, camera, light, opt.Size, ours);
+  std::cout << "== " << name << ": truth " << opt.TruthSamples << " spp ..." << std::flush;
+  vtkNew<vtkMultiMaterialPathTracer> tracer;
+  tracer->SetInputData(scene.Image);
+  tracer->SetVolumeProperty(oursWindow.Property);
+  tracer->SetMaterialTransferFunction(scene.Materials);
+  tracer->SetSamplesPerPixel(opt.TruthSamples);
+  vtkSmartPointer<vtkImageData> truthImage =
+    tracer->Render(oursWindow.Renderer, opt.Size, opt.Size);
+  if (!truthImage)
+  {
+    return false;
+  }
+  const mmvcal::Truth reference(truthImage, opt.Size);
+  const double truthSeconds = tracer->GetLastRenderSeconds();
+  std::cout << " " << truthSeconds << " s, noise floor RMSE " << reference.FloorRMSE << "/255\n";
+  vtkImageErrorMetrics::WritePNG((opt.Out + "/" + name + "_truth.png").c_str(), reference.Image);
+
+  std::vector<Row> rows;
+  const SceneContext c{ opt, name, reference.Image, reference.Mask, reference.FloorRMSE,
+    truthSeconds, csv, metrics, rows };
+  if (!MeasureOurs(c, scene, materials, oursWindow))
+  {
+    return false;
+  }
+  if (opt.VTK)
+  {
+    MeasureVTK(c, scene, camera, light);
+  }
+  ReportBest(rows, opt, name);
+  return true;
+}
+} // namespace
 
 int main(int argc, char* argv[])
 {
@@ -262,173 +480,9 @@ int main(int argc, char* argv[])
 
   for (const std::string& name : opt.Scenes)
   {
-    mmvbench::SceneSpec scene = mmvbench::MakeScene(name, opt.Head);
-    if (!scene.Image)
-    {
-      std::cerr << "unknown or unreadable scene " << name << "\n";
-      return 1;
-    }
-    if (opt.Anisotropy != 0.0)
-    {
-      ScaleMaterials(scene.Materials, 1.0, 1.0, scene.Materials, opt.Anisotropy);
-    }
-    for (int a = 0; a < 3 && opt.BackLight; ++a)
-    {
-      scene.ToLight[a] = -scene.ToLight[a];
-    }
-    for (int a = 0; a < 3 && opt.BlackBackground; ++a)
-    {
-      scene.Background[a] = scene.Background2[a] = 0.0;
-    }
-    vtkNew<vtkCamera> camera;
-    vtkNew<vtkLight> light;
-    double radius = 0.0;
-    mmvbench::FrameScene(scene, camera, light, radius);
-
-    // The physical truth, through a window's renderer so that camera, light
-    // and background are exactly what the methods see.
-    vtkNew<vtkMultiMaterialVolumeMapper> ours;
-    vtkNew<vtkMaterialTransferFunction> materials;
-    materials->DeepCopy(scene.Materials);
-    ours->SetMaterialTransferFunction(materials);
-    Window oursWindow(scene, camera, light, opt.Size, ours);
-    std::cout << "== " << name << ": truth " << opt.TruthSamples << " spp ..." << std::flush;
-    vtkNew<vtkMultiMaterialPathTracer> tracer;
-    tracer->SetInputData(scene.Image);
-    tracer->SetVolumeProperty(oursWindow.Property);
-    tracer->SetMaterialTransferFunction(scene.Materials);
-    tracer->SetSamplesPerPixel(opt.TruthSamples);
-    vtkSmartPointer<vtkImageData> truthImage =
-      tracer->Render(oursWindow.Renderer, opt.Size, opt.Size);
-    if (!truthImage)
+    if (!CalibrateScene(opt, name, csv, metrics))
     {
       return 1;
-    }
-    const mmvcal::Truth reference(truthImage, opt.Size);
-    vtkImageData* truth = reference.Image;
-    const std::vector<bool>& volumePixels = reference.Mask;
-    const double floorRMSE = reference.FloorRMSE;
-    const double truthSeconds = tracer->GetLastRenderSeconds();
-    std::cout << " " << truthSeconds << " s, noise floor RMSE " << floorRMSE << "/255\n";
-    vtkImageErrorMetrics::WritePNG((opt.Out + "/" + name + "_truth.png").c_str(), truth);
-
-    std::vector<Row> rows;
-    auto measure = [&](const std::string& family, const std::string& setting, Window& window)
-    {
-      Row r;
-      r.Family = family;
-      r.Setting = setting;
-      r.Image = vtkSmartPointer<vtkImageData>::New();
-      r.Seconds = window.Frames(opt.Frames, r.Image);
-      metrics->Compute(r.Image, truth);
-      r.RMSE = metrics->GetRMSE();
-      r.PSNR = metrics->GetPSNR();
-      r.SSIM = metrics->GetSSIM();
-      r.GainRMSE = GainCompensated(r.Image, truth, volumePixels, r.Gain, r.VolumeRMSE);
-      csv << name << "," << family << "," << setting << "," << 1e3 * r.Seconds << "," << r.RMSE
-          << "," << r.PSNR << "," << r.SSIM << "," << r.VolumeRMSE << "," << r.Gain << ","
-          << r.GainRMSE << "," << floorRMSE << "," << opt.TruthSamples << "," << truthSeconds << ","
-          << opt.Size << "\n";
-      csv.flush();
-      std::cout << "  " << std::setw(15) << family << " " << std::setw(28) << setting << " "
-                << std::setw(7) << std::setprecision(3) << 1e3 * r.Seconds << " ms  RMSE "
-                << std::setw(6) << r.RMSE << "  volume " << r.VolumeRMSE << ", x" << r.Gain
-                << " -> " << r.GainRMSE << std::endl;
-      rows.push_back(r);
-    };
-
-    // Ours with every node's ka and kd scaled by the factors that fit the
-    // truth best at (s, c_t), less the (0, 0) render (background, specular).
-    auto fitExposure = [&](double s, double ct)
-    {
-      auto render = [&](double ambient, double diffuse, vtkImageData* image)
-      {
-        ScaleMaterials(scene.Materials, s, ct, materials);
-        ScaleAmbientDiffuse(materials, ambient, diffuse);
-        oursWindow.Frames(0, image);
-      };
-      double ambient = 1.0, diffuse = 1.0;
-      mmvcal::FitTwoScales(render, truth, 1.0, true, ambient, diffuse);
-      ScaleMaterials(scene.Materials, s, ct, materials);
-      ScaleAmbientDiffuse(materials, ambient, diffuse);
-      measure("ours-exposure",
-        Setting({ { "s_scale", s }, { "ct_scale", ct }, { "ka_scale", ambient },
-          { "kd_scale", diffuse } }),
-        oursWindow);
-    };
-
-    // Ours: s and c_t scaled; (1, 1) is the default.
-    for (double s : opt.ScatteringScales)
-    {
-      for (double ct : opt.AttenuationScales)
-      {
-        if (opt.FitExposure)
-        {
-          fitExposure(s, ct);
-        }
-        ScaleMaterials(scene.Materials, s, ct, materials);
-        measure(s == 1.0 && ct == 1.0 ? "ours-default" : "ours",
-          Setting({ { "s_scale", s }, { "ct_scale", ct } }), oursWindow);
-        if (opt.Anisotropy != 0.0)
-        {
-          ScaleMaterials(scene.Materials, s, ct, materials, 0.0);
-          measure("ours-v1", Setting({ { "s_scale", s }, { "ct_scale", ct } }), oursWindow);
-        }
-      }
-    }
-    if (opt.Mapped)
-    {
-      if (!MapMaterials(scene, materials, false))
-      {
-        return 1;
-      }
-      measure("ours-mapped", "PhysicalMediumToMaterial", oursWindow);
-      if (!MapMaterials(scene, materials, true))
-      {
-        return 1;
-      }
-      measure(
-        "ours-mapped-surface", "PhysicalMediumToMaterial with the scene's kd ks ke r", oursWindow);
-    }
-    if (opt.VTK)
-    {
-      vtkNew<vtkOpenGLGPUVolumeRayCastMapper> phong;
-      Window window(scene, camera, light, opt.Size, phong);
-      mmvbench::ShadeWithDefaultMaterial(window.Property);
-      measure("vtk-phong", "", window);
-      for (double blending : { 0.25, 0.5, 1.0, 2.0 })
-      {
-        for (double reach : { 0.1, 0.5, 1.0 })
-        {
-          for (double g : { 0.0, 0.5, 0.8 })
-          {
-            phong->SetVolumetricScatteringBlending(static_cast<float>(blending));
-            phong->SetGlobalIlluminationReach(static_cast<float>(reach));
-            window.Property->SetScatteringAnisotropy(g);
-            measure("vtk-scattering",
-              Setting({ { "blending", blending }, { "reach", reach }, { "anisotropy", g } }),
-              window);
-          }
-        }
-      }
-    }
-
-    // Best fit per family (lowest RMSE), and its image.
-    std::map<std::string, const Row*> best;
-    for (const Row& r : rows)
-    {
-      const std::string family = r.Family == "ours-default" ? "ours" : r.Family;
-      if (!best.count(family) || r.RMSE < best[family]->RMSE)
-      {
-        best[family] = &r;
-      }
-    }
-    for (const auto& b : best)
-    {
-      std::cout << "  best " << b.first << ": " << b.second->Setting << " RMSE " << b.second->RMSE
-                << " at " << 1e3 * b.second->Seconds << " ms\n";
-      vtkImageErrorMetrics::WritePNG(
-        (opt.Out + "/" + name + "_best_" + b.first + ".png").c_str(), b.second->Image);
     }
   }
   return 0;

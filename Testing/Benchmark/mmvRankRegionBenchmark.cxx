@@ -67,169 +67,230 @@ vtkSmartPointer<vtkImageData> Piece(vtkImageData* whole, int axis, int k, int p)
   return piece;
 }
 
-} // namespace
-
-int main(int argc, char* argv[])
+/// The command line's settings.
+struct Options
 {
-  std::string out, head = MMV_HEADSQ_PATH;
-  std::vector<std::string> rankList = { "1", "2", "4" }, axes = { "x", "z" },
-                           scattering = { "on", "off" };
-  int reps = 3, size = 400;
+  std::string Out;
+  std::string Head = MMV_HEADSQ_PATH;
+  std::vector<std::string> Ranks = { "1", "2", "4" };
+  std::vector<std::string> Axes = { "x", "z" };
+  std::vector<std::string> Scattering = { "on", "off" };
+  int Reps = 3;
+  int Size = 400;
+};
+
+/// Reads the command line into `o`; false (and a message) on a bad one.
+bool Parse(int argc, char* argv[], Options& o)
+{
   for (int i = 1; i < argc; ++i)
   {
     const std::string arg = argv[i];
     const bool more = i + 1 < argc;
     if (arg == "--out" && more)
-      out = argv[++i];
+      o.Out = argv[++i];
     else if (arg == "--ranks" && more)
-      rankList = mmvbench::SplitList(argv[++i]);
+      o.Ranks = mmvbench::SplitList(argv[++i]);
     else if (arg == "--axes" && more)
-      axes = mmvbench::SplitList(argv[++i]);
+      o.Axes = mmvbench::SplitList(argv[++i]);
     else if (arg == "--scattering" && more)
-      scattering = mmvbench::SplitList(argv[++i]);
+      o.Scattering = mmvbench::SplitList(argv[++i]);
     else if (arg == "--reps" && more)
-      reps = std::max(1, std::stoi(argv[++i]));
+      o.Reps = std::max(1, std::stoi(argv[++i]));
     else if (arg == "--head" && more)
-      head = argv[++i];
+      o.Head = argv[++i];
     else if (arg == "--size" && more)
-      size = std::max(64, std::stoi(argv[++i]));
+      o.Size = std::max(64, std::stoi(argv[++i]));
     else
     {
       std::cerr << "usage: mmvRankRegionBenchmark --out DIR [--ranks 1,2,4] [--axes x,z] "
                    "[--reps R] [--scattering on,off] [--head FILE.vti] [--size N]\n";
-      return 2;
+      return false;
     }
   }
-  if (out.empty())
+  if (o.Out.empty())
   {
     std::cerr << "--out DIR is required\n";
+    return false;
+  }
+  return true;
+}
+
+/// The one window every rank's piece renders in: ParaView's default
+/// lighting (the light kit, following the camera), the scene's camera, and
+/// a volume whose mapper is the rank's.
+struct RankView
+{
+  vtkSmartPointer<vtkRenderWindow> Window = mmvtest::NewRenderWindow();
+  vtkNew<vtkRenderer> Renderer;
+  vtkNew<vtkLightKit> Kit;
+  vtkNew<vtkVolumeProperty> Property;
+  vtkNew<vtkVolume> Volume;
+
+  RankView(const mmvbench::SceneSpec& scene, int size)
+  {
+    this->Window->SetOffScreenRendering(1);
+    this->Window->SetSize(size, size);
+    this->Window->AddRenderer(this->Renderer);
+    this->Kit->AddLightsToRenderer(this->Renderer);
+    vtkNew<vtkLight> unused;
+    double radius = 0.0;
+    mmvbench::FrameScene(scene, this->Renderer->GetActiveCamera(), unused, radius);
+    this->Property->SetColor(scene.Color);
+    this->Property->SetScalarOpacity(scene.Opacity);
+    this->Property->SetScalarOpacityUnitDistance(scene.UnitDistance);
+    this->Property->ShadeOn();
+    this->Property->SetInterpolationTypeToLinear();
+    this->Volume->SetProperty(this->Property);
+    this->Renderer->AddVolume(this->Volume);
+  }
+};
+
+/// Per mode (1: piece, 0: whole) and repetition: the slowest rank (and its
+/// shadow rays' and diffusion's share), the sum over ranks, the largest
+/// voxels.
+struct ModeTimes
+{
+  std::vector<double> Slowest[2], Estimation[2], Diffusion[2], Sum[2], Voxels[2];
+};
+
+/// One repetition of one mode: every rank's piece rendered in turn.
+void MeasureMode(RankView& view,
+  std::vector<vtkSmartPointer<vtkMultiMaterialVolumeMapper>>& mappers, const std::string& scatter,
+  int mode, int r, ModeTimes& t)
+{
+  double rankMax = 0.0, rankSum = 0.0, rankVoxels = 0.0, rankShadows = 0.0, rankDiffusion = 0.0;
+  for (auto& mapper : mappers)
+  {
+    mapper->SetMultipleScattering(scatter == "on");
+    mapper->SetPieceIrradianceOnly(mode == 1);
+    view.Volume->SetMapper(mapper);
+    // A small turn: the kit's lights move, every light is recomputed.
+    view.Renderer->GetActiveCamera()->Azimuth(r % 2 == 0 ? 3.0 : -3.0);
+    view.Window->Render();
+    const double seconds = mapper->GetLastIrradianceSeconds();
+    if (seconds >= rankMax)
+    {
+      rankShadows = mapper->GetIrradianceEstimator()->GetLastEstimationSeconds();
+      rankDiffusion = mapper->GetIrradianceEstimator()->GetLastDiffusionSeconds();
+    }
+    rankMax = std::max(rankMax, seconds);
+    rankSum += seconds;
+    rankVoxels = std::max(
+      rankVoxels, static_cast<double>(mapper->GetIrradianceEstimator()->GetLastEstimatedVoxels()));
+  }
+  t.Slowest[mode].push_back(rankMax);
+  t.Estimation[mode].push_back(rankShadows);
+  t.Diffusion[mode].push_back(rankDiffusion);
+  t.Sum[mode].push_back(rankSum);
+  t.Voxels[mode].push_back(rankVoxels);
+}
+
+/// The rows (and printed lines) of one split and scattering setting.
+void ReportModes(std::ofstream& csv, int p, const std::string& axisName, const std::string& scatter,
+  const int dims[3], double wholeVoxels, const ModeTimes& t)
+{
+  for (const int mode : { 1, 0 })
+  {
+    csv << p << "," << axisName << "," << scatter << "," << (mode ? "piece" : "whole") << ","
+        << dims[0] << "x" << dims[1] << "x" << dims[2] << "," << Median(t.Slowest[mode]) << ","
+        << Median(t.Estimation[mode]) << "," << Median(t.Diffusion[mode]) << ","
+        << Median(t.Sum[mode]) << "," << Median(t.Voxels[mode]) << "," << wholeVoxels << "\n";
+    std::cout << p << " ranks along " << axisName << ", scattering " << scatter << ", "
+              << (mode ? "piece" : "whole") << ": slowest rank " << Median(t.Slowest[mode])
+              << " s (shadow rays " << Median(t.Estimation[mode]) << " s, diffusion "
+              << Median(t.Diffusion[mode]) << " s), all ranks " << Median(t.Sum[mode])
+              << " s, largest rank's voxels " << Median(t.Voxels[mode]) << " of " << wholeVoxels
+              << std::endl;
+  }
+  csv.flush();
+}
+
+/// The volume split among `p` ranks along one axis: its pieces combined,
+/// then every scattering setting measured, both modes interleaved. False if
+/// the pieces could not be combined.
+bool RunSplit(const Options& o, const mmvbench::SceneSpec& scene, RankView& view, int p,
+  const std::string& axisName, std::ofstream& csv)
+{
+  const int lights = 5;
+  const int axis = axisName == "x" ? 0 : (axisName == "y" ? 1 : 2);
+  std::vector<vtkSmartPointer<vtkImageData>> pieces;
+  for (int k = 0; k < p; ++k)
+  {
+    pieces.push_back(Piece(scene.Image, axis, k, p));
+  }
+  // Combined as the ranks' exchange combines them (the default budget).
+  vtkNew<vtkGlobalPrefilteredVolume> global;
+  if (!mmvtest::CombinePieces(pieces, global, mmv::DefaultIrradianceBudgetMB, lights, 0.0))
+  {
+    std::cerr << "the pieces could not be combined\n";
+    return false;
+  }
+  int dims[3];
+  global->GetIrradianceDimensions(dims);
+  const double wholeVoxels = static_cast<double>(global->GetNumberOfVoxels()) * lights;
+  std::vector<vtkSmartPointer<vtkMultiMaterialVolumeMapper>> mappers;
+  for (const auto& piece : pieces)
+  {
+    auto mapper = vtkSmartPointer<vtkMultiMaterialVolumeMapper>::New();
+    mapper->SetInputData(piece);
+    mapper->SetMaterialTransferFunction(scene.Materials);
+    mapper->SetGlobalPrefilteredVolume(global);
+    mappers.push_back(mapper);
+  }
+  for (const std::string& scatter : o.Scattering)
+  {
+    ModeTimes t;
+    for (int r = 0; r < o.Reps; ++r)
+    {
+      for (const int mode : { 1, 0 })
+      {
+        MeasureMode(view, mappers, scatter, mode, r, t);
+      }
+    }
+    ReportModes(csv, p, axisName, scatter, dims, wholeVoxels, t);
+  }
+  std::cout << "irradiance " << mappers.front()->GetIrradianceResolutionReason() << std::endl;
+  for (auto& mapper : mappers)
+  {
+    mapper->ReleaseGraphicsResources(view.Window);
+  }
+  return true;
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  Options o;
+  if (!Parse(argc, argv, o))
+  {
     return 2;
   }
-  mkdir(out.c_str(), 0755);
-  const mmvbench::SceneSpec scene = mmvbench::MakeScene("ct", head);
+  mkdir(o.Out.c_str(), 0755);
+  const mmvbench::SceneSpec scene = mmvbench::MakeScene("ct", o.Head);
   if (!scene.Image)
   {
-    std::cerr << "cannot read " << head << "\n";
+    std::cerr << "cannot read " << o.Head << "\n";
     return 1;
   }
+  RankView view(scene, o.Size);
 
-  vtkSmartPointer<vtkRenderWindow> window = mmvtest::NewRenderWindow();
-  window->SetOffScreenRendering(1);
-  window->SetSize(size, size);
-  vtkNew<vtkRenderer> renderer;
-  window->AddRenderer(renderer);
-  // ParaView's default lighting: the light kit, following the camera.
-  vtkNew<vtkLightKit> kit;
-  kit->AddLightsToRenderer(renderer);
-  vtkNew<vtkLight> unused;
-  double radius = 0.0;
-  mmvbench::FrameScene(scene, renderer->GetActiveCamera(), unused, radius);
-  vtkNew<vtkVolumeProperty> property;
-  property->SetColor(scene.Color);
-  property->SetScalarOpacity(scene.Opacity);
-  property->SetScalarOpacityUnitDistance(scene.UnitDistance);
-  property->ShadeOn();
-  property->SetInterpolationTypeToLinear();
-  vtkNew<vtkVolume> volume;
-  volume->SetProperty(property);
-  renderer->AddVolume(volume);
-
-  const std::string csvPath = out + "/rank_regions.csv";
+  const std::string csvPath = o.Out + "/rank_regions.csv";
   std::ofstream csv(csvPath);
   csv << "ranks,axis,scattering,mode,irradiance_grid,slowest_rank_update_s,"
          "its_shadow_rays_s,its_diffusion_s,sum_of_rank_updates_s,largest_rank_voxels,"
          "whole_grid_voxels\n";
-  const int lights = 5;
-  for (const std::string& ranksText : rankList)
+  for (const std::string& ranksText : o.Ranks)
   {
     const int p = std::max(1, std::stoi(ranksText));
-    for (const std::string& axisName : axes)
+    for (const std::string& axisName : o.Axes)
     {
-      if (p == 1 && axisName != axes.front())
+      if (p == 1 && axisName != o.Axes.front())
       {
         continue; // one piece is the whole volume along any axis
       }
-      const int axis = axisName == "x" ? 0 : (axisName == "y" ? 1 : 2);
-      std::vector<vtkSmartPointer<vtkImageData>> pieces;
-      for (int k = 0; k < p; ++k)
+      if (!RunSplit(o, scene, view, p, axisName, csv))
       {
-        pieces.push_back(Piece(scene.Image, axis, k, p));
-      }
-      // Combined as the ranks' exchange combines them (the default budget).
-      vtkNew<vtkGlobalPrefilteredVolume> global;
-      if (!mmvtest::CombinePieces(pieces, global, mmv::DefaultIrradianceBudgetMB, lights, 0.0))
-      {
-        std::cerr << "the pieces could not be combined\n";
         return 1;
-      }
-      int dims[3];
-      global->GetIrradianceDimensions(dims);
-      const double wholeVoxels = static_cast<double>(global->GetNumberOfVoxels()) * lights;
-      std::vector<vtkSmartPointer<vtkMultiMaterialVolumeMapper>> mappers;
-      for (const auto& piece : pieces)
-      {
-        auto mapper = vtkSmartPointer<vtkMultiMaterialVolumeMapper>::New();
-        mapper->SetInputData(piece);
-        mapper->SetMaterialTransferFunction(scene.Materials);
-        mapper->SetGlobalPrefilteredVolume(global);
-        mappers.push_back(mapper);
-      }
-      for (const std::string& scatter : scattering)
-      {
-        // [mode][rep]: the slowest rank (and its shadow rays' and
-        // diffusion's share), the sum over ranks, the largest voxels.
-        std::vector<double> slowest[2], estimation[2], diffusion[2], sum[2], voxels[2];
-        for (int r = 0; r < reps; ++r)
-        {
-          for (const int mode : { 1, 0 })
-          {
-            double rankMax = 0.0, rankSum = 0.0, rankVoxels = 0.0, rankShadows = 0.0,
-                   rankDiffusion = 0.0;
-            for (auto& mapper : mappers)
-            {
-              mapper->SetMultipleScattering(scatter == "on");
-              mapper->SetPieceIrradianceOnly(mode == 1);
-              volume->SetMapper(mapper);
-              // A small turn: the kit's lights move, every light is recomputed.
-              renderer->GetActiveCamera()->Azimuth(r % 2 == 0 ? 3.0 : -3.0);
-              window->Render();
-              const double seconds = mapper->GetLastIrradianceSeconds();
-              if (seconds >= rankMax)
-              {
-                rankShadows = mapper->GetIrradianceEstimator()->GetLastEstimationSeconds();
-                rankDiffusion = mapper->GetIrradianceEstimator()->GetLastDiffusionSeconds();
-              }
-              rankMax = std::max(rankMax, seconds);
-              rankSum += seconds;
-              rankVoxels = std::max(rankVoxels,
-                static_cast<double>(mapper->GetIrradianceEstimator()->GetLastEstimatedVoxels()));
-            }
-            slowest[mode].push_back(rankMax);
-            estimation[mode].push_back(rankShadows);
-            diffusion[mode].push_back(rankDiffusion);
-            sum[mode].push_back(rankSum);
-            voxels[mode].push_back(rankVoxels);
-          }
-        }
-        for (const int mode : { 1, 0 })
-        {
-          csv << p << "," << axisName << "," << scatter << "," << (mode ? "piece" : "whole") << ","
-              << dims[0] << "x" << dims[1] << "x" << dims[2] << "," << Median(slowest[mode]) << ","
-              << Median(estimation[mode]) << "," << Median(diffusion[mode]) << ","
-              << Median(sum[mode]) << "," << Median(voxels[mode]) << "," << wholeVoxels << "\n";
-          std::cout << p << " ranks along " << axisName << ", scattering " << scatter << ", "
-                    << (mode ? "piece" : "whole") << ": slowest rank " << Median(slowest[mode])
-                    << " s (shadow rays " << Median(estimation[mode]) << " s, diffusion "
-                    << Median(diffusion[mode]) << " s), all ranks " << Median(sum[mode])
-                    << " s, largest rank's voxels " << Median(voxels[mode]) << " of " << wholeVoxels
-                    << std::endl;
-        }
-        csv.flush();
-      }
-      std::cout << "irradiance " << mappers.front()->GetIrradianceResolutionReason() << std::endl;
-      for (auto& mapper : mappers)
-      {
-        mapper->ReleaseGraphicsResources(window);
       }
     }
   }
