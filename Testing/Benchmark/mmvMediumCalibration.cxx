@@ -410,7 +410,7 @@ void BestVTKScattering(
   vtkNew<vtkOpenGLGPUVolumeRayCastMapper> vtkMapper;
   Window vtkWindow(scene, camera, light, c.Opt.Size, vtkMapper);
   mmvbench::ShadeWithDefaultMaterial(vtkWindow.Property);
-  // Best over the three parameters at the mmv default
+  // Best over blending, reach and anisotropy at the mmv default
   // exposure. (Fitting VTK's ambient and diffuse as ours are does not
   // work: its image is not linear in them, the "fitted" renders were
   // worse than the defaults; its exposure error shows in the

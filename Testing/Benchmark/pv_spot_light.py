@@ -14,7 +14,7 @@ Methods: ParaView's "Volume" (Shade 1); "Multi-Material Volume" with
 MaterialPreset bone and PointLightRadius 0 (the default: the light's
 attenuation); the same with PointLightRadius = the smallest data spacing (the
 former default: eq. 12 falloff from one voxel); the same with PointLightRadius
-1e6 (eq. 12 without falloff over the data: what the issue's reporter tried).
+1e6 (eq. 12 without falloff over the data, as a user might try).
 
 Foreground: the pixels of ParaView's Volume image that differ from the
 background by more than 3 levels in some channel; every method's mean

@@ -113,7 +113,7 @@ TEST(VolumeBricking, PartitionsInClosedForm)
 {
   const int none[3] = { 1, 1, 1 };
   int parts[3];
-  // The case: 2100 points on llvmpipe (2048): two bricks of 1051.
+  // The case that aborted VTK's upload: 2100 points on llvmpipe (2048): two bricks of 1051.
   const int longX[3] = { 2100, 6, 6 };
   ASSERT_TRUE(mmv::ChooseBrickPartitions(longX, 2048, none, parts));
   EXPECT_EQ(parts[0], 2);
@@ -225,7 +225,7 @@ TEST(VolumeBricking, VolumeThatFitsKeepsOneTexture)
 //------------------------------------------------------------------------------
 namespace
 {
-// The scene: a plate (y 22..25, x and z 8..24) above a floor (y 2..6)
+// A plate-and-floor scene: a plate (y 22..25, x and z 8..24) above a floor (y 2..6)
 // in a 33^3 volume, lit from above: the plate's shadow falls on the floor.
 float PlateAndFloor(int i, int j, int k)
 {
