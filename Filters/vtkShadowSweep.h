@@ -29,6 +29,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <vector>
 
@@ -108,10 +109,13 @@ inline ShadowSweep PlanShadowSweep(const int dims[3], const glm::dvec3& toLight,
  * the next chunk's draw interpolates. `toLight` is the index-space direction
  * the sweep was planned with. Walks from the farthest chunk toward the
  * light; a chunk upstream of the region draws a patch of one slice. An
- * empty box: nothing to draw.
+ * empty box: nothing to draw. `nonEmpty`, when given, shrinks the region's
+ * part of each chunk to the voxels whose own values matter (the non-empty
+ * ones, VoxelOccupancy::Shrink); the read slices are added after it.
  */
-inline std::vector<IndexBox> PlanSweepBoxes(
-  const ShadowSweep& sweep, const int dims[3], const glm::dvec3& toLight, const IndexBox& region)
+inline std::vector<IndexBox> PlanSweepBoxes(const ShadowSweep& sweep, const int dims[3],
+  const glm::dvec3& toLight, const IndexBox& region,
+  const std::function<IndexBox(const IndexBox&)>& nonEmpty = nullptr)
 {
   const int axis = sweep.Axis;
   std::vector<IndexBox> boxes(sweep.GetNumberOfChunks());
@@ -123,7 +127,8 @@ inline std::vector<IndexBox> PlanSweepBoxes(
     IndexBox slab = IndexBox::Whole(dims);
     slab.Bounds[2 * axis] = first;
     slab.Bounds[2 * axis + 1] = last;
-    const IndexBox needed = region.Intersected(slab).United(read);
+    const IndexBox own = region.Intersected(slab);
+    const IndexBox needed = (nonEmpty ? nonEmpty(own) : own).United(read);
     boxes[chunk] = needed;
     read = IndexBox();
     if (needed.IsEmpty() || plane < 0)

@@ -385,7 +385,8 @@ bool vtkIrradianceEstimator::UpdateGroup(vtkOpenGLRenderWindow* context, int gro
   // they are lit as the others.
   ok = ok &&
     (stridedMask == 0 ||
-      internals.UpsamplePass(context, stridedMask, stride, this->LayeredRendering));
+      internals.UpsamplePass(
+        context, stridedMask, stride, this->SkipEmptyVoxels, this->LayeredRendering));
   this->LastEstimationSeconds += elapsed();
   vtkTextureObject* result = internals.FineScratch[0];
   if (ok && diffusion)

@@ -30,6 +30,7 @@
 #include "vtkShadowSweep.h"
 #include "vtkSmartPointer.h"
 #include "vtkTextureObject.h"
+#include "vtkVoxelOccupancy.h"
 #include "vtk_glew.h"
 
 #include <glm/gtc/type_ptr.hpp>
@@ -324,6 +325,13 @@ public:
   std::vector<vtkIdType> ValueHistogram;
   int ValueHistogramSize = 0;
   void CountNonEmptyVoxels();
+  // The bricks that may hold non-empty voxels (value ranges once per
+  // scalars, marked at every upload): the shadow draws shrink to them.
+  mmv::VoxelOccupancy Occupancy;
+  /// The part of `box` (a box of the light grid of `stride`) whose voxels a
+  /// later pass reads: around the non-empty irradiance voxels, or the
+  /// strided points their interpolation reads.
+  mmv::IndexBox OccupiedBox(const mmv::IndexBox& box, int stride) const;
   // The diffusion grid (vtkIrradianceDiffusion.h) with its strength and
   // capacity per block (interleaved) and solve lengths, planned on the CPU.
   mmv::DiffusionSettings Diffusion;
@@ -473,7 +481,8 @@ public:
     vtkOpenGLRenderWindow* context, int light, int slicesPerChunk, bool skipEmpty, bool layered);
   /// The lights of `mask` of a strided light grid, interpolated into their
   /// channels of FineScratch[0] over the estimated box.
-  bool UpsamplePass(vtkOpenGLRenderWindow* context, int mask, int stride, bool layered);
+  bool UpsamplePass(
+    vtkOpenGLRenderWindow* context, int mask, int stride, bool skipEmpty, bool layered);
   int Diffuse(vtkOpenGLRenderWindow* context, bool layered, int mask);
   void SetDiffusionGridUniforms(vtkShaderProgram* program);
   int BackwardEulerSweeps(

@@ -233,7 +233,9 @@ bool vtkIrradianceEstimator::vtkInternals::Upload(vtkOpenGLRenderWindow* context
     this->ScalarTexture = NewTexture(context, GL_R32F, GL_RED, GL_FLOAT, true);
     this->ScalarsUploaded =
       this->ScalarTexture->Create3DFromRaw(d[0], d[1], d[2], 1, VTK_FLOAT, this->Scalars.data());
+    this->Occupancy.SetValues(this->Scalars, d);
   }
+  this->Occupancy.Classify(this->OpacityTable);
   bool classes = true;
   if (!HasSize(this->ClassTexture, d))
   {

@@ -105,6 +105,34 @@ void vtkIrradianceEstimator::vtkInternals::SetLightGridUniforms(
 }
 
 //------------------------------------------------------------------------------
+mmv::IndexBox vtkIrradianceEstimator::vtkInternals::OccupiedBox(
+  const mmv::IndexBox& box, int stride) const
+{
+  if (stride <= 1)
+  {
+    return this->Occupancy.Shrink(box);
+  }
+  // The irradiance voxels whose interpolation may read the box's points
+  // (point p is read by voxels whose point below is p - 1 or p), one more
+  // on each side; then the points around the non-empty ones among them.
+  const int* d = this->Grid.Dimensions;
+  int dims[3];
+  this->LightGridDimensions(stride, dims);
+  double ratio[3];
+  this->LightGridRatio(stride, ratio);
+  mmv::IndexBox voxels;
+  for (int a = 0; a < 3; ++a)
+  {
+    const double r = ratio[a] > 0.0 ? ratio[a] : 1.0;
+    voxels.Bounds[2 * a] =
+      std::max(0, static_cast<int>(std::floor((box.Bounds[2 * a] - 1) / r)) - 1);
+    voxels.Bounds[2 * a + 1] =
+      std::min(d[a] - 1, static_cast<int>(std::ceil((box.Bounds[2 * a + 1] + 1) / r)) + 1);
+  }
+  return mmv::ResampledBox(this->Occupancy.Shrink(voxels), d, dims).Intersected(box);
+}
+
+//------------------------------------------------------------------------------
 // Full shadow rays of the lights of `mask` whose grid stride is `stride`,
 // into their channels of that grid's target.
 bool vtkIrradianceEstimator::vtkInternals::ShadowPass(
@@ -128,9 +156,10 @@ bool vtkIrradianceEstimator::vtkInternals::ShadowPass(
   SetLightUniforms(program, this->Lights, group * LightsPerTexture, mask);
   int dims[3];
   this->LightGridDimensions(stride, dims);
-  const mmv::IndexBox box = stride > 1
+  const mmv::IndexBox estimated = stride > 1
     ? mmv::ResampledBox(this->Plan.Estimated, this->Grid.Dimensions, dims)
     : this->Plan.Estimated;
+  const mmv::IndexBox box = skipEmpty ? this->OccupiedBox(estimated, stride) : estimated;
   this->DrawLayers(
     context, this->ShadowQuad, this->LightGridTarget(stride), layered, DrawBox(box, dims));
   for (int l = 0; l < LightsPerTexture; ++l)
@@ -142,7 +171,7 @@ bool vtkIrradianceEstimator::vtkInternals::ShadowPass(
 
 //------------------------------------------------------------------------------
 bool vtkIrradianceEstimator::vtkInternals::UpsamplePass(
-  vtkOpenGLRenderWindow* context, int mask, int stride, bool layered)
+  vtkOpenGLRenderWindow* context, int mask, int stride, bool skipEmpty, bool layered)
 {
   vtkShaderProgram* program =
     this->Ready(context, this->UpsampleQuad, mmvLightGridUpsampleFS, "", false);
@@ -162,8 +191,10 @@ bool vtkIrradianceEstimator::vtkInternals::UpsamplePass(
   program->SetUniform1iv("lightGridDims", 3, dims);
   program->SetUniform3f("indexToLightGrid", toLightGrid);
   program->SetUniform1iv("dims", 3, this->Grid.Dimensions);
+  const mmv::IndexBox box =
+    skipEmpty ? this->OccupiedBox(this->Plan.Estimated, 1) : this->Plan.Estimated;
   this->DrawLayers(context, this->UpsampleQuad, this->FineScratch[0], layered,
-    DrawBox(this->Plan.Estimated, this->Grid.Dimensions), mask);
+    DrawBox(box, this->Grid.Dimensions), mask);
   return true;
 }
 
@@ -238,7 +269,13 @@ bool vtkIrradianceEstimator::vtkInternals::PiecewiseShadowPass(
   const mmv::IndexBox estimated = stride > 1
     ? mmv::ResampledBox(this->Plan.Estimated, this->Grid.Dimensions, d)
     : this->Plan.Estimated;
-  const std::vector<mmv::IndexBox> boxes = mmv::PlanSweepBoxes(sweep, d, toLightIndex, estimated);
+  std::function<mmv::IndexBox(const mmv::IndexBox&)> nonEmpty;
+  if (skipEmpty)
+  {
+    nonEmpty = [this, stride](const mmv::IndexBox& box) { return this->OccupiedBox(box, stride); };
+  }
+  const std::vector<mmv::IndexBox> boxes =
+    mmv::PlanSweepBoxes(sweep, d, toLightIndex, estimated, nonEmpty);
   glm::vec3 toLight(source.ToLight);
   const int channel = light % LightsPerTexture;
   vtkTextureObject* target = this->LightGridTarget(stride);

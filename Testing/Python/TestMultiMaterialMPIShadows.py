@@ -154,15 +154,17 @@ print("global irradiance: %s" % mmv.info(rep, "GlobalIrradianceInfo"))
 resolution = mmv.info(rep, "IrradianceResolutionInfo")
 print("irradiance: %s" % resolution)
 # Rank 0 estimates what its piece reads (PieceIrradianceOnly, the default):
-# the whole global grid alone, a share of it among ranks.
+# the whole global grid alone, a share of it among ranks. Either way only
+# around the bricks that may hold non-empty voxels (vtkVoxelOccupancy.h):
+# the plate and the floor leave most of the grid empty.
 grid = [int(n) for n in resolution.split(" ")[0].split("x")]
 whole = grid[0] * grid[1] * grid[2]  # one light
 estimated = mmv.info(rep, "LastEstimatedIrradianceVoxels")[0]
 print("rank 0 estimated %d of the global grid's %d voxels (%.0f %%)"
       % (estimated, whole, 100.0 * estimated / whole))
 if ranks == 1:
-    checker.check(estimated == whole, "one rank estimates the whole grid (%d of %d)"
-                  % (estimated, whole))
+    checker.check(0 < estimated < whole, "one rank estimates the grid around the plate and the "
+                  "floor (%d of %d)" % (estimated, whole))
 else:
     checker.check(0 < estimated <= 0.75 * whole,
                   "rank 0 estimates its share of the grid (%d of %d voxels <= 75 %%)"
@@ -202,9 +204,10 @@ if ranks > 1 and variant in ("", "Reflective", "Cells"):
     rep.PieceIrradianceOnly = 0
     wholeImage = mmv.render_image(view, os.path.join(
         args.temp_dir, "PVMultiMaterialMPIShadows%sWhole_%d.png" % (variant, ranks)))
-    estimated = mmv.info(rep, "LastEstimatedIrradianceVoxels")[0]
-    checker.check(estimated == whole, "PieceIrradianceOnly off: rank 0 estimates the whole grid "
-                  "(%d of %d)" % (estimated, whole))
+    wholeEstimated = mmv.info(rep, "LastEstimatedIrradianceVoxels")[0]
+    checker.check(estimated < wholeEstimated <= whole, "PieceIrradianceOnly off: rank 0 "
+                  "estimates more than its piece's share (%d > %d, of %d)"
+                  % (wholeEstimated, estimated, whole))
     value = psnr(image, wholeImage)
     print("piece regions vs whole grids at -np %d: PSNR %.2f dB" % (ranks, value))
     checker.check(value == float("inf"), "piece regions draw the same pixels as whole grids")
