@@ -45,6 +45,59 @@ void ComputeValueGradients(vtkDataArray* scalars, int component, const int dims[
     });
 }
 
+void ComputeHalfValueGradients(vtkDataArray* scalars, int component, const int dims[3],
+  const double range[2], int firstSlice, int lastSlice, std::vector<float>& values,
+  std::vector<unsigned short>& halves)
+{
+  const vtkIdType sliceSize = static_cast<vtkIdType>(dims[0]) * dims[1];
+  const double scale = range[1] > range[0] ? 1.0 / (range[1] - range[0]) : 0.0;
+  // The slab's slices and one more on each side (clamped), as
+  // ComputeValueGradients normalises them.
+  const int below = std::max(0, firstSlice - 1);
+  const int above = std::min(dims[2] - 1, lastSlice + 1);
+  values.resize(static_cast<size_t>(sliceSize) * (above - below + 1));
+  vtkSMPTools::For(0, static_cast<vtkIdType>(values.size()),
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      const vtkIdType offset = below * sliceSize;
+      for (vtkIdType v = begin; v < end; ++v)
+      {
+        values[v] =
+          static_cast<float>((scalars->GetComponent(offset + v, component) - range[0]) * scale);
+      }
+    });
+  const int slices = lastSlice - firstSlice + 1;
+  halves.resize(3 * static_cast<size_t>(sliceSize) * slices);
+  // One row (j, k) per task: no index arithmetic per voxel.
+  vtkSMPTools::For(0, static_cast<vtkIdType>(dims[1]) * slices,
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      for (vtkIdType row = begin; row < end; ++row)
+      {
+        const int j = static_cast<int>(row % dims[1]);
+        const int k = firstSlice + static_cast<int>(row / dims[1]);
+        const float* center = values.data() + (k - below) * sliceSize + j * dims[0];
+        const float* yBelow = j > 0 ? center - dims[0] : center;
+        const float* yAbove = j + 1 < dims[1] ? center + dims[0] : center;
+        const float* zBelow = k > 0 ? center - sliceSize : center;
+        const float* zAbove = k + 1 < dims[2] ? center + sliceSize : center;
+        unsigned short* out = halves.data() + 3 * (row * dims[0]);
+        for (int i = 0; i < dims[0]; ++i)
+        {
+          const float differences[3] = { center[i + 1 < dims[0] ? i + 1 : i] -
+              center[i > 0 ? i - 1 : i],
+            yAbove[i] - yBelow[i], zAbove[i] - zBelow[i] };
+          for (int a = 0; a < 3; ++a)
+          {
+            const float g = 0.5f * differences[a];
+            out[3 * i + a] =
+              static_cast<unsigned short>(glm::packHalf1x16(std::isfinite(g) ? g : 0.0f));
+          }
+        }
+      }
+    });
+}
+
 double ValidGradientSmoothing(double sigma, std::string* why)
 {
   if (sigma >= 0.0 && sigma <= MaxGradientSmoothing)

@@ -72,6 +72,18 @@ VTKMULTIMATERIALVOLUMEFILTERS_EXPORT void SmoothVectors(
 VTKMULTIMATERIALVOLUMEFILTERS_EXPORT std::vector<float> ResampleVectors(
   const std::vector<float>& values, int components, const int dims[3], const int newDims[3]);
 
+/**
+ * Slices [firstSlice, lastSlice] (along z) of
+ * PackHalfFloats(ComputeValueGradients(...)), bit for bit, into `halves`
+ * (resized to 3 per voxel of those slices, x fastest): the gradient texture
+ * is uploaded a slab at a time, so no buffer of the whole volume is made.
+ * `values` is scratch (the normalised values of the slab and the slices on
+ * either side), kept by the caller between slabs. Multithreaded.
+ */
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT void ComputeHalfValueGradients(vtkDataArray* scalars,
+  int component, const int dims[3], const double range[2], int firstSlice, int lastSlice,
+  std::vector<float>& values, std::vector<unsigned short>& halves);
+
 /// The values as IEEE half floats (GL_HALF_FLOAT), converted on every core:
 /// the gradient texture is RGB16F, and a driver given 32-bit floats converts
 /// them on one thread.

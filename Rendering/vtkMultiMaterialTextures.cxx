@@ -126,9 +126,6 @@ bool vtkMultiMaterialTextures::UpdateGradientTexture(vtkOpenGLRenderWindow* cont
   {
     return true;
   }
-  std::vector<float> gradients;
-  mmv::ComputeValueGradients(scalars, 0, dims, range, gradients);
-  mmv::SmoothVectors(gradients, 3, dims, sigma);
   // A volume longer than the largest 3D texture (rendered in bricks) keeps
   // its gradient volume in one texture, resampled along the long axes.
   const int largest = vtkTextureObject::GetMaximumTextureSize3D(context);
@@ -143,20 +140,16 @@ bool vtkMultiMaterialTextures::UpdateGradientTexture(vtkOpenGLRenderWindow* cont
     const int fit = std::max(std::min(dims[a], 2), static_cast<int>(dims[a] * shrink));
     textureDims[a] = largest > 1 ? std::min(fit, largest) : fit;
   }
-  if (!std::equal(dims, dims + 3, textureDims))
-  {
-    gradients = mmv::ResampleVectors(gradients, 3, dims, textureDims);
-  }
   this->Gradient->SetContext(context);
   // Half floats: 6 bytes a voxel, and 11 bits of mantissa keep the faint
-  // gradients of soft tissue that 8-bit normals would flatten. Packed here,
-  // so the upload is a copy.
-  std::vector<unsigned short> halves = mmv::PackHalfFloats(gradients);
+  // gradients of soft tissue that 8-bit normals would flatten.
   this->Gradient->SetInternalFormat(GL_RGB16F);
   this->Gradient->SetFormat(GL_RGB);
   this->Gradient->SetDataType(GL_HALF_FLOAT);
-  if (!this->Gradient->Create3DFromRaw(
-        textureDims[0], textureDims[1], textureDims[2], 3, VTK_UNSIGNED_SHORT, halves.data()))
+  const bool plain = std::equal(dims, dims + 3, textureDims) &&
+    std::all_of(sigma, sigma + 3, [](double s) { return s == 0.0; });
+  if (!(plain ? this->UploadGradientSlabs(scalars, dims, range)
+              : this->UploadGradientVolume(scalars, dims, range, sigma, textureDims)))
   {
     this->UploadedScalars = nullptr;
     return false;
@@ -169,10 +162,69 @@ bool vtkMultiMaterialTextures::UpdateGradientTexture(vtkOpenGLRenderWindow* cont
   this->UploadedGradientRange[1] = range[1];
   std::copy(sigma, sigma + 3, this->UploadedGradientSmoothing);
   std::copy(dims, dims + 3, this->GradientDimensions);
-  std::copy(textureDims, textureDims + 3, this->GradientTextureDimensions);
   ++this->GradientUploads;
   this->GradientKept = false;
   this->KeepGradient(context);
+  return true;
+}
+
+//------------------------------------------------------------------------------
+// Gradients of the volume as it is, a slab of slices at a time into the
+// texture, kept from the previous step where the size is the same: neither
+// the gradients nor the texture's storage are allocated again for a new
+// step (fresh memory costs more than computing them on some machines).
+bool vtkMultiMaterialTextures::UploadGradientSlabs(
+  vtkDataArray* scalars, const int dims[3], const double range[2])
+{
+  if (this->Gradient->GetHandle() == 0 ||
+    !std::equal(dims, dims + 3, this->GradientTextureDimensions))
+  {
+    if (!this->Gradient->Allocate3D(dims[0], dims[1], dims[2], 3, VTK_UNSIGNED_SHORT))
+    {
+      return false;
+    }
+    std::copy(dims, dims + 3, this->GradientTextureDimensions);
+  }
+  // About a million voxels a slab: small scratch, few uploads.
+  const vtkIdType sliceSize = static_cast<vtkIdType>(dims[0]) * dims[1];
+  const int slab =
+    static_cast<int>(std::max<vtkIdType>(1, (1 << 20) / std::max<vtkIdType>(1, sliceSize)));
+  this->Gradient->Activate();
+  GLint alignment = 4;
+  glGetIntegerv(GL_UNPACK_ALIGNMENT, &alignment);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1); // 6-byte texels
+  for (int first = 0; first < dims[2]; first += slab)
+  {
+    const int last = std::min(dims[2] - 1, first + slab - 1);
+    mmv::ComputeHalfValueGradients(
+      scalars, 0, dims, range, first, last, this->SlabValues, this->SlabHalves);
+    glTexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, first, dims[0], dims[1], last - first + 1, GL_RGB,
+      GL_HALF_FLOAT, this->SlabHalves.data());
+  }
+  glPixelStorei(GL_UNPACK_ALIGNMENT, alignment);
+  this->Gradient->Deactivate();
+  return true;
+}
+
+// Smoothed, or resampled to fit: the whole volume's gradients first.
+bool vtkMultiMaterialTextures::UploadGradientVolume(vtkDataArray* scalars, const int dims[3],
+  const double range[2], const double sigma[3], const int textureDims[3])
+{
+  std::vector<float> gradients;
+  mmv::ComputeValueGradients(scalars, 0, dims, range, gradients);
+  mmv::SmoothVectors(gradients, 3, dims, sigma);
+  if (!std::equal(dims, dims + 3, textureDims))
+  {
+    gradients = mmv::ResampleVectors(gradients, 3, dims, textureDims);
+  }
+  // Packed here, so the upload is a copy.
+  std::vector<unsigned short> halves = mmv::PackHalfFloats(gradients);
+  if (!this->Gradient->Create3DFromRaw(
+        textureDims[0], textureDims[1], textureDims[2], 3, VTK_UNSIGNED_SHORT, halves.data()))
+  {
+    return false;
+  }
+  std::copy(textureDims, textureDims + 3, this->GradientTextureDimensions);
   return true;
 }
 

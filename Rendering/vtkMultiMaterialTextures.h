@@ -22,7 +22,8 @@
 #include "vtkTextureObject.h" // kept gradients
 
 #include <cstddef>
-#include <list> // kept gradients
+#include <list>   // kept gradients
+#include <vector> // slab scratch
 
 class vtkDataArray;
 class vtkMaterialTransferFunction;
@@ -106,6 +107,12 @@ private:
     vtkSmartPointer<vtkTextureObject> Texture;
     size_t Bytes = 0;
   };
+  bool UploadGradientSlabs(vtkDataArray* scalars, const int dims[3], const double range[2]);
+  bool UploadGradientVolume(vtkDataArray* scalars, const int dims[3], const double range[2],
+    const double sigma[3], const int textureDims[3]);
+  // Scratch of UploadGradientSlabs, kept between steps.
+  std::vector<float> SlabValues;
+  std::vector<unsigned short> SlabHalves;
   bool RestoreKeptGradient(
     vtkDataArray* scalars, const int dims[3], const double range[2], const double smoothing[3]);
   void KeepGradient(vtkOpenGLRenderWindow* context);

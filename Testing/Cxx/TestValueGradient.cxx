@@ -212,3 +212,41 @@ TEST(ValueGradient, HalfFloatsArePackedAsIEEEBinary16)
   }
   EXPECT_LE(worst, std::ldexp(1.0, -11));
 }
+
+// The gradient texture is uploaded a slab at a time: every slab partition
+// gives PackHalfFloats(ComputeValueGradients(...)) bit for bit, on the
+// volume's faces, at NaN and infinite values, and on a one-voxel-thick axis.
+TEST(ValueGradient, HalfFloatSlabsEqualTheWholeVolumePacked)
+{
+  for (const int thickness : { 1, 7 })
+  {
+    const int dims[3] = { 9, thickness, 11 };
+    vtkNew<vtkFloatArray> scalars;
+    scalars->SetNumberOfTuples(dims[0] * dims[1] * dims[2]);
+    for (vtkIdType v = 0; v < scalars->GetNumberOfTuples(); ++v)
+    {
+      // Irregular values, with a NaN and an infinity among them.
+      scalars->SetValue(v, static_cast<float>(std::sin(0.7 * v) * 300.0 + (v % 13) * 11.0));
+    }
+    scalars->SetValue(40, std::numeric_limits<float>::quiet_NaN());
+    scalars->SetValue(77, std::numeric_limits<float>::infinity());
+    const double range[2] = { -300.0, 450.0 };
+    std::vector<float> g;
+    mmv::ComputeValueGradients(scalars, 0, dims, range, g);
+    const std::vector<unsigned short> whole = mmv::PackHalfFloats(g);
+    for (const int slab : { 1, 2, 4, 11 })
+    {
+      std::vector<unsigned short> assembled;
+      std::vector<float> values;
+      std::vector<unsigned short> halves;
+      for (int first = 0; first < dims[2]; first += slab)
+      {
+        const int last = std::min(dims[2] - 1, first + slab - 1);
+        mmv::ComputeHalfValueGradients(scalars, 0, dims, range, first, last, values, halves);
+        ASSERT_EQ(halves.size(), 3u * dims[0] * dims[1] * (last - first + 1));
+        assembled.insert(assembled.end(), halves.begin(), halves.end());
+      }
+      EXPECT_EQ(assembled, whole) << "thickness " << thickness << ", slabs of " << slab;
+    }
+  }
+}
