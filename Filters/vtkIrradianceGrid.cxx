@@ -60,16 +60,28 @@ namespace mmv
 
 std::vector<float> CopyComponent(vtkDataArray* scalars, int component)
 {
-  std::vector<float> values(scalars->GetNumberOfTuples());
-  vtkSMPTools::For(0, scalars->GetNumberOfTuples(),
+  std::vector<float> values;
+  CopyComponent(scalars, component, values);
+  return values;
+}
+
+void CopyComponent(vtkDataArray* scalars, int component, std::vector<float>& values)
+{
+  CopyComponent(scalars, component, 0, scalars->GetNumberOfTuples(), values);
+}
+
+void CopyComponent(vtkDataArray* scalars, int component, vtkIdType first, vtkIdType count,
+  std::vector<float>& values)
+{
+  values.resize(count);
+  vtkSMPTools::For(0, count,
     [&](vtkIdType begin, vtkIdType end)
     {
       for (vtkIdType i = begin; i < end; ++i)
       {
-        values[i] = static_cast<float>(scalars->GetComponent(i, component));
+        values[i] = static_cast<float>(scalars->GetComponent(first + i, component));
       }
     });
-  return values;
 }
 
 int IrradianceTextureChannels(int lights)
@@ -315,14 +327,15 @@ AxisTaps MakeAxisTaps(const FootprintLayout& layout, int axis, int dataDim, int 
 }
 
 void PrefilterScalars(vtkImageData* image, vtkDataArray* scalars, int component,
-  const IrradianceGrid& grid, std::vector<float>& prefiltered)
+  const IrradianceGrid& grid, std::vector<float>& prefiltered, PrefilterScratch* scratch)
 {
+  PrefilterScratch local;
+  PrefilterScratch& buffers = scratch ? *scratch : local;
   const int* extent = image->GetExtent();
   const int dataDims[3] = { extent[1] - extent[0] + 1, extent[3] - extent[2] + 1,
     extent[5] - extent[4] + 1 };
   const int* g = grid.Dimensions;
   const FootprintLayout layout = MakeFootprintLayout(dataDims, g);
-  const std::vector<float> values = CopyComponent(scalars, component);
   // The midpoint rule over trilinear samples is a tensor product of one 1D
   // filter per axis: filtered along x, then y, then z, each pass reading a
   // few points per output instead of 8 per sample per voxel.
@@ -331,9 +344,7 @@ void PrefilterScalars(vtkImageData* image, vtkDataArray* scalars, int component,
   {
     taps[a] = MakeAxisTaps(layout, a, dataDims[a], g[a]);
   }
-  // in[(i, j, k)] with strides (1, n0, n0 n1) -> out along `axis`. Every
-  // output is written, so the buffers are not zeroed first: a CT-sized time
-  // step would otherwise clear about 200 MB of them.
+  // in[(i, j, k)] with strides (1, n0, n0 n1) -> out along `axis`.
   auto filter =
     [](const auto* in, const int inDims[3], int axis, const AxisTaps& t, int outLength, auto* out)
   {
@@ -367,17 +378,46 @@ void PrefilterScalars(vtkImageData* image, vtkDataArray* scalars, int component,
         }
       });
   };
-  const std::unique_ptr<double[]> alongX(
-    new double[static_cast<size_t>(g[0]) * dataDims[1] * dataDims[2]]);
-  const std::unique_ptr<double[]> alongY(
-    new double[static_cast<size_t>(g[0]) * g[1] * dataDims[2]]);
-  int dims[3] = { dataDims[0], dataDims[1], dataDims[2] };
-  filter(values.data(), dims, 0, taps[0], g[0], alongX.get());
-  dims[0] = g[0];
-  filter(alongX.get(), dims, 1, taps[1], g[1], alongY.get());
-  dims[1] = g[1];
+  // A slab of output slices at a time, from the data slices its z taps
+  // read (filtered along x and y once per slab, a few again at the slab's
+  // ends): the buffers hold a slab, not the volume. Each output is the same
+  // sum in the same order as over the whole volume. Every output is
+  // written: a new buffer's zeros are never read.
   prefiltered.resize(static_cast<size_t>(g[0]) * g[1] * g[2]);
-  filter(alongY.get(), dims, 2, taps[2], g[2], prefiltered.data());
+  const vtkIdType sliceSize = static_cast<vtkIdType>(dataDims[0]) * dataDims[1];
+  const int outputsPerSlab = static_cast<int>(
+    std::max<vtkIdType>(1, buffers.SlabPoints / std::max<vtkIdType>(1, sliceSize)));
+  for (int k0 = 0; k0 < g[2]; k0 += outputsPerSlab)
+  {
+    const int k1 = std::min(g[2], k0 + outputsPerSlab); // exclusive
+    const AxisTaps& z = taps[2];
+    const int first =
+      *std::min_element(z.Index.begin() + z.First[k0], z.Index.begin() + z.First[k1]);
+    const int last =
+      *std::max_element(z.Index.begin() + z.First[k0], z.Index.begin() + z.First[k1]);
+    AxisTaps slabTaps;
+    slabTaps.First.assign(z.First.begin() + k0, z.First.begin() + k1 + 1);
+    for (int& f : slabTaps.First)
+    {
+      f -= z.First[k0];
+    }
+    slabTaps.Weight.assign(z.Weight.begin() + z.First[k0], z.Weight.begin() + z.First[k1]);
+    for (int n = z.First[k0]; n < z.First[k1]; ++n)
+    {
+      slabTaps.Index.push_back(z.Index[n] - first);
+    }
+    const int depth = last - first + 1;
+    CopyComponent(scalars, component, first * sliceSize, depth * sliceSize, buffers.Values);
+    buffers.AlongX.resize(static_cast<size_t>(g[0]) * dataDims[1] * depth);
+    buffers.AlongY.resize(static_cast<size_t>(g[0]) * g[1] * depth);
+    int dims[3] = { dataDims[0], dataDims[1], depth };
+    filter(buffers.Values.data(), dims, 0, taps[0], g[0], buffers.AlongX.data());
+    dims[0] = g[0];
+    filter(buffers.AlongX.data(), dims, 1, taps[1], g[1], buffers.AlongY.data());
+    dims[1] = g[1];
+    filter(buffers.AlongY.data(), dims, 2, slabTaps, k1 - k0,
+      prefiltered.data() + static_cast<size_t>(k0) * g[0] * g[1]);
+  }
 }
 
 bool ReplaceNonFinite(std::vector<float>& values, float low, float high)

@@ -158,6 +158,12 @@ VTKMULTIMATERIALVOLUMEFILTERS_EXPORT double SampleTrilinear(
 /// One component of the scalars as floats (one virtual call per value, once).
 VTKMULTIMATERIALVOLUMEFILTERS_EXPORT std::vector<float> CopyComponent(
   vtkDataArray* scalars, int component);
+/// The same into `values` (resized; its memory reused).
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT void CopyComponent(
+  vtkDataArray* scalars, int component, std::vector<float>& values);
+/// Tuples [first, first + count) into `values` (resized; its memory reused).
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT void CopyComponent(vtkDataArray* scalars, int component,
+  vtkIdType first, vtkIdType count, std::vector<float>& values);
 
 /**
  * Where PrefilterScalars samples the data: voxel j's footprint is centred on
@@ -178,14 +184,29 @@ VTKMULTIMATERIALVOLUMEFILTERS_EXPORT glm::dvec3 FootprintSample(
   const FootprintLayout& layout, const glm::dvec3& voxel, const int q[3]);
 
 /**
+ * The buffers PrefilterScalars works in, a slab of slices in size (the
+ * values as floats, filtered along x, then along y), kept by a caller that
+ * filters step after step: on some machines fresh memory costs more than
+ * the filtering.
+ */
+struct PrefilterScratch
+{
+  vtkIdType SlabPoints = 1 << 21; // data points per slab (at least one slice)
+  std::vector<float> Values;
+  std::vector<double> AlongX;
+  std::vector<double> AlongY;
+};
+
+/**
  * Box-filters component `component` of `scalars` (point data of `image`) over
  * each grid voxel's footprint (trilinear samples on a regular sub-grid,
  * clamped to the data bounds); an exact copy when the grid equals the data
- * grid. Values stay in data units. Multithreaded (vtkSMPTools).
+ * grid. Values stay in data units. Multithreaded (vtkSMPTools). `scratch`:
+ * the buffers to reuse (null: new ones).
  */
 VTKMULTIMATERIALVOLUMEFILTERS_EXPORT void PrefilterScalars(vtkImageData* image,
-  vtkDataArray* scalars, int component, const IrradianceGrid& grid,
-  std::vector<float>& prefiltered);
+  vtkDataArray* scalars, int component, const IrradianceGrid& grid, std::vector<float>& prefiltered,
+  PrefilterScratch* scratch = nullptr);
 
 /**
  * NaN and -Inf in `values` become `low`, +Inf becomes `high` (the finite

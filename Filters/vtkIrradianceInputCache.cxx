@@ -95,7 +95,9 @@ bool vtkIrradianceInputCache::UpdatePrefiltered(vtkImageData* image, vtkDataArra
     return false;
   }
   mmv::IrradianceGrid grid;
+  // Into the buffer the step before last used: no new memory per step.
   std::vector<float> values;
+  values.swap(this->SpareValues);
   if (global)
   {
     grid = global->GetGrid();
@@ -104,7 +106,7 @@ bool vtkIrradianceInputCache::UpdatePrefiltered(vtkImageData* image, vtkDataArra
   else
   {
     grid = mmv::MakeIrradianceGrid(image, dims);
-    mmv::PrefilterScalars(image, scalars, 0, grid, values);
+    mmv::PrefilterScalars(image, scalars, 0, grid, values, &this->Scratch);
   }
   const double scale = 1.0 / (range[1] - range[0]);
   for (float& v : values)
@@ -122,6 +124,7 @@ bool vtkIrradianceInputCache::UpdatePrefiltered(vtkImageData* image, vtkDataArra
   }
   this->Grid = grid;
   this->Prefiltered.swap(values);
+  this->SpareValues.swap(values);
   this->PrefilteredFrom = key;
   this->HasPrefiltered = true;
   return nonFinite;

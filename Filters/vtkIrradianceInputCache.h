@@ -130,6 +130,10 @@ private:
   mmv::IrradianceGrid Grid;
   std::vector<float> Prefiltered;
   unsigned long PrefilteredVersion = 0;
+  // The previous step's values and the filter's slab buffers, reused by the
+  // next step instead of new memory.
+  std::vector<float> SpareValues;
+  mmv::PrefilterScratch Scratch;
 
   bool HasVolume = false;
   vtkIrradianceUpdatePlan::Inputs Held;
