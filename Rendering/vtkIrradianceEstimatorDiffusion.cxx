@@ -38,6 +38,19 @@ void vtkIrradianceEstimator::vtkInternals::PlanDiffusion(
     this->Grid.DataVoxelsPerVoxel[2] };
   this->Coarse =
     mmv::PlanDiffusionGrid(this->Grid.Dimensions, spacing, maxStrength, this->Diffusion);
+  if (!this->ClassesOnCPU)
+  {
+    // Nothing the diffusion would use scatters (NeedsCPUClasses), so none
+    // runs: one block stands for the grid, not a plan and a texture of the
+    // irradiance grid's size at every opacity edit and time step.
+    for (int a = 0; a < 3; ++a)
+    {
+      const int factor = std::max(1, this->Grid.Dimensions[a]);
+      this->Coarse.Spacing[a] = this->Coarse.Spacing[a] / this->Coarse.Factor[a] * factor;
+      this->Coarse.Factor[a] = factor;
+      this->Coarse.Dimensions[a] = 1;
+    }
+  }
   std::vector<float> coarseStrength;
   std::vector<float> capacity;
   if (this->ClassesOnCPU)

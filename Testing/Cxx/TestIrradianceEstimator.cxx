@@ -844,6 +844,8 @@ TEST(IrradianceEstimator, DiffusionMatchesCPUSolverForEveryStrength)
       if (s == 0.0)
       {
         EXPECT_EQ(pass->GetDiffusionPasses(), 0);
+        // Nothing scatters: no plan or texture of the grid's size for it.
+        EXPECT_EQ(coarse[0] * coarse[1] * coarse[2], 1);
       }
       else
       {
