@@ -986,6 +986,11 @@ TEST(MultiMaterialVolumeMapper, TimeStepsOnTheSameGridKeepTheProbesChoice)
   scene.Mapper->SetInputData(spaced);
   scene.Window->Render();
   EXPECT_EQ(scene.Mapper->GetNumberOfIrradianceProbes(), 3);
+  // Back to the first grid: the buffers and textures kept from the larger
+  // steps (pre-filter slabs, the gradient texture) give way to this one's.
+  scene.Mapper->SetInputData(mmvtest::MakeVolume(Dims, MovedBlob));
+  scene.Window->Render();
+  ExpectSameAsFresh(scene, MovedBlob, 0.3, "back on the first grid");
 }
 
 TEST(MultiMaterialVolumeMapper, AStepOutsideTheOpacityDrawsTheBackgroundWithoutAnUpdate)
