@@ -611,6 +611,11 @@ vtkIdType vtkIrradianceEstimator::GetNumberOfVolumeUploads() const
   return this->Internals->VolumeUploads;
 }
 
+vtkIdType vtkIrradianceEstimator::GetNumberOfClassifications() const
+{
+  return this->Internals->Classifications;
+}
+
 bool vtkIrradianceEstimator::ReadBackClasses(
   vtkOpenGLRenderWindow* context, std::vector<float>& classes)
 {

@@ -310,6 +310,9 @@ public:
   /// How often the pre-filtered volume and tables went to the GPU: only when
   /// they change, not when only the lights move.
   vtkIdType GetNumberOfVolumeUploads() const;
+  /// How often the voxels were classified on the GPU: not for an opacity
+  /// edit that keeps which table entries are positive and the scattering.
+  vtkIdType GetNumberOfClassifications() const;
 
   ///@{
   /**

@@ -325,6 +325,14 @@ public:
   std::vector<vtkIdType> ValueHistogram;
   int ValueHistogramSize = 0;
   void CountNonEmptyVoxels();
+  // The tables ClassTexture was computed from, and how many times it was.
+  std::vector<float> ClassifiedOpacity;
+  std::vector<float> ClassifiedScattering;
+  vtkIdType Classifications = 0;
+  /// Whether ClassTexture already holds the classes of the current tables:
+  /// an opacity edit that keeps which entries are positive (a point's value
+  /// dragged within the support) and the scattering keeps every class.
+  bool ClassesHoldTheTables() const;
   // The bricks that may hold non-empty voxels (value ranges once per
   // scalars, marked at every upload): the shadow draws shrink to them.
   mmv::VoxelOccupancy Occupancy;
@@ -398,7 +406,7 @@ public:
   // Which strided points a non-empty irradiance voxel needs (1) or not (0),
   // for the volume upload and stride it was made for.
   vtkSmartPointer<vtkTextureObject> LightGridClassTexture;
-  vtkIdType LightGridClassUpload = -1;
+  vtkIdType LightGridClassUpload = -1; // the Classifications it was marked from
   int LightGridClassStride = 0;
   // Per axis (rows 0..2), the first and last irradiance index whose
   // interpolation reads each light grid point (RG32F, width the largest

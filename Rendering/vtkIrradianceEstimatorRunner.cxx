@@ -237,11 +237,13 @@ bool vtkIrradianceEstimator::vtkInternals::Upload(vtkOpenGLRenderWindow* context
   }
   this->Occupancy.Classify(this->OpacityTable);
   bool classes = true;
+  bool classesKept = scalarsKept;
   if (!HasSize(this->ClassTexture, d))
   {
     // Written by ClassifyOnGPU below.
     this->ClassTexture = NewTexture(context, GL_R32F, GL_RED, GL_FLOAT, false);
     classes = this->ClassTexture->Allocate3D(d[0], d[1], d[2], 1, VTK_FLOAT);
+    classesKept = false;
   }
   this->TableTexture = NewTexture(context, GL_R32F, GL_RED, GL_FLOAT, true);
   this->CoarseStrengthTexture = NewTexture(context, GL_RG32F, GL_RG, GL_FLOAT, false);
@@ -258,8 +260,44 @@ bool vtkIrradianceEstimator::vtkInternals::Upload(vtkOpenGLRenderWindow* context
     this->Uploaded = this->TintTableTexture->Create2DFromRaw(
       this->TableSize, this->TableSize, 4, VTK_FLOAT, this->TintTable.data());
   }
-  this->Uploaded = this->Uploaded && this->ClassifyOnGPU(context, layered);
+  if (this->Uploaded && (!classesKept || !this->ClassesHoldTheTables()))
+  {
+    this->Uploaded = this->ClassifyOnGPU(context, layered);
+    this->ClassifiedOpacity = this->OpacityTable;
+    this->ClassifiedScattering = this->ScatteringTable;
+    ++this->Classifications;
+  }
   return this->Uploaded;
+}
+
+//------------------------------------------------------------------------------
+// A voxel is non-empty where (1 - f) a + f b > 0 (LookupTable: a, b the
+// entries around its value, f its weight). With no negative or non-finite
+// entry, every positive entry at least 1e-10, and no voxel whose weight
+// lies in (0, 1e-20) (the value histogram's last bin), neither product
+// underflows, so which entries are positive decides every voxel; its class
+// is then that and the scattering.
+bool vtkIrradianceEstimator::vtkInternals::ClassesHoldTheTables() const
+{
+  const size_t n = this->OpacityTable.size();
+  if (this->Classifications == 0 || this->ClassifiedOpacity.size() != n ||
+    this->ClassifiedScattering != this->ScatteringTable ||
+    this->ValueHistogramSize != static_cast<int>(n) || this->ValueHistogram.size() != 2 * n ||
+    this->ValueHistogram[2 * n - 1] != 0)
+  {
+    return false;
+  }
+  auto usual = [](float a) { return a == 0.0f || (std::isfinite(a) && a >= 1e-10f); };
+  for (size_t e = 0; e < n; ++e)
+  {
+    const float before = this->ClassifiedOpacity[e];
+    const float now = this->OpacityTable[e];
+    if (!usual(before) || !usual(now) || (before > 0.0f) != (now > 0.0f))
+    {
+      return false;
+    }
+  }
+  return true;
 }
 
 //------------------------------------------------------------------------------
@@ -458,7 +496,7 @@ bool vtkIrradianceEstimator::vtkInternals::MarkLightGridNeeded(
 {
   int c[3];
   this->LightGridDimensions(stride, c);
-  if (this->LightGridClassUpload == this->VolumeUploads && this->LightGridClassStride == stride &&
+  if (this->LightGridClassUpload == this->Classifications && this->LightGridClassStride == stride &&
     HasSize(this->LightGridClassTexture, c))
   {
     return true;
@@ -497,7 +535,7 @@ bool vtkIrradianceEstimator::vtkInternals::MarkLightGridNeeded(
   program->SetUniformi("neededRanges", this->LightGridRangeTexture->GetTextureUnit());
   program->SetUniform1iv("lightDims", 3, c);
   this->DrawLayers(context, this->NeededQuad, this->LightGridClassTexture, layered);
-  this->LightGridClassUpload = this->VolumeUploads;
+  this->LightGridClassUpload = this->Classifications;
   this->LightGridClassStride = stride;
   return true;
 }

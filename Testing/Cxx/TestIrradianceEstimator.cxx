@@ -923,6 +923,57 @@ TEST(IrradianceEstimator, OnlyMovedLightsAreRecomputed)
   pass->ReleaseGraphicsResources(ctx.GL);
 }
 
+// An opacity edit that keeps which table entries are positive (a point's
+// value dragged within the support) keeps the classes and the light grid's
+// needed points: no classification pass, and the irradiance still equals a
+// fresh estimator's bit for bit. A change of support, or an entry too small
+// to decide every voxel by its sign, classifies again.
+TEST(IrradianceEstimator, OpacityEditsWithinTheSupportKeepTheClasses)
+{
+  const Context& ctx = SharedContext();
+  ASSERT_NE(ctx.GL, nullptr);
+  Scene scene = TwoBlocks(0.0);
+  scene.Strides = { 1, 2, 2 };
+  vtkNew<vtkIrradianceEstimator> pass;
+  SetPassInputs(scene, pass);
+  ASSERT_TRUE(pass->Render(ctx.GL));
+  ASSERT_EQ(pass->GetNumberOfClassifications(), 1);
+  auto expectFresh = [&](const char* what)
+  {
+    vtkNew<vtkIrradianceEstimator> fresh;
+    SetPassInputs(scene, fresh);
+    ASSERT_TRUE(fresh->Render(ctx.GL));
+    std::vector<std::vector<float>> kept;
+    std::vector<std::vector<float>> expected;
+    ASSERT_TRUE(pass->ReadBackLights(ctx.GL, 0, 3, kept));
+    ASSERT_TRUE(fresh->ReadBackLights(ctx.GL, 0, 3, expected));
+    EXPECT_EQ(kept, expected) << what;
+    fresh->ReleaseGraphicsResources(ctx.GL);
+  };
+  const struct
+  {
+    double Value;
+    double Opacity;
+    int Classifications;
+    const char* What;
+  } edits[] = {
+    { 0.5, 0.15, 1, "a value dragged within the support" },
+    { 1.5, 0.05, 1, "another one" },
+    { 0.0, 0.05, 2, "the support grown to the empty value" },
+    { 0.0, 1e-12, 3, "an entry too small to decide by its sign" },
+  };
+  for (const auto& edit : edits)
+  {
+    scene.Opacity->AddPoint(edit.Value, edit.Opacity);
+    SetPassInputs(scene, pass);
+    ASSERT_TRUE(pass->Render(ctx.GL));
+    EXPECT_EQ(pass->GetNumberOfUpdatedLights(), 3) << edit.What;
+    EXPECT_EQ(pass->GetNumberOfClassifications(), edit.Classifications) << edit.What;
+    expectFresh(edit.What);
+  }
+  pass->ReleaseGraphicsResources(ctx.GL);
+}
+
 TEST(IrradianceEstimator, LayeredAndPerSliceDrawsAgree)
 {
   const Context& ctx = SharedContext();
