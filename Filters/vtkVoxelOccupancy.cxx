@@ -1,5 +1,7 @@
 #include "vtkVoxelOccupancy.h"
 
+#include "vtkTableLookup.h"
+
 #include "vtkSMPTools.h"
 
 #include <algorithm>
@@ -78,17 +80,10 @@ void VoxelOccupancy::Classify(const std::vector<float>& opacity)
     const float a = opacity[i];
     positives[i + 1] = positives[i] + ((a > 0.0f || !std::isfinite(a)) ? 1 : 0);
   }
-  // The lookup's arithmetic (mmv::voxelpass::LookupTable, mmvClassifyFS.glsl):
-  // x = clamp(t, 0, 1) (n - 1), i0 = min(int(x), n - 2), f = x - i0, and
-  // (1 - f) table[i0] + f table[i0 + 1]. Values in [low, high] read entries
-  // i0(low) .. i0(high) with positive weight, i0(high) + 1 only where
-  // f(high) > 0, and skip i0(low) where f(low) = 1 (t = 1, the last entry).
-  auto position = [n](float t, int& i0, float& f)
-  {
-    const float x = std::min(std::max(t, 0.0f), 1.0f) * static_cast<float>(n - 1);
-    i0 = std::min(static_cast<int>(x), n - 2);
-    f = x - static_cast<float>(i0);
-  };
+  // Values in [low, high] read entries Entry(low) .. Entry(high) with a
+  // positive weight, Entry(high) + 1 only where Weight(high) > 0, and skip
+  // Entry(low) where Weight(low) = 1 (t = 1, the last entry): LookupTable's
+  // (1 - f) table[i0] + f table[i0 + 1] (vtkTableLookup.h).
   for (size_t brick = 0; brick < this->Occupied.size(); ++brick)
   {
     const float low = this->Low[brick];
@@ -102,14 +97,10 @@ void VoxelOccupancy::Classify(const std::vector<float>& opacity)
       this->Occupied[brick] = 0; // no voxel (cannot happen on a full grid)
       continue;
     }
-    int lowEntry;
-    int highEntry;
-    float lowWeight;
-    float highWeight;
-    position(low, lowEntry, lowWeight);
-    position(this->High[brick], highEntry, highWeight);
-    const int first = lowWeight < 1.0f ? lowEntry : lowEntry + 1;
-    const int last = highWeight > 0.0f ? highEntry + 1 : highEntry;
+    const TablePosition from = LocateInTable(n, low);
+    const TablePosition to = LocateInTable(n, this->High[brick]);
+    const int first = from.Weight < 1.0f ? from.Entry : from.Entry + 1;
+    const int last = to.Weight > 0.0f ? to.Entry + 1 : to.Entry;
     this->Occupied[brick] = positives[last + 1] > positives[first] ? 1 : 0;
   }
 }

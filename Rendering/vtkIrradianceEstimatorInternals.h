@@ -29,6 +29,7 @@
 #include "vtkShaderProgram.h"
 #include "vtkShadowSweep.h"
 #include "vtkSmartPointer.h"
+#include "vtkTableLookup.h"
 #include "vtkTextureObject.h"
 #include "vtkVoxelOccupancy.h"
 #include "vtk_glew.h"
@@ -70,19 +71,7 @@ inline float EmptyVoxelClass(int neighbors)
   return -1.0f - static_cast<float>(neighbors);
 }
 
-/// Linear interpolation of an n-entry table over the normalised range, as a
-/// bilinear texture lookup at (x + 0.5) / n would do it.
-inline float LookupTable(const std::vector<float>& table, float t)
-{
-  const int n = static_cast<int>(table.size());
-  // NaN reads as the lowest value, as mmv::ReplaceNonFinite makes it; an
-  // index made from NaN would read outside the table.
-  const float c = std::isnan(t) ? 0.0f : std::min(std::max(t, 0.0f), 1.0f);
-  const float x = c * static_cast<float>(n - 1);
-  const int i0 = std::min(static_cast<int>(x), n - 2);
-  const float f = x - static_cast<float>(i0);
-  return (1.0f - f) * table[i0] + f * table[i0 + 1];
-}
+using mmv::LookupTable; // vtkTableLookup.h
 
 /// A voxel pass: system declarations, `defines`, optionally the light
 /// model, the voxel-pass declarations, `body`, then main(); as a fragment

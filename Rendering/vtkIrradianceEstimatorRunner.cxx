@@ -120,10 +120,9 @@ void vtkIrradianceEstimator::vtkInternals::CountNonEmptyVoxels()
         for (vtkIdType v = begin; v < end; ++v)
         {
           const float t = this->Scalars[v];
-          // LookupTable's x, i0 and f.
-          const float x = std::min(std::max(t, 0.0f), 1.0f) * static_cast<float>(n - 1);
-          const int i0 = std::isnan(t) ? 0 : std::min(static_cast<int>(x), n - 2);
-          const float f = x - static_cast<float>(i0);
+          const mmv::TablePosition position = mmv::LocateInTable(n, t);
+          const int i0 = position.Entry;
+          const float f = position.Weight;
           // NaN, and weights so small that f * b could underflow: voxel by
           // voxel.
           const bool unusual = std::isnan(t) || (f > 0.0f && f < 1e-20f);

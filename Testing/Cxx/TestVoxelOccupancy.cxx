@@ -5,6 +5,8 @@
 // tables, and in closed form for one voxel.
 #include "vtkVoxelOccupancy.h"
 
+#include "vtkTableLookup.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -15,18 +17,6 @@
 
 namespace
 {
-
-/// The estimator's lookup (mmv::voxelpass::LookupTable): linear
-/// interpolation of the table over [0, 1], NaN read as 0.
-float Lookup(const std::vector<float>& table, float t)
-{
-  const int n = static_cast<int>(table.size());
-  const float c = std::isnan(t) ? 0.0f : std::min(std::max(t, 0.0f), 1.0f);
-  const float x = c * static_cast<float>(n - 1);
-  const int i0 = std::min(static_cast<int>(x), n - 2);
-  const float f = x - static_cast<float>(i0);
-  return (1.0f - f) * table[i0] + f * table[i0 + 1];
-}
 
 /// The smallest box of the non-empty voxels inside `box`, voxel by voxel.
 mmv::IndexBox NonEmptyVoxels(const std::vector<float>& values, const int dims[3],
@@ -39,7 +29,8 @@ mmv::IndexBox NonEmptyVoxels(const std::vector<float>& values, const int dims[3]
     {
       for (int x = box.Bounds[0]; x <= box.Bounds[1]; ++x)
       {
-        if (Lookup(table, values[(static_cast<size_t>(z) * dims[1] + y) * dims[0] + x]) > 0.0f)
+        if (mmv::LookupTable(table, values[(static_cast<size_t>(z) * dims[1] + y) * dims[0] + x]) >
+          0.0f)
         {
           found = found.United(mmv::IndexBox{ { x, x, y, y, z, z } });
         }
