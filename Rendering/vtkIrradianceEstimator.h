@@ -165,9 +165,10 @@ public:
   /// GPU memory the scratch textures hold now, in bytes.
   vtkIdType GetScratchMemoryBytes() const;
 
-  /// Empty voxels cost nothing (default on; piecewise rays still compute the
-  /// empty voxels of the slices a later chunk reads); off computes every
-  /// voxel's shadow rays, to measure what the skipping saves.
+  /// Empty voxels cost nothing (default on): the shadow draws cover only
+  /// the 4^3 bricks that may hold non-empty voxels (mmv::VoxelOccupancy),
+  /// and piecewise rays still compute the slices a later chunk reads. Off
+  /// draws and computes every voxel, to measure what the skipping saves.
   vtkSetMacro(SkipEmptyVoxels, bool);
   vtkGetMacro(SkipEmptyVoxels, bool);
 
@@ -287,8 +288,8 @@ public:
   vtkGetMacro(NumberOfComputedVoxels, vtkIdType);
   vtkGetMacro(DiffusionPasses, int); // Jacobi sweeps drawn
   vtkGetMacro(NumberOfUpdatedLights, int);
-  /// Voxels its shadow rays were cast from, summed over the lights (a
-  /// light's whole grid, or what its region depends on).
+  /// Voxels its shadow draws covered, summed over the lights (a light's
+  /// grid, or what its region depends on, within the occupied bricks).
   vtkGetMacro(LastEstimatedVoxels, vtkIdType);
   vtkGetMacro(LastRenderSeconds, double);
   /// Its uploads and allocations, its shadow rays, its diffusion and its
