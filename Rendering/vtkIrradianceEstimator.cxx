@@ -70,12 +70,13 @@ void vtkIrradianceEstimator::SetInputs(const mmv::IrradianceGrid& grid,
   // CT-sized head. Without one (0) they are compared here.
   const bool sameScalars = scalarsVersion != 0 ? scalarsVersion == internals.ScalarsVersion
                                                : internals.Scalars == normalizedScalars;
-  const bool sameVolume = internals.HasInputs && SameGrid(internals.Grid, grid) &&
-    internals.StepLength == stepLength && sameScalars && internals.ShadowTable == shadow &&
-    internals.OpacityTable == opacity && internals.ScatteringTable == scattering;
+  const bool sameGrid = internals.HasInputs && SameGrid(internals.Grid, grid);
+  const bool sameVolume = sameGrid && internals.StepLength == stepLength && sameScalars &&
+    internals.ShadowTable == shadow && internals.OpacityTable == opacity &&
+    internals.ScatteringTable == scattering;
   if (!sameVolume)
   {
-    if (!sameScalars || !SameGrid(internals.Grid, grid))
+    if (!sameScalars || !sameGrid)
     {
       internals.ScalarsUploaded = false;
     }
@@ -91,13 +92,19 @@ void vtkIrradianceEstimator::SetInputs(const mmv::IrradianceGrid& grid,
     internals.OpacityTable = opacity;
     internals.ScatteringTable = scattering;
     // Classified on the GPU at the upload; on the CPU as well only where
-    // the diffusion plan needs the strengths (NeedsCPUClasses).
-    internals.ClassesOnCPU = false;
-    internals.PlanDiffusion(
-      this->DiffusionTime, this->ExponentialDiffusion, this->MultipleScattering);
-    if (!internals.ClassesOnCPU)
+    // the diffusion plan needs the strengths (NeedsCPUClasses). Classes
+    // that still hold keep the plan made from them.
+    const bool plannedClassesHold = sameScalars && sameGrid && internals.ClassesOnCPU &&
+      internals.ClassesHold(internals.CPUClassifiedOpacity, internals.CPUClassifiedScattering);
+    if (!plannedClassesHold)
     {
-      internals.CountNonEmptyVoxels();
+      internals.ClassesOnCPU = false;
+      internals.PlanDiffusion(
+        this->DiffusionTime, this->ExponentialDiffusion, this->MultipleScattering);
+      if (!internals.ClassesOnCPU)
+      {
+        internals.CountNonEmptyVoxels();
+      }
     }
     internals.Uploaded = false;
     internals.VolumeChanged = true;

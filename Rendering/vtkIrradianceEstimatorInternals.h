@@ -314,14 +314,23 @@ public:
   std::vector<vtkIdType> ValueHistogram;
   int ValueHistogramSize = 0;
   void CountNonEmptyVoxels();
-  // The tables ClassTexture was computed from, and how many times it was.
+  /// ValueHistogram for the current scalars and table size, where the
+  /// opacity table allows it (no negative, non-finite or tiny entry);
+  /// returns whether it does.
+  bool BuildValueHistogram();
+  // The tables ClassTexture was computed from, and how many times it was;
+  // the tables Classes (on the CPU) were computed from.
   std::vector<float> ClassifiedOpacity;
   std::vector<float> ClassifiedScattering;
   vtkIdType Classifications = 0;
-  /// Whether ClassTexture already holds the classes of the current tables:
-  /// an opacity edit that keeps which entries are positive (a point's value
-  /// dragged within the support) and the scattering keeps every class.
-  bool ClassesHoldTheTables() const;
+  std::vector<float> CPUClassifiedOpacity;
+  std::vector<float> CPUClassifiedScattering;
+  /// Whether classes made from these tables (of the current scalars) are
+  /// the current tables' classes too: an opacity edit that keeps which
+  /// entries are positive (a point's value dragged within the support) and
+  /// the scattering keeps every class.
+  bool ClassesHold(
+    const std::vector<float>& opacityThen, const std::vector<float>& scatteringThen) const;
   // The bricks that may hold non-empty voxels (value ranges once per
   // scalars, marked at every upload): the shadow draws shrink to them.
   mmv::VoxelOccupancy Occupancy;

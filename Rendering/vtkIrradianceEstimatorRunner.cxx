@@ -71,6 +71,9 @@ void vtkIrradianceEstimator::vtkInternals::Classify()
   this->NonEmptyVoxels = ClassifyValues(
     this->Scalars, this->Grid.Dimensions, this->OpacityTable, this->ScatteringTable, this->Classes);
   this->ClassesOnCPU = true;
+  this->CPUClassifiedOpacity = this->OpacityTable;
+  this->CPUClassifiedScattering = this->ScatteringTable;
+  this->BuildValueHistogram(); // for ClassesHold at the next edit
 }
 
 bool vtkIrradianceEstimator::vtkInternals::NeedsCPUClasses(
@@ -106,6 +109,39 @@ void vtkIrradianceEstimator::vtkInternals::CountNonEmptyVoxels()
 {
   const std::vector<float>& opacity = this->OpacityTable;
   const int n = static_cast<int>(opacity.size());
+  const bool exact = this->BuildValueHistogram();
+  if (!exact || this->ValueHistogram[2 * n - 1] > 0)
+  {
+    std::atomic<vtkIdType> count(0);
+    vtkSMPTools::For(0, static_cast<vtkIdType>(this->Scalars.size()),
+      [&](vtkIdType begin, vtkIdType end)
+      {
+        vtkIdType local = 0;
+        for (vtkIdType v = begin; v < end; ++v)
+        {
+          local += LookupTable(opacity, this->Scalars[v]) > 0.0f ? 1 : 0;
+        }
+        count += local;
+      });
+    this->NonEmptyVoxels = count;
+    return;
+  }
+  vtkIdType count = 0;
+  for (int e = 0; e < n; ++e)
+  {
+    count += opacity[e] > 0.0f ? this->ValueHistogram[2 * e] : 0;
+    if (e + 1 < n && (opacity[e] > 0.0f || opacity[e + 1] > 0.0f))
+    {
+      count += this->ValueHistogram[2 * e + 1];
+    }
+  }
+  this->NonEmptyVoxels = count;
+}
+
+bool vtkIrradianceEstimator::vtkInternals::BuildValueHistogram()
+{
+  const std::vector<float>& opacity = this->OpacityTable;
+  const int n = static_cast<int>(opacity.size());
   const bool exact = std::none_of(opacity.begin(), opacity.end(),
     [](float a) { return a < 0.0f || (a > 0.0f && a < 1e-30f) || !std::isfinite(a); });
   if (exact && (this->ValueHistogramSize != n || this->ValueHistogram.empty()))
@@ -138,32 +174,7 @@ void vtkIrradianceEstimator::vtkInternals::CountNonEmptyVoxels()
     this->ValueHistogram.swap(histogram);
     this->ValueHistogramSize = n;
   }
-  if (!exact || this->ValueHistogram[2 * n - 1] > 0)
-  {
-    std::atomic<vtkIdType> count(0);
-    vtkSMPTools::For(0, static_cast<vtkIdType>(this->Scalars.size()),
-      [&](vtkIdType begin, vtkIdType end)
-      {
-        vtkIdType local = 0;
-        for (vtkIdType v = begin; v < end; ++v)
-        {
-          local += LookupTable(opacity, this->Scalars[v]) > 0.0f ? 1 : 0;
-        }
-        count += local;
-      });
-    this->NonEmptyVoxels = count;
-    return;
-  }
-  vtkIdType count = 0;
-  for (int e = 0; e < n; ++e)
-  {
-    count += opacity[e] > 0.0f ? this->ValueHistogram[2 * e] : 0;
-    if (e + 1 < n && (opacity[e] > 0.0f || opacity[e + 1] > 0.0f))
-    {
-      count += this->ValueHistogram[2 * e + 1];
-    }
-  }
-  this->NonEmptyVoxels = count;
+  return exact;
 }
 
 //------------------------------------------------------------------------------
@@ -259,7 +270,9 @@ bool vtkIrradianceEstimator::vtkInternals::Upload(vtkOpenGLRenderWindow* context
     this->Uploaded = this->TintTableTexture->Create2DFromRaw(
       this->TableSize, this->TableSize, 4, VTK_FLOAT, this->TintTable.data());
   }
-  if (this->Uploaded && (!classesKept || !this->ClassesHoldTheTables()))
+  if (this->Uploaded &&
+    (!classesKept || this->Classifications == 0 ||
+      !this->ClassesHold(this->ClassifiedOpacity, this->ClassifiedScattering)))
   {
     this->Uploaded = this->ClassifyOnGPU(context, layered);
     this->ClassifiedOpacity = this->OpacityTable;
@@ -276,11 +289,11 @@ bool vtkIrradianceEstimator::vtkInternals::Upload(vtkOpenGLRenderWindow* context
 // lies in (0, 1e-20) (the value histogram's last bin), neither product
 // underflows, so which entries are positive decides every voxel; its class
 // is then that and the scattering.
-bool vtkIrradianceEstimator::vtkInternals::ClassesHoldTheTables() const
+bool vtkIrradianceEstimator::vtkInternals::ClassesHold(
+  const std::vector<float>& opacityThen, const std::vector<float>& scatteringThen) const
 {
   const size_t n = this->OpacityTable.size();
-  if (this->Classifications == 0 || this->ClassifiedOpacity.size() != n ||
-    this->ClassifiedScattering != this->ScatteringTable ||
+  if (opacityThen.size() != n || scatteringThen != this->ScatteringTable ||
     this->ValueHistogramSize != static_cast<int>(n) || this->ValueHistogram.size() != 2 * n ||
     this->ValueHistogram[2 * n - 1] != 0)
   {
@@ -289,7 +302,7 @@ bool vtkIrradianceEstimator::vtkInternals::ClassesHoldTheTables() const
   auto usual = [](float a) { return a == 0.0f || (std::isfinite(a) && a >= 1e-10f); };
   for (size_t e = 0; e < n; ++e)
   {
-    const float before = this->ClassifiedOpacity[e];
+    const float before = opacityThen[e];
     const float now = this->OpacityTable[e];
     if (!usual(before) || !usual(now) || (before > 0.0f) != (now > 0.0f))
     {

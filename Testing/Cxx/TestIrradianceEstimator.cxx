@@ -932,46 +932,53 @@ TEST(IrradianceEstimator, OpacityEditsWithinTheSupportKeepTheClasses)
 {
   const Context& ctx = SharedContext();
   ASSERT_NE(ctx.GL, nullptr);
-  Scene scene = TwoBlocks(0.0);
-  scene.Strides = { 1, 2, 2 };
-  vtkNew<vtkIrradianceEstimator> pass;
-  SetPassInputs(scene, pass);
-  ASSERT_TRUE(pass->Render(ctx.GL));
-  ASSERT_EQ(pass->GetNumberOfClassifications(), 1);
-  auto expectFresh = [&](const char* what)
+  // Without scattering, and with it (the CPU's classes and the diffusion
+  // plan made from them are kept as well).
+  for (const double scattering : { 0.0, 8.0 })
   {
-    vtkNew<vtkIrradianceEstimator> fresh;
-    SetPassInputs(scene, fresh);
-    ASSERT_TRUE(fresh->Render(ctx.GL));
-    std::vector<std::vector<float>> kept;
-    std::vector<std::vector<float>> expected;
-    ASSERT_TRUE(pass->ReadBackLights(ctx.GL, 0, 3, kept));
-    ASSERT_TRUE(fresh->ReadBackLights(ctx.GL, 0, 3, expected));
-    EXPECT_EQ(kept, expected) << what;
-    fresh->ReleaseGraphicsResources(ctx.GL);
-  };
-  const struct
-  {
-    double Value;
-    double Opacity;
-    int Classifications;
-    const char* What;
-  } edits[] = {
-    { 0.5, 0.15, 1, "a value dragged within the support" },
-    { 1.5, 0.05, 1, "another one" },
-    { 0.0, 0.05, 2, "the support grown to the empty value" },
-    { 0.0, 1e-12, 3, "an entry too small to decide by its sign" },
-  };
-  for (const auto& edit : edits)
-  {
-    scene.Opacity->AddPoint(edit.Value, edit.Opacity);
+    Scene scene = TwoBlocks(scattering);
+    scene.Strides = { 1, 2, 2 };
+    vtkNew<vtkIrradianceEstimator> pass;
     SetPassInputs(scene, pass);
     ASSERT_TRUE(pass->Render(ctx.GL));
-    EXPECT_EQ(pass->GetNumberOfUpdatedLights(), 3) << edit.What;
-    EXPECT_EQ(pass->GetNumberOfClassifications(), edit.Classifications) << edit.What;
-    expectFresh(edit.What);
+    ASSERT_EQ(pass->GetNumberOfClassifications(), 1);
+    auto expectFresh = [&](const char* what)
+    {
+      vtkNew<vtkIrradianceEstimator> fresh;
+      SetPassInputs(scene, fresh);
+      ASSERT_TRUE(fresh->Render(ctx.GL));
+      std::vector<std::vector<float>> kept;
+      std::vector<std::vector<float>> expected;
+      ASSERT_TRUE(pass->ReadBackLights(ctx.GL, 0, 3, kept));
+      ASSERT_TRUE(fresh->ReadBackLights(ctx.GL, 0, 3, expected));
+      EXPECT_EQ(kept, expected) << "s " << scattering << ": " << what;
+      EXPECT_EQ(pass->GetDiffusionPasses(), fresh->GetDiffusionPasses()) << what;
+      fresh->ReleaseGraphicsResources(ctx.GL);
+    };
+    const struct
+    {
+      double Value;
+      double Opacity;
+      int Classifications;
+      const char* What;
+    } edits[] = {
+      { 0.5, 0.15, 1, "a value dragged within the support" },
+      { 1.5, 0.05, 1, "another one" },
+      { 0.0, 0.05, 2, "the support grown to the empty value" },
+      { 0.0, 1e-12, 3, "an entry too small to decide by its sign" },
+    };
+    for (const auto& edit : edits)
+    {
+      scene.Opacity->AddPoint(edit.Value, edit.Opacity);
+      SetPassInputs(scene, pass);
+      ASSERT_TRUE(pass->Render(ctx.GL));
+      EXPECT_EQ(pass->GetNumberOfUpdatedLights(), 3) << edit.What;
+      EXPECT_EQ(pass->GetNumberOfClassifications(), edit.Classifications)
+        << "s " << scattering << ": " << edit.What;
+      expectFresh(edit.What);
+    }
+    pass->ReleaseGraphicsResources(ctx.GL);
   }
-  pass->ReleaseGraphicsResources(ctx.GL);
 }
 
 TEST(IrradianceEstimator, LayeredAndPerSliceDrawsAgree)
