@@ -91,13 +91,16 @@ void vtkIrradianceEstimator::SetInputs(const mmv::IrradianceGrid& grid,
     internals.StepLength = stepLength;
     internals.OpacityTable = opacity;
     internals.ScatteringTable = scattering;
-    // Classified on the GPU at the upload; on the CPU as well only where
-    // the diffusion plan needs the strengths (NeedsCPUClasses). Classes
-    // that still hold keep the plan made from them.
-    const bool plannedClassesHold = sameScalars && sameGrid && internals.ClassesOnCPU &&
-      internals.ClassesHold(internals.CPUClassifiedOpacity, internals.CPUClassifiedScattering);
-    if (!plannedClassesHold)
+    // The one decision on the classes: classes that still hold keep the
+    // GPU's class texture, the CPU's classes and the diffusion plan made
+    // from them. Otherwise they are made again: on the GPU at the upload,
+    // on the CPU as well only where the diffusion plan needs the strengths
+    // (NeedsCPUClasses).
+    if (!(sameScalars && sameGrid && internals.ClassesHold()))
     {
+      internals.ClassifiedOpacity = opacity;
+      internals.ClassifiedScattering = scattering;
+      internals.ClassesStale = true;
       internals.ClassesOnCPU = false;
       internals.PlanDiffusion(
         this->DiffusionTime, this->ExponentialDiffusion, this->MultipleScattering);

@@ -70,6 +70,7 @@ void vtkIrradianceEstimator::vtkInternals::PlanDiffusion(
   // One RG texel per block: strength, capacity; and the box of the blocks
   // that scatter, the only ones the sweeps change.
   this->CoarseStrength.resize(2 * coarseStrength.size());
+  this->CoarseStrengthChanged = true;
   const int* cd = this->Coarse.Dimensions;
   int* box = this->ScatteringBox.Bounds;
   for (int a = 0; a < 3; ++a)

@@ -318,19 +318,21 @@ public:
   /// opacity table allows it (no negative, non-finite or tiny entry);
   /// returns whether it does.
   bool BuildValueHistogram();
-  // The tables ClassTexture was computed from, and how many times it was;
-  // the tables Classes (on the CPU) were computed from.
+  // The tables the classes (ClassTexture, and Classes where the CPU made
+  // them) were made from; ClassTexture is made again at the next upload
+  // while ClassesStale. Classifications counts the GPU's.
   std::vector<float> ClassifiedOpacity;
   std::vector<float> ClassifiedScattering;
+  bool ClassesStale = true;
   vtkIdType Classifications = 0;
-  std::vector<float> CPUClassifiedOpacity;
-  std::vector<float> CPUClassifiedScattering;
-  /// Whether classes made from these tables (of the current scalars) are
-  /// the current tables' classes too: an opacity edit that keeps which
+  /// Whether the classes made from the Classified tables (of the current
+  /// scalars) are the current tables' too: an opacity edit that keeps which
   /// entries are positive (a point's value dragged within the support) and
   /// the scattering keeps every class.
-  bool ClassesHold(
-    const std::vector<float>& opacityThen, const std::vector<float>& scatteringThen) const;
+  bool ClassesHold() const;
+  // The diffusion grid's strengths changed since CoarseStrengthTexture was
+  // made (PlanDiffusion).
+  bool CoarseStrengthChanged = true;
   // The bricks that may hold non-empty voxels (value ranges once per
   // scalars, marked at every upload): the shadow draws shrink to them.
   mmv::VoxelOccupancy Occupancy;

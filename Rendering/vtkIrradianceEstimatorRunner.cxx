@@ -71,8 +71,6 @@ void vtkIrradianceEstimator::vtkInternals::Classify()
   this->NonEmptyVoxels = ClassifyValues(
     this->Scalars, this->Grid.Dimensions, this->OpacityTable, this->ScatteringTable, this->Classes);
   this->ClassesOnCPU = true;
-  this->CPUClassifiedOpacity = this->OpacityTable;
-  this->CPUClassifiedScattering = this->ScatteringTable;
   this->BuildValueHistogram(); // for ClassesHold at the next edit
 }
 
@@ -245,7 +243,6 @@ bool vtkIrradianceEstimator::vtkInternals::Upload(vtkOpenGLRenderWindow* context
       this->ScalarTexture->Create3DFromRaw(d[0], d[1], d[2], 1, VTK_FLOAT, this->Scalars.data());
     this->Occupancy.SetValues(this->Scalars, d);
   }
-  this->Occupancy.Classify(this->OpacityTable);
   bool classes = true;
   bool classesKept = scalarsKept;
   if (!HasSize(this->ClassTexture, d))
@@ -256,13 +253,19 @@ bool vtkIrradianceEstimator::vtkInternals::Upload(vtkOpenGLRenderWindow* context
     classesKept = false;
   }
   this->TableTexture = NewTexture(context, GL_R32F, GL_RED, GL_FLOAT, true);
-  this->CoarseStrengthTexture = NewTexture(context, GL_RG32F, GL_RG, GL_FLOAT, false);
-  ++this->VolumeUploads;
-  this->Uploaded = this->ScalarsUploaded && classes &&
-    this->TableTexture->Create2DFromRaw(
-      this->TableSize, this->TableSize, 1, VTK_FLOAT, this->ShadowTable.data()) &&
-    this->CoarseStrengthTexture->Create3DFromRaw(
+  // The strengths change with the diffusion plan, not at every edit.
+  bool strengths = true;
+  if (this->CoarseStrengthChanged || !HasSize(this->CoarseStrengthTexture, c))
+  {
+    this->CoarseStrengthTexture = NewTexture(context, GL_RG32F, GL_RG, GL_FLOAT, false);
+    strengths = this->CoarseStrengthTexture->Create3DFromRaw(
       c[0], c[1], c[2], 2, VTK_FLOAT, this->CoarseStrength.data());
+    this->CoarseStrengthChanged = !strengths;
+  }
+  ++this->VolumeUploads;
+  this->Uploaded = this->ScalarsUploaded && classes && strengths &&
+    this->TableTexture->Create2DFromRaw(
+      this->TableSize, this->TableSize, 1, VTK_FLOAT, this->ShadowTable.data());
   this->TintTableTexture = nullptr;
   if (this->Uploaded && !this->TintTable.empty())
   {
@@ -270,13 +273,12 @@ bool vtkIrradianceEstimator::vtkInternals::Upload(vtkOpenGLRenderWindow* context
     this->Uploaded = this->TintTableTexture->Create2DFromRaw(
       this->TableSize, this->TableSize, 4, VTK_FLOAT, this->TintTable.data());
   }
-  if (this->Uploaded &&
-    (!classesKept || this->Classifications == 0 ||
-      !this->ClassesHold(this->ClassifiedOpacity, this->ClassifiedScattering)))
+  if (this->Uploaded && (!classesKept || this->ClassesStale))
   {
+    // The occupied bricks follow the same classes.
+    this->Occupancy.Classify(this->OpacityTable);
     this->Uploaded = this->ClassifyOnGPU(context, layered);
-    this->ClassifiedOpacity = this->OpacityTable;
-    this->ClassifiedScattering = this->ScatteringTable;
+    this->ClassesStale = !this->Uploaded;
     ++this->Classifications;
   }
   return this->Uploaded;
@@ -289,11 +291,11 @@ bool vtkIrradianceEstimator::vtkInternals::Upload(vtkOpenGLRenderWindow* context
 // lies in (0, 1e-20) (the value histogram's last bin), neither product
 // underflows, so which entries are positive decides every voxel; its class
 // is then that and the scattering.
-bool vtkIrradianceEstimator::vtkInternals::ClassesHold(
-  const std::vector<float>& opacityThen, const std::vector<float>& scatteringThen) const
+bool vtkIrradianceEstimator::vtkInternals::ClassesHold() const
 {
+  const std::vector<float>& opacityThen = this->ClassifiedOpacity;
   const size_t n = this->OpacityTable.size();
-  if (opacityThen.size() != n || scatteringThen != this->ScatteringTable ||
+  if (opacityThen.size() != n || this->ClassifiedScattering != this->ScatteringTable ||
     this->ValueHistogramSize != static_cast<int>(n) || this->ValueHistogram.size() != 2 * n ||
     this->ValueHistogram[2 * n - 1] != 0)
   {

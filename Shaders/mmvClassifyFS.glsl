@@ -2,8 +2,8 @@
 // opacity table is positive at the voxel's pre-filtered value; where it is
 // empty, -1 - m, m the bits of its non-empty face neighbours (bit 2 a for
 // the one below on axis a, 2 a + 1 above), which the final write averages
-// (mmv::EmptyVoxelClass in vtkIrradianceEstimatorInternals.h). The same arithmetic
-// as the CPU's mmv::voxelpass::LookupTable (a
+// (mmv::EmptyVoxelClass in vtkIrradianceEstimatorInternals.h). The same
+// arithmetic as the CPU's mmv::LookupTable (Filters/vtkTableLookup.h: a
 // linear interpolation of TableSize entries over the normalised range), so
 // that an opacity edit uploads the two small tables and not a class volume.
 
