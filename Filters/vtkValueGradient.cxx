@@ -11,50 +11,14 @@
 namespace mmv
 {
 
-void ComputeValueGradients(vtkDataArray* scalars, int component, const int dims[3],
-  const double range[2], std::vector<float>& gradients)
+namespace
 {
-  const vtkIdType stride[3] = { 1, dims[0], static_cast<vtkIdType>(dims[0]) * dims[1] };
-  const vtkIdType count = stride[2] * dims[2];
-  const double scale = range[1] > range[0] ? 1.0 / (range[1] - range[0]) : 0.0;
-  std::vector<float> values(count);
-  vtkSMPTools::For(0, count,
-    [&](vtkIdType begin, vtkIdType end)
-    {
-      for (vtkIdType v = begin; v < end; ++v)
-      {
-        values[v] = static_cast<float>((scalars->GetComponent(v, component) - range[0]) * scale);
-      }
-    });
-  gradients.resize(3 * count);
-  vtkSMPTools::For(0, count,
-    [&](vtkIdType begin, vtkIdType end)
-    {
-      for (vtkIdType v = begin; v < end; ++v)
-      {
-        const int index[3] = { static_cast<int>(v % dims[0]),
-          static_cast<int>((v / dims[0]) % dims[1]), static_cast<int>(v / stride[2]) };
-        for (int a = 0; a < 3; ++a)
-        {
-          const vtkIdType below = index[a] > 0 ? v - stride[a] : v;
-          const vtkIdType above = index[a] + 1 < dims[a] ? v + stride[a] : v;
-          const float g = 0.5f * (values[above] - values[below]);
-          gradients[3 * v + a] = std::isfinite(g) ? g : 0.0f;
-        }
-      }
-    });
-}
-
-void ComputeHalfValueGradients(vtkDataArray* scalars, int component, const int dims[3],
-  const double range[2], int firstSlice, int lastSlice, std::vector<float>& values,
-  std::vector<unsigned short>& halves)
+/// Slices [below, above] of component `component`, normalised over `range`.
+void NormaliseSlices(vtkDataArray* scalars, int component, const int dims[3], const double range[2],
+  int below, int above, std::vector<float>& values)
 {
   const vtkIdType sliceSize = static_cast<vtkIdType>(dims[0]) * dims[1];
   const double scale = range[1] > range[0] ? 1.0 / (range[1] - range[0]) : 0.0;
-  // The slab's slices and one more on each side (clamped), as
-  // ComputeValueGradients normalises them.
-  const int below = std::max(0, firstSlice - 1);
-  const int above = std::min(dims[2] - 1, lastSlice + 1);
   values.resize(static_cast<size_t>(sliceSize) * (above - below + 1));
   vtkSMPTools::For(0, static_cast<vtkIdType>(values.size()),
     [&](vtkIdType begin, vtkIdType end)
@@ -66,9 +30,18 @@ void ComputeHalfValueGradients(vtkDataArray* scalars, int component, const int d
           static_cast<float>((scalars->GetComponent(offset + v, component) - range[0]) * scale);
       }
     });
+}
+
+/// The central differences (one-sided halves on the faces; non-finite ones
+/// 0) of slices [firstSlice, lastSlice], from `values` holding slices
+/// `below` on, into `out` (3 per voxel) through `convert`. One row (j, k)
+/// per task: no index arithmetic per voxel.
+template <typename Out, typename Convert>
+void GradientRows(const std::vector<float>& values, int below, const int dims[3], int firstSlice,
+  int lastSlice, Out* out, Convert convert)
+{
+  const vtkIdType sliceSize = static_cast<vtkIdType>(dims[0]) * dims[1];
   const int slices = lastSlice - firstSlice + 1;
-  halves.resize(3 * static_cast<size_t>(sliceSize) * slices);
-  // One row (j, k) per task: no index arithmetic per voxel.
   vtkSMPTools::For(0, static_cast<vtkIdType>(dims[1]) * slices,
     [&](vtkIdType begin, vtkIdType end)
     {
@@ -81,7 +54,7 @@ void ComputeHalfValueGradients(vtkDataArray* scalars, int component, const int d
         const float* yAbove = j + 1 < dims[1] ? center + dims[0] : center;
         const float* zBelow = k > 0 ? center - sliceSize : center;
         const float* zAbove = k + 1 < dims[2] ? center + sliceSize : center;
-        unsigned short* out = halves.data() + 3 * (row * dims[0]);
+        Out* voxel = out + 3 * (row * dims[0]);
         for (int i = 0; i < dims[0]; ++i)
         {
           const float differences[3] = { center[i + 1 < dims[0] ? i + 1 : i] -
@@ -90,12 +63,34 @@ void ComputeHalfValueGradients(vtkDataArray* scalars, int component, const int d
           for (int a = 0; a < 3; ++a)
           {
             const float g = 0.5f * differences[a];
-            out[3 * i + a] =
-              static_cast<unsigned short>(glm::packHalf1x16(std::isfinite(g) ? g : 0.0f));
+            voxel[3 * i + a] = convert(std::isfinite(g) ? g : 0.0f);
           }
         }
       }
     });
+}
+} // namespace
+
+void ComputeValueGradients(vtkDataArray* scalars, int component, const int dims[3],
+  const double range[2], std::vector<float>& gradients)
+{
+  std::vector<float> values;
+  NormaliseSlices(scalars, component, dims, range, 0, dims[2] - 1, values);
+  gradients.resize(3 * values.size());
+  GradientRows(values, 0, dims, 0, dims[2] - 1, gradients.data(), [](float g) { return g; });
+}
+
+void ComputeHalfValueGradients(vtkDataArray* scalars, int component, const int dims[3],
+  const double range[2], int firstSlice, int lastSlice, std::vector<float>& values,
+  std::vector<unsigned short>& halves)
+{
+  // The slab's slices and one more on each side (clamped).
+  const int below = std::max(0, firstSlice - 1);
+  NormaliseSlices(
+    scalars, component, dims, range, below, std::min(dims[2] - 1, lastSlice + 1), values);
+  halves.resize(3 * static_cast<size_t>(dims[0]) * dims[1] * (lastSlice - firstSlice + 1));
+  GradientRows(values, below, dims, firstSlice, lastSlice, halves.data(),
+    [](float g) { return static_cast<unsigned short>(glm::packHalf1x16(g)); });
 }
 
 double ValidGradientSmoothing(double sigma, std::string* why)
