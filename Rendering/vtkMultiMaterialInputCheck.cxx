@@ -1,5 +1,6 @@
 #include "vtkMultiMaterialInputCheck.h"
 
+#include "vtkCombinedFieldExtinction.h"
 #include "vtkDataArray.h"
 #include "vtkGPUVolumeRayCastMapper.h"
 #include "vtkImageData.h"
@@ -73,11 +74,18 @@ InputCheck CheckMultiMaterialInputs(vtkVolumeMapper* mapper, vtkRenderer* ren, v
     check.Caveat = "the input is a single slice (one point along an axis): it has no "
                    "thickness and may render empty";
   }
-  if (scalars->GetNumberOfComponents() != 1)
+  const int components = scalars->GetNumberOfComponents();
+  if (components > 1 && !vol->GetProperty()->GetIndependentComponents())
   {
-    check.Reason = "multi-material shading needs one-component scalars (for vectors, set the "
-                   "mapper's VectorMode, or colour by Magnitude or a component); using VTK's "
-                   "shading";
+    check.Reason = "multi-material shading needs one-component scalars or independent "
+                   "components (for vectors, set the mapper's VectorMode, or colour by "
+                   "Magnitude or a component); using VTK's shading";
+    return check;
+  }
+  if (components > mmv::MaxFields)
+  {
+    check.Reason = "the scalars have " + std::to_string(components) + " components: at most " +
+      std::to_string(mmv::MaxFields) + " fields can be shaded together; using VTK's shading";
     return check;
   }
   if (vol->GetProperty()->GetTransferFunctionMode() != vtkVolumeProperty::TF_1D)

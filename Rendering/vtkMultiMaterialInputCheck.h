@@ -4,7 +4,8 @@
  *         materials, and if not, why: one verdict the mapper only reports.
  *
  * Multi-material shading needs composite blending, vtkImageData with as many
- * one-component point or cell scalars as points or cells, a 1D transfer
+ * point or cell scalars as points or cells (one component, or 2-4
+ * independent components: several fields), a 1D transfer
  * function and an OpenGL render window; anything else is rendered by VTK's
  * own shading (the mapper warns once with the reason). Vectors reach it as
  * one component through the mapper's VectorMode, which puts the reduced

@@ -153,7 +153,7 @@ void vtkMultiMaterialIrradianceStage::ApplyProbe(vtkRenderer* ren, vtkVolume* vo
   int maxAxis, mmv::IrradianceResolution& resolution)
 {
   auto* window = vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow());
-  vtkVolumeProperty* property = vol->GetProperty();
+  vtkVolumeProperty* property = this->In->Property;
   const int n = this->In->Settings.PreIntegrationTableSize;
   // Sampled only when the volume key changed, over the opacity function's
   // own range (vtkIrradianceProbeRule.h).
@@ -255,7 +255,7 @@ bool vtkMultiMaterialIrradianceStage::Update(
   // moved crop box or plane updates the irradiance.
   const mmv::Cutaway& cutaway = inputs.Cut;
   vtkIrradianceInputCache::VolumeKey volumeKey =
-    MakeVolumeKey(inputs.Settings, vol->GetProperty(), dataTime, this->Cache->GetMaterialVersion(),
+    MakeVolumeKey(inputs.Settings, inputs.Property, dataTime, this->Cache->GetMaterialVersion(),
       static_cast<int>(this->In->Lights->size()), range, cutaway);
   const mmv::IrradianceResolution resolution =
     this->ChooseGrid(ren, vol, image, scalars, range, volumeKey, cutaway);
@@ -371,7 +371,7 @@ bool vtkMultiMaterialIrradianceStage::KeepsHeld(const vtkIrradianceUpdatePlan& p
   // No value of the data is visible (a time step outside the opacity):
   // nothing casts a shadow or is drawn, so the last irradiance serves.
   const std::vector<float> opacity = SampleOpacityTable(
-    vol->GetProperty()->GetScalarOpacity(0), range, this->In->Settings.PreIntegrationTableSize);
+    this->In->Property->GetScalarOpacity(0), range, this->In->Settings.PreIntegrationTableSize);
   if (std::all_of(opacity.begin(), opacity.end(), [](float a) { return !(a > 0.0f); }))
   {
     return true;
@@ -429,14 +429,14 @@ bool vtkMultiMaterialIrradianceStage::ComputeOn(vtkIrradianceEstimator* pass,
   const mmv::IrradianceGrid& grid, const std::vector<float>& prefiltered, unsigned long version,
   const std::vector<mmv::LightSource>& sources, bool scattering)
 {
-  vtkPiecewiseFunction* opacity = vol->GetProperty()->GetScalarOpacity(0);
+  vtkPiecewiseFunction* opacity = this->In->Property->GetScalarOpacity(0);
   const int n = this->In->Settings.PreIntegrationTableSize;
   // Shadow rays step one irradiance voxel, with their own pre-integrated table.
   const double shadowStep = std::min({ grid.Spacing.x, grid.Spacing.y, grid.Spacing.z });
   vtkPreIntegrationTable* shadow = this->ShadowTable;
   shadow->SetScalarOpacity(opacity);
   shadow->SetMaterialTransferFunction(this->In->Materials);
-  shadow->SetScalarOpacityUnitDistance(vol->GetProperty()->GetScalarOpacityUnitDistance(0));
+  shadow->SetScalarOpacityUnitDistance(this->In->Property->GetScalarOpacityUnitDistance(0));
   shadow->SetTableSize(n);
   shadow->SetScalarRange(range[0], range[1]);
   shadow->SetStepLength(shadowStep);

@@ -43,6 +43,7 @@ class vtkMaterialTransferFunction;
 class vtkOpenGLRenderWindow;
 class vtkRenderer;
 class vtkVolume;
+class vtkVolumeProperty;
 class vtkWindow;
 
 namespace mmv
@@ -75,6 +76,9 @@ struct IrradianceStageInputs
   const double* PieceRange = nullptr;           // the input's finite range
   vtkGlobalPrefilteredVolume* Global = nullptr; // the whole volume of a piece; null: none
   vtkMaterialTransferFunction* Materials = nullptr;
+  /// The opacity the shadows read (component 0): the volume's, or several
+  /// fields' combined extinction (vtkMultiMaterialFields.h).
+  vtkVolumeProperty* Property = nullptr;
   const std::vector<ShadingLight>* Lights = nullptr;
   Cutaway Cut; // cropping and clipping, in object space
   IlluminationSettings Settings;

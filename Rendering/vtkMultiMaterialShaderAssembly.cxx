@@ -28,6 +28,7 @@ std::string VariantDefines(const ShaderVariant& variant)
   const int textures = (variant.NumberOfLights + 3) / 4;
   std::string s = MaterialGLSLPrelude();
   s += "#define MMV_NUMBER_OF_LIGHTS " + std::to_string(variant.NumberOfLights) + "\n";
+  s += "#define MMV_FIELDS " + std::to_string(variant.Fields) + "\n";
   s += "#define MMV_IRRADIANCE_TEXTURES " + std::to_string(textures) + "\n";
   s += "#define MMV_USE_REFLECTION " + std::string(variant.Reflection ? "1" : "0") + "\n";
   s += "#define MMV_USE_PREINTEGRATION " + std::string(variant.PreIntegration ? "1" : "0") + "\n";

@@ -26,6 +26,7 @@ namespace mmv
 struct ShaderVariant
 {
   int NumberOfLights = 0;  // 0..MaxLights
+  int Fields = 1;          // 1..MaxFields: components shaded as fields
   bool Reflection = false; // some material has r > 0
   bool PreIntegration = true;
   bool Anisotropy = false; // some material has g != 0 (and there is a light)
@@ -42,10 +43,11 @@ struct ShaderVariant
 
   bool operator==(const ShaderVariant& o) const
   {
-    return this->NumberOfLights == o.NumberOfLights && this->Reflection == o.Reflection &&
-      this->PreIntegration == o.PreIntegration && this->Anisotropy == o.Anisotropy &&
-      this->Emission == o.Emission && this->RGBIrradiance == o.RGBIrradiance &&
-      this->Environment == o.Environment && this->ReflectionVisibility == o.ReflectionVisibility &&
+    return this->NumberOfLights == o.NumberOfLights && this->Fields == o.Fields &&
+      this->Reflection == o.Reflection && this->PreIntegration == o.PreIntegration &&
+      this->Anisotropy == o.Anisotropy && this->Emission == o.Emission &&
+      this->RGBIrradiance == o.RGBIrradiance && this->Environment == o.Environment &&
+      this->ReflectionVisibility == o.ReflectionVisibility &&
       this->ReflectionCutaway == o.ReflectionCutaway;
   }
   bool operator!=(const ShaderVariant& o) const { return !(*this == o); }

@@ -33,70 +33,90 @@ vtkMultiMaterialTextures::vtkMultiMaterialTextures() = default;
 vtkMultiMaterialTextures::~vtkMultiMaterialTextures() = default;
 
 void vtkMultiMaterialTextures::UpdateSegmentTables(
-  vtkOpenGLRenderWindow* context, vtkPreIntegrationTable* table)
+  vtkOpenGLRenderWindow* context, const std::vector<vtkPreIntegrationTable*>& tables)
 {
-  const bool current = this->SegmentColor->GetHandle() != 0 && table == this->UploadedTable &&
-    table->GetBuildCount() == this->UploadedTableBuild;
-  if (current)
+  std::vector<std::pair<vtkPreIntegrationTable*, int>> sources;
+  for (vtkPreIntegrationTable* table : tables)
+  {
+    sources.emplace_back(table, table->GetBuildCount());
+  }
+  if (this->SegmentColor->GetHandle() != 0 && sources == this->UploadedTables)
   {
     return;
   }
-  const int n = table->GetTableSize();
+  const int n = tables[0]->GetTableSize();
+  const size_t texels = static_cast<size_t>(n) * n;
+  std::vector<float> color;
+  std::vector<float> position;
+  color.reserve(4 * texels * tables.size());
+  position.reserve(texels * tables.size());
+  for (vtkPreIntegrationTable* table : tables)
+  {
+    const float* c = table->GetColorOpacityTable();
+    const float* p = table->GetShadingPositionTable();
+    color.insert(color.end(), c, c + 4 * texels);
+    position.insert(position.end(), p, p + texels);
+  }
+  const int rows = n * static_cast<int>(tables.size());
   this->SegmentColor->SetContext(context);
   this->SegmentPosition->SetContext(context);
-  this->SegmentColor->Create2DFromRaw(
-    n, n, 4, VTK_FLOAT, const_cast<float*>(table->GetColorOpacityTable()));
-  this->SegmentPosition->Create2DFromRaw(
-    n, n, 1, VTK_FLOAT, const_cast<float*>(table->GetShadingPositionTable()));
+  this->SegmentColor->Create2DFromRaw(n, rows, 4, VTK_FLOAT, color.data());
+  this->SegmentPosition->Create2DFromRaw(n, rows, 1, VTK_FLOAT, position.data());
   UseLinearClamped(this->SegmentColor);
   UseLinearClamped(this->SegmentPosition);
-  this->UploadedTable = table;
-  this->UploadedTableBuild = table->GetBuildCount();
+  this->UploadedTables = sources;
   this->TableSize = n;
   ++this->SegmentUploads;
 }
 
 void vtkMultiMaterialTextures::UpdateMaterialTable(vtkOpenGLRenderWindow* context,
-  vtkMaterialTransferFunction* materials, const double range[2], int n)
+  const std::vector<vtkMaterialTransferFunction*>& materials, const std::vector<double>& ranges,
+  int n)
 {
-  const vtkMTimeType time = materials ? materials->GetMTime() : 0;
-  const bool current = this->Material->GetHandle() != 0 && materials == this->UploadedMaterials &&
-    time == this->UploadedMaterialTime && range[0] == this->UploadedRange[0] &&
-    range[1] == this->UploadedRange[1] && n == this->UploadedMaterialSize;
-  if (current)
+  std::vector<std::pair<vtkMaterialTransferFunction*, vtkMTimeType>> sources;
+  for (vtkMaterialTransferFunction* m : materials)
+  {
+    sources.emplace_back(m, m ? m->GetMTime() : 0);
+  }
+  if (this->Material->GetHandle() != 0 && sources == this->UploadedMaterials &&
+    ranges == this->UploadedRanges && n == this->UploadedMaterialSize)
   {
     return;
   }
   constexpr int P = mmv::MaterialParameterCount;
-  std::vector<float> samples(static_cast<size_t>(n) * P);
-  if (materials)
-  {
-    materials->GetTable(range[0], range[1], n, samples.data());
-  }
-  else
-  {
-    for (int i = 0; i < n; ++i)
-    {
-      for (int p = 0; p < P; ++p)
-      {
-        samples[i * P + p] = static_cast<float>(mmv::MaterialParameterTable[p].Default);
-      }
-    }
-  }
+  constexpr int Rows = mmv::MaterialTextureRows;
   // Laid out as mmv::MaterialTexelLayout, which the shaders read through the
   // prelude's MMV_<NAME>_ROW / _CHANNEL; unused channels hold 0.
-  std::vector<float> texels(static_cast<size_t>(n) * mmv::MaterialTextureRows * 4, 0.0f);
-  for (int i = 0; i < n; ++i)
+  std::vector<float> texels(static_cast<size_t>(n) * Rows * 4 * materials.size(), 0.0f);
+  std::vector<float> samples(static_cast<size_t>(n) * P);
+  for (size_t f = 0; f < materials.size(); ++f)
   {
-    mmv::PackMaterialTexels(&samples[i * P], i, n, texels.data());
+    if (materials[f])
+    {
+      materials[f]->GetTable(ranges[2 * f], ranges[2 * f + 1], n, samples.data());
+    }
+    else
+    {
+      for (int i = 0; i < n; ++i)
+      {
+        for (int p = 0; p < P; ++p)
+        {
+          samples[i * P + p] = static_cast<float>(mmv::MaterialParameterTable[p].Default);
+        }
+      }
+    }
+    float* field = texels.data() + f * static_cast<size_t>(n) * Rows * 4;
+    for (int i = 0; i < n; ++i)
+    {
+      mmv::PackMaterialTexels(&samples[i * P], i, n, field);
+    }
   }
   this->Material->SetContext(context);
-  this->Material->Create2DFromRaw(n, mmv::MaterialTextureRows, 4, VTK_FLOAT, texels.data());
+  this->Material->Create2DFromRaw(
+    n, Rows * static_cast<int>(materials.size()), 4, VTK_FLOAT, texels.data());
   UseLinearClamped(this->Material);
-  this->UploadedMaterials = materials;
-  this->UploadedMaterialTime = time;
-  this->UploadedRange[0] = range[0];
-  this->UploadedRange[1] = range[1];
+  this->UploadedMaterials = sources;
+  this->UploadedRanges = ranges;
   this->UploadedMaterialSize = n;
   ++this->MaterialUploads;
 }
@@ -326,9 +346,10 @@ vtkIdType vtkMultiMaterialTextures::GetMemoryBytes() const
   // The texture's texels, fewer than the data's points when resampled to fit.
   const vtkIdType gradientBytes = static_cast<vtkIdType>(this->GradientTextureDimensions[0]) *
     this->GradientTextureDimensions[1] * this->GradientTextureDimensions[2] * 3 * 2;
-  const vtkIdType materialBytes =
-    static_cast<vtkIdType>(this->UploadedMaterialSize) * mmv::MaterialTextureRows * 4 * 4;
-  return n * n * (4 + 1) * 4 + materialBytes + gradientBytes;
+  const vtkIdType fields = static_cast<vtkIdType>(this->UploadedTables.size());
+  const vtkIdType materialBytes = static_cast<vtkIdType>(this->UploadedMaterialSize) *
+    mmv::MaterialTextureRows * 4 * 4 * static_cast<vtkIdType>(this->UploadedMaterials.size());
+  return n * n * (4 + 1) * 4 * fields + materialBytes + gradientBytes;
 }
 
 void vtkMultiMaterialTextures::ReleaseGraphicsResources(vtkWindow* window)
@@ -339,9 +360,8 @@ void vtkMultiMaterialTextures::ReleaseGraphicsResources(vtkWindow* window)
   this->Gradient->ReleaseGraphicsResources(window);
   this->TrimKeptGradients(0);
   this->GradientKept = false;
-  this->UploadedTable = nullptr;
-  this->UploadedMaterials = nullptr;
-  this->UploadedTableBuild = -1;
+  this->UploadedTables.clear();
+  this->UploadedMaterials.clear();
   this->UploadedScalars = nullptr;
 }
 

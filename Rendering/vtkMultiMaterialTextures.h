@@ -8,6 +8,8 @@
  * (ka, kd, ks, ke), row 1 = (r, 0, 0, g), row 2 = (e, 0, 0, 0), sampled
  * over the scalar range (the layout of mmv::MaterialParameterTable; the
  * shader reads row r at v = (r + 0.5) / mmv::MaterialTextureRows).
+ * Several fields stack their tables along v, field f's above field f - 1's:
+ * n x (n F) segment texels and n x (3 F) material texels for F fields.
  * Gradient volume: RGB16F at the data's resolution, the normalised-value
  * gradient per voxel (vtkValueGradient.h), uploaded when the data or its
  * range changed.
@@ -39,13 +41,26 @@ public:
   vtkTypeMacro(vtkMultiMaterialTextures, vtkObject);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-  /// Uploads the segment tables if `table` was rebuilt since the last upload.
-  void UpdateSegmentTables(vtkOpenGLRenderWindow* context, vtkPreIntegrationTable* table);
+  /// Uploads the segment tables, one per field, if any was rebuilt (or the
+  /// fields changed) since the last upload. All tables share one size.
+  void UpdateSegmentTables(
+    vtkOpenGLRenderWindow* context, const std::vector<vtkPreIntegrationTable*>& tables);
+  void UpdateSegmentTables(vtkOpenGLRenderWindow* context, vtkPreIntegrationTable* table)
+  {
+    this->UpdateSegmentTables(context, std::vector<vtkPreIntegrationTable*>{ table });
+  }
 
-  /// Uploads the material table (n entries over `range`) if the function,
-  /// the range or n changed. A null function uploads the defaults.
+  /// Uploads the material tables, field f's n entries over ranges[2 f, 2 f + 1],
+  /// if a function, a range or n changed. A null function uploads the defaults.
+  void UpdateMaterialTable(vtkOpenGLRenderWindow* context,
+    const std::vector<vtkMaterialTransferFunction*>& materials, const std::vector<double>& ranges,
+    int n);
   void UpdateMaterialTable(vtkOpenGLRenderWindow* context, vtkMaterialTransferFunction* materials,
-    const double range[2], int n);
+    const double range[2], int n)
+  {
+    this->UpdateMaterialTable(context, std::vector<vtkMaterialTransferFunction*>{ materials },
+      std::vector<double>{ range[0], range[1] }, n);
+  }
 
   /// Uploads the gradient volume of component 0 of `scalars` (point data of
   /// a `dims` grid) normalised over `range`, if any of them changed. False
@@ -130,11 +145,11 @@ private:
   int GradientTextureDimensions[3] = { 0, 0, 0 };
   int SegmentUploads = 0;
   int MaterialUploads = 0;
-  int UploadedTableBuild = -1;
-  vtkPreIntegrationTable* UploadedTable = nullptr;
-  vtkMTimeType UploadedMaterialTime = 0;
-  vtkMaterialTransferFunction* UploadedMaterials = nullptr;
-  double UploadedRange[2] = { 0.0, 0.0 };
+  // What the uploaded tables were made of: per field, the table and its
+  // build; the functions, their times and ranges.
+  std::vector<std::pair<vtkPreIntegrationTable*, int>> UploadedTables;
+  std::vector<std::pair<vtkMaterialTransferFunction*, vtkMTimeType>> UploadedMaterials;
+  std::vector<double> UploadedRanges;
   int UploadedMaterialSize = 0;
   int TableSize = 0;
 };

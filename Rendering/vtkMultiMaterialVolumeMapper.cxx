@@ -11,6 +11,7 @@
 #include "vtkMaterialTransferFunction.h"
 #include "vtkMatrix4x4.h"
 #include "vtkMultiMaterialEnvironment.h"
+#include "vtkMultiMaterialFields.h"
 #include "vtkMultiMaterialInputCheck.h"
 #include "vtkMultiMaterialIrradianceStage.h"
 #include "vtkMultiMaterialLights.h"
@@ -67,7 +68,10 @@ double Seconds(Clock::time_point start)
 class vtkMultiMaterialVolumeMapper::vtkInternals
 {
 public:
-  vtkSmartPointer<vtkMaterialTransferFunction> Materials;
+  // The fields shaded (their materials, segment tables and the lighting's
+  // field).
+  vtkMultiMaterialFields Fields;
+  vtkMaterialTransferFunction* Materials() const { return this->Fields.GetMaterials(0); }
   // The whole volume when the input is one piece of it (global shadows).
   vtkSmartPointer<vtkGlobalPrefilteredVolume> Global;
   vtkGlobalPrefilteredVolume* ActiveGlobal() const
@@ -81,12 +85,9 @@ public:
     vtkGlobalPrefilteredVolume* global = this->ActiveGlobal();
     return global ? global->GetScalarRange() : pieceRange;
   }
-  vtkNew<vtkPreIntegrationTable> SegmentTable;
   vtkNew<vtkMultiMaterialTextures> Textures;
   vtkMultiMaterialIrradianceStage Irradiance;
   vtkNew<vtkMultiMaterialShaderHook> ShaderHook;
-  vtkNew<vtkColorTransferFunction> GrayAsColor;
-  vtkMTimeType GrayTime = 0;
 
   // The lights of this frame, in object space.
   std::vector<mmv::ShadingLight> Lights;
@@ -125,7 +126,7 @@ public:
   void SetUniforms(vtkShaderProgram* program)
   {
     this->Uniforms.Apply(
-      program, this->Textures, this->SegmentTable->GetTableSize(), this->Irradiance.GetEstimator());
+      program, this->Textures, this->Fields.GetTableSize(), this->Irradiance.GetEstimator());
   }
   void ActivateTextures(bool on)
   {
@@ -156,16 +157,39 @@ vtkMultiMaterialVolumeMapper::~vtkMultiMaterialVolumeMapper()
 
 void vtkMultiMaterialVolumeMapper::SetMaterialTransferFunction(vtkMaterialTransferFunction* m)
 {
-  if (this->Internals->Materials != m)
-  {
-    this->Internals->Materials = m;
-    this->Modified();
-  }
+  this->SetFieldMaterialTransferFunction(0, m);
 }
 
 vtkMaterialTransferFunction* vtkMultiMaterialVolumeMapper::GetMaterialTransferFunction()
 {
-  return this->Internals->Materials;
+  return this->Internals->Materials();
+}
+
+void vtkMultiMaterialVolumeMapper::SetFieldMaterialTransferFunction(
+  int field, vtkMaterialTransferFunction* m)
+{
+  if (field < 0 || field >= mmv::MaxFields)
+  {
+    vtkErrorMacro("field " << field << " is out of [0, " << mmv::MaxFields - 1
+                           << "]: the materials are not set");
+    return;
+  }
+  if (this->Internals->Fields.GetMaterials(field) != m)
+  {
+    this->Internals->Fields.SetMaterials(field, m);
+    this->Modified();
+  }
+}
+
+vtkMaterialTransferFunction* vtkMultiMaterialVolumeMapper::GetFieldMaterialTransferFunction(
+  int field)
+{
+  if (field < 0 || field >= mmv::MaxFields)
+  {
+    vtkErrorMacro("field " << field << " is out of [0, " << mmv::MaxFields - 1 << "]");
+    return nullptr;
+  }
+  return this->Internals->Fields.GetMaterials(field);
 }
 
 void vtkMultiMaterialVolumeMapper::SetGlobalPrefilteredVolume(vtkGlobalPrefilteredVolume* volume)
@@ -208,11 +232,7 @@ vtkMTimeType vtkMultiMaterialVolumeMapper::GetMTime()
   {
     t = std::max(t, this->Internals->Global->GetMTime());
   }
-  if (this->Internals->Materials)
-  {
-    t = std::max(t, this->Internals->Materials->GetMTime());
-  }
-  return t;
+  return std::max(t, this->Internals->Fields.GetMaterialsMTime());
 }
 
 bool vtkMultiMaterialVolumeMapper::ReadIrradiance(
@@ -520,36 +540,50 @@ bool vtkMultiMaterialVolumeMapper::PrepareMultiMaterial(vtkRenderer* ren, vtkVol
     }
     return false;
   }
+  vtkInternals& in = *this->Internals;
+  in.Fields.SetScalars(input.Scalars);
+  this->NumberOfFields = in.Fields.GetNumberOfFields();
+  const bool bricks =
+    this->BrickPartitions[0] * this->BrickPartitions[1] * this->BrickPartitions[2] > 1;
+  if (this->NumberOfFields > 1 && (bricks || in.ActiveGlobal()))
+  {
+    this->WarnOnce("several fields in bricks (partitions) or in pieces of a distributed volume "
+                   "are not lit with materials; using VTK's shading");
+    return false;
+  }
+  // From here on the lighting reads one field: the data, or the several
+  // fields' combined extinction, over its own range.
+  if (!this->UpdateFieldLighting(vol, input.Scalars))
+  {
+    return false;
+  }
+  vtkDataArray* lighting = in.Fields.GetLightingScalars(input.Scalars);
+  const double* range = in.Fields.GetRange(0);
+  const double* lightingRange = in.Fields.GetLightingRange(range);
   vtkImageData* image = input.Image;
   if (input.CellData)
   {
-    if (this->BrickPartitions[0] * this->BrickPartitions[1] * this->BrickPartitions[2] > 1)
+    if (bricks)
     {
       this->WarnOnce("cell scalars in bricks (partitions) are not lit with materials; using "
                      "VTK's shading");
       return false;
     }
-    image = this->Internals->CellCentreImage(input.Image, input.Scalars);
+    image = in.CellCentreImage(input.Image, lighting);
     if (!image)
     {
       this->WarnOnce("the cell scalars do not fill the image's cells; using VTK's shading");
       return false;
     }
   }
-  this->Internals->Uniforms.SetCellData(input.CellData);
-  double range[2];
-  input.Scalars->GetFiniteRange(range, 0);
-  if (!(range[1] > range[0]))
-  {
-    range[1] = range[0] + 1.0; // constant volume: any non-empty range will do
-  }
+  in.Uniforms.SetCellData(input.CellData);
 
   // 1. Segment tables (pre-integration): only when the TFs or the step change.
   // From here on the lighting works on `image`: the input, or for cell
   // scalars the grid of the cell centres (the sampling step follows the
   // input, as VTK's does).
-  if (!this->UpdateSegmentTables(input.Context, vol, input.Image, range) ||
-    !this->UpdateGradient(input.Context, image, input.Scalars, range))
+  if (!this->UpdateSegmentTables(input.Context, vol, input.Image) ||
+    !this->UpdateGradient(input.Context, image, lighting, lightingRange))
   {
     return false;
   }
@@ -562,8 +596,8 @@ bool vtkMultiMaterialVolumeMapper::PrepareMultiMaterial(vtkRenderer* ren, vtkVol
   // 3. The irradiance volume: only when lights, opacity, materials or data change.
   this->LastRenderInteractive = vol->GetAllocatedRenderTime() < 1.0;
   this->NumberOfUpdatedLights = 0;
-  if (!this->Internals->Lights.empty() &&
-    !this->UpdateIrradiance(ren, vol, image, input.Scalars, range, worldToObject))
+  if (!in.Lights.empty() &&
+    !this->UpdateIrradiance(ren, vol, image, lighting, lightingRange, worldToObject))
   {
     return false;
   }
@@ -584,7 +618,8 @@ bool vtkMultiMaterialVolumeMapper::UpdateIrradiance(vtkRenderer* ren, vtkVolume*
   inputs.Scalars = scalars;
   inputs.PieceRange = range;
   inputs.Global = in.ActiveGlobal();
-  inputs.Materials = in.Materials;
+  inputs.Materials = in.Fields.GetLightingMaterials();
+  inputs.Property = in.Fields.GetLightingProperty(vol->GetProperty());
   inputs.Lights = &in.Lights;
   int droppedPlanes = 0;
   inputs.Cut = mmv::MakeCutaway(this, worldToObject, &droppedPlanes);
@@ -618,54 +653,44 @@ bool vtkMultiMaterialVolumeMapper::UpdateIrradiance(vtkRenderer* ren, vtkVolume*
   return updated;
 }
 
+bool vtkMultiMaterialVolumeMapper::UpdateFieldLighting(vtkVolume* vol, vtkDataArray* scalars)
+{
+  std::string error;
+  if (!this->Internals->Fields.UpdateLighting(
+        scalars, vol->GetProperty(), this->Settings.PreIntegrationTableSize, &error))
+  {
+    this->WarnOnce(
+      "the fields' combined extinction could not be made (" + error + "); using VTK's shading");
+    return false;
+  }
+  return true;
+}
+
 bool vtkMultiMaterialVolumeMapper::UpdateSegmentTables(
-  vtkOpenGLRenderWindow* context, vtkVolume* vol, vtkImageData* image, const double range[2])
+  vtkOpenGLRenderWindow* context, vtkVolume* vol, vtkImageData* image)
 {
   vtkInternals& in = *this->Internals;
-  vtkVolumeProperty* property = vol->GetProperty();
-  vtkColorTransferFunction* color = property->GetRGBTransferFunction(0);
-  if (property->GetColorChannels(0) == 1)
-  {
-    vtkPiecewiseFunction* gray = property->GetGrayTransferFunction(0);
-    if (gray && gray->GetMTime() != in.GrayTime)
-    {
-      in.GrayAsColor->RemoveAllPoints();
-      double node[4];
-      for (int i = 0; i < gray->GetSize(); ++i)
-      {
-        gray->GetNodeValue(i, node);
-        in.GrayAsColor->AddRGBPoint(node[0], node[1], node[1], node[1]);
-      }
-      in.GrayTime = gray->GetMTime();
-    }
-    color = in.GrayAsColor;
-  }
   int extent[6];
   image->GetExtent(extent);
   const double step = mmv::ExpectedSampleDistance(vol, image, this->SampleDistance,
     this->AutoAdjustSampleDistances != 0, this->LockSampleDistanceToInputSpacing != 0,
     this->SpacingAdjustedSampleDistance(image->GetSpacing(), extent));
-  vtkPreIntegrationTable* table = in.SegmentTable;
-  table->SetColorTransferFunction(color);
-  table->SetScalarOpacity(property->GetScalarOpacity(0));
-  table->SetScalarOpacityUnitDistance(property->GetScalarOpacityUnitDistance(0));
-  table->SetTableSize(this->Settings.PreIntegrationTableSize);
-  table->SetScalarRange(const_cast<double*>(range));
-  table->SetStepLength(step);
-  const int builds = table->GetBuildCount();
-  if (!table->Update())
+  int rebuilt = 0;
+  double seconds = 0.0;
+  if (!in.Fields.UpdateSegmentTables(
+        vol->GetProperty(), step, this->Settings.PreIntegrationTableSize, &rebuilt, &seconds))
   {
     return false;
   }
-  if (table->GetBuildCount() != builds)
+  if (rebuilt > 0)
   {
     ++this->PreIntegrationCount;
-    this->LastPreIntegrationSeconds = table->GetLastBuildSeconds();
+    this->LastPreIntegrationSeconds = seconds;
   }
   in.Uniforms.SetTableStep(step);
-  in.Textures->UpdateSegmentTables(context, table);
-  in.Textures->UpdateMaterialTable(
-    context, in.Materials, range, this->Settings.PreIntegrationTableSize);
+  in.Textures->UpdateSegmentTables(context, in.Fields.GetSegmentTables());
+  in.Textures->UpdateMaterialTable(context, in.Fields.GetMaterialsOfFields(), in.Fields.GetRanges(),
+    this->Settings.PreIntegrationTableSize);
   return true;
 }
 
@@ -737,19 +762,29 @@ void vtkMultiMaterialVolumeMapper::UpdateShading(
   vtkInternals& in = *this->Internals;
   mmv::ShaderVariant variant;
   variant.NumberOfLights = this->NumberOfShadedLights;
-  variant.Reflection =
-    in.Materials && in.Materials->GetMaximum(mmv::Reflection) > 0.0 && in.Materials->GetSize() > 0;
+  variant.Fields = in.Fields.GetNumberOfFields();
+  const bool several = variant.Fields > 1;
+  // The reflection's visibility and the tints march one field's tables.
+  if (several && in.Fields.AnyReflection())
+  {
+    this->WarnOnce("reflection (r) is not shaded with several fields; ignored");
+  }
+  if (several && in.Fields.AnyChromaticTransmission())
+  {
+    this->WarnOnce("transmission colours are not modelled with several fields: their shadows "
+                   "are grey");
+  }
+  variant.Reflection = !several && in.Fields.AnyReflection();
   variant.PreIntegration = this->Settings.PreIntegration;
   const bool all = this->Settings.CompileUnusedOpticalTerms;
-  variant.Anisotropy = variant.NumberOfLights > 0 &&
-    (all || (in.Materials && in.Materials->HasNonZero(mmv::Anisotropy)));
-  variant.Emission = all || (in.Materials && in.Materials->HasNonZero(mmv::Emission));
+  variant.Anisotropy = variant.NumberOfLights > 0 && (all || in.Fields.AnyNonZero(mmv::Anisotropy));
+  variant.Emission = all || in.Fields.AnyNonZero(mmv::Emission);
   // Tints only where the estimator computed them (a non-white transmission
   // colour); not forced by CompileUnusedOpticalTerms: without the estimator's
   // tint textures there is nothing to bind.
   vtkIrradianceEstimator* pass = in.Irradiance.GetEstimator();
-  variant.RGBIrradiance = variant.NumberOfLights > 0 && in.Materials &&
-    in.Materials->HasChromaticTransmission() && pass &&
+  variant.RGBIrradiance = variant.NumberOfLights > 0 && !several &&
+    in.Fields.AnyChromaticTransmission() && pass &&
     pass->GetTintTexture(variant.NumberOfLights - 1) != nullptr;
   if (variant.Reflection)
   {
@@ -773,7 +808,7 @@ void vtkMultiMaterialVolumeMapper::UpdateReflection(
 {
   vtkInternals& in = *this->Internals;
   in.Reflection->SetReflectiveValues(
-    in.Materials, in.ValueRange(range), this->Settings.PreIntegrationTableSize);
+    in.Materials(), in.ValueRange(range), this->Settings.PreIntegrationTableSize);
   vtkNew<vtkMatrix4x4> objectToWorld;
   vtkMatrix4x4::Invert(worldToObject, objectToWorld);
   const mmv::IrradianceGrid& grid = in.Irradiance.GetGrid();

@@ -34,10 +34,14 @@
  * their magnitude or one component (VectorMode, VectorComponent), as
  * vtkSmartVolumeMapper draws them.
  *
+ * Several components are several fields (SetFieldMaterialTransferFunction)
+ * when the volume property's components are independent.
+ *
  * Falls back to the base class (warning once) for what it does not model:
- * several components without a VectorMode, blend modes other than
- * composite, cell scalars in bricks, and volumes longer than the largest 3D
- * texture (rendered in bricks).
+ * dependent components without a VectorMode, more than 4 fields, blend
+ * modes other than composite, cell scalars or several fields in bricks or
+ * pieces, and volumes longer than the largest 3D texture (rendered in
+ * bricks).
  */
 #ifndef vtkMultiMaterialVolumeMapper_h
 #define vtkMultiMaterialVolumeMapper_h
@@ -72,6 +76,21 @@ public:
   /// Material parameters by data value; null means the defaults everywhere.
   void SetMaterialTransferFunction(vtkMaterialTransferFunction* materials);
   vtkMaterialTransferFunction* GetMaterialTransferFunction();
+
+  /**
+   * Several fields on one grid: with the volume property's
+   * IndependentComponents on (VTK's default) and VectorMode disabled, each
+   * of the 2-4 components of the scalars is a field with its own colour and
+   * opacity (the property's component `field`) and its own materials, set
+   * here; field 0's are MaterialTransferFunction. Shadows and scattering
+   * come from their combined extinction, and each segment is shaded by each
+   * field's share of its opacity (vtkMultiMaterialFields.h). A field out of
+   * [0, 3] is an error.
+   */
+  void SetFieldMaterialTransferFunction(int field, vtkMaterialTransferFunction* materials);
+  vtkMaterialTransferFunction* GetFieldMaterialTransferFunction(int field);
+  /// Fields shaded by the last render (1 for one-component scalars).
+  vtkGetMacro(NumberOfFields, int);
 
   /**
    * How multi-component scalars are shaded, as vtkSmartVolumeMapper's
@@ -333,6 +352,7 @@ protected:
   int IrradianceCacheHitCount = 0;
   bool LastRenderInteractive = false;
   bool MultiMaterialActive = false;
+  int NumberOfFields = 1;
   bool PartitionsRequested = false;
   int RequestedPartitions[3] = { 1, 1, 1 };
   int BrickPartitions[3] = { 1, 1, 1 };
@@ -347,8 +367,10 @@ private:
   // Puts the array VectorMode selects into the ray caster's copy of the
   // input; false (with an error) when it cannot, and nothing is drawn.
   bool SelectVectorScalars(vtkRenderer* ren);
-  bool UpdateSegmentTables(
-    vtkOpenGLRenderWindow* context, vtkVolume* vol, vtkImageData* image, const double range[2]);
+  bool UpdateSegmentTables(vtkOpenGLRenderWindow* context, vtkVolume* vol, vtkImageData* image);
+  // With several fields: the combined extinction the lighting reads (false,
+  // warned, when it cannot be made).
+  bool UpdateFieldLighting(vtkVolume* vol, vtkDataArray* scalars);
   bool UpdateGradient(vtkOpenGLRenderWindow* context, vtkImageData* image, vtkDataArray* scalars,
     const double range[2]);
   // The irradiance stage on this frame's inputs; its report becomes the

@@ -3,13 +3,16 @@
 // (vtkMultiMaterialShaderAssembly.cxx) prepends the prelude (texel layout,
 // light kinds), the defines MMV_NUMBER_OF_LIGHTS, MMV_IRRADIANCE_TEXTURES,
 // MMV_USE_REFLECTION, MMV_USE_PREINTEGRATION, MMV_USE_ANISOTROPY and
-// MMV_USE_EMISSION, MMV_USE_RGB_IRRADIANCE, the light uniforms
+// MMV_USE_EMISSION, MMV_USE_RGB_IRRADIANCE, MMV_FIELDS, the light uniforms
 // (vtkMultiMaterialLightUniforms.h), mmvLightModel.glsl, mmvPhaseFunction.glsl,
 // mmvEmission.glsl, mmvTint.glsl and mmvReflection.glsl when those are on,
 // and mmvShading.glsl.
 //
 // Data values are normalised to [0, 1] over the scalar range, the coordinate
-// of every table below.
+// of every table below. Several fields (MMV_FIELDS > 1, the components of
+// the data) stack their segment and material tables along v, field f's
+// above field f - 1's (vtkMultiMaterialTextures.h), and a sample's value is
+// a vec4, one component per field.
 
 uniform sampler2D mmv_preintColor;  // (t1, t2) -> I_c (rgb, opacity-weighted), I_alpha
 uniform sampler2D mmv_preintBeta;   // (t1, t2) -> I_beta, shading position in the segment
@@ -41,9 +44,15 @@ uniform sampler3D mmv_irradiance1;  // lights 4-7
 #endif
 #endif
 
+#if MMV_FIELDS > 1
+#define mmvValueType vec4
+#else
+#define mmvValueType float
+#endif
+
 // The back end of the previous segment.
 vec3 mmv_previousPos;
-float mmv_previousValue;
+mmvValueType mmv_previousValue;
 bool mmv_hasPrevious;
 
 // The current block (brick): its points per axis and the whole volume's
@@ -69,12 +78,16 @@ vec3 mmvBlockIndex(vec3 texPos)
   return (texPos - 0.5 / n) * n / max(n - 1.0, vec3(1.0)) * (mmv_blockPoints - 1.0);
 }
 
-float mmvValue(vec3 texPos)
+mmvValueType mmvValue(vec3 texPos)
 {
   // Fetch the point the geometry means (identical to texPos for one block
   // and for cell scalars).
   vec3 fetch = mmv_cellData != 0 ? texPos : (mmvBlockIndex(texPos) + 0.5) / mmv_blockPoints;
+#if MMV_FIELDS > 1
+  return texture3D(in_volume[0], fetch) * in_volume_scale[0] + in_volume_bias[0];
+#else
   return texture3D(in_volume[0], fetch).r * in_volume_scale[0].r + in_volume_bias[0].r;
+#endif
 }
 
 // The whole volume's texture coordinate of the block's texPos (texPos
@@ -88,10 +101,11 @@ vec3 mmvWholeTexCoord(vec3 texPos)
   return (mmv_blockFirstIndex + mmvBlockIndex(texPos) + 0.5) / mmv_wholeDimensions;
 }
 
-// The v coordinate of row r of mmv_material.
+// The v coordinate of row r of mmv_material (field f's rows start at
+// f * MMV_MATERIAL_ROWS).
 float mmvMaterialRow(int r)
 {
-  return (float(r) + 0.5) / float(MMV_MATERIAL_ROWS);
+  return (float(r) + 0.5) / float(MMV_MATERIAL_ROWS * MMV_FIELDS);
 }
 
 // One parameter at table coordinate tc: its texel's (MMV_<NAME>_ROW) channel
@@ -116,12 +130,14 @@ vec3 mmvGradient(vec3 texPos)
   return mmv_gradientToObject * g;
 }
 
-// eqs. 16-17 at shading position texPos with value t for one segment: reads
-// the textures, then mmvShadeSample() (mmvShading.glsl) does the arithmetic.
-vec3 mmvShadeSegment(vec3 texPos, float t, vec4 segment)
+// eqs. 16-17 at shading position texPos with value t of field `field` for
+// one segment: reads the textures, then mmvShadeSample() (mmvShading.glsl)
+// does the arithmetic.
+vec3 mmvShadeSegment(vec3 texPos, float t, vec4 segment, int field)
 {
   float tc = mmvTableCoord(t);
-  vec4 material = texture2D(mmv_material, vec2(tc, mmvMaterialRow(MMV_BLINN_PHONG_ROW)));
+  int rows = field * MMV_MATERIAL_ROWS;
+  vec4 material = texture2D(mmv_material, vec2(tc, mmvMaterialRow(rows + MMV_BLINN_PHONG_ROW)));
   vec3 position = (in_textureDatasetMatrix[0] * vec4(texPos, 1.0)).xyz;
   vec3 v = -normalize((in_textureDatasetMatrix[0] * vec4(g_dirStep, 0.0)).xyz);
   vec3 gradient = mmvGradient(texPos);
@@ -144,12 +160,12 @@ vec3 mmvShadeSegment(vec3 texPos, float t, vec4 segment)
 #endif
   float anisotropy = 0.0;
 #if MMV_USE_ANISOTROPY
-  anisotropy = mmvMaterialParameter(tc, MMV_ANISOTROPY_ROW, MMV_ANISOTROPY_CHANNEL);
+  anisotropy = mmvMaterialParameter(tc, rows + MMV_ANISOTROPY_ROW, MMV_ANISOTROPY_CHANNEL);
 #endif
   float reflection = 0.0;
   vec3 environment = vec3(0.0);
 #if MMV_USE_REFLECTION
-  reflection = mmvMaterialParameter(tc, MMV_REFLECTION_ROW, MMV_REFLECTION_CHANNEL);
+  reflection = mmvMaterialParameter(tc, rows + MMV_REFLECTION_ROW, MMV_REFLECTION_CHANNEL);
   if (reflection > 0.0)
   {
     environment = mmvReflectedRadiance(position, n, v);
@@ -157,19 +173,94 @@ vec3 mmvShadeSegment(vec3 texPos, float t, vec4 segment)
 #endif
   float emission = 0.0;
 #if MMV_USE_EMISSION
-  emission = mmvMaterialParameter(tc, MMV_EMISSION_ROW, MMV_EMISSION_CHANNEL);
+  emission = mmvMaterialParameter(tc, rows + MMV_EMISSION_ROW, MMV_EMISSION_CHANNEL);
 #endif
   return mmvShadeSample(material, anisotropy, reflection, emission, segment, position, n, v,
     surface, irradiance0, irradiance1, environment);
 }
 
+// The segment's length relative to the tables' step: partial first/last
+// segments and VTK's automatic sample distance differ from it.
+float mmvStepRatio(vec3 x1, vec3 x2)
+{
+  return length(x2 - x1) / max(length(g_dirStep), 1e-30) * in_sampleDistance / mmv_tableStep;
+}
+
+// A table's segment for `ratio` times its step: exact for the opacity, and
+// exact for the colour of uniform segments.
+vec4 mmvScaleSegment(vec4 segment, float ratio)
+{
+  if (segment.a > 0.0 && abs(ratio - 1.0) > 1e-3)
+  {
+    float alpha = 1.0 - pow(max(1.0 - segment.a, 0.0), ratio);
+    segment.rgb *= alpha / segment.a;
+    segment.a = alpha;
+  }
+  return segment;
+}
+
+#if MMV_FIELDS > 1
+// The v coordinate of value t in field f's block of the stacked tables.
+float mmvFieldTableCoord(int f, float t)
+{
+  return (float(f) * mmv_tableSize + clamp(t, 0.0, 1.0) * (mmv_tableSize - 1.0) + 0.5) /
+    (mmv_tableSize * float(MMV_FIELDS));
+}
+
+// Several fields: each field's segment from its own tables; together they
+// let through the product of their transmittances, and each is shaded with
+// its share of the combined opacity (its colour scaled alike).
+void mmvIntegrateSegment(vec3 x1, vec4 t1, vec3 x2, vec4 t2)
+{
+  float ratio = mmvStepRatio(x1, x2);
+  if (ratio <= 0.0)
+  {
+    return;
+  }
+  vec4 segments[MMV_FIELDS];
+  vec2 coords[MMV_FIELDS];
+  float transmittance = 1.0;
+  float opacitySum = 0.0;
+  for (int f = 0; f < MMV_FIELDS; ++f)
+  {
+#if MMV_USE_PREINTEGRATION
+    coords[f] = vec2(mmvTableCoord(t1[f]), mmvFieldTableCoord(f, t2[f]));
+#else
+    coords[f] = vec2(mmvTableCoord(t2[f]), mmvFieldTableCoord(f, t2[f]));
+#endif
+    segments[f] = mmvScaleSegment(texture2D(mmv_preintColor, coords[f]), ratio);
+    transmittance *= 1.0 - segments[f].a;
+    opacitySum += segments[f].a;
+  }
+  float alpha = 1.0 - transmittance;
+  if (alpha <= 0.0)
+  {
+    return;
+  }
+  vec3 radiance = vec3(0.0);
+  for (int f = 0; f < MMV_FIELDS; ++f)
+  {
+    if (segments[f].a <= 0.0)
+    {
+      continue;
+    }
+#if MMV_USE_PREINTEGRATION
+    float beta = texture2D(mmv_preintBeta, coords[f]).r;
+#else
+    float beta = 1.0;
+#endif
+    radiance += mmvShadeSegment(
+      mix(x1, x2, beta), mix(t1[f], t2[f], beta), segments[f] * (alpha / opacitySum), f);
+  }
+  g_fragColor.rgb += (1.0 - g_fragColor.a) * radiance;
+  g_fragColor.a += (1.0 - g_fragColor.a) * alpha;
+}
+#else
 // Integrates the segment x1 -> x2 (texture coordinates) with values t1, t2 and
 // composites it front to back into g_fragColor.
 void mmvIntegrateSegment(vec3 x1, float t1, vec3 x2, float t2)
 {
-  // Length relative to the tables' step: partial first/last segments and
-  // VTK's automatic sample distance differ from it.
-  float ratio = length(x2 - x1) / max(length(g_dirStep), 1e-30) * in_sampleDistance / mmv_tableStep;
+  float ratio = mmvStepRatio(x1, x2);
   if (ratio <= 0.0)
   {
     return;
@@ -185,19 +276,14 @@ void mmvIntegrateSegment(vec3 x1, float t1, vec3 x2, float t2)
   {
     return;
   }
-  if (abs(ratio - 1.0) > 1e-3)
-  {
-    // Exact for the opacity, and exact for the colour of uniform segments.
-    float alpha = 1.0 - pow(max(1.0 - segment.a, 0.0), ratio);
-    segment.rgb *= alpha / segment.a;
-    segment.a = alpha;
-  }
+  segment = mmvScaleSegment(segment, ratio);
 #if MMV_USE_PREINTEGRATION
   float beta = texture2D(mmv_preintBeta, tc).r;
 #else
   float beta = 1.0;
 #endif
-  vec3 radiance = mmvShadeSegment(mix(x1, x2, beta), mix(t1, t2, beta), segment);
+  vec3 radiance = mmvShadeSegment(mix(x1, x2, beta), mix(t1, t2, beta), segment, 0);
   g_fragColor.rgb += (1.0 - g_fragColor.a) * radiance;
   g_fragColor.a += (1.0 - g_fragColor.a) * segment.a;
 }
+#endif

@@ -1,7 +1,7 @@
     // Multi-material shading: integrate the segment ending at this sample.
     if (!g_skip)
     {
-      float mmv_value = mmvValue(g_dataPos);
+      mmvValueType mmv_value = mmvValue(g_dataPos);
       if (mmv_hasPrevious)
       {
         mmvIntegrateSegment(mmv_previousPos, mmv_previousValue, g_dataPos, mmv_value);

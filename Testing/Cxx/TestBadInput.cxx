@@ -452,28 +452,36 @@ TEST(BadInput, EveryScalarType)
   }
 }
 
-TEST(BadInput, MultiComponentDataFallsBack)
+TEST(BadInput, DependentOrTooManyComponentsFallBack)
 {
-  for (bool independent : { true, false })
+  // Dependent components (direct colour), and more than 4 independent ones
+  // (more fields than VTK's volume property maps): a clear message each.
+  for (int components : { 4, 5 })
   {
+    const bool independent = components == 5;
     auto image = vtkSmartPointer<vtkImageData>::New();
     image->SetDimensions(17, 17, 17);
     vtkNew<vtkFloatArray> values;
-    values->SetNumberOfComponents(4);
+    values->SetNumberOfComponents(components);
     values->SetNumberOfTuples(17 * 17 * 17);
     for (vtkIdType p = 0; p < values->GetNumberOfTuples(); ++p)
     {
       const float v = Sphere(2 * (p % 17), 2 * ((p / 17) % 17), 2 * (p / 289));
-      const float t[4] = { v, v, v, v };
-      values->SetTypedTuple(p, t);
+      for (int c = 0; c < components; ++c)
+      {
+        values->SetTypedComponent(p, c, v);
+      }
     }
     image->GetPointData()->SetScalars(values);
     const Result r = Render(image,
       [independent](mmvtest::Scene& s, vtkMultiMaterialVolumeMapper*)
       { s.Property->SetIndependentComponents(independent); });
+    // VTK's ray caster refuses 5 components itself, with an error.
     EXPECT_FALSE(r.Active);
-    EXPECT_EQ(r.Warnings, 1) << r.Message;
-    EXPECT_NE(r.Message.find("one-component"), std::string::npos) << r.Message;
+    EXPECT_EQ(independent ? r.Errors : r.Warnings, 1) << r.Message;
+    EXPECT_NE(r.Message.find(independent ? "Only 1 - 4 component" : "independent components"),
+      std::string::npos)
+      << r.Message;
   }
 }
 

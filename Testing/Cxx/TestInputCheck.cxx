@@ -115,13 +115,24 @@ TEST(InputCheck, EmptyShortFlatCellAndMultiComponentScalarsSayWhy)
     "cell scalars on an image with a single point along an axis have no volume to render; "
     "using VTK's shading");
 
+  // Dependent components (direct colour) are not fields.
   auto rgb = Ramp(4);
   rgb->GetPointData()->SetScalars(Filled(3, 64, 0.5f));
+  scene.Property->IndependentComponentsOff();
   const mmv::InputCheck check = scene.Check(rgb);
   ExpectFallback(check,
-    "multi-material shading needs one-component scalars (for vectors, set the mapper's "
-    "VectorMode, or colour by Magnitude or a component); using VTK's shading");
+    "multi-material shading needs one-component scalars or independent components (for "
+    "vectors, set the mapper's VectorMode, or colour by Magnitude or a component); using VTK's "
+    "shading");
   EXPECT_EQ(check.Caveat, "");
+  // Independent ones are: 2-4 fields.
+  scene.Property->IndependentComponentsOn();
+  EXPECT_TRUE(scene.Check(rgb).Supported);
+  auto five = Ramp(4);
+  five->GetPointData()->SetScalars(Filled(5, 64, 0.5f));
+  ExpectFallback(scene.Check(five),
+    "the scalars have 5 components: at most 4 fields can be shaded together; using VTK's "
+    "shading");
 }
 
 TEST(InputCheck, CellScalarsAreSupportedAndMarkedAsCellData)
