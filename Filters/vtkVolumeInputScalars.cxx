@@ -5,8 +5,10 @@
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkPointData.h"
+#include "vtkSMPTools.h"
 
 #include <cmath>
+#include <string>
 
 namespace mmv
 {
@@ -100,6 +102,60 @@ vtkSmartPointer<vtkDataArray> MakeVectorScalars(
     return fail("unknown vector mode " + std::to_string(mode));
   }
   result->SetName(vectors->GetName());
+  return result;
+}
+
+vtkSmartPointer<vtkDataArray> MakeFieldArray(
+  vtkDataArray* first, const std::vector<vtkDataArray*>& others, std::string* error)
+{
+  auto fail = [error](const std::string& message)
+  {
+    if (error)
+    {
+      *error = message;
+    }
+    return nullptr;
+  };
+  const int fields = 1 + static_cast<int>(others.size());
+  if (!first || first->GetNumberOfComponents() != 1)
+  {
+    return fail("the scalars need one component to be read with further fields");
+  }
+  if (fields > 4)
+  {
+    return fail(std::to_string(fields) + " fields: at most 4 can be shaded together");
+  }
+  const vtkIdType tuples = first->GetNumberOfTuples();
+  for (size_t f = 0; f < others.size(); ++f)
+  {
+    if (!others[f])
+    {
+      return fail("field " + std::to_string(f + 1) + " is not an array of the input");
+    }
+    if (others[f]->GetNumberOfComponents() != 1 || others[f]->GetNumberOfTuples() < tuples)
+    {
+      return fail(std::string("field array ") +
+        (others[f]->GetName() ? others[f]->GetName() : "(unnamed)") +
+        " needs one component and a value per point or cell");
+    }
+  }
+  auto result = vtkSmartPointer<vtkFloatArray>::New();
+  result->SetNumberOfComponents(fields);
+  result->SetNumberOfTuples(tuples);
+  float* out = result->GetPointer(0);
+  for (int f = 0; f < fields; ++f)
+  {
+    vtkDataArray* in = f == 0 ? first : others[f - 1];
+    vtkSMPTools::For(0, tuples,
+      [&](vtkIdType begin, vtkIdType end)
+      {
+        for (vtkIdType i = begin; i < end; ++i)
+        {
+          out[i * fields + f] = static_cast<float>(in->GetComponent(i, 0));
+        }
+      });
+  }
+  result->SetName(first->GetName());
   return result;
 }
 

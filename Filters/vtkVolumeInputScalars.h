@@ -1,9 +1,9 @@
 /**
  * @file   vtkVolumeInputScalars.h
- * @brief  The one-component point scalars on an image that multi-material
- *         shading lights, made from the data ParaView users volume-render:
- *         cell scalars (an image of the cell centres) and vectors (their
- *         magnitude or one component).
+ * @brief  The point scalars on an image that multi-material shading lights,
+ *         made from the data ParaView users volume-render: cell scalars (an
+ *         image of the cell centres), vectors (their magnitude or one
+ *         component) and several arrays read as several fields.
  *
  * Shared by vtkMultiMaterialVolumeMapper and vtkIrradianceVolumeFilter, so
  * that the GPU and the CPU model light the same field.
@@ -15,6 +15,7 @@
 #include "vtkSmartPointer.h"                     // return values
 
 #include <string> // error messages
+#include <vector> // arrays
 
 class vtkDataArray;
 class vtkImageData;
@@ -54,6 +55,16 @@ VTKMULTIMATERIALVOLUMEFILTERS_EXPORT vtkSmartPointer<vtkImageData> MakeCellCentr
  */
 VTKMULTIMATERIALVOLUMEFILTERS_EXPORT vtkSmartPointer<vtkDataArray> MakeVectorScalars(
   vtkDataArray* vectors, int mode, int component, std::string* error);
+
+/**
+ * Several fields as one array: `first` (the scalars) as component 0 and each
+ * of `others` as the next component, float, named as `first`, so that it can
+ * stand in for it. Null (with `error` set) when an array is missing, has
+ * more than one component or fewer tuples than `first`, or there would be
+ * more than 4 fields.
+ */
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT vtkSmartPointer<vtkDataArray> MakeFieldArray(
+  vtkDataArray* first, const std::vector<vtkDataArray*>& others, std::string* error);
 
 } // namespace mmv
 

@@ -117,6 +117,12 @@ public:
     return this->CellCentres;
   }
 
+  // The scalars with the FieldArrays as further components, and what they
+  // were made of (the arrays and their modification times).
+  vtkSmartPointer<vtkDataArray> Fielded;
+  std::vector<std::pair<vtkDataArray*, vtkMTimeType>> FieldedFrom;
+  std::string LastFieldError; // reported once until it changes
+
   // The one-component arrays VectorMode made of vectors: the same array for
   // the same vector, so that kept steps' irradiance matches its key.
   vtkVectorScalarsCache Reduced;
@@ -357,7 +363,7 @@ void vtkMultiMaterialVolumeMapper::SetVectorComponent(int component)
 
 void vtkMultiMaterialVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
 {
-  if (!this->SelectVectorScalars(ren))
+  if (!this->SelectDrawnScalars(ren))
   {
     return;
   }
@@ -389,7 +395,72 @@ bool ReplaceArray(vtkDataSetAttributes* attributes, vtkDataArray* current, vtkDa
 }
 }
 
-bool vtkMultiMaterialVolumeMapper::SelectVectorScalars(vtkRenderer* ren)
+void vtkMultiMaterialVolumeMapper::AddFieldArray(const char* name)
+{
+  if (!name || !name[0])
+  {
+    vtkErrorMacro("a field array needs a name");
+    return;
+  }
+  this->FieldArrays.emplace_back(name);
+  this->Modified();
+}
+
+void vtkMultiMaterialVolumeMapper::RemoveAllFieldArrays()
+{
+  if (!this->FieldArrays.empty())
+  {
+    this->FieldArrays.clear();
+    this->Modified();
+  }
+}
+
+const char* vtkMultiMaterialVolumeMapper::GetFieldArray(int i) const
+{
+  return i >= 0 && i < this->GetNumberOfFieldArrays() ? this->FieldArrays[i].c_str() : nullptr;
+}
+
+vtkDataArray* vtkMultiMaterialVolumeMapper::WithFieldArrays(
+  vtkDataSet* input, int cellFlag, vtkDataArray* scalars)
+{
+  vtkInternals& in = *this->Internals;
+  if (this->FieldArrays.empty())
+  {
+    return scalars;
+  }
+  vtkDataSetAttributes* attributes = cellFlag == 1
+    ? static_cast<vtkDataSetAttributes*>(input->GetCellData())
+    : static_cast<vtkDataSetAttributes*>(input->GetPointData());
+  std::vector<vtkDataArray*> others;
+  std::vector<std::pair<vtkDataArray*, vtkMTimeType>> from = { { scalars, scalars->GetMTime() } };
+  for (const std::string& name : this->FieldArrays)
+  {
+    vtkDataArray* array = attributes->GetArray(name.c_str());
+    others.push_back(array);
+    from.emplace_back(array, array ? array->GetMTime() : 0);
+  }
+  if (in.Fielded && from == in.FieldedFrom)
+  {
+    return in.Fielded;
+  }
+  std::string error;
+  vtkSmartPointer<vtkDataArray> fielded = mmv::MakeFieldArray(scalars, others, &error);
+  if (!fielded)
+  {
+    if (error != in.LastFieldError)
+    {
+      vtkErrorMacro("field arrays: " << error << "; shading the scalars alone");
+      in.LastFieldError = error;
+    }
+    return scalars;
+  }
+  in.LastFieldError.clear();
+  in.Fielded = fielded;
+  in.FieldedFrom = from;
+  return fielded;
+}
+
+bool vtkMultiMaterialVolumeMapper::SelectDrawnScalars(vtkRenderer* ren)
 {
   vtkInternals& in = *this->Internals;
   vtkDataSet* input = this->GetInput();
@@ -427,6 +498,7 @@ bool vtkMultiMaterialVolumeMapper::SelectVectorScalars(vtkRenderer* ren)
     }
     in.LastVectorError.clear();
   }
+  wanted = this->WithFieldArrays(input, cellFlag, wanted);
   // The copy VTK draws (made here as ValidateInput would, and kept by it as
   // long as the input does not change): it gets `wanted` in the vector's
   // place, or the original back when VectorMode no longer reduces it.

@@ -56,6 +56,7 @@
 #include <vector> // ReadIrradiance
 
 class vtkDataArray;
+class vtkDataSet;
 class vtkGlobalPrefilteredVolume;
 class vtkImageData;
 class vtkIrradianceEstimator;
@@ -91,6 +92,21 @@ public:
   vtkMaterialTransferFunction* GetFieldMaterialTransferFunction(int field);
   /// Fields shaded by the last render (1 for one-component scalars).
   vtkGetMacro(NumberOfFields, int);
+
+  ///@{
+  /**
+   * Several fields from several arrays: each named array of the input (with
+   * the scalars' association, one component, up to 3 of them) is read as
+   * the next field after the scalars, as if the scalars had it as their next
+   * component. The ray caster's copy of the input gets the combined array in
+   * the scalars' place. An array that is missing or does not fit is
+   * reported (vtkErrorMacro) and the scalars are shaded alone.
+   */
+  void AddFieldArray(const char* name);
+  void RemoveAllFieldArrays();
+  int GetNumberOfFieldArrays() const { return static_cast<int>(this->FieldArrays.size()); }
+  const char* GetFieldArray(int i) const;
+  ///@}
 
   /**
    * How multi-component scalars are shaded, as vtkSmartVolumeMapper's
@@ -353,6 +369,7 @@ protected:
   bool LastRenderInteractive = false;
   bool MultiMaterialActive = false;
   int NumberOfFields = 1;
+  std::vector<std::string> FieldArrays;
   bool PartitionsRequested = false;
   int RequestedPartitions[3] = { 1, 1, 1 };
   int BrickPartitions[3] = { 1, 1, 1 };
@@ -364,9 +381,13 @@ private:
   // Validates the inputs and refreshes every cache the frame needs; false
   // means "render with the base class". Its steps follow.
   bool PrepareMultiMaterial(vtkRenderer* ren, vtkVolume* vol);
-  // Puts the array VectorMode selects into the ray caster's copy of the
-  // input; false (with an error) when it cannot, and nothing is drawn.
-  bool SelectVectorScalars(vtkRenderer* ren);
+  // Puts the array VectorMode selects, with the FieldArrays, into the ray
+  // caster's copy of the input; false (with an error) when it cannot, and
+  // nothing is drawn.
+  bool SelectDrawnScalars(vtkRenderer* ren);
+  // `scalars` with the FieldArrays of `input` as further components (the
+  // scalars themselves when there are none or they do not fit).
+  vtkDataArray* WithFieldArrays(vtkDataSet* input, int cellFlag, vtkDataArray* scalars);
   bool UpdateSegmentTables(vtkOpenGLRenderWindow* context, vtkVolume* vol, vtkImageData* image);
   // With several fields: the combined extinction the lighting reads (false,
   // warned, when it cannot be made).

@@ -321,6 +321,84 @@ TEST(SeveralFields, AnOpacityEditOfOneFieldRelightsTheOther)
   EXPECT_NEAR(after, std::exp(-RampDepth()), 0.01);
 }
 
+namespace
+{
+// The two fields as two one-component arrays, "plate" the scalars.
+vtkSmartPointer<vtkImageData> TwoArrays()
+{
+  vtkSmartPointer<vtkImageData> image = TwoFields();
+  auto* both = vtkFloatArray::SafeDownCast(image->GetPointData()->GetScalars());
+  vtkNew<vtkFloatArray> plate;
+  vtkNew<vtkFloatArray> floor;
+  plate->SetName("plate");
+  floor->SetName("floor");
+  plate->SetNumberOfTuples(both->GetNumberOfTuples());
+  floor->SetNumberOfTuples(both->GetNumberOfTuples());
+  for (vtkIdType i = 0; i < both->GetNumberOfTuples(); ++i)
+  {
+    plate->SetValue(i, both->GetTypedComponent(i, 0));
+    floor->SetValue(i, both->GetTypedComponent(i, 1));
+  }
+  auto arrays = vtkSmartPointer<vtkImageData>::New();
+  arrays->SetDimensions(N, N, N);
+  arrays->GetPointData()->SetScalars(plate);
+  arrays->GetPointData()->AddArray(floor);
+  vtkNew<vtkFloatArray> vector;
+  vector->SetName("vector");
+  vector->SetNumberOfComponents(3);
+  vector->SetNumberOfTuples(both->GetNumberOfTuples());
+  vector->FillValue(0.0f);
+  arrays->GetPointData()->AddArray(vector);
+  return arrays;
+}
+}
+
+TEST(SeveralFields, FurtherArraysAreFieldsAsComponentsAre)
+{
+  FieldsScene components(TwoFields());
+  const std::vector<unsigned char> expected = components.Render();
+  const std::vector<float> expectedLight = components.Irradiance();
+
+  vtkSmartPointer<vtkImageData> image = TwoArrays();
+  FieldsScene arrays(image);
+  FieldsScene reference(TwoFields()); // the optics of two fields, for the property
+  arrays.Volume->SetProperty(reference.Property);
+  arrays.Mapper->SetFieldMaterialTransferFunction(1, reference.FieldMaterials[1]);
+  arrays.Mapper->AddFieldArray("floor");
+  EXPECT_EQ(arrays.Mapper->GetNumberOfFieldArrays(), 1);
+  EXPECT_STREQ(arrays.Mapper->GetFieldArray(0), "floor");
+  mmvtest::ErrorCounter errors(arrays.Mapper);
+  const std::vector<unsigned char> pixels = arrays.Render();
+  EXPECT_EQ(errors.Errors(), 0) << errors.LastMessage();
+  EXPECT_EQ(arrays.Mapper->GetNumberOfFields(), 2);
+  EXPECT_TRUE(arrays.Mapper->GetMultiMaterialActive());
+  EXPECT_EQ(pixels, expected);
+  EXPECT_EQ(arrays.Irradiance(), expectedLight);
+  // The input itself is untouched: the combined array is in the ray
+  // caster's copy.
+  EXPECT_EQ(image->GetPointData()->GetScalars()->GetNumberOfComponents(), 1);
+
+  // A missing array, or one with three components: an error, and the
+  // scalars (the plate) are shaded alone.
+  for (const char* bad : { "nothing", "vector" })
+  {
+    errors.Reset();
+    arrays.Mapper->RemoveAllFieldArrays();
+    arrays.Mapper->AddFieldArray(bad);
+    arrays.Render();
+    EXPECT_EQ(errors.Errors(), 1) << bad;
+    EXPECT_NE(errors.LastMessage().find("field"), std::string::npos) << errors.LastMessage();
+    EXPECT_EQ(arrays.Mapper->GetNumberOfFields(), 1) << bad;
+    EXPECT_TRUE(arrays.Mapper->GetMultiMaterialActive()) << bad;
+  }
+  // Back to none: one field, no error.
+  errors.Reset();
+  arrays.Mapper->RemoveAllFieldArrays();
+  arrays.Render();
+  EXPECT_EQ(errors.Errors(), 0);
+  EXPECT_EQ(arrays.Mapper->GetNumberOfFields(), 1);
+}
+
 TEST(SeveralFields, BadFieldCountsAndIndicesAreReported)
 {
   // A field index out of [0, 3]: an error, nothing set.
