@@ -415,6 +415,18 @@ void vtkMultiMaterialVolumeMapper::RemoveAllFieldArrays()
   }
 }
 
+void vtkMultiMaterialVolumeMapper::SetFieldArrays(const std::vector<std::string>& names)
+{
+  if (names != this->FieldArrays)
+  {
+    this->RemoveAllFieldArrays();
+    for (const std::string& name : names)
+    {
+      this->AddFieldArray(name.c_str());
+    }
+  }
+}
+
 const char* vtkMultiMaterialVolumeMapper::GetFieldArray(int i) const
 {
   return i >= 0 && i < this->GetNumberOfFieldArrays() ? this->FieldArrays[i].c_str() : nullptr;

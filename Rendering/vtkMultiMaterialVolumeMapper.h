@@ -104,7 +104,14 @@ public:
    */
   void AddFieldArray(const char* name);
   void RemoveAllFieldArrays();
-  int GetNumberOfFieldArrays() const { return static_cast<int>(this->FieldArrays.size()); }
+#ifndef __VTK_WRAP__
+  /// All at once; the mapper is modified only when the list changes.
+  void SetFieldArrays(const std::vector<std::string>& names);
+#endif
+  int GetNumberOfFieldArrays() const
+  {
+    return static_cast<int>(this->FieldArrays.size());
+  }
   const char* GetFieldArray(int i) const;
   ///@}
 
@@ -120,9 +127,18 @@ public:
    */
   vtkSetClampMacro(VectorMode, int, mmv::VectorModeDisabled, mmv::VectorModeComponent);
   vtkGetMacro(VectorMode, int);
-  void SetVectorModeToMagnitude() { this->SetVectorMode(mmv::VectorModeMagnitude); }
-  void SetVectorModeToComponent() { this->SetVectorMode(mmv::VectorModeComponent); }
-  void SetVectorModeToDisabled() { this->SetVectorMode(mmv::VectorModeDisabled); }
+  void SetVectorModeToMagnitude()
+  {
+    this->SetVectorMode(mmv::VectorModeMagnitude);
+  }
+  void SetVectorModeToComponent()
+  {
+    this->SetVectorMode(mmv::VectorModeComponent);
+  }
+  void SetVectorModeToDisabled()
+  {
+    this->SetVectorMode(mmv::VectorModeDisabled);
+  }
 
   /// The component VectorModeComponent shades (default 0). A negative value
   /// is an error (kept as it was); one at or past the array's number of

@@ -33,6 +33,7 @@ const NumberGetter NumberGetters[] = {
   { "IrradianceProbeCount",
     [](Representation* r) { return double(r->GetIrradianceProbeCount()); } },
   { "MultiMaterialActive", [](Representation* r) { return double(r->GetMultiMaterialActive()); } },
+  { "NumberOfFields", [](Representation* r) { return double(r->GetNumberOfFields()); } },
   { "LastIrradianceSeconds", [](Representation* r) { return r->GetLastIrradianceSeconds(); } },
   { "LastEstimatedIrradianceVoxels",
     [](Representation* r) { return r->GetLastEstimatedIrradianceVoxels(); } },

@@ -1,5 +1,7 @@
 #include "vtkPVMultiMaterialVolumeRepresentation.h"
 
+#include "vtkMultiMaterialFieldSettings.h"
+
 #include "vtkCellData.h"
 #include "vtkColorTransferFunction.h"
 #include "vtkCommand.h"
@@ -45,6 +47,7 @@ constexpr const char* CustomPreset = "Custom";
 
 //------------------------------------------------------------------------------
 vtkPVMultiMaterialVolumeRepresentation::vtkPVMultiMaterialVolumeRepresentation()
+  : Fields(new vtkMultiMaterialFieldSettings)
 {
   vtkMultiMaterialLiveObjects::Constructed("vtkPVMultiMaterialVolumeRepresentation");
   // The base class drives whatever mapper sits here; ours is a
@@ -210,6 +213,7 @@ void vtkPVMultiMaterialVolumeRepresentation::UpdateMapperParameters()
   int component = 0;
   mapper->SetVectorMode(this->MapperVectorMode(component));
   mapper->SetVectorComponent(component);
+  this->Fields->Apply(mapper, this->Property, this);
 
   // vtkSetMacro only bumps the mapper's MTime on a real change, so setting
   // these every frame costs nothing. The radius depends on the data's
@@ -222,6 +226,34 @@ void vtkPVMultiMaterialVolumeRepresentation::UpdateMapperParameters()
   // animation cache; without it every step is new data.
   auto* view = vtkPVView::SafeDownCast(this->GetView());
   mapper->SetIrradianceCacheMB(view && view->GetUseCache() ? this->IrradianceCacheMB : 0.0);
+}
+
+//------------------------------------------------------------------------------
+// The further fields' properties: kept, handed to the mapper and the volume
+// property in UpdateMapperParameters().
+#define vtkPVMMVFieldList(clear, add, type, plural, singular)                                      \
+  void vtkPVMultiMaterialVolumeRepresentation::clear()                                             \
+  {                                                                                                \
+    this->Fields->Clear##plural();                                                                 \
+    this->Modified();                                                                              \
+  }                                                                                                \
+  void vtkPVMultiMaterialVolumeRepresentation::add(type value)                                     \
+  {                                                                                                \
+    this->Fields->Add##singular(value);                                                            \
+    this->Modified();                                                                              \
+  }
+vtkPVMMVFieldList(ClearFieldArrays, AddFieldArray, const char*, Arrays, Array);
+vtkPVMMVFieldList(
+  ClearFieldLookupTables, AddFieldLookupTable, vtkColorTransferFunction*, Colors, Color);
+vtkPVMMVFieldList(ClearFieldScalarOpacityFunctions, AddFieldScalarOpacityFunction,
+  vtkPiecewiseFunction*, Opacities, Opacity);
+vtkPVMMVFieldList(ClearFieldMaterialPresets, AddFieldMaterialPreset, const char*, Presets, Preset);
+#undef vtkPVMMVFieldList
+
+int vtkPVMultiMaterialVolumeRepresentation::GetNumberOfFields()
+{
+  vtkMultiMaterialVolumeMapper* mapper = this->GetMultiMaterialMapper();
+  return mapper ? mapper->GetNumberOfFields() : 1;
 }
 
 //------------------------------------------------------------------------------

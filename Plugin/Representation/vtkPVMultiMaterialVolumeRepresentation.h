@@ -40,10 +40,14 @@
 #include "vtkPVMaterialNodeBuffer.h"              // for ivar
 #include "vtkStringArray.h"                       // for vtkNew ivar
 
+#include <memory> // for the field settings
 #include <string> // for the preset name
 #include <vector> // for the exchange key
 
+class vtkColorTransferFunction;
+class vtkMultiMaterialFieldSettings;
 class vtkMultiMaterialVolumeMapper;
+class vtkPiecewiseFunction;
 
 class VTKMULTIMATERIALVOLUMEPARAVIEW_EXPORT vtkPVMultiMaterialVolumeRepresentation
   : public vtkImageVolumeRepresentation
@@ -77,6 +81,28 @@ public:
 
   /// The names of the built-in presets (the MaterialPreset domain).
   vtkStringArray* GetMaterialPresetNames();
+
+  ///@{
+  /**
+   * Several fields: arrays besides the coloured one (same association, one
+   * component, at most 3), each drawn through its own colour map, opacity
+   * function and material preset (matched by position). Shadows and
+   * scattering come from all of them together (vtkMultiMaterialVolumeMapper::
+   * AddFieldArray). In the GUI and in pvpython, setting FieldArrays gives
+   * each field the colour map and opacity function ParaView keeps for its
+   * array name.
+   */
+  void ClearFieldArrays();
+  void AddFieldArray(const char* name);
+  void ClearFieldLookupTables();
+  void AddFieldLookupTable(vtkColorTransferFunction* colors);
+  void ClearFieldScalarOpacityFunctions();
+  void AddFieldScalarOpacityFunction(vtkPiecewiseFunction* opacity);
+  void ClearFieldMaterialPresets();
+  void AddFieldMaterialPreset(const char* name);
+  /// Fields drawn by the last render (1 for the coloured array alone).
+  int GetNumberOfFields();
+  ///@}
 
   ///@{
   /// Forwarded to vtkMultiMaterialVolumeMapper (vtkMultiMaterialSettings.h).
@@ -211,6 +237,7 @@ private:
   vtkNew<vtkStringArray> PresetNames;
 
   vtkPVMaterialNodeBuffer PendingNodes;
+  std::unique_ptr<vtkMultiMaterialFieldSettings> Fields;
 
   std::string MaterialPreset;
   double PresetRange[2] = { 0.0, -1.0 };

@@ -1,0 +1,148 @@
+"""Several fields on one grid, in pvpython: a plate array and a floor array,
+the plate coloured, the floor added with FieldArrays.
+- FieldArrays gives the floor the colour map and opacity function ParaView
+  keeps for its name (FieldLookupTables, FieldScalarOpacityFunctions);
+- two fields render as the same scene made of one array with the same maps
+  (PSNR >= 40 dB), and the plate's shadow on the floor matches it;
+- each field keeps its own colour map and material preset;
+- an unknown array, too many arrays or an unknown preset give an error, and
+  the coloured array is still drawn."""
+
+import math
+import os
+
+from paraview import simple
+
+import numpy
+
+import mmv_testing as mmv
+
+args = mmv.parse_args()
+mmv.load_plugin(args)
+checker = mmv.Checker()
+errors = mmv.ErrorCapture()
+
+SCRIPT = """
+import numpy
+from vtkmodules.util.numpy_support import numpy_to_vtk
+n = 32
+out = self.GetOutput()
+out.SetDimensions(n, n, n)
+out.SetOrigin(-15.5, -15.5, -15.5)
+k, j, i = numpy.meshgrid(range(n), range(n), range(n), indexing='ij')
+plate = ((k >= 19) & (k <= 22) & (i >= 9) & (i <= 22) & (j >= 9) & (j <= 22)).astype('f4')
+floor = ((k >= 3) & (k <= 6) & (i >= 3) & (i <= 28) & (j >= 3) & (j <= 28)).astype('f4')
+for name, values in (('plate', plate), ('floor', floor), ('both', plate + floor)):
+    array = numpy_to_vtk(values.ravel(), deep=1)
+    array.SetName(name)
+    out.GetPointData().AddArray(array)
+"""
+
+
+def psnr(a, b):
+    mse = float(numpy.mean((a - b) ** 2))
+    return float("inf") if mse == 0.0 else 10.0 * math.log10(255.0 ** 2 / mse)
+
+
+def maps(name, rgb):
+    """The colour map and opacity function ParaView keeps for `name`: one
+    colour, opacity from 0 at 0 to 0.5 at 1."""
+    lut = simple.GetColorTransferFunction(name)
+    lut.RGBPoints = [0.0] + list(rgb) + [1.0] + list(rgb)
+    pwf = simple.GetOpacityTransferFunction(name)
+    pwf.Points = [0.0, 0.0, 0.5, 0.0, 1.0, 0.5, 0.5, 0.0]
+    return lut, pwf
+
+
+def show(source, view, array):
+    rep = simple.Show(source, view)
+    simple.ColorBy(rep, ("POINTS", array))
+    rep.SetRepresentationType(mmv.REPRESENTATION)
+    rep.ScalarOpacityUnitDistance = 1.0
+    rep.MaterialPreset = "matte"
+    return rep
+
+
+simple._DisableFirstRenderCameraReset()
+source = simple.ProgrammableSource(OutputDataSetType="vtkImageData", Script=SCRIPT)
+source.ScriptRequestInformation = (
+    "executive = self.GetExecutive()\n"
+    "executive.GetOutputInformation(0).Set(executive.WHOLE_EXTENT(), 0, 31, 0, 31, 0, 31)\n")
+view = mmv.make_view()
+view.OrientationAxesVisibility = 0
+view.CameraPosition = [0.0, 0.0, 120.0]
+view.CameraFocalPoint = [0.0, 0.0, 0.0]
+view.CameraViewUp = [0.0, 1.0, 0.0]
+view.CameraParallelProjection = 1
+view.CameraParallelScale = 17.0
+light = simple.AddLight(view=view)
+light.Coords = "Scene"
+light.Type = "Directional"
+light.Position = [4.0, 2.0, 100.0]
+light.FocalPoint = [0.0, 0.0, 0.0]
+view.UseLight = 0
+
+# --- The same scene as one array ---------------------------------------------
+maps("both", (1.0, 0.9, 0.8))
+one = show(source, view, "both")
+single = mmv.render_image(view, os.path.join(args.temp_dir, "PVFieldsOne.png"))
+checker.check(mmv.info(one, "NumberOfFields") == 1, "one array is one field")
+
+# --- Two fields (the same display, coloured by the plate) ---------------------
+maps("plate", (1.0, 0.9, 0.8))
+maps("floor", (1.0, 0.9, 0.8))
+two = one
+simple.ColorBy(two, ("POINTS", "plate"))
+two.FieldArrays = ["floor"]
+tables = [t.GetXMLName() for t in two.FieldLookupTables]
+checker.check(len(two.FieldLookupTables) == 1 and
+              two.FieldLookupTables[0] == simple.GetColorTransferFunction("floor"),
+              "FieldArrays gives the floor its own colour map (%s)" % tables)
+checker.check(len(two.FieldScalarOpacityFunctions) == 1 and
+              two.FieldScalarOpacityFunctions[0] == simple.GetOpacityTransferFunction("floor"),
+              "FieldArrays gives the floor its own opacity function")
+two.FieldMaterialPresets = ["matte"]
+fields = mmv.render_image(view, os.path.join(args.temp_dir, "PVFieldsTwo.png"))
+checker.check(mmv.info(two, "NumberOfFields") == 2, "plate and floor are two fields (%s)"
+              % mmv.info(two, "NumberOfFields"))
+checker.check(mmv.info(two, "MultiMaterialActive") == 1, "two fields are shaded with materials")
+same = psnr(fields, single)
+print("two fields against one array: %.1f dB" % same)
+checker.check(same >= 40.0, "two fields render as one array with the same maps (%.1f dB)" % same)
+checker.check(errors.take_errors() == "", "no error so far")
+
+# --- Each field its own colour ------------------------------------------------
+maps("plate", (1.0, 0.1, 0.1))
+maps("floor", (0.1, 0.1, 1.0))
+coloured = mmv.render_image(view, os.path.join(args.temp_dir, "PVFieldsColours.png"))
+h, w, _ = coloured.shape
+plate = coloured[h // 2, w // 2]
+floor = coloured[int(h * 0.15), int(w * 0.15)]
+print("plate pixel %s, floor pixel %s" % (plate, floor))
+checker.check(plate[0] > 40 and plate[0] > 3 * plate[2], "the plate is red (%s)" % plate)
+checker.check(floor[2] > 40 and floor[2] > 3 * floor[0], "the floor is blue (%s)" % floor)
+
+# --- Bad input ------------------------------------------------------------------
+two.FieldArrays = ["nothing"]
+two.FieldLookupTables = [simple.GetColorTransferFunction("floor")]
+two.FieldScalarOpacityFunctions = [simple.GetOpacityTransferFunction("floor")]
+mmv.render_image(view, os.path.join(args.temp_dir, "PVFieldsMissing.png"))
+text = errors.take_errors()
+checker.check("nothing" in text or "field" in text, "a missing array is an error (%s)" % text)
+checker.check(mmv.info(two, "NumberOfFields") == 1, "the plate is drawn alone")
+checker.check(mmv.info(two, "MultiMaterialActive") == 1, "and shaded with materials")
+
+two.FieldArrays = ["floor", "both", "plate", "both"]
+mmv.render_image(view, os.path.join(args.temp_dir, "PVFieldsTooMany.png"))
+text = errors.take_errors()
+checker.check("at most 3" in text, "four field arrays: an error (%s)" % text)
+
+two.FieldArrays = ["floor"]
+two.FieldMaterialPresets = ["no such preset"]
+mmv.render_image(view, os.path.join(args.temp_dir, "PVFieldsPreset.png"))
+text = errors.take_errors()
+checker.check("no such preset" in text, "an unknown preset is an error (%s)" % text)
+checker.check(mmv.info(two, "NumberOfFields") == 2, "the floor is still drawn")
+errors.take()
+errors.close()
+checker.finish()
