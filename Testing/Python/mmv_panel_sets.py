@@ -3,8 +3,9 @@ the controls it shows, by property name ("group:<label>" for a group's own
 widget). PVMultiMaterialPanel (from the proxy XML) and GUI.PropertiesPanel
 (the real client's widgets) assert the same sets."""
 
-OWN = {"MaterialNodes", "LightingQuality", "MultipleScattering", "ReflectionSource",
-       "InteractiveIrradiance", "GradientSmoothing", "LightFalloff", "SamplingDimensions"}
+OWN = {"MaterialNodes", "LightingQuality", "FieldArrays", "MultipleScattering",
+       "ReflectionSource", "InteractiveIrradiance", "GradientSmoothing", "LightFalloff",
+       "SamplingDimensions"}
 VOLUME = {"ScalarOpacityUnitDistance", "BlendMode", "UseCropping"}
 PARAVIEW = {"Representation", "group:Coloring", "MapScalars", "Position", "Scale", "Orientation",
             "Origin", "Pickable", "PolarAxes", "DataAxesGrid"}
@@ -17,8 +18,8 @@ DEAD = {"Opacity", "Specular", "PointSize", "LineWidth", "Texture", "group:Edge 
 
 # The gear's advanced view, and the default view.
 ADVANCED = OWN | VOLUME | PARAVIEW
-DEFAULT = {"MaterialNodes", "LightingQuality", "MultipleScattering", "BlendMode", "UseCropping",
-           "Representation", "group:Coloring", "DataAxesGrid"}
+DEFAULT = {"MaterialNodes", "LightingQuality", "FieldArrays", "MultipleScattering", "BlendMode",
+           "UseCropping", "Representation", "group:Coloring", "DataAxesGrid"}
 # Shown besides ADVANCED with UseCropping on and the inverse-square falloff.
 WITH_CROPPING_AND_RADIUS = {"group:Cropping Parameters", "PointLightRadius"}
 
