@@ -5,8 +5,10 @@
 #include "vtkMultiMaterialParameters.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPreIntegrationTable.h"
+#include "vtkSMPTools.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 
 namespace
@@ -45,6 +47,7 @@ vtkMultiMaterialFields::vtkMultiMaterialFields()
     range = { 0.0, 1.0 };
   }
   this->Combined->SetName("CombinedShadowOpacity");
+  this->Summed->SetName("SummedFields");
   // The combined field is an opacity over one object unit: read as it is,
   // its extinction is the sum of the fields'.
   vtkNew<vtkPiecewiseFunction> identity;
@@ -315,4 +318,60 @@ vtkVolumeProperty* vtkMultiMaterialFields::GetLightingProperty(vtkVolumeProperty
 vtkMaterialTransferFunction* vtkMultiMaterialFields::GetLightingMaterials() const
 {
   return this->Count > 1 ? this->CombinedMaterials.Get() : this->Materials[0].Get();
+}
+
+vtkDataArray* vtkMultiMaterialFields::GetGradientScalars(vtkDataArray* scalars)
+{
+  if (this->Count < 2)
+  {
+    return scalars;
+  }
+  std::vector<double> key = { static_cast<double>(scalars->GetMTime()),
+    static_cast<double>(reinterpret_cast<uintptr_t>(scalars)) };
+  for (int f = 0; f < this->Count; ++f)
+  {
+    key.insert(key.end(), { this->Ranges[f][0], this->Ranges[f][1] });
+  }
+  if (key == this->SummedKey)
+  {
+    return this->Summed;
+  }
+  const vtkIdType tuples = scalars->GetNumberOfTuples();
+  this->Summed->SetNumberOfTuples(tuples);
+  float* out = this->Summed->GetPointer(0);
+  const int count = this->Count;
+  std::array<double, mmv::MaxFields> offset{};
+  std::array<double, mmv::MaxFields> scale{};
+  for (int f = 0; f < count; ++f)
+  {
+    offset[f] = this->Ranges[f][0];
+    scale[f] = 1.0 / (this->Ranges[f][1] - this->Ranges[f][0]);
+  }
+  vtkSMPTools::For(0, tuples,
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      for (vtkIdType i = begin; i < end; ++i)
+      {
+        double sum = 0.0;
+        for (int f = 0; f < count; ++f)
+        {
+          const double v = scalars->GetComponent(i, f);
+          sum += std::isfinite(v) ? (v - offset[f]) * scale[f] : 0.0;
+        }
+        out[i] = static_cast<float>(sum);
+      }
+    });
+  this->Summed->Modified();
+  this->Summed->GetFiniteRange(this->SummedRange, 0);
+  if (!(this->SummedRange[1] > this->SummedRange[0]))
+  {
+    this->SummedRange[1] = this->SummedRange[0] + 1.0;
+  }
+  this->SummedKey = key;
+  return this->Summed;
+}
+
+const double* vtkMultiMaterialFields::GetGradientRange(const double* dataRange) const
+{
+  return this->Count > 1 ? this->SummedRange : dataRange;
 }

@@ -11,8 +11,10 @@
  * combined shadow extinction (mmv::CombineFieldExtinction), seen through
  * an identity opacity function and materials whose attenuation is 1 and
  * whose scattering is the fields' mixture. Everything the lighting does
- * (pre-filter, probe, shadows, diffusion, the gradient's normals) then runs
- * unchanged on that field. Plain state owned by the mapper.
+ * (pre-filter, probe, shadows, diffusion) then runs unchanged on that field.
+ * The shading normals are the gradient of the sum of the fields' values,
+ * each normalised over its range: boundaries of every field, and nothing
+ * an opacity edit changes. Plain state owned by the mapper.
  */
 #ifndef vtkMultiMaterialFields_h
 #define vtkMultiMaterialFields_h
@@ -85,6 +87,12 @@ public:
   vtkVolumeProperty* GetLightingProperty(vtkVolumeProperty* property) const;
   vtkMaterialTransferFunction* GetLightingMaterials() const;
 
+  /// What the gradient (the shading normals) is computed of, over its range:
+  /// the data (one field) or the sum of the normalised fields (several),
+  /// remade when the scalars change.
+  vtkDataArray* GetGradientScalars(vtkDataArray* scalars);
+  const double* GetGradientRange(const double* dataRange) const;
+
 private:
   vtkMultiMaterialFields(const vtkMultiMaterialFields&) = delete;
   void operator=(const vtkMultiMaterialFields&) = delete;
@@ -104,6 +112,9 @@ private:
   vtkNew<vtkVolumeProperty> CombinedProperty;
   vtkNew<vtkMaterialTransferFunction> CombinedMaterials;
   std::vector<double> CombinedKey;
+  vtkNew<vtkFloatArray> Summed;
+  std::vector<double> SummedKey;
+  double SummedRange[2] = { 0.0, 1.0 };
   std::vector<float> CombinedScattering;
   double CombinedRange[2] = { 0.0, 1.0 };
 };

@@ -666,8 +666,9 @@ bool vtkMultiMaterialVolumeMapper::PrepareMultiMaterial(vtkRenderer* ren, vtkVol
   // From here on the lighting works on `image`: the input, or for cell
   // scalars the grid of the cell centres (the sampling step follows the
   // input, as VTK's does).
+  vtkDataArray* normals = in.Fields.GetGradientScalars(input.Scalars);
   if (!this->UpdateSegmentTables(input.Context, vol, input.Image) ||
-    !this->UpdateGradient(input.Context, image, lighting, lightingRange))
+    !this->UpdateGradient(input.Context, image, normals, in.Fields.GetGradientRange(range)))
   {
     return false;
   }

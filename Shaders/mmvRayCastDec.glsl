@@ -130,34 +130,52 @@ vec3 mmvGradient(vec3 texPos)
   return mmv_gradientToObject * g;
 }
 
-// eqs. 16-17 at shading position texPos with value t of field `field` for
-// one segment: reads the textures, then mmvShadeSample() (mmvShading.glsl)
-// does the arithmetic.
-vec3 mmvShadeSegment(vec3 texPos, float t, vec4 segment, int field)
+// What the shading of every field at one point reads: the geometry, the
+// gradient's normal and surface share, and the lights' irradiance.
+struct mmvSamplePoint
 {
-  float tc = mmvTableCoord(t);
-  int rows = field * MMV_MATERIAL_ROWS;
-  vec4 material = texture2D(mmv_material, vec2(tc, mmvMaterialRow(rows + MMV_BLINN_PHONG_ROW)));
-  vec3 position = (in_textureDatasetMatrix[0] * vec4(texPos, 1.0)).xyz;
-  vec3 v = -normalize((in_textureDatasetMatrix[0] * vec4(g_dirStep, 0.0)).xyz);
+  vec3 position; // object space
+  vec3 n;
+  vec3 v;
+  float surface;
+  vec4 irradiance0;
+  vec4 irradiance1;
+};
+
+mmvSamplePoint mmvFetchSamplePoint(vec3 texPos)
+{
+  mmvSamplePoint p;
+  p.position = (in_textureDatasetMatrix[0] * vec4(texPos, 1.0)).xyz;
+  p.v = -normalize((in_textureDatasetMatrix[0] * vec4(g_dirStep, 0.0)).xyz);
   vec3 gradient = mmvGradient(texPos);
   float gradientLength = length(gradient);
   vec3 n = gradientLength > 0.0 ? -gradient / gradientLength : vec3(0.0);
-  n = dot(n, v) < 0.0 ? -n : n; // two-sided: surfaces face the viewer
-  float surface = mmvSurfaceShare(gradientLength, mmv_surfaceEqualShare);
+  p.n = dot(n, p.v) < 0.0 ? -n : n; // two-sided: surfaces face the viewer
+  p.surface = mmvSurfaceShare(gradientLength, mmv_surfaceEqualShare);
 
-  vec4 irradiance0 = vec4(0.0);
-  vec4 irradiance1 = vec4(0.0);
+  p.irradiance0 = vec4(0.0);
+  p.irradiance1 = vec4(0.0);
 #if MMV_NUMBER_OF_LIGHTS > 0
   vec3 irradianceCoord = mmvWholeTexCoord(texPos) * mmv_irradianceScale + mmv_irradianceBias;
-  irradiance0 = texture(mmv_irradiance0, irradianceCoord);
+  p.irradiance0 = texture(mmv_irradiance0, irradianceCoord);
 #if MMV_IRRADIANCE_TEXTURES > 1
-  irradiance1 = texture(mmv_irradiance1, irradianceCoord);
+  p.irradiance1 = texture(mmv_irradiance1, irradianceCoord);
 #endif
 #if MMV_USE_RGB_IRRADIANCE
   mmvFetchTints(irradianceCoord);
 #endif
 #endif
+  return p;
+}
+
+// eqs. 16-17 at point p with value t of field `field` for one segment: reads
+// the field's material, then mmvShadeSample() (mmvShading.glsl) does the
+// arithmetic.
+vec3 mmvShadeField(mmvSamplePoint p, float t, vec4 segment, int field)
+{
+  float tc = mmvTableCoord(t);
+  int rows = field * MMV_MATERIAL_ROWS;
+  vec4 material = texture2D(mmv_material, vec2(tc, mmvMaterialRow(rows + MMV_BLINN_PHONG_ROW)));
   float anisotropy = 0.0;
 #if MMV_USE_ANISOTROPY
   anisotropy = mmvMaterialParameter(tc, rows + MMV_ANISOTROPY_ROW, MMV_ANISOTROPY_CHANNEL);
@@ -168,15 +186,21 @@ vec3 mmvShadeSegment(vec3 texPos, float t, vec4 segment, int field)
   reflection = mmvMaterialParameter(tc, rows + MMV_REFLECTION_ROW, MMV_REFLECTION_CHANNEL);
   if (reflection > 0.0)
   {
-    environment = mmvReflectedRadiance(position, n, v);
+    environment = mmvReflectedRadiance(p.position, p.n, p.v);
   }
 #endif
   float emission = 0.0;
 #if MMV_USE_EMISSION
   emission = mmvMaterialParameter(tc, rows + MMV_EMISSION_ROW, MMV_EMISSION_CHANNEL);
 #endif
-  return mmvShadeSample(material, anisotropy, reflection, emission, segment, position, n, v,
-    surface, irradiance0, irradiance1, environment);
+  return mmvShadeSample(material, anisotropy, reflection, emission, segment, p.position, p.n,
+    p.v, p.surface, p.irradiance0, p.irradiance1, environment);
+}
+
+// One field's segment shaded at texPos with value t.
+vec3 mmvShadeSegment(vec3 texPos, float t, vec4 segment, int field)
+{
+  return mmvShadeField(mmvFetchSamplePoint(texPos), t, segment, field);
 }
 
 // The segment's length relative to the tables' step: partial first/last
@@ -209,7 +233,7 @@ float mmvFieldTableCoord(int f, float t)
 
 // Several fields: each field's segment from its own tables; together they
 // let through the product of their transmittances, and each is shaded with
-// its share of the combined opacity (its colour scaled alike).
+// its share of the combined opacity (its colour scaled alike) at one point.
 void mmvIntegrateSegment(vec3 x1, vec4 t1, vec3 x2, vec4 t2)
 {
   float ratio = mmvStepRatio(x1, x2);
@@ -237,20 +261,27 @@ void mmvIntegrateSegment(vec3 x1, vec4 t1, vec3 x2, vec4 t2)
   {
     return;
   }
+  // One shading point for all fields (their shading positions weighted by
+  // opacity), read once; each field is shaded there with its own value.
+#if MMV_USE_PREINTEGRATION
+  float beta = 0.0;
+  for (int f = 0; f < MMV_FIELDS; ++f)
+  {
+    beta += segments[f].a * texture2D(mmv_preintBeta, coords[f]).r;
+  }
+  beta /= opacitySum;
+#else
+  float beta = 1.0;
+#endif
+  mmvSamplePoint point = mmvFetchSamplePoint(mix(x1, x2, beta));
   vec3 radiance = vec3(0.0);
   for (int f = 0; f < MMV_FIELDS; ++f)
   {
-    if (segments[f].a <= 0.0)
+    if (segments[f].a > 0.0)
     {
-      continue;
+      radiance += mmvShadeField(
+        point, mix(t1[f], t2[f], beta), segments[f] * (alpha / opacitySum), f);
     }
-#if MMV_USE_PREINTEGRATION
-    float beta = texture2D(mmv_preintBeta, coords[f]).r;
-#else
-    float beta = 1.0;
-#endif
-    radiance += mmvShadeSegment(
-      mix(x1, x2, beta), mix(t1[f], t2[f], beta), segments[f] * (alpha / opacitySum), f);
   }
   g_fragColor.rgb += (1.0 - g_fragColor.a) * radiance;
   g_fragColor.a += (1.0 - g_fragColor.a) * alpha;
