@@ -3,6 +3,7 @@
 #include "vtkArrayDispatch.h"
 #include "vtkDataArray.h"
 #include "vtkDataArrayRange.h"
+#include "vtkFloatArray.h"
 #include "vtkSMPTools.h"
 #include "vtkTableLookup.h"
 
@@ -180,7 +181,7 @@ bool Scatters(const std::vector<FieldOptics>& optics)
 } // namespace
 
 bool CombineFieldExtinction(vtkDataArray* fields, const std::vector<FieldOptics>& optics, int bins,
-  CombinedExtinction& out, std::string* error)
+  vtkFloatArray* opacity, std::vector<float>& scattering, std::string* error)
 {
   const auto fail = [&](const std::string& why)
   {
@@ -219,12 +220,15 @@ bool CombineFieldExtinction(vtkDataArray* fields, const std::vector<FieldOptics>
     return fail("the scattering needs 2 or more bins");
   }
   const std::vector<FieldTables> tables = MakeTables(optics);
-  out.Opacity.resize(static_cast<size_t>(fields->GetNumberOfTuples()));
-  if (!vtkArrayDispatch::Dispatch::Execute(fields, CombineWorker{}, tables, out.Opacity.data()))
+  opacity->SetNumberOfComponents(1);
+  opacity->SetNumberOfTuples(fields->GetNumberOfTuples());
+  float* d = opacity->GetPointer(0);
+  if (!vtkArrayDispatch::Dispatch::Execute(fields, CombineWorker{}, tables, d))
   {
-    CombineWorker{}(fields, tables, out.Opacity.data());
+    CombineWorker{}(fields, tables, d);
   }
-  out.Scattering.clear();
+  opacity->Modified();
+  scattering.clear();
   if (!Scatters(optics))
   {
     return true;
@@ -235,7 +239,7 @@ bool CombineFieldExtinction(vtkDataArray* fields, const std::vector<FieldOptics>
   {
     ScatteringWorker{}(fields, tables, bins, weights, sums);
   }
-  out.Scattering = FillEmptyBins(weights, sums);
+  scattering = FillEmptyBins(weights, sums);
   return true;
 }
 

@@ -54,26 +54,20 @@ struct FieldOptics
   double UnitDistance = 1.0;
 };
 
-/// What the lighting reads of several fields.
-struct CombinedExtinction
-{
-  /// D per tuple (see the file comment), in [0, 1].
-  std::vector<float> Opacity;
-  /// s per value of D: `bins` entries over [0, 1], the opacity-weighted
-  /// mean of the fields' s over the voxels of each bin (a bin no voxel fell
-  /// into interpolates its filled neighbours); empty when no field scatters.
-  std::vector<float> Scattering;
-};
-
 /**
- * D for every tuple of `fields` (component f read through optics[f]), and
- * the binned scattering. False, with `error` set, when the array's
- * components and the optics differ in number, there are more than
- * MaxFields, or a table is empty. NaN reads as the lowest value of its
- * field, as the single-field lighting reads it.
+ * D for every tuple of `fields` (component f read through optics[f]) into
+ * `opacity` (one component, resized; its memory is reused), and into
+ * `scattering` s per value of D: `bins` entries over [0, 1], the
+ * opacity-weighted mean of the fields' s over the voxels of each bin (a bin
+ * no voxel fell into interpolates its filled neighbours); empty when no
+ * field scatters. False, with `error` set, when the array's components and
+ * the optics differ in number, there are more than MaxFields, or a table is
+ * empty. NaN reads as the lowest value of its field, as the single-field
+ * lighting reads it.
  */
 VTKMULTIMATERIALVOLUMEFILTERS_EXPORT bool CombineFieldExtinction(vtkDataArray* fields,
-  const std::vector<FieldOptics>& optics, int bins, CombinedExtinction& out, std::string* error);
+  const std::vector<FieldOptics>& optics, int bins, vtkFloatArray* opacity,
+  std::vector<float>& scattering, std::string* error);
 
 /// D of one tuple of raw values (the formula above; the tests' closed form).
 VTKMULTIMATERIALVOLUMEFILTERS_EXPORT float CombinedOpacity(

@@ -238,9 +238,23 @@ bool vtkIrradianceEstimator::vtkInternals::Upload(vtkOpenGLRenderWindow* context
     this->ScalarsUploaded && this->ScalarTexture && this->ScalarTexture->GetHandle() != 0;
   if (!scalarsKept)
   {
-    this->ScalarTexture = NewTexture(context, GL_R32F, GL_RED, GL_FLOAT, true);
-    this->ScalarsUploaded =
-      this->ScalarTexture->Create3DFromRaw(d[0], d[1], d[2], 1, VTK_FLOAT, this->Scalars.data());
+    // New values on the same grid (a time step, several fields' opacity
+    // edit) go into the texture in place: fresh memory costs more than the
+    // copy (about 4 ms per MB on llvmpipe).
+    if (HasSize(this->ScalarTexture, d))
+    {
+      this->ScalarTexture->Activate();
+      glTexSubImage3D(
+        GL_TEXTURE_3D, 0, 0, 0, 0, d[0], d[1], d[2], GL_RED, GL_FLOAT, this->Scalars.data());
+      this->ScalarTexture->Deactivate();
+      this->ScalarsUploaded = true;
+    }
+    else
+    {
+      this->ScalarTexture = NewTexture(context, GL_R32F, GL_RED, GL_FLOAT, true);
+      this->ScalarsUploaded =
+        this->ScalarTexture->Create3DFromRaw(d[0], d[1], d[2], 1, VTK_FLOAT, this->Scalars.data());
+    }
     this->Occupancy.SetValues(this->Scalars, d);
   }
   bool classes = true;

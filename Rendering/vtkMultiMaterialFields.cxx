@@ -273,28 +273,25 @@ bool vtkMultiMaterialFields::UpdateLighting(
     o.Scattering = Sample(this->Materials[f], mmv::Scattering, range, tableSize);
     o.UnitDistance = property->GetScalarOpacityUnitDistance(f);
   }
-  mmv::CombinedExtinction combined;
-  if (!mmv::CombineFieldExtinction(scalars, optics, tableSize, combined, error))
+  std::vector<float> scattering;
+  if (!mmv::CombineFieldExtinction(scalars, optics, tableSize, this->Combined, scattering, error))
   {
     return false;
   }
-  this->Combined->SetNumberOfTuples(static_cast<vtkIdType>(combined.Opacity.size()));
-  std::copy(combined.Opacity.begin(), combined.Opacity.end(), this->Combined->GetPointer(0));
-  this->Combined->Modified();
   // The lighting reads attenuation 1 and the mixed scattering per value of D
   // (remade only when that changes: the materials' time keys the lighting).
   this->CombinedKey = key;
-  if (this->CombinedMaterials->GetSize() > 0 && combined.Scattering == this->CombinedScattering)
+  if (this->CombinedMaterials->GetSize() > 0 && scattering == this->CombinedScattering)
   {
     return true;
   }
-  this->CombinedScattering = combined.Scattering;
+  this->CombinedScattering = scattering;
   this->CombinedMaterials->RemoveAllNodes();
-  const size_t nodes = std::max<size_t>(combined.Scattering.size(), 1);
+  const size_t nodes = std::max<size_t>(scattering.size(), 1);
   for (size_t i = 0; i < nodes; ++i)
   {
     const double t = nodes > 1 ? static_cast<double>(i) / (nodes - 1) : 0.0;
-    const double s = combined.Scattering.empty() ? 0.0 : combined.Scattering[i];
+    const double s = scattering.empty() ? 0.0 : scattering[i];
     this->CombinedMaterials->AddNode(t, 1.0, 0.0, 0.0, 1.0, 1.0, s, 0.0);
   }
   return true;

@@ -172,27 +172,28 @@ TEST(SeveralFields, CombinedOpacityIsTheOpacityOfTheSummedExtinction)
   }
   const std::vector<mmv::FieldOptics> equal = { Optics(0.5, 1.0, 2.0, 1.0),
     Optics(0.5, 1.0, 6.0, 1.0) };
-  mmv::CombinedExtinction out;
+  vtkNew<vtkFloatArray> out;
+  std::vector<float> scattering;
   std::string error;
-  ASSERT_TRUE(mmv::CombineFieldExtinction(values, equal, 1001, out, &error)) << error;
-  ASSERT_EQ(out.Opacity.size(), 3u);
-  EXPECT_NEAR(out.Opacity[0], 0.5, 1e-6);
-  EXPECT_NEAR(out.Opacity[1], 0.75, 1e-6);
-  EXPECT_EQ(out.Opacity[2], 0.0f);
-  ASSERT_EQ(out.Scattering.size(), 1001u);
-  EXPECT_NEAR(out.Scattering[500], 2.0, 1e-5);
-  EXPECT_NEAR(out.Scattering[750], 4.0, 1e-5);
+  ASSERT_TRUE(mmv::CombineFieldExtinction(values, equal, 1001, out, scattering, &error)) << error;
+  ASSERT_EQ(out->GetNumberOfTuples(), 3);
+  EXPECT_NEAR(out->GetValue(0), 0.5, 1e-6);
+  EXPECT_NEAR(out->GetValue(1), 0.75, 1e-6);
+  EXPECT_EQ(out->GetValue(2), 0.0f);
+  ASSERT_EQ(scattering.size(), 1001u);
+  EXPECT_NEAR(scattering[500], 2.0, 1e-5);
+  EXPECT_NEAR(scattering[750], 4.0, 1e-5);
   // A bin between them that no voxel fell into interpolates them.
-  EXPECT_NEAR(out.Scattering[625], 3.0, 1e-5);
+  EXPECT_NEAR(scattering[625], 3.0, 1e-5);
 
   // More than 4 fields, or optics for a different number: refused.
   vtkNew<vtkFloatArray> five;
   five->SetNumberOfComponents(5);
   five->SetNumberOfTuples(1);
-  EXPECT_FALSE(
-    mmv::CombineFieldExtinction(five, std::vector<mmv::FieldOptics>(5, equal[0]), 16, out, &error));
+  EXPECT_FALSE(mmv::CombineFieldExtinction(
+    five, std::vector<mmv::FieldOptics>(5, equal[0]), 16, out, scattering, &error));
   EXPECT_NE(error.find("at most 4"), std::string::npos) << error;
-  EXPECT_FALSE(mmv::CombineFieldExtinction(values, { equal[0] }, 16, out, &error));
+  EXPECT_FALSE(mmv::CombineFieldExtinction(values, { equal[0] }, 16, out, scattering, &error));
 }
 
 TEST(SeveralFields, PlateOfOneFieldShadowsTheFloorOfAnother)
