@@ -10,6 +10,7 @@
 // files are left as they were saved; tables set after FieldArrays stay.
 #include "vtkCommand.h"
 #include "vtkDataObject.h"
+#include "vtkMultiMaterialPropertyObserver.h"
 #include "vtkNew.h"
 #include "vtkPVArrayInformation.h"
 #include "vtkPVDataInformation.h"
@@ -111,18 +112,5 @@ private:
   bool Busy = false;
 };
 
-// Registers the observer once per process, when the library is loaded.
-struct vtkMultiMaterialFieldColorMapsRegistration
-{
-  vtkMultiMaterialFieldColorMapsRegistration()
-  {
-    if (vtkSMProxyManager::IsInitialized())
-    {
-      vtkNew<vtkMultiMaterialFieldColorMapsObserver> observer;
-      vtkSMProxyManager::GetProxyManager()->AddObserver(
-        vtkCommand::PropertyModifiedEvent, observer);
-    }
-  }
-};
-const vtkMultiMaterialFieldColorMapsRegistration Registration;
+const mmv::PropertyObserverRegistration<vtkMultiMaterialFieldColorMapsObserver> Registration;
 }

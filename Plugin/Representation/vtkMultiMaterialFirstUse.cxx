@@ -16,6 +16,7 @@
 // State files are left as they were saved.
 #include "vtkCommand.h"
 #include "vtkDataObject.h"
+#include "vtkMultiMaterialPropertyObserver.h"
 #include "vtkNew.h"
 #include "vtkSMArrayListDomain.h"
 #include "vtkSMPVRepresentationProxy.h"
@@ -91,18 +92,5 @@ private:
   bool Busy = false;
 };
 
-// Registers the observer once per process, when the library is loaded.
-struct vtkMultiMaterialFirstUseRegistration
-{
-  vtkMultiMaterialFirstUseRegistration()
-  {
-    if (vtkSMProxyManager::IsInitialized())
-    {
-      vtkNew<vtkMultiMaterialFirstUseObserver> observer;
-      vtkSMProxyManager::GetProxyManager()->AddObserver(
-        vtkCommand::PropertyModifiedEvent, observer);
-    }
-  }
-};
-const vtkMultiMaterialFirstUseRegistration Registration;
+const mmv::PropertyObserverRegistration<vtkMultiMaterialFirstUseObserver> Registration;
 }

@@ -13,6 +13,7 @@
 // level becomes Custom. State files are left as they were saved.
 #include "vtkCommand.h"
 #include "vtkMultiMaterialLightingQuality.h"
+#include "vtkMultiMaterialPropertyObserver.h"
 #include "vtkNew.h"
 #include "vtkSMPropertyHelper.h"
 #include "vtkSMProxy.h"
@@ -119,18 +120,5 @@ private:
   bool Busy = false;
 };
 
-// Registers the observer once per process, when the library is loaded.
-struct vtkMultiMaterialLightingQualityRegistration
-{
-  vtkMultiMaterialLightingQualityRegistration()
-  {
-    if (vtkSMProxyManager::IsInitialized())
-    {
-      vtkNew<vtkMultiMaterialLightingQualityObserver> observer;
-      vtkSMProxyManager::GetProxyManager()->AddObserver(
-        vtkCommand::PropertyModifiedEvent, observer);
-    }
-  }
-};
-const vtkMultiMaterialLightingQualityRegistration Registration;
+const mmv::PropertyObserverRegistration<vtkMultiMaterialLightingQualityObserver> Registration;
 }
