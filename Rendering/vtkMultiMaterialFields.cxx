@@ -2,10 +2,12 @@
 
 #include "vtkColorTransferFunction.h"
 #include "vtkDataArray.h"
+#include "vtkDataSetAttributes.h"
 #include "vtkMultiMaterialParameters.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPreIntegrationTable.h"
 #include "vtkSMPTools.h"
+#include "vtkVolumeInputScalars.h"
 
 #include <algorithm>
 #include <cmath>
@@ -371,4 +373,29 @@ vtkDataArray* vtkMultiMaterialFields::GetGradientScalars(vtkDataArray* scalars)
 const double* vtkMultiMaterialFields::GetGradientRange(const double* dataRange) const
 {
   return this->Count > 1 ? this->SummedRange : dataRange;
+}
+
+vtkDataArray* vtkMultiMaterialFields::WithArrays(vtkDataArray* scalars,
+  vtkDataSetAttributes* attributes, const std::vector<std::string>& names, std::string* error)
+{
+  std::vector<vtkDataArray*> others;
+  std::vector<std::pair<vtkDataArray*, vtkMTimeType>> from = { { scalars, scalars->GetMTime() } };
+  for (const std::string& name : names)
+  {
+    vtkDataArray* array = attributes->GetArray(name.c_str());
+    others.push_back(array);
+    from.emplace_back(array, array ? array->GetMTime() : 0);
+  }
+  if (this->WithArraysArray && from == this->WithArraysFrom)
+  {
+    return this->WithArraysArray;
+  }
+  vtkSmartPointer<vtkDataArray> combined = mmv::MakeFieldArray(scalars, others, error);
+  if (!combined)
+  {
+    return nullptr;
+  }
+  this->WithArraysArray = combined;
+  this->WithArraysFrom = from;
+  return combined;
 }

@@ -33,6 +33,7 @@
 
 class vtkColorTransferFunction;
 class vtkDataArray;
+class vtkDataSetAttributes;
 class vtkPreIntegrationTable;
 
 class VTKMULTIMATERIALVOLUME_EXPORT vtkMultiMaterialFields
@@ -47,6 +48,14 @@ public:
   vtkMaterialTransferFunction* GetMaterials(int field) const;
   /// The latest modification time of any field's materials.
   vtkMTimeType GetMaterialsMTime() const;
+
+  /**
+   * `scalars` with the named arrays of `attributes` as further components
+   * (mmv::MakeFieldArray), kept while none of them changes. Null, with
+   * `error` set, when they do not fit.
+   */
+  vtkDataArray* WithArrays(vtkDataArray* scalars, vtkDataSetAttributes* attributes,
+    const std::vector<std::string>& names, std::string* error);
 
   /// Takes the fields of `scalars` (one per component); their ranges are
   /// the components' finite ranges. False for more than mmv::MaxFields.
@@ -116,6 +125,11 @@ private:
   std::vector<double> SummedKey;
   double SummedRange[2] = { 0.0, 1.0 };
   std::vector<float> CombinedScattering;
+
+  // The scalars with further arrays as components, and what they were made
+  // of (the arrays and their modification times).
+  vtkSmartPointer<vtkDataArray> WithArraysArray;
+  std::vector<std::pair<vtkDataArray*, vtkMTimeType>> WithArraysFrom;
   double CombinedRange[2] = { 0.0, 1.0 };
 };
 

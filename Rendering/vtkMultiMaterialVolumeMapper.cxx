@@ -117,11 +117,7 @@ public:
     return this->CellCentres;
   }
 
-  // The scalars with the FieldArrays as further components, and what they
-  // were made of (the arrays and their modification times).
-  vtkSmartPointer<vtkDataArray> Fielded;
-  std::vector<std::pair<vtkDataArray*, vtkMTimeType>> FieldedFrom;
-  std::string LastFieldError; // reported once until it changes
+  std::string LastFieldError; // FieldArrays' problem, reported once until it changes
 
   // The one-component arrays VectorMode made of vectors: the same array for
   // the same vector, so that kept steps' irradiance matches its key.
@@ -443,33 +439,14 @@ vtkDataArray* vtkMultiMaterialVolumeMapper::WithFieldArrays(
   vtkDataSetAttributes* attributes = cellFlag == 1
     ? static_cast<vtkDataSetAttributes*>(input->GetCellData())
     : static_cast<vtkDataSetAttributes*>(input->GetPointData());
-  std::vector<vtkDataArray*> others;
-  std::vector<std::pair<vtkDataArray*, vtkMTimeType>> from = { { scalars, scalars->GetMTime() } };
-  for (const std::string& name : this->FieldArrays)
-  {
-    vtkDataArray* array = attributes->GetArray(name.c_str());
-    others.push_back(array);
-    from.emplace_back(array, array ? array->GetMTime() : 0);
-  }
-  if (in.Fielded && from == in.FieldedFrom)
-  {
-    return in.Fielded;
-  }
   std::string error;
-  vtkSmartPointer<vtkDataArray> fielded = mmv::MakeFieldArray(scalars, others, &error);
-  if (!fielded)
+  vtkDataArray* fielded = in.Fields.WithArrays(scalars, attributes, this->FieldArrays, &error);
+  if (!fielded && error != in.LastFieldError)
   {
-    if (error != in.LastFieldError)
-    {
-      vtkErrorMacro("field arrays: " << error << "; shading the scalars alone");
-      in.LastFieldError = error;
-    }
-    return scalars;
+    vtkErrorMacro("field arrays: " << error << "; shading the scalars alone");
   }
-  in.LastFieldError.clear();
-  in.Fielded = fielded;
-  in.FieldedFrom = from;
-  return fielded;
+  in.LastFieldError = error;
+  return fielded ? fielded : scalars;
 }
 
 bool vtkMultiMaterialVolumeMapper::SelectDrawnScalars(vtkRenderer* ren)

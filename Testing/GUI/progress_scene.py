@@ -45,9 +45,11 @@ def show(path, view):
     pwf.Points = OPACITY_POINTS
     pwf.ScalarRangeInitialized = 1
     display.ScalarOpacityUnitDistance = 2.0
-    # Half the data's resolution: a few seconds an update on llvmpipe, and
-    # the same grid whatever the view's size.
-    display.IrradianceScale = 0.5
+    # The full grid and a scattering material: an update of over a second on
+    # llvmpipe (shadows and diffusion), so the bar has time to move, and the
+    # same grid whatever the view's size.
+    display.IrradianceScale = 1.0
+    display.MaterialPreset = "skin"
     view.OrientationAxesVisibility = 0
     view.Background = [0.1, 0.1, 0.15]
     for key, value in CAMERA.items():
