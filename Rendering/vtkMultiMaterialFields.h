@@ -66,7 +66,7 @@ public:
 
   /// Builds each field's segment tables (colour, opacity and unit distance of
   /// `property`'s component f) for segments of `step`; false if one fails.
-  /// Builds() counts the tables rebuilt, Seconds() their time.
+  /// `rebuilt` counts the tables rebuilt, `seconds` adds their build time.
   bool UpdateSegmentTables(vtkVolumeProperty* property, double step, int tableSize,
     int* rebuilt = nullptr, double* seconds = nullptr);
   std::vector<vtkPreIntegrationTable*> GetSegmentTables() const;
