@@ -61,11 +61,9 @@ std::vector<FieldTables> MakeTables(const std::vector<FieldOptics>& optics)
   return tables;
 }
 
-/// D of one tuple, with the fields' total opacity and opacity-weighted
-/// scattering when asked for.
+/// D of one tuple.
 template <typename Tuple>
-float TupleOpacity(const Tuple& values, const std::vector<FieldTables>& tables,
-  float* opacitySum = nullptr, float* scatteringSum = nullptr)
+float TupleOpacity(const Tuple& values, const std::vector<FieldTables>& tables)
 {
   float depth = 0.0f;
   bool visible = false;
@@ -73,13 +71,7 @@ float TupleOpacity(const Tuple& values, const std::vector<FieldTables>& tables,
   {
     const float t = tables[f].Normalised(static_cast<double>(values[f]));
     depth += LookupTable(tables[f].Extinction, t);
-    const float alpha = LookupTable(tables[f].Opacity, t);
-    visible = visible || alpha > 0.0f;
-    if (opacitySum)
-    {
-      *opacitySum += alpha;
-      *scatteringSum += alpha * LookupTable(tables[f].Scattering, t);
-    }
+    visible = visible || LookupTable(tables[f].Opacity, t) > 0.0f;
   }
   const float d = 1.0f - std::exp(-depth);
   return visible ? std::max(d, VisibleWithoutShadow) : d;
@@ -105,19 +97,23 @@ struct CombineWorker
 struct ScatteringWorker
 {
   template <typename Array>
-  void operator()(Array* array, const std::vector<FieldTables>& tables, int bins,
+  /// The fields' total opacity and opacity-weighted scattering per bin of
+  /// the tuples' D (already computed, `d`).
+  void operator()(Array* array, const std::vector<FieldTables>& tables, const float* d, int bins,
     std::vector<double>& weights, std::vector<double>& sums) const
   {
     const auto tuples = vtk::DataArrayTupleRange(array);
     for (vtkIdType i = 0; i < array->GetNumberOfTuples(); ++i)
     {
-      float opacity = 0.0f;
-      float scattering = 0.0f;
-      const float d = TupleOpacity(tuples[i], tables, &opacity, &scattering);
-      const TablePosition p = LocateInTable(bins, d);
+      const TablePosition p = LocateInTable(bins, d[i]);
       const int bin = p.Weight < 0.5f ? p.Entry : p.Entry + 1;
-      weights[bin] += opacity;
-      sums[bin] += scattering;
+      for (size_t f = 0; f < tables.size(); ++f)
+      {
+        const float t = tables[f].Normalised(static_cast<double>(tuples[i][f]));
+        const float alpha = LookupTable(tables[f].Opacity, t);
+        weights[bin] += alpha;
+        sums[bin] += alpha * LookupTable(tables[f].Scattering, t);
+      }
     }
   }
 };
@@ -235,9 +231,10 @@ bool CombineFieldExtinction(vtkDataArray* fields, const std::vector<FieldOptics>
   }
   std::vector<double> weights(bins, 0.0);
   std::vector<double> sums(bins, 0.0);
-  if (!vtkArrayDispatch::Dispatch::Execute(fields, ScatteringWorker{}, tables, bins, weights, sums))
+  if (!vtkArrayDispatch::Dispatch::Execute(
+        fields, ScatteringWorker{}, tables, d, bins, weights, sums))
   {
-    ScatteringWorker{}(fields, tables, bins, weights, sums);
+    ScatteringWorker{}(fields, tables, d, bins, weights, sums);
   }
   scattering = FillEmptyBins(weights, sums);
   return true;

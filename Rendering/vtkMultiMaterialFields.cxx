@@ -306,7 +306,9 @@ vtkDataArray* vtkMultiMaterialFields::GetLightingScalars(vtkDataArray* scalars) 
 
 const double* vtkMultiMaterialFields::GetLightingRange(const double* dataRange) const
 {
-  return this->Count > 1 ? this->CombinedRange : dataRange;
+  // D is an opacity: its tables span [0, 1] whatever the data.
+  static constexpr double UnitRange[2] = { 0.0, 1.0 };
+  return this->Count > 1 ? UnitRange : dataRange;
 }
 
 vtkVolumeProperty* vtkMultiMaterialFields::GetLightingProperty(vtkVolumeProperty* property) const

@@ -130,7 +130,6 @@ private:
   // of (the arrays and their modification times).
   vtkSmartPointer<vtkDataArray> WithArraysArray;
   std::vector<std::pair<vtkDataArray*, vtkMTimeType>> WithArraysFrom;
-  double CombinedRange[2] = { 0.0, 1.0 };
 };
 
 #endif

@@ -602,7 +602,10 @@ bool vtkMultiMaterialVolumeMapper::PrepareMultiMaterial(vtkRenderer* ren, vtkVol
     return false;
   }
   vtkInternals& in = *this->Internals;
-  in.Fields.SetScalars(input.Scalars);
+  if (!in.Fields.SetScalars(input.Scalars))
+  {
+    return false; // more fields than the input check lets through
+  }
   this->NumberOfFields = in.Fields.GetNumberOfFields();
   const bool bricks =
     this->BrickPartitions[0] * this->BrickPartitions[1] * this->BrickPartitions[2] > 1;
