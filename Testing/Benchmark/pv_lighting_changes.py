@@ -24,7 +24,8 @@ Sequences, each change followed by one timed StillRender() per view:
   colour    the colour map edited (no opacity change)
   series    a generated series of 8 steps on the same grid, with ParaView's
             animation caching on (series-2: the second loop, whose target
-            is one ray cast per step)
+            is one ray cast per step); each step is read before the timed
+            renders, so no method pays for the reader
 
 Writes OUT/changes.csv (one row per volume, sequence and method: medians,
 ratios to pv-volume, irradiance updates, probes and the median seconds of each
@@ -252,6 +253,9 @@ def run_volume(name, args, methods, folder, writer, records, checks):
                 if loop == 0 and k == 0:
                     continue  # the views already show step 0
                 def step(t=t):
+                    # Read the step untimed, so that no method pays for
+                    # reading it by rendering first.
+                    source.UpdatePipeline(t)
                     for m in active:
                         m.view.CacheKey = t
                         m.view.ViewTime = t
