@@ -121,6 +121,8 @@ constexpr double Unbounded = std::numeric_limits<double>::infinity();
   X(double, PointLightRadius, 0.0, -mmv::Unbounded, mmv::Unbounded,                                \
     "eq. 12 falloff radius; 0 the lights' attenuation")                                            \
   X(bool, CompileUnusedOpticalTerms, false, 0, 1, "compile terms no material uses")                \
+  X(double, EnvironmentLighting, 0.0, -mmv::Unbounded, mmv::Unbounded,                             \
+    "the sky's strength (the background as a light); 0 off")                                       \
   X(int, ReflectionSource, mmv::ReflectEnvironmentTexture, 0, 1,                                   \
     "environment texture (0) or background (1)")                                                   \
   X(int, ReflectionVisibility, mmv::AutomaticReflectionVisibility, 0, 3,                           \

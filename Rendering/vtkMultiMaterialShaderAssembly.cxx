@@ -34,6 +34,7 @@ std::string VariantDefines(const ShaderVariant& variant)
   s += "#define MMV_USE_PREINTEGRATION " + std::string(variant.PreIntegration ? "1" : "0") + "\n";
   s += "#define MMV_USE_ANISOTROPY " + std::string(variant.Anisotropy ? "1" : "0") + "\n";
   s += "#define MMV_USE_EMISSION " + std::string(variant.Emission ? "1" : "0") + "\n";
+  s += "#define MMV_USE_SKY " + std::string(variant.Sky ? "1" : "0") + "\n";
   s += "#define MMV_USE_RGB_IRRADIANCE " + std::string(variant.RGBIrradiance ? "1" : "0") + "\n";
   s += "#define MMV_ENVIRONMENT " + std::to_string(variant.Environment) + "\n";
   s += "#define MMV_REFLECTION_VISIBILITY " + std::to_string(variant.ReflectionVisibility) + "\n";

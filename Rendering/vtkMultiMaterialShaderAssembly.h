@@ -31,6 +31,7 @@ struct ShaderVariant
   bool PreIntegration = true;
   bool Anisotropy = false; // some material has g != 0 (and there is a light)
   bool Emission = false;   // some material has e != 0
+  bool Sky = false;        // the environment lights the volume (vtkMultiMaterialSky.h)
   // Some material's transmission colour is not white (and there is a light):
   // per-light tints (mmvTint.glsl, MMV_USE_RGB_IRRADIANCE).
   bool RGBIrradiance = false;
@@ -45,7 +46,7 @@ struct ShaderVariant
   {
     return this->NumberOfLights == o.NumberOfLights && this->Fields == o.Fields &&
       this->Reflection == o.Reflection && this->PreIntegration == o.PreIntegration &&
-      this->Anisotropy == o.Anisotropy && this->Emission == o.Emission &&
+      this->Anisotropy == o.Anisotropy && this->Emission == o.Emission && this->Sky == o.Sky &&
       this->RGBIrradiance == o.RGBIrradiance && this->Environment == o.Environment &&
       this->ReflectionVisibility == o.ReflectionVisibility &&
       this->ReflectionCutaway == o.ReflectionCutaway;

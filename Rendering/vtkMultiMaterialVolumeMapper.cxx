@@ -21,6 +21,7 @@
 #include "vtkMultiMaterialShaderAssembly.h"
 #include "vtkMultiMaterialShaderHook.h"
 #include "vtkMultiMaterialShadingUniforms.h"
+#include "vtkMultiMaterialSky.h"
 #include "vtkMultiMaterialTextures.h"
 #include "vtkMultiMaterialThreads.h"
 #include "vtkMultiMaterialVolumeGeometry.h"
@@ -87,6 +88,7 @@ public:
   }
   vtkNew<vtkMultiMaterialTextures> Textures;
   vtkMultiMaterialIrradianceStage Irradiance;
+  vtkMultiMaterialSky Sky; // the environment light
   vtkNew<vtkMultiMaterialShaderHook> ShaderHook;
 
   // The lights of this frame, in object space.
@@ -129,10 +131,18 @@ public:
   {
     this->Uniforms.Apply(
       program, this->Textures, this->Fields.GetTableSize(), this->Irradiance.GetEstimator());
+    if (this->Uniforms.GetVariant().Sky)
+    {
+      this->Sky.SetUniforms(program);
+    }
   }
   void ActivateTextures(bool on)
   {
     this->Uniforms.ActivateTextures(on, this->Textures, this->Irradiance.GetEstimator());
+    if (this->Uniforms.GetVariant().Sky)
+    {
+      on ? this->Sky.Activate() : this->Sky.Deactivate();
+    }
   }
 };
 
@@ -280,6 +290,7 @@ void vtkMultiMaterialVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
 {
   this->Internals->Textures->ReleaseGraphicsResources(window);
   this->Internals->Irradiance.ReleaseGraphicsResources(window);
+  this->Internals->Sky.ReleaseGraphicsResources(window);
   this->Internals->Reflection->ReleaseGraphicsResources(window);
   this->Superclass::ReleaseGraphicsResources(window);
 }
@@ -667,7 +678,11 @@ bool vtkMultiMaterialVolumeMapper::PrepareMultiMaterial(vtkRenderer* ren, vtkVol
     return false;
   }
 
-  // 4. The shader variant and the per-frame uniforms.
+  // 4. The environment light: only when the data or the opacity change.
+  this->SkyShaded = this->UpdateSky(ren, image, lighting, lightingRange,
+    in.Fields.GetLightingProperty(vol->GetProperty()), worldToObject);
+
+  // 5. The shader variant and the per-frame uniforms.
   this->UpdateShading(ren, image, worldToObject, range);
   return true;
 }
@@ -716,6 +731,59 @@ bool vtkMultiMaterialVolumeMapper::UpdateIrradiance(vtkRenderer* ren, vtkVolume*
   this->DeferredIrradianceCount += report.Deferred ? 1 : 0;
   this->IrradianceCacheHitCount += report.CacheHit ? 1 : 0;
   return updated;
+}
+
+bool vtkMultiMaterialVolumeMapper::UpdateSky(vtkRenderer* ren, vtkImageData* image,
+  vtkDataArray* scalars, const double range[2], vtkVolumeProperty* property,
+  vtkMatrix4x4* worldToObject)
+{
+  const double strength = this->Settings.EnvironmentLighting;
+  if (!(strength >= 0.0))
+  {
+    this->WarnOnce("EnvironmentLighting must be 0 or more; the sky is off");
+    return false;
+  }
+  vtkInternals& in = *this->Internals;
+  if (strength == 0.0)
+  {
+    return false;
+  }
+  if (in.ActiveGlobal())
+  {
+    this->WarnOnce("the environment light is not estimated across the pieces of a distributed "
+                   "volume; the sky is off");
+    return false;
+  }
+  std::vector<std::string> problems;
+  const bool dark = in.Sky.SetColors(ren, worldToObject, strength,
+    this->Settings.ReflectionSource == mmv::ReflectEnvironmentTexture, &problems);
+  for (const std::string& problem : problems)
+  {
+    this->WarnOnce(problem);
+  }
+  if (dark)
+  {
+    return false; // a black sky lights nothing: no sky code
+  }
+  std::string problem;
+  if (!in.Sky.Update(vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow()), image, scalars,
+        range, property, in.Fields.GetLightingMaterials(), this->Settings.PreIntegrationTableSize,
+        &problem))
+  {
+    vtkErrorMacro(<< problem);
+    return false;
+  }
+  return true;
+}
+
+int vtkMultiMaterialVolumeMapper::GetSkyUpdateCount()
+{
+  return this->Internals->Sky.GetUpdateCount();
+}
+
+double vtkMultiMaterialVolumeMapper::GetLastSkySeconds()
+{
+  return this->Internals->Sky.GetLastSeconds();
 }
 
 bool vtkMultiMaterialVolumeMapper::UpdateFieldLighting(vtkVolume* vol, vtkDataArray* scalars)
@@ -814,7 +882,7 @@ void vtkMultiMaterialVolumeMapper::CollectShadedLights(
     this->WarnOnce("more than " + std::to_string(mmv::MaxLights) +
       " active lights: shading with the strongest " + std::to_string(mmv::MaxLights));
   }
-  if (in.Lights.empty())
+  if (in.Lights.empty() && !(this->Settings.EnvironmentLighting > 0.0))
   {
     this->WarnOnce("no active light: the volume is shaded with its ambient term only");
   }
@@ -844,6 +912,7 @@ void vtkMultiMaterialVolumeMapper::UpdateShading(
   const bool all = this->Settings.CompileUnusedOpticalTerms;
   variant.Anisotropy = variant.NumberOfLights > 0 && (all || in.Fields.AnyNonZero(mmv::Anisotropy));
   variant.Emission = all || in.Fields.AnyNonZero(mmv::Emission);
+  variant.Sky = this->SkyShaded;
   // Tints only where the estimator computed them (a non-white transmission
   // colour); not forced by CompileUnusedOpticalTerms: without the estimator's
   // tint textures there is nothing to bind.

@@ -223,6 +223,18 @@ public:
   double GetPointLightRadius();
   void SetCompileUnusedOpticalTerms(bool compile);
   bool GetCompileUnusedOpticalTerms();
+  /**
+   * The environment light: the renderer's background (its environment
+   * texture when ReflectionSource takes it) as a sky that lights the volume
+   * through its occlusion, times this strength (default 0: off, and no sky
+   * code in the shader; 1: the background's radiance). Negative or NaN: off,
+   * with a warning. See vtkMultiMaterialSky.h.
+   */
+  void SetEnvironmentLighting(double strength);
+  double GetEnvironmentLighting();
+  /// Estimations of the sky's visibility so far, and the last one's seconds.
+  int GetSkyUpdateCount();
+  double GetLastSkySeconds();
   void SetReflectionSource(int source);
   int GetReflectionSource();
   void SetReflectionVisibility(int visibility);
@@ -379,6 +391,7 @@ protected:
   double LastPrepareSeconds = 0.0;
   int IrradianceDimensions[3] = { 0, 0, 0 };
   int NumberOfShadedLights = 0;
+  bool SkyShaded = false; // the environment light is in this frame's shader
   int NumberOfUpdatedLights = 0;
   int DeferredIrradianceCount = 0;
   int IrradianceCacheHitCount = 0;
@@ -412,6 +425,9 @@ private:
     const double range[2]);
   // The irradiance stage on this frame's inputs; its report becomes the
   // counters and warnings.
+  /// The environment light's visibility and colours; false: no sky this frame.
+  bool UpdateSky(vtkRenderer* ren, vtkImageData* image, vtkDataArray* scalars,
+    const double range[2], vtkVolumeProperty* property, vtkMatrix4x4* worldToObject);
   bool UpdateIrradiance(vtkRenderer* ren, vtkVolume* vol, vtkImageData* image,
     vtkDataArray* scalars, const double range[2], vtkMatrix4x4* worldToObject);
   void CollectShadedLights(vtkRenderer* ren, vtkMatrix4x4* worldToObject);

@@ -37,6 +37,13 @@ uniform mat3 mmv_gradientToObject;     // texture-coordinate gradient -> object-
 // texel centres on the cell centres, so it is already the coordinate of the
 // cell-centre grid that the gradient and irradiance textures cover.
 uniform int mmv_cellData;
+#if MMV_USE_SKY
+uniform sampler3D mmv_sky;  // the sky's visibility moments S0, S1 (vtkSkyVisibility.h)
+uniform vec3 mmv_skyScale;  // data texture coordinate -> sky texture coordinate
+uniform vec3 mmv_skyBias;
+uniform vec3 mmv_skyMean;   // the sky's radiance, L(w) = mean + slope * w (object space)
+uniform mat3 mmv_skySlope;
+#endif
 #if MMV_NUMBER_OF_LIGHTS > 0
 uniform sampler3D mmv_irradiance0;  // lights 0-3, one per channel
 #if MMV_IRRADIANCE_TEXTURES > 1
@@ -140,6 +147,7 @@ struct mmvSamplePoint
   float surface;
   vec4 irradiance0;
   vec4 irradiance1;
+  vec4 sky; // the sky's visibility moments (MMV_USE_SKY)
 };
 
 mmvSamplePoint mmvFetchSamplePoint(vec3 texPos)
@@ -155,6 +163,10 @@ mmvSamplePoint mmvFetchSamplePoint(vec3 texPos)
 
   p.irradiance0 = vec4(0.0);
   p.irradiance1 = vec4(0.0);
+  p.sky = vec4(0.0);
+#if MMV_USE_SKY
+  p.sky = texture(mmv_sky, mmvWholeTexCoord(texPos) * mmv_skyScale + mmv_skyBias);
+#endif
 #if MMV_NUMBER_OF_LIGHTS > 0
   vec3 irradianceCoord = mmvWholeTexCoord(texPos) * mmv_irradianceScale + mmv_irradianceBias;
   p.irradiance0 = texture(mmv_irradiance0, irradianceCoord);
@@ -193,8 +205,12 @@ vec3 mmvShadeField(mmvSamplePoint p, float t, vec4 segment, int field)
 #if MMV_USE_EMISSION
   emission = mmvMaterialParameter(tc, rows + MMV_EMISSION_ROW, MMV_EMISSION_CHANNEL);
 #endif
-  return mmvShadeSample(material, anisotropy, reflection, emission, segment, p.position, p.n,
-    p.v, p.surface, p.irradiance0, p.irradiance1, environment);
+  vec3 radiance = mmvShadeSample(material, anisotropy, reflection, emission, segment, p.position,
+    p.n, p.v, p.surface, p.irradiance0, p.irradiance1, environment);
+#if MMV_USE_SKY
+  radiance += mmvSkyRadiance(material, segment, p.n, p.surface, p.sky, mmv_skyMean, mmv_skySlope);
+#endif
+  return radiance;
 }
 
 // One field's segment shaded at texPos with value t.

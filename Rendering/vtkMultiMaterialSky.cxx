@@ -1,0 +1,220 @@
+#include "vtkMultiMaterialSky.h"
+
+#include "vtkMultiMaterialEnvironment.h"
+#include "vtkMultiMaterialVolumeGeometry.h" // SamePointsMap
+#include "vtkPreIntegrationTable.h"
+#include "vtkSkyVisibility.h"
+
+#include "vtkDataArray.h"
+#include "vtkImageData.h"
+#include "vtkMatrix4x4.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkPiecewiseFunction.h"
+#include "vtkSMPTools.h"
+#include "vtkShaderProgram.h"
+#include "vtkTextureObject.h"
+#include "vtkVolumeProperty.h"
+#include "vtk_glew.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+namespace
+{
+// Optical depth of a fully opaque table entry (-ln 1e-6).
+constexpr double OpaqueDepth = 13.8;
+}
+
+bool vtkMultiMaterialSky::Key::operator==(const Key& o) const
+{
+  return this->Image == o.Image && this->Scalars == o.Scalars && this->DataTime == o.DataTime &&
+    this->Range[0] == o.Range[0] && this->Range[1] == o.Range[1] &&
+    this->TableSize == o.TableSize && this->BuildCount == o.BuildCount;
+}
+
+vtkMultiMaterialSky::vtkMultiMaterialSky() = default;
+vtkMultiMaterialSky::~vtkMultiMaterialSky() = default;
+
+bool vtkMultiMaterialSky::Update(vtkOpenGLRenderWindow* context, vtkImageData* image,
+  vtkDataArray* scalars, const double range[2], vtkVolumeProperty* property,
+  vtkMaterialTransferFunction* materials, int tableSize, std::string* problem)
+{
+  int dims[3];
+  image->GetDimensions(dims);
+  const mmv::IrradianceGrid points = mmv::MakeIrradianceGrid(image, dims);
+  // The extinction the shadows use, over a step of one sky voxel.
+  const int longest = std::max({ dims[0], dims[1], dims[2] });
+  const int stride =
+    std::max(1, (longest - 1 + mmv::SkyVoxelsPerAxis - 2) / (mmv::SkyVoxelsPerAxis - 1));
+  const mmv::IrradianceGrid grid = mmv::CoarsenIrradianceGrid(points, stride);
+  const double step = std::min({ grid.Spacing.x, grid.Spacing.y, grid.Spacing.z });
+  vtkPreIntegrationTable* table = this->Extinction;
+  table->SetScalarOpacity(property->GetScalarOpacity(0));
+  table->SetMaterialTransferFunction(materials);
+  table->SetScalarOpacityUnitDistance(property->GetScalarOpacityUnitDistance(0));
+  table->SetTableSize(tableSize);
+  table->SetScalarRange(range[0], range[1]);
+  table->SetStepLength(step);
+  if (!table->Update())
+  {
+    *problem = "the sky's extinction table could not be built";
+    return false;
+  }
+  Key key;
+  key.Image = image;
+  key.Scalars = scalars;
+  key.DataTime = std::max(scalars->GetMTime(), image->GetMTime());
+  key.Range[0] = range[0];
+  key.Range[1] = range[1];
+  key.TableSize = tableSize;
+  key.BuildCount = table->GetBuildCount();
+  if (this->HasKey && key == this->Held && this->Texture && this->Texture->GetHandle() != 0)
+  {
+    return true;
+  }
+  const auto start = std::chrono::steady_clock::now();
+
+  // Normalised values (NaN: empty), kept between steps.
+  const vtkIdType n = scalars->GetNumberOfTuples();
+  this->Values.resize(static_cast<size_t>(n));
+  const double scale = range[1] > range[0] ? 1.0 / (range[1] - range[0]) : 0.0;
+  vtkSMPTools::For(0, n,
+    [&](vtkIdType first, vtkIdType last)
+    {
+      for (vtkIdType i = first; i < last; ++i)
+      {
+        const double v = (scalars->GetComponent(i, 0) - range[0]) * scale;
+        this->Values[i] =
+          std::isnan(v) ? 0.0f : static_cast<float>(std::min(std::max(v, 0.0), 1.0));
+      }
+    });
+  std::vector<float> sigma(static_cast<size_t>(tableSize));
+  for (int i = 0; i < tableSize; ++i)
+  {
+    const double s = range[0] + (range[1] - range[0]) * i / (tableSize - 1.0);
+    const double alpha = table->LookupShadowOpacity(s, s);
+    sigma[i] = static_cast<float>(
+      (alpha < 1.0 ? std::min(-std::log1p(-alpha), OpaqueDepth) : OpaqueDepth) / step);
+  }
+  mmv::AverageOntoGrid(points, this->Values.data(), grid, this->Coarse, &sigma);
+  mmv::ComputeSkyVisibility(
+    grid, this->Coarse.data(), mmv::SkyDirections(mmv::SkyDirectionCount), this->Moments);
+
+  if (!this->Texture)
+  {
+    this->Texture = vtkSmartPointer<vtkTextureObject>::New();
+  }
+  vtkTextureObject* texture = this->Texture;
+  texture->SetContext(context);
+  const int* m = grid.Dimensions;
+  if (texture->GetHandle() != 0 && static_cast<int>(texture->GetWidth()) == m[0] &&
+    static_cast<int>(texture->GetHeight()) == m[1] && static_cast<int>(texture->GetDepth()) == m[2])
+  {
+    texture->Bind();
+    glTexSubImage3D(
+      GL_TEXTURE_3D, 0, 0, 0, 0, m[0], m[1], m[2], GL_RGBA, GL_FLOAT, this->Moments.data());
+  }
+  else
+  {
+    texture->ReleaseGraphicsResources(context);
+    texture->SetContext(context);
+    texture->SetInternalFormat(GL_RGBA32F);
+    texture->SetFormat(GL_RGBA);
+    texture->SetDataType(GL_FLOAT);
+    if (!texture->Create3DFromRaw(m[0], m[1], m[2], 4, VTK_FLOAT, this->Moments.data()))
+    {
+      *problem = "the sky's visibility texture could not be created";
+      return false;
+    }
+  }
+  texture->SetMinificationFilter(vtkTextureObject::Linear);
+  texture->SetMagnificationFilter(vtkTextureObject::Linear);
+  texture->SetWrapS(vtkTextureObject::ClampToEdge);
+  texture->SetWrapT(vtkTextureObject::ClampToEdge);
+  texture->SetWrapR(vtkTextureObject::ClampToEdge);
+  this->Grid = grid;
+  std::copy(dims, dims + 3, this->DataDimensions);
+  this->Held = key;
+  this->HasKey = true;
+  ++this->UpdateCount;
+  this->LastSeconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return true;
+}
+
+bool vtkMultiMaterialSky::SetColors(vtkRenderer* ren, vtkMatrix4x4* worldToObject, double strength,
+  bool useTexture, std::vector<std::string>* problems)
+{
+  vtkNew<vtkMatrix4x4> objectToWorld;
+  vtkMatrix4x4::Invert(worldToObject, objectToWorld);
+  vtkNew<vtkMultiMaterialEnvironment> environment;
+  environment->Update(ren, objectToWorld,
+    useTexture ? mmv::ReflectEnvironmentTexture : mmv::ReflectBackground, problems);
+  glm::dvec3 mean(0.0);
+  glm::dmat3 slope(0.0);
+  if (environment->GetKind() == mmv::BackgroundEnvironment)
+  {
+    // L(w) = mix(bottom, top, 0.5 + 0.5 w.up): linear in w, so exact.
+    mean = 0.5 * (environment->GetBackgroundBottom() + environment->GetBackgroundTop());
+    slope = glm::outerProduct(
+      0.5 * (environment->GetBackgroundTop() - environment->GetBackgroundBottom()),
+      environment->GetViewUp());
+  }
+  else
+  {
+    // A texture: its least-squares fit by mean + slope w (order-1 spherical
+    // harmonics), from many antipodal directions.
+    const std::vector<glm::dvec3> directions = mmv::SkyDirections(1024);
+    for (const glm::dvec3& w : directions)
+    {
+      const glm::dvec3 l = environment->Lookup(w);
+      mean += l;
+      slope += glm::outerProduct(l, w);
+    }
+    mean /= static_cast<double>(directions.size());
+    slope *= 3.0 / static_cast<double>(directions.size());
+  }
+  this->Mean = glm::vec3(strength * mean);
+  this->Slope = glm::mat3(strength * slope);
+  return glm::length(this->Mean) <= 0.0f;
+}
+
+void vtkMultiMaterialSky::SetUniforms(vtkShaderProgram* program) const
+{
+  program->SetUniformi("mmv_sky", this->Texture->GetTextureUnit());
+  float scale[3], bias[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    mmv::SamePointsMap(this->DataDimensions[a], this->Grid.Dimensions[a], scale[a], bias[a]);
+  }
+  program->SetUniform3f("mmv_skyScale", scale);
+  program->SetUniform3f("mmv_skyBias", bias);
+  program->SetUniform3f("mmv_skyMean", &this->Mean[0]);
+  program->SetUniformMatrix3x3("mmv_skySlope", const_cast<float*>(&this->Slope[0][0]));
+}
+
+void vtkMultiMaterialSky::Activate()
+{
+  if (this->Texture)
+  {
+    this->Texture->Activate();
+  }
+}
+
+void vtkMultiMaterialSky::Deactivate()
+{
+  if (this->Texture)
+  {
+    this->Texture->Deactivate();
+  }
+}
+
+void vtkMultiMaterialSky::ReleaseGraphicsResources(vtkWindow* window)
+{
+  if (this->Texture)
+  {
+    this->Texture->ReleaseGraphicsResources(window);
+  }
+  this->HasKey = false;
+}

@@ -1,0 +1,124 @@
+/**
+ * @class   vtkMultiMaterialSky
+ * @brief   The environment light of vtkMultiMaterialVolumeMapper: the
+ *          renderer's background (or environment texture) as a sky that
+ *          lights the volume through its occlusion.
+ *
+ * Update() estimates the sky's visibility moments (vtkSkyVisibility.h) on a
+ * grid of at most mmv::SkyVoxelsPerAxis voxels per axis spanning the data's
+ * points, from the extinction the shadows use (opacity, unit distance and
+ * the materials' attenuation), averaged over each sky voxel, and uploads them
+ * as one RGBA 3D texture. It re-estimates only when the data, the opacity,
+ * the materials or the range change; the sky's colours (SetColors, from the
+ * background) are uniforms, so a new background only reshades.
+ *
+ * The ray cast adds mmvSkyRadiance (Shaders/mmvShading.glsl) per segment:
+ * the light loop's ambient and diffuse terms integrated over the sky,
+ * ka F0 I_c + w kd E(n) I_c, with the sky's radiance fitted as
+ * L(w) = mean + slope w (exact for VTK's background gradient).
+ * Not a vtkObject: plain state owned by the mapper.
+ */
+#ifndef vtkMultiMaterialSky_h
+#define vtkMultiMaterialSky_h
+
+#include "vtkIrradianceGrid.h"            // IrradianceGrid
+#include "vtkMultiMaterialVolumeModule.h" // export macro
+#include "vtkNew.h"
+#include "vtkSmartPointer.h"
+#include "vtkType.h" // vtkMTimeType
+
+#include <glm/glm.hpp>
+
+#include <vector>
+
+class vtkDataArray;
+class vtkImageData;
+class vtkMaterialTransferFunction;
+class vtkMatrix4x4;
+class vtkOpenGLRenderWindow;
+class vtkPreIntegrationTable;
+class vtkRenderer;
+class vtkShaderProgram;
+class vtkTextureObject;
+class vtkVolumeProperty;
+class vtkWindow;
+
+namespace mmv
+{
+/// The sky's grid has at most this many voxels along an axis: occlusion by
+/// the environment is smooth, and its cost grows with the grid.
+constexpr int SkyVoxelsPerAxis = 40;
+/// Directions the sky's visibility is swept along (SkyDirections).
+constexpr int SkyDirectionCount = 64;
+}
+
+class VTKMULTIMATERIALVOLUME_EXPORT vtkMultiMaterialSky
+{
+public:
+  vtkMultiMaterialSky();
+  ~vtkMultiMaterialSky();
+
+  /**
+   * Brings the visibility up to date for `scalars` (point data of `image`,
+   * one component, normalised over `range`) under `property`'s first
+   * opacity and `materials`' attenuation. False: nothing to bind (an error
+   * was reported through `problem`).
+   */
+  bool Update(vtkOpenGLRenderWindow* context, vtkImageData* image, vtkDataArray* scalars,
+    const double range[2], vtkVolumeProperty* property, vtkMaterialTransferFunction* materials,
+    int tableSize, std::string* problem);
+
+  /// The sky's radiance: `strength` times the renderer's background (its
+  /// environment texture when `useTexture` and it has one), in the object
+  /// space of `worldToObject`. Returns whether the sky is dark (nothing to
+  /// shade).
+  bool SetColors(vtkRenderer* ren, vtkMatrix4x4* worldToObject, double strength, bool useTexture,
+    std::vector<std::string>* problems);
+
+  /// The sky's uniforms and texture unit (the texture must be active).
+  void SetUniforms(vtkShaderProgram* program) const;
+  void Activate();
+  void Deactivate();
+
+  /// Estimations so far, the last one's wall seconds, the grid.
+  int GetUpdateCount() const { return this->UpdateCount; }
+  double GetLastSeconds() const { return this->LastSeconds; }
+  const mmv::IrradianceGrid& GetGrid() const { return this->Grid; }
+  /// The visibility moments of the last estimation (mmv::SkyMomentsPerVoxel per voxel).
+  const std::vector<float>& GetMoments() const { return this->Moments; }
+
+  void ReleaseGraphicsResources(vtkWindow* window);
+
+private:
+  vtkMultiMaterialSky(const vtkMultiMaterialSky&) = delete;
+  void operator=(const vtkMultiMaterialSky&) = delete;
+
+  struct Key
+  {
+    vtkImageData* Image = nullptr;
+    vtkDataArray* Scalars = nullptr;
+    vtkMTimeType DataTime = 0;
+    vtkMTimeType OpacityTime = 0;
+    double Range[2] = { 0.0, 0.0 };
+    int TableSize = 0;
+    int BuildCount = -1; // of the extinction table
+    bool operator==(const Key& o) const;
+  };
+  bool HasKey = false;
+  Key Held;
+
+  vtkNew<vtkPreIntegrationTable> Extinction;
+  std::vector<float> Values; // the data normalised, kept between steps
+  std::vector<float> Coarse; // the extinction on the sky's grid
+  std::vector<float> Moments;
+  mmv::IrradianceGrid Grid;
+  int DataDimensions[3] = { 1, 1, 1 }; // the points the grid spans
+  vtkSmartPointer<vtkTextureObject> Texture;
+  int UpdateCount = 0;
+  double LastSeconds = 0.0;
+
+  glm::vec3 Mean{ 0.0f };
+  glm::mat3 Slope{ 0.0f }; // colour = Slope * direction
+};
+
+#endif

@@ -1,0 +1,235 @@
+// The environment light on the GPU mapper (Rendering/vtkMultiMaterialSky.h):
+// a homogeneous cube lit only by a uniform sky against the quadrature of its
+// exact single scattering and against the path tracer; a new background
+// reshades without estimating again; off compiles no sky code; bad
+// strengths are refused.
+#include "mmvTestScenes.h"
+#include "mmvTestUtilities.h"
+
+#include "vtkDataArray.h"
+#include "vtkMaterialTransferFunction.h"
+#include "vtkMultiMaterialPathTracer.h"
+#include "vtkMultiMaterialVolumeMapper.h"
+#include "vtkSMPTools.h"
+#include "vtkSkyVisibility.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iostream>
+#include <string>
+#include <vector>
+
+namespace mmvtest
+{
+namespace
+{
+
+constexpr int Dims = 17; // cube of side D = 16 (spacing 1)
+constexpr double D = Dims - 1;
+constexpr double Mu = 1.0 / D; // optical depth 1 through the cube
+constexpr int Size = 24;
+const double CubeColor[3] = { 1.0, 0.6, 0.3 };
+
+// A homogeneous cube seen down -z by a parallel camera, no lights, lit by
+// the background as a sky; particle term only (kd = ks = 0).
+struct SkyScene : Scene
+{
+  vtkNew<vtkMaterialTransferFunction> Materials;
+  vtkNew<vtkMultiMaterialVolumeMapper> Mapper;
+  vtkSmartPointer<vtkImageData> Image;
+
+  explicit SkyScene(double grey)
+    : Scene(Size)
+  {
+    vtkSMPTools::SetBackend("STDThread");
+    this->Image = MakeVolume(Dims, [](int, int, int) { return 1.0f; });
+    this->Color->AddRGBPoint(0.0, CubeColor[0], CubeColor[1], CubeColor[2]);
+    this->Color->AddRGBPoint(2.0, CubeColor[0], CubeColor[1], CubeColor[2]);
+    this->Opacity->AddPoint(0.0, 1.0 - std::exp(-Mu));
+    this->Opacity->AddPoint(2.0, 1.0 - std::exp(-Mu));
+    this->Property->SetScalarOpacityUnitDistance(1.0);
+    // ka = 1 / (4 pi): the particle term is physical single scattering.
+    this->Materials->AddNode(1.0, 1.0 / (4.0 * M_PI), 0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 0.0, 0.0);
+    this->Mapper->SetInputData(this->Image);
+    this->Mapper->SetMaterialTransferFunction(this->Materials);
+    this->Mapper->AutoAdjustSampleDistancesOff();
+    this->Mapper->SetSampleDistance(0.25);
+    this->Mapper->SetEnvironmentLighting(1.0);
+    this->Volume->SetMapper(this->Mapper);
+    this->Renderer->SetBackground(grey, grey, grey);
+    this->FrameBounds(this->Image->GetBounds());
+  }
+
+  std::vector<double> CenterPixel()
+  {
+    this->Window->Render();
+    EXPECT_TRUE(this->Mapper->GetMultiMaterialActive());
+    return this->Pixel(Size / 2, Size / 2);
+  }
+};
+
+/// S0 at p in the cube: the sky it sees through the homogeneous medium, by
+/// exact exit distances over many directions.
+double ExactS0(const glm::dvec3& p)
+{
+  const std::vector<glm::dvec3> directions = mmv::SkyDirections(20000);
+  double sum = 0.0;
+  for (const glm::dvec3& w : directions)
+  {
+    double t = std::numeric_limits<double>::infinity();
+    for (int a = 0; a < 3; ++a)
+    {
+      if (w[a] != 0.0)
+      {
+        t = std::min(t, ((w[a] > 0.0 ? D : 0.0) - p[a]) / w[a]);
+      }
+    }
+    sum += std::exp(-Mu * t);
+  }
+  return 4.0 * M_PI * sum / directions.size();
+}
+
+/// The centre pixel (per unit colour) under a uniform sky of radiance L with
+/// ka = 1 / (4 pi): the single scattering along the central ray plus the
+/// background through the cube, L (exp(-mu D) + int (S0 / 4 pi) mu
+/// exp(-mu z) dz), the integral by the midpoint rule.
+double ExactCenter(double L)
+{
+  constexpr int Steps = 64;
+  double scattered = 0.0;
+  for (int i = 0; i < Steps; ++i)
+  {
+    const double z = (i + 0.5) * D / Steps; // depth from the camera's face
+    const glm::dvec3 p(D / 2, D / 2, D - z);
+    scattered += ExactS0(p) / (4.0 * M_PI) * Mu * std::exp(-Mu * z) * D / Steps;
+  }
+  return L * scattered;
+}
+
+bool Has(const std::string& text, const std::string& part)
+{
+  return text.find(part) != std::string::npos;
+}
+
+} // namespace
+
+TEST(EnvironmentLight, UniformSkyOnACubeMatchesItsSingleScatteringAndThePathTracer)
+{
+  // The path tracer limited to one scattering event, phase function only,
+  // is the physical truth of this scene; the quadrature of the exact
+  // single scattering is its closed form. The GPU takes the sky's
+  // visibility from 64 swept directions.
+  constexpr double L = 0.6;
+  SkyScene scene(L);
+  const double scattered = ExactCenter(L);
+  const double background = L * std::exp(-Mu * D);
+  const std::vector<double> gpu = scene.CenterPixel();
+  EXPECT_EQ(scene.Mapper->GetSkyUpdateCount(), 1);
+  vtkNew<vtkMultiMaterialPathTracer> tracer;
+  tracer->SetMaxBounces(1);
+  tracer->SurfaceScatteringOff();
+  tracer->SetSamplesPerPixel(256);
+  vtkImageData* physical = tracer->RenderToImage(scene.Renderer, scene.Volume);
+  ASSERT_NE(physical, nullptr);
+  vtkDataArray* radiance = physical->GetPointData()->GetArray("Radiance");
+  vtkDataArray* error = physical->GetPointData()->GetArray("StandardError");
+  // The mean of the central 6 x 6 pixels.
+  double truth[3] = { 0.0, 0.0, 0.0 };
+  double se[3] = { 0.0, 0.0, 0.0 };
+  for (int j = Size / 2 - 3; j < Size / 2 + 3; ++j)
+  {
+    for (int i = Size / 2 - 3; i < Size / 2 + 3; ++i)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        truth[c] += radiance->GetComponent(j * Size + i, c) / 36.0;
+        se[c] += std::pow(error->GetComponent(j * Size + i, c) / 36.0, 2.0);
+      }
+    }
+  }
+  std::cout << "uniform sky " << L << ": single scattering " << scattered << " + background "
+            << background << "; GPU " << gpu[0] << ", path tracer " << truth[0] << " +- "
+            << std::sqrt(se[0]) << "\n";
+  for (int c = 0; c < 3; ++c)
+  {
+    const double expected = CubeColor[c] * scattered + background;
+    EXPECT_NEAR(truth[c], expected, 5.0 * std::sqrt(se[c]) + 0.002) << "path tracer " << c;
+    EXPECT_NEAR(gpu[c], expected, 2.0 / 255.0 + 0.03 * expected) << "GPU " << c;
+  }
+  // The sky is what lights it: without it (and without lights) the
+  // ambient term ka I_c alone remains over the background.
+  scene.Mapper->SetEnvironmentLighting(0.0);
+  ErrorCounter quiet(scene.Mapper); // "no active light"
+  const std::vector<double> dark = scene.CenterPixel();
+  for (int c = 0; c < 3; ++c)
+  {
+    const double ambient = CubeColor[c] * (1.0 - std::exp(-Mu * D)) / (4.0 * M_PI);
+    EXPECT_NEAR(dark[c], background + ambient, 2.0 / 255.0) << c;
+  }
+  EXPECT_GE(quiet.Warnings(), 1);
+}
+
+TEST(EnvironmentLight, BackgroundChangeReshadesWithoutEstimating)
+{
+  // The visibility depends on the data and the opacity only: a new
+  // background colour changes the image by the sky's share, with no new
+  // estimation; an opacity edit estimates again.
+  SkyScene scene(0.3);
+  const std::vector<double> first = scene.CenterPixel();
+  ASSERT_EQ(scene.Mapper->GetSkyUpdateCount(), 1);
+  scene.Renderer->SetBackground(0.6, 0.6, 0.6);
+  const std::vector<double> second = scene.CenterPixel();
+  EXPECT_EQ(scene.Mapper->GetSkyUpdateCount(), 1);
+  // Every term is proportional to the background: twice as bright.
+  for (int c = 0; c < 3; ++c)
+  {
+    EXPECT_NEAR(second[c], 2.0 * first[c], 3.0 / 255.0) << c;
+  }
+  // A gradient background rotates nothing either: still no estimation.
+  scene.Renderer->GradientBackgroundOn();
+  scene.Renderer->SetBackground2(0.9, 0.9, 0.9);
+  scene.CenterPixel();
+  EXPECT_EQ(scene.Mapper->GetSkyUpdateCount(), 1);
+  scene.Opacity->AddPoint(1.0, 0.2);
+  scene.CenterPixel();
+  EXPECT_EQ(scene.Mapper->GetSkyUpdateCount(), 2);
+}
+
+TEST(EnvironmentLight, OffOrBlackSkyCompilesNoSkyCode)
+{
+  SkyScene scene(0.5);
+  scene.CenterPixel();
+  EXPECT_TRUE(Has(scene.Mapper->GetLastFragmentShaderSource(), "#define MMV_USE_SKY 1"));
+  scene.Mapper->SetEnvironmentLighting(0.0);
+  {
+    ErrorCounter quiet(scene.Mapper); // "no active light"
+    scene.CenterPixel();
+  }
+  EXPECT_TRUE(Has(scene.Mapper->GetLastFragmentShaderSource(), "#define MMV_USE_SKY 0"));
+  scene.Mapper->SetEnvironmentLighting(1.0);
+  scene.Renderer->SetBackground(0.0, 0.0, 0.0);
+  {
+    ErrorCounter quiet(scene.Mapper);
+    scene.CenterPixel();
+  }
+  EXPECT_TRUE(Has(scene.Mapper->GetLastFragmentShaderSource(), "#define MMV_USE_SKY 0"));
+  EXPECT_EQ(scene.Mapper->GetSkyUpdateCount(), 1); // a black sky estimates nothing
+}
+
+TEST(EnvironmentLight, NegativeOrNaNStrengthIsOffWithAWarning)
+{
+  for (double strength : { -1.0, std::nan("") })
+  {
+    SkyScene scene(0.5);
+    scene.Mapper->SetEnvironmentLighting(strength);
+    ErrorCounter counter(scene.Mapper);
+    scene.CenterPixel();
+    EXPECT_GE(counter.Warnings(), 1) << strength;
+    EXPECT_EQ(counter.Errors(), 0) << strength;
+    EXPECT_TRUE(Has(scene.Mapper->GetLastFragmentShaderSource(), "#define MMV_USE_SKY 0"));
+    EXPECT_EQ(scene.Mapper->GetSkyUpdateCount(), 0);
+  }
+}
+
+} // namespace mmvtest
