@@ -10,6 +10,7 @@
 #include "vtkMatrix4x4.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkPiecewiseFunction.h"
+#include "vtkRenderer.h"
 #include "vtkSMPTools.h"
 #include "vtkShaderProgram.h"
 #include "vtkTextureObject.h"
@@ -35,6 +36,32 @@ bool vtkMultiMaterialSky::Key::operator==(const Key& o) const
 
 vtkMultiMaterialSky::vtkMultiMaterialSky() = default;
 vtkMultiMaterialSky::~vtkMultiMaterialSky() = default;
+
+bool vtkMultiMaterialSky::Refresh(
+  const mmv::SkyInputs& in, std::vector<std::string>& warnings, std::string& error)
+{
+  if (!(in.Strength >= 0.0))
+  {
+    warnings.emplace_back("EnvironmentLighting must be 0 or more; the sky is off");
+    return false;
+  }
+  if (in.Strength == 0.0)
+  {
+    return false;
+  }
+  if (in.Distributed)
+  {
+    warnings.emplace_back("the environment light is not estimated across the pieces of a "
+                          "distributed volume; the sky is off");
+    return false;
+  }
+  if (this->SetColors(in.Renderer, in.WorldToObject, in.Strength, in.UseTexture, &warnings))
+  {
+    return false; // a black sky lights nothing: no sky code
+  }
+  return this->Update(vtkOpenGLRenderWindow::SafeDownCast(in.Renderer->GetRenderWindow()), in.Image,
+    in.Scalars, in.Range, in.Property, in.Materials, in.TableSize, &error);
+}
 
 bool vtkMultiMaterialSky::Update(vtkOpenGLRenderWindow* context, vtkImageData* image,
   vtkDataArray* scalars, const double range[2], vtkVolumeProperty* property,

@@ -29,6 +29,7 @@
 
 #include <glm/glm.hpp>
 
+#include <string>
 #include <vector>
 
 class vtkDataArray;
@@ -52,11 +53,38 @@ constexpr int SkyVoxelsPerAxis = 40;
 constexpr int SkyDirectionCount = 64;
 }
 
+namespace mmv
+{
+/// What one frame's sky reads.
+struct SkyInputs
+{
+  vtkRenderer* Renderer = nullptr;
+  vtkMatrix4x4* WorldToObject = nullptr; // the volume's
+  vtkImageData* Image = nullptr;
+  vtkDataArray* Scalars = nullptr; // one component, point data of Image
+  const double* Range = nullptr;
+  vtkVolumeProperty* Property = nullptr; // its first opacity
+  vtkMaterialTransferFunction* Materials = nullptr;
+  int TableSize = 256;
+  double Strength = 0.0;    // EnvironmentLighting
+  bool UseTexture = true;   // the environment texture, when the renderer has one
+  bool Distributed = false; // the image is one piece of a distributed volume
+};
+}
+
 class VTKMULTIMATERIALVOLUME_EXPORT vtkMultiMaterialSky
 {
 public:
   vtkMultiMaterialSky();
   ~vtkMultiMaterialSky();
+
+  /**
+   * The frame's sky: its colours, and its visibility when the data or the
+   * opacity changed. False: no sky this frame (off, black, distributed,
+   * a bad strength: `warnings` say why; or the GPU failed: `error`).
+   */
+  bool Refresh(
+    const mmv::SkyInputs& inputs, std::vector<std::string>& warnings, std::string& error);
 
   /**
    * Brings the visibility up to date for `scalars` (point data of `image`,

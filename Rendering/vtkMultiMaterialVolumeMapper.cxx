@@ -737,43 +737,24 @@ bool vtkMultiMaterialVolumeMapper::UpdateSky(vtkRenderer* ren, vtkImageData* ima
   vtkDataArray* scalars, const double range[2], vtkVolumeProperty* property,
   vtkMatrix4x4* worldToObject)
 {
-  const double strength = this->Settings.EnvironmentLighting;
-  if (!(strength >= 0.0))
-  {
-    this->WarnOnce("EnvironmentLighting must be 0 or more; the sky is off");
-    return false;
-  }
   vtkInternals& in = *this->Internals;
-  if (strength == 0.0)
+  mmv::SkyInputs inputs{ ren, worldToObject, image, scalars, range, property,
+    in.Fields.GetLightingMaterials(), this->Settings.PreIntegrationTableSize,
+    this->Settings.EnvironmentLighting,
+    this->Settings.ReflectionSource == mmv::ReflectEnvironmentTexture,
+    in.ActiveGlobal() != nullptr };
+  std::vector<std::string> warnings;
+  std::string error;
+  const bool shaded = in.Sky.Refresh(inputs, warnings, error);
+  for (const std::string& warning : warnings)
   {
-    return false;
+    this->WarnOnce(warning);
   }
-  if (in.ActiveGlobal())
+  if (!error.empty())
   {
-    this->WarnOnce("the environment light is not estimated across the pieces of a distributed "
-                   "volume; the sky is off");
-    return false;
+    vtkErrorMacro(<< error);
   }
-  std::vector<std::string> problems;
-  const bool dark = in.Sky.SetColors(ren, worldToObject, strength,
-    this->Settings.ReflectionSource == mmv::ReflectEnvironmentTexture, &problems);
-  for (const std::string& problem : problems)
-  {
-    this->WarnOnce(problem);
-  }
-  if (dark)
-  {
-    return false; // a black sky lights nothing: no sky code
-  }
-  std::string problem;
-  if (!in.Sky.Update(vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow()), image, scalars,
-        range, property, in.Fields.GetLightingMaterials(), this->Settings.PreIntegrationTableSize,
-        &problem))
-  {
-    vtkErrorMacro(<< problem);
-    return false;
-  }
-  return true;
+  return shaded;
 }
 
 int vtkMultiMaterialVolumeMapper::GetSkyUpdateCount()

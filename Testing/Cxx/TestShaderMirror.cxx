@@ -454,6 +454,58 @@ TEST(ShaderMirror, BlinnPhongAndEnvironmentMatchCPU)
   EXPECT_GT(highlights, 10);
 }
 
+const char* SkyBody = R"(
+void main()
+{
+  float theta = 3.14159265358979 * texCoord.y;
+  float phi = 6.28318530717959 * texCoord.x;
+  vec3 n = vec3(sin(theta) * cos(phi), sin(theta) * sin(phi), cos(theta));
+  // Visibility moments from a mostly occluded sky to an open one.
+  vec4 sky = vec4(12.566 * (0.05 + 0.95 * texCoord.x), 6.0 * (texCoord.y - 0.5), -5.0 * texCoord.x,
+    2.0);
+  mat3 slope = mat3(0.1, 0.0, 0.05, 0.2, 0.1, 0.0, 0.3, 0.2, 0.1);
+  vec4 material = vec4(0.08, 0.6, 0.3, 20.0);
+  vec4 segment = vec4(0.3, 0.2, 0.1, 0.6);
+  vec3 c = mmvSkyRadiance(material, segment, n, texCoord.y, sky, vec3(0.5, 0.4, 0.3), slope);
+  gl_FragData[0] = vec4(c, 0.0);
+}
+)";
+
+TEST(ShaderMirror, SkyRadianceMatchesCPU)
+{
+  ShaderRunner runner;
+  ASSERT_NE(runner.GL, nullptr);
+  std::vector<float> pixels;
+  ASSERT_TRUE(runner.Run(
+    SkyBody, [](vtkShaderProgram*) {}, pixels));
+  // GLSL's mat3 takes columns: the same numbers as glm's constructor.
+  const glm::dmat3 slope(0.1, 0.0, 0.05, 0.2, 0.1, 0.0, 0.3, 0.2, 0.1);
+  int clamped = 0;
+  for (int j = 0; j < Size; ++j)
+  {
+    for (int i = 0; i < Size; ++i)
+    {
+      const double x = (i + 0.5) / Size;
+      const double y = (j + 0.5) / Size;
+      const glm::dvec3 n = SweepLight(i, j);
+      const glm::dvec4 sky(12.566 * (0.05 + 0.95 * x), 6.0 * (y - 0.5), -5.0 * x, 2.0);
+      const glm::dvec3 c = mmv::mmvSkyRadiance(glm::dvec4(0.08, 0.6, 0.3, 20.0),
+        glm::dvec4(0.3, 0.2, 0.1, 0.6), n, y, sky, glm::dvec3(0.5, 0.4, 0.3), slope);
+      for (int k = 0; k < 3; ++k)
+      {
+        ASSERT_NEAR(pixels[4 * (j * Size + i) + k], c[k], 1e-5) << i << "," << j << " " << k;
+      }
+      // The cosine fit's clamp must be reached too: the diffuse share at 0.
+      const glm::dvec3 s1(sky.y, sky.z, sky.w);
+      const glm::dvec3 mean(0.5, 0.4, 0.3);
+      const glm::dvec3 f0 = mean * sky.x + slope * s1;
+      const glm::dvec3 f1n = mean * glm::dot(s1, n) + (slope * n) * (sky.x / 3.0);
+      clamped += 0.25 * f0.x + 0.5 * f1n.x < 0.0 ? 1 : 0;
+    }
+  }
+  EXPECT_GT(clamped, 0);
+}
+
 const char* PhaseAndEmissionBody = R"(
 void main()
 {
