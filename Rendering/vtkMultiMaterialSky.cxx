@@ -175,7 +175,7 @@ bool vtkMultiMaterialSky::SetColors(vtkRenderer* ren, vtkMatrix4x4* worldToObjec
 {
   vtkNew<vtkMatrix4x4> objectToWorld;
   vtkMatrix4x4::Invert(worldToObject, objectToWorld);
-  vtkNew<vtkMultiMaterialEnvironment> environment;
+  vtkMultiMaterialEnvironment* environment = this->Environment;
   environment->Update(ren, objectToWorld,
     useTexture ? mmv::ReflectEnvironmentTexture : mmv::ReflectBackground, problems);
   glm::dvec3 mean(0.0);

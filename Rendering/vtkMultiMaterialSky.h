@@ -35,6 +35,7 @@
 class vtkDataArray;
 class vtkImageData;
 class vtkMaterialTransferFunction;
+class vtkMultiMaterialEnvironment;
 class vtkMatrix4x4;
 class vtkOpenGLRenderWindow;
 class vtkPreIntegrationTable;
@@ -103,6 +104,10 @@ public:
   bool SetColors(vtkRenderer* ren, vtkMatrix4x4* worldToObject, double strength, bool useTexture,
     std::vector<std::string>* problems);
 
+  /// The environment the colours come from (pin ParaView's background on it,
+  /// as on the reflections').
+  vtkMultiMaterialEnvironment* GetEnvironment() { return this->Environment; }
+
   /// The sky's uniforms and texture unit (the texture must be active).
   void SetUniforms(vtkShaderProgram* program) const;
   void Activate();
@@ -135,6 +140,7 @@ private:
   bool HasKey = false;
   Key Held;
 
+  vtkNew<vtkMultiMaterialEnvironment> Environment;
   vtkNew<vtkPreIntegrationTable> Extinction;
   std::vector<float> Values; // the data normalised, kept between steps
   std::vector<float> Coarse; // the extinction on the sky's grid

@@ -213,12 +213,13 @@ void vtkMultiMaterialVolumeMapper::SetGlobalPrefilteredVolume(vtkGlobalPrefilter
   }
 }
 
-// The reflection's environment keeps the pinned colours (it reads them in
-// every Update instead of the renderer's).
+// The reflection's and the sky's environments keep the pinned colours (they
+// read them in every Update instead of the renderer's).
 void vtkMultiMaterialVolumeMapper::SetReflectionBackground(
   const double bottom[3], const double top[3])
 {
-  if (this->Internals->Reflection->GetEnvironment()->SetBackgroundOverride(bottom, top))
+  const bool sky = this->Internals->Sky.GetEnvironment()->SetBackgroundOverride(bottom, top);
+  if (this->Internals->Reflection->GetEnvironment()->SetBackgroundOverride(bottom, top) || sky)
   {
     this->Modified();
   }
@@ -226,7 +227,8 @@ void vtkMultiMaterialVolumeMapper::SetReflectionBackground(
 
 void vtkMultiMaterialVolumeMapper::ClearReflectionBackground()
 {
-  if (this->Internals->Reflection->GetEnvironment()->ClearBackgroundOverride())
+  const bool sky = this->Internals->Sky.GetEnvironment()->ClearBackgroundOverride();
+  if (this->Internals->Reflection->GetEnvironment()->ClearBackgroundOverride() || sky)
   {
     this->Modified();
   }

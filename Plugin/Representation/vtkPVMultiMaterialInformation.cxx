@@ -21,6 +21,7 @@ struct NumberGetter
 const NumberGetter NumberGetters[] = {
   { "IrradianceUpdateCount",
     [](Representation* r) { return double(r->GetIrradianceUpdateCount()); } },
+  { "SkyUpdateCount", [](Representation* r) { return double(r->GetSkyUpdateCount()); } },
   { "IrradianceCacheHitCount",
     [](Representation* r) { return double(r->GetIrradianceCacheHitCount()); } },
   { "DiffusionPassCount", [](Representation* r) { return double(r->GetDiffusionPassCount()); } },

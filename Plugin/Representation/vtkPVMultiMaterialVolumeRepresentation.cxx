@@ -354,6 +354,7 @@ vtkPVMMVForward(DimLightCoarsening, bool);
 vtkPVMMVForward(LightDirectionTolerance, double);
 vtkPVMMVForward(ReflectionSource, int);
 vtkPVMMVForward(ReflectionVisibility, int);
+vtkPVMMVForward(EnvironmentLighting, double);
 #undef vtkPVMMVForward
 
 // What depends on the view or the data is kept here and handed over in
@@ -398,6 +399,12 @@ int vtkPVMultiMaterialVolumeRepresentation::GetIrradianceUpdateCount()
 {
   auto* mapper = this->GetMultiMaterialMapper();
   return mapper ? mapper->GetIrradianceUpdateCount() : 0;
+}
+
+int vtkPVMultiMaterialVolumeRepresentation::GetSkyUpdateCount()
+{
+  auto* mapper = this->GetMultiMaterialMapper();
+  return mapper ? mapper->GetSkyUpdateCount() : 0;
 }
 
 int vtkPVMultiMaterialVolumeRepresentation::GetDiffusionPassCount()

@@ -131,6 +131,9 @@ public:
   void SetIrradianceCacheMB(double megabytes);
   void SetReflectionSource(int source);
   void SetReflectionVisibility(int visibility);
+  /// vtkMultiMaterialVolumeMapper::SetEnvironmentLighting: the background
+  /// as a sky, this strong (0: off).
+  void SetEnvironmentLighting(double strength);
   ///@}
 
   /// Point and spot lights' falloff: 0 (default), the lights' attenuation;
@@ -155,6 +158,7 @@ public:
   ///@{
   /// The mapper's counters on this process (see vtkMultiMaterialVolumeMapper).
   int GetIrradianceUpdateCount();
+  int GetSkyUpdateCount();
   int GetDiffusionPassCount();
   int GetPreIntegrationCount();
   int GetRayCastCount();

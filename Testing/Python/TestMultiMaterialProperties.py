@@ -257,6 +257,25 @@ checker.check(mmv.mean_difference(whole, exact) < 1e-9,
               "PieceIrradianceOnly off in one process draws the same image")
 rep.PieceIrradianceOnly = 1
 
+# EnvironmentLighting: off by default; on, the background lights the volume
+# (brighter on a grey background) after one estimation of the sky's
+# occlusion; a new background colour reshades without estimating again.
+checker.check(rep.EnvironmentLighting == 0.0, "EnvironmentLighting defaults to 0 (off)")
+view.UseColorPaletteForBackground = 0
+view.Background = [0.4, 0.4, 0.4]
+dark = render()
+rep.EnvironmentLighting = 1.0
+lit = render()
+sky = mmv.info(rep, "SkyUpdateCount")
+checker.check(sky == 1, "EnvironmentLighting 1 estimates the sky once (%s)" % sky)
+brighter = float((lit.astype(float) - dark.astype(float)).mean())
+checker.check(brighter > 1.0, "the sky brightens the volume (mean +%.2f grey levels)" % brighter)
+view.Background = [0.8, 0.8, 0.8]
+render()
+checker.check(mmv.info(rep, "SkyUpdateCount") == sky,
+              "a new background reshades without estimating the sky again")
+rep.EnvironmentLighting = 0.0
+
 log = errors.take_errors()
 checker.check(log == "", "no VTK errors: %r" % log[:500])
 checker.finish()

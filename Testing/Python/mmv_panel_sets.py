@@ -3,13 +3,13 @@ the controls it shows, by property name ("group:<label>" for a group's own
 widget). PVMultiMaterialPanel (from the proxy XML) and GUI.PropertiesPanel
 (the real client's widgets) assert the same sets."""
 
-OWN = {"MaterialNodes", "LightingQuality", "FieldArrays", "MultipleScattering",
-       "ReflectionSource", "InteractiveIrradiance", "GradientSmoothing", "LightFalloff",
+OWN = {"MaterialNodes", "LightingQuality", "FieldArrays", "MultipleScattering", "EnvironmentLighting",
+       "ReflectionSource", "GradientSmoothing", "LightFalloff",
        "SamplingDimensions"}
 VOLUME = {"ScalarOpacityUnitDistance", "BlendMode", "UseCropping"}
 PARAVIEW = {"Representation", "group:Coloring", "MapScalars", "Position", "Scale", "Orientation",
             "Origin", "Pickable", "PolarAxes", "DataAxesGrid"}
-INTERNALS = {"ShadowEstimation", "PiecewiseShadowSlices", "ExponentialDiffusion",
+INTERNALS = {"InteractiveIrradiance", "ShadowEstimation", "PiecewiseShadowSlices", "ExponentialDiffusion",
              "PieceIrradianceOnly", "LightDirectionTolerance", "ReflectionVisibility",
              "IrradianceErrorBound", "IrradianceMemoryMB", "IrradianceScale", "DimLightCoarsening"}
 DEAD = {"Opacity", "Specular", "PointSize", "LineWidth", "Texture", "group:Edge Styling",
@@ -18,7 +18,8 @@ DEAD = {"Opacity", "Specular", "PointSize", "LineWidth", "Texture", "group:Edge 
 
 # The gear's advanced view, and the default view.
 ADVANCED = OWN | VOLUME | PARAVIEW
-DEFAULT = {"MaterialNodes", "LightingQuality", "FieldArrays", "MultipleScattering", "BlendMode",
+DEFAULT = {"MaterialNodes", "LightingQuality", "FieldArrays", "MultipleScattering",
+           "EnvironmentLighting", "BlendMode",
            "UseCropping", "Representation", "group:Coloring", "DataAxesGrid"}
 # Shown besides ADVANCED with UseCropping on and the inverse-square falloff.
 WITH_CROPPING_AND_RADIUS = {"group:Cropping Parameters", "PointLightRadius"}
