@@ -12,6 +12,7 @@
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkRenderer.h"
+#include "vtkSkyVisibility.h"
 #include "vtkTexture.h"
 
 #include <algorithm>
@@ -237,6 +238,30 @@ glm::dvec3 vtkMultiMaterialEnvironment::Lookup(const glm::dvec3& d) const
   // Faces are sampled within themselves: a texel at the edge of a face is
   // clamped there (no seamless filtering), as VTK sets cube maps up.
   return this->SampleImage(face, st, false);
+}
+
+void vtkMultiMaterialEnvironment::FitLinear(glm::dvec3& mean, glm::dmat3& slope) const
+{
+  if (this->Kind == mmv::BackgroundEnvironment)
+  {
+    // mix(bottom, top, 0.5 + 0.5 w.up) is linear in w: the fit is exact.
+    mean = 0.5 * (this->Bottom + this->Top);
+    slope = glm::outerProduct(0.5 * (this->Top - this->Bottom), this->ViewUp);
+    return;
+  }
+  // A texture: the order-1 spherical-harmonic projection, over many
+  // antipodal directions.
+  const std::vector<glm::dvec3> directions = mmv::SkyDirections(1024);
+  mean = glm::dvec3(0.0);
+  slope = glm::dmat3(0.0);
+  for (const glm::dvec3& w : directions)
+  {
+    const glm::dvec3 l = this->Lookup(w);
+    mean += l;
+    slope += glm::outerProduct(l, w);
+  }
+  mean /= static_cast<double>(directions.size());
+  slope *= 3.0 / static_cast<double>(directions.size());
 }
 
 vtkTexture* vtkMultiMaterialEnvironment::GetTexture() const

@@ -73,6 +73,12 @@ public:
   /// c_r along object-space direction d (any length but zero), on the CPU.
   glm::dvec3 Lookup(const glm::dvec3& d) const;
 
+  /// The environment as a sky of radiance mean + slope w (object space):
+  /// exact for the background's gradient, the least-squares (order-1
+  /// spherical-harmonic) fit of a texture. vtkMultiMaterialSky and the
+  /// reference renderer light the volume with it.
+  void FitLinear(glm::dvec3& mean, glm::dmat3& slope) const;
+
   ///@{
   /// What the GPU side uploads and binds: the renderer's texture (null for
   /// the background), whether its images are grey (one or two components),

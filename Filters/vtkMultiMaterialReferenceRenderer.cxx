@@ -1,6 +1,7 @@
 #include "vtkMultiMaterialReferenceRenderer.h"
 
 #include "vtkMultiMaterialEnvironment.h"
+#include "vtkSkyVisibility.h"
 
 #include "vtkAbstractVolumeMapper.h"
 #include "vtkCamera.h"
@@ -101,7 +102,12 @@ struct Scene
   bool Reflection = false;
   const vtkMultiMaterialEnvironment* Environment = nullptr; // c_r
   bool ReflectionVisibility = false;                        // I(x, w_r) by a shadow ray along w_r
-  double ReflectionOffset = 0.0;                            // object units along n (self-occlusion)
+  // The environment light: S0 and S1 at the data points, one array each,
+  // and the sky's radiance mean + slope w (empty arrays: off).
+  std::vector<double> SkyMoments[mmv::SkyMomentsPerVoxel];
+  dvec3 SkyMean{ 0.0 };
+  glm::dmat3 SkySlope{ 0.0 };
+  double ReflectionOffset = 0.0; // object units along n (self-occlusion)
 
   dvec3 ToIndex(const dvec3& x) const { return this->ObjectToIndex * (x - this->Origin); }
 
@@ -258,8 +264,21 @@ struct Scene
       arriving[k] = this->Radiances[k] * tint[k];
     }
     const dvec3* radiances = tinted ? arriving : this->Radiances.data();
-    return mmv::mmvShadeSample(material, m[mmv::Anisotropy], reflection, m[mmv::Emission], segment,
-      x, n, v, surface, this->Sources.data(), radiances, irradiance, count, environment);
+    const bool sky = !this->SkyMoments[0].empty();
+    dvec3 radiance =
+      mmv::mmvShadeSample(material, m[mmv::Anisotropy], reflection, m[mmv::Emission], segment, x, n,
+        v, surface, this->Sources.data(), radiances, irradiance, count, environment, sky);
+    if (sky)
+    {
+      dvec4 moments;
+      for (int c = 0; c < mmv::SkyMomentsPerVoxel; ++c)
+      {
+        moments[c] = this->Data.SampleArray(this->SkyMoments[c].data(), p);
+      }
+      radiance +=
+        mmv::mmvSkyRadiance(material, segment, n, surface, moments, this->SkyMean, this->SkySlope);
+    }
+    return radiance;
   }
 
   // Eq. 17's I(x, w_r) c_r(w_r) (Shaders/mmvReflection.glsl): the
@@ -368,6 +387,7 @@ vtkImageData* vtkMultiMaterialReferenceRenderer::RenderToImage(vtkRenderer* ren,
     this->SetPointLightRadius(mmvMapper->Illumination.PointLightRadius);
     this->SetReflectionSource(mmvMapper->Illumination.ReflectionSource);
     this->SetReflectionVisibility(mmvMapper->Illumination.ReflectionVisibility);
+    this->SetEnvironmentLighting(mmvMapper->Illumination.EnvironmentLighting);
   }
   const int* size = ren->GetSize();
   return this->Render(ren, size[0], size[1]);
@@ -566,6 +586,55 @@ void TracePixels(const Scene& scene, vtkRenderer* ren, vtkMatrix4x4* ndcToObject
 }
 }
 
+namespace
+{
+/// The environment light (vtkMultiMaterialSky's model): the sky's radiance
+/// fitted as mean + slope w, and its visibility moments at every data point
+/// from the shadows' extinction there.
+void PlaceSky(Scene& scene, vtkRenderer* ren, vtkMatrix4x4* objectToWorld,
+  vtkMultiMaterialEnvironment* environment, vtkImageData* image, const std::vector<double>& values,
+  double strength, int source, std::vector<std::string>& problems)
+{
+  if (!(strength >= 0.0))
+  {
+    problems.emplace_back("EnvironmentLighting must be 0 or more; the sky is off");
+    return;
+  }
+  if (strength == 0.0)
+  {
+    return;
+  }
+  environment->Update(ren, objectToWorld, source, &problems);
+  environment->FitLinear(scene.SkyMean, scene.SkySlope);
+  scene.SkyMean *= strength;
+  scene.SkySlope *= strength;
+  if (glm::length(scene.SkyMean) <= 0.0)
+  {
+    return; // a black sky lights nothing
+  }
+  const mmv::IrradianceGrid grid = mmv::MakeIrradianceGrid(image, scene.Data.Dims);
+  std::vector<float> sigma(values.size());
+  for (size_t v = 0; v < values.size(); ++v)
+  {
+    int i;
+    double w;
+    scene.Tables.Locate(values[v], i, w);
+    sigma[v] = static_cast<float>(TransferTables::Lerp(scene.Tables.Sigma, 1, 0, i, w));
+  }
+  std::vector<float> moments;
+  mmv::ComputeSkyVisibility(
+    grid, sigma.data(), mmv::SkyDirections(mmv::SkyDirectionCount), moments);
+  for (int c = 0; c < mmv::SkyMomentsPerVoxel; ++c)
+  {
+    scene.SkyMoments[c].resize(values.size());
+    for (size_t v = 0; v < values.size(); ++v)
+    {
+      scene.SkyMoments[c][v] = moments[v * mmv::SkyMomentsPerVoxel + c];
+    }
+  }
+}
+}
+
 vtkImageData* vtkMultiMaterialReferenceRenderer::Render(vtkRenderer* ren, int width, int height)
 {
   const auto start = std::chrono::steady_clock::now();
@@ -609,6 +678,9 @@ vtkImageData* vtkMultiMaterialReferenceRenderer::Render(vtkRenderer* ren, int wi
     PlaceEnvironment(scene, ren, objectToWorld, environment, this->ReflectionSource,
       this->ReflectionVisibility, problems);
   }
+  vtkNew<vtkMultiMaterialEnvironment> sky;
+  PlaceSky(scene, ren, objectToWorld, sky, image, values, this->EnvironmentLighting,
+    this->ReflectionSource, problems);
   for (const std::string& problem : problems)
   {
     if (!problem.empty())
@@ -667,6 +739,7 @@ void vtkMultiMaterialReferenceRenderer::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MinimumTransmittance: " << this->MinimumTransmittance << "\n";
   os << indent << "ReflectionSource: " << this->ReflectionSource << "\n";
   os << indent << "ReflectionVisibility: " << this->ReflectionVisibility << "\n";
+  os << indent << "EnvironmentLighting: " << this->EnvironmentLighting << "\n";
   os << indent << "LastRenderSeconds: " << this->LastRenderSeconds << "\n";
   os << indent << "NumberOfSamples: " << this->NumberOfSamples << "\n";
   os << indent << "NumberOfShadowRays: " << this->NumberOfShadowRays << "\n";

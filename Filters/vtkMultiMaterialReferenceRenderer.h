@@ -45,7 +45,10 @@
  *    weighted by mmv::mmvHenyeyGreensteinRelative(g, -v.l) (1 at g = 0),
  *    and every
  *    segment adds its emission e * I_c (mmv::mmvEmission).
- *    No active light: ambient emission ka * I_c (plus e * I_c).
+ *    No active light: ambient emission ka * I_c (plus e * I_c), unless the
+ *    environment light (EnvironmentLighting) lights the volume: its
+ *    mmv::mmvSkyRadiance per segment, from the sky's visibility moments
+ *    (vtkSkyVisibility.h) on the data's grid.
  *  - Background: the colour is composited over the renderer's background
  *    (its vertical gradient when GradientBackground is on).
  *
@@ -124,6 +127,13 @@ public:
   vtkGetMacro(ExponentialDiffusion, bool);
   vtkBooleanMacro(ExponentialDiffusion, bool);
 
+  /// The environment light, as vtkMultiMaterialVolumeMapper's (RenderToImage()
+  /// copies it): the sky's visibility moments on the data's own grid (the
+  /// GPU's at most mmv::SkyVoxelsPerAxis per axis), shaded by
+  /// mmv::mmvSkyRadiance. 0 (default): off; negative or NaN: off, warned.
+  vtkSetMacro(EnvironmentLighting, double);
+  vtkGetMacro(EnvironmentLighting, double);
+
   /// As vtkMultiMaterialVolumeMapper's (RenderToImage() copies them).
   vtkSetClampMacro(ReflectionSource, int, 0, 1);
   vtkGetMacro(ReflectionSource, int);
@@ -171,6 +181,7 @@ protected:
   double MinimumTransmittance = 1.0e-6;
   int ReflectionSource = 0;     // mmv::ReflectEnvironmentTexture
   int ReflectionVisibility = 1; // mmv::MarchedReflectionVisibility
+  double EnvironmentLighting = 0.0;
 
   double LastRenderSeconds = 0.0;
   double LastScatteringSeconds = 0.0;

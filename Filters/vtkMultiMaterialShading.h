@@ -68,14 +68,15 @@ inline glm::dvec3 mmvEnvironment(
 /// irradiance[k]; environment: the environment's radiance along the mirrored
 /// view direction. The GPU compiles the phase function, the reflection and
 /// the emission out when no material uses them; at g = 0, r = 0 and e = 0
-/// they change nothing here either.
+/// they change nothing here either. sky: the environment light is on (its
+/// mmvSkyRadiance is added apart), so no light means no ambient fallback.
 inline glm::dvec3 mmvShadeSample(const glm::dvec4& material, double anisotropy, double reflection,
   double emission, const glm::dvec4& segment, const glm::dvec3& position, const glm::dvec3& n,
   const glm::dvec3& v, double surface, const LightSource* lights, const glm::dvec3* radiance,
-  const double* irradiance, int count, const glm::dvec3& environment)
+  const double* irradiance, int count, const glm::dvec3& environment, bool sky = false)
 {
   glm::dvec3 result(0.0);
-  if (count == 0)
+  if (count == 0 && !sky)
   {
     // No active light: ambient emission only, so the volume stays visible.
     result = material.x * glm::dvec3(segment);

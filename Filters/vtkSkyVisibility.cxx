@@ -243,8 +243,12 @@ void AverageOntoGrid(const IrradianceGrid& fine, const float* values, const Irra
     });
 }
 
-void SweepSkyTransmittance(const IrradianceGrid& grid, const float* extinction,
-  const glm::dvec3& direction, std::vector<float>& transmittance)
+namespace
+{
+/// The sweep of SweepSkyTransmittance, its rows in parallel or not (a
+/// sweep per thread: many small parallel loops cost more than they gain).
+void Sweep(const IrradianceGrid& grid, const float* extinction, const glm::dvec3& direction,
+  std::vector<float>& transmittance, bool parallelRows)
 {
   transmittance.assign(static_cast<size_t>(grid.GetNumberOfVoxels()), 1.0f);
   const glm::dvec3 d = grid.PhysicalToIndexMatrix() * direction;
@@ -272,15 +276,29 @@ void SweepSkyTransmittance(const IrradianceGrid& grid, const float* extinction,
   for (int depth = 1; depth < slices; ++depth)
   {
     const int slice = sign > 0 ? slices - 1 - depth : depth;
-    vtkSMPTools::For(0, grid.Dimensions[sweep.V],
-      [&](vtkIdType first, vtkIdType last)
+    auto rows = [&](vtkIdType first, vtkIdType last)
+    {
+      for (vtkIdType v = first; v < last; ++v)
       {
-        for (vtkIdType v = first; v < last; ++v)
-        {
-          sweep.Row(slice, slice + sign, depth, static_cast<int>(v));
-        }
-      });
+        sweep.Row(slice, slice + sign, depth, static_cast<int>(v));
+      }
+    };
+    if (parallelRows)
+    {
+      vtkSMPTools::For(0, grid.Dimensions[sweep.V], rows);
+    }
+    else
+    {
+      rows(0, grid.Dimensions[sweep.V]);
+    }
   }
+}
+}
+
+void SweepSkyTransmittance(const IrradianceGrid& grid, const float* extinction,
+  const glm::dvec3& direction, std::vector<float>& transmittance)
+{
+  Sweep(grid, extinction, direction, transmittance, true);
 }
 
 void ComputeSkyVisibility(const IrradianceGrid& grid, const float* extinction,
@@ -293,21 +311,37 @@ void ComputeSkyVisibility(const IrradianceGrid& grid, const float* extinction,
     return;
   }
   const double weight = 4.0 * M_PI / static_cast<double>(directions.size());
-  std::vector<float> t;
-  for (const glm::dvec3& w : directions)
+  // Directions in blocks, one sweep per thread, then summed in the
+  // directions' order: the same moments for any thread count.
+  constexpr size_t Block = 8;
+  const size_t count = directions.size();
+  std::vector<std::vector<float>> t(std::min(Block, count));
+  for (size_t first = 0; first < count; first += Block)
   {
-    SweepSkyTransmittance(grid, extinction, w, t);
-    vtkSMPTools::For(0, voxels,
-      [&](vtkIdType first, vtkIdType last)
+    const size_t n = std::min(Block, count - first);
+    vtkSMPTools::For(0, static_cast<vtkIdType>(n),
+      [&](vtkIdType b0, vtkIdType b1)
       {
-        for (vtkIdType i = first; i < last; ++i)
+        for (vtkIdType b = b0; b < b1; ++b)
         {
-          const double wt = weight * t[i];
+          Sweep(grid, extinction, directions[first + b], t[b], false);
+        }
+      });
+    vtkSMPTools::For(0, voxels,
+      [&](vtkIdType v0, vtkIdType v1)
+      {
+        for (vtkIdType i = v0; i < v1; ++i)
+        {
           float* m = moments.data() + i * SkyMomentsPerVoxel;
-          m[0] += static_cast<float>(wt);
-          m[1] += static_cast<float>(wt * w.x);
-          m[2] += static_cast<float>(wt * w.y);
-          m[3] += static_cast<float>(wt * w.z);
+          for (size_t b = 0; b < n; ++b)
+          {
+            const glm::dvec3& w = directions[first + b];
+            const double wt = weight * t[b][i];
+            m[0] += static_cast<float>(wt);
+            m[1] += static_cast<float>(wt * w.x);
+            m[2] += static_cast<float>(wt * w.y);
+            m[3] += static_cast<float>(wt * w.z);
+          }
         }
       });
   }

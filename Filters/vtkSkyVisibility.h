@@ -50,6 +50,13 @@ namespace mmv
 /// Floats per voxel of the sky's visibility: S0, then S1's x, y, z.
 constexpr int SkyMomentsPerVoxel = 4;
 
+/// The ray cast's sky grid has at most this many voxels along an axis:
+/// occlusion by the environment is smooth, and its cost grows with the grid.
+constexpr int SkyVoxelsPerAxis = 40;
+/// Directions the sky's visibility is swept along (SkyDirections): 64 keep
+/// the second moment within 2 % of isotropic.
+constexpr int SkyDirectionCount = 64;
+
 /**
  * `count` unit directions (an odd count is rounded up) in antipodal pairs:
  * the first half a spherical Fibonacci set on the hemisphere z > 0, the

@@ -178,30 +178,9 @@ bool vtkMultiMaterialSky::SetColors(vtkRenderer* ren, vtkMatrix4x4* worldToObjec
   vtkMultiMaterialEnvironment* environment = this->Environment;
   environment->Update(ren, objectToWorld,
     useTexture ? mmv::ReflectEnvironmentTexture : mmv::ReflectBackground, problems);
-  glm::dvec3 mean(0.0);
-  glm::dmat3 slope(0.0);
-  if (environment->GetKind() == mmv::BackgroundEnvironment)
-  {
-    // L(w) = mix(bottom, top, 0.5 + 0.5 w.up): linear in w, so exact.
-    mean = 0.5 * (environment->GetBackgroundBottom() + environment->GetBackgroundTop());
-    slope = glm::outerProduct(
-      0.5 * (environment->GetBackgroundTop() - environment->GetBackgroundBottom()),
-      environment->GetViewUp());
-  }
-  else
-  {
-    // A texture: its least-squares fit by mean + slope w (order-1 spherical
-    // harmonics), from many antipodal directions.
-    const std::vector<glm::dvec3> directions = mmv::SkyDirections(1024);
-    for (const glm::dvec3& w : directions)
-    {
-      const glm::dvec3 l = environment->Lookup(w);
-      mean += l;
-      slope += glm::outerProduct(l, w);
-    }
-    mean /= static_cast<double>(directions.size());
-    slope *= 3.0 / static_cast<double>(directions.size());
-  }
+  glm::dvec3 mean;
+  glm::dmat3 slope;
+  environment->FitLinear(mean, slope);
   this->Mean = glm::vec3(strength * mean);
   this->Slope = glm::mat3(strength * slope);
   return glm::length(this->Mean) <= 0.0f;

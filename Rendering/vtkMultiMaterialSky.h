@@ -24,6 +24,7 @@
 #include "vtkIrradianceGrid.h"            // IrradianceGrid
 #include "vtkMultiMaterialVolumeModule.h" // export macro
 #include "vtkNew.h"
+#include "vtkSkyVisibility.h" // SkyVoxelsPerAxis, SkyDirectionCount
 #include "vtkSmartPointer.h"
 #include "vtkType.h" // vtkMTimeType
 
@@ -44,15 +45,6 @@ class vtkShaderProgram;
 class vtkTextureObject;
 class vtkVolumeProperty;
 class vtkWindow;
-
-namespace mmv
-{
-/// The sky's grid has at most this many voxels along an axis: occlusion by
-/// the environment is smooth, and its cost grows with the grid.
-constexpr int SkyVoxelsPerAxis = 40;
-/// Directions the sky's visibility is swept along (SkyDirections).
-constexpr int SkyDirectionCount = 64;
-}
 
 namespace mmv
 {

@@ -36,6 +36,7 @@ const NumberGetter NumberGetters[] = {
   { "MultiMaterialActive", [](Representation* r) { return double(r->GetMultiMaterialActive()); } },
   { "NumberOfFields", [](Representation* r) { return double(r->GetNumberOfFields()); } },
   { "LastIrradianceSeconds", [](Representation* r) { return r->GetLastIrradianceSeconds(); } },
+  { "LastSkySeconds", [](Representation* r) { return r->GetLastSkySeconds(); } },
   { "LastEstimatedIrradianceVoxels",
     [](Representation* r) { return r->GetLastEstimatedIrradianceVoxels(); } },
 };

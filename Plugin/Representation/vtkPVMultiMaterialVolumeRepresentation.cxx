@@ -449,6 +449,12 @@ double vtkPVMultiMaterialVolumeRepresentation::GetLastIrradianceSeconds()
   return mapper ? mapper->GetLastIrradianceSeconds() : 0.0;
 }
 
+double vtkPVMultiMaterialVolumeRepresentation::GetLastSkySeconds()
+{
+  auto* mapper = this->GetMultiMaterialMapper();
+  return mapper ? mapper->GetLastSkySeconds() : 0.0;
+}
+
 double vtkPVMultiMaterialVolumeRepresentation::GetLastEstimatedIrradianceVoxels()
 {
   vtkMultiMaterialVolumeMapper* mapper = this->GetMultiMaterialMapper();

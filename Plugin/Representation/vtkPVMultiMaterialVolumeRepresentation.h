@@ -159,6 +159,7 @@ public:
   /// The mapper's counters on this process (see vtkMultiMaterialVolumeMapper).
   int GetIrradianceUpdateCount();
   int GetSkyUpdateCount();
+  double GetLastSkySeconds();
   int GetDiffusionPassCount();
   int GetPreIntegrationCount();
   int GetRayCastCount();

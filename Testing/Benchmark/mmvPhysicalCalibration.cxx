@@ -24,11 +24,13 @@
 //                          [--scenes synthetic,headsq,orbital,ct] [--head FILE.vti]
 //                          [--s-scales 1,0,0.5,2,4,8,16] [--ct-scales 1,0.5,2,4] [--no-vtk]
 //                          [--anisotropy G] [--back-light] [--mapped] [--black-background]
-//                          [--fit-exposure]
+//                          [--fit-exposure] [--sky-strengths 0,1]
 //
 // Same camera, key light and gradient background as mmvBenchmark
 // (mmvbench::FrameScene); --back-light turns the key light to the opposite
 // direction (the volume lit from behind, where forward scattering shows);
+// --sky-strengths measures ours at each EnvironmentLighting (family "ours-sky"
+// above 0: the background lights our volume as it lights the truth's);
 // --black-background makes the background black for every method and the
 // truth, so the truth has no sky (its escaping paths gather nothing): what
 // remains is the light's transport alone, which sizes the sky's share. Errors are over the 8-bit
@@ -101,8 +103,9 @@ struct Options
   double Anisotropy = 0.0; // every node's g, truth and ours; 0: the scene's
   bool BackLight = false;
   bool Mapped = false;
-  bool BlackBackground = false; // no sky in the truth
-  bool FitExposure = false;     // ka and kd fitted at every (s, c_t)
+  bool BlackBackground = false;               // no sky in the truth
+  bool FitExposure = false;                   // ka and kd fitted at every (s, c_t)
+  std::vector<double> SkyStrengths = { 0.0 }; // ours' EnvironmentLighting
 };
 
 bool Parse(int argc, char* argv[], Options& o)
@@ -163,6 +166,10 @@ bool Parse(int argc, char* argv[], Options& o)
     {
       o.FitExposure = true;
     }
+    else if (a == "--sky-strengths")
+    {
+      o.SkyStrengths = Numbers(next());
+    }
     else if (a == "--mapped")
     {
       o.Mapped = true;
@@ -173,7 +180,7 @@ bool Parse(int argc, char* argv[], Options& o)
     }
   }
   return o.Size >= 16 && o.TruthSamples >= 2 && o.Frames >= 1 && !o.Out.empty() &&
-    !o.ScatteringScales.empty() && !o.AttenuationScales.empty();
+    !o.ScatteringScales.empty() && !o.AttenuationScales.empty() && !o.SkyStrengths.empty();
 }
 
 struct Row
@@ -306,9 +313,26 @@ void FitExposure(const SceneContext& c, const mmvbench::SceneSpec& scene,
 /// Ours: s and c_t scaled, (1, 1) the default; then, with --mapped, the
 /// mapped materials. False if a node could not be mapped.
 bool MeasureOurs(const SceneContext& c, const mmvbench::SceneSpec& scene,
-  vtkMaterialTransferFunction* materials, Window& oursWindow)
+  vtkMaterialTransferFunction* materials, Window& oursWindow, vtkMultiMaterialVolumeMapper* ours)
 {
   const Options& opt = c.Opt;
+  for (double sky : opt.SkyStrengths)
+  {
+    ours->SetEnvironmentLighting(sky);
+    const std::string family = sky > 0.0 ? "ours-sky" : "ours";
+    for (double s : opt.ScatteringScales)
+    {
+      for (double ct : opt.AttenuationScales)
+      {
+        ScaleMaterials(scene.Materials, s, ct, materials);
+        Measure(c, s == 1.0 && ct == 1.0 ? family + "-default" : family,
+          sky > 0.0 ? Setting({ { "s_scale", s }, { "ct_scale", ct }, { "sky", sky } })
+                    : Setting({ { "s_scale", s }, { "ct_scale", ct } }),
+          oursWindow);
+      }
+    }
+  }
+  ours->SetEnvironmentLighting(0.0);
   for (double s : opt.ScatteringScales)
   {
     for (double ct : opt.AttenuationScales)
@@ -317,9 +341,6 @@ bool MeasureOurs(const SceneContext& c, const mmvbench::SceneSpec& scene,
       {
         FitExposure(c, scene, materials, oursWindow, s, ct);
       }
-      ScaleMaterials(scene.Materials, s, ct, materials);
-      Measure(c, s == 1.0 && ct == 1.0 ? "ours-default" : "ours",
-        Setting({ { "s_scale", s }, { "ct_scale", ct } }), oursWindow);
       if (opt.Anisotropy != 0.0)
       {
         ScaleMaterials(scene.Materials, s, ct, materials, 0.0);
@@ -375,7 +396,9 @@ void ReportBest(const std::vector<Row>& rows, const Options& opt, const std::str
   std::map<std::string, const Row*> best;
   for (const Row& r : rows)
   {
-    const std::string family = r.Family == "ours-default" ? "ours" : r.Family;
+    const std::string family = r.Family == "ours-default"
+      ? "ours"
+      : (r.Family == "ours-sky-default" ? "ours-sky" : r.Family);
     if (!best.count(family) || r.RMSE < best[family]->RMSE)
     {
       best[family] = &r;
@@ -445,7 +468,7 @@ bool CalibrateScene(
   std::vector<Row> rows;
   const SceneContext c{ opt, name, reference.Image, reference.Mask, reference.FloorRMSE,
     truthSeconds, csv, metrics, rows };
-  if (!MeasureOurs(c, scene, materials, oursWindow))
+  if (!MeasureOurs(c, scene, materials, oursWindow, ours))
   {
     return false;
   }

@@ -15,6 +15,7 @@ rendered round-robin (the order rotates at every change):
   pv-volume   ParaView "Volume", Shade on (the reference of every ratio)
   mmv-default "Multi-Material Volume", default material
   mmv-skin    the same, MaterialPreset "skin" (multiple scattering)
+  mmv-sky     the default material lit by the background too (EnvironmentLighting 1)
   mmv-smoke   the same, MaterialPreset "smoke" (time steps only)
 
 Sequences, each change followed by one timed StillRender() per view:
@@ -28,8 +29,8 @@ Sequences, each change followed by one timed StillRender() per view:
             renders, so no method pays for the reader
 
 Writes OUT/changes.csv (one row per volume, sequence and method: medians,
-ratios to pv-volume, irradiance updates, probes and the median seconds of each
-irradiance stage), OUT/frames.csv (every frame), OUT/changes.png, and
+ratios to pv-volume, irradiance updates, probes, the median seconds of each
+irradiance stage and of the sky's estimation), OUT/frames.csv (every frame), OUT/changes.png, and
 OUT/grid_check.csv: after the sequences, the irradiance grid each method kept
 against the one a fresh representation's probe chooses for the final
 transfer functions and time step.
@@ -59,6 +60,7 @@ METHODS = [
     ("pv-volume", "Volume", {"Shade": 1}),
     ("mmv-default", MMV, {}),
     ("mmv-skin", MMV, {"MaterialPreset": "skin"}),
+    ("mmv-sky", MMV, {"EnvironmentLighting": 1.0}),
     ("mmv-smoke", MMV, {"MaterialPreset": "smoke"}),
 ]
 SEQUENCES = ["still", "orbit", "opacity", "colour", "series"]
@@ -76,7 +78,7 @@ OWN_STILL = ("colour", "series-2")
 STAGES = ["probe", "prefilter", "shadow table", "setup", "shadows", "diffusion", "write", "pass",
           "total"]
 INFO = ["IrradianceUpdateCount", "IrradianceProbeCount", "IrradianceCacheHitCount",
-        "LastIrradianceStages", "IrradianceResolutionInfo"]
+        "LastIrradianceStages", "IrradianceResolutionInfo", "SkyUpdateCount", "LastSkySeconds"]
 
 
 def parse_args():
@@ -169,6 +171,8 @@ def frame(method, volume, sequence, change, writer, records):
     probes = after.get("IrradianceProbeCount", 0) - before.get("IrradianceProbeCount", 0)
     copies = after.get("IrradianceCacheHitCount", 0) - before.get("IrradianceCacheHitCount", 0)
     stages = stage_seconds(after.get("LastIrradianceStages")) if updates else {}
+    if after.get("SkyUpdateCount", 0) != before.get("SkyUpdateCount", 0):
+        stages["sky"] = after.get("LastSkySeconds", 0.0)
     row = [volume, sequence, method.name, change, "%.4f" % seconds, updates, probes, copies]
     row += ["%.4f" % stages.get(s, 0.0) if updates else "" for s in STAGES]
     row += [after.get("IrradianceResolutionInfo", "").split(";")[0]]
@@ -314,6 +318,9 @@ def summarise(records):
             "irradiance_copies": sum(r["copies"] for r in rs),
         }
         updated = [r["stages"] for r in rs if r["updates"]]
+        skies = [r["stages"]["sky"] for r in rs if "sky" in r["stages"]]
+        row["sky_updates"] = len(skies)
+        row["sky_s"] = "%.4f" % statistics.median(skies) if skies else ""
         for s in STAGES:
             values = [st.get(s, 0.0) for st in updated]
             row["%s_s" % s.replace(" ", "_")] = "%.4f" % statistics.median(values) if values else ""
@@ -357,7 +364,8 @@ def main():
             r["irradiance_updates"], r["probes"], r["irradiance_copies"],
             "/".join(r["%s_s" % s.replace(" ", "_")] or "-" for s in
                      ["probe", "prefilter", "shadow table", "setup", "shadows", "diffusion",
-                      "write", "total"])))
+                      "write", "total"]) +
+            (" sky %s s x%d" % (r["sky_s"], r["sky_updates"]) if r["sky_updates"] else "")))
     log("wrote %s" % path)
     if checks:
         orbit.write_csv(os.path.join(args.out, "grid_check.csv"), checks)

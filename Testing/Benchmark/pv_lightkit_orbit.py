@@ -16,6 +16,7 @@ rotates every step because the machine is shared):
                         1.0, GlobalIlluminationReach 0.5 (VTK's scattering)
   mmv-default           "Multi-Material Volume", default material
   mmv-skin              "Multi-Material Volume", MaterialPreset "skin"
+  mmv-sky               the default material lit by the background too (EnvironmentLighting 1)
   mmv-skin-euler        the same with ExponentialDiffusion off (backward Euler)
 
 Per orbit step and method: K interactive frames (Azimuth 10/K degrees, then
@@ -72,6 +73,8 @@ METHODS = [
      {"Shade": 1, "VolumetricScatteringBlending": 1.0, "GlobalIlluminationReach": 0.5}, None),
     ("mmv-default", MMV, {}, (1.25, 1.25)),
     ("mmv-skin", MMV, {"MaterialPreset": "skin"}, (1.5, 3.0)),
+    # The default material with the background as a sky (EnvironmentLighting 1).
+    ("mmv-sky", MMV, {"EnvironmentLighting": 1.0}, None),
     # The same with the former default integrator (backward Euler, 4x the passes).
     ("mmv-skin-euler", MMV, {"MaterialPreset": "skin", "ExponentialDiffusion": 0}, (1.5, 3.0)),
 ]

@@ -7,6 +7,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <iostream>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -311,4 +313,56 @@ TEST(EnvironmentLight, NonFiniteAndNegativeExtinctionAbsorbNothing)
   {
     ASSERT_NEAR(moments[4 * v], 4.0 * M_PI, 1e-5);
   }
+}
+
+TEST(EnvironmentLight, SixtyFourDirectionsAreEnoughForAHomogeneousCube)
+{
+  // S0 along the central line of a cube of optical depth 1 (17^3 points):
+  // the sweep with K directions against exact exit distances over 20 000
+  // directions. The error falls with K; 64 (mmv::SkyDirectionCount) is
+  // within 1 % of the whole sky everywhere on the line.
+  const mmv::IrradianceGrid grid = Grid(17, 17, 17);
+  const std::vector<float> extinction(grid.GetNumberOfVoxels(), 1.0f / 16.0f);
+  const std::vector<glm::dvec3> many = mmv::SkyDirections(20000);
+  std::vector<double> exact(17);
+  for (int z = 0; z < 17; ++z)
+  {
+    const glm::dvec3 p(8.0, 8.0, z);
+    double sum = 0.0;
+    for (const glm::dvec3& w : many)
+    {
+      double t = std::numeric_limits<double>::infinity();
+      for (int a = 0; a < 3; ++a)
+      {
+        if (w[a] != 0.0)
+        {
+          t = std::min(t, ((w[a] > 0.0 ? 16.0 : 0.0) - p[a]) / w[a]);
+        }
+      }
+      sum += std::exp(-t / 16.0);
+    }
+    exact[z] = 4.0 * M_PI * sum / many.size();
+  }
+  double previous = 1.0;
+  for (int count : { 8, 16, 32, mmv::SkyDirectionCount, 128 })
+  {
+    std::vector<float> moments;
+    mmv::ComputeSkyVisibility(grid, extinction.data(), mmv::SkyDirections(count), moments);
+    double worst = 0.0;
+    for (int z = 0; z < 17; ++z)
+    {
+      worst = std::max(worst, std::abs(moments[4 * At(grid, 8, 8, z)] - exact[z]) / (4.0 * M_PI));
+    }
+    std::cout << count << " directions: largest S0 error " << worst << " of the sky\n";
+    if (count >= mmv::SkyDirectionCount)
+    {
+      EXPECT_LT(worst, 0.01) << count;
+    }
+    if (count == 8)
+    {
+      EXPECT_GT(worst, 0.01); // too few: the quadrature shows
+    }
+    previous = worst;
+  }
+  EXPECT_LT(previous, 0.01);
 }
