@@ -103,9 +103,10 @@ inline glm::dvec3 mmvShadeSample(const glm::dvec4& material, double anisotropy, 
 }
 
 /// The sky's radiance of one segment (mmvSkyRadiance in Shaders/mmvShading.glsl):
-/// ka F0 I_c + w kd E(n) I_c with F0 = mean S0 + slope S1 and E(n) ~ F0 / 4 +
-/// F1.n / 2, F1.n = mean (S1.n) + (slope n) S0 / 3; sky = (S0, S1) of
-/// vtkSkyVisibility.h, the sky's radiance L(w) = mean + slope w.
+/// physical, as the path tracer's sky, with albedo = the segment's colour:
+/// ((1 - w) F0 / (4 pi) + w (1 - ks) E(n) / pi) I_c, F0 = mean S0 + slope S1,
+/// E(n) ~ F0 / 4 + F1.n / 2, F1.n = mean (S1.n) + (slope n) S0 / 3; sky =
+/// (S0, S1) of vtkSkyVisibility.h, the sky's radiance L(w) = mean + slope w.
 inline glm::dvec3 mmvSkyRadiance(const glm::dvec4& material, const glm::dvec4& segment,
   const glm::dvec3& n, double surface, const glm::dvec4& sky, const glm::dvec3& mean,
   const glm::dmat3& slope)
@@ -114,7 +115,9 @@ inline glm::dvec3 mmvSkyRadiance(const glm::dvec4& material, const glm::dvec4& s
   const glm::dvec3 f0 = mean * sky.x + slope * s1;
   const glm::dvec3 f1n = mean * glm::dot(s1, n) + (slope * n) * (sky.x / 3.0);
   const glm::dvec3 e = glm::max(0.25 * f0 + 0.5 * f1n, glm::dvec3(0.0));
-  return (material.x * f0 + surface * material.y * e) * glm::dvec3(segment);
+  const double diffuse = 1.0 - glm::clamp(material.z, 0.0, 1.0);
+  return ((1.0 - surface) * f0 / (4.0 * M_PI) + surface * diffuse * e / M_PI) *
+    glm::dvec3(segment);
 }
 
 } // namespace mmv

@@ -13,8 +13,8 @@
  * background) are uniforms, so a new background only reshades.
  *
  * The ray cast adds mmvSkyRadiance (Shaders/mmvShading.glsl) per segment:
- * the light loop's ambient and diffuse terms integrated over the sky,
- * ka F0 I_c + w kd E(n) I_c, with the sky's radiance fitted as
+ * the sky's single scattering as the path tracer models it, isotropic for
+ * particles and Lambertian for surfaces, with the sky's radiance fitted as
  * L(w) = mean + slope w (exact for VTK's background gradient).
  * Not a vtkObject: plain state owned by the mapper.
  */

@@ -106,15 +106,17 @@ vec3 mmvShadeSample(vec4 material, float anisotropy, float reflection, float emi
   return radiance;
 }
 
-// The sky's radiance of one segment: the light loop's ambient and diffuse
-// terms integrated over the sky (the renderer's background as an infinitely
-// distant environment), ka F0 I_c + w kd E(n) I_c, through the volume's
-// visibility moments sky = (S0, S1) (Filters/vtkSkyVisibility.h) and the
-// sky's radiance L(w) = mean + slope * w:
+// The sky's radiance of one segment: the renderer's background as an
+// infinitely distant environment, seen through the volume's visibility
+// moments sky = (S0, S1) (Filters/vtkSkyVisibility.h), with the sky's
+// radiance L(w) = mean + slope * w. Physical, as the path tracer's sky:
+// albedo = the segment's colour; particles scatter isotropically,
+// F0 / (4 pi); surfaces are Lambertian with the truth's diffuse weight
+// (1 - ks), E(n) / pi:
 //   F0 = int L T dw = mean S0 + slope S1,
 //   E(n) = int L T max(n.w, 0) dw ~ F0 / 4 + F1.n / 2 (the clamped cosine's
 //   order-1 fit), F1.n = mean (S1.n) + (slope n) S0 / 3 (the second moment
-//   taken as isotropic). The phase function is taken as isotropic here.
+//   taken as isotropic).
 // Mirrors mmvSkyRadiance in vtkMultiMaterialShading.h.
 vec3 mmvSkyRadiance(vec4 material, vec4 segment, vec3 n, float surface, vec4 sky, vec3 mean,
   mat3 slope)
@@ -122,5 +124,7 @@ vec3 mmvSkyRadiance(vec4 material, vec4 segment, vec3 n, float surface, vec4 sky
   vec3 f0 = mean * sky.x + slope * sky.yzw;
   vec3 f1n = mean * dot(sky.yzw, n) + (slope * n) * (sky.x / 3.0);
   vec3 e = max(0.25 * f0 + 0.5 * f1n, vec3(0.0));
-  return (material.x * f0 + surface * material.y * e) * segment.rgb;
+  float diffuse = 1.0 - clamp(material.z, 0.0, 1.0);
+  const float pi = 3.14159265358979;
+  return ((1.0 - surface) * f0 / (4.0 * pi) + surface * diffuse * e / pi) * segment.rgb;
 }

@@ -52,7 +52,8 @@ struct SkyScene : Scene
     this->Opacity->AddPoint(0.0, 1.0 - std::exp(-Mu));
     this->Opacity->AddPoint(2.0, 1.0 - std::exp(-Mu));
     this->Property->SetScalarOpacityUnitDistance(1.0);
-    // ka = 1 / (4 pi): the particle term is physical single scattering.
+    // ka = 1 / (4 pi): without the sky, the ambient fallback is the
+    // physical single scattering of a light of intensity 1.
     this->Materials->AddNode(1.0, 1.0 / (4.0 * M_PI), 0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 0.0, 0.0);
     this->Mapper->SetInputData(this->Image);
     this->Mapper->SetMaterialTransferFunction(this->Materials);
@@ -93,10 +94,9 @@ double ExactS0(const glm::dvec3& p)
   return 4.0 * M_PI * sum / directions.size();
 }
 
-/// The centre pixel (per unit colour) under a uniform sky of radiance L with
-/// ka = 1 / (4 pi): the single scattering along the central ray plus the
-/// background through the cube, L (exp(-mu D) + int (S0 / 4 pi) mu
-/// exp(-mu z) dz), the integral by the midpoint rule.
+/// The single scattering along the central ray (per unit colour) under a
+/// uniform sky of radiance L, L int (S0 / 4 pi) mu exp(-mu z) dz, by the
+/// midpoint rule (the pixel adds the background through the cube).
 double ExactCenter(double L)
 {
   constexpr int Steps = 64;
@@ -316,16 +316,15 @@ TEST(EnvironmentLight, ReferenceRendererAgreesWithGPU)
   // exact shadow rays for the light) and on the GPU: at 33^3 points both
   // estimate the sky on the same grid; at 97^3 the GPU's grid is 3x
   // coarser (at most 40 per axis). The sky changes the image far more than
-  // the two differ. Measured with llvmpipe: 35.2 and 32.6 dB (the sky
-  // alone: particles 47.6 and 42.0 dB, surfaces 42.0 and 41.7 dB; the GPU
-  // is the brighter in both, so the errors add), the sky 13-14 dB of the image.
+  // the two differ. Measured with llvmpipe: 41.4 and 37.9 dB, the sky
+  // 29.6 and 25.6 dB of the image.
   vtkSMPTools::SetBackend("STDThread");
   for (int dims : { 33, 97 })
   {
     double psnr = 0.0, skyShare = 0.0;
     CompareBallWithReference(dims, psnr, skyShare);
-    EXPECT_GT(psnr, dims == 33 ? 34.0 : 31.0) << dims;
-    EXPECT_LT(skyShare, 20.0) << dims;
+    EXPECT_GT(psnr, dims == 33 ? 39.0 : 35.5) << dims;
+    EXPECT_LT(skyShare, psnr - 8.0) << dims;
   }
 }
 
