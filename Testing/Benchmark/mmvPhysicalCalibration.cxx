@@ -24,13 +24,16 @@
 //                          [--scenes synthetic,headsq,orbital,ct] [--head FILE.vti]
 //                          [--s-scales 1,0,0.5,2,4,8,16] [--ct-scales 1,0.5,2,4] [--no-vtk]
 //                          [--anisotropy G] [--back-light] [--mapped] [--black-background]
-//                          [--fit-exposure] [--sky-strengths 0,1]
+//                          [--fit-exposure] [--sky-strengths 0,1] [--ka-kd A,B]
 //
 // Same camera, key light and gradient background as mmvBenchmark
 // (mmvbench::FrameScene); --back-light turns the key light to the opposite
 // direction (the volume lit from behind, where forward scattering shows);
 // --sky-strengths measures ours at each EnvironmentLighting (family "ours-sky"
 // above 0: the background lights our volume as it lights the truth's);
+// --ka-kd A,B adds ours at each strength with every node's ka and kd scaled
+// by A and B (family "ours-scaled", or "ours-sky-scaled"): one scale pair
+// for every scene, as a default would be;
 // --black-background makes the background black for every method and the
 // truth, so the truth has no sky (its escaping paths gather nothing): what
 // remains is the light's transport alone, which sizes the sky's share. Errors are over the 8-bit
@@ -106,6 +109,7 @@ struct Options
   bool BlackBackground = false;               // no sky in the truth
   bool FitExposure = false;                   // ka and kd fitted at every (s, c_t)
   std::vector<double> SkyStrengths = { 0.0 }; // ours' EnvironmentLighting
+  std::vector<double> AmbientDiffuse;         // one ka and kd scale for every scene
 };
 
 bool Parse(int argc, char* argv[], Options& o)
@@ -165,6 +169,14 @@ bool Parse(int argc, char* argv[], Options& o)
     else if (a == "--fit-exposure")
     {
       o.FitExposure = true;
+    }
+    else if (a == "--ka-kd")
+    {
+      o.AmbientDiffuse = Numbers(next());
+      if (o.AmbientDiffuse.size() != 2)
+      {
+        return false;
+      }
     }
     else if (a == "--sky-strengths")
     {
@@ -292,7 +304,7 @@ void Measure(
 /// Ours with every node's ka and kd scaled by the factors that fit the
 /// truth best at (s, c_t), less the (0, 0) render (background, specular).
 void FitExposure(const SceneContext& c, const mmvbench::SceneSpec& scene,
-  vtkMaterialTransferFunction* materials, Window& oursWindow, double s, double ct)
+  vtkMaterialTransferFunction* materials, Window& oursWindow, double s, double ct, double sky)
 {
   auto render = [&](double ambient, double diffuse, vtkImageData* image)
   {
@@ -304,9 +316,9 @@ void FitExposure(const SceneContext& c, const mmvbench::SceneSpec& scene,
   mmvcal::FitTwoScales(render, c.Truth, 1.0, true, ambient, diffuse);
   ScaleMaterials(scene.Materials, s, ct, materials);
   ScaleAmbientDiffuse(materials, ambient, diffuse);
-  Measure(c, "ours-exposure",
-    Setting(
-      { { "s_scale", s }, { "ct_scale", ct }, { "ka_scale", ambient }, { "kd_scale", diffuse } }),
+  Measure(c, sky > 0.0 ? "ours-sky-exposure" : "ours-exposure",
+    Setting({ { "s_scale", s }, { "ct_scale", ct }, { "ka_scale", ambient },
+      { "kd_scale", diffuse }, { "sky", sky } }),
     oursWindow);
 }
 
@@ -324,11 +336,23 @@ bool MeasureOurs(const SceneContext& c, const mmvbench::SceneSpec& scene,
     {
       for (double ct : opt.AttenuationScales)
       {
+        if (opt.FitExposure)
+        {
+          FitExposure(c, scene, materials, oursWindow, s, ct, sky);
+        }
         ScaleMaterials(scene.Materials, s, ct, materials);
         Measure(c, s == 1.0 && ct == 1.0 ? family + "-default" : family,
           sky > 0.0 ? Setting({ { "s_scale", s }, { "ct_scale", ct }, { "sky", sky } })
                     : Setting({ { "s_scale", s }, { "ct_scale", ct } }),
           oursWindow);
+        if (opt.AmbientDiffuse.size() == 2)
+        {
+          ScaleAmbientDiffuse(materials, opt.AmbientDiffuse[0], opt.AmbientDiffuse[1]);
+          Measure(c, family + "-scaled",
+            Setting({ { "s_scale", s }, { "ct_scale", ct }, { "ka_scale", opt.AmbientDiffuse[0] },
+              { "kd_scale", opt.AmbientDiffuse[1] }, { "sky", sky } }),
+            oursWindow);
+        }
       }
     }
   }
@@ -337,10 +361,6 @@ bool MeasureOurs(const SceneContext& c, const mmvbench::SceneSpec& scene,
   {
     for (double ct : opt.AttenuationScales)
     {
-      if (opt.FitExposure)
-      {
-        FitExposure(c, scene, materials, oursWindow, s, ct);
-      }
       if (opt.Anisotropy != 0.0)
       {
         ScaleMaterials(scene.Materials, s, ct, materials, 0.0);
