@@ -595,11 +595,8 @@ void PlaceSky(Scene& scene, vtkRenderer* ren, vtkMatrix4x4* objectToWorld,
   vtkMultiMaterialEnvironment* environment, vtkImageData* image, const std::vector<double>& values,
   double strength, int source, std::vector<std::string>& problems)
 {
-  if (!(strength >= 0.0))
-  {
-    problems.emplace_back("EnvironmentLighting must be 0 or more; the sky is off");
-    return;
-  }
+  problems.emplace_back();
+  strength = mmv::ValidEnvironmentLighting(strength, &problems.back());
   if (strength == 0.0)
   {
     return;

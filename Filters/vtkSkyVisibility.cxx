@@ -76,8 +76,14 @@ struct SliceSweep
     return steps;
   }
 
-  /// The extinction at in-slice point (pu, pv) of `slice`, bilinearly.
-  double SliceExtinction(int slice, double pu, double pv) const
+  /// The four voxels of `slice` around in-slice point (pu, pv) (clamped
+  /// into the slice) and their bilinear weights.
+  struct Tap
+  {
+    vtkIdType Index[4];
+    double Weight[4];
+  };
+  Tap SliceTap(int slice, double pu, double pv) const
   {
     const int nu = this->N[this->U];
     const int nv = this->N[this->V];
@@ -89,10 +95,27 @@ struct SliceSweep
     const double fv = pv - v0;
     const int u1 = std::min(u0 + 1, nu - 1);
     const int v1 = std::min(v0 + 1, nv - 1);
-    return (1.0 - fu) * (1.0 - fv) * CleanExtinction(this->Extinction[this->Index(slice, u0, v0)]) +
-      fu * (1.0 - fv) * CleanExtinction(this->Extinction[this->Index(slice, u1, v0)]) +
-      (1.0 - fu) * fv * CleanExtinction(this->Extinction[this->Index(slice, u0, v1)]) +
-      fu * fv * CleanExtinction(this->Extinction[this->Index(slice, u1, v1)]);
+    return Tap{ { this->Index(slice, u0, v0), this->Index(slice, u1, v0),
+                  this->Index(slice, u0, v1), this->Index(slice, u1, v1) },
+      { (1.0 - fu) * (1.0 - fv), fu * (1.0 - fv), (1.0 - fu) * fv, fu * fv } };
+  }
+  double ExtinctionAt(const Tap& tap) const
+  {
+    double sum = 0.0;
+    for (int c = 0; c < 4; ++c)
+    {
+      sum += tap.Weight[c] * CleanExtinction(this->Extinction[tap.Index[c]]);
+    }
+    return sum;
+  }
+  double TransmittanceAt(const Tap& tap) const
+  {
+    double sum = 0.0;
+    for (int c = 0; c < 4; ++c)
+    {
+      sum += tap.Weight[c] * this->T[tap.Index[c]];
+    }
+    return sum;
   }
 
   /// A ray that leaves through a side within a few steps, marched to its
@@ -107,8 +130,8 @@ struct SliceSweep
     {
       const double part = std::min(1.0, steps - k);
       const int next = slice + (k + 1) * sign;
-      const double after = this->SliceExtinction(
-        next, u + (k + 1) * this->Step[this->U], v + (k + 1) * this->Step[this->V]);
+      const double after = this->ExtinctionAt(
+        this->SliceTap(next, u + (k + 1) * this->Step[this->U], v + (k + 1) * this->Step[this->V]));
       // A part step ends inside the cell: the extinction there by the trapezoid's line.
       const double end = before + part * (after - before);
       depth += 0.5 * (before + end) * part * this->Length;
@@ -121,7 +144,6 @@ struct SliceSweep
   void Row(int slice, int previous, int slicesLeft, int v) const
   {
     const int nu = this->N[this->U];
-    const int nv = this->N[this->V];
     for (int u = 0; u < nu; ++u)
     {
       const vtkIdType x = this->Index(slice, u, v);
@@ -132,31 +154,33 @@ struct SliceSweep
         this->T[x] = static_cast<float>(this->MarchToSide(slice, u, v, steps, slicesLeft));
         continue;
       }
-      const double pu = u + this->Step[this->U];
-      const double pv = v + this->Step[this->V];
-      const int u0 = std::min(static_cast<int>(pu), std::max(nu - 2, 0));
-      const int v0 = std::min(static_cast<int>(pv), std::max(nv - 2, 0));
-      const double fu = pu - u0;
-      const double fv = pv - v0;
-      const int u1 = std::min(u0 + 1, nu - 1);
-      const int v1 = std::min(v0 + 1, nv - 1);
-      const vtkIdType c00 = this->Index(previous, u0, v0);
-      const vtkIdType c10 = this->Index(previous, u1, v0);
-      const vtkIdType c01 = this->Index(previous, u0, v1);
-      const vtkIdType c11 = this->Index(previous, u1, v1);
-      const double w00 = (1.0 - fu) * (1.0 - fv), w10 = fu * (1.0 - fv);
-      const double w01 = (1.0 - fu) * fv, w11 = fu * fv;
-      const double t =
-        w00 * this->T[c00] + w10 * this->T[c10] + w01 * this->T[c01] + w11 * this->T[c11];
-      const double s = w00 * CleanExtinction(this->Extinction[c00]) +
-        w10 * CleanExtinction(this->Extinction[c10]) +
-        w01 * CleanExtinction(this->Extinction[c01]) + w11 * CleanExtinction(this->Extinction[c11]);
+      // Far from the sides, the point one step toward the sky lies in the
+      // previous slice.
+      const Tap tap = this->SliceTap(previous, u + this->Step[this->U], v + this->Step[this->V]);
+      const double t = this->TransmittanceAt(tap);
+      const double s = this->ExtinctionAt(tap);
       this->T[x] = static_cast<float>(t * std::exp(-0.5 * (sigma + s) * this->Length));
     }
   }
 };
 
 } // namespace
+
+double ValidEnvironmentLighting(double strength, std::string* why)
+{
+  if (std::isfinite(strength) && strength >= 0.0 && strength <= MaxEnvironmentLighting)
+  {
+    return strength;
+  }
+  const bool high = std::isfinite(strength) && strength > MaxEnvironmentLighting;
+  if (why)
+  {
+    *why = "EnvironmentLighting " + std::to_string(strength) +
+      (high ? " is above the largest strength; using " + std::to_string(MaxEnvironmentLighting)
+            : " must be finite and >= 0; the sky is off");
+  }
+  return high ? MaxEnvironmentLighting : 0.0;
+}
 
 std::vector<glm::dvec3> SkyDirections(int count)
 {

@@ -42,6 +42,7 @@
 
 #include <glm/glm.hpp>
 
+#include <string>
 #include <vector>
 
 namespace mmv
@@ -56,6 +57,15 @@ constexpr int SkyVoxelsPerAxis = 40;
 /// Directions the sky's visibility is swept along (SkyDirections): 64 keep
 /// the second moment within 2 % of isotropic.
 constexpr int SkyDirectionCount = 64;
+
+/// The largest EnvironmentLighting used: a brighter sky only saturates.
+constexpr double MaxEnvironmentLighting = 100.0;
+
+/// Checks an EnvironmentLighting strength: NaN, negative or infinite returns
+/// 0 (off), above MaxEnvironmentLighting returns that maximum, and `why`
+/// (if given) says so; valid values come back unchanged.
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT double ValidEnvironmentLighting(
+  double strength, std::string* why);
 
 /**
  * `count` unit directions (an odd count is rounded up) in antipodal pairs:

@@ -40,12 +40,13 @@ vtkMultiMaterialSky::~vtkMultiMaterialSky() = default;
 bool vtkMultiMaterialSky::Refresh(
   const mmv::SkyInputs& in, std::vector<std::string>& warnings, std::string& error)
 {
-  if (!(in.Strength >= 0.0))
+  std::string why;
+  const double strength = mmv::ValidEnvironmentLighting(in.Strength, &why);
+  if (!why.empty())
   {
-    warnings.emplace_back("EnvironmentLighting must be 0 or more; the sky is off");
-    return false;
+    warnings.push_back(why);
   }
-  if (in.Strength == 0.0)
+  if (strength == 0.0)
   {
     return false;
   }
@@ -55,7 +56,7 @@ bool vtkMultiMaterialSky::Refresh(
                           "distributed volume; the sky is off");
     return false;
   }
-  if (this->SetColors(in.Renderer, in.WorldToObject, in.Strength, in.UseTexture, &warnings))
+  if (this->SetColors(in.Renderer, in.WorldToObject, strength, in.UseTexture, &warnings))
   {
     return false; // a black sky lights nothing: no sky code
   }
@@ -101,7 +102,26 @@ bool vtkMultiMaterialSky::Update(vtkOpenGLRenderWindow* context, vtkImageData* i
     return true;
   }
   const auto start = std::chrono::steady_clock::now();
+  this->EstimateMoments(points, grid, scalars, range, step);
+  if (!this->Upload(context, grid, problem))
+  {
+    return false;
+  }
+  this->Grid = grid;
+  std::copy(dims, dims + 3, this->DataDimensions);
+  this->Held = key;
+  this->HasKey = true;
+  ++this->UpdateCount;
+  this->LastSeconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return true;
+}
 
+void vtkMultiMaterialSky::EstimateMoments(const mmv::IrradianceGrid& points,
+  const mmv::IrradianceGrid& grid, vtkDataArray* scalars, const double range[2], double step)
+{
+  const int tableSize = this->Extinction->GetTableSize();
+  vtkPreIntegrationTable* table = this->Extinction;
   // Normalised values (NaN: empty), kept between steps.
   const vtkIdType n = scalars->GetNumberOfTuples();
   this->Values.resize(static_cast<size_t>(n));
@@ -127,7 +147,11 @@ bool vtkMultiMaterialSky::Update(vtkOpenGLRenderWindow* context, vtkImageData* i
   mmv::AverageOntoGrid(points, this->Values.data(), grid, this->Coarse, &sigma);
   mmv::ComputeSkyVisibility(
     grid, this->Coarse.data(), mmv::SkyDirections(mmv::SkyDirectionCount), this->Moments);
+}
 
+bool vtkMultiMaterialSky::Upload(
+  vtkOpenGLRenderWindow* context, const mmv::IrradianceGrid& grid, std::string* problem)
+{
   if (!this->Texture)
   {
     this->Texture = vtkSmartPointer<vtkTextureObject>::New();
@@ -160,13 +184,6 @@ bool vtkMultiMaterialSky::Update(vtkOpenGLRenderWindow* context, vtkImageData* i
   texture->SetWrapS(vtkTextureObject::ClampToEdge);
   texture->SetWrapT(vtkTextureObject::ClampToEdge);
   texture->SetWrapR(vtkTextureObject::ClampToEdge);
-  this->Grid = grid;
-  std::copy(dims, dims + 3, this->DataDimensions);
-  this->Held = key;
-  this->HasKey = true;
-  ++this->UpdateCount;
-  this->LastSeconds =
-    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return true;
 }
 

@@ -118,6 +118,14 @@ private:
   vtkMultiMaterialSky(const vtkMultiMaterialSky&) = delete;
   void operator=(const vtkMultiMaterialSky&) = delete;
 
+  /// The data's extinction averaged onto `grid` (a coarsening of the
+  /// data's `points`) and its visibility moments, into Coarse and Moments.
+  void EstimateMoments(const mmv::IrradianceGrid& points, const mmv::IrradianceGrid& grid,
+    vtkDataArray* scalars, const double range[2], double step);
+  /// Moments into the texture: in place when the grid keeps its size.
+  bool Upload(
+    vtkOpenGLRenderWindow* context, const mmv::IrradianceGrid& grid, std::string* problem);
+
   struct Key
   {
     vtkImageData* Image = nullptr;

@@ -124,28 +124,8 @@ void CompareBallWithReference(int dims, double& psnr, double& skyShare)
   constexpr int ImageSize = 64;
   Scene scene(ImageSize);
   const double c = 0.5 * (dims - 1);
-  auto image = MakeVolume(dims,
-    [c](int i, int j, int k)
-    {
-      const double r = std::sqrt((i - c) * (i - c) + (j - c) * (j - c) + (k - c) * (k - c));
-      return static_cast<float>(std::max(0.0, 1.0 - r / c));
-    });
-  scene.Color->AddRGBPoint(0.0, 1.0, 0.6, 0.3);
-  scene.Color->AddRGBPoint(0.4, 1.0, 0.6, 0.3);
-  scene.Color->AddRGBPoint(0.6, 0.7, 0.8, 1.0);
-  scene.Color->AddRGBPoint(1.0, 0.7, 0.8, 1.0);
-  for (double x : { 0.0, 0.2 })
-  {
-    scene.Opacity->AddPoint(x, 0.0);
-  }
-  scene.Opacity->AddPoint(0.3, 0.05);
-  scene.Opacity->AddPoint(0.5, 0.05);
-  scene.Opacity->AddPoint(0.6, 0.5);
-  scene.Opacity->AddPoint(1.0, 0.5);
-  scene.Property->SetScalarOpacityUnitDistance(32.0 / (dims - 1));
   vtkNew<vtkMaterialTransferFunction> materials;
-  materials->AddNode(0.3, 0.2, 0.7, 0.2, 20.0, 1.0, 0.0, 0.0);
-  materials->AddNode(0.6, 0.1, 0.6, 0.8, 40.0, 1.0, 0.0, 0.0);
+  auto image = TwoMaterialBall(scene, materials, dims);
   vtkNew<vtkMultiMaterialVolumeMapper> mapper;
   mapper->SetInputData(image);
   mapper->SetMaterialTransferFunction(materials);

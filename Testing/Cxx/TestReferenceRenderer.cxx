@@ -185,27 +185,8 @@ TEST(ReferenceRenderer, AgreesWithGPUMapper)
   vtkSMPTools::SetBackend("STDThread");
   constexpr int ImageSize = 64;
   mmvtest::Scene scene(ImageSize);
-  auto image = mmvtest::MakeVolume(Dims,
-    [](int i, int j, int k)
-    {
-      const double r =
-        std::sqrt((i - 16.0) * (i - 16.0) + (j - 16.0) * (j - 16.0) + (k - 16.0) * (k - 16.0));
-      return static_cast<float>(std::max(0.0, 1.0 - r / 16.0));
-    });
-  scene.Color->AddRGBPoint(0.0, 1.0, 0.6, 0.3);
-  scene.Color->AddRGBPoint(0.4, 1.0, 0.6, 0.3);
-  scene.Color->AddRGBPoint(0.6, 0.7, 0.8, 1.0);
-  scene.Color->AddRGBPoint(1.0, 0.7, 0.8, 1.0);
-  scene.Opacity->AddPoint(0.0, 0.0);
-  scene.Opacity->AddPoint(0.2, 0.0);
-  scene.Opacity->AddPoint(0.3, 0.05);
-  scene.Opacity->AddPoint(0.5, 0.05);
-  scene.Opacity->AddPoint(0.6, 0.5);
-  scene.Opacity->AddPoint(1.0, 0.5);
-  scene.Property->SetScalarOpacityUnitDistance(1.0);
   vtkNew<vtkMaterialTransferFunction> materials;
-  materials->AddNode(0.3, 0.2, 0.7, 0.2, 20.0, 1.0, 0.0, 0.0);
-  materials->AddNode(0.6, 0.1, 0.6, 0.8, 40.0, 1.0, 0.0, 0.0);
+  auto image = mmvtest::TwoMaterialBall(scene, materials, Dims);
   vtkNew<vtkMultiMaterialVolumeMapper> mapper;
   mapper->SetInputData(image);
   mapper->SetMaterialTransferFunction(materials);

@@ -366,3 +366,21 @@ TEST(EnvironmentLight, SixtyFourDirectionsAreEnoughForAHomogeneousCube)
   }
   EXPECT_LT(previous, 0.01);
 }
+
+TEST(EnvironmentLight, StrengthsAreCheckedWithAReason)
+{
+  std::string why;
+  EXPECT_EQ(mmv::ValidEnvironmentLighting(0.0, &why), 0.0);
+  EXPECT_EQ(mmv::ValidEnvironmentLighting(2.5, &why), 2.5);
+  EXPECT_TRUE(why.empty());
+  for (double bad : { -1.0, std::nan(""), std::numeric_limits<double>::infinity(),
+         -std::numeric_limits<double>::infinity() })
+  {
+    why.clear();
+    EXPECT_EQ(mmv::ValidEnvironmentLighting(bad, &why), 0.0) << bad;
+    EXPECT_NE(why.find("EnvironmentLighting"), std::string::npos) << bad;
+  }
+  why.clear();
+  EXPECT_EQ(mmv::ValidEnvironmentLighting(1e30, &why), mmv::MaxEnvironmentLighting);
+  EXPECT_NE(why.find("largest"), std::string::npos);
+}

@@ -11,6 +11,7 @@
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkLight.h"
+#include "vtkMaterialTransferFunction.h"
 #include "vtkNew.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
@@ -21,6 +22,7 @@
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -143,6 +145,36 @@ struct Scene
       rgb->GetPointer(0), rgb->GetPointer(0) + rgb->GetNumberOfValues());
   }
 };
+
+/// A lit two-material ball of dims^3 points (spacing 1): a translucent
+/// diffuse shell around a glossy core, its colours, opacity (unit distance
+/// scaled so that the ball looks alike at any dims) and materials set on
+/// `scene` and `materials`. Returns the volume.
+inline vtkSmartPointer<vtkImageData> TwoMaterialBall(
+  Scene& scene, vtkMaterialTransferFunction* materials, int dims)
+{
+  const double c = 0.5 * (dims - 1);
+  auto image = MakeVolume(dims,
+    [c](int i, int j, int k)
+    {
+      const double r = std::sqrt((i - c) * (i - c) + (j - c) * (j - c) + (k - c) * (k - c));
+      return static_cast<float>(std::max(0.0, 1.0 - r / c));
+    });
+  scene.Color->AddRGBPoint(0.0, 1.0, 0.6, 0.3);
+  scene.Color->AddRGBPoint(0.4, 1.0, 0.6, 0.3);
+  scene.Color->AddRGBPoint(0.6, 0.7, 0.8, 1.0);
+  scene.Color->AddRGBPoint(1.0, 0.7, 0.8, 1.0);
+  scene.Opacity->AddPoint(0.0, 0.0);
+  scene.Opacity->AddPoint(0.2, 0.0);
+  scene.Opacity->AddPoint(0.3, 0.05);
+  scene.Opacity->AddPoint(0.5, 0.05);
+  scene.Opacity->AddPoint(0.6, 0.5);
+  scene.Opacity->AddPoint(1.0, 0.5);
+  scene.Property->SetScalarOpacityUnitDistance(32.0 / (dims - 1));
+  materials->AddNode(0.3, 0.2, 0.7, 0.2, 20.0, 1.0, 0.0, 0.0);
+  materials->AddNode(0.6, 0.1, 0.6, 0.8, 40.0, 1.0, 0.0, 0.0);
+  return image;
+}
 
 } // namespace mmvtest
 

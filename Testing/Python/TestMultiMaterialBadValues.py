@@ -1,7 +1,8 @@
 """Bad MaterialNodes and an unknown preset are reported (VTK errors, which
 pvpython prints) and ignored: the previous materials stay and rendering goes on.
-A negative PointLightRadius and an IrradianceScale above 1 are reported
-(warnings) and replaced by 0 and 1."""
+A negative PointLightRadius, an IrradianceScale above 1 and an
+EnvironmentLighting that is negative, NaN, infinite or huge are reported
+(warnings) and replaced by 0, 1, 0 (no sky) and 100."""
 
 import math
 import os
@@ -116,4 +117,8 @@ rep.LightFalloff = "Inverse Square Beyond Radius"  # the radius is used
 expect_replaced("PointLightRadius", -5.0, 0.0, "PointLightRadius -5")
 expect_replaced("IrradianceScale", 5.0, 1.0, "IrradianceScale 5")
 rep.IrradianceScale = 0.0
+expect_replaced("EnvironmentLighting", -1.0, 0.0, "EnvironmentLighting -1")
+expect_replaced("EnvironmentLighting", float("nan"), 0.0, "EnvironmentLighting nan")
+expect_replaced("EnvironmentLighting", float("inf"), 0.0, "EnvironmentLighting inf")
+expect_replaced("EnvironmentLighting", 1e30, 100.0, "EnvironmentLighting 1000000")
 checker.finish()
