@@ -77,6 +77,10 @@ bool vtkMultiMaterialSky::Update(vtkOpenGLRenderWindow* context, vtkImageData* i
     std::max(1, (longest - 1 + mmv::SkyVoxelsPerAxis - 2) / (mmv::SkyVoxelsPerAxis - 1));
   const mmv::IrradianceGrid grid = mmv::CoarsenIrradianceGrid(points, stride);
   const double step = std::min({ grid.Spacing.x, grid.Spacing.y, grid.Spacing.z });
+  if (!this->Extinction)
+  {
+    this->Extinction = vtkSmartPointer<vtkPreIntegrationTable>::New();
+  }
   vtkPreIntegrationTable* table = this->Extinction;
   table->SetScalarOpacity(property->GetScalarOpacity(0));
   table->SetMaterialTransferFunction(materials);

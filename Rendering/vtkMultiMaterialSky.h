@@ -141,9 +141,9 @@ private:
   Key Held;
 
   vtkNew<vtkMultiMaterialEnvironment> Environment;
-  vtkNew<vtkPreIntegrationTable> Extinction;
-  std::vector<float> Values; // the data normalised, kept between steps
-  std::vector<float> Coarse; // the extinction on the sky's grid
+  vtkSmartPointer<vtkPreIntegrationTable> Extinction; // made on the sky's first use
+  std::vector<float> Values;                          // the data normalised, kept between steps
+  std::vector<float> Coarse;                          // the extinction on the sky's grid
   std::vector<float> Moments;
   mmv::IrradianceGrid Grid;
   int DataDimensions[3] = { 1, 1, 1 }; // the points the grid spans
