@@ -309,3 +309,26 @@ TEST(EnvironmentLight, ReferenceRendererAgreesWithGPU)
 }
 
 } // namespace mmvtest
+
+namespace mmvtest
+{
+TEST(EnvironmentLight, BricksAreLitByTheWholeVolumesSky)
+{
+  // In bricks the ray cast reads the sky of the whole volume: the image
+  // equals the one-brick image.
+  std::vector<unsigned char> images[2];
+  for (int bricks : { 1, 2 })
+  {
+    SkyScene scene(0.6);
+    scene.Mapper->SetPartitions(bricks, 1, 1);
+    scene.Window->Render();
+    ASSERT_TRUE(scene.Mapper->GetMultiMaterialActive());
+    EXPECT_EQ(scene.Mapper->GetBrickPartitions()[0], bricks);
+    EXPECT_TRUE(Has(scene.Mapper->GetLastFragmentShaderSource(), "#define MMV_USE_SKY 1"));
+    images[bricks - 1] = scene.Pixels();
+  }
+  const double psnr = PSNR(images[0], images[1]);
+  std::cout << "two bricks against one: " << psnr << " dB\n";
+  EXPECT_GT(psnr, 45.0);
+}
+} // namespace mmvtest
