@@ -485,16 +485,15 @@ void PlaceEnvironment(Scene& scene, vtkRenderer* ren, vtkMatrix4x4* objectToWorl
   scene.ReflectionVisibility = visibility != mmv::UnoccludedReflections && !scene.Lights.empty();
 }
 
-/// Multiple scattering: per light, the diffused minus the direct irradiance
-/// of every voxel (the reference renderer adds it back). False: nothing
+/// The diffusion strength of every data voxel: the material's s where the
+/// opacity is > 0, else 0 (as the irradiance filter). False: nothing
 /// scatters.
-bool ComputeScatteringDeltas(Scene& scene, const std::vector<double>& values, bool exponential,
-  std::atomic<vtkIdType>& shadowRays)
+bool ScatteringStrengths(
+  const Scene& scene, const std::vector<double>& values, std::vector<float>& strength)
 {
-  const vtkIdType count = static_cast<vtkIdType>(values.size());
-  std::vector<float> strength(count, 0.0f);
+  strength.assign(values.size(), 0.0f);
   bool any = false;
-  for (vtkIdType v = 0; v < count; ++v)
+  for (size_t v = 0; v < values.size(); ++v)
   {
     int i;
     double w;
@@ -505,7 +504,18 @@ bool ComputeScatteringDeltas(Scene& scene, const std::vector<double>& values, bo
       any = any || strength[v] > 0.0f;
     }
   }
-  if (!any)
+  return any;
+}
+
+/// Multiple scattering: per light, the diffused minus the direct irradiance
+/// of every voxel (the reference renderer adds it back). False: nothing
+/// scatters.
+bool ComputeScatteringDeltas(Scene& scene, const std::vector<double>& values, bool exponential,
+  std::atomic<vtkIdType>& shadowRays)
+{
+  const vtkIdType count = static_cast<vtkIdType>(values.size());
+  std::vector<float> strength;
+  if (!ScatteringStrengths(scene, values, strength))
   {
     return false;
   }
@@ -593,7 +603,8 @@ namespace
 /// from the shadows' extinction there.
 void PlaceSky(Scene& scene, vtkRenderer* ren, vtkMatrix4x4* objectToWorld,
   vtkMultiMaterialEnvironment* environment, vtkImageData* image, const std::vector<double>& values,
-  double strength, int source, std::vector<std::string>& problems)
+  double strength, int source, const mmv::DiffusionSettings* diffusion,
+  std::vector<std::string>& problems)
 {
   problems.emplace_back();
   strength = mmv::ValidEnvironmentLighting(strength, &problems.back());
@@ -621,13 +632,23 @@ void PlaceSky(Scene& scene, vtkRenderer* ren, vtkMatrix4x4* objectToWorld,
   std::vector<float> moments;
   mmv::ComputeSkyVisibility(
     grid, sigma.data(), mmv::SkyDirections(mmv::SkyDirectionCount), moments);
+  // Multiple scattering spreads the sky's light as the lights': each moment
+  // is diffused (the diffusion is linear, so any sky colour still shades).
+  std::vector<float> scattering;
+  const bool diffuse = diffusion && ScatteringStrengths(scene, values, scattering);
+  const double voxel[3] = { 1.0, 1.0, 1.0 };
+  std::vector<float> channel(values.size());
   for (int c = 0; c < mmv::SkyMomentsPerVoxel; ++c)
   {
-    scene.SkyMoments[c].resize(values.size());
     for (size_t v = 0; v < values.size(); ++v)
     {
-      scene.SkyMoments[c][v] = moments[v * mmv::SkyMomentsPerVoxel + c];
+      channel[v] = moments[v * mmv::SkyMomentsPerVoxel + c];
     }
+    if (diffuse)
+    {
+      mmv::DiffuseIrradiance(scene.Data.Dims, voxel, scattering.data(), channel.data(), *diffusion);
+    }
+    scene.SkyMoments[c].assign(channel.begin(), channel.end());
   }
 }
 }
@@ -676,8 +697,10 @@ vtkImageData* vtkMultiMaterialReferenceRenderer::Render(vtkRenderer* ren, int wi
       this->ReflectionVisibility, problems);
   }
   vtkNew<vtkMultiMaterialEnvironment> sky;
+  mmv::DiffusionSettings skyDiffusion;
+  skyDiffusion.Exponential = this->ExponentialDiffusion;
   PlaceSky(scene, ren, objectToWorld, sky, image, values, this->EnvironmentLighting,
-    this->ReflectionSource, problems);
+    this->ReflectionSource, this->MultipleScattering ? &skyDiffusion : nullptr, problems);
   for (const std::string& problem : problems)
   {
     if (!problem.empty())

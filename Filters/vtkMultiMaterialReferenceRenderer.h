@@ -48,7 +48,8 @@
  *    No active light: ambient emission ka * I_c (plus e * I_c), unless the
  *    environment light (EnvironmentLighting) lights the volume: its
  *    mmv::mmvSkyRadiance per segment, from the sky's visibility moments
- *    (vtkSkyVisibility.h) on the data's grid.
+ *    (vtkSkyVisibility.h) on the data's grid, each diffused by
+ *    mmv::DiffuseIrradiance where materials scatter (MultipleScattering).
  *  - Background: the colour is composited over the renderer's background
  *    (its vertical gradient when GradientBackground is on).
  *

@@ -1,6 +1,9 @@
 #include "vtkMultiMaterialSky.h"
 
+#include "vtkIrradianceDiffusion.h"
+#include "vtkMaterialTransferFunction.h"
 #include "vtkMultiMaterialEnvironment.h"
+#include "vtkMultiMaterialParameters.h"
 #include "vtkMultiMaterialVolumeGeometry.h" // SamePointsMap
 #include "vtkPreIntegrationTable.h"
 #include "vtkSkyVisibility.h"
@@ -31,7 +34,8 @@ bool vtkMultiMaterialSky::Key::operator==(const Key& o) const
 {
   return this->Image == o.Image && this->Scalars == o.Scalars && this->DataTime == o.DataTime &&
     this->Range[0] == o.Range[0] && this->Range[1] == o.Range[1] &&
-    this->TableSize == o.TableSize && this->BuildCount == o.BuildCount;
+    this->Extinction == o.Extinction && this->Scattering == o.Scattering &&
+    this->Exponential == o.Exponential;
 }
 
 vtkMultiMaterialSky::vtkMultiMaterialSky() = default;
@@ -60,33 +64,33 @@ bool vtkMultiMaterialSky::Refresh(
   {
     return false; // a black sky lights nothing: no sky code
   }
-  return this->Update(vtkOpenGLRenderWindow::SafeDownCast(in.Renderer->GetRenderWindow()), in.Image,
-    in.Scalars, in.Range, in.Property, in.Materials, in.TableSize, &error);
+  return this->Update(
+    vtkOpenGLRenderWindow::SafeDownCast(in.Renderer->GetRenderWindow()), in, &error);
 }
 
-bool vtkMultiMaterialSky::Update(vtkOpenGLRenderWindow* context, vtkImageData* image,
-  vtkDataArray* scalars, const double range[2], vtkVolumeProperty* property,
-  vtkMaterialTransferFunction* materials, int tableSize, std::string* problem)
+bool vtkMultiMaterialSky::Update(
+  vtkOpenGLRenderWindow* context, const mmv::SkyInputs& in, std::string* problem)
 {
   int dims[3];
-  image->GetDimensions(dims);
-  const mmv::IrradianceGrid points = mmv::MakeIrradianceGrid(image, dims);
-  // The extinction the shadows use, over a step of one sky voxel.
+  in.Image->GetDimensions(dims);
+  const mmv::IrradianceGrid points = mmv::MakeIrradianceGrid(in.Image, dims);
   const int longest = std::max({ dims[0], dims[1], dims[2] });
   const int stride =
     std::max(1, (longest - 1 + mmv::SkyVoxelsPerAxis - 2) / (mmv::SkyVoxelsPerAxis - 1));
   const mmv::IrradianceGrid grid = mmv::CoarsenIrradianceGrid(points, stride);
+  // The extinction the shadows use (opacity, unit distance, attenuation),
+  // over a step of one sky voxel.
   const double step = std::min({ grid.Spacing.x, grid.Spacing.y, grid.Spacing.z });
   if (!this->Extinction)
   {
     this->Extinction = vtkSmartPointer<vtkPreIntegrationTable>::New();
   }
   vtkPreIntegrationTable* table = this->Extinction;
-  table->SetScalarOpacity(property->GetScalarOpacity(0));
-  table->SetMaterialTransferFunction(materials);
-  table->SetScalarOpacityUnitDistance(property->GetScalarOpacityUnitDistance(0));
-  table->SetTableSize(tableSize);
-  table->SetScalarRange(range[0], range[1]);
+  table->SetScalarOpacity(in.Property->GetScalarOpacity(0));
+  table->SetMaterialTransferFunction(in.Materials);
+  table->SetScalarOpacityUnitDistance(in.Property->GetScalarOpacityUnitDistance(0));
+  table->SetTableSize(in.TableSize);
+  table->SetScalarRange(in.Range[0], in.Range[1]);
   table->SetStepLength(step);
   if (!table->Update())
   {
@@ -94,19 +98,41 @@ bool vtkMultiMaterialSky::Update(vtkOpenGLRenderWindow* context, vtkImageData* i
     return false;
   }
   Key key;
-  key.Image = image;
-  key.Scalars = scalars;
-  key.DataTime = std::max(scalars->GetMTime(), image->GetMTime());
-  key.Range[0] = range[0];
-  key.Range[1] = range[1];
-  key.TableSize = tableSize;
-  key.BuildCount = table->GetBuildCount();
+  key.Image = in.Image;
+  key.Scalars = in.Scalars;
+  key.DataTime = std::max(in.Scalars->GetMTime(), in.Image->GetMTime());
+  key.Range[0] = in.Range[0];
+  key.Range[1] = in.Range[1];
+  key.Exponential = in.ExponentialDiffusion;
+  key.Extinction.resize(static_cast<size_t>(in.TableSize));
+  bool scatters = false;
+  std::vector<float> scattering(key.Extinction.size(), 0.0f);
+  for (int i = 0; i < in.TableSize; ++i)
+  {
+    const double s = in.Range[0] + (in.Range[1] - in.Range[0]) * i / (in.TableSize - 1.0);
+    const double alpha = table->LookupShadowOpacity(s, s);
+    key.Extinction[i] = static_cast<float>(
+      (alpha < 1.0 ? std::min(-std::log1p(-alpha), OpaqueDepth) : OpaqueDepth) / step);
+    if (in.MultipleScattering && in.Materials && key.Extinction[i] > 0.0f)
+    {
+      scattering[i] = static_cast<float>(in.Materials->EvaluateParameter(s, mmv::Scattering));
+      scatters = scatters || scattering[i] > 0.0f;
+    }
+  }
+  if (scatters)
+  {
+    key.Scattering = scattering;
+  }
   if (this->HasKey && key == this->Held && this->Texture && this->Texture->GetHandle() != 0)
   {
     return true;
   }
   const auto start = std::chrono::steady_clock::now();
-  this->EstimateMoments(points, grid, scalars, range, step);
+  this->EstimateMoments(points, grid, in.Scalars, key);
+  if (!key.Scattering.empty())
+  {
+    this->DiffuseMoments(points, grid, key);
+  }
   if (!this->Upload(context, grid, problem))
   {
     return false;
@@ -122,13 +148,12 @@ bool vtkMultiMaterialSky::Update(vtkOpenGLRenderWindow* context, vtkImageData* i
 }
 
 void vtkMultiMaterialSky::EstimateMoments(const mmv::IrradianceGrid& points,
-  const mmv::IrradianceGrid& grid, vtkDataArray* scalars, const double range[2], double step)
+  const mmv::IrradianceGrid& grid, vtkDataArray* scalars, const Key& key)
 {
-  const int tableSize = this->Extinction->GetTableSize();
-  vtkPreIntegrationTable* table = this->Extinction;
   // Normalised values (NaN: empty), kept between steps.
   const vtkIdType n = scalars->GetNumberOfTuples();
   this->Values.resize(static_cast<size_t>(n));
+  const double* range = key.Range;
   const double scale = range[1] > range[0] ? 1.0 / (range[1] - range[0]) : 0.0;
   vtkSMPTools::For(0, n,
     [&](vtkIdType first, vtkIdType last)
@@ -140,17 +165,35 @@ void vtkMultiMaterialSky::EstimateMoments(const mmv::IrradianceGrid& points,
           std::isnan(v) ? 0.0f : static_cast<float>(std::min(std::max(v, 0.0), 1.0));
       }
     });
-  std::vector<float> sigma(static_cast<size_t>(tableSize));
-  for (int i = 0; i < tableSize; ++i)
-  {
-    const double s = range[0] + (range[1] - range[0]) * i / (tableSize - 1.0);
-    const double alpha = table->LookupShadowOpacity(s, s);
-    sigma[i] = static_cast<float>(
-      (alpha < 1.0 ? std::min(-std::log1p(-alpha), OpaqueDepth) : OpaqueDepth) / step);
-  }
-  mmv::AverageOntoGrid(points, this->Values.data(), grid, this->Coarse, &sigma);
+  mmv::AverageOntoGrid(points, this->Values.data(), grid, this->Coarse, &key.Extinction);
   mmv::ComputeSkyVisibility(
     grid, this->Coarse.data(), mmv::SkyDirections(mmv::SkyDirectionCount), this->Moments);
+}
+
+void vtkMultiMaterialSky::DiffuseMoments(
+  const mmv::IrradianceGrid& points, const mmv::IrradianceGrid& grid, const Key& key)
+{
+  std::vector<float> strength;
+  mmv::AverageOntoGrid(points, this->Values.data(), grid, strength, &key.Scattering);
+  // s is in data voxels^2: the sky's grid spacing in data voxels.
+  const double spacing[3] = { grid.DataVoxelsPerVoxel.x, grid.DataVoxelsPerVoxel.y,
+    grid.DataVoxelsPerVoxel.z };
+  mmv::DiffusionSettings settings;
+  settings.Exponential = key.Exponential;
+  const size_t voxels = strength.size();
+  std::vector<float> channel(voxels);
+  for (int c = 0; c < mmv::SkyMomentsPerVoxel; ++c)
+  {
+    for (size_t v = 0; v < voxels; ++v)
+    {
+      channel[v] = this->Moments[v * mmv::SkyMomentsPerVoxel + c];
+    }
+    mmv::DiffuseIrradiance(grid.Dimensions, spacing, strength.data(), channel.data(), settings);
+    for (size_t v = 0; v < voxels; ++v)
+    {
+      this->Moments[v * mmv::SkyMomentsPerVoxel + c] = channel[v];
+    }
+  }
 }
 
 bool vtkMultiMaterialSky::Upload(

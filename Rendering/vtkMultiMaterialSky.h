@@ -8,9 +8,11 @@
  * grid of at most mmv::SkyVoxelsPerAxis voxels per axis spanning the data's
  * points, from the extinction the shadows use (opacity, unit distance and
  * the materials' attenuation), averaged over each sky voxel, and uploads them
- * as one RGBA 3D texture. It re-estimates only when the data, the opacity,
- * the materials or the range change; the sky's colours (SetColors, from the
- * background) are uniforms, so a new background only reshades.
+ * as one RGBA 3D texture; where materials scatter, each moment is diffused
+ * as a light's irradiance is. It re-estimates only when the data, the
+ * range or the sampled extinction or scattering change; the sky's colours
+ * (SetColors, from the background) are uniforms, so a new background only
+ * reshades.
  *
  * The ray cast adds mmvSkyRadiance (Shaders/mmvShading.glsl) per segment:
  * the sky's single scattering as the path tracer models it, isotropic for
@@ -59,9 +61,11 @@ struct SkyInputs
   vtkVolumeProperty* Property = nullptr; // its first opacity
   vtkMaterialTransferFunction* Materials = nullptr;
   int TableSize = 256;
-  double Strength = 0.0;    // EnvironmentLighting
-  bool UseTexture = true;   // the environment texture, when the renderer has one
-  bool Distributed = false; // the image is one piece of a distributed volume
+  double Strength = 0.0;          // EnvironmentLighting
+  bool UseTexture = true;         // the environment texture, when the renderer has one
+  bool Distributed = false;       // the image is one piece of a distributed volume
+  bool MultipleScattering = true; // the sky's light diffuses where materials scatter
+  bool ExponentialDiffusion = true;
 };
 }
 
@@ -85,9 +89,7 @@ public:
    * opacity and `materials`' attenuation. False: nothing to bind (an error
    * was reported through `problem`).
    */
-  bool Update(vtkOpenGLRenderWindow* context, vtkImageData* image, vtkDataArray* scalars,
-    const double range[2], vtkVolumeProperty* property, vtkMaterialTransferFunction* materials,
-    int tableSize, std::string* problem);
+  bool Update(vtkOpenGLRenderWindow* context, const mmv::SkyInputs& in, std::string* problem);
 
   /// The sky's radiance: `strength` times the renderer's background (its
   /// environment texture when `useTexture` and it has one), in the object
@@ -118,25 +120,33 @@ private:
   vtkMultiMaterialSky(const vtkMultiMaterialSky&) = delete;
   void operator=(const vtkMultiMaterialSky&) = delete;
 
-  /// The data's extinction averaged onto `grid` (a coarsening of the
-  /// data's `points`) and its visibility moments, into Coarse and Moments.
-  void EstimateMoments(const mmv::IrradianceGrid& points, const mmv::IrradianceGrid& grid,
-    vtkDataArray* scalars, const double range[2], double step);
-  /// Moments into the texture: in place when the grid keeps its size.
-  bool Upload(
-    vtkOpenGLRenderWindow* context, const mmv::IrradianceGrid& grid, std::string* problem);
-
+  /// What the moments were estimated from: the data, and the sampled
+  /// extinction and scattering (not the tables' times, so that an edit of a
+  /// colour or of ka re-estimates nothing).
   struct Key
   {
     vtkImageData* Image = nullptr;
     vtkDataArray* Scalars = nullptr;
     vtkMTimeType DataTime = 0;
-    vtkMTimeType OpacityTime = 0;
     double Range[2] = { 0.0, 0.0 };
-    int TableSize = 0;
-    int BuildCount = -1; // of the extinction table
+    std::vector<float> Extinction; // per unit length, over the range
+    std::vector<float> Scattering; // s where the opacity is > 0; empty: no diffusion
+    bool Exponential = true;
     bool operator==(const Key& o) const;
   };
+
+  /// The data's extinction averaged onto `grid` (a coarsening of the
+  /// data's `points`) and its visibility moments, into Coarse and Moments.
+  void EstimateMoments(const mmv::IrradianceGrid& points, const mmv::IrradianceGrid& grid,
+    vtkDataArray* scalars, const Key& key);
+  /// Multiple scattering: each moment diffused with the scattering averaged
+  /// onto the sky's grid (the diffusion is linear: any sky still shades).
+  void DiffuseMoments(
+    const mmv::IrradianceGrid& points, const mmv::IrradianceGrid& grid, const Key& key);
+  /// Moments into the texture: in place when the grid keeps its size.
+  bool Upload(
+    vtkOpenGLRenderWindow* context, const mmv::IrradianceGrid& grid, std::string* problem);
+
   bool HasKey = false;
   Key Held;
 

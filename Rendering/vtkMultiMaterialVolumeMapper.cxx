@@ -743,8 +743,8 @@ bool vtkMultiMaterialVolumeMapper::UpdateSky(vtkRenderer* ren, vtkImageData* ima
   mmv::SkyInputs inputs{ ren, worldToObject, image, scalars, range, property,
     in.Fields.GetLightingMaterials(), this->Settings.PreIntegrationTableSize,
     this->Settings.EnvironmentLighting,
-    this->Settings.ReflectionSource == mmv::ReflectEnvironmentTexture,
-    in.ActiveGlobal() != nullptr };
+    this->Settings.ReflectionSource == mmv::ReflectEnvironmentTexture, in.ActiveGlobal() != nullptr,
+    this->Settings.MultipleScattering, this->Settings.ExponentialDiffusion };
   std::vector<std::string> warnings;
   std::string error;
   const bool shaded = in.Sky.Refresh(inputs, warnings, error);
