@@ -128,10 +128,19 @@ bool vtkMultiMaterialSky::Update(
     return true;
   }
   const auto start = std::chrono::steady_clock::now();
-  this->EstimateMoments(points, grid, in.Scalars, key);
-  if (!key.Scattering.empty())
+  const bool kept = this->RestoreKept(key, grid);
+  if (!kept)
   {
-    this->DiffuseMoments(points, grid, key);
+    this->EstimateMoments(points, grid, in.Scalars, key);
+    if (!key.Scattering.empty())
+    {
+      this->DiffuseMoments(points, grid, key);
+    }
+    this->Kept.push_front(KeptMoments{ key, grid, this->Moments });
+    if (this->Kept.size() > MaxKept)
+    {
+      this->Kept.pop_back();
+    }
   }
   if (!this->Upload(context, grid, problem))
   {
@@ -141,10 +150,28 @@ bool vtkMultiMaterialSky::Update(
   std::copy(dims, dims + 3, this->DataDimensions);
   this->Held = key;
   this->HasKey = true;
-  ++this->UpdateCount;
-  this->LastSeconds =
-    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (!kept)
+  {
+    ++this->UpdateCount;
+    this->LastSeconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
   return true;
+}
+
+bool vtkMultiMaterialSky::RestoreKept(const Key& key, const mmv::IrradianceGrid& grid)
+{
+  for (auto entry = this->Kept.begin(); entry != this->Kept.end(); ++entry)
+  {
+    if (entry->From == key &&
+      std::equal(grid.Dimensions, grid.Dimensions + 3, entry->Grid.Dimensions))
+    {
+      this->Moments = entry->Moments;
+      this->Kept.splice(this->Kept.begin(), this->Kept, entry);
+      return true;
+    }
+  }
+  return false;
 }
 
 void vtkMultiMaterialSky::EstimateMoments(const mmv::IrradianceGrid& points,
@@ -286,5 +313,5 @@ void vtkMultiMaterialSky::ReleaseGraphicsResources(vtkWindow* window)
   {
     this->Texture->ReleaseGraphicsResources(window);
   }
-  this->HasKey = false;
+  this->HasKey = false; // the kept moments are on the CPU: they stay
 }

@@ -32,6 +32,7 @@
 
 #include <glm/glm.hpp>
 
+#include <list>
 #include <string>
 #include <vector>
 
@@ -149,6 +150,19 @@ private:
 
   bool HasKey = false;
   Key Held;
+  /// The moments of earlier data (a series' steps, which ParaView's
+  /// animation caching hands back), most recent first: about 1 MB each on
+  /// the CPU, so that a second loop estimates nothing.
+  struct KeptMoments
+  {
+    Key From;
+    mmv::IrradianceGrid Grid;
+    std::vector<float> Moments;
+  };
+  std::list<KeptMoments> Kept;
+  static constexpr size_t MaxKept = 32;
+  /// Makes the kept moments of `key` on `grid` current; false: none kept.
+  bool RestoreKept(const Key& key, const mmv::IrradianceGrid& grid);
 
   vtkNew<vtkMultiMaterialEnvironment> Environment;
   vtkSmartPointer<vtkPreIntegrationTable> Extinction; // made on the sky's first use

@@ -215,7 +215,8 @@ def run_volume(name, args, methods, folder, writer, records, checks):
         shift = count[0] % len(active)
         count[0] += 1
         for m in active[shift:] + active[:shift]:
-            if sequence.startswith("series") and m.name not in ("pv-volume", "mmv-default", "mmv-smoke"):
+            if sequence.startswith("series") and m.name not in ("pv-volume", "mmv-default", "mmv-smoke",
+                                                                  "mmv-sky"):
                 continue
             if sequence not in ("still", "series", "series-2") and m.name == "mmv-smoke":
                 continue

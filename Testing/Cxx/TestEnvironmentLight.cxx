@@ -376,3 +376,27 @@ TEST(EnvironmentLight, SkyLightDiffusesWhereMaterialsScatter)
   EXPECT_LT(diffusionShare, psnr - 6.0);
 }
 } // namespace mmvtest
+
+namespace mmvtest
+{
+TEST(EnvironmentLight, EarlierDataComeBackWithoutAnEstimation)
+{
+  // A series' steps handed back (as ParaView's animation caching does):
+  // the sky's moments of earlier data are kept, so returning to them
+  // estimates nothing and draws the same image.
+  SkyScene scene(0.6);
+  scene.Opacity->AddPoint(0.0, 0.0); // extinction grows with the value
+  auto other = MakeVolume(Dims, [](int i, int, int) { return i < Dims / 2 ? 2.0f : 1.0f; });
+  scene.CenterPixel();
+  const std::vector<unsigned char> firstImage = scene.Pixels();
+  EXPECT_EQ(scene.Mapper->GetSkyUpdateCount(), 1);
+  scene.Mapper->SetInputData(other);
+  scene.CenterPixel();
+  EXPECT_EQ(scene.Mapper->GetSkyUpdateCount(), 2);
+  EXPECT_LT(PSNR(scene.Pixels(), firstImage), 35.0); // another volume and its sky
+  scene.Mapper->SetInputData(scene.Image);
+  scene.CenterPixel();
+  EXPECT_EQ(scene.Mapper->GetSkyUpdateCount(), 2);
+  EXPECT_EQ(PSNR(scene.Pixels(), firstImage), std::numeric_limits<double>::infinity());
+}
+} // namespace mmvtest
