@@ -32,7 +32,11 @@ constexpr double OpaqueDepth = 13.8;
 
 bool vtkMultiMaterialSky::Key::operator==(const Key& o) const
 {
-  return this->Image == o.Image && this->Scalars == o.Scalars && this->DataTime == o.DataTime &&
+  const mmv::IrradianceGrid& a = this->Points;
+  const mmv::IrradianceGrid& b = o.Points;
+  const bool sameGeometry = std::equal(a.Dimensions, a.Dimensions + 3, b.Dimensions) &&
+    a.Origin == b.Origin && a.Spacing == b.Spacing && a.Direction == b.Direction;
+  return sameGeometry && this->Scalars == o.Scalars && this->ScalarsTime == o.ScalarsTime &&
     this->Range[0] == o.Range[0] && this->Range[1] == o.Range[1] &&
     this->Extinction == o.Extinction && this->Scattering == o.Scattering &&
     this->Exponential == o.Exponential;
@@ -98,9 +102,9 @@ bool vtkMultiMaterialSky::Update(
     return false;
   }
   Key key;
-  key.Image = in.Image;
   key.Scalars = in.Scalars;
-  key.DataTime = std::max(in.Scalars->GetMTime(), in.Image->GetMTime());
+  key.ScalarsTime = in.Scalars->GetMTime();
+  key.Points = points;
   key.Range[0] = in.Range[0];
   key.Range[1] = in.Range[1];
   key.Exponential = in.ExponentialDiffusion;

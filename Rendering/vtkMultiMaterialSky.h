@@ -126,9 +126,11 @@ private:
   /// colour or of ka re-estimates nothing).
   struct Key
   {
-    vtkImageData* Image = nullptr;
+    // The data: its array and that array's time (the image around it may be
+    // a new copy each frame, as in ParaView), and the points' geometry.
     vtkDataArray* Scalars = nullptr;
-    vtkMTimeType DataTime = 0;
+    vtkMTimeType ScalarsTime = 0;
+    mmv::IrradianceGrid Points;
     double Range[2] = { 0.0, 0.0 };
     std::vector<float> Extinction; // per unit length, over the range
     std::vector<float> Scattering; // s where the opacity is > 0; empty: no diffusion
