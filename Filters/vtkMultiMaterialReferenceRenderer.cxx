@@ -635,20 +635,18 @@ void PlaceSky(Scene& scene, vtkRenderer* ren, vtkMatrix4x4* objectToWorld,
   // Multiple scattering spreads the sky's light as the lights': each moment
   // is diffused (the diffusion is linear, so any sky colour still shades).
   std::vector<float> scattering;
-  const bool diffuse = diffusion && ScatteringStrengths(scene, values, scattering);
-  const double voxel[3] = { 1.0, 1.0, 1.0 };
-  std::vector<float> channel(values.size());
+  if (diffusion && ScatteringStrengths(scene, values, scattering))
+  {
+    const double voxel[3] = { 1.0, 1.0, 1.0 };
+    mmv::DiffuseSkyMoments(scene.Data.Dims, voxel, scattering.data(), moments, *diffusion);
+  }
   for (int c = 0; c < mmv::SkyMomentsPerVoxel; ++c)
   {
+    scene.SkyMoments[c].resize(values.size());
     for (size_t v = 0; v < values.size(); ++v)
     {
-      channel[v] = moments[v * mmv::SkyMomentsPerVoxel + c];
+      scene.SkyMoments[c][v] = moments[v * mmv::SkyMomentsPerVoxel + c];
     }
-    if (diffuse)
-    {
-      mmv::DiffuseIrradiance(scene.Data.Dims, voxel, scattering.data(), channel.data(), *diffusion);
-    }
-    scene.SkyMoments[c].assign(channel.begin(), channel.end());
   }
 }
 }

@@ -371,4 +371,23 @@ void ComputeSkyVisibility(const IrradianceGrid& grid, const float* extinction,
   }
 }
 
+void DiffuseSkyMoments(const int dims[3], const double spacing[3], const float* strength,
+  std::vector<float>& moments, const DiffusionSettings& settings)
+{
+  const size_t voxels = moments.size() / SkyMomentsPerVoxel;
+  std::vector<float> channel(voxels);
+  for (int c = 0; c < SkyMomentsPerVoxel; ++c)
+  {
+    for (size_t v = 0; v < voxels; ++v)
+    {
+      channel[v] = moments[v * SkyMomentsPerVoxel + c];
+    }
+    DiffuseIrradiance(dims, spacing, strength, channel.data(), settings);
+    for (size_t v = 0; v < voxels; ++v)
+    {
+      moments[v * SkyMomentsPerVoxel + c] = channel[v];
+    }
+  }
+}
+
 } // namespace mmv

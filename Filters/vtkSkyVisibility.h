@@ -37,6 +37,7 @@
 #ifndef vtkSkyVisibility_h
 #define vtkSkyVisibility_h
 
+#include "vtkIrradianceDiffusion.h"              // DiffusionSettings
 #include "vtkIrradianceGrid.h"                   // IrradianceGrid
 #include "vtkMultiMaterialVolumeFiltersModule.h" // export macro
 
@@ -109,6 +110,17 @@ VTKMULTIMATERIALVOLUMEFILTERS_EXPORT void SweepSkyTransmittance(const Irradiance
  */
 VTKMULTIMATERIALVOLUMEFILTERS_EXPORT void ComputeSkyVisibility(const IrradianceGrid& grid,
   const float* extinction, const std::vector<glm::dvec3>& directions, std::vector<float>& moments);
+
+/**
+ * Multiple scattering of the sky: each moment of `moments` (on a grid of
+ * `dims`, SkyMomentsPerVoxel floats per voxel) diffused by
+ * mmv::DiffuseIrradiance with the per-voxel `strength` (s, in data voxels^2;
+ * `spacing` in data voxels). The diffusion is linear, so the diffused
+ * moments still shade any sky colour.
+ */
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT void DiffuseSkyMoments(const int dims[3],
+  const double spacing[3], const float* strength, std::vector<float>& moments,
+  const DiffusionSettings& settings);
 
 } // namespace mmv
 

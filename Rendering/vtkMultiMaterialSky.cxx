@@ -5,7 +5,6 @@
 #include "vtkMultiMaterialEnvironment.h"
 #include "vtkMultiMaterialParameters.h"
 #include "vtkMultiMaterialVolumeGeometry.h" // SamePointsMap
-#include "vtkPreIntegrationTable.h"
 #include "vtkSkyVisibility.h"
 
 #include "vtkDataArray.h"
@@ -23,12 +22,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-
-namespace
-{
-// Optical depth of a fully opaque table entry (-ln 1e-6).
-constexpr double OpaqueDepth = 13.8;
-}
 
 bool vtkMultiMaterialSky::Key::operator==(const Key& o) const
 {
@@ -82,25 +75,6 @@ bool vtkMultiMaterialSky::Update(
   const int stride =
     std::max(1, (longest - 1 + mmv::SkyVoxelsPerAxis - 2) / (mmv::SkyVoxelsPerAxis - 1));
   const mmv::IrradianceGrid grid = mmv::CoarsenIrradianceGrid(points, stride);
-  // The extinction the shadows use (opacity, unit distance, attenuation),
-  // over a step of one sky voxel.
-  const double step = std::min({ grid.Spacing.x, grid.Spacing.y, grid.Spacing.z });
-  if (!this->Extinction)
-  {
-    this->Extinction = vtkSmartPointer<vtkPreIntegrationTable>::New();
-  }
-  vtkPreIntegrationTable* table = this->Extinction;
-  table->SetScalarOpacity(in.Property->GetScalarOpacity(0));
-  table->SetMaterialTransferFunction(in.Materials);
-  table->SetScalarOpacityUnitDistance(in.Property->GetScalarOpacityUnitDistance(0));
-  table->SetTableSize(in.TableSize);
-  table->SetScalarRange(in.Range[0], in.Range[1]);
-  table->SetStepLength(step);
-  if (!table->Update())
-  {
-    *problem = "the sky's extinction table could not be built";
-    return false;
-  }
   Key key;
   key.Scalars = in.Scalars;
   key.ScalarsTime = in.Scalars->GetMTime();
@@ -111,12 +85,16 @@ bool vtkMultiMaterialSky::Update(
   key.Extinction.resize(static_cast<size_t>(in.TableSize));
   bool scatters = false;
   std::vector<float> scattering(key.Extinction.size(), 0.0f);
+  // The extinction the shadows see: the attenuation times the opacity's.
+  vtkPiecewiseFunction* opacity = in.Property->GetScalarOpacity(0);
+  const double unitDistance = in.Property->GetScalarOpacityUnitDistance(0);
   for (int i = 0; i < in.TableSize; ++i)
   {
     const double s = in.Range[0] + (in.Range[1] - in.Range[0]) * i / (in.TableSize - 1.0);
-    const double alpha = table->LookupShadowOpacity(s, s);
+    const double attenuation =
+      in.Materials ? in.Materials->EvaluateParameter(s, mmv::Attenuation) : 1.0;
     key.Extinction[i] = static_cast<float>(
-      (alpha < 1.0 ? std::min(-std::log1p(-alpha), OpaqueDepth) : OpaqueDepth) / step);
+      attenuation * mmv::ExtinctionFromOpacity(opacity->GetValue(s), unitDistance));
     if (in.MultipleScattering && in.Materials && key.Extinction[i] > 0.0f)
     {
       scattering[i] = static_cast<float>(in.Materials->EvaluateParameter(s, mmv::Scattering));
@@ -211,20 +189,7 @@ void vtkMultiMaterialSky::DiffuseMoments(
     grid.DataVoxelsPerVoxel.z };
   mmv::DiffusionSettings settings;
   settings.Exponential = key.Exponential;
-  const size_t voxels = strength.size();
-  std::vector<float> channel(voxels);
-  for (int c = 0; c < mmv::SkyMomentsPerVoxel; ++c)
-  {
-    for (size_t v = 0; v < voxels; ++v)
-    {
-      channel[v] = this->Moments[v * mmv::SkyMomentsPerVoxel + c];
-    }
-    mmv::DiffuseIrradiance(grid.Dimensions, spacing, strength.data(), channel.data(), settings);
-    for (size_t v = 0; v < voxels; ++v)
-    {
-      this->Moments[v * mmv::SkyMomentsPerVoxel + c] = channel[v];
-    }
-  }
+  mmv::DiffuseSkyMoments(grid.Dimensions, spacing, strength.data(), this->Moments, settings);
 }
 
 bool vtkMultiMaterialSky::Upload(

@@ -42,7 +42,6 @@ class vtkMaterialTransferFunction;
 class vtkMultiMaterialEnvironment;
 class vtkMatrix4x4;
 class vtkOpenGLRenderWindow;
-class vtkPreIntegrationTable;
 class vtkRenderer;
 class vtkShaderProgram;
 class vtkTextureObject;
@@ -167,9 +166,8 @@ private:
   bool RestoreKept(const Key& key, const mmv::IrradianceGrid& grid);
 
   vtkNew<vtkMultiMaterialEnvironment> Environment;
-  vtkSmartPointer<vtkPreIntegrationTable> Extinction; // made on the sky's first use
-  std::vector<float> Values;                          // the data normalised, kept between steps
-  std::vector<float> Coarse;                          // the extinction on the sky's grid
+  std::vector<float> Values; // the data normalised, kept between steps
+  std::vector<float> Coarse; // the extinction on the sky's grid
   std::vector<float> Moments;
   mmv::IrradianceGrid Grid;
   int DataDimensions[3] = { 1, 1, 1 }; // the points the grid spans
