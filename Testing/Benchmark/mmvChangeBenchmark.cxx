@@ -8,7 +8,8 @@
 //   mmvChangeBenchmark --out DIR [--head FILE.vti] [--chest PREFIX] [--size N]
 //                      [--changes N] [--steps N] [--large N] [--large-size N]
 //                      [--large-edits N] [--only changes|large]
-//                      [--volumes head,chest] [--methods mmv-default,mmv-skin,mmv-smoke]
+//                      [--volumes head,chest]
+//                      [--methods mmv-default,mmv-skin,mmv-smoke,mmv-sky]
 //
 // --chest PREFIX reads PREFIX_K.raw, K = 0 .. steps-1: 256 x 256 x 128
 // uint16 written by mmv_fine_volume.py (chest(dims, phase=K/steps).tofile);
@@ -120,7 +121,8 @@ struct View : mmvbench::VolumeWindow
 {
   std::string Name;
 
-  /// `preset` empty: VTK's Phong; "default": ours with no material nodes.
+  /// `preset` empty: VTK's Phong; "default": ours with no material nodes;
+  /// "sky": the default material lit by the environment too (strength 1).
   View(const std::string& name, const std::string& preset, vtkImageData* image,
     TransferFunctions& tf, int size)
     : Name(name)
@@ -142,7 +144,11 @@ struct View : mmvbench::VolumeWindow
     else
     {
       vtkNew<vtkMultiMaterialVolumeMapper> mapper;
-      if (preset != "default")
+      if (preset == "sky")
+      {
+        mapper->SetEnvironmentLighting(1.0);
+      }
+      else if (preset != "default")
       {
         this->Materials->ApplyPreset(preset.c_str(), ValueRange[0], ValueRange[1]);
       }
@@ -241,7 +247,7 @@ std::vector<std::pair<std::string, std::string>> WantedMethods(const std::string
 {
   std::vector<std::pair<std::string, std::string>> methods;
   for (const auto& m : std::vector<std::pair<std::string, std::string>>{ { "vtk-phong", "" },
-         { "mmv-default", "default" }, { "mmv-skin", "skin" }, { "mmv-smoke", "smoke" } })
+         { "mmv-default", "default" }, { "mmv-skin", "skin" }, { "mmv-smoke", "smoke" }, { "mmv-sky", "sky" } })
   {
     if (m.first == "vtk-phong" || Listed(wanted, m.first))
     {
@@ -262,9 +268,10 @@ void PrintOpacityEditStages(
       v->Ours->TimeStagesOn();
       tf.DragOpacity();
       v->Window->Render();
-      std::printf("%s %s opacity edit stages: %s; ray cast %.4f s; prepare %.4f s\n",
+      std::printf("%s %s opacity edit stages: %s; ray cast %.4f s; prepare %.4f s; sky %.4f s\n",
         volume.c_str(), v->Name.c_str(), v->Ours->GetLastIrradianceStages().c_str(),
-        v->Ours->GetLastRayCastSeconds(), v->Ours->GetLastPrepareSeconds());
+        v->Ours->GetLastRayCastSeconds(), v->Ours->GetLastPrepareSeconds(),
+        v->Ours->GetLastSkySeconds());
       v->Ours->TimeStagesOff();
     }
   }
