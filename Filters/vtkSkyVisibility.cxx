@@ -336,9 +336,13 @@ void ComputeSkyVisibility(const IrradianceGrid& grid, const float* extinction,
   }
   const double weight = 4.0 * M_PI / static_cast<double>(directions.size());
   // Directions in blocks, one sweep per thread, then summed in the
-  // directions' order: the same moments for any thread count.
-  constexpr size_t Block = 8;
+  // directions' order: the same moments for any thread count or block. A
+  // block holds as many transmittances as about 32 MB allow (every
+  // direction of the sky's own grid: a core each on a large machine), and
+  // at least 8.
   const size_t count = directions.size();
+  const size_t perBuffer = static_cast<size_t>(voxels) * sizeof(float);
+  const size_t Block = std::max<size_t>(8, (size_t(32) << 20) / std::max<size_t>(1, perBuffer));
   std::vector<std::vector<float>> t(std::min(Block, count));
   for (size_t first = 0; first < count; first += Block)
   {

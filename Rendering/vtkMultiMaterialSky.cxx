@@ -7,7 +7,9 @@
 #include "vtkMultiMaterialVolumeGeometry.h" // SamePointsMap
 #include "vtkSkyVisibility.h"
 
+#include "vtkArrayDispatch.h"
 #include "vtkDataArray.h"
+#include "vtkDataArrayRange.h"
 #include "vtkImageData.h"
 #include "vtkMatrix4x4.h"
 #include "vtkOpenGLRenderWindow.h"
@@ -22,6 +24,38 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+
+namespace
+{
+/// The first component of `scalars` mapped to [0, 1] over `range` (NaN: 0).
+struct NormaliseWorker
+{
+  template <typename Array>
+  void operator()(Array* array, const double range[2], std::vector<float>& out) const
+  {
+    const auto tuples = vtk::DataArrayTupleRange(array);
+    const double scale = range[1] > range[0] ? 1.0 / (range[1] - range[0]) : 0.0;
+    vtkSMPTools::For(0, tuples.size(),
+      [&](vtkIdType first, vtkIdType last)
+      {
+        for (vtkIdType i = first; i < last; ++i)
+        {
+          const double v = (static_cast<double>(tuples[i][0]) - range[0]) * scale;
+          out[i] = std::isnan(v) ? 0.0f : static_cast<float>(std::min(std::max(v, 0.0), 1.0));
+        }
+      });
+  }
+};
+
+void NormaliseValues(vtkDataArray* scalars, const double range[2], std::vector<float>& out)
+{
+  out.resize(static_cast<size_t>(scalars->GetNumberOfTuples()));
+  if (!vtkArrayDispatch::Dispatch::Execute(scalars, NormaliseWorker{}, range, out))
+  {
+    NormaliseWorker{}(scalars, range, out);
+  }
+}
+}
 
 bool vtkMultiMaterialSky::Key::operator==(const Key& o) const
 {
@@ -159,21 +193,14 @@ bool vtkMultiMaterialSky::RestoreKept(const Key& key, const mmv::IrradianceGrid&
 void vtkMultiMaterialSky::EstimateMoments(const mmv::IrradianceGrid& points,
   const mmv::IrradianceGrid& grid, vtkDataArray* scalars, const Key& key)
 {
-  // Normalised values (NaN: empty), kept between steps.
-  const vtkIdType n = scalars->GetNumberOfTuples();
-  this->Values.resize(static_cast<size_t>(n));
-  const double* range = key.Range;
-  const double scale = range[1] > range[0] ? 1.0 / (range[1] - range[0]) : 0.0;
-  vtkSMPTools::For(0, n,
-    [&](vtkIdType first, vtkIdType last)
-    {
-      for (vtkIdType i = first; i < last; ++i)
-      {
-        const double v = (scalars->GetComponent(i, 0) - range[0]) * scale;
-        this->Values[i] =
-          std::isnan(v) ? 0.0f : static_cast<float>(std::min(std::max(v, 0.0), 1.0));
-      }
-    });
+  // Normalised values (NaN: empty), kept while the data and range are: an
+  // opacity edit only changes the extinction table.
+  if (this->ValuesFrom.Scalars != scalars || this->ValuesFrom.Time != key.ScalarsTime ||
+    this->ValuesFrom.Range[0] != key.Range[0] || this->ValuesFrom.Range[1] != key.Range[1])
+  {
+    NormaliseValues(scalars, key.Range, this->Values);
+    this->ValuesFrom = NormalisedFrom{ scalars, key.ScalarsTime, { key.Range[0], key.Range[1] } };
+  }
   mmv::AverageOntoGrid(points, this->Values.data(), grid, this->Coarse, &key.Extinction);
   mmv::ComputeSkyVisibility(
     grid, this->Coarse.data(), mmv::SkyDirections(mmv::SkyDirectionCount), this->Moments);

@@ -167,6 +167,13 @@ private:
 
   vtkNew<vtkMultiMaterialEnvironment> Environment;
   std::vector<float> Values; // the data normalised, kept between steps
+  struct NormalisedFrom      // what Values hold: a new array, time or range renormalises
+  {
+    vtkDataArray* Scalars = nullptr;
+    vtkMTimeType Time = 0;
+    double Range[2] = { 0.0, 0.0 };
+  };
+  NormalisedFrom ValuesFrom;
   std::vector<float> Coarse; // the extinction on the sky's grid
   std::vector<float> Moments;
   mmv::IrradianceGrid Grid;

@@ -400,3 +400,51 @@ TEST(EnvironmentLight, EarlierDataComeBackWithoutAnEstimation)
   EXPECT_EQ(PSNR(scene.Pixels(), firstImage), std::numeric_limits<double>::infinity());
 }
 } // namespace mmvtest
+
+namespace mmvtest
+{
+namespace
+{
+/// Values from 1 to 2 across the cube, growing along +x or -x (the same
+/// range either way).
+void FillRamp(vtkImageData* image, bool reversed)
+{
+  vtkDataArray* values = image->GetPointData()->GetScalars();
+  for (vtkIdType i = 0; i < values->GetNumberOfTuples(); ++i)
+  {
+    const double x = (i % Dims) / D;
+    values->SetTuple1(i, 1.0 + (reversed ? 1.0 - x : x));
+  }
+  values->Modified();
+}
+}
+
+TEST(EnvironmentLight, EditsAndValuesChangedInPlaceEqualAFreshMapper)
+{
+  // The normalised values are kept across opacity edits; values changed in
+  // the same array (a new modification time) are read again. Both images
+  // equal a mapper that saw only the final state.
+  SkyScene scene(0.6);
+  scene.Opacity->AddPoint(1.0, 0.0); // extinction grows with the value
+  FillRamp(scene.Image, false);
+  scene.CenterPixel();
+  scene.Opacity->AddPoint(1.5, 0.3);
+  scene.CenterPixel();
+  FillRamp(scene.Image, true);
+  scene.CenterPixel();
+  EXPECT_EQ(scene.Mapper->GetSkyUpdateCount(), 3);
+  SkyScene fresh(0.6);
+  fresh.Opacity->AddPoint(1.0, 0.0);
+  fresh.Opacity->AddPoint(1.5, 0.3);
+  FillRamp(fresh.Image, true);
+  fresh.CenterPixel();
+  EXPECT_EQ(PSNR(scene.Pixels(), fresh.Pixels()), std::numeric_limits<double>::infinity());
+  // And the stale values would show: the edit before the change differs.
+  SkyScene before(0.6);
+  before.Opacity->AddPoint(1.0, 0.0);
+  before.Opacity->AddPoint(1.5, 0.3);
+  FillRamp(before.Image, false);
+  before.CenterPixel();
+  EXPECT_LT(PSNR(before.Pixels(), fresh.Pixels()), 45.0);
+}
+} // namespace mmvtest
