@@ -1,6 +1,8 @@
 #include "vtkIrradianceGrid.h"
 
+#include "vtkArrayDispatch.h"
 #include "vtkDataArray.h"
+#include "vtkDataArrayRange.h"
 #include "vtkImageData.h"
 #include "vtkMatrix3x3.h"
 #include "vtkMultiMaterialParameters.h"
@@ -55,6 +57,39 @@ double Interpolate(const int dims[3], const float* values, const glm::dvec3& ind
 
 } // namespace
 
+namespace
+{
+/// (v - offset) * scale of one component of tuples [first, first + count).
+struct AffineCopyWorker
+{
+  template <typename Array>
+  void operator()(Array* array, int component, vtkIdType first, vtkIdType count, double offset,
+    double scale, float* out) const
+  {
+    const auto tuples = vtk::DataArrayTupleRange(array);
+    vtkSMPTools::For(0, count,
+      [&](vtkIdType begin, vtkIdType end)
+      {
+        for (vtkIdType i = begin; i < end; ++i)
+        {
+          out[i] = static_cast<float>(
+            (static_cast<double>(tuples[first + i][component]) - offset) * scale);
+        }
+      });
+  }
+};
+
+void AffineCopy(vtkDataArray* scalars, int component, vtkIdType first, vtkIdType count,
+  double offset, double scale, float* out)
+{
+  if (!vtkArrayDispatch::Dispatch::Execute(
+        scalars, AffineCopyWorker{}, component, first, count, offset, scale, out))
+  {
+    AffineCopyWorker{}(scalars, component, first, count, offset, scale, out);
+  }
+}
+} // namespace
+
 namespace mmv
 {
 
@@ -74,14 +109,14 @@ void CopyComponent(vtkDataArray* scalars, int component, vtkIdType first, vtkIdT
   std::vector<float>& values)
 {
   values.resize(count);
-  vtkSMPTools::For(0, count,
-    [&](vtkIdType begin, vtkIdType end)
-    {
-      for (vtkIdType i = begin; i < end; ++i)
-      {
-        values[i] = static_cast<float>(scalars->GetComponent(first + i, component));
-      }
-    });
+  AffineCopy(scalars, component, first, count, 0.0, 1.0, values.data());
+}
+
+void NormaliseComponent(vtkDataArray* scalars, int component, vtkIdType first, vtkIdType count,
+  const double range[2], float* values)
+{
+  const double scale = range[1] > range[0] ? 1.0 / (range[1] - range[0]) : 0.0;
+  AffineCopy(scalars, component, first, count, range[0], scale, values);
 }
 
 int IrradianceTextureChannels(int lights)

@@ -155,7 +155,7 @@ VTKMULTIMATERIALVOLUMEFILTERS_EXPORT IrradianceGrid MakeIrradianceGrid(const int
 VTKMULTIMATERIALVOLUMEFILTERS_EXPORT double SampleTrilinear(
   const IrradianceGrid& grid, const float* values, const glm::dvec3& index);
 
-/// One component of the scalars as floats (one virtual call per value, once).
+/// One component of the scalars as floats (read through the array's own type).
 VTKMULTIMATERIALVOLUMEFILTERS_EXPORT std::vector<float> CopyComponent(
   vtkDataArray* scalars, int component);
 /// The same into `values` (resized; its memory reused).
@@ -164,6 +164,11 @@ VTKMULTIMATERIALVOLUMEFILTERS_EXPORT void CopyComponent(
 /// Tuples [first, first + count) into `values` (resized; its memory reused).
 VTKMULTIMATERIALVOLUMEFILTERS_EXPORT void CopyComponent(vtkDataArray* scalars, int component,
   vtkIdType first, vtkIdType count, std::vector<float>& values);
+/// Tuples [first, first + count) of one component mapped to
+/// (v - range[0]) / (range[1] - range[0]) (0 for an empty range) into
+/// `values`, which must hold `count` floats; NaN stays NaN.
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT void NormaliseComponent(vtkDataArray* scalars, int component,
+  vtkIdType first, vtkIdType count, const double range[2], float* values);
 
 /**
  * Where PrefilterScalars samples the data: voxel j's footprint is centred on

@@ -1,5 +1,7 @@
 #include "vtkValueGradient.h"
 
+#include "vtkIrradianceGrid.h" // NormaliseComponent
+
 #include "vtkDataArray.h"
 #include "vtkSMPTools.h"
 
@@ -18,18 +20,9 @@ void NormaliseSlices(vtkDataArray* scalars, int component, const int dims[3], co
   int below, int above, std::vector<float>& values)
 {
   const vtkIdType sliceSize = static_cast<vtkIdType>(dims[0]) * dims[1];
-  const double scale = range[1] > range[0] ? 1.0 / (range[1] - range[0]) : 0.0;
   values.resize(static_cast<size_t>(sliceSize) * (above - below + 1));
-  vtkSMPTools::For(0, static_cast<vtkIdType>(values.size()),
-    [&](vtkIdType begin, vtkIdType end)
-    {
-      const vtkIdType offset = below * sliceSize;
-      for (vtkIdType v = begin; v < end; ++v)
-      {
-        values[v] =
-          static_cast<float>((scalars->GetComponent(offset + v, component) - range[0]) * scale);
-      }
-    });
+  NormaliseComponent(scalars, component, below * sliceSize, static_cast<vtkIdType>(values.size()),
+    range, values.data());
 }
 
 /// The central differences (one-sided halves on the faces; non-finite ones

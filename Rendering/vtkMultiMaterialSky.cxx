@@ -7,9 +7,7 @@
 #include "vtkMultiMaterialVolumeGeometry.h" // SamePointsMap
 #include "vtkSkyVisibility.h"
 
-#include "vtkArrayDispatch.h"
 #include "vtkDataArray.h"
-#include "vtkDataArrayRange.h"
 #include "vtkImageData.h"
 #include "vtkMatrix4x4.h"
 #include "vtkOpenGLRenderWindow.h"
@@ -28,32 +26,18 @@
 namespace
 {
 /// The first component of `scalars` mapped to [0, 1] over `range` (NaN: 0).
-struct NormaliseWorker
-{
-  template <typename Array>
-  void operator()(Array* array, const double range[2], std::vector<float>& out) const
-  {
-    const auto tuples = vtk::DataArrayTupleRange(array);
-    const double scale = range[1] > range[0] ? 1.0 / (range[1] - range[0]) : 0.0;
-    vtkSMPTools::For(0, tuples.size(),
-      [&](vtkIdType first, vtkIdType last)
-      {
-        for (vtkIdType i = first; i < last; ++i)
-        {
-          const double v = (static_cast<double>(tuples[i][0]) - range[0]) * scale;
-          out[i] = std::isnan(v) ? 0.0f : static_cast<float>(std::min(std::max(v, 0.0), 1.0));
-        }
-      });
-  }
-};
-
 void NormaliseValues(vtkDataArray* scalars, const double range[2], std::vector<float>& out)
 {
   out.resize(static_cast<size_t>(scalars->GetNumberOfTuples()));
-  if (!vtkArrayDispatch::Dispatch::Execute(scalars, NormaliseWorker{}, range, out))
-  {
-    NormaliseWorker{}(scalars, range, out);
-  }
+  mmv::NormaliseComponent(scalars, 0, 0, scalars->GetNumberOfTuples(), range, out.data());
+  vtkSMPTools::For(0, static_cast<vtkIdType>(out.size()),
+    [&](vtkIdType first, vtkIdType last)
+    {
+      for (vtkIdType i = first; i < last; ++i)
+      {
+        out[i] = std::isnan(out[i]) ? 0.0f : std::min(std::max(out[i], 0.0f), 1.0f);
+      }
+    });
 }
 }
 

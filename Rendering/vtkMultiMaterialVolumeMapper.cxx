@@ -22,6 +22,7 @@
 #include "vtkMultiMaterialShaderHook.h"
 #include "vtkMultiMaterialShadingUniforms.h"
 #include "vtkMultiMaterialSky.h"
+#include "vtkMultiMaterialStageClock.h"
 #include "vtkMultiMaterialTextures.h"
 #include "vtkMultiMaterialThreads.h"
 #include "vtkMultiMaterialVolumeGeometry.h"
@@ -88,7 +89,8 @@ public:
   }
   vtkNew<vtkMultiMaterialTextures> Textures;
   vtkMultiMaterialIrradianceStage Irradiance;
-  vtkMultiMaterialSky Sky; // the environment light
+  vtkMultiMaterialSky Sky;       // the environment light
+  mmv::StageClock PrepareStages; // where the last preparation went
   vtkNew<vtkMultiMaterialShaderHook> ShaderHook;
 
   // The lights of this frame, in object space.
@@ -601,6 +603,8 @@ void vtkMultiMaterialVolumeMapper::WarnOnce(const std::string& message)
 //------------------------------------------------------------------------------
 bool vtkMultiMaterialVolumeMapper::PrepareMultiMaterial(vtkRenderer* ren, vtkVolume* vol)
 {
+  mmv::StageClock& clock = this->Internals->PrepareStages;
+  clock.Start();
   const mmv::InputCheck input = mmv::CheckMultiMaterialInputs(this, ren, vol);
   if (!input.Caveat.empty())
   {
@@ -659,17 +663,24 @@ bool vtkMultiMaterialVolumeMapper::PrepareMultiMaterial(vtkRenderer* ren, vtkVol
   // From here on the lighting works on `image`: the input, or for cell
   // scalars the grid of the cell centres (the sampling step follows the
   // input, as VTK's does).
+  clock.Mark("input");
   vtkDataArray* normals = in.Fields.GetGradientScalars(input.Scalars);
-  if (!this->UpdateSegmentTables(input.Context, vol, input.Image) ||
-    !this->UpdateGradient(input.Context, image, normals, in.Fields.GetGradientRange(range)))
+  if (!this->UpdateSegmentTables(input.Context, vol, input.Image))
   {
     return false;
   }
+  clock.Mark("tables");
+  if (!this->UpdateGradient(input.Context, image, normals, in.Fields.GetGradientRange(range)))
+  {
+    return false;
+  }
+  clock.Mark("gradient");
 
   // 2. Lights, in the volume's object space.
   vtkNew<vtkMatrix4x4> worldToObject;
   vtkMatrix4x4::Invert(vol->GetMatrix(), worldToObject);
   this->CollectShadedLights(ren, worldToObject);
+  clock.Mark("lights");
 
   // 3. The irradiance volume: only when lights, opacity, materials or data change.
   this->LastRenderInteractive = vol->GetAllocatedRenderTime() < 1.0;
@@ -680,12 +691,16 @@ bool vtkMultiMaterialVolumeMapper::PrepareMultiMaterial(vtkRenderer* ren, vtkVol
     return false;
   }
 
+  clock.Mark("irradiance");
+
   // 4. The environment light: only when the data or the opacity change.
   this->SkyShaded = this->UpdateSky(ren, image, lighting, lightingRange,
     in.Fields.GetLightingProperty(vol->GetProperty()), worldToObject);
+  clock.Mark("sky");
 
   // 5. The shader variant and the per-frame uniforms.
   this->UpdateShading(ren, image, worldToObject, range);
+  clock.Mark("shading");
   return true;
 }
 
@@ -954,6 +969,11 @@ const char* vtkMultiMaterialVolumeMapper::GetIrradianceResolutionReason()
 std::string vtkMultiMaterialVolumeMapper::GetLastIrradianceStages()
 {
   return this->Internals->Irradiance.GetStageSeconds().Report();
+}
+
+std::string vtkMultiMaterialVolumeMapper::GetLastPrepareStages()
+{
+  return this->Internals->PrepareStages.Report();
 }
 
 int vtkMultiMaterialVolumeMapper::GetNumberOfIrradianceProbes()

@@ -316,6 +316,11 @@ public:
   /// the pre-filter, the shadow table, the shadows, the diffusion, the estimator
   /// and the whole update.
   std::string GetLastIrradianceStages();
+  /// Wall-clock seconds of each stage of the last render's preparation on
+  /// the CPU: the input (checks, ranges), the segment tables, the gradient
+  /// volume, the lights, the irradiance update (all of it, GetLastIrradianceStages
+  /// splits it), the environment light and the shading's uniforms.
+  std::string GetLastPrepareStages();
 
   /// How often the view-dependent visibility of reflections
   /// (mmv::ViewDependentReflectionVisibility) was computed: only when the
