@@ -9,6 +9,7 @@
 #include "vtkSMPTools.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -457,15 +458,25 @@ void PrefilterScalars(vtkImageData* image, vtkDataArray* scalars, int component,
 
 bool ReplaceNonFinite(std::vector<float>& values, float low, float high)
 {
-  bool replaced = false;
-  for (float& v : values)
-  {
-    if (!std::isfinite(v))
+  std::atomic<bool> replaced(false);
+  vtkSMPTools::For(0, static_cast<vtkIdType>(values.size()),
+    [&](vtkIdType begin, vtkIdType end)
     {
-      replaced = true;
-      v = v > 0.0f ? high : low;
-    }
-  }
+      bool here = false;
+      for (vtkIdType i = begin; i < end; ++i)
+      {
+        float& v = values[i];
+        if (!std::isfinite(v))
+        {
+          here = true;
+          v = v > 0.0f ? high : low;
+        }
+      }
+      if (here)
+      {
+        replaced = true;
+      }
+    });
   return replaced;
 }
 

@@ -5,6 +5,7 @@
 #include "vtkMultiMaterialLiveObjects.h"
 #include "vtkMultiMaterialParameters.h"
 #include "vtkObjectFactory.h"
+#include "vtkSMPTools.h"
 
 #include <algorithm>
 #include <cmath>
@@ -109,10 +110,14 @@ bool vtkIrradianceInputCache::UpdatePrefiltered(vtkImageData* image, vtkDataArra
     mmv::PrefilterScalars(image, scalars, 0, grid, values, &this->Scratch);
   }
   const double scale = 1.0 / (range[1] - range[0]);
-  for (float& v : values)
-  {
-    v = static_cast<float>((v - range[0]) * scale);
-  }
+  vtkSMPTools::For(0, static_cast<vtkIdType>(values.size()),
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      for (vtkIdType i = begin; i < end; ++i)
+      {
+        values[i] = static_cast<float>((values[i] - range[0]) * scale);
+      }
+    });
   // Normalised, the finite range is [0, 1].
   const bool nonFinite = mmv::ReplaceNonFinite(values, 0.0f, 1.0f);
   // The only comparison of the values: a new data time whose values are
