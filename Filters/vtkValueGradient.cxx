@@ -77,12 +77,20 @@ void ComputeHalfValueGradients(vtkDataArray* scalars, int component, const int d
   const double range[2], int firstSlice, int lastSlice, std::vector<float>& values,
   std::vector<unsigned short>& halves)
 {
+  halves.resize(3 * static_cast<size_t>(dims[0]) * dims[1] * (lastSlice - firstSlice + 1));
+  ComputeHalfValueGradients(
+    scalars, component, dims, range, firstSlice, lastSlice, values, halves.data());
+}
+
+void ComputeHalfValueGradients(vtkDataArray* scalars, int component, const int dims[3],
+  const double range[2], int firstSlice, int lastSlice, std::vector<float>& values,
+  unsigned short* halves)
+{
   // The slab's slices and one more on each side (clamped).
   const int below = std::max(0, firstSlice - 1);
   NormaliseSlices(
     scalars, component, dims, range, below, std::min(dims[2] - 1, lastSlice + 1), values);
-  halves.resize(3 * static_cast<size_t>(dims[0]) * dims[1] * (lastSlice - firstSlice + 1));
-  GradientRows(values, below, dims, firstSlice, lastSlice, halves.data(),
+  GradientRows(values, below, dims, firstSlice, lastSlice, halves,
     [](float g) { return static_cast<unsigned short>(glm::packHalf1x16(g)); });
 }
 

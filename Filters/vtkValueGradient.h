@@ -83,6 +83,11 @@ VTKMULTIMATERIALVOLUMEFILTERS_EXPORT std::vector<float> ResampleVectors(
 VTKMULTIMATERIALVOLUMEFILTERS_EXPORT void ComputeHalfValueGradients(vtkDataArray* scalars,
   int component, const int dims[3], const double range[2], int firstSlice, int lastSlice,
   std::vector<float>& values, std::vector<unsigned short>& halves);
+/// The same into `halves`, which holds 3 per voxel of those slices (a
+/// mapped pixel buffer, say).
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT void ComputeHalfValueGradients(vtkDataArray* scalars,
+  int component, const int dims[3], const double range[2], int firstSlice, int lastSlice,
+  std::vector<float>& values, unsigned short* halves);
 
 /// The values as IEEE half floats (GL_HALF_FLOAT), converted on every core:
 /// the gradient texture is RGB16F, and a driver given 32-bit floats converts

@@ -209,6 +209,16 @@ bool vtkMultiMaterialTextures::UploadGradientSlabs(
   const vtkIdType sliceSize = static_cast<vtkIdType>(dims[0]) * dims[1];
   const int slab =
     static_cast<int>(std::max<vtkIdType>(1, (1 << 20) / std::max<vtkIdType>(1, sliceSize)));
+  // Each slab's gradients are computed straight into a pixel buffer that
+  // the driver copies into the texture on its own (a GPU's DMA): from
+  // client memory the copy waits on the CPU, about as long as computing
+  // them on 16 cores. Orphaned per slab, so a slab never waits for the
+  // last one's copy; client memory where a buffer cannot be mapped.
+  if (!this->SlabBuffer)
+  {
+    this->SlabBuffer = vtkSmartPointer<vtkPixelBufferObject>::New();
+  }
+  this->SlabBuffer->SetContext(this->Gradient->GetContext());
   this->Gradient->Activate();
   GLint alignment = 4;
   glGetIntegerv(GL_UNPACK_ALIGNMENT, &alignment);
@@ -216,10 +226,26 @@ bool vtkMultiMaterialTextures::UploadGradientSlabs(
   for (int first = 0; first < dims[2]; first += slab)
   {
     const int last = std::min(dims[2] - 1, first + slab - 1);
-    mmv::ComputeHalfValueGradients(
-      scalars, 0, dims, range, first, last, this->SlabValues, this->SlabHalves);
-    glTexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, first, dims[0], dims[1], last - first + 1, GL_RGB,
-      GL_HALF_FLOAT, this->SlabHalves.data());
+    const size_t bytes = 3 * sizeof(unsigned short) * sliceSize * (last - first + 1);
+    auto* mapped = static_cast<unsigned short*>(
+      this->SlabBuffer->MapUnpackedBuffer(static_cast<unsigned int>(bytes)));
+    if (mapped)
+    {
+      mmv::ComputeHalfValueGradients(
+        scalars, 0, dims, range, first, last, this->SlabValues, mapped);
+      this->SlabBuffer->UnmapUnpackedBuffer();
+      this->SlabBuffer->BindToUnPackedBuffer();
+      glTexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, first, dims[0], dims[1], last - first + 1, GL_RGB,
+        GL_HALF_FLOAT, nullptr);
+      this->SlabBuffer->UnBind();
+    }
+    else
+    {
+      mmv::ComputeHalfValueGradients(
+        scalars, 0, dims, range, first, last, this->SlabValues, this->SlabHalves);
+      glTexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, first, dims[0], dims[1], last - first + 1, GL_RGB,
+        GL_HALF_FLOAT, this->SlabHalves.data());
+    }
   }
   glPixelStorei(GL_UNPACK_ALIGNMENT, alignment);
   this->Gradient->Deactivate();
@@ -358,6 +384,11 @@ void vtkMultiMaterialTextures::ReleaseGraphicsResources(vtkWindow* window)
   this->SegmentPosition->ReleaseGraphicsResources(window);
   this->Material->ReleaseGraphicsResources(window);
   this->Gradient->ReleaseGraphicsResources(window);
+  if (this->SlabBuffer)
+  {
+    this->SlabBuffer->SetContext(nullptr); // deletes the buffer
+    this->SlabBuffer = nullptr;
+  }
   this->TrimKeptGradients(0);
   this->GradientKept = false;
   this->UploadedTables.clear();

@@ -20,8 +20,9 @@
 #include "vtkMultiMaterialVolumeModule.h" // export macro
 #include "vtkNew.h"
 #include "vtkObject.h"
-#include "vtkSmartPointer.h"  // kept gradients
-#include "vtkTextureObject.h" // kept gradients
+#include "vtkPixelBufferObject.h" // slab uploads
+#include "vtkSmartPointer.h"      // kept gradients
+#include "vtkTextureObject.h"     // kept gradients
 
 #include <cstddef>
 #include <list>   // kept gradients
@@ -125,8 +126,11 @@ private:
   bool UploadGradientSlabs(vtkDataArray* scalars, const int dims[3], const double range[2]);
   bool UploadGradientVolume(vtkDataArray* scalars, const int dims[3], const double range[2],
     const double sigma[3], const int textureDims[3]);
-  // Scratch of UploadGradientSlabs, kept between steps.
+  // Scratch of UploadGradientSlabs, kept between steps: the slab's values,
+  // the pixel buffer its gradients go to, and its gradients in client memory
+  // where that buffer cannot be mapped.
   std::vector<float> SlabValues;
+  vtkSmartPointer<vtkPixelBufferObject> SlabBuffer;
   std::vector<unsigned short> SlabHalves;
   bool RestoreKeptGradient(
     vtkDataArray* scalars, const int dims[3], const double range[2], const double smoothing[3]);
