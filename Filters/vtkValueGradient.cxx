@@ -7,6 +7,10 @@
 
 #include <glm/gtc/packing.hpp>
 
+#if defined(__GNUC__) && defined(__x86_64__)
+#include <immintrin.h> // F16C
+#endif
+
 #include <algorithm>
 #include <cmath>
 
@@ -25,19 +29,63 @@ void NormaliseSlices(vtkDataArray* scalars, int component, const int dims[3], co
     range, values.data());
 }
 
+/// IEEE half floats of `count` floats, round to nearest even: by the
+/// processor's F16C instructions where it has them (a few times faster than
+/// glm's bit manipulation, which rounds the ties of subnormal halves away
+/// from zero instead: at most one unit of 2^-24 apart), else by glm.
+#if defined(__GNUC__) && defined(__x86_64__)
+__attribute__((target("avx,f16c"))) void PackHalvesF16C(
+  const float* in, unsigned short* out, size_t count)
+{
+  size_t i = 0;
+  for (; i + 8 <= count; i += 8)
+  {
+    const __m128i h = _mm256_cvtps_ph(_mm256_loadu_ps(in + i), _MM_FROUND_TO_NEAREST_INT);
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(out + i), h);
+  }
+  for (; i < count; ++i)
+  {
+    out[i] = _cvtss_sh(in[i], _MM_FROUND_TO_NEAREST_INT);
+  }
+}
+
+bool HasF16C()
+{
+  static const bool has = __builtin_cpu_supports("avx") && __builtin_cpu_supports("f16c");
+  return has;
+}
+#endif
+
+void PackHalves(const float* in, unsigned short* out, size_t count)
+{
+#if defined(__GNUC__) && defined(__x86_64__)
+  if (HasF16C())
+  {
+    PackHalvesF16C(in, out, count);
+    return;
+  }
+#endif
+  for (size_t i = 0; i < count; ++i)
+  {
+    out[i] = static_cast<unsigned short>(glm::packHalf1x16(in[i]));
+  }
+}
+
 /// The central differences (one-sided halves on the faces; non-finite ones
 /// 0) of slices [firstSlice, lastSlice], from `values` holding slices
-/// `below` on, into `out` (3 per voxel) through `convert`. One row (j, k)
-/// per task: no index arithmetic per voxel.
-template <typename Out, typename Convert>
+/// `below` on, a row (j, k) at a time into `out` (3 per voxel) through
+/// `store(row, target, count)`. One row per task: no index arithmetic per
+/// voxel.
+template <typename Out, typename Store>
 void GradientRows(const std::vector<float>& values, int below, const int dims[3], int firstSlice,
-  int lastSlice, Out* out, Convert convert)
+  int lastSlice, Out* out, Store store)
 {
   const vtkIdType sliceSize = static_cast<vtkIdType>(dims[0]) * dims[1];
   const int slices = lastSlice - firstSlice + 1;
   vtkSMPTools::For(0, static_cast<vtkIdType>(dims[1]) * slices,
     [&](vtkIdType begin, vtkIdType end)
     {
+      std::vector<float> gradients(3 * static_cast<size_t>(dims[0]));
       for (vtkIdType row = begin; row < end; ++row)
       {
         const int j = static_cast<int>(row % dims[1]);
@@ -47,7 +95,6 @@ void GradientRows(const std::vector<float>& values, int below, const int dims[3]
         const float* yAbove = j + 1 < dims[1] ? center + dims[0] : center;
         const float* zBelow = k > 0 ? center - sliceSize : center;
         const float* zAbove = k + 1 < dims[2] ? center + sliceSize : center;
-        Out* voxel = out + 3 * (row * dims[0]);
         for (int i = 0; i < dims[0]; ++i)
         {
           const float differences[3] = { center[i + 1 < dims[0] ? i + 1 : i] -
@@ -56,9 +103,10 @@ void GradientRows(const std::vector<float>& values, int below, const int dims[3]
           for (int a = 0; a < 3; ++a)
           {
             const float g = 0.5f * differences[a];
-            voxel[3 * i + a] = convert(std::isfinite(g) ? g : 0.0f);
+            gradients[3 * i + a] = std::isfinite(g) ? g : 0.0f;
           }
         }
+        store(gradients.data(), out + 3 * (row * dims[0]), gradients.size());
       }
     });
 }
@@ -70,7 +118,8 @@ void ComputeValueGradients(vtkDataArray* scalars, int component, const int dims[
   std::vector<float> values;
   NormaliseSlices(scalars, component, dims, range, 0, dims[2] - 1, values);
   gradients.resize(3 * values.size());
-  GradientRows(values, 0, dims, 0, dims[2] - 1, gradients.data(), [](float g) { return g; });
+  GradientRows(values, 0, dims, 0, dims[2] - 1, gradients.data(),
+    [](const float* row, float* target, size_t count) { std::copy(row, row + count, target); });
 }
 
 void ComputeHalfValueGradients(vtkDataArray* scalars, int component, const int dims[3],
@@ -90,8 +139,7 @@ void ComputeHalfValueGradients(vtkDataArray* scalars, int component, const int d
   const int below = std::max(0, firstSlice - 1);
   NormaliseSlices(
     scalars, component, dims, range, below, std::min(dims[2] - 1, lastSlice + 1), values);
-  GradientRows(values, below, dims, firstSlice, lastSlice, halves,
-    [](float g) { return static_cast<unsigned short>(glm::packHalf1x16(g)); });
+  GradientRows(values, below, dims, firstSlice, lastSlice, halves, PackHalves);
 }
 
 double ValidGradientSmoothing(double sigma, std::string* why)
@@ -224,12 +272,8 @@ std::vector<unsigned short> PackHalfFloats(const std::vector<float>& values)
 {
   std::vector<unsigned short> halves(values.size());
   vtkSMPTools::For(0, static_cast<vtkIdType>(values.size()),
-    [&](vtkIdType begin, vtkIdType end)
-    {
-      for (vtkIdType i = begin; i < end; ++i)
-      {
-        halves[i] = static_cast<unsigned short>(glm::packHalf1x16(values[i]));
-      }
+    [&](vtkIdType begin, vtkIdType end) {
+      PackHalves(values.data() + begin, halves.data() + begin, static_cast<size_t>(end - begin));
     });
   return halves;
 }

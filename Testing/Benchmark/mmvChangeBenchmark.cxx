@@ -282,13 +282,18 @@ void PrintOpacityEditStages(
   }
 }
 
-/// Where a time step of ours goes: a copy of `step` (new values, which
-/// nothing kept holds) with the stage timers on.
+/// Where a time step of ours goes: `step` with every value one higher (new
+/// values, which nothing kept holds) with the stage timers on.
 void PrintTimeStepStages(
   const std::string& volume, std::vector<std::unique_ptr<View>>& views, vtkImageData* step)
 {
   vtkNew<vtkImageData> copy;
   copy->DeepCopy(step);
+  vtkDataArray* values = copy->GetPointData()->GetScalars();
+  for (vtkIdType i = 0; i < values->GetNumberOfTuples(); ++i)
+  {
+    values->SetTuple1(i, values->GetTuple1(i) + 1.0);
+  }
   for (auto& v : views)
   {
     if (v->Ours && v->Name != "mmv-skin")
