@@ -1,5 +1,6 @@
 #include "vtkMultiMaterialSky.h"
 
+#include "vtkCoarseExtinction.h"
 #include "vtkIrradianceDiffusion.h"
 #include "vtkMaterialTransferFunction.h"
 #include "vtkMultiMaterialEnvironment.h"
@@ -71,10 +72,7 @@ bool vtkMultiMaterialSky::Update(
   int dims[3];
   in.Image->GetDimensions(dims);
   const mmv::IrradianceGrid points = mmv::MakeIrradianceGrid(in.Image, dims);
-  const int longest = std::max({ dims[0], dims[1], dims[2] });
-  const int stride =
-    std::max(1, (longest - 1 + mmv::SkyVoxelsPerAxis - 2) / (mmv::SkyVoxelsPerAxis - 1));
-  const mmv::IrradianceGrid grid = mmv::CoarsenIrradianceGrid(points, stride);
+  const mmv::IrradianceGrid grid = mmv::CoarsenToAtMost(points, mmv::SkyVoxelsPerAxis);
   Key key;
   key.Scalars = in.Scalars;
   key.ScalarsTime = in.Scalars->GetMTime();
@@ -82,20 +80,15 @@ bool vtkMultiMaterialSky::Update(
   key.Range[0] = in.Range[0];
   key.Range[1] = in.Range[1];
   key.Exponential = in.ExponentialDiffusion;
-  key.Extinction.resize(static_cast<size_t>(in.TableSize));
+  // The extinction the shadows see: the attenuation times the opacity's.
+  key.Extinction = mmv::SampleExtinction(in.Property->GetScalarOpacity(0),
+    in.Property->GetScalarOpacityUnitDistance(0), in.Materials, in.Range, in.TableSize);
   bool scatters = false;
   std::vector<float> scattering(key.Extinction.size(), 0.0f);
-  // The extinction the shadows see: the attenuation times the opacity's.
-  vtkPiecewiseFunction* opacity = in.Property->GetScalarOpacity(0);
-  const double unitDistance = in.Property->GetScalarOpacityUnitDistance(0);
-  for (int i = 0; i < in.TableSize; ++i)
+  for (int i = 0; in.MultipleScattering && in.Materials && i < in.TableSize; ++i)
   {
     const double s = in.Range[0] + (in.Range[1] - in.Range[0]) * i / (in.TableSize - 1.0);
-    const double attenuation =
-      in.Materials ? in.Materials->EvaluateParameter(s, mmv::Attenuation) : 1.0;
-    key.Extinction[i] = static_cast<float>(
-      attenuation * mmv::ExtinctionFromOpacity(opacity->GetValue(s), unitDistance));
-    if (in.MultipleScattering && in.Materials && key.Extinction[i] > 0.0f)
+    if (key.Extinction[i] > 0.0f)
     {
       scattering[i] = static_cast<float>(in.Materials->EvaluateParameter(s, mmv::Scattering));
       scatters = scatters || scattering[i] > 0.0f;
@@ -160,20 +153,7 @@ void vtkMultiMaterialSky::EstimateMoments(const mmv::IrradianceGrid& points,
   const mmv::IrradianceGrid& grid, vtkDataArray* scalars, const Key& key)
 {
   // Normalised values (NaN: empty), kept between steps.
-  const vtkIdType n = scalars->GetNumberOfTuples();
-  this->Values.resize(static_cast<size_t>(n));
-  const double* range = key.Range;
-  const double scale = range[1] > range[0] ? 1.0 / (range[1] - range[0]) : 0.0;
-  vtkSMPTools::For(0, n,
-    [&](vtkIdType first, vtkIdType last)
-    {
-      for (vtkIdType i = first; i < last; ++i)
-      {
-        const double v = (scalars->GetComponent(i, 0) - range[0]) * scale;
-        this->Values[i] =
-          std::isnan(v) ? 0.0f : static_cast<float>(std::min(std::max(v, 0.0), 1.0));
-      }
-    });
+  mmv::NormalizeScalars(scalars, key.Range, this->Values);
   mmv::AverageOntoGrid(points, this->Values.data(), grid, this->Coarse, &key.Extinction);
   mmv::ComputeSkyVisibility(
     grid, this->Coarse.data(), mmv::SkyDirections(mmv::SkyDirectionCount), this->Moments);
