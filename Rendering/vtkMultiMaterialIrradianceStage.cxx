@@ -10,6 +10,7 @@
 #include "vtkMaterialTransferFunction.h"
 #include "vtkMatrix4x4.h"
 #include "vtkMultiMaterialLightTolerance.h"
+#include "vtkMultiMaterialSceneShadows.h"
 #include "vtkMultiMaterialVolumeGeometry.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLShaderCache.h"
@@ -264,6 +265,8 @@ bool vtkMultiMaterialIrradianceStage::Update(
   const mmv::IndexBox region =
     ReadRegion(image, global, this->In->Settings.PieceIrradianceOnly, dims);
   std::copy(region.Bounds, region.Bounds + 6, volumeKey.Region);
+  // The other volumes' shadows: after the probe, which measures this volume's own.
+  volumeKey.Occluders = inputs.Scene ? inputs.Scene->GetKey() : std::vector<double>();
   const std::vector<mmv::LightSource> sources =
     mmv::IrradianceLightSources(*inputs.Lights, dims, this->In->Settings.DimLightCoarsening);
   // What changed since the held irradiance, and so what this update
@@ -304,6 +307,7 @@ bool vtkMultiMaterialIrradianceStage::Update(
     this->Out->Warnings.push_back(mmv::NonFiniteScalarsMessage);
   }
   this->Estimator->SetRegion(region.Bounds);
+  this->UpdateSceneShadows(window, sources);
   // The plan compared the lights with what the textures hold: the estimator
   // recomputes those it marks (and every light where its inputs changed).
   this->Estimator->SetLightsToUpdate(plan.GetMovedLights());
@@ -390,6 +394,20 @@ bool vtkMultiMaterialIrradianceStage::KeepsHeld(const vtkIrradianceUpdatePlan& p
     return true;
   }
   return false;
+}
+
+void vtkMultiMaterialIrradianceStage::UpdateSceneShadows(
+  vtkOpenGLRenderWindow* window, const std::vector<mmv::LightSource>& sources)
+{
+  vtkMultiMaterialSceneShadows* scene = this->In->Scene;
+  std::string problem;
+  if (scene && !scene->Update(window, this->Cache->GetGrid(), sources, &problem))
+  {
+    this->Out->Warnings.push_back(problem + "; the other volumes cast no shadow on this one");
+  }
+  this->Estimator->SetSceneTransmittance(
+    scene ? scene->GetTextures() : std::vector<vtkTextureObject*>(),
+    scene ? scene->GetVersion() : 0);
 }
 
 void vtkMultiMaterialIrradianceStage::ReportProgressOf(

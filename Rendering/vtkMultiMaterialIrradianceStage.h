@@ -40,6 +40,7 @@ class vtkDataArray;
 class vtkGlobalPrefilteredVolume;
 class vtkImageData;
 class vtkMaterialTransferFunction;
+class vtkMultiMaterialSceneShadows;
 class vtkOpenGLRenderWindow;
 class vtkRenderer;
 class vtkVolume;
@@ -81,6 +82,9 @@ struct IrradianceStageInputs
   vtkVolumeProperty* Property = nullptr;
   const std::vector<ShadingLight>* Lights = nullptr;
   Cutaway Cut; // cropping and clipping, in object space
+  /// The other volumes of the renderer that shadow this one, gathered for
+  /// this frame (its key joins the volume key); null: none.
+  vtkMultiMaterialSceneShadows* Scene = nullptr;
   IlluminationSettings Settings;
   bool Interactive = false; // an interactive render (allocated time below 1 s)
   /// Receives VTK's progress events and names the errors (the mapper).
@@ -146,6 +150,10 @@ private:
   bool KeepsHeld(const vtkIrradianceUpdatePlan& plan, const vtkIrradianceUpdatePlan::Inputs& now,
     vtkOpenGLRenderWindow* window, vtkVolume* vol, const double range[2], size_t stepBudget,
     const std::function<vtkIrradianceStepCache::Key()>& stepKey);
+  /// The other volumes' transmittance on the irradiance grid toward
+  /// `sources`, handed to the estimator (nothing to hand when alone).
+  void UpdateSceneShadows(
+    vtkOpenGLRenderWindow* window, const std::vector<mmv::LightSource>& sources);
   /// Has `pass` report the mapper's progress from `from` to `to` (nothing
   /// while no one observes it).
   void ReportProgressOf(vtkIrradianceEstimator* pass, double from, double to);
