@@ -807,6 +807,11 @@ int vtkMultiMaterialVolumeMapper::GetSceneShadowUpdateCount()
   return this->Internals->SceneShadows.GetUpdateCount();
 }
 
+double vtkMultiMaterialVolumeMapper::GetLastSceneShadowSeconds()
+{
+  return this->Internals->SceneShadows.GetLastSeconds();
+}
+
 int vtkMultiMaterialVolumeMapper::GetSkyUpdateCount()
 {
   return this->Internals->Sky.GetUpdateCount();

@@ -373,11 +373,12 @@ public:
    * dims the lights of the others (vtkMultiMaterialSceneShadows.h), moved,
    * edited, hidden or removed at any time. Overlapping volumes shadow each
    * other but are not composited within one ray.
-   * Volumes that shadowed this one in the last irradiance update, and how
-   * often their transmittance was computed.
+   * Volumes that shadowed this one in the last irradiance update, how
+   * often their transmittance was computed, and the last one's seconds.
    */
   int GetNumberOfSceneOccluders();
   int GetSceneShadowUpdateCount();
+  double GetLastSceneShadowSeconds();
 #ifndef __VTK_WRAP__
   /// This mapper's data drawn by `vol`, as the other volumes' shadows see
   /// it (its extinction on a coarse grid of its object space); null when it
