@@ -14,6 +14,7 @@
 #include "vtk_glew.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 
 namespace
@@ -139,7 +140,7 @@ bool vtkMultiMaterialSceneShadows::Update(vtkOpenGLRenderWindow* context,
   this->HeldLights = lights;
   this->HasTextures = true;
   // One counter for every instance, as the estimator compares versions.
-  static unsigned long versions = 0;
+  static std::atomic<unsigned long> versions{ 0 };
   this->Version = ++versions;
   ++this->UpdateCount;
   this->LastSeconds =

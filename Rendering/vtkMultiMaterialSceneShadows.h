@@ -25,8 +25,11 @@
  * (vtkIrradianceEstimator::SetSceneTransmittance): the ray cast's cost per
  * sample does not grow. A volume alone has an empty key and no texture.
  *
- * What casts: one-component point scalars (vectors, several fields and cell
- * scalars are lit but cast no shadow on other volumes, with a warning). The
+ * What casts: one-component point scalars, through the first opacity and
+ * materials (of several fields from FieldArrays, the scalars' field alone;
+ * vectors, multi-component scalars and cell scalars are lit but cast no
+ * shadow on other volumes, with a warning; a piece of a distributed volume
+ * neither casts nor receives). The
  * environment light's occlusion and the reflections' visibility see each
  * volume alone. Overlapping volumes shadow each other, but VTK's ray caster
  * composites each volume on its own: within their overlap the images are

@@ -775,7 +775,8 @@ bool vtkMultiMaterialVolumeMapper::UpdateSky(vtkRenderer* ren, vtkImageData* ima
 
 const mmv::CoarseExtinction* vtkMultiMaterialVolumeMapper::GetSceneOccluder(vtkVolume* vol)
 {
-  if (!vol || this->GetNumberOfInputConnections(0) < 1)
+  // A piece of a distributed volume would cast only its own piece's shadow.
+  if (!vol || this->GetNumberOfInputConnections(0) < 1 || this->Internals->ActiveGlobal())
   {
     return nullptr;
   }
@@ -1062,6 +1063,8 @@ void vtkMultiMaterialVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
      << "\n";
   os << indent << "DeferredIrradianceCount: " << this->DeferredIrradianceCount << "\n";
   os << indent << "IrradianceCacheHitCount: " << this->IrradianceCacheHitCount << "\n";
+  os << indent << "SceneOccluders: " << this->Internals->SceneShadows.GetNumberOfOccluders()
+     << "\n";
   os << indent << "IrradianceDimensions: " << this->IrradianceDimensions[0] << " "
      << this->IrradianceDimensions[1] << " " << this->IrradianceDimensions[2] << "\n";
   os << indent << "Counts (pre-integration, irradiance, ray cast): " << this->PreIntegrationCount
