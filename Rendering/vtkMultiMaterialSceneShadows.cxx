@@ -4,7 +4,9 @@
 #include "vtkImageData.h"
 #include "vtkMatrix4x4.h"
 #include "vtkMultiMaterialVolumeMapper.h"
+#include "vtkNew.h"
 #include "vtkOpenGLRenderWindow.h"
+#include "vtkPropCollection.h"
 #include "vtkRenderer.h"
 #include "vtkSkyVisibility.h" // CoarsenIrradianceGrid
 #include "vtkTextureObject.h"
@@ -76,13 +78,24 @@ void vtkMultiMaterialSceneShadows::Clear()
   this->Key.clear();
 }
 
-void vtkMultiMaterialSceneShadows::Gather(vtkRenderer* ren, vtkVolume* self)
+void vtkMultiMaterialSceneShadows::Gather(
+  vtkRenderer* ren, vtkVolume* self, vtkAbstractVolumeMapper* selfMapper)
 {
   this->Clear();
-  vtkVolumeCollection* volumes = ren ? ren->GetVolumes() : nullptr;
-  if (!volumes || !self)
+  if (!ren || !self)
   {
     return;
+  }
+  // A collection of our own: vtkRenderer::GetVolumes() keeps the volumes it
+  // lists referenced until its next call, which would keep a removed
+  // volume (and its mapper) alive.
+  vtkNew<vtkVolumeCollection> volumes;
+  vtkPropCollection* props = ren->GetViewProps();
+  vtkCollectionSimpleIterator pit;
+  props->InitTraversal(pit);
+  while (vtkProp* prop = props->GetNextProp(pit))
+  {
+    prop->GetVolumes(volumes);
   }
   const glm::dmat4 selfToWorld = ToGLM(self->GetMatrix());
   vtkCollectionSimpleIterator it;
@@ -90,7 +103,7 @@ void vtkMultiMaterialSceneShadows::Gather(vtkRenderer* ren, vtkVolume* self)
   while (vtkVolume* other = volumes->GetNextVolume(it))
   {
     auto* mapper = vtkMultiMaterialVolumeMapper::SafeDownCast(other->GetMapper());
-    if (other == self || !other->GetVisibility() || !mapper)
+    if (other == self || !other->GetVisibility() || !mapper || mapper == selfMapper)
     {
       continue;
     }

@@ -49,6 +49,7 @@
 #include <string>
 #include <vector>
 
+class vtkAbstractVolumeMapper;
 class vtkDataArray;
 class vtkImageData;
 class vtkMaterialTransferFunction;
@@ -79,10 +80,12 @@ public:
   /**
    * As a receiver: the other visible volumes of `ren` with a
    * vtkMultiMaterialVolumeMapper that cast a shadow, placed relative to
-   * `self`. Valid until the end of the frame (it points into the other
-   * mappers).
+   * `self`, drawn by `selfMapper`. Volumes drawn by `selfMapper` itself are
+   * not others: ParaView's vtkPVLODVolume holds the volume `self` that
+   * renders, with the same mapper. Valid until the end of the frame (it
+   * points into the other mappers).
    */
-  void Gather(vtkRenderer* ren, vtkVolume* self);
+  void Gather(vtkRenderer* ren, vtkVolume* self, vtkAbstractVolumeMapper* selfMapper);
   /// Forgets the occluders (a volume in pieces: its shadows stay its own).
   void Clear();
 

@@ -721,7 +721,7 @@ bool vtkMultiMaterialVolumeMapper::UpdateIrradiance(vtkRenderer* ren, vtkVolume*
   }
   else
   {
-    in.SceneShadows.Gather(ren, vol);
+    in.SceneShadows.Gather(ren, vol, this);
   }
   inputs.Scene = &in.SceneShadows;
   inputs.Settings = this->Settings;

@@ -7,6 +7,7 @@
 #include "mmvTestUtilities.h"
 
 #include "vtkUnsignedShortArray.h"
+#include "vtkWeakPointer.h"
 
 #include <gtest/gtest.h>
 
@@ -119,6 +120,14 @@ TEST(SceneShadows, RemovedVolumeTakesItsShadowAlong)
   EXPECT_GE(mmvtest::PSNR(two.Render(), alone), 60.0);
   EXPECT_EQ(floor->Mapper->GetIrradianceUpdateCount(), updates + 1);
   EXPECT_EQ(floor->Mapper->GetNumberOfSceneOccluders(), 0);
+  // Removed volumes are not kept alive by the search for other volumes.
+  vtkWeakPointer<vtkMultiMaterialVolumeMapper> floorMapper = floor->Mapper.Get();
+  vtkWeakPointer<vtkVolume> plateVolume = plate->Volume.Get();
+  two.Renderer->RemoveVolume(floor->Volume);
+  two.Render();
+  two.Volumes.clear();
+  EXPECT_EQ(floorMapper, nullptr);
+  EXPECT_EQ(plateVolume, nullptr);
 }
 
 TEST(SceneShadows, OnlyChangesRelight)
@@ -230,6 +239,15 @@ TEST(SceneShadows, VolumeAloneComputesNoTransmittance)
 {
   ShadowScene alone;
   SceneVolume* floor = alone.Add(FloorImage());
+  alone.Render();
+  EXPECT_EQ(floor->Mapper->GetNumberOfSceneOccluders(), 0);
+  EXPECT_EQ(floor->Mapper->GetSceneShadowUpdateCount(), 0);
+  // A second volume drawn by the same mapper (as ParaView's vtkPVLODVolume
+  // holds the volume that renders) does not shadow it.
+  vtkNew<vtkVolume> twin;
+  twin->SetMapper(floor->Mapper);
+  twin->SetProperty(floor->Property);
+  alone.Renderer->AddVolume(twin);
   alone.Render();
   EXPECT_EQ(floor->Mapper->GetNumberOfSceneOccluders(), 0);
   EXPECT_EQ(floor->Mapper->GetSceneShadowUpdateCount(), 0);
