@@ -6,6 +6,7 @@
 #include "mmvSceneShadowsScene.h"
 #include "mmvTestUtilities.h"
 
+#include "vtkIrradianceEstimator.h"
 #include "vtkUnsignedShortArray.h"
 #include "vtkWeakPointer.h"
 
@@ -46,6 +47,26 @@ TEST(SceneShadows, PlateShadowsTheFloorAsInOneVolume)
   std::cout << "two volumes against one: PSNR " << psnr << " dB" << std::endl;
   EXPECT_GT(LitPixels(image), Size * Size / 2);
   EXPECT_GE(psnr, 35.0);
+}
+
+TEST(SceneShadows, ComputeDispatchesShadowAsFragmentDraws)
+{
+  // The final write with the other volumes' transmittance as a compute
+  // shader (what a GPU runs) gives the fragment draws' image.
+  std::vector<unsigned char> images[2];
+  for (const int mode :
+    { vtkIrradianceEstimator::FragmentDraws, vtkIrradianceEstimator::ComputeDispatches })
+  {
+    ShadowScene two;
+    SceneVolume* floor = two.Add(FloorImage());
+    SceneVolume* plate = two.Add(PlateImage());
+    floor->Mapper->GetIrradianceEstimator()->SetComputeShaders(mode);
+    plate->Mapper->GetIrradianceEstimator()->SetComputeShaders(mode);
+    images[mode] = two.Render();
+    EXPECT_EQ(floor->Mapper->GetIrradianceEstimator()->GetComputeShadersUsed(),
+      mode == vtkIrradianceEstimator::ComputeDispatches);
+  }
+  EXPECT_GE(mmvtest::PSNR(images[0], images[1]), 50.0);
 }
 
 TEST(SceneShadows, MovedPlateShadowsAsItsResampledCopy)
