@@ -113,7 +113,7 @@ void CopyComponent(vtkDataArray* scalars, int component, vtkIdType first, vtkIdT
   AffineCopy(scalars, component, first, count, 0.0, 1.0, values.data());
 }
 
-void NormaliseComponent(vtkDataArray* scalars, int component, vtkIdType first, vtkIdType count,
+void NormalizeComponent(vtkDataArray* scalars, int component, vtkIdType first, vtkIdType count,
   const double range[2], float* values)
 {
   const double scale = range[1] > range[0] ? 1.0 / (range[1] - range[0]) : 0.0;

@@ -167,7 +167,7 @@ VTKMULTIMATERIALVOLUMEFILTERS_EXPORT void CopyComponent(vtkDataArray* scalars, i
 /// Tuples [first, first + count) of one component mapped to
 /// (v - range[0]) / (range[1] - range[0]) (0 for an empty range) into
 /// `values`, which must hold `count` floats; NaN stays NaN.
-VTKMULTIMATERIALVOLUMEFILTERS_EXPORT void NormaliseComponent(vtkDataArray* scalars, int component,
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT void NormalizeComponent(vtkDataArray* scalars, int component,
   vtkIdType first, vtkIdType count, const double range[2], float* values);
 
 /**

@@ -53,6 +53,10 @@ unsigned int vtkIrradianceUpdatePlan::VolumeChanges(const VolumeKey& held, const
   {
     changes |= LightCount;
   }
+  if (held.Occluders != now.Occluders)
+  {
+    changes |= Occluders;
+  }
   return changes;
 }
 
@@ -107,7 +111,7 @@ vtkIrradianceUpdatePlan vtkIrradianceUpdatePlan::Make(
 //------------------------------------------------------------------------------
 bool vtkIrradianceUpdatePlan::KeepsVolume() const
 {
-  return (this->Changes & ~(Grid | Lights)) == 0;
+  return (this->Changes & ~(Grid | Lights | Occluders)) == 0;
 }
 
 bool vtkIrradianceUpdatePlan::Prefilters() const

@@ -5,13 +5,13 @@
  *
  * The irradiance volume depends on the data, the irradiance grid, the
  * extinction (opacity and the materials' attenuation, transmission and
- * scattering), the shadow and diffusion settings, the cutaway and each
- * light. The plan compares the inputs the held irradiance was computed from
- * with the new inputs once, names what changed (GetChanges()), and from that
- * which steps run:
+ * scattering), the shadow and diffusion settings, the cutaway, each light
+ * and the other volumes that shadow it. The plan compares the inputs the held irradiance was
+ * computed from with the new inputs once, names what changed (GetChanges()), and from that which
+ * steps run:
  *  - nothing at all (IsCurrent());
  *  - whether an interactive frame may keep the last irradiance
- *    (KeepsVolume(): only the lights or the grid moved);
+ *    (KeepsVolume(): only the lights, the grid or the other volumes moved);
  *  - the pre-filtering of the data onto the grid (Prefilters());
  *  - new irradiance textures (Reallocates());
  *  - the shadows, diffusion and final write of which lights (GetLights():
@@ -61,6 +61,11 @@ public:
     std::vector<double> Cut;
     /// The irradiance voxels the estimator estimates for (vtkIrradianceRegion.h).
     int Region[6] = { 0, -1, 0, -1, 0, -1 };
+    /// The other volumes of the scene that shadow this one
+    /// (vtkMultiMaterialSceneShadows::GetKey(): per occluder the version of
+    /// its extinction and its placement relative to this volume); empty
+    /// when the volume is alone.
+    std::vector<double> Occluders;
 
     /// Equal when no field changed (VolumeChanges() is empty); a NaN never
     /// matches.
@@ -92,7 +97,8 @@ public:
     Shadows = 1u << 5,     // shadow estimation, piecewise slices
     Cutaway = 1u << 6,     // cropping, clipping planes, the region estimated for
     LightCount = 1u << 7,  // lights added or removed
-    Lights = 1u << 8       // a light beyond its tolerance (or its grid stride changed)
+    Lights = 1u << 8,      // a light beyond its tolerance (or its grid stride changed)
+    Occluders = 1u << 9    // another volume moved, changed, appeared, hid or went
   };
 
   /**
@@ -119,8 +125,8 @@ public:
 
   /// Nothing to recompute: the held irradiance is the new inputs'.
   bool IsCurrent() const { return this->Changes == NoChange; }
-  /// Only the lights or the grid moved: an interactive frame may keep the
-  /// held irradiance (the still frame after it updates).
+  /// Only the lights, the grid or the other volumes moved: an interactive
+  /// frame may keep the held irradiance (the still frame after it updates).
   bool KeepsVolume() const;
   /// The data must be pre-filtered onto the grid again.
   bool Prefilters() const;
@@ -142,7 +148,7 @@ public:
   }
 
   /// The change bits of the volume keys alone (Data, Extinction,
-  /// Scattering, Shadows, Cutaway, LightCount).
+  /// Scattering, Shadows, Cutaway, LightCount, Occluders).
   static unsigned int VolumeChanges(const VolumeKey& held, const VolumeKey& now);
 
 private:

@@ -1,6 +1,6 @@
 #include "vtkValueGradient.h"
 
-#include "vtkIrradianceGrid.h" // NormaliseComponent
+#include "vtkIrradianceGrid.h" // NormalizeComponent
 
 #include "vtkDataArray.h"
 #include "vtkSMPTools.h"
@@ -20,12 +20,12 @@ namespace mmv
 namespace
 {
 /// Slices [below, above] of component `component`, normalised over `range`.
-void NormaliseSlices(vtkDataArray* scalars, int component, const int dims[3], const double range[2],
+void NormalizeSlices(vtkDataArray* scalars, int component, const int dims[3], const double range[2],
   int below, int above, std::vector<float>& values)
 {
   const vtkIdType sliceSize = static_cast<vtkIdType>(dims[0]) * dims[1];
   values.resize(static_cast<size_t>(sliceSize) * (above - below + 1));
-  NormaliseComponent(scalars, component, below * sliceSize, static_cast<vtkIdType>(values.size()),
+  NormalizeComponent(scalars, component, below * sliceSize, static_cast<vtkIdType>(values.size()),
     range, values.data());
 }
 
@@ -116,7 +116,7 @@ void ComputeValueGradients(vtkDataArray* scalars, int component, const int dims[
   const double range[2], std::vector<float>& gradients)
 {
   std::vector<float> values;
-  NormaliseSlices(scalars, component, dims, range, 0, dims[2] - 1, values);
+  NormalizeSlices(scalars, component, dims, range, 0, dims[2] - 1, values);
   gradients.resize(3 * values.size());
   GradientRows(values, 0, dims, 0, dims[2] - 1, gradients.data(),
     [](const float* row, float* target, size_t count) { std::copy(row, row + count, target); });
@@ -137,7 +137,7 @@ void ComputeHalfValueGradients(vtkDataArray* scalars, int component, const int d
 {
   // The slab's slices and one more on each side (clamped).
   const int below = std::max(0, firstSlice - 1);
-  NormaliseSlices(
+  NormalizeSlices(
     scalars, component, dims, range, below, std::min(dims[2] - 1, lastSlice + 1), values);
   GradientRows(values, below, dims, firstSlice, lastSlice, halves, PackHalves);
 }

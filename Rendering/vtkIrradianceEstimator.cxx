@@ -117,6 +117,21 @@ void vtkIrradianceEstimator::SetInputs(const mmv::IrradianceGrid& grid,
 }
 
 //------------------------------------------------------------------------------
+void vtkIrradianceEstimator::SetSceneTransmittance(
+  const std::vector<vtkTextureObject*>& textures, unsigned long version)
+{
+  vtkInternals& internals = *this->Internals;
+  if (version != internals.SceneTransmittanceVersion ||
+    textures.size() != internals.SceneTransmittance.size())
+  {
+    internals.VolumeChanged = true;
+    this->Modified();
+  }
+  internals.SceneTransmittance.assign(textures.begin(), textures.end());
+  internals.SceneTransmittanceVersion = version;
+}
+
+//------------------------------------------------------------------------------
 void vtkIrradianceEstimator::SetCutaway(const mmv::Cutaway& cutaway)
 {
   vtkInternals& internals = *this->Internals;

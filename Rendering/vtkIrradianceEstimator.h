@@ -33,7 +33,9 @@
  *     tolerance), every sub-step at the latest after the sweeps the
  *     Chebyshev error bound needs; then the change is prolonged trilinearly
  *     to the irradiance grid;
- *  3. empty voxels bordering non-empty ones take the mean of those neighbours.
+ *  3. empty voxels bordering non-empty ones take the mean of those neighbours,
+ *     and every voxel takes the transmittance through the other volumes of
+ *     the scene, when there are any (SetSceneTransmittance).
  *
  * A piece of a volume split across MPI ranks needs only the voxels around
  * it (SetRegion): the passes then draw only what those voxels depend on
@@ -208,6 +210,19 @@ public:
    * Render()) the estimator marks them with vtkIrradianceUpdatePlan::MarkLights.
    */
   void SetLightsToUpdate(const std::vector<bool>& marks);
+#endif
+
+#ifndef __VTK_WRAP__
+  /**
+   * The transmittance toward each light through the other volumes of the
+   * scene (vtkMultiMaterialSceneShadows): one RGBA texture per irradiance
+   * texture (light 4i + c in channel c of texture i), linearly filtered,
+   * spanning the irradiance grid's voxel centres. The final write multiplies
+   * the irradiance by it, so the ray cast reads nothing more. Empty (the
+   * default): no texture read, as for a volume alone. A new `version`
+   * recomputes every light.
+   */
+  void SetSceneTransmittance(const std::vector<vtkTextureObject*>& textures, unsigned long version);
 #endif
 
   /// The light placements the irradiance textures hold (empty before the

@@ -386,6 +386,10 @@ public:
   std::vector<float> TintTable;
   vtkSmartPointer<vtkTextureObject> TintTableTexture;
   std::vector<vtkSmartPointer<vtkTextureObject>> Tint;
+  // The transmittance through the other volumes, per irradiance texture
+  // (the scene's, not ours: never released here), and its version.
+  std::vector<vtkSmartPointer<vtkTextureObject>> SceneTransmittance;
+  unsigned long SceneTransmittanceVersion = 0;
   mmv::voxelpass::VoxelPrograms TintQuad;
   void TintDimensions(int dims[3]) const
   {

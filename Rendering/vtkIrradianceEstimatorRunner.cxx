@@ -4,6 +4,7 @@
 #include "vtkIrradianceEstimatorInternals.h"
 
 #include "vtkIrradianceUpdatePlan.h"
+#include "vtkMultiMaterialVolumeGeometry.h" // SamePointsMap
 
 #include "mmvClassifyFS.h"
 #include "mmvDiffusionFS.h"
@@ -763,16 +764,35 @@ unsigned int vtkIrradianceEstimator::vtkInternals::CountWrites(vtkOpenGLRenderWi
 bool vtkIrradianceEstimator::vtkInternals::FillPass(
   vtkOpenGLRenderWindow* context, vtkTextureObject* source, int group, int mask, bool layered)
 {
-  vtkShaderProgram* program =
-    this->Ready(context, this->FillQuad, mmvDiffusionFS, "#define MMV_FILL_PASS\n", false);
+  // The other volumes' transmittance, where there are other volumes.
+  vtkTextureObject* scene = static_cast<size_t>(group) < this->SceneTransmittance.size()
+    ? this->SceneTransmittance[group].Get()
+    : nullptr;
+  vtkShaderProgram* program = this->Ready(context, this->FillQuad, mmvDiffusionFS,
+    scene ? "#define MMV_FILL_PASS\n#define MMV_SCENE_TRANSMITTANCE\n" : "#define MMV_FILL_PASS\n",
+    false);
   if (!program)
   {
     return false;
   }
-  ScopedTextures bound{ this->ClassTexture, source };
+  ScopedTextures bound{ this->ClassTexture, source, scene ? scene : source };
   program->SetUniformi("classes", this->ClassTexture->GetTextureUnit());
   program->SetUniformi("current", source->GetTextureUnit());
   program->SetUniform1iv("dims", 3, this->Grid.Dimensions);
+  if (scene)
+  {
+    const int sceneDims[3] = { static_cast<int>(scene->GetWidth()),
+      static_cast<int>(scene->GetHeight()), static_cast<int>(scene->GetDepth()) };
+    float scale[3];
+    float bias[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      mmv::SamePointsMap(this->Grid.Dimensions[a], sceneDims[a], scale[a], bias[a]);
+    }
+    program->SetUniformi("sceneTransmittance", scene->GetTextureUnit());
+    program->SetUniform3f("sceneScale", scale);
+    program->SetUniform3f("sceneBias", bias);
+  }
   this->DrawLayers(context, this->FillQuad, this->Irradiance[group], layered,
     DrawBox(this->Plan.Region, this->Grid.Dimensions), mask);
   return true;
@@ -821,6 +841,8 @@ void vtkIrradianceEstimator::vtkInternals::Release(vtkWindow* window)
     texture->ReleaseGraphicsResources(window);
   }
   this->Irradiance.clear();
+  this->SceneTransmittance.clear(); // the scene's textures: released by it
+  this->SceneTransmittanceVersion = 0;
   for (auto& texture : this->Tint)
   {
     texture->ReleaseGraphicsResources(window);

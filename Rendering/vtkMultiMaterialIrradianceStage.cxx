@@ -10,6 +10,7 @@
 #include "vtkMaterialTransferFunction.h"
 #include "vtkMatrix4x4.h"
 #include "vtkMultiMaterialLightTolerance.h"
+#include "vtkMultiMaterialSceneShadows.h"
 #include "vtkMultiMaterialVolumeGeometry.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLShaderCache.h"
@@ -147,7 +148,7 @@ mmv::IrradianceResolution vtkMultiMaterialIrradianceStage::ChooseGrid(vtkRendere
   return resolution;
 }
 
-void vtkMultiMaterialIrradianceStage::ApplyProbe(vtkRenderer* ren, vtkVolume* vol,
+void vtkMultiMaterialIrradianceStage::ApplyProbe(vtkRenderer* ren, vtkVolume* vtkNotUsed(vol),
   vtkImageData* image, vtkDataArray* scalars, const double range[2],
   const vtkIrradianceInputCache::VolumeKey& volumeKey, const mmv::Cutaway& cutaway, double bound,
   int maxAxis, mmv::IrradianceResolution& resolution)
@@ -196,8 +197,8 @@ void vtkMultiMaterialIrradianceStage::ApplyProbe(vtkRenderer* ren, vtkVolume* vo
       const double from = 1.0 - std::pow(shrink, estimates);
       const double to = 1.0 - std::pow(shrink, ++estimates);
       this->ReportProgressOf(pass, from, to);
-      const bool ok = this->ComputeOn(
-        pass, window, vol, range, cutaway, grid, prefiltered, version, lights, false);
+      const bool ok =
+        this->ComputeOn(pass, window, range, cutaway, grid, prefiltered, version, lights, false);
       pass->SetProgressCallback(nullptr);
       return ok;
     });
@@ -264,6 +265,8 @@ bool vtkMultiMaterialIrradianceStage::Update(
   const mmv::IndexBox region =
     ReadRegion(image, global, this->In->Settings.PieceIrradianceOnly, dims);
   std::copy(region.Bounds, region.Bounds + 6, volumeKey.Region);
+  // The other volumes' shadows: after the probe, which measures this volume's own.
+  volumeKey.Occluders = inputs.Scene ? inputs.Scene->GetKey() : std::vector<double>();
   const std::vector<mmv::LightSource> sources =
     mmv::IrradianceLightSources(*inputs.Lights, dims, this->In->Settings.DimLightCoarsening);
   // What changed since the held irradiance, and so what this update
@@ -280,7 +283,7 @@ bool vtkMultiMaterialIrradianceStage::Update(
     return vtkIrradianceStepCache::MakeKey(volumeKey,
       this->In->Materials ? this->In->Materials->GetMTime() : 0, image, scalars, sources, dims);
   };
-  if (this->KeepsHeld(plan, now, window, vol, range, stepBudget, stepKey))
+  if (this->KeepsHeld(plan, now, window, range, stepBudget, stepKey))
   {
     return true;
   }
@@ -304,13 +307,14 @@ bool vtkMultiMaterialIrradianceStage::Update(
     this->Out->Warnings.push_back(mmv::NonFiniteScalarsMessage);
   }
   this->Estimator->SetRegion(region.Bounds);
+  this->UpdateSceneShadows(window, sources);
   // The plan compared the lights with what the textures hold: the estimator
   // recomputes those it marks (and every light where its inputs changed).
   this->Estimator->SetLightsToUpdate(plan.GetMovedLights());
   this->ReportProgressOf(this->Estimator, 0.0, 1.0);
   const bool estimated =
     this->ComputeOn(this->Estimator, vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow()),
-      vol, range, cutaway, this->Cache->GetGrid(), this->Cache->GetPrefiltered(),
+      range, cutaway, this->Cache->GetGrid(), this->Cache->GetPrefiltered(),
       this->Cache->GetPrefilteredVersion(), sources, this->In->Settings.MultipleScattering);
   this->Estimator->SetProgressCallback(nullptr);
   if (!estimated)
@@ -342,9 +346,8 @@ bool vtkMultiMaterialIrradianceStage::Update(
 }
 
 bool vtkMultiMaterialIrradianceStage::KeepsHeld(const vtkIrradianceUpdatePlan& plan,
-  const vtkIrradianceUpdatePlan::Inputs& now, vtkOpenGLRenderWindow* window, vtkVolume* vol,
-  const double range[2], size_t stepBudget,
-  const std::function<vtkIrradianceStepCache::Key()>& stepKey)
+  const vtkIrradianceUpdatePlan::Inputs& now, vtkOpenGLRenderWindow* window, const double range[2],
+  size_t stepBudget, const std::function<vtkIrradianceStepCache::Key()>& stepKey)
 {
   if (this->Estimator->GetNumberOfIrradianceTextures() == 0)
   {
@@ -392,6 +395,20 @@ bool vtkMultiMaterialIrradianceStage::KeepsHeld(const vtkIrradianceUpdatePlan& p
   return false;
 }
 
+void vtkMultiMaterialIrradianceStage::UpdateSceneShadows(
+  vtkOpenGLRenderWindow* window, const std::vector<mmv::LightSource>& sources)
+{
+  vtkMultiMaterialSceneShadows* scene = this->In->Scene;
+  std::string problem;
+  if (scene && !scene->Update(window, this->Cache->GetGrid(), sources, &problem))
+  {
+    this->Out->Warnings.push_back(problem + "; the other volumes cast no shadow on this one");
+  }
+  this->Estimator->SetSceneTransmittance(
+    scene ? scene->GetTextures() : std::vector<vtkTextureObject*>(),
+    scene ? scene->GetVersion() : 0);
+}
+
 void vtkMultiMaterialIrradianceStage::ReportProgressOf(
   vtkIrradianceEstimator* pass, double from, double to)
 {
@@ -425,7 +442,7 @@ void vtkMultiMaterialIrradianceStage::ReportProgress(double progress)
 }
 
 bool vtkMultiMaterialIrradianceStage::ComputeOn(vtkIrradianceEstimator* pass,
-  vtkOpenGLRenderWindow* window, vtkVolume* vol, const double range[2], const mmv::Cutaway& cutaway,
+  vtkOpenGLRenderWindow* window, const double range[2], const mmv::Cutaway& cutaway,
   const mmv::IrradianceGrid& grid, const std::vector<float>& prefiltered, unsigned long version,
   const std::vector<mmv::LightSource>& sources, bool scattering)
 {

@@ -40,6 +40,7 @@ class vtkDataArray;
 class vtkGlobalPrefilteredVolume;
 class vtkImageData;
 class vtkMaterialTransferFunction;
+class vtkMultiMaterialSceneShadows;
 class vtkOpenGLRenderWindow;
 class vtkRenderer;
 class vtkVolume;
@@ -81,6 +82,9 @@ struct IrradianceStageInputs
   vtkVolumeProperty* Property = nullptr;
   const std::vector<ShadingLight>* Lights = nullptr;
   Cutaway Cut; // cropping and clipping, in object space
+  /// The other volumes of the renderer that shadow this one, gathered for
+  /// this frame (its key joins the volume key); null: none.
+  vtkMultiMaterialSceneShadows* Scene = nullptr;
   IlluminationSettings Settings;
   bool Interactive = false; // an interactive render (allocated time below 1 s)
   /// Receives VTK's progress events and names the errors (the mapper).
@@ -144,8 +148,12 @@ private:
   /// kept while interacting, nothing visible, or a kept step copied back.
   /// False: the caller recomputes what the plan marks.
   bool KeepsHeld(const vtkIrradianceUpdatePlan& plan, const vtkIrradianceUpdatePlan::Inputs& now,
-    vtkOpenGLRenderWindow* window, vtkVolume* vol, const double range[2], size_t stepBudget,
+    vtkOpenGLRenderWindow* window, const double range[2], size_t stepBudget,
     const std::function<vtkIrradianceStepCache::Key()>& stepKey);
+  /// The other volumes' transmittance on the irradiance grid toward
+  /// `sources`, handed to the estimator (nothing to hand when alone).
+  void UpdateSceneShadows(
+    vtkOpenGLRenderWindow* window, const std::vector<mmv::LightSource>& sources);
   /// Has `pass` report the mapper's progress from `from` to `to` (nothing
   /// while no one observes it).
   void ReportProgressOf(vtkIrradianceEstimator* pass, double from, double to);
@@ -153,8 +161,8 @@ private:
   void ReportProgress(double progress);
   /// Estimates `sources` on `grid` into `pass` (the frame's pass, or the
   /// probe's without scattering).
-  bool ComputeOn(vtkIrradianceEstimator* pass, vtkOpenGLRenderWindow* window, vtkVolume* vol,
-    const double range[2], const mmv::Cutaway& cutaway, const mmv::IrradianceGrid& grid,
+  bool ComputeOn(vtkIrradianceEstimator* pass, vtkOpenGLRenderWindow* window, const double range[2],
+    const mmv::Cutaway& cutaway, const mmv::IrradianceGrid& grid,
     const std::vector<float>& prefiltered, unsigned long version,
     const std::vector<mmv::LightSource>& sources, bool scattering);
   void Record(const mmv::IrradianceResolution& resolution);

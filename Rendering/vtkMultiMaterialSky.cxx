@@ -1,5 +1,6 @@
 #include "vtkMultiMaterialSky.h"
 
+#include "vtkCoarseExtinction.h"
 #include "vtkIrradianceDiffusion.h"
 #include "vtkMaterialTransferFunction.h"
 #include "vtkMultiMaterialEnvironment.h"
@@ -22,24 +23,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-
-namespace
-{
-/// The first component of `scalars` mapped to [0, 1] over `range` (NaN: 0).
-void NormaliseValues(vtkDataArray* scalars, const double range[2], std::vector<float>& out)
-{
-  out.resize(static_cast<size_t>(scalars->GetNumberOfTuples()));
-  mmv::NormaliseComponent(scalars, 0, 0, scalars->GetNumberOfTuples(), range, out.data());
-  vtkSMPTools::For(0, static_cast<vtkIdType>(out.size()),
-    [&](vtkIdType first, vtkIdType last)
-    {
-      for (vtkIdType i = first; i < last; ++i)
-      {
-        out[i] = std::isnan(out[i]) ? 0.0f : std::min(std::max(out[i], 0.0f), 1.0f);
-      }
-    });
-}
-}
 
 bool vtkMultiMaterialSky::Key::operator==(const Key& o) const
 {
@@ -89,10 +72,7 @@ bool vtkMultiMaterialSky::Update(
   int dims[3];
   in.Image->GetDimensions(dims);
   const mmv::IrradianceGrid points = mmv::MakeIrradianceGrid(in.Image, dims);
-  const int longest = std::max({ dims[0], dims[1], dims[2] });
-  const int stride =
-    std::max(1, (longest - 1 + mmv::SkyVoxelsPerAxis - 2) / (mmv::SkyVoxelsPerAxis - 1));
-  const mmv::IrradianceGrid grid = mmv::CoarsenIrradianceGrid(points, stride);
+  const mmv::IrradianceGrid grid = mmv::CoarsenToAtMost(points, mmv::SkyVoxelsPerAxis);
   Key key;
   key.Scalars = in.Scalars;
   key.ScalarsTime = in.Scalars->GetMTime();
@@ -100,20 +80,15 @@ bool vtkMultiMaterialSky::Update(
   key.Range[0] = in.Range[0];
   key.Range[1] = in.Range[1];
   key.Exponential = in.ExponentialDiffusion;
-  key.Extinction.resize(static_cast<size_t>(in.TableSize));
+  // The extinction the shadows see: the attenuation times the opacity's.
+  key.Extinction = mmv::SampleExtinction(in.Property->GetScalarOpacity(0),
+    in.Property->GetScalarOpacityUnitDistance(0), in.Materials, in.Range, in.TableSize);
   bool scatters = false;
   std::vector<float> scattering(key.Extinction.size(), 0.0f);
-  // The extinction the shadows see: the attenuation times the opacity's.
-  vtkPiecewiseFunction* opacity = in.Property->GetScalarOpacity(0);
-  const double unitDistance = in.Property->GetScalarOpacityUnitDistance(0);
-  for (int i = 0; i < in.TableSize; ++i)
+  for (int i = 0; in.MultipleScattering && in.Materials && i < in.TableSize; ++i)
   {
     const double s = in.Range[0] + (in.Range[1] - in.Range[0]) * i / (in.TableSize - 1.0);
-    const double attenuation =
-      in.Materials ? in.Materials->EvaluateParameter(s, mmv::Attenuation) : 1.0;
-    key.Extinction[i] = static_cast<float>(
-      attenuation * mmv::ExtinctionFromOpacity(opacity->GetValue(s), unitDistance));
-    if (in.MultipleScattering && in.Materials && key.Extinction[i] > 0.0f)
+    if (key.Extinction[i] > 0.0f)
     {
       scattering[i] = static_cast<float>(in.Materials->EvaluateParameter(s, mmv::Scattering));
       scatters = scatters || scattering[i] > 0.0f;
@@ -182,7 +157,7 @@ void vtkMultiMaterialSky::EstimateMoments(const mmv::IrradianceGrid& points,
   if (this->ValuesFrom.Scalars != scalars || this->ValuesFrom.Time != key.ScalarsTime ||
     this->ValuesFrom.Range[0] != key.Range[0] || this->ValuesFrom.Range[1] != key.Range[1])
   {
-    NormaliseValues(scalars, key.Range, this->Values);
+    mmv::NormalizeScalars(scalars, key.Range, this->Values);
     this->ValuesFrom = NormalisedFrom{ scalars, key.ScalarsTime, { key.Range[0], key.Range[1] } };
   }
   mmv::AverageOntoGrid(points, this->Values.data(), grid, this->Coarse, &key.Extinction);

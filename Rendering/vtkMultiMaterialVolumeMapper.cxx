@@ -18,6 +18,7 @@
 #include "vtkMultiMaterialLiveObjects.h"
 #include "vtkMultiMaterialParameters.h"
 #include "vtkMultiMaterialReflection.h"
+#include "vtkMultiMaterialSceneShadows.h"
 #include "vtkMultiMaterialShaderAssembly.h"
 #include "vtkMultiMaterialShaderHook.h"
 #include "vtkMultiMaterialShadingUniforms.h"
@@ -89,8 +90,9 @@ public:
   }
   vtkNew<vtkMultiMaterialTextures> Textures;
   vtkMultiMaterialIrradianceStage Irradiance;
-  vtkMultiMaterialSky Sky;       // the environment light
-  mmv::StageClock PrepareStages; // where the last preparation went
+  vtkMultiMaterialSky Sky;                   // the environment light
+  vtkMultiMaterialSceneShadows SceneShadows; // with the renderer's other volumes
+  mmv::StageClock PrepareStages;             // where the last preparation went
   vtkNew<vtkMultiMaterialShaderHook> ShaderHook;
 
   // The lights of this frame, in object space.
@@ -295,6 +297,7 @@ void vtkMultiMaterialVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
   this->Internals->Textures->ReleaseGraphicsResources(window);
   this->Internals->Irradiance.ReleaseGraphicsResources(window);
   this->Internals->Sky.ReleaseGraphicsResources(window);
+  this->Internals->SceneShadows.ReleaseGraphicsResources(window);
   this->Internals->Reflection->ReleaseGraphicsResources(window);
   this->Superclass::ReleaseGraphicsResources(window);
 }
@@ -725,6 +728,17 @@ bool vtkMultiMaterialVolumeMapper::UpdateIrradiance(vtkRenderer* ren, vtkVolume*
     this->WarnOnce("more than " + std::to_string(mmv::MaxCutPlanes) +
       " clipping planes: the shadow rays ignore the others");
   }
+  // The other volumes shadow this one; a volume in pieces keeps its own
+  // shadows (the pieces' placements are the global grid's).
+  if (in.ActiveGlobal())
+  {
+    in.SceneShadows.Clear();
+  }
+  else
+  {
+    in.SceneShadows.Gather(ren, vol, this);
+  }
+  inputs.Scene = &in.SceneShadows;
   inputs.Settings = this->Settings;
   inputs.Interactive = this->LastRenderInteractive;
   inputs.Reporter = this;
@@ -772,6 +786,46 @@ bool vtkMultiMaterialVolumeMapper::UpdateSky(vtkRenderer* ren, vtkImageData* ima
     vtkErrorMacro(<< error);
   }
   return shaded;
+}
+
+const mmv::CoarseExtinction* vtkMultiMaterialVolumeMapper::GetSceneOccluder(vtkVolume* vol)
+{
+  // A piece of a distributed volume would cast only its own piece's shadow.
+  if (!vol || this->GetNumberOfInputConnections(0) < 1 || this->Internals->ActiveGlobal())
+  {
+    return nullptr;
+  }
+  // Another volume may light itself before this one renders: its data now.
+  this->GetInputAlgorithm(0, 0)->Update();
+  auto* image = vtkImageData::SafeDownCast(this->GetInput());
+  int cellFlag = 0;
+  vtkDataArray* scalars = image ? vtkAbstractMapper::GetScalars(image, this->ScalarMode,
+                                    this->ArrayAccessMode, this->ArrayId, this->ArrayName, cellFlag)
+                                : nullptr;
+  std::string problem;
+  const mmv::CoarseExtinction* occluder =
+    this->Internals->SceneShadows.UpdateOccluder(image, scalars, cellFlag, vol->GetProperty(),
+      this->Internals->Materials(), this->Settings.PreIntegrationTableSize, &problem);
+  if (!problem.empty())
+  {
+    this->WarnOnce(problem);
+  }
+  return occluder;
+}
+
+int vtkMultiMaterialVolumeMapper::GetNumberOfSceneOccluders()
+{
+  return this->Internals->SceneShadows.GetNumberOfOccluders();
+}
+
+int vtkMultiMaterialVolumeMapper::GetSceneShadowUpdateCount()
+{
+  return this->Internals->SceneShadows.GetUpdateCount();
+}
+
+double vtkMultiMaterialVolumeMapper::GetLastSceneShadowSeconds()
+{
+  return this->Internals->SceneShadows.GetLastSeconds();
 }
 
 int vtkMultiMaterialVolumeMapper::GetSkyUpdateCount()
@@ -1029,6 +1083,8 @@ void vtkMultiMaterialVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
      << "\n";
   os << indent << "DeferredIrradianceCount: " << this->DeferredIrradianceCount << "\n";
   os << indent << "IrradianceCacheHitCount: " << this->IrradianceCacheHitCount << "\n";
+  os << indent << "SceneOccluders: " << this->Internals->SceneShadows.GetNumberOfOccluders()
+     << "\n";
   os << indent << "IrradianceDimensions: " << this->IrradianceDimensions[0] << " "
      << this->IrradianceDimensions[1] << " " << this->IrradianceDimensions[2] << "\n";
   os << indent << "Counts (pre-integration, irradiance, ray cast): " << this->PreIntegrationCount

@@ -64,6 +64,12 @@ class vtkIrradianceResolutionProbe;
 class vtkMaterialTransferFunction;
 class vtkMatrix4x4;
 class vtkOpenGLRenderWindow;
+#ifndef __VTK_WRAP__
+namespace mmv
+{
+class CoarseExtinction;
+}
+#endif
 class vtkVolumeProperty;
 
 class VTKMULTIMATERIALVOLUME_EXPORT vtkMultiMaterialVolumeMapper
@@ -365,6 +371,25 @@ public:
    */
   void SetGlobalPrefilteredVolume(vtkGlobalPrefilteredVolume* volume);
   vtkGlobalPrefilteredVolume* GetGlobalPrefilteredVolume();
+
+  /**
+   * Several volumes in one renderer shadow each other: every visible
+   * vtkVolume of the renderer whose mapper is a vtkMultiMaterialVolumeMapper
+   * dims the lights of the others (vtkMultiMaterialSceneShadows.h), moved,
+   * edited, hidden or removed at any time. Overlapping volumes shadow each
+   * other but are not composited within one ray.
+   * Volumes that shadowed this one in the last irradiance update, how
+   * often their transmittance was computed, and the last one's seconds.
+   */
+  int GetNumberOfSceneOccluders();
+  int GetSceneShadowUpdateCount();
+  double GetLastSceneShadowSeconds();
+#ifndef __VTK_WRAP__
+  /// This mapper's data drawn by `vol`, as the other volumes' shadows see
+  /// it (its extinction on a coarse grid of its object space); null when it
+  /// casts none.
+  const mmv::CoarseExtinction* GetSceneOccluder(vtkVolume* vol);
+#endif
 
   /// The partitions (bricks) of the last render: those of SetPartitions, or
   /// more where a brick would exceed the largest 3D texture of the context

@@ -17,7 +17,10 @@
 // With MMV_FILL_PASS defined (the final write): empty voxels bordering
 // non-empty ones take the mean of those neighbours, as the CPU filter's
 // FillEmptyNeighborVoxels() does; the rest is copied. The classification
-// gives each empty voxel the bits of its non-empty neighbours.
+// gives each empty voxel the bits of its non-empty neighbours. With
+// MMV_SCENE_TRANSMITTANCE as well, every voxel is multiplied by the
+// transmittance toward its lights through the other volumes of the scene
+// (vtkSceneTransmittance.h), read once here rather than per ray-cast sample.
 
 uniform sampler3D current; // x of the previous sweep (fill pass: the result)
 uniform sampler3D classes; // s per voxel, < 0 where the voxel is empty
@@ -65,6 +68,12 @@ void mmvNeighborSums(ivec3 voxel, float s, sampler3D x, vec3 inverseH2, out vec4
 
 #ifdef MMV_FILL_PASS
 
+#ifdef MMV_SCENE_TRANSMITTANCE
+uniform sampler3D sceneTransmittance; // one channel per light, on a coarser grid
+uniform vec3 sceneScale; // this grid's texture coordinates -> the coarser one's
+uniform vec3 sceneBias;  // (the same first and last voxel centres)
+#endif
+
 void mmvVoxelMain()
 {
   ivec3 voxel = ivec3(floor(texCoord * vec2(dims[0], dims[1])), slice);
@@ -92,6 +101,10 @@ void mmvVoxelMain()
     }
     value = count > 0 ? sum / float(count) : vec4(0.0);
   }
+#ifdef MMV_SCENE_TRANSMITTANCE
+  vec3 own = (vec3(voxel) + 0.5) / vec3(dims[0], dims[1], dims[2]);
+  value *= textureLod(sceneTransmittance, own * sceneScale + sceneBias, 0.0);
+#endif
   mmvWrite(value);
 }
 
