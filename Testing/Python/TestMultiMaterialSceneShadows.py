@@ -1,0 +1,121 @@
+"""Several Multi-Material Volume representations in one view light each other:
+a plate above a floor, each its own source on the same point spacing, one
+directional scene light from above. The two representations must give the
+image of the same plate and floor as one volume (PSNR >= 35 dB), the plate's
+shadow must be on the floor (the floor alone differs by more than 5 dB more),
+and hiding the plate must take its shadow away (the floor alone, >= 50 dB)."""
+
+import math
+
+import numpy
+
+from paraview import simple
+
+import mmv_testing as mmv
+
+args = mmv.parse_args()
+simple.LoadPlugin(args.plugin, remote=True)
+checker = mmv.Checker()
+errors = mmv.ErrorCapture()
+
+PLATE = "exp(-((coordsZ-14)/2.5)^8-(coordsX/7)^8-(coordsY/7)^8)"
+FLOOR = "exp(-((coordsZ+18)/2.5)^8)"
+XY = [-12, 12, -12, 12]
+
+view = mmv.make_view()
+view.UseLight = 0  # one scene light instead of the camera's light kit
+light = simple.AddLight(view=view)
+light.Coords = "Scene"
+light.Type = "Directional"
+light.Position = [8.0, 4.0, 100.0]
+light.FocalPoint = [0.0, 0.0, 0.0]
+light.Intensity = 1.0
+view.CameraPosition = [55.0, -70.0, 30.0]
+view.CameraFocalPoint = [0.0, 0.0, -4.0]
+view.CameraViewUp = [0.0, 0.0, 1.0]
+view.CameraViewAngle = 30.0
+
+
+def source(zs, expression):
+    wavelet = simple.Wavelet()
+    wavelet.WholeExtent = XY + zs
+    calculator = simple.Calculator(Input=wavelet)
+    calculator.ResultArrayName = "density"
+    calculator.Function = "200*(%s)" % expression
+    return calculator
+
+
+def show(data):
+    rep = simple.Show(data, view)
+    rep.Representation = mmv.REPRESENTATION
+    simple.ColorBy(rep, ("POINTS", "density"))
+    lut = simple.GetColorTransferFunction("density")
+    lut.RGBPoints = [0.0, 0.9, 0.85, 0.8, 200.0, 0.9, 0.85, 0.8]
+    lut.AutomaticRescaleRangeMode = "Never"
+    pwf = simple.GetOpacityTransferFunction("density")
+    pwf.Points = [0.0, 0.0, 0.5, 0.0, 60.0, 0.0, 0.5, 0.0, 150.0, 0.9, 0.5, 0.0,
+                  200.0, 0.9, 0.5, 0.0]
+    pwf.AllowDuplicateScalars = 1
+    rep.ScalarOpacityUnitDistance = 1.0
+    rep.MaterialPreset = "matte"
+    return rep
+
+
+def psnr(a, b):
+    mse = float(numpy.mean((a.astype(float) - b.astype(float)) ** 2))
+    return float("inf") if mse == 0.0 else 10.0 * math.log10(255.0 ** 2 / mse)
+
+
+def render(name):
+    return mmv.render_image(view, "%s/PVMultiMaterialSceneShadows%s.png" % (args.temp_dir, name))
+
+
+# The same plate and floor as one volume.
+whole_source = source([-24, 24], "%s+%s" % (PLATE, FLOOR))
+show(whole_source)
+one = render("One")
+simple.Hide(whole_source, view)
+
+# Each as its own representation: the plate's box above the floor's.
+plate_source = source([4, 24], PLATE)
+floor_source = source([-24, -4], FLOOR)
+plate = show(plate_source)
+floor = show(floor_source)
+two = render("Two")
+checker.check(mmv.check_not_blank(two, "plate and floor"), "the volumes are visible")
+for name, rep in (("plate", plate), ("floor", floor)):
+    checker.check(mmv.info(rep, "MultiMaterialActive") == 1, "the %s is shaded with materials" % name)
+together = psnr(two, one)
+print("two representations vs one volume: PSNR %.1f dB" % together)
+checker.check(together >= 35.0, "two representations light each other as one volume does "
+              "(PSNR %.1f dB >= 35)" % together)
+
+# The floor alone (the plate hidden): its shadow goes with it.
+simple.Hide(plate_source, view)
+hidden = render("PlateHidden")
+simple.Hide(floor_source, view)
+alone_source = source([-24, -4], FLOOR)
+show(alone_source)
+floor_alone = render("FloorAlone")
+simple.Hide(alone_source, view)
+simple.Show(floor_source, view)
+after_hiding = psnr(hidden, floor_alone)
+print("plate hidden vs floor alone: PSNR %.1f dB" % after_hiding)
+checker.check(after_hiding >= 50.0, "a hidden plate casts no shadow (PSNR %.1f dB >= 50)"
+              % after_hiding)
+# The shadow was there: without the plate and its shadow the image differs
+# much more from the two volumes than one volume does.
+shadowless = psnr(two, hidden)
+print("plate and floor vs floor alone: PSNR %.1f dB" % shadowless)
+checker.check(shadowless < together - 5.0, "the plate's shadow is on the floor (%.1f dB < %.1f - 5)"
+              % (shadowless, together))
+# Shown again, the plate shadows the floor again.
+simple.Show(plate_source, view)
+again = render("Again")
+print("shown again vs before: PSNR %.1f dB" % psnr(again, two))
+checker.check(psnr(again, two) >= 50.0, "the plate shown again shadows the floor as before")
+
+problems = errors.take()
+checker.check(not problems, "no VTK errors or warnings: %s" % problems)
+errors.close()
+checker.finish()
