@@ -9,6 +9,7 @@
 #include "vtkPropCollection.h"
 #include "vtkRenderer.h"
 #include "vtkSkyVisibility.h" // CoarsenIrradianceGrid
+#include "vtkTextureCopy.h"   // UseLinearClamped
 #include "vtkTextureObject.h"
 #include "vtkVolume.h"
 #include "vtkVolumeCollection.h"
@@ -197,11 +198,7 @@ bool vtkMultiMaterialSceneShadows::Upload(vtkOpenGLRenderWindow* context,
       texture = nullptr;
       return false;
     }
-    texture->SetMinificationFilter(vtkTextureObject::Linear);
-    texture->SetMagnificationFilter(vtkTextureObject::Linear);
-    texture->SetWrapS(vtkTextureObject::ClampToEdge);
-    texture->SetWrapT(vtkTextureObject::ClampToEdge);
-    texture->SetWrapR(vtkTextureObject::ClampToEdge);
+    mmv::UseLinearClamped(texture);
   }
   return true;
 }

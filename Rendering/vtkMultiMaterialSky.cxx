@@ -7,6 +7,7 @@
 #include "vtkMultiMaterialParameters.h"
 #include "vtkMultiMaterialVolumeGeometry.h" // SamePointsMap
 #include "vtkSkyVisibility.h"
+#include "vtkTextureCopy.h" // UseLinearClamped
 
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
@@ -208,11 +209,7 @@ bool vtkMultiMaterialSky::Upload(
       return false;
     }
   }
-  texture->SetMinificationFilter(vtkTextureObject::Linear);
-  texture->SetMagnificationFilter(vtkTextureObject::Linear);
-  texture->SetWrapS(vtkTextureObject::ClampToEdge);
-  texture->SetWrapT(vtkTextureObject::ClampToEdge);
-  texture->SetWrapR(vtkTextureObject::ClampToEdge);
+  mmv::UseLinearClamped(texture);
   return true;
 }
 

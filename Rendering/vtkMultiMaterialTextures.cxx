@@ -20,13 +20,6 @@ vtkStandardNewMacro(vtkMultiMaterialTextures);
 
 namespace
 {
-void UseLinearClamped(vtkTextureObject* texture)
-{
-  texture->SetMinificationFilter(vtkTextureObject::Linear);
-  texture->SetMagnificationFilter(vtkTextureObject::Linear);
-  texture->SetWrapS(vtkTextureObject::ClampToEdge);
-  texture->SetWrapT(vtkTextureObject::ClampToEdge);
-}
 }
 
 vtkMultiMaterialTextures::vtkMultiMaterialTextures() = default;
@@ -62,8 +55,8 @@ void vtkMultiMaterialTextures::UpdateSegmentTables(
   this->SegmentPosition->SetContext(context);
   this->SegmentColor->Create2DFromRaw(n, rows, 4, VTK_FLOAT, color.data());
   this->SegmentPosition->Create2DFromRaw(n, rows, 1, VTK_FLOAT, position.data());
-  UseLinearClamped(this->SegmentColor);
-  UseLinearClamped(this->SegmentPosition);
+  mmv::UseLinearClamped(this->SegmentColor);
+  mmv::UseLinearClamped(this->SegmentPosition);
   this->UploadedTables = sources;
   this->TableSize = n;
   ++this->SegmentUploads;
@@ -114,7 +107,7 @@ void vtkMultiMaterialTextures::UpdateMaterialTable(vtkOpenGLRenderWindow* contex
   this->Material->SetContext(context);
   this->Material->Create2DFromRaw(
     n, Rows * static_cast<int>(materials.size()), 4, VTK_FLOAT, texels.data());
-  UseLinearClamped(this->Material);
+  mmv::UseLinearClamped(this->Material);
   this->UploadedMaterials = sources;
   this->UploadedRanges = ranges;
   this->UploadedMaterialSize = n;
@@ -174,8 +167,7 @@ bool vtkMultiMaterialTextures::UpdateGradientTexture(vtkOpenGLRenderWindow* cont
     this->UploadedScalars = nullptr;
     return false;
   }
-  UseLinearClamped(this->Gradient);
-  this->Gradient->SetWrapR(vtkTextureObject::ClampToEdge);
+  mmv::UseLinearClamped(this->Gradient);
   this->UploadedScalars = scalars;
   this->UploadedScalarsTime = time;
   this->UploadedGradientRange[0] = range[0];

@@ -10,6 +10,7 @@
 #include "vtkOpenGLVertexArrayObject.h"
 #include "vtkShaderProgram.h"
 #include "vtkSmartPointer.h"
+#include "vtkTextureCopy.h" // UseLinearClamped
 #include "vtkTextureObject.h"
 #include "vtk_glew.h"
 
@@ -55,11 +56,7 @@ bool vtkReflectionVisibilityPass::vtkInternals::Allocate(
   this->Texture->SetInternalFormat(GL_R16);
   this->Texture->SetFormat(GL_RED);
   this->Texture->SetDataType(GL_UNSIGNED_SHORT);
-  this->Texture->SetMinificationFilter(vtkTextureObject::Linear);
-  this->Texture->SetMagnificationFilter(vtkTextureObject::Linear);
-  this->Texture->SetWrapS(vtkTextureObject::ClampToEdge);
-  this->Texture->SetWrapT(vtkTextureObject::ClampToEdge);
-  this->Texture->SetWrapR(vtkTextureObject::ClampToEdge);
+  mmv::UseLinearClamped(this->Texture);
   std::vector<unsigned short> zeros(static_cast<size_t>(d[0]) * d[1] * d[2], 0);
   return this->Texture->Create3DFromRaw(d[0], d[1], d[2], 1, VTK_UNSIGNED_SHORT, zeros.data());
 }

@@ -70,4 +70,13 @@ vtkSmartPointer<vtkTextureObject> NewTextureLike(
   }
   return texture;
 }
+
+void UseLinearClamped(vtkTextureObject* texture)
+{
+  texture->SetMinificationFilter(vtkTextureObject::Linear);
+  texture->SetMagnificationFilter(vtkTextureObject::Linear);
+  texture->SetWrapS(vtkTextureObject::ClampToEdge);
+  texture->SetWrapT(vtkTextureObject::ClampToEdge);
+  texture->SetWrapR(vtkTextureObject::ClampToEdge);
+}
 }

@@ -1,7 +1,8 @@
 /**
  * @file   vtkTextureCopy.h
- * @brief  GPU-side copies of 3D textures: what the irradiance and gradient
- *         volumes of earlier time steps are kept as.
+ * @brief  GPU-side copies of 3D textures (what the irradiance and gradient
+ *         volumes of earlier time steps are kept as), and the sampling the
+ *         mapper's volume textures share.
  */
 #ifndef vtkTextureCopy_h
 #define vtkTextureCopy_h
@@ -26,6 +27,8 @@ void CopyTexture3D(vtkTextureObject* from, vtkTextureObject* to);
 /// An uninitialised 3D texture of `like`'s size and format (null: failed).
 vtkSmartPointer<vtkTextureObject> NewTextureLike(
   vtkOpenGLRenderWindow* context, vtkTextureObject* like);
+/// Linear filtering, clamped to the edge along every axis.
+void UseLinearClamped(vtkTextureObject* texture);
 }
 
 #endif

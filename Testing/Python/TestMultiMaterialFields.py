@@ -75,12 +75,7 @@ view.CameraFocalPoint = [0.0, 0.0, 0.0]
 view.CameraViewUp = [0.0, 1.0, 0.0]
 view.CameraParallelProjection = 1
 view.CameraParallelScale = 17.0
-light = simple.AddLight(view=view)
-light.Coords = "Scene"
-light.Type = "Directional"
-light.Position = [4.0, 2.0, 100.0]
-light.FocalPoint = [0.0, 0.0, 0.0]
-view.UseLight = 0
+mmv.add_directional_light(view, [4.0, 2.0, 100.0])
 
 # --- The same scene as one array ---------------------------------------------
 maps("both", (1.0, 0.9, 0.8))

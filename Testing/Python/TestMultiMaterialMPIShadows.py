@@ -78,13 +78,7 @@ if ranks > 1:
                   % (sorted(owners["plate"]), sorted(owners["floor"])))
 
 view = mmv.make_view()
-view.UseLight = 0  # the light kit follows the camera; one scene light instead
-light = simple.AddLight(view=view)
-light.Coords = "Scene"
-light.Type = "Directional"
-light.Position = [8.0, 4.0, 100.0]
-light.FocalPoint = [0.0, 0.0, 0.0]
-light.Intensity = 1.0
+mmv.add_directional_light(view, [8.0, 4.0, 100.0])  # the light kit follows the camera
 
 wavelet = simple.Wavelet()
 wavelet.WholeExtent = WHOLE

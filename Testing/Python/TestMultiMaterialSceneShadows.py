@@ -23,13 +23,7 @@ FLOOR = "exp(-((coordsZ+18)/2.5)^8)"
 XY = [-12, 12, -12, 12]
 
 view = mmv.make_view()
-view.UseLight = 0  # one scene light instead of the camera's light kit
-light = simple.AddLight(view=view)
-light.Coords = "Scene"
-light.Type = "Directional"
-light.Position = [8.0, 4.0, 100.0]
-light.FocalPoint = [0.0, 0.0, 0.0]
-light.Intensity = 1.0
+mmv.add_directional_light(view, [8.0, 4.0, 100.0])
 view.CameraPosition = [55.0, -70.0, 30.0]
 view.CameraFocalPoint = [0.0, 0.0, -4.0]
 view.CameraViewUp = [0.0, 0.0, 1.0]

@@ -102,6 +102,19 @@ def make_view():
     return view
 
 
+def add_directional_light(view, position, intensity=1.0):
+    """Replaces the view's light kit by one directional scene light from
+    `position` toward the origin."""
+    view.UseLight = 0
+    light = simple.AddLight(view=view)
+    light.Coords = "Scene"
+    light.Type = "Directional"
+    light.Position = position
+    light.FocalPoint = [0.0, 0.0, 0.0]
+    light.Intensity = intensity
+    return light
+
+
 def make_volume(extent=15):
     """A small synthetic volume: the Wavelet source, (2*extent+1)^3 points."""
     wavelet = simple.Wavelet()
