@@ -77,12 +77,7 @@ struct BaselineScene : mmvtest::Scene
     this->Materials->AddNode(1.0, 0.25, 0.7, 0.3, 15.0, 0.5, 8.0, 0.0); // skin
     this->Materials->AddNode(2.0, 0.1, 0.3, 0.9, 120.0, 1.0, 0.0, 0.6); // metal
     this->Materials->AddNode(3.0, 0.15, 0.7, 0.6, 60.0, 1.0, 0.0, 0.0); // plastic
-    this->Mapper->SetInputData(image);
-    this->Mapper->SetMaterialTransferFunction(this->Materials);
-    this->Mapper->SetIrradianceScale(1.0);
-    this->Mapper->AutoAdjustSampleDistancesOff();
-    this->Mapper->SetSampleDistance(0.5);
-    this->Volume->SetMapper(this->Mapper);
+    mmvtest::SetUpFullGridMapper(this->Mapper.Get(), image, this->Materials, this->Volume);
     this->Renderer->SetBackground(0.15, 0.15, 0.2);
     this->Renderer->SetBackground2(0.6, 0.7, 0.9);
     this->Renderer->GradientBackgroundOn();

@@ -188,12 +188,7 @@ TEST(ReferenceRenderer, AgreesWithGPUMapper)
   vtkNew<vtkMaterialTransferFunction> materials;
   auto image = mmvtest::TwoMaterialBall(scene, materials, Dims);
   vtkNew<vtkMultiMaterialVolumeMapper> mapper;
-  mapper->SetInputData(image);
-  mapper->SetMaterialTransferFunction(materials);
-  mapper->AutoAdjustSampleDistancesOff();
-  mapper->SetSampleDistance(0.5);
-  mapper->SetIrradianceScale(1.0);
-  scene.Volume->SetMapper(mapper);
+  mmvtest::SetUpFullGridMapper(mapper.Get(), image, materials, scene.Volume);
   scene.FrameBounds(image->GetBounds(), 1.2);
   const double from[3] = { 60.0, 80.0, 100.0 };
   scene.AddDirectionalLight(from, CubeCenter);

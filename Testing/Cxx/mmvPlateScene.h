@@ -35,12 +35,7 @@ struct PlateScene : Scene
     this->Opacity->AddPoint(1.0, 0.5);
     this->Property->SetScalarOpacityUnitDistance(1.0);
     this->Materials->AddNode(1.0, 0.6, 0.4, specular, 10.0, 1.0, 0.0, 0.0);
-    this->Mapper->SetInputData(image);
-    this->Mapper->SetMaterialTransferFunction(this->Materials);
-    this->Mapper->SetIrradianceScale(1.0);
-    this->Mapper->AutoAdjustSampleDistancesOff();
-    this->Mapper->SetSampleDistance(0.5);
-    this->Volume->SetMapper(this->Mapper);
+    SetUpFullGridMapper(this->Mapper.Get(), image, this->Materials, this->Volume);
     this->FrameBounds(bounds ? bounds : image->GetBounds(), 1.1);
     const double from[3] = { 20.0, 18.0, 100.0 };
     const double to[3] = { 16.0, 16.0, 0.0 };

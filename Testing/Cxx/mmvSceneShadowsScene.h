@@ -150,12 +150,7 @@ struct SceneVolume
     this->Property->SetScalarOpacityUnitDistance(1.0);
     this->Property->SetInterpolationTypeToLinear();
     this->Materials->AddNode(high, 1.0, 0.0, 0.0, 10.0, 1.0, 0.0, 0.0);
-    this->Mapper->SetInputData(image);
-    this->Mapper->SetMaterialTransferFunction(this->Materials);
-    this->Mapper->SetIrradianceScale(1.0);
-    this->Mapper->AutoAdjustSampleDistancesOff();
-    this->Mapper->SetSampleDistance(0.5);
-    this->Volume->SetMapper(this->Mapper);
+    SetUpFullGridMapper(this->Mapper.Get(), image, this->Materials, this->Volume);
     this->Volume->SetProperty(this->Property);
   }
 };
@@ -171,12 +166,7 @@ struct ShadowScene
 
   explicit ShadowScene(int size = Size)
   {
-    this->Window->SetOffScreenRendering(1);
-    this->Window->SetSize(size, size);
-    this->Window->SetMultiSamples(0);
-    this->Window->AddRenderer(this->Renderer);
-    this->Renderer->SetBackground(0.0, 0.0, 0.0);
-    this->Renderer->AutomaticLightCreationOff();
+    SetUpWindow(this->Window, this->Renderer, size);
     vtkCamera* camera = this->Renderer->GetActiveCamera();
     camera->ParallelProjectionOn();
     camera->SetFocalPoint(16.0, 16.0, 9.0);

@@ -74,6 +74,34 @@ inline vtkSmartPointer<vtkImageData> MakeVolume(
   return image;
 }
 
+/// `window` off screen at size x size with `renderer`: black background, no
+/// automatic light, no multisampling.
+inline void SetUpWindow(vtkRenderWindow* window, vtkRenderer* renderer, int size)
+{
+  window->SetOffScreenRendering(1);
+  window->SetSize(size, size);
+  window->SetMultiSamples(0);
+  window->AddRenderer(renderer);
+  renderer->SetBackground(0.0, 0.0, 0.0);
+  renderer->AutomaticLightCreationOff();
+}
+
+/// `mapper` (a vtkMultiMaterialVolumeMapper; a template, so that tests of the
+/// CPU side need not link the mapper) on `image` with `materials`, drawn by
+/// `volume`: the irradiance on the data's own grid (scale 1), a sample every
+/// half voxel.
+template <typename Mapper>
+void SetUpFullGridMapper(
+  Mapper* mapper, vtkImageData* image, vtkMaterialTransferFunction* materials, vtkVolume* volume)
+{
+  mapper->SetInputData(image);
+  mapper->SetMaterialTransferFunction(materials);
+  mapper->SetIrradianceScale(1.0);
+  mapper->AutoAdjustSampleDistancesOff();
+  mapper->SetSampleDistance(0.5);
+  volume->SetMapper(mapper);
+}
+
 /// A window of size x size, black background, parallel camera on +z looking
 /// at the centre of `bounds` and framing it.
 struct Scene
@@ -87,12 +115,7 @@ struct Scene
 
   explicit Scene(int size = 64)
   {
-    this->Window->SetOffScreenRendering(1);
-    this->Window->SetSize(size, size);
-    this->Window->SetMultiSamples(0);
-    this->Window->AddRenderer(this->Renderer);
-    this->Renderer->SetBackground(0.0, 0.0, 0.0);
-    this->Renderer->AutomaticLightCreationOff();
+    SetUpWindow(this->Window, this->Renderer, size);
     this->Property->SetColor(this->Color);
     this->Property->SetScalarOpacity(this->Opacity);
     this->Property->SetInterpolationTypeToLinear();
