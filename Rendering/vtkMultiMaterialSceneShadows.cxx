@@ -22,6 +22,23 @@
 
 namespace
 {
+/// Whether two world boxes share a volume (touching faces do not).
+bool BoxesOverlap(const double* a, const double* b)
+{
+  if (!a || !b)
+  {
+    return false;
+  }
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    if (!(a[2 * axis] < b[2 * axis + 1] && b[2 * axis] < a[2 * axis + 1]))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
 glm::dmat4 ToGLM(vtkMatrix4x4* m)
 {
   glm::dmat4 g;
@@ -77,6 +94,7 @@ void vtkMultiMaterialSceneShadows::Clear()
 {
   this->Occluders.clear();
   this->Key.clear();
+  this->Overlapping = false;
 }
 
 void vtkMultiMaterialSceneShadows::Gather(
@@ -99,6 +117,7 @@ void vtkMultiMaterialSceneShadows::Gather(
     prop->GetVolumes(volumes);
   }
   const glm::dmat4 selfToWorld = ToGLM(self->GetMatrix());
+  const double* selfBounds = self->GetBounds();
   vtkCollectionSimpleIterator it;
   volumes->InitTraversal(it);
   while (vtkVolume* other = volumes->GetNextVolume(it))
@@ -113,6 +132,7 @@ void vtkMultiMaterialSceneShadows::Gather(
     {
       continue;
     }
+    this->Overlapping = this->Overlapping || BoxesOverlap(selfBounds, other->GetBounds());
     vtkNew<vtkMatrix4x4> worldToOther;
     vtkMatrix4x4::Invert(other->GetMatrix(), worldToOther);
     mmv::Occluder occluder;

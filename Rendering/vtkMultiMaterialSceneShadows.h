@@ -93,6 +93,9 @@ public:
   /// map from this volume's object space into its own; empty when alone.
   const std::vector<double>& GetKey() const { return this->Key; }
   int GetNumberOfOccluders() const { return static_cast<int>(this->Occluders.size()); }
+  /// Whether a gathered volume's box overlaps this one's: VTK composites
+  /// each volume's ray cast over the other's, not along one ray.
+  bool GetOverlapping() const { return this->Overlapping; }
 
   /**
    * The transmittance toward `lights` (object space) through the gathered
@@ -125,6 +128,7 @@ private:
   mmv::CoarseExtinction Extinction; // this volume, as the others see it
   std::vector<mmv::Occluder> Occluders;
   std::vector<double> Key;
+  bool Overlapping = false;
 
   // What the textures hold.
   bool HasTextures = false;

@@ -737,6 +737,13 @@ bool vtkMultiMaterialVolumeMapper::UpdateIrradiance(vtkRenderer* ren, vtkVolume*
   else
   {
     in.SceneShadows.Gather(ren, vol, this);
+    if (in.SceneShadows.GetOverlapping())
+    {
+      this->WarnOnce("this volume's box overlaps another multi-material volume's: VTK draws "
+                     "each volume's ray cast over the other's, not along one ray, so their "
+                     "overlap is blended by drawing order; put data that overlap in one image "
+                     "with several fields (FieldArrays)");
+    }
   }
   inputs.Scene = &in.SceneShadows;
   inputs.Settings = this->Settings;

@@ -36,7 +36,10 @@ TEST(SceneShadows, PlateShadowsTheFloorAsInOneVolume)
   ShadowScene two;
   SceneVolume* floor = two.Add(FloorImage());
   SceneVolume* plate = two.Add(PlateImage());
+  mmvtest::ErrorCounter messages(floor->Mapper);
+  messages.Watch(plate->Mapper);
   const std::vector<unsigned char> image = two.Render();
+  EXPECT_EQ(messages.Warnings() + messages.Errors(), 0) << messages.LastMessage(); // apart
   EXPECT_TRUE(floor->Mapper->GetMultiMaterialActive());
   EXPECT_TRUE(plate->Mapper->GetMultiMaterialActive());
   EXPECT_EQ(floor->Mapper->GetNumberOfSceneOccluders(), 1);
@@ -248,7 +251,14 @@ TEST(SceneShadows, VolumeInsideAnotherRenders)
   SceneVolume* fog =
     nested.Add(Sample(dims, origin, 2.0, [](double, double, double) { return 0.55; }));
   SceneVolume* plate = nested.Add(PlateImage());
+  mmvtest::ErrorCounter messages(fog->Mapper);
+  messages.Watch(plate->Mapper);
   const std::vector<unsigned char> image = nested.Render();
+  nested.Render();
+  // Each is told once that their overlap is blended, not integrated.
+  EXPECT_EQ(messages.Warnings(), 2);
+  EXPECT_NE(messages.LastMessage().find("overlaps another"), std::string::npos)
+    << messages.LastMessage();
   EXPECT_EQ(fog->Mapper->GetNumberOfSceneOccluders(), 1);
   EXPECT_EQ(plate->Mapper->GetNumberOfSceneOccluders(), 1);
   EXPECT_TRUE(fog->Mapper->GetMultiMaterialActive());
