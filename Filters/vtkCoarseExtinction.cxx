@@ -56,12 +56,9 @@ IrradianceGrid CoarsenToAtMost(const IrradianceGrid& points, int maxVoxelsPerAxi
 
 bool CoarseExtinction::Key::operator==(const Key& o) const
 {
-  const IrradianceGrid& a = this->Points;
-  const IrradianceGrid& b = o.Points;
-  const bool sameGeometry = std::equal(a.Dimensions, a.Dimensions + 3, b.Dimensions) &&
-    a.Origin == b.Origin && a.Spacing == b.Spacing && a.Direction == b.Direction;
-  return sameGeometry && this->Scalars == o.Scalars && this->ScalarsTime == o.ScalarsTime &&
-    this->Range[0] == o.Range[0] && this->Range[1] == o.Range[1] && this->Table == o.Table &&
+  return this->Points.IsSameGrid(o.Points) && this->Scalars == o.Scalars &&
+    this->ScalarsTime == o.ScalarsTime && this->Range[0] == o.Range[0] &&
+    this->Range[1] == o.Range[1] && this->Table == o.Table &&
     this->MaxVoxelsPerAxis == o.MaxVoxelsPerAxis;
 }
 

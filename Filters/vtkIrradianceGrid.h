@@ -19,6 +19,8 @@
 
 #include <glm/glm.hpp>
 
+#include <algorithm> // std::equal
+
 #include <string>
 #include <vector>
 
@@ -39,6 +41,13 @@ struct IrradianceGrid
   vtkIdType GetNumberOfVoxels() const
   {
     return static_cast<vtkIdType>(this->Dimensions[0]) * this->Dimensions[1] * this->Dimensions[2];
+  }
+  /// The same voxels in the same place: dimensions, origin, spacing and
+  /// direction (DataVoxelsPerVoxel follows from them and the data).
+  bool IsSameGrid(const IrradianceGrid& o) const
+  {
+    return std::equal(this->Dimensions, this->Dimensions + 3, o.Dimensions) &&
+      this->Origin == o.Origin && this->Spacing == o.Spacing && this->Direction == o.Direction;
   }
   /// The integer index of voxel `v` (x fastest), as doubles for the maps below.
   glm::dvec3 IndexOfVoxel(vtkIdType v) const

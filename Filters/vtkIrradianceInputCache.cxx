@@ -12,15 +12,6 @@
 
 vtkStandardNewMacro(vtkIrradianceInputCache);
 
-namespace
-{
-bool SameGrid(const mmv::IrradianceGrid& a, const mmv::IrradianceGrid& b)
-{
-  return std::equal(a.Dimensions, a.Dimensions + 3, b.Dimensions) && a.Origin == b.Origin &&
-    a.Spacing == b.Spacing && a.Direction == b.Direction;
-}
-}
-
 vtkIrradianceInputCache::vtkIrradianceInputCache()
 {
   vtkMultiMaterialLiveObjects::Constructed("vtkIrradianceInputCache");
@@ -123,7 +114,7 @@ bool vtkIrradianceInputCache::UpdatePrefiltered(vtkImageData* image, vtkDataArra
   // The only comparison of the values: a new data time whose values are
   // the same (a pipeline that executed again) keeps the version, so the
   // irradiance pass, which trusts it, keeps every light.
-  if (!this->HasPrefiltered || !SameGrid(grid, this->Grid) || values != this->Prefiltered)
+  if (!this->HasPrefiltered || !grid.IsSameGrid(this->Grid) || values != this->Prefiltered)
   {
     ++this->PrefilteredVersion;
   }

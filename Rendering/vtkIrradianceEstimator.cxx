@@ -70,7 +70,7 @@ void vtkIrradianceEstimator::SetInputs(const mmv::IrradianceGrid& grid,
   // CT-sized head. Without one (0) they are compared here.
   const bool sameScalars = scalarsVersion != 0 ? scalarsVersion == internals.ScalarsVersion
                                                : internals.Scalars == normalizedScalars;
-  const bool sameGrid = internals.HasInputs && SameGrid(internals.Grid, grid);
+  const bool sameGrid = internals.HasInputs && internals.Grid.IsSameGrid(grid);
   const bool sameVolume = sameGrid && internals.StepLength == stepLength && sameScalars &&
     internals.ShadowTable == shadow && internals.OpacityTable == opacity &&
     internals.ScatteringTable == scattering;

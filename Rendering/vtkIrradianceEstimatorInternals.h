@@ -190,12 +190,6 @@ inline bool IsEmptyBox(const int* box)
   return box && (box[0] > box[1] || box[2] > box[3] || box[4] > box[5]);
 }
 
-inline bool SameGrid(const mmv::IrradianceGrid& a, const mmv::IrradianceGrid& b)
-{
-  return std::equal(a.Dimensions, a.Dimensions + 3, b.Dimensions) && a.Origin == b.Origin &&
-    a.Spacing == b.Spacing && a.Direction == b.Direction;
-}
-
 /// Activates textures for one draw and deactivates them when it ends.
 class ScopedTextures
 {

@@ -52,11 +52,6 @@ glm::dmat4 ToGLM(vtkMatrix4x4* m)
   return g;
 }
 
-bool SameGrid(const mmv::IrradianceGrid& a, const mmv::IrradianceGrid& b)
-{
-  return std::equal(a.Dimensions, a.Dimensions + 3, b.Dimensions) && a.Origin == b.Origin &&
-    a.Spacing == b.Spacing && a.Direction == b.Direction;
-}
 }
 
 vtkMultiMaterialSceneShadows::vtkMultiMaterialSceneShadows() = default;
@@ -155,7 +150,7 @@ bool vtkMultiMaterialSceneShadows::Update(vtkOpenGLRenderWindow* context,
     this->ReleaseGraphicsResources(context); // alone: nothing to read
     return true;
   }
-  if (this->HasTextures && this->Key == this->HeldKey && SameGrid(grid, this->HeldGrid) &&
+  if (this->HasTextures && this->Key == this->HeldKey && grid.IsSameGrid(this->HeldGrid) &&
     lights == this->HeldLights)
   {
     return true;

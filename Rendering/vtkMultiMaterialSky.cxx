@@ -27,14 +27,10 @@
 
 bool vtkMultiMaterialSky::Key::operator==(const Key& o) const
 {
-  const mmv::IrradianceGrid& a = this->Points;
-  const mmv::IrradianceGrid& b = o.Points;
-  const bool sameGeometry = std::equal(a.Dimensions, a.Dimensions + 3, b.Dimensions) &&
-    a.Origin == b.Origin && a.Spacing == b.Spacing && a.Direction == b.Direction;
-  return sameGeometry && this->Scalars == o.Scalars && this->ScalarsTime == o.ScalarsTime &&
-    this->Range[0] == o.Range[0] && this->Range[1] == o.Range[1] &&
-    this->Extinction == o.Extinction && this->Scattering == o.Scattering &&
-    this->Exponential == o.Exponential;
+  return this->Points.IsSameGrid(o.Points) && this->Scalars == o.Scalars &&
+    this->ScalarsTime == o.ScalarsTime && this->Range[0] == o.Range[0] &&
+    this->Range[1] == o.Range[1] && this->Extinction == o.Extinction &&
+    this->Scattering == o.Scattering && this->Exponential == o.Exponential;
 }
 
 vtkMultiMaterialSky::vtkMultiMaterialSky() = default;
