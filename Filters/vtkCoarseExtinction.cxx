@@ -82,7 +82,13 @@ bool CoarseExtinction::Update(vtkImageData* image, vtkDataArray* scalars, const 
   // One counter for every instance: a version names one volume's values.
   static std::atomic<unsigned long> versions{ 0 };
   this->Grid = CoarsenToAtMost(key.Points, maxVoxelsPerAxis);
-  NormalizeScalars(scalars, range, this->Normalized);
+  const bool sameData = this->HasKey && this->Held.Scalars == key.Scalars &&
+    this->Held.ScalarsTime == key.ScalarsTime && this->Held.Range[0] == key.Range[0] &&
+    this->Held.Range[1] == key.Range[1];
+  if (!sameData)
+  {
+    NormalizeScalars(scalars, range, this->Normalized);
+  }
   AverageOntoGrid(key.Points, this->Normalized.data(), this->Grid, this->Values, &key.Table);
   this->Version = ++versions;
   this->Held = std::move(key);

@@ -66,6 +66,10 @@ public:
   const IrradianceGrid& GetGrid() const { return this->Grid; }
   /// Per object unit, one per voxel of GetGrid(), x fastest.
   const std::vector<float>& GetValues() const { return this->Values; }
+  /// The data normalised over the range (NormalizeScalars), one per point:
+  /// kept while the array, its time and the range are (a new table only
+  /// averages them again).
+  const std::vector<float>& GetNormalized() const { return this->Normalized; }
   unsigned long GetVersion() const { return this->Version; }
   /// Forgets the inputs: the next Update() recomputes.
   void Invalidate() { this->HasKey = false; }

@@ -15,7 +15,6 @@
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkRenderer.h"
-#include "vtkSMPTools.h"
 #include "vtkShaderProgram.h"
 #include "vtkTextureObject.h"
 #include "vtkVolumeProperty.h"
@@ -103,7 +102,7 @@ bool vtkMultiMaterialSky::Update(
   const bool kept = this->RestoreKept(key, grid);
   if (!kept)
   {
-    this->EstimateMoments(points, grid, in.Scalars, key);
+    this->EstimateMoments(in.Image, in.Scalars, key);
     if (!key.Scattering.empty())
     {
       this->DiffuseMoments(points, grid, key);
@@ -146,27 +145,20 @@ bool vtkMultiMaterialSky::RestoreKept(const Key& key, const mmv::IrradianceGrid&
   return false;
 }
 
-void vtkMultiMaterialSky::EstimateMoments(const mmv::IrradianceGrid& points,
-  const mmv::IrradianceGrid& grid, vtkDataArray* scalars, const Key& key)
+void vtkMultiMaterialSky::EstimateMoments(
+  vtkImageData* image, vtkDataArray* scalars, const Key& key)
 {
-  // Normalised values (NaN: empty), kept while the data and range are: an
-  // opacity edit only changes the extinction table.
-  if (this->ValuesFrom.Scalars != scalars || this->ValuesFrom.Time != key.ScalarsTime ||
-    this->ValuesFrom.Range[0] != key.Range[0] || this->ValuesFrom.Range[1] != key.Range[1])
-  {
-    mmv::NormalizeScalars(scalars, key.Range, this->Values);
-    this->ValuesFrom = NormalisedFrom{ scalars, key.ScalarsTime, { key.Range[0], key.Range[1] } };
-  }
-  mmv::AverageOntoGrid(points, this->Values.data(), grid, this->Coarse, &key.Extinction);
-  mmv::ComputeSkyVisibility(
-    grid, this->Coarse.data(), mmv::SkyDirections(mmv::SkyDirectionCount), this->Moments);
+  this->Extinction.Update(image, scalars, key.Range, key.Extinction, mmv::SkyVoxelsPerAxis);
+  mmv::ComputeSkyVisibility(this->Extinction.GetGrid(), this->Extinction.GetValues().data(),
+    mmv::SkyDirections(mmv::SkyDirectionCount), this->Moments);
 }
 
 void vtkMultiMaterialSky::DiffuseMoments(
   const mmv::IrradianceGrid& points, const mmv::IrradianceGrid& grid, const Key& key)
 {
   std::vector<float> strength;
-  mmv::AverageOntoGrid(points, this->Values.data(), grid, strength, &key.Scattering);
+  mmv::AverageOntoGrid(
+    points, this->Extinction.GetNormalized().data(), grid, strength, &key.Scattering);
   // s is in data voxels^2: the sky's grid spacing in data voxels.
   const double spacing[3] = { grid.DataVoxelsPerVoxel.x, grid.DataVoxelsPerVoxel.y,
     grid.DataVoxelsPerVoxel.z };

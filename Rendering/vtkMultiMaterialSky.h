@@ -23,6 +23,7 @@
 #ifndef vtkMultiMaterialSky_h
 #define vtkMultiMaterialSky_h
 
+#include "vtkCoarseExtinction.h"          // CoarseExtinction
 #include "vtkIrradianceGrid.h"            // IrradianceGrid
 #include "vtkMultiMaterialVolumeModule.h" // export macro
 #include "vtkNew.h"
@@ -137,10 +138,9 @@ private:
     bool operator==(const Key& o) const;
   };
 
-  /// The data's extinction averaged onto `grid` (a coarsening of the
-  /// data's `points`) and its visibility moments, into Coarse and Moments.
-  void EstimateMoments(const mmv::IrradianceGrid& points, const mmv::IrradianceGrid& grid,
-    vtkDataArray* scalars, const Key& key);
+  /// The data's extinction averaged onto the sky's grid (Extinction) and
+  /// its visibility moments (Moments).
+  void EstimateMoments(vtkImageData* image, vtkDataArray* scalars, const Key& key);
   /// Multiple scattering: each moment diffused with the scattering averaged
   /// onto the sky's grid (the diffusion is linear: any sky still shades).
   void DiffuseMoments(
@@ -166,15 +166,7 @@ private:
   bool RestoreKept(const Key& key, const mmv::IrradianceGrid& grid);
 
   vtkNew<vtkMultiMaterialEnvironment> Environment;
-  std::vector<float> Values; // the data normalised, kept between steps
-  struct NormalisedFrom      // what Values hold: a new array, time or range renormalises
-  {
-    vtkDataArray* Scalars = nullptr;
-    vtkMTimeType Time = 0;
-    double Range[2] = { 0.0, 0.0 };
-  };
-  NormalisedFrom ValuesFrom;
-  std::vector<float> Coarse; // the extinction on the sky's grid
+  mmv::CoarseExtinction Extinction; // on the sky's grid, as the other volumes' shadows see it
   std::vector<float> Moments;
   mmv::IrradianceGrid Grid;
   int DataDimensions[3] = { 1, 1, 1 }; // the points the grid spans
