@@ -105,6 +105,23 @@ vtkSmartPointer<vtkDataArray> MakeVectorScalars(
   return result;
 }
 
+void LightingRange(vtkDataArray* scalars, int component, double range[2])
+{
+  const int type = scalars->GetDataType();
+  if (type == VTK_FLOAT || type == VTK_DOUBLE)
+  {
+    scalars->GetFiniteRange(range, component);
+  }
+  else
+  {
+    scalars->GetRange(range, component);
+  }
+  if (!(range[1] > range[0]))
+  {
+    range[1] = range[0] + 1.0; // constant: any non-empty range will do
+  }
+}
+
 vtkSmartPointer<vtkDataArray> MakeFieldArray(
   vtkDataArray* first, const std::vector<vtkDataArray*>& others, std::string* error)
 {

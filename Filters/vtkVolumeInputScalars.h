@@ -66,6 +66,16 @@ VTKMULTIMATERIALVOLUMEFILTERS_EXPORT vtkSmartPointer<vtkDataArray> MakeVectorSca
 VTKMULTIMATERIALVOLUMEFILTERS_EXPORT vtkSmartPointer<vtkDataArray> MakeFieldArray(
   vtkDataArray* first, const std::vector<vtkDataArray*>& others, std::string* error);
 
+/**
+ * The range the lighting maps component `component` over: the finite range
+ * (NaN and Inf left out), widened to [v, v + 1] for a constant component.
+ * Integers have no NaN or Inf, so they take the plain range: the one VTK's
+ * ray caster asks for too, computed once and kept by the array (which keeps
+ * the finite range apart).
+ */
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT void LightingRange(
+  vtkDataArray* scalars, int component, double range[2]);
+
 } // namespace mmv
 
 #endif

@@ -94,23 +94,8 @@ bool vtkMultiMaterialFields::SetScalars(vtkDataArray* scalars)
   this->Count = count;
   for (int f = 0; f < count; ++f)
   {
-    // Integers have no NaN or Inf: their range is the finite one, and the
-    // one VTK's ray caster asks for as well (computed once and kept by the
-    // array, which keeps the finite range apart).
-    const int type = scalars->GetDataType();
     double range[2];
-    if (type == VTK_FLOAT || type == VTK_DOUBLE)
-    {
-      scalars->GetFiniteRange(range, f);
-    }
-    else
-    {
-      scalars->GetRange(range, f);
-    }
-    if (!(range[1] > range[0]))
-    {
-      range[1] = range[0] + 1.0; // constant field: any non-empty range will do
-    }
+    mmv::LightingRange(scalars, f, range);
     this->Ranges[f] = { range[0], range[1] };
   }
   return true;

@@ -13,6 +13,7 @@
 #include "vtkTextureObject.h"
 #include "vtkVolume.h"
 #include "vtkVolumeCollection.h"
+#include "vtkVolumeInputScalars.h" // LightingRange
 #include "vtkVolumeProperty.h"
 #include "vtk_glew.h"
 
@@ -74,11 +75,7 @@ const mmv::CoarseExtinction* vtkMultiMaterialSceneShadows::UpdateOccluder(vtkIma
     return nullptr;
   }
   double range[2];
-  scalars->GetFiniteRange(range, 0);
-  if (!(range[1] > range[0]))
-  {
-    range[1] = range[0] + 1.0; // constant data: any non-empty range will do
-  }
+  mmv::LightingRange(scalars, 0, range);
   const std::vector<float> table = mmv::SampleExtinction(property->GetScalarOpacity(0),
     property->GetScalarOpacityUnitDistance(0), materials, range, tableSize);
   this->Extinction.Update(image, scalars, range, table, mmv::SceneShadowVoxelsPerAxis);
