@@ -138,8 +138,7 @@ mmv::IrradianceResolution vtkMultiMaterialIrradianceStage::ChooseGrid(vtkRendere
     vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow()));
   if (scale <= 0.0 && bound > 0.0)
   {
-    this->ApplyProbe(
-      ren, vol, image, scalars, range, volumeKey, cutaway, bound, largest, resolution);
+    this->ApplyProbe(ren, image, scalars, range, volumeKey, cutaway, bound, largest, resolution);
   }
   for (int a = 0; a < 3 && largest > 1; ++a)
   {
@@ -148,10 +147,9 @@ mmv::IrradianceResolution vtkMultiMaterialIrradianceStage::ChooseGrid(vtkRendere
   return resolution;
 }
 
-void vtkMultiMaterialIrradianceStage::ApplyProbe(vtkRenderer* ren, vtkVolume* vtkNotUsed(vol),
-  vtkImageData* image, vtkDataArray* scalars, const double range[2],
-  const vtkIrradianceInputCache::VolumeKey& volumeKey, const mmv::Cutaway& cutaway, double bound,
-  int maxAxis, mmv::IrradianceResolution& resolution)
+void vtkMultiMaterialIrradianceStage::ApplyProbe(vtkRenderer* ren, vtkImageData* image,
+  vtkDataArray* scalars, const double range[2], const vtkIrradianceInputCache::VolumeKey& volumeKey,
+  const mmv::Cutaway& cutaway, double bound, int maxAxis, mmv::IrradianceResolution& resolution)
 {
   auto* window = vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow());
   vtkVolumeProperty* property = this->In->Property;

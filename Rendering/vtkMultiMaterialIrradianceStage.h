@@ -141,7 +141,7 @@ private:
     vtkDataArray* scalars, const double range[2],
     const vtkIrradianceInputCache::VolumeKey& volumeKey, const mmv::Cutaway& cutaway);
   /// Coarsens an automatic `resolution` to the error probe's scale.
-  void ApplyProbe(vtkRenderer* ren, vtkVolume* vol, vtkImageData* image, vtkDataArray* scalars,
+  void ApplyProbe(vtkRenderer* ren, vtkImageData* image, vtkDataArray* scalars,
     const double range[2], const vtkIrradianceInputCache::VolumeKey& volumeKey,
     const mmv::Cutaway& cutaway, double bound, int maxAxis, mmv::IrradianceResolution& resolution);
   /// Keeps the held irradiance when `plan` (to `now`) allows it: current,
