@@ -269,6 +269,32 @@ double SampleTrilinear(const IrradianceGrid& grid, const float* values, const gl
   return Interpolate(grid.Dimensions, values, index);
 }
 
+bool ClipToIndexBox(
+  const glm::dvec3& p, const glm::dvec3& d, const int dims[3], double& t0, double& t1)
+{
+  for (int a = 0; a < 3; ++a)
+  {
+    const double high = dims[a] - 1.0;
+    if (d[a] == 0.0)
+    {
+      if (p[a] < 0.0 || p[a] > high)
+      {
+        return false;
+      }
+      continue;
+    }
+    double tNear = (0.0 - p[a]) / d[a];
+    double tFar = (high - p[a]) / d[a];
+    if (tNear > tFar)
+    {
+      std::swap(tNear, tFar);
+    }
+    t0 = std::max(t0, tNear);
+    t1 = std::min(t1, tFar);
+  }
+  return t1 > t0;
+}
+
 FootprintLayout MakeFootprintLayout(const int dataDims[3], const int gridDims[3])
 {
   FootprintLayout layout;

@@ -164,6 +164,15 @@ VTKMULTIMATERIALVOLUMEFILTERS_EXPORT IrradianceGrid MakeIrradianceGrid(const int
 VTKMULTIMATERIALVOLUMEFILTERS_EXPORT double SampleTrilinear(
   const IrradianceGrid& grid, const float* values, const glm::dvec3& index);
 
+/**
+ * Narrows [t0, t1] to the parameters where p + t d lies in the box of voxel
+ * centres [0, dims - 1] (index space; the slab test); false when the line
+ * misses it there. The CPU renderers' rays and the scene shadows' marches
+ * clip with it.
+ */
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT bool ClipToIndexBox(
+  const glm::dvec3& p, const glm::dvec3& d, const int dims[3], double& t0, double& t1);
+
 /// One component of the scalars as floats (read through the array's own type).
 VTKMULTIMATERIALVOLUMEFILTERS_EXPORT std::vector<float> CopyComponent(
   vtkDataArray* scalars, int component);

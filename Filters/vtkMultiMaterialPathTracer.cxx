@@ -11,6 +11,7 @@
 #include "vtkMultiMaterialParameters.h"
 #include "vtkMultiMaterialPhaseFunction.h"
 #include "vtkMultiMaterialShading.h"
+#include "vtkIrradianceGrid.h" // ClipToIndexBox
 #include "vtkMultiMaterialVolumeSampling.h"
 #include "vtkObjectFactory.h"
 #include "vtkPiecewiseFunction.h"
@@ -195,27 +196,7 @@ struct Medium
     const dvec3 q = this->ObjectToIndex * d;
     double t0 = 0.0;
     double t1 = tMax;
-    for (int a = 0; a < 3; ++a)
-    {
-      const double hi = this->Data.Dims[a] - 1.0;
-      if (q[a] == 0.0)
-      {
-        if (p[a] < 0.0 || p[a] > hi)
-        {
-          return;
-        }
-        continue;
-      }
-      double ta = (0.0 - p[a]) / q[a];
-      double tb = (hi - p[a]) / q[a];
-      if (ta > tb)
-      {
-        std::swap(ta, tb);
-      }
-      t0 = std::max(t0, ta);
-      t1 = std::min(t1, tb);
-    }
-    if (!(t1 > t0))
+    if (!mmv::ClipToIndexBox(p, q, this->Data.Dims, t0, t1))
     {
       return;
     }

@@ -115,29 +115,7 @@ struct Scene
   // space) is inside the data box; false when it misses.
   bool Clip(const dvec3& x, const dvec3& d, double& t0, double& t1) const
   {
-    const dvec3 p = this->ToIndex(x);
-    const dvec3 q = this->ObjectToIndex * d;
-    for (int a = 0; a < 3; ++a)
-    {
-      const double hi = this->Data.Dims[a] - 1.0;
-      if (q[a] == 0.0)
-      {
-        if (p[a] < 0.0 || p[a] > hi)
-        {
-          return false;
-        }
-        continue;
-      }
-      double ta = (0.0 - p[a]) / q[a];
-      double tb = (hi - p[a]) / q[a];
-      if (ta > tb)
-      {
-        std::swap(ta, tb);
-      }
-      t0 = std::max(t0, ta);
-      t1 = std::min(t1, tb);
-    }
-    return t1 > t0;
+    return mmv::ClipToIndexBox(this->ToIndex(x), this->ObjectToIndex * d, this->Data.Dims, t0, t1);
   }
 
   double Extinction(double s, int& i, double& w) const

@@ -8,62 +8,6 @@
 
 namespace mmv
 {
-namespace
-{
-/// Trilinear value of `values` (on a grid of `n`) at continuous index `p`,
-/// inside the box of voxel centres.
-double Trilinear(const std::vector<float>& values, const int n[3], const glm::dvec3& p)
-{
-  int i0[3];
-  double w[3];
-  for (int a = 0; a < 3; ++a)
-  {
-    const double c = std::min(std::max(p[a], 0.0), static_cast<double>(n[a] - 1));
-    i0[a] = std::min(static_cast<int>(c), std::max(n[a] - 2, 0));
-    w[a] = n[a] > 1 ? c - i0[a] : 0.0;
-  }
-  const size_t nx = static_cast<size_t>(n[0]);
-  const size_t nxy = nx * n[1];
-  const size_t dx = n[0] > 1 ? 1 : 0;
-  const size_t dy = n[1] > 1 ? nx : 0;
-  const size_t dz = n[2] > 1 ? nxy : 0;
-  const size_t base = i0[0] + i0[1] * nx + i0[2] * nxy;
-  auto lerp = [](double a, double b, double t) { return a + (b - a) * t; };
-  const double c00 = lerp(values[base], values[base + dx], w[0]);
-  const double c10 = lerp(values[base + dy], values[base + dy + dx], w[0]);
-  const double c01 = lerp(values[base + dz], values[base + dz + dx], w[0]);
-  const double c11 = lerp(values[base + dz + dy], values[base + dz + dy + dx], w[0]);
-  return lerp(lerp(c00, c10, w[1]), lerp(c01, c11, w[1]), w[2]);
-}
-
-/// The parameters [t0, t1] where p + t d lies in the box [0, n - 1] (slab
-/// test); false when it misses.
-bool ClipToBox(const glm::dvec3& p, const glm::dvec3& d, const int n[3], double& t0, double& t1)
-{
-  for (int a = 0; a < 3; ++a)
-  {
-    const double high = static_cast<double>(n[a] - 1);
-    if (d[a] == 0.0)
-    {
-      if (p[a] < 0.0 || p[a] > high)
-      {
-        return false;
-      }
-      continue;
-    }
-    double tNear = (0.0 - p[a]) / d[a];
-    double tFar = (high - p[a]) / d[a];
-    if (tNear > tFar)
-    {
-      std::swap(tNear, tFar);
-    }
-    t0 = std::max(t0, tNear);
-    t1 = std::min(t1, tFar);
-  }
-  return t1 > t0;
-}
-}
-
 double OccluderTransmittance(
   const Occluder& occluder, const glm::dvec3& x, const glm::dvec3& direction, double distance)
 {
@@ -84,7 +28,7 @@ double OccluderTransmittance(
   double t0 = 0.0;
   double t1 = distance >= 0.0 ? distance : std::numeric_limits<double>::infinity();
   const double longest = std::max({ std::abs(d.x), std::abs(d.y), std::abs(d.z) });
-  if (!(longest > 0.0) || !ClipToBox(p, d, grid.Dimensions, t0, t1))
+  if (!(longest > 0.0) || !ClipToIndexBox(p, d, grid.Dimensions, t0, t1))
   {
     return 1.0;
   }
@@ -95,7 +39,7 @@ double OccluderTransmittance(
   double depth = 0.0;
   for (int s = 0; s < steps; ++s)
   {
-    depth += Trilinear(extinction, grid.Dimensions, p + (t0 + (s + 0.5) * dt) * d);
+    depth += SampleTrilinear(grid, extinction.data(), p + (t0 + (s + 0.5) * dt) * d);
   }
   return std::exp(-depth * dt * unitsPerT);
 }
