@@ -427,23 +427,7 @@ TEST(OpticalModel, TermsCompiledInWithZeroValuesChangeNoPixel)
   // out is a pure saving.
   constexpr int Ball = 25;
   Scene scene(48);
-  auto image = MakeVolume(Ball,
-    [](int i, int j, int k)
-    {
-      const double r =
-        std::sqrt((i - 12.0) * (i - 12.0) + (j - 12.0) * (j - 12.0) + (k - 12.0) * (k - 12.0));
-      return static_cast<float>(std::max(0.0, 1.0 - r / 12.0));
-    });
-  scene.Color->AddRGBPoint(0.0, 1.0, 0.6, 0.3);
-  scene.Color->AddRGBPoint(0.4, 1.0, 0.6, 0.3);
-  scene.Color->AddRGBPoint(0.6, 0.7, 0.8, 1.0);
-  scene.Color->AddRGBPoint(1.0, 0.7, 0.8, 1.0);
-  scene.Opacity->AddPoint(0.0, 0.0);
-  scene.Opacity->AddPoint(0.2, 0.0);
-  scene.Opacity->AddPoint(0.3, 0.08);
-  scene.Opacity->AddPoint(0.5, 0.08);
-  scene.Opacity->AddPoint(0.6, 0.5);
-  scene.Opacity->AddPoint(1.0, 0.5);
+  auto image = ShellAndCoreBall(scene, Ball, 0.08);
   vtkNew<vtkMaterialTransferFunction> materials;
   materials->AddNode(0.3, 0.3, 0.7, 0.2, 20.0, 1.0, 0.0, 0.1);
   materials->AddNode(0.6, 0.1, 0.6, 0.8, 40.0, 1.0, 0.0, 0.0);

@@ -169,12 +169,11 @@ struct Scene
   }
 };
 
-/// A lit two-material ball of dims^3 points (spacing 1): a translucent
-/// diffuse shell around a glossy core, its colours, opacity (unit distance
-/// scaled so that the ball looks alike at any dims) and materials set on
-/// `scene` and `materials`. Returns the volume.
-inline vtkSmartPointer<vtkImageData> TwoMaterialBall(
-  Scene& scene, vtkMaterialTransferFunction* materials, int dims)
+/// A ball of dims^3 points (spacing 1) whose value falls from 1 at the
+/// centre to 0 at the faces' centres: an orange shell of opacity
+/// `shellOpacity` around a blue core of 0.5, set on `scene`. Returns the
+/// volume.
+inline vtkSmartPointer<vtkImageData> ShellAndCoreBall(Scene& scene, int dims, double shellOpacity)
 {
   const double c = 0.5 * (dims - 1);
   auto image = MakeVolume(dims,
@@ -189,10 +188,20 @@ inline vtkSmartPointer<vtkImageData> TwoMaterialBall(
   scene.Color->AddRGBPoint(1.0, 0.7, 0.8, 1.0);
   scene.Opacity->AddPoint(0.0, 0.0);
   scene.Opacity->AddPoint(0.2, 0.0);
-  scene.Opacity->AddPoint(0.3, 0.05);
-  scene.Opacity->AddPoint(0.5, 0.05);
+  scene.Opacity->AddPoint(0.3, shellOpacity);
+  scene.Opacity->AddPoint(0.5, shellOpacity);
   scene.Opacity->AddPoint(0.6, 0.5);
   scene.Opacity->AddPoint(1.0, 0.5);
+  return image;
+}
+
+/// A lit two-material ball of dims^3 points: a translucent diffuse shell
+/// around a glossy core (ShellAndCoreBall), the unit distance scaled so that
+/// it looks alike at any dims, its materials set on `materials`.
+inline vtkSmartPointer<vtkImageData> TwoMaterialBall(
+  Scene& scene, vtkMaterialTransferFunction* materials, int dims)
+{
+  auto image = ShellAndCoreBall(scene, dims, 0.05);
   scene.Property->SetScalarOpacityUnitDistance(32.0 / (dims - 1));
   materials->AddNode(0.3, 0.2, 0.7, 0.2, 20.0, 1.0, 0.0, 0.0);
   materials->AddNode(0.6, 0.1, 0.6, 0.8, 40.0, 1.0, 0.0, 0.0);
