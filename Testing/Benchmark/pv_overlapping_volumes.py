@@ -10,11 +10,8 @@ ball or the slab alone (how much the other adds), and writes the images.
 """
 
 import argparse
-import math
 import os
 import sys
-
-import numpy
 
 from paraview import simple
 
@@ -60,29 +57,6 @@ def make_source(arrays):
     return source
 
 
-def maps(name, rgb, opacity):
-    lut = simple.GetColorTransferFunction(name)
-    lut.RGBPoints = [0.0] + list(rgb) + [1.0] + list(rgb)
-    lut.AutomaticRescaleRangeMode = "Never"
-    pwf = simple.GetOpacityTransferFunction(name)
-    pwf.Points = [0.0, 0.0, 0.5, 0.0, 0.05, 0.0, 0.5, 0.0, 1.0, opacity, 0.5, 0.0]
-    pwf.AllowDuplicateScalars = 1
-
-
-def show(source, array):
-    rep = simple.Show(source, view)
-    simple.ColorBy(rep, ("POINTS", array))
-    rep.SetRepresentationType(mmv.REPRESENTATION)
-    rep.ScalarOpacityUnitDistance = 1.0
-    rep.MaterialPreset = "matte"
-    return rep
-
-
-def psnr(a, b):
-    mse = float(numpy.mean((a.astype(float) - b.astype(float)) ** 2))
-    return float("inf") if mse == 0.0 else 10.0 * math.log10(255.0 ** 2 / mse)
-
-
 def render(name):
     return mmv.render_image(view, os.path.join(args.out, name + ".png"))
 
@@ -94,11 +68,11 @@ view.CameraFocalPoint = [0.0, 0.0, 0.0]
 view.CameraViewUp = [0.0, 0.0, 1.0]
 view.CameraViewAngle = 30.0
 mmv.add_directional_light(view, [20.0, 10.0, 100.0])
-maps("ball", (0.9, 0.2, 0.15), 0.5)
-maps("slab", (0.2, 0.35, 0.9), 0.3)
+for name, rgb, opacity in (("ball", (0.9, 0.2, 0.15), 0.5), ("slab", (0.2, 0.35, 0.9), 0.3)):
+    mmv.set_uniform_maps(name, rgb, [(0.0, 0.0), (0.05, 0.0), (1.0, opacity)])
 
 both = make_source("(('ball', ball), ('slab', slab))")
-fields = show(both, "ball")
+fields = mmv.show_multi_material(both, view, "ball")
 fields.FieldArrays = ["slab"]
 fields.FieldMaterialPresets = ["matte"]
 one_ray = render("two_fields")
@@ -106,14 +80,15 @@ simple.Hide(both, view)
 
 ball_source = make_source("(('ball', ball),)")
 slab_source = make_source("(('slab', slab),)")
-show(ball_source, "ball")
+mmv.show_multi_material(ball_source, view, "ball")
 ball_alone = render("ball_alone")
-show(slab_source, "slab")
+mmv.show_multi_material(slab_source, view, "slab")
 two_reps = render("two_representations")
 simple.Hide(ball_source, view)
 slab_alone = render("slab_alone")
 
-print("two representations against two fields (one ray): PSNR %.1f dB" % psnr(two_reps, one_ray))
-print("two fields against the ball alone: PSNR %.1f dB" % psnr(one_ray, ball_alone))
-print("two fields against the slab alone: PSNR %.1f dB" % psnr(one_ray, slab_alone))
+print("two representations against two fields (one ray): PSNR %.1f dB"
+      % mmv.psnr(two_reps, one_ray))
+print("two fields against the ball alone: PSNR %.1f dB" % mmv.psnr(one_ray, ball_alone))
+print("two fields against the slab alone: PSNR %.1f dB" % mmv.psnr(one_ray, slab_alone))
 print("images in %s" % args.out)

@@ -16,7 +16,6 @@ to a pvserver that renders (remote rendering): the representation, its
 resampling and its information properties live on the server."""
 
 import argparse
-import math
 import os
 
 import numpy
@@ -49,11 +48,6 @@ else:
 DIMS = [40, 40, 40]
 ARRAY = "Gaussian-Pulse"
 CENTRE = [-0.75, -0.75, 1.25]
-
-
-def psnr(a, b):
-    mse = float(numpy.mean((a - b) ** 2))
-    return float("inf") if mse == 0.0 else 10.0 * math.log10(255.0 ** 2 / mse)
 
 
 simple._DisableFirstRenderCameraReset()
@@ -122,7 +116,7 @@ by_hand.SamplingDimensions = DIMS
 by_hand.UseInputBounds = 1
 manual = show(by_hand, "POINTS")
 reference = mmv.render_image(view, os.path.join(args.temp_dir, "PVAMRByHand_%s%d.png" % (TAG, ranks)))
-value = psnr(image, reference)
+value = mmv.psnr(image, reference)
 checker.check(value >= 40.0, "AMR vs ResampleToImage by hand: PSNR %.1f dB" % value)
 simple.Hide(by_hand, view)
 
@@ -133,7 +127,7 @@ coarse = mmv.render_image(view, os.path.join(args.temp_dir, "PVAMRCoarse_%s%d.pn
 info = mmv.info(shown, "ResampleInfo")
 checker.check("resampled to 12x12x12 points" in info,
               "new SamplingDimensions resample again: %r" % info)
-value = psnr(image, coarse)
+value = mmv.psnr(image, coarse)
 checker.check(value < 40.0, "12^3 samples draw another image than 40^3: PSNR %.1f dB" % value)
 simple.Hide(pulse, view)
 
@@ -181,7 +175,7 @@ def selected_blocks(keep):
 coarse_only = selected_blocks("level == 0")
 shown = show(coarse_only, "CELLS", DIMS)
 level0 = mmv.render_image(view, os.path.join(args.temp_dir, "PVAMRLevel0_%s%d.png" % (TAG, ranks)))
-value = psnr(image, level0)
+value = mmv.psnr(image, level0)
 checker.check(value < 40.0, "level 0 alone draws another image than both levels: PSNR %.1f dB"
               % value)
 simple.Hide(coarse_only, view)
@@ -198,7 +192,7 @@ def check_against_one_rank(source, what):
     if ranks > 1:
         checker.check(os.path.exists(reference), "the -np 1 reference exists (%s)" % reference)
         if os.path.exists(reference):
-            value = psnr(picture, mmv.read_png(reference))
+            value = mmv.psnr(picture, mmv.read_png(reference))
             checker.check(value >= 40.0, "%s: -np %d vs -np 1: PSNR %.1f dB" % (what, ranks, value))
     simple.Hide(source, view)
 

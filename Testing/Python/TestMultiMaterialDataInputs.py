@@ -8,12 +8,10 @@
 - a vector coloured by Magnitude renders as the magnitude computed by a
   Calculator (PSNR >= 40 dB), and by its X component as that component."""
 
-import math
 import os
 
 from paraview import simple
 
-import numpy
 
 import mmv_testing as mmv
 
@@ -21,11 +19,6 @@ args = mmv.parse_args()
 mmv.load_plugin(args)
 checker = mmv.Checker()
 errors = mmv.ErrorCapture()
-
-
-def psnr(a, b):
-    mse = float(numpy.mean((a - b) ** 2))
-    return float("inf") if mse == 0.0 else 10.0 * math.log10(255.0 ** 2 / mse)
 
 
 def frame(view):
@@ -145,7 +138,7 @@ magnitude = show_array(gradient, "Gradient",
 by_magnitude = shot(view, "PVGradientMagnitude.png")
 checker.check(mmv.info(magnitude, "MultiMaterialActive") == 1,
               "a vector by Magnitude is shaded with materials")
-value = psnr(by_magnitude, reference)
+value = mmv.psnr(by_magnitude, reference)
 checker.check(value >= 40.0, "Magnitude vs the Calculator's magnitude: PSNR %.1f dB" % value)
 simple.Delete(magnitude)
 
@@ -163,9 +156,9 @@ component = show_array(absolute, "AbsGradient", component_x)
 by_component = shot(view, "PVGradientX.png")
 checker.check(mmv.info(component, "MultiMaterialActive") == 1,
               "a vector by its X component is shaded with materials")
-value = psnr(by_component, reference_x)
+value = mmv.psnr(by_component, reference_x)
 checker.check(value >= 40.0, "X component vs the Calculator's X: PSNR %.1f dB" % value)
-different = psnr(by_component, reference)
+different = mmv.psnr(by_component, reference)
 checker.check(different < 30.0, "and differs from the magnitude (PSNR %.1f dB)" % different)
 simple.Delete(component)
 

@@ -8,12 +8,9 @@ the plate coloured, the floor added with FieldArrays.
 - an unknown array, too many arrays or an unknown preset give an error, and
   the coloured array is still drawn."""
 
-import math
 import os
 
 from paraview import simple
-
-import numpy
 
 import mmv_testing as mmv
 
@@ -39,28 +36,9 @@ for name, values in (('plate', plate), ('floor', floor), ('both', plate + floor)
 """
 
 
-def psnr(a, b):
-    mse = float(numpy.mean((a - b) ** 2))
-    return float("inf") if mse == 0.0 else 10.0 * math.log10(255.0 ** 2 / mse)
-
-
 def maps(name, rgb):
-    """The colour map and opacity function ParaView keeps for `name`: one
-    colour, opacity from 0 at 0 to 0.5 at 1."""
-    lut = simple.GetColorTransferFunction(name)
-    lut.RGBPoints = [0.0] + list(rgb) + [1.0] + list(rgb)
-    pwf = simple.GetOpacityTransferFunction(name)
-    pwf.Points = [0.0, 0.0, 0.5, 0.0, 1.0, 0.5, 0.5, 0.0]
-    return lut, pwf
-
-
-def show(source, view, array):
-    rep = simple.Show(source, view)
-    simple.ColorBy(rep, ("POINTS", array))
-    rep.SetRepresentationType(mmv.REPRESENTATION)
-    rep.ScalarOpacityUnitDistance = 1.0
-    rep.MaterialPreset = "matte"
-    return rep
+    """One colour for `name`, opacity from 0 at 0 to 0.5 at 1."""
+    return mmv.set_uniform_maps(name, rgb, [(0.0, 0.0), (1.0, 0.5)])
 
 
 simple._DisableFirstRenderCameraReset()
@@ -79,7 +57,7 @@ mmv.add_directional_light(view, [4.0, 2.0, 100.0])
 
 # --- The same scene as one array ---------------------------------------------
 maps("both", (1.0, 0.9, 0.8))
-one = show(source, view, "both")
+one = mmv.show_multi_material(source, view, "both")
 single = mmv.render_image(view, os.path.join(args.temp_dir, "PVFieldsOne.png"))
 checker.check(mmv.info(one, "NumberOfFields") == 1, "one array is one field")
 
@@ -101,7 +79,7 @@ fields = mmv.render_image(view, os.path.join(args.temp_dir, "PVFieldsTwo.png"))
 checker.check(mmv.info(two, "NumberOfFields") == 2, "plate and floor are two fields (%s)"
               % mmv.info(two, "NumberOfFields"))
 checker.check(mmv.info(two, "MultiMaterialActive") == 1, "two fields are shaded with materials")
-same = psnr(fields, single)
+same = mmv.psnr(fields, single)
 print("two fields against one array: %.1f dB" % same)
 checker.check(same >= 40.0, "two fields render as one array with the same maps (%.1f dB)" % same)
 checker.check(errors.take_errors() == "", "no error so far")

@@ -23,7 +23,6 @@ rank 0 must estimate a share of the global grid, and with the option off
 (every rank the whole grid) the image must be identical."""
 
 import argparse
-import math
 import os
 
 import numpy
@@ -165,11 +164,6 @@ else:
                   % (estimated, whole))
 
 
-def psnr(a, b):
-    mse = float(numpy.mean((a - b) ** 2))
-    return float("inf") if mse == 0.0 else 10.0 * math.log10(255.0 ** 2 / mse)
-
-
 plain = split_into_blocks or vector  # compared with the plain -np 1 image
 reference = os.path.join(args.temp_dir, "PVMultiMaterialMPIShadows%s_1.png"
                          % ("" if plain else variant))
@@ -177,13 +171,13 @@ if ranks == 1 and not plain:
     # The shadow is there to be kept: without the plate the floor is brighter.
     show("200*(%s)" % FLOOR)
     floorOnly = mmv.render_image(view, os.path.join(args.temp_dir, "PVMultiMaterialMPIFloor.png"))
-    lit = psnr(image, floorOnly)
+    lit = mmv.psnr(image, floorOnly)
     print("plate + floor vs floor alone: PSNR %.1f dB" % lit)
     checker.check(lit < 30.0, "the plate and its shadow change the image (%.1f dB < 30)" % lit)
 else:
     checker.check(os.path.exists(reference), "the -np 1 reference exists (%s)" % reference)
     if os.path.exists(reference):
-        value = psnr(image, mmv.read_png(reference))
+        value = mmv.psnr(image, mmv.read_png(reference))
         what = "-np %d%s" % (ranks, {"Blocks": " in blocks", "Tinted": " tinted",
                                      "Reflective": " reflective",
                                      "Vector": " by vector magnitude",
@@ -202,7 +196,7 @@ if ranks > 1 and variant in ("", "Reflective", "Cells"):
     checker.check(estimated < wholeEstimated <= whole, "PieceIrradianceOnly off: rank 0 "
                   "estimates more than its piece's share (%d > %d, of %d)"
                   % (wholeEstimated, estimated, whole))
-    value = psnr(image, wholeImage)
+    value = mmv.psnr(image, wholeImage)
     print("piece regions vs whole grids at -np %d: PSNR %.2f dB" % (ranks, value))
     checker.check(value == float("inf"), "piece regions draw the same pixels as whole grids")
 checker.check(errors.take_errors() == "", "no VTK errors on rank 0")

@@ -7,12 +7,10 @@ dimensions (PSNR >= 40 dB: the same filter on the same data should give the
 same image), report what the resampling cost, and a grid with no cells must
 warn, not crash."""
 
-import math
 import os
 
 from paraview import simple
 
-import numpy
 
 import mmv_testing as mmv
 
@@ -21,11 +19,6 @@ mmv.load_plugin(args)
 checker = mmv.Checker()
 errors = mmv.ErrorCapture()
 DIMS = [40, 40, 40]
-
-
-def psnr(a, b):
-    mse = float(numpy.mean((a - b) ** 2))
-    return float("inf") if mse == 0.0 else 10.0 * math.log10(255.0 ** 2 / mse)
 
 
 # The camera is set for each image; without this the first render resets it.
@@ -106,7 +99,7 @@ for name, grid in (("unstructured", simple.Tetrahedralize(Input=wavelet)),
     manual = show(by_hand)
     reference = mmv.render_image(view, os.path.join(args.temp_dir,
                                                     "PVResampledByHand_%s.png" % name))
-    value = psnr(image, reference)
+    value = mmv.psnr(image, reference)
     checker.check(value >= 40.0, "%s grid vs ResampleToImage by hand: PSNR %.1f dB" % (name, value))
     simple.Delete(manual)
     simple.Delete(by_hand)

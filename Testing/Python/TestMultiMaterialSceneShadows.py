@@ -5,9 +5,6 @@ image of the same plate and floor as one volume (PSNR >= 35 dB), the plate's
 shadow must be on the floor (the floor alone differs by more than 5 dB more),
 and hiding the plate must take its shadow away (the floor alone, >= 50 dB)."""
 
-import math
-
-import numpy
 
 from paraview import simple
 
@@ -39,25 +36,18 @@ def source(zs, expression):
     return calculator
 
 
+# One colour over the density's range, opaque from 150 on; kept as set.
+density_colours = simple.GetColorTransferFunction("density")
+density_colours.RGBPoints = [0.0, 0.9, 0.85, 0.8, 200.0, 0.9, 0.85, 0.8]
+density_colours.AutomaticRescaleRangeMode = "Never"
+density_opacity = simple.GetOpacityTransferFunction("density")
+density_opacity.Points = [0.0, 0.0, 0.5, 0.0, 60.0, 0.0, 0.5, 0.0, 150.0, 0.9, 0.5, 0.0,
+                          200.0, 0.9, 0.5, 0.0]
+density_opacity.AllowDuplicateScalars = 1
+
+
 def show(data):
-    rep = simple.Show(data, view)
-    rep.Representation = mmv.REPRESENTATION
-    simple.ColorBy(rep, ("POINTS", "density"))
-    lut = simple.GetColorTransferFunction("density")
-    lut.RGBPoints = [0.0, 0.9, 0.85, 0.8, 200.0, 0.9, 0.85, 0.8]
-    lut.AutomaticRescaleRangeMode = "Never"
-    pwf = simple.GetOpacityTransferFunction("density")
-    pwf.Points = [0.0, 0.0, 0.5, 0.0, 60.0, 0.0, 0.5, 0.0, 150.0, 0.9, 0.5, 0.0,
-                  200.0, 0.9, 0.5, 0.0]
-    pwf.AllowDuplicateScalars = 1
-    rep.ScalarOpacityUnitDistance = 1.0
-    rep.MaterialPreset = "matte"
-    return rep
-
-
-def psnr(a, b):
-    mse = float(numpy.mean((a.astype(float) - b.astype(float)) ** 2))
-    return float("inf") if mse == 0.0 else 10.0 * math.log10(255.0 ** 2 / mse)
+    return mmv.show_multi_material(data, view, "density")
 
 
 def render(name):
@@ -79,7 +69,7 @@ two = render("Two")
 checker.check(mmv.check_not_blank(two, "plate and floor"), "the volumes are visible")
 for name, rep in (("plate", plate), ("floor", floor)):
     checker.check(mmv.info(rep, "MultiMaterialActive") == 1, "the %s is shaded with materials" % name)
-together = psnr(two, one)
+together = mmv.psnr(two, one)
 print("two representations vs one volume: PSNR %.1f dB" % together)
 checker.check(together >= 35.0, "two representations light each other as one volume does "
               "(PSNR %.1f dB >= 35)" % together)
@@ -93,21 +83,21 @@ show(alone_source)
 floor_alone = render("FloorAlone")
 simple.Hide(alone_source, view)
 simple.Show(floor_source, view)
-after_hiding = psnr(hidden, floor_alone)
+after_hiding = mmv.psnr(hidden, floor_alone)
 print("plate hidden vs floor alone: PSNR %.1f dB" % after_hiding)
 checker.check(after_hiding >= 50.0, "a hidden plate casts no shadow (PSNR %.1f dB >= 50)"
               % after_hiding)
 # The shadow was there: without the plate and its shadow the image differs
 # much more from the two volumes than one volume does.
-shadowless = psnr(two, hidden)
+shadowless = mmv.psnr(two, hidden)
 print("plate and floor vs floor alone: PSNR %.1f dB" % shadowless)
 checker.check(shadowless < together - 5.0, "the plate's shadow is on the floor (%.1f dB < %.1f - 5)"
               % (shadowless, together))
 # Shown again, the plate shadows the floor again.
 simple.Show(plate_source, view)
 again = render("Again")
-print("shown again vs before: PSNR %.1f dB" % psnr(again, two))
-checker.check(psnr(again, two) >= 50.0, "the plate shown again shadows the floor as before")
+print("shown again vs before: PSNR %.1f dB" % mmv.psnr(again, two))
+checker.check(mmv.psnr(again, two) >= 50.0, "the plate shown again shadows the floor as before")
 
 problems = errors.take()
 checker.check(not problems, "no VTK errors or warnings: %s" % problems)

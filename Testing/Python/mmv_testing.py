@@ -176,6 +176,33 @@ def read_png(path):
     return scalars.reshape(h, w, -1)[:, :, :3].astype(numpy.float64)
 
 
+def psnr(a, b):
+    """PSNR in dB of two images of 0-255 values (infinite when identical)."""
+    mse = float(numpy.mean((numpy.asarray(a, float) - numpy.asarray(b, float)) ** 2))
+    return float("inf") if mse == 0.0 else 10.0 * math.log10(255.0 ** 2 / mse)
+
+
+def set_uniform_maps(name, rgb, opacity_points):
+    """The colour map ParaView keeps for `name`: one colour over [0, 1]; its
+    opacity function: the (value, opacity) pairs `opacity_points`."""
+    lut = simple.GetColorTransferFunction(name)
+    lut.RGBPoints = [0.0] + list(rgb) + [1.0] + list(rgb)
+    pwf = simple.GetOpacityTransferFunction(name)
+    pwf.Points = [x for value, opacity in opacity_points for x in (value, opacity, 0.5, 0.0)]
+    return lut, pwf
+
+
+def show_multi_material(source, view, array, preset="matte"):
+    """`source` as a Multi-Material Volume coloured by point array `array`,
+    opacity per unit length, material preset `preset`."""
+    rep = simple.Show(source, view)
+    simple.ColorBy(rep, ("POINTS", array))
+    rep.SetRepresentationType(REPRESENTATION)
+    rep.ScalarOpacityUnitDistance = 1.0
+    rep.MaterialPreset = preset
+    return rep
+
+
 def mean_difference(a, b):
     if a.shape != b.shape:
         return float("inf")
