@@ -1,9 +1,11 @@
 #include "vtkCoarseExtinction.h"
 
 #include "vtkDataArray.h"
+#include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkMaterialTransferFunction.h"
 #include "vtkMultiMaterialParameters.h"
+#include "vtkNew.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkSMPTools.h"
 #include "vtkSkyVisibility.h" // CoarsenIrradianceGrid, AverageOntoGrid
@@ -56,8 +58,8 @@ IrradianceGrid CoarsenToAtMost(const IrradianceGrid& points, int maxVoxelsPerAxi
 
 bool CoarseExtinction::Key::operator==(const Key& o) const
 {
-  return this->Points.IsSameGrid(o.Points) && this->Scalars == o.Scalars &&
-    this->ScalarsTime == o.ScalarsTime && this->Range[0] == o.Range[0] &&
+  return this->Points.IsSameGrid(o.Points) && this->Source == o.Source &&
+    this->SourceTime == o.SourceTime && this->Range[0] == o.Range[0] &&
     this->Range[1] == o.Range[1] && this->Table == o.Table &&
     this->MaxVoxelsPerAxis == o.MaxVoxelsPerAxis;
 }
@@ -68,26 +70,49 @@ bool CoarseExtinction::Update(vtkImageData* image, vtkDataArray* scalars, const 
   int dims[3];
   image->GetDimensions(dims);
   Key key;
-  key.Scalars = scalars;
-  key.ScalarsTime = scalars->GetMTime();
+  key.Source = scalars;
+  key.SourceTime = scalars->GetMTime();
   key.Points = MakeIrradianceGrid(image, dims);
   key.Range[0] = range[0];
   key.Range[1] = range[1];
   key.Table = table;
   key.MaxVoxelsPerAxis = maxVoxelsPerAxis;
+  return this->Update(std::move(key), scalars);
+}
+
+bool CoarseExtinction::Update(const IrradianceGrid& points, const std::vector<float>& values,
+  const void* source, vtkMTimeType sourceTime, const double range[2],
+  const std::vector<float>& table, int maxVoxelsPerAxis)
+{
+  Key key;
+  key.Source = source;
+  key.SourceTime = sourceTime;
+  key.Points = points;
+  key.Range[0] = range[0];
+  key.Range[1] = range[1];
+  key.Table = table;
+  key.MaxVoxelsPerAxis = maxVoxelsPerAxis;
+  // Read in place, normalised as scalars are.
+  vtkNew<vtkFloatArray> view;
+  view->SetArray(const_cast<float*>(values.data()), static_cast<vtkIdType>(values.size()), 1);
+  return this->Update(std::move(key), view);
+}
+
+bool CoarseExtinction::Update(Key key, vtkDataArray* scalars)
+{
   if (this->HasKey && key == this->Held)
   {
     return false;
   }
   // One counter for every instance: a version names one volume's values.
   static std::atomic<unsigned long> versions{ 0 };
-  this->Grid = CoarsenToAtMost(key.Points, maxVoxelsPerAxis);
-  const bool sameData = this->HasKey && this->Held.Scalars == key.Scalars &&
-    this->Held.ScalarsTime == key.ScalarsTime && this->Held.Range[0] == key.Range[0] &&
-    this->Held.Range[1] == key.Range[1];
+  this->Grid = CoarsenToAtMost(key.Points, key.MaxVoxelsPerAxis);
+  const bool sameData = this->HasKey && this->Held.Source == key.Source &&
+    this->Held.SourceTime == key.SourceTime && this->Held.Range[0] == key.Range[0] &&
+    this->Held.Range[1] == key.Range[1] && this->Held.Points.IsSameGrid(key.Points);
   if (!sameData)
   {
-    NormalizeScalars(scalars, range, this->Normalized);
+    NormalizeScalars(scalars, key.Range, this->Normalized);
   }
   AverageOntoGrid(key.Points, this->Normalized.data(), this->Grid, this->Values, &key.Table);
   this->Version = ++versions;

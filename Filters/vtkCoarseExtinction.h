@@ -63,10 +63,21 @@ public:
   bool Update(vtkImageData* image, vtkDataArray* scalars, const double range[2],
     const std::vector<float>& table, int maxVoxelsPerAxis);
 
+  /**
+   * The same from `values` in data units, one per voxel of `points` (x
+   * fastest), which `source` names until `sourceTime` changes: a volume in
+   * pieces casts from its pre-filtered values on the global grid
+   * (vtkGlobalPrefilteredVolume), the same on every rank.
+   */
+  bool Update(const IrradianceGrid& points, const std::vector<float>& values, const void* source,
+    vtkMTimeType sourceTime, const double range[2], const std::vector<float>& table,
+    int maxVoxelsPerAxis);
+
   const IrradianceGrid& GetGrid() const { return this->Grid; }
   /// Per object unit, one per voxel of GetGrid(), x fastest.
   const std::vector<float>& GetValues() const { return this->Values; }
-  /// The data normalised over the range (NormalizeScalars), one per point:
+  /// The data normalised over the range (NormalizeScalars), one per point
+  /// (of the global grid, for pre-filtered values):
   /// kept while the array, its time and the range are (a new table only
   /// averages them again).
   const std::vector<float>& GetNormalized() const { return this->Normalized; }
@@ -77,14 +88,16 @@ public:
 private:
   struct Key
   {
-    vtkDataArray* Scalars = nullptr;
-    vtkMTimeType ScalarsTime = 0;
+    const void* Source = nullptr; // the scalars, or the pre-filtered values
+    vtkMTimeType SourceTime = 0;
     IrradianceGrid Points;
     double Range[2] = { 0.0, 0.0 };
     std::vector<float> Table;
     int MaxVoxelsPerAxis = 0;
     bool operator==(const Key& o) const;
   };
+  /// Both Update()s once `key` names the source, whose values `scalars` hold.
+  bool Update(Key key, vtkDataArray* scalars);
   bool HasKey = false;
   Key Held;
   IrradianceGrid Grid;

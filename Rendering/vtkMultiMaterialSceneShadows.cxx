@@ -1,6 +1,7 @@
 #include "vtkMultiMaterialSceneShadows.h"
 
 #include "vtkDataArray.h"
+#include "vtkGlobalPrefilteredVolume.h"
 #include "vtkImageData.h"
 #include "vtkMatrix4x4.h"
 #include "vtkMultiMaterialVolumeMapper.h"
@@ -79,6 +80,22 @@ const mmv::CoarseExtinction* vtkMultiMaterialSceneShadows::UpdateOccluder(vtkIma
   const std::vector<float> table = mmv::SampleExtinction(property->GetScalarOpacity(0),
     property->GetScalarOpacityUnitDistance(0), materials, range, tableSize);
   this->Extinction.Update(image, scalars, range, table, mmv::SceneShadowVoxelsPerAxis);
+  return &this->Extinction;
+}
+
+const mmv::CoarseExtinction* vtkMultiMaterialSceneShadows::UpdateOccluder(
+  vtkGlobalPrefilteredVolume* global, vtkVolumeProperty* property,
+  vtkMaterialTransferFunction* materials, int tableSize)
+{
+  if (!global || !global->GetValid() || !property || global->GetValues().empty())
+  {
+    return nullptr;
+  }
+  const double* range = global->GetScalarRange();
+  const std::vector<float> table = mmv::SampleExtinction(property->GetScalarOpacity(0),
+    property->GetScalarOpacityUnitDistance(0), materials, range, tableSize);
+  this->Extinction.Update(global->GetGrid(), global->GetValues(), global, global->GetMTime(), range,
+    table, mmv::SceneShadowVoxelsPerAxis);
   return &this->Extinction;
 }
 

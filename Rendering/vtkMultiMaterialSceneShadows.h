@@ -28,8 +28,10 @@
  * What casts: one-component point scalars, through the first opacity and
  * materials (of several fields from FieldArrays, the scalars' field alone;
  * vectors, multi-component scalars and cell scalars are lit but cast no
- * shadow on other volumes, with a warning; a piece of a distributed volume
- * neither casts nor receives). The
+ * shadow on other volumes, with a warning). A volume in pieces (MPI ranks)
+ * casts from the whole volume's pre-filtered values
+ * (vtkGlobalPrefilteredVolume), which every rank holds alike, and receives
+ * on its global grid, so every rank computes the same shadows. The
  * environment light's occlusion and the reflections' visibility see each
  * volume alone. Overlapping volumes shadow each other, but VTK's ray caster
  * composites each volume on its own: within their overlap the images are
@@ -51,6 +53,7 @@
 
 class vtkAbstractVolumeMapper;
 class vtkDataArray;
+class vtkGlobalPrefilteredVolume;
 class vtkImageData;
 class vtkMaterialTransferFunction;
 class vtkOpenGLRenderWindow;
@@ -78,6 +81,15 @@ public:
     int tableSize, std::string* problem);
 
   /**
+   * The same for a volume in pieces (MPI ranks, blocks): the whole volume's
+   * pre-filtered values on `global`'s grid, which every rank holds alike,
+   * so each rank casts the whole volume's shadow. Null when `global` is
+   * not valid.
+   */
+  const mmv::CoarseExtinction* UpdateOccluder(vtkGlobalPrefilteredVolume* global,
+    vtkVolumeProperty* property, vtkMaterialTransferFunction* materials, int tableSize);
+
+  /**
    * As a receiver: the other visible volumes of `ren` with a
    * vtkMultiMaterialVolumeMapper that cast a shadow, placed relative to
    * `self`, drawn by `selfMapper`. Volumes drawn by `selfMapper` itself are
@@ -86,7 +98,7 @@ public:
    * points into the other mappers).
    */
   void Gather(vtkRenderer* ren, vtkVolume* self, vtkAbstractVolumeMapper* selfMapper);
-  /// Forgets the occluders (a volume in pieces: its shadows stay its own).
+  /// Forgets the occluders.
   void Clear();
 
   /// Per occluder, the version of its extinction and the 16 entries of the

@@ -728,22 +728,14 @@ bool vtkMultiMaterialVolumeMapper::UpdateIrradiance(vtkRenderer* ren, vtkVolume*
     this->WarnOnce("more than " + std::to_string(mmv::MaxCutPlanes) +
       " clipping planes: the shadow rays ignore the others");
   }
-  // The other volumes shadow this one; a volume in pieces keeps its own
-  // shadows (the pieces' placements are the global grid's).
-  if (in.ActiveGlobal())
+  // The other volumes shadow this one.
+  in.SceneShadows.Gather(ren, vol, this);
+  if (in.SceneShadows.GetOverlapping())
   {
-    in.SceneShadows.Clear();
-  }
-  else
-  {
-    in.SceneShadows.Gather(ren, vol, this);
-    if (in.SceneShadows.GetOverlapping())
-    {
-      this->WarnOnce("this volume's box overlaps another multi-material volume's: VTK draws "
-                     "each volume's ray cast over the other's, not along one ray, so their "
-                     "overlap is blended by drawing order; put data that overlap in one image "
-                     "with several fields (FieldArrays)");
-    }
+    this->WarnOnce("this volume's box overlaps another multi-material volume's: VTK draws "
+                   "each volume's ray cast over the other's, not along one ray, so their "
+                   "overlap is blended by drawing order; put data that overlap in one image "
+                   "with several fields (FieldArrays)");
   }
   inputs.Scene = &in.SceneShadows;
   inputs.Settings = this->Settings;
@@ -797,10 +789,15 @@ bool vtkMultiMaterialVolumeMapper::UpdateSky(vtkRenderer* ren, vtkImageData* ima
 
 const mmv::CoarseExtinction* vtkMultiMaterialVolumeMapper::GetSceneOccluder(vtkVolume* vol)
 {
-  // A piece of a distributed volume would cast only its own piece's shadow.
-  if (!vol || this->GetNumberOfInputConnections(0) < 1 || this->Internals->ActiveGlobal())
+  if (!vol || this->GetNumberOfInputConnections(0) < 1)
   {
     return nullptr;
+  }
+  if (vtkGlobalPrefilteredVolume* global = this->Internals->ActiveGlobal())
+  {
+    // A piece casts the whole volume's shadow, as every rank sees it.
+    return this->Internals->SceneShadows.UpdateOccluder(global, vol->GetProperty(),
+      this->Internals->Materials(), this->Settings.PreIntegrationTableSize);
   }
   // Another volume may light itself before this one renders: its data now.
   this->GetInputAlgorithm(0, 0)->Update();

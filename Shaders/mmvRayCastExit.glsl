@@ -21,3 +21,8 @@
       mmvIntegrateSegment(mmv_previousPos, mmv_previousValue, exitPos, mmvValue(exitPos));
     }
   }
+  // A valid premultiplied colour (rgb <= alpha), what compositors assume:
+  // highlights above 1 would otherwise add up past 1 where sort-last
+  // compositing (MPI ranks) blends several pieces, and wrap around in 8 bits.
+  g_fragColor.a = clamp(g_fragColor.a, 0.0, 1.0);
+  g_fragColor.rgb = clamp(g_fragColor.rgb, vec3(0.0), vec3(g_fragColor.a));
