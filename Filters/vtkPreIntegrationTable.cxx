@@ -18,6 +18,10 @@
 namespace
 {
 
+// The largest table whose opacity parts are kept for colour edits: about
+// 8 MB of doubles at 512 (n^2 per-cell and window factors, 2 n per piece).
+constexpr int MaxKeptTableSize = 512;
+
 // 5-point Gauss-Legendre on [-1, 1] (exact to degree 9): colour and
 // attenuation moments within one piece between TF nodes, where every TF is
 // smooth; extinction itself uses the closed form below where it can.
@@ -71,7 +75,21 @@ double SlopeWeight(double tau, double a)
   return (a - tau * (1.0 - a)) / tau;
 }
 
+// What the colour fit of one piece needs besides the colours, which depends
+// on the opacity alone: its ends, depth and moments of the extinction in
+// the optical depth q, and per Gauss point the extinction weight w mu and q
+// (Used: mu > 0 there).
+struct PieceWeights
+{
+  double A = 0.0, B = 0.0, Depth = 0.0;
+  double W0 = 0.0, W1 = 0.0;
+  double WeightMu[GaussOrder] = {};
+  double Q[GaussOrder] = {};
+  bool Used[GaussOrder] = {};
+};
+
 // Everything the O(n^2) fill needs, sampled once from the TFs (O(n)).
+// The colour's share (NodeRGB, PieceColor*) is all a colour edit changes.
 struct CellData
 {
   int N = 0;
@@ -96,9 +114,52 @@ struct CellData
   // of the colour over the piece (3 each).
   std::vector<int> PieceStart;
   std::vector<double> PieceDepth, PieceColor0, PieceColor1, PieceColorMin, PieceColorMax;
+  std::vector<PieceWeights> Weights; // per piece
+};
+
+// What diagonal m >= 1 of the colour table needs from the opacity alone:
+// each cell's opacity, each piece's opacity and slope weight at the
+// diagonal's cell length, and the transmittance factors that the sliding
+// windows drop, upwards (index i, front cell i) and downwards (index i - m - 1).
+struct OpacityDiagonal
+{
+  std::vector<double> CellAlpha, PieceAlpha, PieceSlope, DroppedUp, DroppedDown;
+
+  void Compute(const CellData& c, int m)
+  {
+    const int n = c.N;
+    const double l = c.L / m;     // length of one cell's sub-segment
+    const double scale = l / c.D; // data units -> world units
+    this->PieceAlpha.resize(c.PieceDepth.size());
+    this->PieceSlope.resize(c.PieceDepth.size());
+    for (std::size_t p = 0; p < this->PieceAlpha.size(); ++p)
+    {
+      const double tau = scale * c.PieceDepth[p];
+      this->PieceAlpha[p] = -std::expm1(-tau);
+      this->PieceSlope[p] = SlopeWeight(tau, this->PieceAlpha[p]);
+    }
+    this->CellAlpha.resize(n > 1 ? n - 1 : 0);
+    for (int k = 0; k < n - 1; ++k)
+    {
+      this->CellAlpha[k] = -std::expm1(-l * c.CellMu[k]);
+    }
+    const std::vector<double>& P = c.PrefixMu;
+    const int windows = std::max(0, n - 1 - m);
+    this->DroppedUp.resize(windows);
+    this->DroppedDown.resize(windows);
+    for (int i = 0; i < windows; ++i)
+    {
+      this->DroppedUp[i] = std::exp(-l * (P[i + m] - P[i + 1]));
+      const int front = i + m + 1; // the downward window whose front is cell front - 1
+      this->DroppedDown[i] = std::exp(-l * (P[front - 1] - P[front - m]));
+    }
+  }
 };
 
 // Fills the tables along diagonals m = |j - i|; diagonals are independent.
+// With Scalars false only the colour channels are written (a colour edit):
+// everything else in the tables, and the diagonals' opacity parts (Cached),
+// stay as the last full build left them.
 struct DiagonalFiller
 {
   const CellData& C;
@@ -106,16 +167,17 @@ struct DiagonalFiller
   float* Position;
   float* Shadow;
   float* Tint; // 4 per entry (rgb, 0); null without a tint table
+  bool Scalars;
+  std::vector<OpacityDiagonal>* Cached; // per m (index 0 unused); null: not kept
 
   void operator()(vtkIdType begin, vtkIdType end) const
   {
     const int n = this->C.N;
-    // Per cell at this diagonal's cell length: opacity, and the colour each
-    // cell contributes when crossed upwards (t_k first) or downwards.
-    std::vector<double> a(n > 1 ? n - 1 : 0);
-    std::vector<double> eUp(3 * a.size()), eDown(3 * a.size());
-    // Per piece: opacity and slope weight at this diagonal's length.
-    std::vector<double> pieceA(this->C.PieceDepth.size()), pieceG(pieceA.size());
+    // Per cell at this diagonal's cell length: the colour each cell
+    // contributes when crossed upwards (t_k first) or downwards.
+    std::vector<double> eUp(3 * static_cast<std::size_t>(n > 1 ? n - 1 : 0));
+    std::vector<double> eDown(eUp.size());
+    OpacityDiagonal local;
     for (vtkIdType mm = begin; mm < end; ++mm)
     {
       const int m = static_cast<int>(mm);
@@ -124,45 +186,50 @@ struct DiagonalFiller
         this->FillDiagonal();
         continue;
       }
-      const double l = this->C.L / m;     // length of one cell's sub-segment
-      const double scale = l / this->C.D; // data units -> world units
-      for (std::size_t p = 0; p < pieceA.size(); ++p)
+      OpacityDiagonal& diagonal = this->Cached ? (*this->Cached)[m] : local;
+      if (this->Scalars || !this->Cached)
       {
-        const double tau = scale * this->C.PieceDepth[p];
-        pieceA[p] = -std::expm1(-tau);
-        pieceG[p] = SlopeWeight(tau, pieceA[p]);
+        diagonal.Compute(this->C, m);
       }
-      for (int k = 0; k < n - 1; ++k)
+      if (this->Scalars)
       {
-        a[k] = -std::expm1(-l * this->C.CellMu[k]);
-        // Composite the cell's pieces front to back in both directions.
-        double up[3] = { 0.0, 0.0, 0.0 }, down[3] = { 0.0, 0.0, 0.0 };
-        double tUp = 1.0, tDown = 1.0;
-        const int first = this->C.PieceStart[k], last = this->C.PieceStart[k + 1] - 1;
-        for (int p = first; p <= last; ++p)
-        {
-          const int r = first + last - p; // the same pieces in reverse order
-          const double aUp = pieceA[p], aDown = pieceA[r];
-          const double gUp = pieceG[p], gDown = pieceG[r];
-          for (int c = 0; c < 3; ++c)
-          {
-            up[c] += tUp * this->Piece(p, c, aUp, this->C.PieceColor0[3 * p + c], gUp);
-            const double c1 = this->C.PieceColor1[3 * r + c];
-            down[c] +=
-              tDown * this->Piece(r, c, aDown, this->C.PieceColor0[3 * r + c] + c1, -gDown);
-          }
-          tUp *= 1.0 - aUp;
-          tDown *= 1.0 - aDown;
-        }
+        this->FillScalars(m);
+      }
+      this->CellColors(diagonal, eUp, eDown);
+      this->FillColorUp(m, diagonal, eUp);
+      this->FillColorDown(m, diagonal, eDown);
+    }
+  }
+
+  // Each cell's colour, its pieces composited front to back in both
+  // directions, at the diagonal's cell length.
+  void CellColors(
+    const OpacityDiagonal& d, std::vector<double>& eUp, std::vector<double>& eDown) const
+  {
+    for (int k = 0; k < this->C.N - 1; ++k)
+    {
+      double up[3] = { 0.0, 0.0, 0.0 }, down[3] = { 0.0, 0.0, 0.0 };
+      double tUp = 1.0, tDown = 1.0;
+      const int first = this->C.PieceStart[k], last = this->C.PieceStart[k + 1] - 1;
+      for (int p = first; p <= last; ++p)
+      {
+        const int r = first + last - p; // the same pieces in reverse order
+        const double aUp = d.PieceAlpha[p], aDown = d.PieceAlpha[r];
+        const double gUp = d.PieceSlope[p], gDown = d.PieceSlope[r];
         for (int c = 0; c < 3; ++c)
         {
-          eUp[3 * k + c] = up[c];
-          eDown[3 * k + c] = down[c];
+          up[c] += tUp * this->Piece(p, c, aUp, this->C.PieceColor0[3 * p + c], gUp);
+          const double c1 = this->C.PieceColor1[3 * r + c];
+          down[c] += tDown * this->Piece(r, c, aDown, this->C.PieceColor0[3 * r + c] + c1, -gDown);
         }
+        tUp *= 1.0 - aUp;
+        tDown *= 1.0 - aDown;
       }
-      this->FillScalars(m);
-      this->FillColorUp(m, l, a, eUp);
-      this->FillColorDown(m, l, a, eDown);
+      for (int c = 0; c < 3; ++c)
+      {
+        eUp[3 * k + c] = up[c];
+        eDown[3 * k + c] = down[c];
+      }
     }
   }
 
@@ -188,6 +255,10 @@ struct DiagonalFiller
       for (int c = 0; c < 3; ++c)
       {
         this->ColorOpacity[4 * idx + c] = static_cast<float>(this->C.NodeRGB[3 * i + c] * alpha);
+      }
+      if (!this->Scalars)
+      {
+        continue;
       }
       this->ColorOpacity[4 * idx + 3] = static_cast<float>(alpha);
       this->Position[idx] = this->C.NodeOpaque[i] ? 0.0f : 1.0f;
@@ -242,11 +313,10 @@ struct DiagonalFiller
   // cell i+m, so each entry costs O(1) and the diagonal O(n). The recurrence
   // runs from the back so errors are damped by (1 - a_i) instead of amplified
   // by dividing through it.
-  void FillColorUp(
-    int m, double l, const std::vector<double>& a, const std::vector<double>& e) const
+  void FillColorUp(int m, const OpacityDiagonal& d, const std::vector<double>& e) const
   {
     const int n = this->C.N;
-    const std::vector<double>& P = this->C.PrefixMu;
+    const std::vector<double>& a = d.CellAlpha;
     int i = n - 1 - m;
     double s[3] = { 0.0, 0.0, 0.0 };
     double transmittance = 1.0;
@@ -269,7 +339,7 @@ struct DiagonalFiller
       {
         break;
       }
-      const double dropped = std::exp(-l * (P[i + m] - P[i + 1]));
+      const double dropped = d.DroppedUp[i];
       for (int c = 0; c < 3; ++c)
       {
         const double rest = std::max(0.0, s[c] - e[3 * (i + m) + c] * dropped);
@@ -279,11 +349,10 @@ struct DiagonalFiller
   }
 
   // Mirror image of FillColorUp: front i, back i-m, cells i-1 down to i-m.
-  void FillColorDown(
-    int m, double l, const std::vector<double>& a, const std::vector<double>& e) const
+  void FillColorDown(int m, const OpacityDiagonal& d, const std::vector<double>& e) const
   {
     const int n = this->C.N;
-    const std::vector<double>& P = this->C.PrefixMu;
+    const std::vector<double>& a = d.CellAlpha;
     int i = m;
     double s[3] = { 0.0, 0.0, 0.0 };
     double transmittance = 1.0;
@@ -307,7 +376,7 @@ struct DiagonalFiller
         break;
       }
       // New front cell is i-1; the dropped cell i-1-m sat behind cells i-m..i-2.
-      const double dropped = std::exp(-l * (P[i - 1] - P[i - m]));
+      const double dropped = d.DroppedDown[i - m - 1];
       for (int c = 0; c < 3; ++c)
       {
         const double rest = std::max(0.0, s[c] - e[3 * (i - 1 - m) + c] * dropped);
@@ -328,8 +397,7 @@ struct TransferFunctions
   bool Tinted; // some transmission colour is not white: build the tint table
 
   // tint: the selective extinction per channel, written only when Tinted.
-  void Sample(
-    double t, double& alpha, double& mu, double& sigma, double rgb[3], double tint[3]) const
+  void SampleOpacity(double t, double& alpha, double& mu, double& sigma, double tint[3]) const
   {
     alpha = this->Opacity->GetValue(t);
     mu = mmv::ExtinctionFromOpacity(alpha, this->UnitDistance);
@@ -342,6 +410,10 @@ struct TransferFunctions
           mmv::SelectiveAbsorption(this->Material->EvaluateParameter(t, mmv::TransmissionR + c));
       }
     }
+  }
+
+  void SampleColor(double t, double rgb[3]) const
+  {
     if (this->Color)
     {
       this->Color->GetColor(t, rgb);
@@ -382,25 +454,33 @@ struct TransferFunctions
   }
 };
 
-// The TFs at every table node t_k = range[0] + k D.
-void SampleNodes(const TransferFunctions& tf, double first, CellData& cells)
+// The opacity and material TFs at every table node t_k = range[0] + k D.
+void SampleNodeOpacities(const TransferFunctions& tf, double first, CellData& cells)
 {
   const int n = cells.N;
   cells.NodeMu.resize(n);
   cells.NodeSigma.resize(n);
-  cells.NodeRGB.resize(3 * n);
   cells.NodeOpaque.resize(n);
   cells.NodeTint.assign(tf.Tinted ? 3 * n : 0, 0.0);
   for (int k = 0; k < n; ++k)
   {
     double alpha, tint[3];
-    tf.Sample(
-      first + k * cells.D, alpha, cells.NodeMu[k], cells.NodeSigma[k], &cells.NodeRGB[3 * k], tint);
+    tf.SampleOpacity(first + k * cells.D, alpha, cells.NodeMu[k], cells.NodeSigma[k], tint);
     for (int c = 0; tf.Tinted && c < 3; ++c)
     {
       cells.NodeTint[3 * k + c] = tint[c];
     }
     cells.NodeOpaque[k] = alpha > 0.0;
+  }
+}
+
+// The colour TF at every table node.
+void SampleNodeColors(const TransferFunctions& tf, double first, CellData& cells)
+{
+  cells.NodeRGB.resize(3 * static_cast<std::size_t>(cells.N));
+  for (int k = 0; k < cells.N; ++k)
+  {
+    tf.SampleColor(first + k * cells.D, &cells.NodeRGB[3 * k]);
   }
 }
 
@@ -433,53 +513,24 @@ struct PieceDepth
   }
 };
 
-// Moments of a piece in the optical depth q: of the extinction (W0, W1) and
-// of the extinction-weighted colour (S0, S1), and the colour's range.
-struct PieceMoments
-{
-  double W0 = 0.0, W1 = 0.0;
-  double S0[3] = { 0.0, 0.0, 0.0 }, S1[3] = { 0.0, 0.0, 0.0 };
-  double Min[3], Max[3];
-};
-
-// Appends a piece of optical depth `depth` (data units) and its colour,
-// the least-squares fit c0 + c1 q over q in [0, 1].
-void AppendPiece(double depth, const PieceMoments& m, CellData& cells)
-{
-  cells.PieceDepth.push_back(depth);
-  for (int c = 0; c < 3; ++c)
-  {
-    // The mean fixes c0 + c1/2, the first moment c1.
-    double mean = 0.0, slope = 0.0;
-    if (m.W0 > 0.0 && depth > 0.0)
-    {
-      mean = m.S0[c] / m.W0;
-      slope = m.S0[c] > 0.0 ? 12.0 * mean * (m.S1[c] / m.S0[c] - m.W1 / m.W0) / depth : 0.0;
-    }
-    cells.PieceColor0.push_back(mean - 0.5 * slope);
-    cells.PieceColor1.push_back(slope);
-    cells.PieceColorMin.push_back(std::min(m.Min[c], mean));
-    cells.PieceColorMax.push_back(std::max(m.Max[c], mean));
-  }
-}
-
-// Integrates the piece [a, b] (no TF node inside): appends its depth and
-// colour fit to `cells`, adds its shadow depth to `cellSigma`, and returns
-// its depth (data units); `nonZero` tells whether any of it is not empty.
+// Integrates the opacity over the piece [a, b] (no TF node inside): appends
+// its depth and the weights of its colour fit (PieceWeights) to `cells`,
+// adds its shadow depth to `cellSigma`, and returns its depth (data units);
+// `nonZero` tells whether any of it is not empty.
 double IntegratePiece(const TransferFunctions& tf, double a, double b, CellData& cells,
   double& cellSigma, double cellTint[3], bool& nonZero)
 {
   const double half = 0.5 * (b - a);
   PieceDepth pieceDepth{ tf.Opacity, tf.UnitDistance, a, b, tf.Opacity->GetValue(a),
     tf.Opacity->GetValue(b), true };
-  double x[GaussOrder], mu[GaussOrder], sigma[GaussOrder], rgb[GaussOrder][3], tint[GaussOrder][3];
+  double x[GaussOrder], mu[GaussOrder], sigma[GaussOrder], tint[GaussOrder][3];
   double muGauss = 0.0;
   nonZero = false;
   for (int g = 0; g < GaussOrder; ++g)
   {
     double alpha;
     x[g] = a + half * (1.0 + GaussX[g]);
-    tf.Sample(x[g], alpha, mu[g], sigma[g], rgb[g], tint[g]);
+    tf.SampleOpacity(x[g], alpha, mu[g], sigma[g], tint[g]);
     muGauss += GaussW[g] * half * mu[g];
     const double lerp =
       pieceDepth.AlphaA + 0.5 * (pieceDepth.AlphaB - pieceDepth.AlphaA) * (1.0 + GaussX[g]);
@@ -490,18 +541,10 @@ double IntegratePiece(const TransferFunctions& tf, double a, double b, CellData&
   // Rescaling the Gauss weights to the exact integral keeps colour and
   // attenuation weighted means while the extinction itself stays exact.
   const double scale = muGauss > 0.0 ? depth / muGauss : 0.0;
-  PieceMoments m;
-  {
-    // The colour range over the whole piece, ends included.
-    double alpha, muEnd, sigmaEnd, rgbA[3], rgbB[3], tintEnd[3];
-    tf.Sample(a, alpha, muEnd, sigmaEnd, rgbA, tintEnd);
-    tf.Sample(b, alpha, muEnd, sigmaEnd, rgbB, tintEnd);
-    for (int c = 0; c < 3; ++c)
-    {
-      m.Min[c] = std::min(rgbA[c], rgbB[c]);
-      m.Max[c] = std::max(rgbA[c], rgbB[c]);
-    }
-  }
+  PieceWeights m;
+  m.A = a;
+  m.B = b;
+  m.Depth = depth;
   for (int g = 0; g < GaussOrder; ++g)
   {
     if (!(mu[g] > 0.0))
@@ -515,18 +558,80 @@ double IntegratePiece(const TransferFunctions& tf, double a, double b, CellData&
     {
       cellTint[c] += w * tint[g][c];
     }
-    m.W0 += w * mu[g];
-    m.W1 += w * mu[g] * q;
+    m.Used[g] = true;
+    m.WeightMu[g] = w * mu[g];
+    m.Q[g] = q;
+    m.W0 += m.WeightMu[g];
+    m.W1 += m.WeightMu[g] * q;
+  }
+  cells.PieceDepth.push_back(depth);
+  cells.Weights.push_back(m);
+  return depth;
+}
+
+// Each piece's colour: the least-squares fit c0 + c1 q over q in [0, 1] of
+// the extinction-weighted colour (moments S0, S1), and the colour's range
+// over the piece, ends included.
+void FitPieceColors(const TransferFunctions& tf, CellData& cells)
+{
+  const std::size_t pieces = cells.Weights.size();
+  cells.PieceColor0.resize(3 * pieces);
+  cells.PieceColor1.resize(3 * pieces);
+  cells.PieceColorMin.resize(3 * pieces);
+  cells.PieceColorMax.resize(3 * pieces);
+  double rgbA[3], rgbB[3];
+  for (std::size_t p = 0; p < pieces; ++p)
+  {
+    const PieceWeights& w = cells.Weights[p];
+    double low[3], high[3];
+    double s0[3] = { 0.0, 0.0, 0.0 }, s1[3] = { 0.0, 0.0, 0.0 };
+    // Pieces meet end to end: the last piece's end is often this one's start.
+    if (p > 0 && cells.Weights[p - 1].B == w.A)
+    {
+      std::copy(rgbB, rgbB + 3, rgbA);
+    }
+    else
+    {
+      tf.SampleColor(w.A, rgbA);
+    }
+    tf.SampleColor(w.B, rgbB);
     for (int c = 0; c < 3; ++c)
     {
-      m.S0[c] += w * mu[g] * rgb[g][c];
-      m.S1[c] += w * mu[g] * rgb[g][c] * q;
-      m.Min[c] = std::min(m.Min[c], rgb[g][c]);
-      m.Max[c] = std::max(m.Max[c], rgb[g][c]);
+      low[c] = std::min(rgbA[c], rgbB[c]);
+      high[c] = std::max(rgbA[c], rgbB[c]);
+    }
+    const double half = 0.5 * (w.B - w.A);
+    for (int g = 0; g < GaussOrder; ++g)
+    {
+      if (!w.Used[g])
+      {
+        continue;
+      }
+      double rgb[3];
+      tf.SampleColor(w.A + half * (1.0 + GaussX[g]), rgb);
+      for (int c = 0; c < 3; ++c)
+      {
+        s0[c] += w.WeightMu[g] * rgb[c];
+        s1[c] += w.WeightMu[g] * rgb[c] * w.Q[g];
+        low[c] = std::min(low[c], rgb[c]);
+        high[c] = std::max(high[c], rgb[c]);
+      }
+    }
+    for (int c = 0; c < 3; ++c)
+    {
+      // The mean fixes c0 + c1/2, the first moment c1.
+      double mean = 0.0, slope = 0.0;
+      if (w.W0 > 0.0 && w.Depth > 0.0)
+      {
+        mean = s0[c] / w.W0;
+        slope = s0[c] > 0.0 ? 12.0 * mean * (s1[c] / s0[c] - w.W1 / w.W0) / w.Depth : 0.0;
+      }
+      cells.PieceColor0[3 * p + c] = mean - 0.5 * slope;
+      cells.PieceColor1[3 * p + c] = slope;
+      cells.PieceColorMin[3 * p + c] = std::min(low[c], mean);
+      cells.PieceColorMax[3 * p + c] = std::max(high[c], mean);
     }
   }
-  AppendPiece(depth, m, cells);
-  return depth;
 }
 
 // Cell and piece integrals, then per node where the non-zero opacity starts
@@ -541,6 +646,8 @@ void IntegrateCells(
   cells.PrefixSigma.assign(n, 0.0);
   cells.PrefixTint.assign(tf.Tinted ? 3 * n : 0, 0.0);
   cells.PieceStart.assign(1, 0);
+  cells.PieceDepth.clear();
+  cells.Weights.clear();
   std::vector<double> firstNonZero(n - 1, inf), lastNonZero(n - 1, -inf);
   auto nextBreak = breaks.begin();
   for (int k = 0; k < n - 1; ++k)
@@ -599,7 +706,12 @@ public:
   vtkTimeStamp BuildTime;
   bool Built = false;
   int N = 0;
-  double Range[2] = { 0.0, 1.0 }; // the range the tables were built over
+  // What the opacity parts were built from, and those parts: a colour edit
+  // that leaves the key alone recomputes the colour channels only.
+  std::vector<double> OpacityKey;
+  CellData Cells;
+  std::vector<OpacityDiagonal> Diagonals; // empty: not kept (a large table)
+  double Range[2] = { 0.0, 1.0 };         // the range the tables were built over
   std::vector<float> ColorOpacity;
   std::vector<float> Position;
   std::vector<float> Shadow;
@@ -767,29 +879,59 @@ bool vtkPreIntegrationTable::Update()
   double range[2];
   this->ResolveRange(range);
 
-  // O(n) samples and integrals of the TFs, then the O(n^2) fill.
   const int n = this->TableSize;
   const TransferFunctions tf{ internals.Opacity, internals.Color, internals.Material,
     this->ScalarOpacityUnitDistance,
     internals.Material && internals.Material->HasChromaticTransmission() };
-  CellData cells;
-  cells.N = n;
-  cells.L = this->StepLength;
-  cells.D = (range[1] - range[0]) / (n - 1);
-  SampleNodes(tf, range[0], cells);
-  IntegrateCells(tf, tf.Breaks(), range[0], cells);
+  // Everything but the colours' values: the colour nodes' positions split
+  // the cells into pieces, so they are in it (as breaks).
+  const std::vector<double> breaks = tf.Breaks();
+  std::vector<double> key = { static_cast<double>(internals.Opacity->GetMTime()),
+    static_cast<double>(internals.Material ? internals.Material->GetMTime() : 0),
+    internals.Material ? 1.0 : 0.0, this->ScalarOpacityUnitDistance, this->StepLength, range[0],
+    range[1], static_cast<double>(n), tf.Tinted ? 1.0 : 0.0 };
+  key.insert(key.end(), breaks.begin(), breaks.end());
+  CellData& cells = internals.Cells;
+  if (internals.Built && !internals.Diagonals.empty() && key == internals.OpacityKey)
+  {
+    // A colour edit: the colour channels alone, from the kept opacity parts.
+    SampleNodeColors(tf, range[0], cells);
+    FitPieceColors(tf, cells);
+    const DiagonalFiller filler{ cells, internals.ColorOpacity.data(), nullptr, nullptr, nullptr,
+      false, &internals.Diagonals };
+    vtkSMPTools::For(0, n, 1, filler);
+    ++this->ColorOnlyBuildCount;
+  }
+  else
+  {
+    // O(n) samples and integrals of the TFs, then the O(n^2) fill.
+    cells = CellData();
+    cells.N = n;
+    cells.L = this->StepLength;
+    cells.D = (range[1] - range[0]) / (n - 1);
+    SampleNodeOpacities(tf, range[0], cells);
+    SampleNodeColors(tf, range[0], cells);
+    IntegrateCells(tf, breaks, range[0], cells);
+    FitPieceColors(tf, cells);
 
-  const std::size_t entries = static_cast<std::size_t>(n) * n;
-  std::vector<float> colorOpacity(4 * entries), position(entries), shadow(entries);
-  std::vector<float> tint(tf.Tinted ? 4 * entries : 0, 0.0f);
-  DiagonalFiller filler{ cells, colorOpacity.data(), position.data(), shadow.data(),
-    tf.Tinted ? tint.data() : nullptr };
-  vtkSMPTools::For(0, n, 1, filler);
+    const std::size_t entries = static_cast<std::size_t>(n) * n;
+    std::vector<float> colorOpacity(4 * entries), position(entries), shadow(entries);
+    std::vector<float> tint(tf.Tinted ? 4 * entries : 0, 0.0f);
+    // The diagonals' opacity parts are kept for colour edits up to
+    // MaxKeptTableSize (a few MB); larger tables rebuild whole.
+    internals.Diagonals.clear();
+    internals.Diagonals.resize(n <= MaxKeptTableSize ? n : 0);
+    const DiagonalFiller filler{ cells, colorOpacity.data(), position.data(), shadow.data(),
+      tf.Tinted ? tint.data() : nullptr, true,
+      internals.Diagonals.empty() ? nullptr : &internals.Diagonals };
+    vtkSMPTools::For(0, n, 1, filler);
 
-  internals.ColorOpacity.swap(colorOpacity);
-  internals.Position.swap(position);
-  internals.Shadow.swap(shadow);
-  internals.Tint.swap(tint);
+    internals.ColorOpacity.swap(colorOpacity);
+    internals.Position.swap(position);
+    internals.Shadow.swap(shadow);
+    internals.Tint.swap(tint);
+    internals.OpacityKey.swap(key);
+  }
   internals.N = n;
   internals.Range[0] = range[0];
   internals.Range[1] = range[1];

@@ -45,7 +45,9 @@
  *    starts, not at table resolution.
  *
  * Update() rebuilds only when an input (or a setting) changed since the last
- * build; GetBuildCount() tells how often it did.
+ * build; GetBuildCount() tells how often it did. When only the colours
+ * changed, it recomputes the colour channels alone from the kept opacity
+ * parts (GetColorOnlyBuildCount()), to the same bits as a full build.
  */
 #ifndef vtkPreIntegrationTable_h
 #define vtkPreIntegrationTable_h
@@ -131,6 +133,11 @@ public:
 
   /// Number of times the tables were (re)built.
   vtkGetMacro(BuildCount, int);
+  /// Of those, the builds after a change of the colours alone (the colour
+  /// function's values, not its nodes' positions), which recomputed only the
+  /// colour channels of GetColorOpacityTable(): the opacity parts of the
+  /// integrals are kept from the last full build (for tables up to 512).
+  vtkGetMacro(ColorOnlyBuildCount, int);
   /// Wall-clock seconds of the last build.
   vtkGetMacro(LastBuildSeconds, double);
 
@@ -143,6 +150,7 @@ protected:
   int TableSize = 256;
   double ScalarRange[2] = { 0.0, 0.0 };
   int BuildCount = 0;
+  int ColorOnlyBuildCount = 0;
   double LastBuildSeconds = 0.0;
 
 private:

@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <vector>
 
 vtkStandardNewMacro(vtkMultiMaterialTextures);
@@ -28,38 +29,71 @@ vtkMultiMaterialTextures::~vtkMultiMaterialTextures() = default;
 void vtkMultiMaterialTextures::UpdateSegmentTables(
   vtkOpenGLRenderWindow* context, const std::vector<vtkPreIntegrationTable*>& tables)
 {
-  std::vector<std::pair<vtkPreIntegrationTable*, int>> sources;
+  // A colour-only build (vtkPreIntegrationTable::GetColorOnlyBuildCount)
+  // leaves the shading positions as they were.
+  std::vector<std::pair<vtkPreIntegrationTable*, int>> builds;
+  std::vector<std::pair<vtkPreIntegrationTable*, int>> positionBuilds;
   for (vtkPreIntegrationTable* table : tables)
   {
-    sources.emplace_back(table, table->GetBuildCount());
+    builds.emplace_back(table, table->GetBuildCount());
+    positionBuilds.emplace_back(table, table->GetBuildCount() - table->GetColorOnlyBuildCount());
   }
-  if (this->SegmentColor->GetHandle() != 0 && sources == this->UploadedTables)
+  const bool colorCurrent = this->SegmentColor->GetHandle() != 0 && builds == this->UploadedTables;
+  const bool positionCurrent =
+    this->SegmentPosition->GetHandle() != 0 && positionBuilds == this->UploadedPositions;
+  if (colorCurrent && positionCurrent)
   {
     return;
   }
   const int n = tables[0]->GetTableSize();
-  const size_t texels = static_cast<size_t>(n) * n;
-  std::vector<float> color;
-  std::vector<float> position;
-  color.reserve(4 * texels * tables.size());
-  position.reserve(texels * tables.size());
-  for (vtkPreIntegrationTable* table : tables)
-  {
-    const float* c = table->GetColorOpacityTable();
-    const float* p = table->GetShadingPositionTable();
-    color.insert(color.end(), c, c + 4 * texels);
-    position.insert(position.end(), p, p + texels);
-  }
   const int rows = n * static_cast<int>(tables.size());
-  this->SegmentColor->SetContext(context);
-  this->SegmentPosition->SetContext(context);
-  this->SegmentColor->Create2DFromRaw(n, rows, 4, VTK_FLOAT, color.data());
-  this->SegmentPosition->Create2DFromRaw(n, rows, 1, VTK_FLOAT, position.data());
-  mmv::UseLinearClamped(this->SegmentColor);
-  mmv::UseLinearClamped(this->SegmentPosition);
-  this->UploadedTables = sources;
+  if (!colorCurrent)
+  {
+    this->UploadTable(context, this->SegmentColor, tables, 4, n, rows,
+      [](vtkPreIntegrationTable* t) { return t->GetColorOpacityTable(); });
+  }
+  if (!positionCurrent)
+  {
+    this->UploadTable(context, this->SegmentPosition, tables, 1, n, rows,
+      [](vtkPreIntegrationTable* t) { return t->GetShadingPositionTable(); });
+  }
+  this->UploadedTables = builds;
+  this->UploadedPositions = positionBuilds;
   this->TableSize = n;
   ++this->SegmentUploads;
+}
+
+// The tables' `components`-float entries stacked by rows into `texture`: in
+// place when it has their size (an edit), else into new storage.
+void vtkMultiMaterialTextures::UploadTable(vtkOpenGLRenderWindow* context,
+  vtkTextureObject* texture, const std::vector<vtkPreIntegrationTable*>& tables, int components,
+  int n, int rows, const std::function<const float*(vtkPreIntegrationTable*)>& entries)
+{
+  const size_t texels = static_cast<size_t>(n) * n;
+  std::vector<float> stacked;
+  const float* data = entries(tables[0]);
+  if (tables.size() > 1)
+  {
+    stacked.reserve(components * texels * tables.size());
+    for (vtkPreIntegrationTable* table : tables)
+    {
+      const float* values = entries(table);
+      stacked.insert(stacked.end(), values, values + components * texels);
+    }
+    data = stacked.data();
+  }
+  if (texture->GetHandle() != 0 && static_cast<int>(texture->GetWidth()) == n &&
+    static_cast<int>(texture->GetHeight()) == rows && texture->GetComponents() == components &&
+    texture->GetContext() == context)
+  {
+    texture->Bind();
+    glTexSubImage2D(
+      GL_TEXTURE_2D, 0, 0, 0, n, rows, components == 4 ? GL_RGBA : GL_RED, GL_FLOAT, data);
+    return;
+  }
+  texture->SetContext(context);
+  texture->Create2DFromRaw(n, rows, components, VTK_FLOAT, const_cast<float*>(data));
+  mmv::UseLinearClamped(texture);
 }
 
 void vtkMultiMaterialTextures::UpdateMaterialTable(vtkOpenGLRenderWindow* context,

@@ -25,8 +25,9 @@
 #include "vtkTextureObject.h"     // kept gradients
 
 #include <cstddef>
-#include <list>   // kept gradients
-#include <vector> // slab scratch
+#include <functional> // table entries
+#include <list>       // kept gradients
+#include <vector>     // slab scratch
 
 class vtkDataArray;
 class vtkMaterialTransferFunction;
@@ -108,6 +109,10 @@ private:
   vtkMultiMaterialTextures(const vtkMultiMaterialTextures&) = delete;
   void operator=(const vtkMultiMaterialTextures&) = delete;
 
+  void UploadTable(vtkOpenGLRenderWindow* context, vtkTextureObject* texture,
+    const std::vector<vtkPreIntegrationTable*>& tables, int components, int n, int rows,
+    const std::function<const float*(vtkPreIntegrationTable*)>& entries);
+
   vtkNew<vtkTextureObject> SegmentColor;
   vtkNew<vtkTextureObject> SegmentPosition;
   vtkNew<vtkTextureObject> Material;
@@ -151,7 +156,8 @@ private:
   int MaterialUploads = 0;
   // What the uploaded tables were made of: per field, the table and its
   // build; the functions, their times and ranges.
-  std::vector<std::pair<vtkPreIntegrationTable*, int>> UploadedTables;
+  std::vector<std::pair<vtkPreIntegrationTable*, int>> UploadedTables;    // builds
+  std::vector<std::pair<vtkPreIntegrationTable*, int>> UploadedPositions; // not colour-only
   std::vector<std::pair<vtkMaterialTransferFunction*, vtkMTimeType>> UploadedMaterials;
   std::vector<double> UploadedRanges;
   int UploadedMaterialSize = 0;

@@ -434,6 +434,92 @@ TEST(PreIntegrationTable, RebuildsOnlyWhenInputsChange)
   EXPECT_GE(table->GetLastBuildSeconds(), 0.0);
 }
 
+// A fresh table of the same inputs: what every rebuild must equal, bit for bit.
+void ExpectSameTables(vtkPreIntegrationTable* built, vtkPiecewiseFunction* otf,
+  vtkColorTransferFunction* ctf, vtkMaterialTransferFunction* mtf, int n, const char* what)
+{
+  vtkNew<vtkPreIntegrationTable> fresh;
+  fresh->SetScalarOpacity(otf);
+  fresh->SetColorTransferFunction(ctf);
+  fresh->SetMaterialTransferFunction(mtf);
+  fresh->SetScalarRange(0.0, 100.0);
+  fresh->SetStepLength(0.7);
+  fresh->SetScalarOpacityUnitDistance(2.0);
+  fresh->SetTableSize(n);
+  ASSERT_TRUE(fresh->Update());
+  const size_t entries = static_cast<size_t>(n) * n;
+  const auto same = [&](const float* a, const float* b, size_t count)
+  { return a && b && std::equal(a, a + count, b); };
+  EXPECT_TRUE(same(built->GetColorOpacityTable(), fresh->GetColorOpacityTable(), 4 * entries))
+    << what;
+  EXPECT_TRUE(same(built->GetShadingPositionTable(), fresh->GetShadingPositionTable(), entries))
+    << what;
+  EXPECT_TRUE(same(built->GetShadowOpacityTable(), fresh->GetShadowOpacityTable(), entries))
+    << what;
+  EXPECT_TRUE(same(built->GetShadowTintTable(), fresh->GetShadowTintTable(), 4 * entries)) << what;
+}
+
+// A colour edit recomputes the colour channels alone, from the opacity parts
+// the last full build kept, and gives the bits a full build gives; a moved
+// colour node, an opacity or a material edit, and tables too large to keep
+// those parts rebuild whole.
+TEST(PreIntegrationTable, ColourEditsRebuildTheColoursAloneToTheSameBits)
+{
+  for (const int n : { 64, 520 })
+  {
+    vtkNew<vtkPiecewiseFunction> otf;
+    otf->AddPoint(0.0, 0.0);
+    otf->AddPoint(20.0, 0.0);
+    otf->AddPoint(35.0, 0.3, 0.3, 0.7); // curved: the Gauss rule's pieces
+    otf->AddPoint(60.0, 0.9);
+    otf->AddPoint(100.0, 0.95);
+    vtkNew<vtkColorTransferFunction> ctf;
+    ctf->AddRGBPoint(0.0, 0.1, 0.1, 0.1);
+    ctf->AddRGBPoint(40.0, 0.8, 0.3, 0.2);
+    ctf->AddRGBPoint(100.0, 1.0, 1.0, 0.9);
+    vtkNew<vtkMaterialTransferFunction> mtf; // tinted shadows: every table
+    mtf->AddNode(30.0, 0.2, 0.7, 0.2, 20.0, 1.5, 0.0, 0.0, 0.0, 0.0, 0.9, 0.5, 0.3);
+    vtkNew<vtkPreIntegrationTable> table;
+    table->SetScalarOpacity(otf);
+    table->SetColorTransferFunction(ctf);
+    table->SetMaterialTransferFunction(mtf);
+    table->SetScalarRange(0.0, 100.0);
+    table->SetStepLength(0.7);
+    table->SetScalarOpacityUnitDistance(2.0);
+    table->SetTableSize(n);
+    ASSERT_TRUE(table->Update());
+    ASSERT_NE(table->GetShadowTintTable(), nullptr);
+    const bool kept = n <= 512;
+
+    ctf->AddRGBPoint(40.0, 0.2, 0.9, 0.4); // the same node, a new colour
+    ASSERT_TRUE(table->Update());
+    EXPECT_EQ(table->GetBuildCount(), 2);
+    EXPECT_EQ(table->GetColorOnlyBuildCount(), kept ? 1 : 0) << n;
+    ExpectSameTables(table, otf, ctf, mtf, n, "after a colour edit");
+
+    ctf->AddRGBPoint(70.0, 0.5, 0.5, 1.0); // a new node splits cells
+    ASSERT_TRUE(table->Update());
+    EXPECT_EQ(table->GetColorOnlyBuildCount(), kept ? 1 : 0) << n;
+    ExpectSameTables(table, otf, ctf, mtf, n, "after a new colour node");
+
+    otf->AddPoint(60.0, 0.7);
+    ASSERT_TRUE(table->Update());
+    EXPECT_EQ(table->GetColorOnlyBuildCount(), kept ? 1 : 0) << n;
+    ExpectSameTables(table, otf, ctf, mtf, n, "after an opacity edit");
+
+    ctf->AddRGBPoint(70.0, 0.9, 0.1, 0.1);
+    ASSERT_TRUE(table->Update());
+    EXPECT_EQ(table->GetColorOnlyBuildCount(), kept ? 2 : 0) << n;
+    ExpectSameTables(table, otf, ctf, mtf, n, "after a second colour edit");
+
+    mtf->AddNode(30.0, 0.2, 0.7, 0.2, 20.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.4, 0.8, 0.9);
+    ASSERT_TRUE(table->Update());
+    EXPECT_EQ(table->GetColorOnlyBuildCount(), kept ? 2 : 0) << n;
+    ExpectSameTables(table, otf, ctf, mtf, n, "after a material edit");
+    EXPECT_EQ(table->GetBuildCount(), 6);
+  }
+}
+
 TEST(PreIntegrationTable, InvalidSettingsKeepPreviousTable)
 {
   vtkNew<vtkPiecewiseFunction> otf;
