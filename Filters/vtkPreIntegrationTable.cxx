@@ -22,6 +22,11 @@ namespace
 // 8 MB of doubles at 512 (n^2 per-cell and window factors, 2 n per piece).
 constexpr int MaxKeptTableSize = 512;
 
+// Diagonals a thread fills together. Neighbouring diagonals write
+// neighbouring entries of each row: with one diagonal per task the threads
+// kept writing to the same cache lines.
+constexpr int DiagonalsPerTask = 16;
+
 // 5-point Gauss-Legendre on [-1, 1] (exact to degree 9): colour and
 // attenuation moments within one piece between TF nodes, where every TF is
 // smooth; extinction itself uses the closed form below where it can.
@@ -569,9 +574,65 @@ double IntegratePiece(const TransferFunctions& tf, double a, double b, CellData&
   return depth;
 }
 
-// Each piece's colour: the least-squares fit c0 + c1 q over q in [0, 1] of
-// the extinction-weighted colour (moments S0, S1), and the colour's range
-// over the piece, ends included.
+// Piece p's colour: the least-squares fit c0 + c1 q over q in [0, 1] of the
+// extinction-weighted colour (moments S0, S1), and the colour's range over
+// the piece, ends included. rgbA, rgbB: the colours at its ends (rgbB holds
+// the last piece's end colour on entry, which is this one's start when
+// `sharedEnd`).
+void FitPieceColor(const TransferFunctions& tf, CellData& cells, std::size_t p, bool sharedEnd,
+  double rgbA[3], double rgbB[3])
+{
+  const PieceWeights& w = cells.Weights[p];
+  double low[3], high[3];
+  double s0[3] = { 0.0, 0.0, 0.0 }, s1[3] = { 0.0, 0.0, 0.0 };
+  if (sharedEnd)
+  {
+    std::copy(rgbB, rgbB + 3, rgbA);
+  }
+  else
+  {
+    tf.SampleColor(w.A, rgbA);
+  }
+  tf.SampleColor(w.B, rgbB);
+  for (int c = 0; c < 3; ++c)
+  {
+    low[c] = std::min(rgbA[c], rgbB[c]);
+    high[c] = std::max(rgbA[c], rgbB[c]);
+  }
+  const double half = 0.5 * (w.B - w.A);
+  for (int g = 0; g < GaussOrder; ++g)
+  {
+    if (!w.Used[g])
+    {
+      continue;
+    }
+    double rgb[3];
+    tf.SampleColor(w.A + half * (1.0 + GaussX[g]), rgb);
+    for (int c = 0; c < 3; ++c)
+    {
+      s0[c] += w.WeightMu[g] * rgb[c];
+      s1[c] += w.WeightMu[g] * rgb[c] * w.Q[g];
+      low[c] = std::min(low[c], rgb[c]);
+      high[c] = std::max(high[c], rgb[c]);
+    }
+  }
+  for (int c = 0; c < 3; ++c)
+  {
+    // The mean fixes c0 + c1/2, the first moment c1.
+    double mean = 0.0, slope = 0.0;
+    if (w.W0 > 0.0 && w.Depth > 0.0)
+    {
+      mean = s0[c] / w.W0;
+      slope = s0[c] > 0.0 ? 12.0 * mean * (s1[c] / s0[c] - w.W1 / w.W0) / w.Depth : 0.0;
+    }
+    cells.PieceColor0[3 * p + c] = mean - 0.5 * slope;
+    cells.PieceColor1[3 * p + c] = slope;
+    cells.PieceColorMin[3 * p + c] = std::min(low[c], mean);
+    cells.PieceColorMax[3 * p + c] = std::max(high[c], mean);
+  }
+}
+
+// Every piece's colour fit (FitPieceColor).
 void FitPieceColors(const TransferFunctions& tf, CellData& cells)
 {
   const std::size_t pieces = cells.Weights.size();
@@ -579,58 +640,15 @@ void FitPieceColors(const TransferFunctions& tf, CellData& cells)
   cells.PieceColor1.resize(3 * pieces);
   cells.PieceColorMin.resize(3 * pieces);
   cells.PieceColorMax.resize(3 * pieces);
+  // On one thread: each parallel loop starts its threads anew (VTK's
+  // STDThread backend), which costs more than these few thousand lookups
+  // (1.1-1.4 ms against 1.9-2.9 ms per colour edit on 16 cores).
   double rgbA[3], rgbB[3];
   for (std::size_t p = 0; p < pieces; ++p)
   {
-    const PieceWeights& w = cells.Weights[p];
-    double low[3], high[3];
-    double s0[3] = { 0.0, 0.0, 0.0 }, s1[3] = { 0.0, 0.0, 0.0 };
     // Pieces meet end to end: the last piece's end is often this one's start.
-    if (p > 0 && cells.Weights[p - 1].B == w.A)
-    {
-      std::copy(rgbB, rgbB + 3, rgbA);
-    }
-    else
-    {
-      tf.SampleColor(w.A, rgbA);
-    }
-    tf.SampleColor(w.B, rgbB);
-    for (int c = 0; c < 3; ++c)
-    {
-      low[c] = std::min(rgbA[c], rgbB[c]);
-      high[c] = std::max(rgbA[c], rgbB[c]);
-    }
-    const double half = 0.5 * (w.B - w.A);
-    for (int g = 0; g < GaussOrder; ++g)
-    {
-      if (!w.Used[g])
-      {
-        continue;
-      }
-      double rgb[3];
-      tf.SampleColor(w.A + half * (1.0 + GaussX[g]), rgb);
-      for (int c = 0; c < 3; ++c)
-      {
-        s0[c] += w.WeightMu[g] * rgb[c];
-        s1[c] += w.WeightMu[g] * rgb[c] * w.Q[g];
-        low[c] = std::min(low[c], rgb[c]);
-        high[c] = std::max(high[c], rgb[c]);
-      }
-    }
-    for (int c = 0; c < 3; ++c)
-    {
-      // The mean fixes c0 + c1/2, the first moment c1.
-      double mean = 0.0, slope = 0.0;
-      if (w.W0 > 0.0 && w.Depth > 0.0)
-      {
-        mean = s0[c] / w.W0;
-        slope = s0[c] > 0.0 ? 12.0 * mean * (s1[c] / s0[c] - w.W1 / w.W0) / w.Depth : 0.0;
-      }
-      cells.PieceColor0[3 * p + c] = mean - 0.5 * slope;
-      cells.PieceColor1[3 * p + c] = slope;
-      cells.PieceColorMin[3 * p + c] = std::min(low[c], mean);
-      cells.PieceColorMax[3 * p + c] = std::max(high[c], mean);
-    }
+    const bool sharedEnd = p > 0 && cells.Weights[p - 1].B == cells.Weights[p].A;
+    FitPieceColor(tf, cells, p, sharedEnd, rgbA, rgbB);
   }
 }
 
@@ -899,7 +917,7 @@ bool vtkPreIntegrationTable::Update()
     FitPieceColors(tf, cells);
     const DiagonalFiller filler{ cells, internals.ColorOpacity.data(), nullptr, nullptr, nullptr,
       false, &internals.Diagonals };
-    vtkSMPTools::For(0, n, 1, filler);
+    vtkSMPTools::For(0, n, DiagonalsPerTask, filler);
     ++this->ColorOnlyBuildCount;
   }
   else
@@ -924,7 +942,7 @@ bool vtkPreIntegrationTable::Update()
     const DiagonalFiller filler{ cells, colorOpacity.data(), position.data(), shadow.data(),
       tf.Tinted ? tint.data() : nullptr, true,
       internals.Diagonals.empty() ? nullptr : &internals.Diagonals };
-    vtkSMPTools::For(0, n, 1, filler);
+    vtkSMPTools::For(0, n, DiagonalsPerTask, filler);
 
     internals.ColorOpacity.swap(colorOpacity);
     internals.Position.swap(position);
