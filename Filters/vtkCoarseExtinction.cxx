@@ -5,6 +5,7 @@
 #include "vtkImageData.h"
 #include "vtkMaterialTransferFunction.h"
 #include "vtkMultiMaterialParameters.h"
+#include "vtkMultiMaterialThreads.h" // mmv::For
 #include "vtkNew.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkSMPTools.h"
@@ -37,7 +38,7 @@ void NormalizeScalars(vtkDataArray* scalars, const double range[2], std::vector<
   const vtkIdType n = scalars->GetNumberOfTuples();
   values.resize(static_cast<size_t>(n));
   NormalizeComponent(scalars, 0, 0, n, range, values.data());
-  vtkSMPTools::For(0, n,
+  mmv::For(0, n,
     [&](vtkIdType first, vtkIdType last)
     {
       for (vtkIdType i = first; i < last; ++i)

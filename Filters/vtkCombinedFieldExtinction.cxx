@@ -4,6 +4,7 @@
 #include "vtkDataArray.h"
 #include "vtkDataArrayRange.h"
 #include "vtkFloatArray.h"
+#include "vtkMultiMaterialThreads.h" // mmv::For
 #include "vtkSMPTools.h"
 #include "vtkTableLookup.h"
 
@@ -83,7 +84,7 @@ struct CombineWorker
   void operator()(Array* array, const std::vector<FieldTables>& tables, float* out) const
   {
     const auto tuples = vtk::DataArrayTupleRange(array);
-    vtkSMPTools::For(0, array->GetNumberOfTuples(),
+    mmv::For(0, array->GetNumberOfTuples(),
       [&](vtkIdType first, vtkIdType last)
       {
         for (vtkIdType i = first; i < last; ++i)

@@ -4,6 +4,7 @@
 #include "vtkImageData.h"
 #include "vtkMatrix3x3.h"
 #include "vtkMultiMaterialParameters.h"
+#include "vtkMultiMaterialThreads.h" // mmv::For
 #include "vtkObjectFactory.h"
 #include "vtkSMPTools.h"
 
@@ -229,7 +230,7 @@ void vtkGlobalPrefilteredVolume::AccumulatePiece(
     return true;
   };
   const int* samples = layout.Samples;
-  vtkSMPTools::For(0, voxels,
+  mmv::For(0, voxels,
     [&](vtkIdType begin, vtkIdType end)
     {
       for (vtkIdType v = begin; v < end; ++v)

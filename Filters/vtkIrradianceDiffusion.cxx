@@ -1,6 +1,7 @@
 #include "vtkIrradianceDiffusion.h"
 
 #include "vtkMath.h"
+#include "vtkMultiMaterialThreads.h" // mmv::For
 #include "vtkSMPTools.h"
 
 #include <algorithm>
@@ -66,7 +67,7 @@ public:
   {
     this->Dt = dt;
     this->InvDiag.resize(this->Size);
-    vtkSMPTools::For(0, this->Size,
+    mmv::For(0, this->Size,
       [&](vtkIdType begin, vtkIdType end)
       {
         for (vtkIdType i = begin; i < end; ++i)
@@ -113,7 +114,7 @@ public:
     while (rNorm2 > target2 && it < maxIterations && rz > 0.0)
     {
       // p = z + beta p, z = D^-1 r.
-      vtkSMPTools::For(0, n,
+      mmv::For(0, n,
         [&](vtkIdType begin, vtkIdType end)
         {
           for (vtkIdType i = begin; i < end; ++i)
@@ -167,7 +168,7 @@ private:
       this->Coefficient[a].assign(this->Size, 0.0f);
     }
     std::vector<double> rowMax(this->Rows, 0.0);
-    vtkSMPTools::For(0, this->Rows,
+    mmv::For(0, this->Rows,
       [&](vtkIdType begin, vtkIdType end)
       {
         for (vtkIdType row = begin; row < end; ++row)
@@ -193,7 +194,7 @@ private:
         }
       });
     // A second pass: row sums read the coefficients of neighbouring rows.
-    vtkSMPTools::For(0, this->Rows,
+    mmv::For(0, this->Rows,
       [&](vtkIdType begin, vtkIdType end)
       {
         for (vtkIdType row = begin; row < end; ++row)
@@ -238,7 +239,7 @@ public:
     std::vector<double>& out) const
   {
     const double invRate = 1.0 / this->MaxRowSum;
-    vtkSMPTools::For(0, this->Rows,
+    mmv::For(0, this->Rows,
       [&](vtkIdType begin, vtkIdType end)
       {
         for (vtkIdType row = begin; row < end; ++row)
@@ -302,7 +303,7 @@ private:
   template <typename F>
   void ForRows(F&& f)
   {
-    vtkSMPTools::For(0, this->Blocks,
+    mmv::For(0, this->Blocks,
       [&](vtkIdType begin, vtkIdType end)
       {
         for (vtkIdType b = begin; b < end; ++b)
@@ -518,7 +519,7 @@ void RestrictToDiffusionGrid(const int dims[3], const DiffusionGrid& coarse, con
   }
   const int* cd = coarse.Dimensions;
   const int* f = coarse.Factor;
-  vtkSMPTools::For(0, count,
+  mmv::For(0, count,
     [&](vtkIdType begin, vtkIdType end)
     {
       for (vtkIdType c = begin; c < end; ++c)
@@ -658,7 +659,7 @@ DiffusionReport DiffuseIrradianceOnDiffusionGrid(const int dims[3], const double
   }
   // Where the fine grid scatters, add the change, interpolated trilinearly.
   const int* cd = coarse.Dimensions;
-  vtkSMPTools::For(0, n,
+  mmv::For(0, n,
     [&](vtkIdType begin, vtkIdType end)
     {
       for (vtkIdType v = begin; v < end; ++v)

@@ -6,6 +6,7 @@
 #include "vtkImageData.h"
 #include "vtkMatrix3x3.h"
 #include "vtkMultiMaterialParameters.h"
+#include "vtkMultiMaterialThreads.h" // mmv::For
 #include "vtkSMPTools.h"
 
 #include <algorithm>
@@ -68,7 +69,7 @@ struct AffineCopyWorker
     double scale, float* out) const
   {
     const auto tuples = vtk::DataArrayTupleRange(array);
-    vtkSMPTools::For(0, count,
+    mmv::For(0, count,
       [&](vtkIdType begin, vtkIdType end)
       {
         for (vtkIdType i = begin; i < end; ++i)
@@ -418,7 +419,7 @@ void PrefilterScalars(vtkImageData* image, vtkDataArray* scalars, int component,
       static_cast<vtkIdType>(outDims[0]) * outDims[1] };
     const int b = (axis + 1) % 3;
     const int c = (axis + 2) % 3;
-    vtkSMPTools::For(0, outDims[c],
+    mmv::For(0, outDims[c],
       [&](vtkIdType begin, vtkIdType end)
       {
         for (vtkIdType z = begin; z < end; ++z)
@@ -485,7 +486,7 @@ void PrefilterScalars(vtkImageData* image, vtkDataArray* scalars, int component,
 bool ReplaceNonFinite(std::vector<float>& values, float low, float high)
 {
   std::atomic<bool> replaced(false);
-  vtkSMPTools::For(0, static_cast<vtkIdType>(values.size()),
+  mmv::For(0, static_cast<vtkIdType>(values.size()),
     [&](vtkIdType begin, vtkIdType end)
     {
       bool here = false;

@@ -4,6 +4,7 @@
 #include "vtkMaterialTransferFunction.h"
 #include "vtkMultiMaterialLiveObjects.h"
 #include "vtkMultiMaterialParameters.h"
+#include "vtkMultiMaterialThreads.h" // mmv::For
 #include "vtkObjectFactory.h"
 #include "vtkSMPTools.h"
 
@@ -101,7 +102,7 @@ bool vtkIrradianceInputCache::UpdatePrefiltered(vtkImageData* image, vtkDataArra
     mmv::PrefilterScalars(image, scalars, 0, grid, values, &this->Scratch);
   }
   const double scale = 1.0 / (range[1] - range[0]);
-  vtkSMPTools::For(0, static_cast<vtkIdType>(values.size()),
+  mmv::For(0, static_cast<vtkIdType>(values.size()),
     [&](vtkIdType begin, vtkIdType end)
     {
       for (vtkIdType i = begin; i < end; ++i)

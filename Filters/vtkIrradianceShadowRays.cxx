@@ -2,6 +2,7 @@
 
 #include "vtkAlgorithm.h"
 #include "vtkMultiMaterialParameters.h"
+#include "vtkMultiMaterialThreads.h" // mmv::For
 #include "vtkPreIntegrationTable.h"
 #include "vtkSMPTools.h"
 #include "vtkShadowSweep.h"
@@ -191,7 +192,7 @@ void ComputeTint(
   {
     channel.assign(static_cast<std::size_t>(n), 1.0f);
   }
-  vtkSMPTools::For(0, n,
+  mmv::For(0, n,
     [&](vtkIdType begin, vtkIdType end)
     {
       for (vtkIdType t = begin; t < end; ++t)
@@ -216,7 +217,7 @@ void ComputeTint(
     });
   rays += n;
   const glm::dmat3 toTint = tintGrid.PhysicalToIndexMatrix() * grid.IndexToPhysicalMatrix();
-  vtkSMPTools::For(0, grid.GetNumberOfVoxels(),
+  mmv::For(0, grid.GetNumberOfVoxels(),
     [&](vtkIdType begin, vtkIdType end)
     {
       for (vtkIdType v = begin; v < end; ++v)
@@ -252,7 +253,7 @@ bool SweepPiecewiseShadowRays(vtkAlgorithm* self, const RayContext& ctx,
     sweep.GetChunk(chunk, first, last, plane);
     const int read = sweep.GetReadSlice(chunk);
     const vtkIdType sliceSize = static_cast<vtkIdType>(dims[b]) * dims[c];
-    vtkSMPTools::For(0, sliceSize * (last - first + 1),
+    mmv::For(0, sliceSize * (last - first + 1),
       [&](vtkIdType begin, vtkIdType end)
       {
         vtkIdType local = 0;
@@ -301,7 +302,7 @@ bool CastShadowRays(vtkAlgorithm* self, const RayContext& ctx, const mmv::LightS
   {
     const vtkIdType first = n * chunk / ChunksPerLight;
     const vtkIdType last = n * (chunk + 1) / ChunksPerLight;
-    vtkSMPTools::For(first, last,
+    mmv::For(first, last,
       [&](vtkIdType begin, vtkIdType end)
       {
         vtkIdType local = 0;

@@ -15,6 +15,7 @@
 #include "vtkMultiMaterialLightModel.h"
 #include "vtkMultiMaterialLights.h"
 #include "vtkMultiMaterialParameters.h"
+#include "vtkMultiMaterialThreads.h" // mmv::For
 #include "vtkObjectFactory.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPlane.h"
@@ -134,7 +135,7 @@ void FillEmptyNeighborVoxels(
 {
   const int* dims = grid.Dimensions;
   const vtkIdType stride[3] = { 1, dims[0], static_cast<vtkIdType>(dims[0]) * dims[1] };
-  vtkSMPTools::For(0, grid.GetNumberOfVoxels(),
+  mmv::For(0, grid.GetNumberOfVoxels(),
     [&](vtkIdType begin, vtkIdType end)
     {
       for (vtkIdType v = begin; v < end; ++v)

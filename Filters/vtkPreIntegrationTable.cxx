@@ -4,6 +4,7 @@
 #include "vtkMaterialTransferFunction.h"
 #include "vtkMultiMaterialLiveObjects.h"
 #include "vtkMultiMaterialParameters.h"
+#include "vtkMultiMaterialThreads.h" // mmv::For
 #include "vtkObjectFactory.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkSMPTools.h"
@@ -917,7 +918,7 @@ bool vtkPreIntegrationTable::Update()
     FitPieceColors(tf, cells);
     const DiagonalFiller filler{ cells, internals.ColorOpacity.data(), nullptr, nullptr, nullptr,
       false, &internals.Diagonals };
-    vtkSMPTools::For(0, n, DiagonalsPerTask, filler);
+    mmv::For(0, n, DiagonalsPerTask, filler);
     ++this->ColorOnlyBuildCount;
   }
   else
@@ -942,7 +943,7 @@ bool vtkPreIntegrationTable::Update()
     const DiagonalFiller filler{ cells, colorOpacity.data(), position.data(), shadow.data(),
       tf.Tinted ? tint.data() : nullptr, true,
       internals.Diagonals.empty() ? nullptr : &internals.Diagonals };
-    vtkSMPTools::For(0, n, DiagonalsPerTask, filler);
+    mmv::For(0, n, DiagonalsPerTask, filler);
 
     internals.ColorOpacity.swap(colorOpacity);
     internals.Position.swap(position);

@@ -1,5 +1,6 @@
 #include "vtkSceneTransmittance.h"
 
+#include "vtkMultiMaterialThreads.h" // mmv::For
 #include "vtkSMPTools.h"
 
 #include <algorithm>
@@ -52,7 +53,7 @@ void ComputeSceneTransmittance(const IrradianceGrid& grid, const std::vector<Lig
   const vtkIdType voxels = grid.GetNumberOfVoxels();
   groups.assign((count + perGroup - 1) / perGroup,
     std::vector<float>(static_cast<size_t>(std::max<vtkIdType>(voxels, 0)) * 4, 1.0f));
-  vtkSMPTools::For(0, voxels,
+  mmv::For(0, voxels,
     [&](vtkIdType first, vtkIdType last)
     {
       for (vtkIdType v = first; v < last; ++v)

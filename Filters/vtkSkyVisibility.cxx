@@ -2,6 +2,7 @@
 
 #include "vtkTableLookup.h"
 
+#include "vtkMultiMaterialThreads.h" // mmv::For
 #include "vtkSMPTools.h"
 
 #include <algorithm>
@@ -233,7 +234,7 @@ void AverageOntoGrid(const IrradianceGrid& fine, const float* values, const Irra
   const std::vector<int> my = NearestCoarse(n[1], m[1]);
   const std::vector<int> mz = NearestCoarse(n[2], m[2]);
   // Each coarse z-slice sums its own fine slices: no two threads write one voxel.
-  vtkSMPTools::For(0, m[2],
+  mmv::For(0, m[2],
     [&](vtkIdType first, vtkIdType last)
     {
       const size_t slice = static_cast<size_t>(m[0]) * m[1];
@@ -309,7 +310,7 @@ void Sweep(const IrradianceGrid& grid, const float* extinction, const glm::dvec3
     };
     if (parallelRows)
     {
-      vtkSMPTools::For(0, grid.Dimensions[sweep.V], rows);
+      mmv::For(0, grid.Dimensions[sweep.V], rows);
     }
     else
     {
@@ -347,7 +348,7 @@ void ComputeSkyVisibility(const IrradianceGrid& grid, const float* extinction,
   for (size_t first = 0; first < count; first += Block)
   {
     const size_t n = std::min(Block, count - first);
-    vtkSMPTools::For(0, static_cast<vtkIdType>(n),
+    mmv::For(0, static_cast<vtkIdType>(n),
       [&](vtkIdType b0, vtkIdType b1)
       {
         for (vtkIdType b = b0; b < b1; ++b)
@@ -355,7 +356,7 @@ void ComputeSkyVisibility(const IrradianceGrid& grid, const float* extinction,
           Sweep(grid, extinction, directions[first + b], t[b], false);
         }
       });
-    vtkSMPTools::For(0, voxels,
+    mmv::For(0, voxels,
       [&](vtkIdType v0, vtkIdType v1)
       {
         for (vtkIdType i = v0; i < v1; ++i)

@@ -3,6 +3,7 @@
 #include "vtkIrradianceGrid.h" // NormalizeComponent
 
 #include "vtkDataArray.h"
+#include "vtkMultiMaterialThreads.h" // mmv::For
 #include "vtkSMPTools.h"
 
 #include <glm/gtc/packing.hpp>
@@ -82,7 +83,7 @@ void GradientRows(const std::vector<float>& values, int below, const int dims[3]
 {
   const vtkIdType sliceSize = static_cast<vtkIdType>(dims[0]) * dims[1];
   const int slices = lastSlice - firstSlice + 1;
-  vtkSMPTools::For(0, static_cast<vtkIdType>(dims[1]) * slices,
+  mmv::For(0, static_cast<vtkIdType>(dims[1]) * slices,
     [&](vtkIdType begin, vtkIdType end)
     {
       std::vector<float> gradients(3 * static_cast<size_t>(dims[0]));
@@ -194,7 +195,7 @@ void SmoothVectors(
       w /= total;
     }
     source = values;
-    vtkSMPTools::For(0, count,
+    mmv::For(0, count,
       [&](vtkIdType begin, vtkIdType end)
       {
         for (vtkIdType v = begin; v < end; ++v)
@@ -226,7 +227,7 @@ std::vector<float> ResampleVectors(
   }
   const vtkIdType sy = dims[0];
   const vtkIdType sz = static_cast<vtkIdType>(dims[0]) * dims[1];
-  vtkSMPTools::For(0, newDims[2],
+  mmv::For(0, newDims[2],
     [&](vtkIdType k0, vtkIdType k1)
     {
       for (vtkIdType k = k0; k < k1; ++k)
@@ -271,7 +272,7 @@ std::vector<float> ResampleVectors(
 std::vector<unsigned short> PackHalfFloats(const std::vector<float>& values)
 {
   std::vector<unsigned short> halves(values.size());
-  vtkSMPTools::For(0, static_cast<vtkIdType>(values.size()),
+  mmv::For(0, static_cast<vtkIdType>(values.size()),
     [&](vtkIdType begin, vtkIdType end) {
       PackHalves(values.data() + begin, halves.data() + begin, static_cast<size_t>(end - begin));
     });

@@ -4,6 +4,7 @@
 #include "vtkDoubleArray.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
+#include "vtkMultiMaterialThreads.h" // mmv::For
 #include "vtkPointData.h"
 #include "vtkSMPTools.h"
 
@@ -163,7 +164,7 @@ vtkSmartPointer<vtkDataArray> MakeFieldArray(
   for (int f = 0; f < fields; ++f)
   {
     vtkDataArray* in = f == 0 ? first : others[f - 1];
-    vtkSMPTools::For(0, tuples,
+    mmv::For(0, tuples,
       [&](vtkIdType begin, vtkIdType end)
       {
         for (vtkIdType i = begin; i < end; ++i)

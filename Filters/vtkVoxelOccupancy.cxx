@@ -2,6 +2,7 @@
 
 #include "vtkTableLookup.h"
 
+#include "vtkMultiMaterialThreads.h" // mmv::For
 #include "vtkSMPTools.h"
 
 #include <algorithm>
@@ -30,7 +31,7 @@ void VoxelOccupancy::SetValues(const std::vector<float>& values, const int dims[
   this->High.assign(bricks, -std::numeric_limits<float>::infinity());
   this->Occupied.assign(bricks, 1);
   // In parallel over brick layers: each writes only its own bricks.
-  vtkSMPTools::For(0, b[2],
+  mmv::For(0, b[2],
     [&](vtkIdType first, vtkIdType last)
     {
       for (int bz = static_cast<int>(first); bz < last; ++bz)

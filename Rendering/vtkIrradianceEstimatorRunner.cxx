@@ -11,6 +11,7 @@
 #include "mmvLayerGS.h"
 #include "mmvLayerVS.h"
 #include "mmvLightGridNeededFS.h"
+#include "vtkMultiMaterialThreads.h" // mmv::For
 #include "vtkSMPTools.h"
 
 #include <atomic>
@@ -27,7 +28,7 @@ vtkIdType vtkIrradianceEstimator::vtkInternals::ClassifyValues(const std::vector
   std::vector<unsigned char> nonEmptyVoxel(scalars.size());
   // On all cores: the whole grid at every opacity edit that needs it.
   std::atomic<vtkIdType> nonEmptyVoxels(0);
-  vtkSMPTools::For(0, static_cast<vtkIdType>(scalars.size()),
+  mmv::For(0, static_cast<vtkIdType>(scalars.size()),
     [&](vtkIdType begin, vtkIdType end)
     {
       vtkIdType count = 0;
@@ -44,7 +45,7 @@ vtkIdType vtkIrradianceEstimator::vtkInternals::ClassifyValues(const std::vector
   // Empty voxels name their non-empty face neighbours, which the final write averages.
   const vtkIdType nx = dims[0];
   const vtkIdType nxy = nx * dims[1];
-  vtkSMPTools::For(0, static_cast<vtkIdType>(scalars.size()),
+  mmv::For(0, static_cast<vtkIdType>(scalars.size()),
     [&](vtkIdType begin, vtkIdType end)
     {
       for (vtkIdType v = begin; v < end; ++v)
@@ -112,7 +113,7 @@ void vtkIrradianceEstimator::vtkInternals::CountNonEmptyVoxels()
   if (!exact || this->ValueHistogram[2 * n - 1] > 0)
   {
     std::atomic<vtkIdType> count(0);
-    vtkSMPTools::For(0, static_cast<vtkIdType>(this->Scalars.size()),
+    mmv::For(0, static_cast<vtkIdType>(this->Scalars.size()),
       [&](vtkIdType begin, vtkIdType end)
       {
         vtkIdType local = 0;
@@ -148,7 +149,7 @@ bool vtkIrradianceEstimator::vtkInternals::BuildValueHistogram()
     // Once per scalars and table size.
     std::vector<vtkIdType> histogram(2 * static_cast<size_t>(n), 0);
     std::mutex merge;
-    vtkSMPTools::For(0, static_cast<vtkIdType>(this->Scalars.size()),
+    mmv::For(0, static_cast<vtkIdType>(this->Scalars.size()),
       [&](vtkIdType begin, vtkIdType end)
       {
         std::vector<vtkIdType> local(histogram.size(), 0);
@@ -486,7 +487,7 @@ std::vector<unsigned char> vtkIrradianceEstimator::vtkInternals::LightGridNeeded
   }
   std::vector<unsigned char> needed(static_cast<size_t>(c[0]) * c[1] * c[2], 0);
   // In parallel over the light grid's planes: each writes only its own.
-  vtkSMPTools::For(0, c[2],
+  mmv::For(0, c[2],
     [&](vtkIdType zBegin, vtkIdType zEnd)
     {
       for (int z = static_cast<int>(zBegin); z < zEnd; ++z)

@@ -4,6 +4,7 @@
 #include "vtkDataArray.h"
 #include "vtkDataSetAttributes.h"
 #include "vtkMultiMaterialParameters.h"
+#include "vtkMultiMaterialThreads.h" // mmv::For
 #include "vtkPiecewiseFunction.h"
 #include "vtkPreIntegrationTable.h"
 #include "vtkSMPTools.h"
@@ -344,7 +345,7 @@ vtkDataArray* vtkMultiMaterialFields::GetGradientScalars(vtkDataArray* scalars)
     offset[f] = this->Ranges[f][0];
     scale[f] = 1.0 / (this->Ranges[f][1] - this->Ranges[f][0]);
   }
-  vtkSMPTools::For(0, tuples,
+  mmv::For(0, tuples,
     [&](vtkIdType begin, vtkIdType end)
     {
       for (vtkIdType i = begin; i < end; ++i)

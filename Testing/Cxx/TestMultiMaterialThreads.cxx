@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <mutex>
 #include <numeric>
 #include <set>
@@ -84,4 +85,86 @@ TEST(MultiMaterialThreads, AParallelSumEqualsTheSequentialOne)
   const double sum = std::accumulate(doubled.begin(), doubled.end(), 0.0);
   const double n = static_cast<double>(values.size());
   EXPECT_DOUBLE_EQ(sum, n * (n - 1.0));
+}
+
+namespace
+{
+/// The distinct threads that ran the chunks of an mmv::For of `n` items.
+std::set<std::thread::id> ThreadsOfAnMMVLoop(vtkIdType n)
+{
+  std::mutex mutex;
+  std::set<std::thread::id> threads;
+  mmv::For(0, n, 1,
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      volatile double sink = 0.0;
+      for (vtkIdType i = begin; i < end; ++i)
+      {
+        for (int k = 0; k < 20000; ++k)
+        {
+          sink = sink + 1e-9 * k;
+        }
+      }
+      std::lock_guard<std::mutex> lock(mutex);
+      threads.insert(std::this_thread::get_id());
+    });
+  return threads;
+}
+}
+
+// Inside RunOnAllCores, mmv::For runs on workers that stay between loops (no
+// thread is started for the second loop); outside, on the calling thread.
+TEST(MultiMaterialThreads, LoopsReuseTheSameWorkers)
+{
+  if (!mmv::ThreadsAddedToSequentialVTK() || std::thread::hardware_concurrency() < 2)
+  {
+    GTEST_SKIP() << "no threads added here";
+  }
+  EXPECT_EQ(ThreadsOfAnMMVLoop(256).size(), 1u);
+  std::set<std::thread::id> first, second;
+  mmv::RunOnAllCores(
+    [&]()
+    {
+      EXPECT_GE(mmv::AllCoresThreads(), 2);
+      first = ThreadsOfAnMMVLoop(256);
+      second = ThreadsOfAnMMVLoop(256);
+    });
+  EXPECT_EQ(mmv::AllCoresThreads(), 0);
+  EXPECT_GE(first.size(), 2u);
+  std::set<std::thread::id> both = first;
+  both.insert(second.begin(), second.end());
+  EXPECT_EQ(both.size(), first.size()) << "the second loop ran on new threads";
+}
+
+// Every item once, whatever the grain, and a loop inside a loop's chunk runs
+// (on that chunk's thread) instead of waiting for the busy workers.
+TEST(MultiMaterialThreads, EveryItemOnceAndNestedLoopsRun)
+{
+  for (const vtkIdType grain : { vtkIdType(0), vtkIdType(1), vtkIdType(7), vtkIdType(5000) })
+  {
+    std::vector<int> visits(1000, 0);
+    std::vector<int> inner(1000 * 8, 0);
+    mmv::RunOnAllCores(
+      [&]()
+      {
+        mmv::For(0, 1000, grain,
+          [&](vtkIdType b, vtkIdType e)
+          {
+            for (vtkIdType i = b; i < e; ++i)
+            {
+              ++visits[i];
+              mmv::For(0, 8, 1,
+                [&](vtkIdType ib, vtkIdType ie)
+                {
+                  for (vtkIdType k = ib; k < ie; ++k)
+                  {
+                    ++inner[8 * i + k];
+                  }
+                });
+            }
+          });
+      });
+    EXPECT_EQ(std::count(visits.begin(), visits.end(), 1), 1000) << "grain " << grain;
+    EXPECT_EQ(std::count(inner.begin(), inner.end(), 1), 8000) << "grain " << grain;
+  }
 }
