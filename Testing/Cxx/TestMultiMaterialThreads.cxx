@@ -17,26 +17,34 @@
 
 namespace
 {
-/// The distinct threads that ran the chunks of a loop of `n` items.
-size_t ThreadsOfALoop(vtkIdType n)
+/// The distinct threads that ran the chunks of a loop of `n` items, through
+/// mmv::For or (`vtkLoop`) vtkSMPTools::For.
+std::set<std::thread::id> ThreadsOfALoop(vtkIdType n, bool vtkLoop = true)
 {
   std::mutex mutex;
   std::set<std::thread::id> threads;
-  vtkSMPTools::For(0, n, 1,
-    [&](vtkIdType begin, vtkIdType end)
+  const auto chunk = [&](vtkIdType begin, vtkIdType end)
+  {
+    volatile double sink = 0.0;
+    for (vtkIdType i = begin; i < end; ++i)
     {
-      volatile double sink = 0.0;
-      for (vtkIdType i = begin; i < end; ++i)
+      for (int k = 0; k < 20000; ++k)
       {
-        for (int k = 0; k < 20000; ++k)
-        {
-          sink = sink + 1e-9 * k;
-        }
+        sink = sink + 1e-9 * k;
       }
-      std::lock_guard<std::mutex> lock(mutex);
-      threads.insert(std::this_thread::get_id());
-    });
-  return threads.size();
+    }
+    std::lock_guard<std::mutex> lock(mutex);
+    threads.insert(std::this_thread::get_id());
+  };
+  if (vtkLoop)
+  {
+    vtkSMPTools::For(0, n, 1, chunk);
+  }
+  else
+  {
+    mmv::For(0, n, 1, chunk);
+  }
+  return threads;
 }
 }
 
@@ -51,14 +59,14 @@ TEST(MultiMaterialThreads, LoopsUseSeveralThreadsAndTheBackendIsRestored)
   {
     GTEST_SKIP() << "one core";
   }
-  EXPECT_EQ(ThreadsOfALoop(256), 1u); // Sequential: the calling thread
+  EXPECT_EQ(ThreadsOfALoop(256).size(), 1u); // Sequential: the calling thread
   std::string inside;
   size_t threads = 0;
   mmv::RunOnAllCores(
     [&]()
     {
       inside = vtkSMPTools::GetBackend();
-      threads = ThreadsOfALoop(256);
+      threads = ThreadsOfALoop(256).size();
     });
   EXPECT_EQ(inside, "STDThread");
   EXPECT_GE(threads, 2u);
@@ -87,31 +95,6 @@ TEST(MultiMaterialThreads, AParallelSumEqualsTheSequentialOne)
   EXPECT_DOUBLE_EQ(sum, n * (n - 1.0));
 }
 
-namespace
-{
-/// The distinct threads that ran the chunks of an mmv::For of `n` items.
-std::set<std::thread::id> ThreadsOfAnMMVLoop(vtkIdType n)
-{
-  std::mutex mutex;
-  std::set<std::thread::id> threads;
-  mmv::For(0, n, 1,
-    [&](vtkIdType begin, vtkIdType end)
-    {
-      volatile double sink = 0.0;
-      for (vtkIdType i = begin; i < end; ++i)
-      {
-        for (int k = 0; k < 20000; ++k)
-        {
-          sink = sink + 1e-9 * k;
-        }
-      }
-      std::lock_guard<std::mutex> lock(mutex);
-      threads.insert(std::this_thread::get_id());
-    });
-  return threads;
-}
-}
-
 // Inside RunOnAllCores, mmv::For runs on workers that stay between loops (no
 // thread is started for the second loop); outside, on the calling thread.
 TEST(MultiMaterialThreads, LoopsReuseTheSameWorkers)
@@ -120,14 +103,14 @@ TEST(MultiMaterialThreads, LoopsReuseTheSameWorkers)
   {
     GTEST_SKIP() << "no threads added here";
   }
-  EXPECT_EQ(ThreadsOfAnMMVLoop(256).size(), 1u);
+  EXPECT_EQ(ThreadsOfALoop(256, false).size(), 1u);
   std::set<std::thread::id> first, second;
   mmv::RunOnAllCores(
     [&]()
     {
       EXPECT_GE(mmv::AllCoresThreads(), 2);
-      first = ThreadsOfAnMMVLoop(256);
-      second = ThreadsOfAnMMVLoop(256);
+      first = ThreadsOfALoop(256, false);
+      second = ThreadsOfALoop(256, false);
     });
   EXPECT_EQ(mmv::AllCoresThreads(), 0);
   EXPECT_GE(first.size(), 2u);
