@@ -422,7 +422,9 @@ bool vtkIrradianceEstimator::UpdateGroup(vtkOpenGLRenderWindow* context, int gro
     result = internals.FineScratch[1];
     this->LastDiffusionSeconds += elapsed();
   }
-  ok = ok && internals.FillPass(context, result, group, mask, this->LayeredRendering);
+  ok = ok &&
+    internals.FillPass(
+      context, result, group, mask, this->SkipEmptyVoxels, this->LayeredRendering);
   this->LastWriteSeconds += elapsed();
   if (ok && diffusion)
   {
@@ -525,6 +527,11 @@ const std::vector<mmv::LightSource>& vtkIrradianceEstimator::GetComputedLights()
 
 void vtkIrradianceEstimator::InvalidateComputedLights()
 {
+  // (The textures were written from elsewhere: anything may be non-zero.)
+  for (mmv::IndexBox& box : this->Internals->FilledBoxes)
+  {
+    box = mmv::IndexBox::Whole(this->Internals->Grid.Dimensions);
+  }
   this->Internals->VolumeChanged = true;
   this->Modified();
 }

@@ -374,6 +374,10 @@ public:
   vtkSmartPointer<vtkTextureObject> TableTexture;
   vtkSmartPointer<vtkTextureObject> CoarseStrengthTexture;
   std::vector<vtkSmartPointer<vtkTextureObject>> Irradiance;
+  // Per irradiance texture, the voxels that may hold non-zero values: zero
+  // when it is made, and what the last final write covered (the whole
+  // grid after a copy from elsewhere).
+  std::vector<mmv::IndexBox> FilledBoxes;
   // The tint of a non-white transmission colour: its table (4 floats per
   // entry; empty when grey), and one RGBA16F texture per light on the tint
   // grid (mmv::TintDimension).
@@ -495,8 +499,8 @@ public:
     vtkOpenGLRenderWindow* context, vtkShaderProgram* sweep, bool layered, int mask, int& current);
   int ExponentialSweeps(
     vtkOpenGLRenderWindow* context, vtkShaderProgram* sweep, bool layered, int& current);
-  bool FillPass(
-    vtkOpenGLRenderWindow* context, vtkTextureObject* source, int group, int mask, bool layered);
+  bool FillPass(vtkOpenGLRenderWindow* context, vtkTextureObject* source, int group, int mask,
+    bool skipEmpty, bool layered);
   /// Which lights this update recomputes: all of them (`all`), or those
   /// the caller marked (SetLightsToUpdate), or else the new ones and those
   /// beyond `toleranceRadians` of the placement their channel holds;

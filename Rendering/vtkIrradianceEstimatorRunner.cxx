@@ -338,6 +338,7 @@ bool vtkIrradianceEstimator::vtkInternals::AllocateTargets(
   const size_t textures = (this->Lights.size() + LightsPerTexture - 1) / LightsPerTexture;
   reallocated = this->Irradiance.size() != textures;
   this->Irradiance.resize(textures);
+  this->FilledBoxes.resize(textures, mmv::IndexBox::Whole(d));
   bool ok = true;
   for (size_t t = 0; t < textures; ++t)
   {
@@ -359,6 +360,7 @@ bool vtkIrradianceEstimator::vtkInternals::AllocateTargets(
       std::vector<unsigned short> zeros(channels * static_cast<size_t>(d[0]) * d[1] * d[2], 0);
       ok = ok &&
         texture->Create3DFromRaw(d[0], d[1], d[2], channels, VTK_UNSIGNED_SHORT, zeros.data());
+      this->FilledBoxes[t] = mmv::IndexBox();
       reallocated = true;
     }
   }
@@ -762,8 +764,8 @@ unsigned int vtkIrradianceEstimator::vtkInternals::CountWrites(vtkOpenGLRenderWi
 //------------------------------------------------------------------------------
 // The final write of the lights in `mask`: the other channels of the
 // irradiance texture keep what they hold.
-bool vtkIrradianceEstimator::vtkInternals::FillPass(
-  vtkOpenGLRenderWindow* context, vtkTextureObject* source, int group, int mask, bool layered)
+bool vtkIrradianceEstimator::vtkInternals::FillPass(vtkOpenGLRenderWindow* context,
+  vtkTextureObject* source, int group, int mask, bool skipEmpty, bool layered)
 {
   // The other volumes' transmittance, where there are other volumes.
   vtkTextureObject* scene = static_cast<size_t>(group) < this->SceneTransmittance.size()
@@ -794,8 +796,22 @@ bool vtkIrradianceEstimator::vtkInternals::FillPass(
     program->SetUniform3f("sceneScale", scale);
     program->SetUniform3f("sceneBias", bias);
   }
-  this->DrawLayers(context, this->FillQuad, this->Irradiance[group], layered,
-    DrawBox(this->Plan.Region, this->Grid.Dimensions), mask);
+  // Beyond the occupied bricks and their neighbours every voxel is empty
+  // with empty neighbours: the write gives it 0, which it holds already
+  // unless an earlier write reached it (a support that shrank). The draw
+  // covers both, on the region.
+  const mmv::IndexBox& region = this->Plan.Region;
+  const mmv::IndexBox needed = skipEmpty
+    ? this->OccupiedBox(region, 1).Grown(1, this->Grid.Dimensions).Intersected(region)
+    : region;
+  mmv::IndexBox& filled = this->FilledBoxes[group];
+  const mmv::IndexBox drawn = needed.United(filled.Intersected(region));
+  filled = filled.Intersected(region) == filled ? needed : needed.United(filled);
+  if (!drawn.IsEmpty())
+  {
+    this->DrawLayers(context, this->FillQuad, this->Irradiance[group], layered,
+      DrawBox(drawn, this->Grid.Dimensions), mask);
+  }
   return true;
 }
 

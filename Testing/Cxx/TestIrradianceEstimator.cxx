@@ -1057,6 +1057,60 @@ TEST(IrradianceEstimator, DrawingOnlyOccupiedBricksKeepsEveryValue)
   }
 }
 
+// The final write covers the occupied bricks and their neighbours, and
+// what an earlier write reached: after an opacity edit that empties the rod,
+// its irradiance is gone, as a new estimator computes it.
+TEST(IrradianceEstimator, ASupportThatShrinksLeavesNoIrradianceBehind)
+{
+  const Context& ctx = SharedContext();
+  ASSERT_NE(ctx.GL, nullptr);
+  for (const double scattering : { 0.0, 8.0 })
+  {
+    Scene scene = TwoBlocks(scattering);
+    scene.Image = MakeImage({ 40, 36, 32 }, { 1.0, 1.0, 1.0 },
+      [](int i, int j, int k)
+      {
+        const double r =
+          std::sqrt((i - 14.0) * (i - 14.0) + (j - 15.0) * (j - 15.0) + (k - 12.0) * (k - 12.0));
+        if (std::abs(r - 8.0) < 0.8)
+        {
+          return 2.0f; // the shell
+        }
+        return (j == 30 && k == 25 && i > 5) ? 1.0f : 0.0f; // the rod
+      });
+    scene.Lights = { Directional(1.0, 0.6, 0.8), Directional(-0.3, 1.0, 0.2) };
+    vtkNew<vtkIrradianceEstimator> edited;
+    SetPassInputs(scene, edited);
+    ASSERT_TRUE(edited->Render(ctx.GL));
+    std::vector<std::vector<float>> before;
+    ASSERT_TRUE(edited->ReadBackLights(ctx.GL, 0, 2, before));
+    const vtkIdType rod = 8 + 30 * 40 + 25 * 40 * 36;
+    EXPECT_GT(before[0][rod], 0.1f) << "the rod is lit before the edit";
+    // The rod's value becomes transparent, and so do its bricks (which hold
+    // only values up to its own).
+    scene.Opacity->RemoveAllPoints();
+    scene.Opacity->AddPoint(0.0, 0.0);
+    scene.Opacity->AddPoint(1.5, 0.0);
+    scene.Opacity->AddPoint(1.6, 0.3);
+    scene.Opacity->AddPoint(2.0, 0.3);
+    SetPassInputs(scene, edited);
+    ASSERT_TRUE(edited->Render(ctx.GL));
+    vtkNew<vtkIrradianceEstimator> fresh;
+    SetPassInputs(scene, fresh);
+    ASSERT_TRUE(fresh->Render(ctx.GL));
+    std::vector<std::vector<float>> after[2];
+    ASSERT_TRUE(edited->ReadBackLights(ctx.GL, 0, 2, after[0]));
+    ASSERT_TRUE(fresh->ReadBackLights(ctx.GL, 0, 2, after[1]));
+    EXPECT_EQ(after[0][0][rod], 0.0f) << "s " << scattering;
+    for (int l = 0; l < 2; ++l)
+    {
+      EXPECT_EQ(after[0][l], after[1][l]) << "s " << scattering << ", light " << l;
+    }
+    edited->ReleaseGraphicsResources(ctx.GL);
+    fresh->ReleaseGraphicsResources(ctx.GL);
+  }
+}
+
 TEST(IrradianceEstimator, ComputeAndFragmentPassesAgree)
 {
   // The same voxel passes as compute dispatches (the default where OpenGL
