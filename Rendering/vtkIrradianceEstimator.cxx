@@ -416,15 +416,15 @@ bool vtkIrradianceEstimator::UpdateGroup(vtkOpenGLRenderWindow* context, int gro
   vtkTextureObject* result = internals.FineScratch[0];
   if (ok && diffusion)
   {
-    const int sweeps = internals.Diffuse(context, this->LayeredRendering, mask);
+    const int sweeps =
+      internals.Diffuse(context, this->LayeredRendering, mask, this->SkipEmptyVoxels);
     ok = sweeps >= 0;
     this->DiffusionPasses += std::max(0, sweeps);
     result = internals.FineScratch[1];
     this->LastDiffusionSeconds += elapsed();
   }
   ok = ok &&
-    internals.FillPass(
-      context, result, group, mask, this->SkipEmptyVoxels, this->LayeredRendering);
+    internals.FillPass(context, result, group, mask, this->SkipEmptyVoxels, this->LayeredRendering);
   this->LastWriteSeconds += elapsed();
   if (ok && diffusion)
   {

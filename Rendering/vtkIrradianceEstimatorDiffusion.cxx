@@ -118,9 +118,11 @@ void vtkIrradianceEstimator::vtkInternals::PlanDiffusion(
 // the diffusion grid, the exponential's Chebyshev series (the default) or
 // backward-Euler sub-steps each solved by Chebyshev-accelerated Jacobi sweeps
 // (their number from the error bound, mmv::ChebyshevSweeps), then the
-// prolongation of the change. Returns the passes drawn, or -1 on failure.
+// prolongation of the change (with `skipEmpty`, onto the occupied bricks
+// alone: the final write reads nothing else). Returns the passes drawn, or
+// -1 on failure.
 int vtkIrradianceEstimator::vtkInternals::Diffuse(
-  vtkOpenGLRenderWindow* context, bool layered, int mask)
+  vtkOpenGLRenderWindow* context, bool layered, int mask, bool skipEmpty)
 {
   const bool exponential = !this->ExponentialSeries.empty();
   vtkShaderProgram* restriction =
@@ -160,8 +162,14 @@ int vtkIrradianceEstimator::vtkInternals::Diffuse(
   prolong->SetUniformi("classes", this->ClassTexture->GetTextureUnit());
   prolong->SetUniformi("after", coarse[current]->GetTextureUnit());
   this->SetTransferUniforms(prolong);
-  this->DrawLayers(context, this->ProlongQuad, this->FineScratch[1], layered,
-    DrawBox(this->Plan.Source, this->Grid.Dimensions));
+  // The final write reads the non-empty voxels alone (the occupied bricks').
+  const mmv::IndexBox fine =
+    skipEmpty ? this->OccupiedBox(this->Plan.Source, 1) : this->Plan.Source;
+  if (!fine.IsEmpty())
+  {
+    this->DrawLayers(context, this->ProlongQuad, this->FineScratch[1], layered,
+      DrawBox(fine, this->Grid.Dimensions));
+  }
   return sweeps;
 }
 

@@ -493,7 +493,7 @@ public:
   /// channels of FineScratch[0] over the estimated box.
   bool UpsamplePass(
     vtkOpenGLRenderWindow* context, int mask, int stride, bool skipEmpty, bool layered);
-  int Diffuse(vtkOpenGLRenderWindow* context, bool layered, int mask);
+  int Diffuse(vtkOpenGLRenderWindow* context, bool layered, int mask, bool skipEmpty);
   void SetDiffusionGridUniforms(vtkShaderProgram* program);
   int BackwardEulerSweeps(
     vtkOpenGLRenderWindow* context, vtkShaderProgram* sweep, bool layered, int mask, int& current);

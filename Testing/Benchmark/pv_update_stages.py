@@ -1,9 +1,10 @@
 """Seconds of each irradiance stage after light-kit camera moves (run with pvpython).
 
     xvfb-run -a -s "-noreset -screen 0 1280x1024x24" scripts/pvpython \\
-        Testing/Benchmark/pv_update_stages.py --data chest.vti [--plugin SO] [--frames 6]
+        Testing/Benchmark/pv_update_stages.py --data chest.vti [--plugin SO] [--frames 6] \\
+        [--preset skin]
 
-One Multi-Material Volume (default material) of --data in a 400 x 400 view
+One Multi-Material Volume (default material, or --preset's) of --data in a 400 x 400 view
 under ParaView's light kit, with pv_lightkit_orbit.py's colour and opacity
 maps. Each frame turns the camera 10 degrees and calls StillRender(), so
 every kit light moves and the whole irradiance is recomputed. Prints the
@@ -33,6 +34,7 @@ def main():
     p.add_argument("--plugin", default=orbit.DEFAULT_PLUGIN)
     p.add_argument("--data", required=True, help="a .vti with one point array")
     p.add_argument("--frames", type=int, default=6)
+    p.add_argument("--preset", default="", help="a MaterialPreset, e.g. skin")
     args, _ = p.parse_known_args()
 
     simple.LoadPlugin(args.plugin, remote=False, ns=globals())
@@ -44,6 +46,8 @@ def main():
     array = source.PointData.keys()[0]
     simple.ColorBy(rep, ("POINTS", array))
     rep.SetRepresentationType("Multi-Material Volume")
+    if args.preset:
+        rep.MaterialPreset = args.preset
     simple.GetColorTransferFunction(array).RGBPoints = orbit.RGB_POINTS
     simple.GetOpacityTransferFunction(array).Points = orbit.OPACITY_POINTS
     simple.ResetCamera(view)
