@@ -1006,6 +1006,26 @@ TEST(IrradianceEstimator, LayeredAndPerSliceDrawsAgree)
   }
 }
 
+namespace
+{
+/// A thin shell of value `shell` and a rod of value `rod` apart from it
+/// (from voxel 8, 30, 25 along x), in a mostly empty 40 x 36 x 32 grid.
+vtkSmartPointer<vtkImageData> ShellAndRod(float shell, float rod)
+{
+  return MakeImage({ 40, 36, 32 }, { 1.0, 1.0, 1.0 },
+    [shell, rod](int i, int j, int k)
+    {
+      const double r =
+        std::sqrt((i - 14.0) * (i - 14.0) + (j - 15.0) * (j - 15.0) + (k - 12.0) * (k - 12.0));
+      if (std::abs(r - 8.0) < 0.8)
+      {
+        return shell;
+      }
+      return (j == 30 && k == 25 && i > 5) ? rod : 0.0f;
+    });
+}
+}
+
 // Drawing only the bricks that may hold non-empty voxels
 // (Filters/vtkVoxelOccupancy.h) changes no value of the result: a thin
 // shell and a rod in a mostly empty grid, directional lights on the
@@ -1021,17 +1041,7 @@ TEST(IrradianceEstimator, DrawingOnlyOccupiedBricksKeepsEveryValue)
   for (const double scattering : { 0.0, 8.0 })
   {
     Scene scene = TwoBlocks(scattering);
-    scene.Image = MakeImage({ 40, 36, 32 }, { 1.0, 1.0, 1.0 },
-      [](int i, int j, int k)
-      {
-        const double r =
-          std::sqrt((i - 14.0) * (i - 14.0) + (j - 15.0) * (j - 15.0) + (k - 12.0) * (k - 12.0));
-        if (std::abs(r - 8.0) < 0.8)
-        {
-          return 1.0f; // the shell
-        }
-        return (j == 30 && k == 25 && i > 5) ? 2.0f : 0.0f; // the rod
-      });
+    scene.Image = ShellAndRod(1.0f, 2.0f);
     scene.Lights = { Directional(1.0, 0.6, 0.8), Directional(-0.3, 1.0, 0.2),
       Positional({ 30.0, 18.0, 14.0 }, { 14.0, 15.0, 12.0 }, 120.0), Directional(0.2, -0.4, -1.0) };
     scene.Strides = { 1, 2, 1, 2 };
@@ -1067,24 +1077,14 @@ TEST(IrradianceEstimator, ASupportThatShrinksLeavesNoIrradianceBehind)
   for (const double scattering : { 0.0, 8.0 })
   {
     Scene scene = TwoBlocks(scattering);
-    scene.Image = MakeImage({ 40, 36, 32 }, { 1.0, 1.0, 1.0 },
-      [](int i, int j, int k)
-      {
-        const double r =
-          std::sqrt((i - 14.0) * (i - 14.0) + (j - 15.0) * (j - 15.0) + (k - 12.0) * (k - 12.0));
-        if (std::abs(r - 8.0) < 0.8)
-        {
-          return 2.0f; // the shell
-        }
-        return (j == 30 && k == 25 && i > 5) ? 1.0f : 0.0f; // the rod
-      });
+    scene.Image = ShellAndRod(2.0f, 1.0f);
     scene.Lights = { Directional(1.0, 0.6, 0.8), Directional(-0.3, 1.0, 0.2) };
     vtkNew<vtkIrradianceEstimator> edited;
     SetPassInputs(scene, edited);
     ASSERT_TRUE(edited->Render(ctx.GL));
     std::vector<std::vector<float>> before;
     ASSERT_TRUE(edited->ReadBackLights(ctx.GL, 0, 2, before));
-    const vtkIdType rod = 8 + 30 * 40 + 25 * 40 * 36;
+    const vtkIdType rod = 8 + 30 * 40 + 25 * 40 * 36; // a voxel of it
     EXPECT_GT(before[0][rod], 0.1f) << "the rod is lit before the edit";
     // The rod's value becomes transparent, and so do its bricks (which hold
     // only values up to its own).
