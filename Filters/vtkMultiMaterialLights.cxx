@@ -229,6 +229,42 @@ std::vector<ShadingLight> CollectLights(vtkLightCollection* lights,
 }
 
 //------------------------------------------------------------------------------
+void OrderForIrradianceTextures(std::vector<ShadingLight>& lights, std::vector<int>& order)
+{
+  std::vector<int> now;
+  for (const ShadingLight& light : lights)
+  {
+    now.push_back(light.Index);
+  }
+  std::vector<int> held = order;
+  std::sort(held.begin(), held.end());
+  std::sort(now.begin(), now.end());
+  if (held == now)
+  {
+    std::vector<ShadingLight> kept;
+    for (const int index : order)
+    {
+      kept.push_back(*std::find_if(lights.begin(), lights.end(),
+        [index](const ShadingLight& light) { return light.Index == index; }));
+    }
+    lights.swap(kept);
+  }
+  else
+  {
+    const auto brightest = [](const ShadingLight& light) {
+      return std::max({ light.Radiance.x, light.Radiance.y, light.Radiance.z });
+    };
+    std::stable_sort(lights.begin(), lights.end(),
+      [&](const ShadingLight& a, const ShadingLight& b) { return brightest(a) < brightest(b); });
+  }
+  order.clear();
+  for (const ShadingLight& light : lights)
+  {
+    order.push_back(light.Index);
+  }
+}
+
+//------------------------------------------------------------------------------
 std::vector<LightSource> IrradianceLightSources(
   const std::vector<ShadingLight>& lights, const int dims[3], bool strideDimLights)
 {

@@ -60,6 +60,18 @@ VTKMULTIMATERIALVOLUMEFILTERS_EXPORT std::vector<ShadingLight> CollectLights(
   int* dropped = nullptr, std::vector<std::string>* problems = nullptr);
 
 /**
+ * Orders `lights` for the irradiance textures, four lights to a texture:
+ * dimmest first, so that the dim lights of ParaView's light kit share one
+ * texture and the one pass that interpolates their strided grid
+ * (DimLightCoarsening). `order` carries the collection indices' order from
+ * call to call: while the same lights come back they keep their places, so a
+ * light whose intensity changes moves no other light's channel (nor its
+ * irradiance).
+ */
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT void OrderForIrradianceTextures(
+  std::vector<ShadingLight>& lights, std::vector<int>& order);
+
+/**
  * The lights' geometry for the irradiance volume on a grid of `dims`. With
  * `strideDimLights`, each light gets the grid stride its share of the image
  * allows (mmv::LightGridStride of its brightest colour channel against the

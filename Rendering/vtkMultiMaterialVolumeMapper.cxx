@@ -97,6 +97,7 @@ public:
 
   // The lights of this frame, in object space.
   std::vector<mmv::ShadingLight> Lights;
+  std::vector<int> LightOrder; // the collection indices' order (OrderForIrradianceTextures)
   // The ray cast's uniforms of this frame, set whenever VTK binds its program.
   vtkMultiMaterialShadingUniforms Uniforms;
   vtkNew<vtkMultiMaterialReflection> Reflection; // eq. 17's c_r and visibility
@@ -929,6 +930,7 @@ void vtkMultiMaterialVolumeMapper::CollectShadedLights(
   }
   in.Lights = mmv::CollectLights(
     ren->GetLights(), worldToObject, radius, mmv::MaxLights, &dropped, &problems);
+  mmv::OrderForIrradianceTextures(in.Lights, in.LightOrder);
   for (const std::string& problem : problems)
   {
     this->WarnOnce(problem);

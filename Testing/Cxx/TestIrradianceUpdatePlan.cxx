@@ -300,3 +300,69 @@ TEST(IrradianceUpdatePlan, MovedLightsAreNamedWhateverElseChanged)
   // Nothing held: every light is new.
   EXPECT_EQ(Plan::Make(nullptr, now, 0.0, Centre).GetMovedLights(), std::vector<bool>(3, true));
 }
+
+namespace
+{
+/// ParaView's light kit as the mapper collects it: the key light first,
+/// then fill, head and two back lights at a third to a quarter of it.
+std::vector<mmv::ShadingLight> LightKit(double fill = 0.33)
+{
+  const double radiance[5] = { 1.0, fill, 0.3, 0.25, 0.25 };
+  std::vector<mmv::ShadingLight> lights(5);
+  for (int k = 0; k < 5; ++k)
+  {
+    lights[k].Radiance = glm::dvec3(radiance[k]);
+    lights[k].Index = k;
+  }
+  return lights;
+}
+
+std::vector<int> Indices(const std::vector<mmv::ShadingLight>& lights)
+{
+  std::vector<int> indices;
+  for (const mmv::ShadingLight& light : lights)
+  {
+    indices.push_back(light.Index);
+  }
+  return indices;
+}
+}
+
+// Dimmest first: the kit's four dim lights fill the first irradiance
+// texture and its one strided grid, the key light the second texture.
+TEST(IrradianceUpdatePlan, TheLightKitsDimLightsShareOneTexture)
+{
+  std::vector<mmv::ShadingLight> lights = LightKit();
+  std::vector<int> order;
+  mmv::OrderForIrradianceTextures(lights, order);
+  EXPECT_EQ(Indices(lights), (std::vector<int>{ 3, 4, 2, 1, 0 }));
+  EXPECT_EQ(order, Indices(lights));
+  const int dims[3] = { 64, 64, 64 };
+  const std::vector<mmv::LightSource> sources = mmv::IrradianceLightSources(lights, dims, true);
+  for (int k = 0; k < 4; ++k)
+  {
+    EXPECT_EQ(sources[k].GridStride, mmv::DimLightStride) << "light " << k;
+  }
+  EXPECT_EQ(sources[4].GridStride, 1);
+}
+
+// The same lights keep their places whatever their intensity does: a fill
+// light raised to the key's brightness moves no other light's channel, so
+// only its own irradiance is recomputed (what the mapper's
+// DimLightsOnACoarserGridKeepTheImage counts). A new set of lights is
+// ordered again.
+TEST(IrradianceUpdatePlan, LightsKeepTheirChannelsWhileTheSameLightsComeBack)
+{
+  std::vector<mmv::ShadingLight> lights = LightKit();
+  std::vector<int> order;
+  mmv::OrderForIrradianceTextures(lights, order);
+  const std::vector<int> first = order;
+  std::vector<mmv::ShadingLight> brighter = LightKit(1.0);
+  mmv::OrderForIrradianceTextures(brighter, order);
+  EXPECT_EQ(Indices(brighter), first);
+  EXPECT_EQ(brighter[3].Radiance.x, 1.0); // the fill light, with its new radiance
+  std::vector<mmv::ShadingLight> fewer = LightKit(1.0);
+  fewer.erase(fewer.begin() + 2); // the head light switched off
+  mmv::OrderForIrradianceTextures(fewer, order);
+  EXPECT_EQ(Indices(fewer), (std::vector<int>{ 3, 4, 0, 1 }));
+}
