@@ -86,9 +86,10 @@ void vtkMultiMaterialTextures::UploadTable(vtkOpenGLRenderWindow* context,
     static_cast<int>(texture->GetHeight()) == rows && texture->GetComponents() == components &&
     texture->GetContext() == context)
   {
-    texture->Bind();
+    texture->Activate();
     glTexSubImage2D(
       GL_TEXTURE_2D, 0, 0, 0, n, rows, components == 4 ? GL_RGBA : GL_RED, GL_FLOAT, data);
+    texture->Deactivate();
     return;
   }
   texture->SetContext(context);
