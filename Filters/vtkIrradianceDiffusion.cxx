@@ -163,8 +163,7 @@ private:
   {
     for (int a = 0; a < 3; ++a)
     {
-      const double h = spacing[a] > 0.0 ? spacing[a] : 1.0;
-      this->InvH2[a] = 1.0 / (h * h);
+      this->Spacing[a] = spacing[a];
       this->Coefficient[a].assign(this->Size, 0.0f);
     }
     std::vector<double> rowMax(this->Rows, 0.0);
@@ -186,8 +185,8 @@ private:
             {
               if (hasNext[a])
               {
-                this->Coefficient[a][v] = static_cast<float>(
-                  DiffusionFaceStrength(s, strength[v + this->Stride[a]]) * this->InvH2[a]);
+                this->Coefficient[a][v] =
+                  mmv::DiffusionFaceCoefficient(s, strength[v + this->Stride[a]], this->Spacing[a]);
               }
             }
           }
@@ -350,7 +349,7 @@ private:
   vtkIdType Rows = 0;
   vtkIdType RowsPerBlock = 1;
   vtkIdType Blocks = 0;
-  double InvH2[3];
+  double Spacing[3];
   double Dt = 0.0;
   double MaxRowSum = 0.0;
   std::vector<float> Coefficient[3];
@@ -469,6 +468,39 @@ double ChebyshevWeight(int k, double rho)
     omega = i == 2 ? 1.0 / (1.0 - 0.5 * rho * rho) : 1.0 / (1.0 - 0.25 * rho * rho * omega);
   }
   return omega;
+}
+
+void DiffusionBlockTexels(const int dims[3], const double spacing[3], const float* strength,
+  const float* capacity, std::vector<float>& facesXY, std::vector<float>& facesZ)
+{
+  const vtkIdType stride[3] = { 1, dims[0], static_cast<vtkIdType>(dims[0]) * dims[1] };
+  const vtkIdType count = stride[2] * dims[2];
+  facesXY.assign(4 * count, 0.0f);
+  facesZ.assign(4 * count, 0.0f);
+  mmv::For(0, count,
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      for (vtkIdType v = begin; v < end; ++v)
+      {
+        const int index[3] = { static_cast<int>(v % dims[0]),
+          static_cast<int>((v / dims[0]) % dims[1]), static_cast<int>(v / stride[2]) };
+        float faces[6];
+        for (int a = 0; a < 3; ++a)
+        {
+          faces[2 * a] = index[a] > 0
+            ? DiffusionFaceCoefficient(strength[v - stride[a]], strength[v], spacing[a])
+            : 0.0f;
+          faces[2 * a + 1] = index[a] + 1 < dims[a]
+            ? DiffusionFaceCoefficient(strength[v], strength[v + stride[a]], spacing[a])
+            : 0.0f;
+        }
+        std::copy(faces, faces + 4, facesXY.begin() + 4 * v);
+        facesZ[4 * v] = faces[4];
+        facesZ[4 * v + 1] = faces[5];
+        facesZ[4 * v + 2] = capacity && capacity[v] > 0.0f ? capacity[v] : 1.0f;
+        facesZ[4 * v + 3] = strength[v] > 0.0f ? 1.0f : 0.0f;
+      }
+    });
 }
 
 DiffusionGrid PlanDiffusionGrid(

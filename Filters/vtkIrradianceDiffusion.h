@@ -92,11 +92,32 @@ VTKMULTIMATERIALVOLUMEFILTERS_EXPORT DiffusionReport DiffuseIrradiance(const int
 
 /// Face coefficient between two voxels: the harmonic mean of their s, so a
 /// voxel with s = 0 blocks the flux completely (an arithmetic mean would
-/// not). GLSL: mmvHarmonicMean in Shaders/mmvDiffusionFS.glsl.
+/// not). The GPU reads it precomputed (DiffusionBlockTexels).
 inline double DiffusionFaceStrength(double a, double b)
 {
   return (a > 0.0 && b > 0.0) ? 2.0 * a * b / (a + b) : 0.0;
 }
+
+/// The coefficient c_f of the face between two neighbours along an axis of
+/// spacing h: DiffusionFaceStrength / h^2, rounded to float as the solvers
+/// store it.
+inline float DiffusionFaceCoefficient(double a, double b, double h)
+{
+  const double spacing = h > 0.0 ? h : 1.0;
+  return static_cast<float>(DiffusionFaceStrength(a, b) / (spacing * spacing));
+}
+
+/**
+ * What one GPU diffusion pass reads per block, two RGBA texels in two
+ * arrays (4 floats per block each): `facesXY` holds the face coefficients
+ * toward -x, +x, -y and +y, `facesZ` those toward -z and +z, the capacity
+ * (1 where a block has none, as the solvers treat it) and 1 where the block
+ * scatters (0 otherwise). A face to a missing neighbour has coefficient 0,
+ * the zero-flux boundary. `capacity` may be null (1 everywhere).
+ */
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT void DiffusionBlockTexels(const int dims[3],
+  const double spacing[3], const float* strength, const float* capacity,
+  std::vector<float>& facesXY, std::vector<float>& facesZ);
 
 /// The largest row sum of the diffusion operator over the capacity (a
 /// Gershgorin bound of its rates), in 1 / unit time; 0 when nothing can move.

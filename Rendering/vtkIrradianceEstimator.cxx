@@ -211,6 +211,9 @@ bool vtkIrradianceEstimator::Render(vtkOpenGLRenderWindow* context)
     vtkOpenGLState::ScopedglEnableDisable depth(state, GL_DEPTH_TEST);
     vtkOpenGLState::ScopedglEnableDisable scissor(state, GL_SCISSOR_TEST);
     vtkOpenGLState::ScopedglColorMask colorMask(state);
+    // The diffusion's draws test depths against the blocks that exchange.
+    vtkOpenGLState::ScopedglDepthMask depthMask(state);
+    vtkOpenGLState::ScopedglDepthFunc depthFunc(state);
     // The diffusion sweeps scissor to their blocks: the renderer's own
     // scissor box must come back for the ray cast.
     vtkOpenGLState::ScopedglScissor scissorBox(state);

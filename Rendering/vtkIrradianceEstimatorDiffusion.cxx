@@ -67,10 +67,12 @@ void vtkIrradianceEstimator::vtkInternals::PlanDiffusion(
   this->CoarseMaxRate = time > 0.0 ? mmv::MaxDiffusionRate(this->Coarse.Dimensions,
                                        this->Coarse.Spacing, coarseStrength.data(), capacity.data())
                                    : 0.0;
-  // One RG texel per block: strength, capacity; and the box of the blocks
-  // that scatter, the only ones the sweeps change.
-  this->CoarseStrength.resize(2 * coarseStrength.size());
-  this->CoarseStrengthChanged = true;
+  // Two RGBA texels per block (face coefficients, capacity, whether it
+  // scatters); and the box of the blocks that scatter, the only ones the
+  // sweeps change.
+  mmv::DiffusionBlockTexels(this->Coarse.Dimensions, this->Coarse.Spacing, coarseStrength.data(),
+    capacity.data(), this->CoarseFaces[0], this->CoarseFaces[1]);
+  this->CoarseFacesChanged = true;
   const int* cd = this->Coarse.Dimensions;
   int* box = this->ScatteringBox.Bounds;
   for (int a = 0; a < 3; ++a)
@@ -80,8 +82,6 @@ void vtkIrradianceEstimator::vtkInternals::PlanDiffusion(
   }
   for (size_t c = 0; c < coarseStrength.size(); ++c)
   {
-    this->CoarseStrength[2 * c] = coarseStrength[c];
-    this->CoarseStrength[2 * c + 1] = capacity[c];
     if (coarseStrength[c] > 0.0f)
     {
       const int index[3] = { static_cast<int>(c % cd[0]), static_cast<int>((c / cd[0]) % cd[1]),
@@ -114,6 +114,36 @@ void vtkIrradianceEstimator::vtkInternals::PlanDiffusion(
 }
 
 //------------------------------------------------------------------------------
+// ExchangeMask from CoarseFaces: depth 1 where a block has a face that
+// exchanges light (the shaders' test, mmvFaces() > 0), 0 elsewhere.
+bool vtkIrradianceEstimator::vtkInternals::UploadExchangeMask()
+{
+  const int* c = this->Coarse.Dimensions;
+  const std::vector<float>& xy = this->CoarseFaces[0];
+  const std::vector<float>& z = this->CoarseFaces[1];
+  std::vector<float> depth(xy.size() / 4);
+  for (size_t v = 0; v < depth.size(); ++v)
+  {
+    const float total =
+      xy[4 * v] + xy[4 * v + 1] + xy[4 * v + 2] + xy[4 * v + 3] + z[4 * v] + z[4 * v + 1];
+    depth[v] = total > 0.0f ? 1.0f : 0.0f;
+  }
+  GLint bound = 0;
+  glGetIntegerv(GL_TEXTURE_BINDING_2D_ARRAY, &bound);
+  if (!this->ExchangeMask)
+  {
+    glGenTextures(1, &this->ExchangeMask);
+  }
+  glBindTexture(GL_TEXTURE_2D_ARRAY, this->ExchangeMask);
+  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_DEPTH_COMPONENT32F, c[0], c[1], c[2], 0,
+    GL_DEPTH_COMPONENT, GL_FLOAT, depth.data());
+  glBindTexture(GL_TEXTURE_2D_ARRAY, static_cast<GLuint>(bound));
+  return glGetError() == GL_NO_ERROR;
+}
+
+//------------------------------------------------------------------------------
 // Multiple scattering of FineScratch[0] into FineScratch[1]: restriction to
 // the diffusion grid, the exponential's Chebyshev series (the default) or
 // backward-Euler sub-steps each solved by Chebyshev-accelerated Jacobi sweeps
@@ -131,9 +161,11 @@ int vtkIrradianceEstimator::vtkInternals::Diffuse(
     ? this->Ready(
         context, this->ExponentialQuad, mmvDiffusionFS, "#define MMV_EXPONENTIAL\n", false)
     : this->Ready(context, this->SweepQuad, mmvDiffusionFS, "", false);
+  vtkShaderProgram* changeProgram =
+    this->Ready(context, this->ChangeQuad, mmvDiffusionGridFS, "#define MMV_CHANGE\n", false);
   vtkShaderProgram* prolong =
     this->Ready(context, this->ProlongQuad, mmvDiffusionGridFS, "", false);
-  if (!restriction || !sweep || !prolong)
+  if (!restriction || !sweep || !changeProgram || !prolong)
   {
     return -1;
   }
@@ -144,8 +176,9 @@ int vtkIrradianceEstimator::vtkInternals::Diffuse(
     restriction->SetUniformi("fine", this->FineScratch[0]->GetTextureUnit());
     restriction->SetUniformi("classes", this->ClassTexture->GetTextureUnit());
     this->SetTransferUniforms(restriction);
+    // Only the blocks that exchange light read their restriction.
     this->DrawLayers(context, this->RestrictQuad, coarse[0], layered,
-      DrawBox(this->Plan.Coarse, this->Coarse.Dimensions));
+      DrawBox(this->Plan.Coarse, this->Coarse.Dimensions), 0xF, true);
   }
 
   int current = 0;
@@ -153,14 +186,26 @@ int vtkIrradianceEstimator::vtkInternals::Diffuse(
     ? this->ExponentialSweeps(context, sweep, layered, current)
     : this->BackwardEulerSweeps(context, sweep, layered, mask, current);
 
+  const int change = current == 1 ? 2 : 1; // neither `before` nor `after`
+  {
+    context->GetShaderCache()->ReadyShaderProgram(changeProgram);
+    ScopedTextures bound{ coarse[current], coarse[0], this->CoarseFacesTextures[0],
+      this->CoarseFacesTextures[1] };
+    changeProgram->SetUniformi("after", coarse[current]->GetTextureUnit());
+    changeProgram->SetUniformi("before", coarse[0]->GetTextureUnit());
+    changeProgram->SetUniformi("facesXY", this->CoarseFacesTextures[0]->GetTextureUnit());
+    changeProgram->SetUniformi("facesZ", this->CoarseFacesTextures[1]->GetTextureUnit());
+    this->SetTransferUniforms(changeProgram);
+    this->DrawLayers(context, this->ChangeQuad, coarse[change], layered,
+      DrawBox(this->Plan.Coarse, this->Coarse.Dimensions));
+  }
   context->GetShaderCache()->ReadyShaderProgram(prolong);
-  ScopedTextures bound{ this->FineScratch[0], this->ClassTexture, coarse[current],
-    this->CoarseStrengthTexture, coarse[0] };
-  prolong->SetUniformi("before", coarse[0]->GetTextureUnit());
-  prolong->SetUniformi("coarseStrength", this->CoarseStrengthTexture->GetTextureUnit());
+  ScopedTextures bound{ this->FineScratch[0], this->ClassTexture, coarse[change],
+    this->CoarseFacesTextures[1] };
+  prolong->SetUniformi("change", coarse[change]->GetTextureUnit());
+  prolong->SetUniformi("blocks", this->CoarseFacesTextures[1]->GetTextureUnit());
   prolong->SetUniformi("fine", this->FineScratch[0]->GetTextureUnit());
   prolong->SetUniformi("classes", this->ClassTexture->GetTextureUnit());
-  prolong->SetUniformi("after", coarse[current]->GetTextureUnit());
   this->SetTransferUniforms(prolong);
   // The final write reads the non-empty voxels alone (the occupied bricks').
   const mmv::IndexBox fine =
@@ -174,17 +219,25 @@ int vtkIrradianceEstimator::vtkInternals::Diffuse(
 }
 
 //------------------------------------------------------------------------------
-// The diffusion grid's strength texture (activated here, deactivated by the
-// caller), dimensions and 1 / h^2, for the sweeps and the exponential's steps.
+// The diffusion grid's block textures (activated here, deactivated by the
+// caller) and dimensions, for the sweeps and the exponential's steps.
 void vtkIrradianceEstimator::vtkInternals::SetDiffusionGridUniforms(vtkShaderProgram* program)
 {
-  const glm::vec3 invH2(1.0 / (this->Coarse.Spacing[0] * this->Coarse.Spacing[0]),
-    1.0 / (this->Coarse.Spacing[1] * this->Coarse.Spacing[1]),
-    1.0 / (this->Coarse.Spacing[2] * this->Coarse.Spacing[2]));
-  this->CoarseStrengthTexture->Activate();
-  program->SetUniformi("classes", this->CoarseStrengthTexture->GetTextureUnit());
+  for (auto& texture : this->CoarseFacesTextures)
+  {
+    texture->Activate();
+  }
+  program->SetUniformi("facesXY", this->CoarseFacesTextures[0]->GetTextureUnit());
+  program->SetUniformi("facesZ", this->CoarseFacesTextures[1]->GetTextureUnit());
   program->SetUniform1iv("dims", 3, this->Coarse.Dimensions);
-  program->SetUniform3f("invH2", glm::value_ptr(invH2));
+}
+
+void vtkIrradianceEstimator::vtkInternals::ReleaseDiffusionGridTextures()
+{
+  for (auto& texture : this->CoarseFacesTextures)
+  {
+    texture->Deactivate();
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -233,7 +286,7 @@ int vtkIrradianceEstimator::vtkInternals::BackwardEulerSweeps(
         sweep->SetUniformi("previous", coarse[previous]->GetTextureUnit());
         sweep->SetUniformf(
           "omega", static_cast<float>(mmv::ChebyshevWeight(k, this->SpectralRadius)));
-        this->DrawLayers(context, this->SweepQuad, coarse[next], layered, box.Bounds);
+        this->DrawLayers(context, this->SweepQuad, coarse[next], layered, box.Bounds, 0xF, true);
       }
       ++sweeps;
       previous = current;
@@ -264,7 +317,7 @@ int vtkIrradianceEstimator::vtkInternals::BackwardEulerSweeps(
     }
     rhs = current;
   }
-  this->CoarseStrengthTexture->Deactivate();
+  this->ReleaseDiffusionGridTextures();
   return sweeps;
 }
 
@@ -302,11 +355,11 @@ int vtkIrradianceEstimator::vtkInternals::ExponentialSweeps(
     sweep->SetUniformf("alpha", static_cast<float>(c[k]));
     sweep->SetUniformf("beta", k == n ? 0.0f : (k == 0 ? 1.0f : 2.0f));
     sweep->SetUniformf("gammaWeight", k >= n - 1 ? 0.0f : -1.0f);
-    this->DrawLayers(context, this->ExponentialQuad, coarse[next], layered, box.Bounds);
+    this->DrawLayers(context, this->ExponentialQuad, coarse[next], layered, box.Bounds, 0xF, true);
     ++passes;
     previous = current;
     current = next;
   }
-  this->CoarseStrengthTexture->Deactivate();
+  this->ReleaseDiffusionGridTextures();
   return passes;
 }

@@ -324,9 +324,9 @@ public:
   /// entries are positive (a point's value dragged within the support) and
   /// the scattering keeps every class.
   bool ClassesHold() const;
-  // The diffusion grid's strengths changed since CoarseStrengthTexture was
-  // made (PlanDiffusion).
-  bool CoarseStrengthChanged = true;
+  // The diffusion grid's blocks changed since CoarseFacesTextures were made
+  // (PlanDiffusion).
+  bool CoarseFacesChanged = true;
   // The bricks that may hold non-empty voxels (value ranges once per
   // scalars, marked at every upload): the shadow draws shrink to them.
   mmv::VoxelOccupancy Occupancy;
@@ -334,11 +334,12 @@ public:
   /// later pass reads: around the non-empty irradiance voxels, or the
   /// strided points their interpolation reads.
   mmv::IndexBox OccupiedBox(const mmv::IndexBox& box, int stride) const;
-  // The diffusion grid (vtkIrradianceDiffusion.h) with its strength and
-  // capacity per block (interleaved) and solve lengths, planned on the CPU.
+  // The diffusion grid (vtkIrradianceDiffusion.h) with its blocks' texels
+  // (mmv::DiffusionBlockTexels: face coefficients, capacity, whether they
+  // scatter) and solve lengths, planned on the CPU.
   mmv::DiffusionSettings Diffusion;
   mmv::DiffusionGrid Coarse;
-  std::vector<float> CoarseStrength;
+  std::array<std::vector<float>, 2> CoarseFaces;
   double CoarseMaxRate = 0.0;
   int SubSteps = 0;
   int SweepsPerStep = 0;
@@ -372,7 +373,9 @@ public:
   // pass reads.
   vtkSmartPointer<vtkTextureObject> ClassTableTexture;
   vtkSmartPointer<vtkTextureObject> TableTexture;
-  vtkSmartPointer<vtkTextureObject> CoarseStrengthTexture;
+  // RGBA32F, of CoarseFaces; the second one linear: its alpha, the blocks
+  // that scatter, weighs the prolongation's corners.
+  std::array<vtkSmartPointer<vtkTextureObject>, 2> CoarseFacesTextures;
   std::vector<vtkSmartPointer<vtkTextureObject>> Irradiance;
   // Per irradiance texture, the voxels that may hold non-zero values: zero
   // when it is made, and what the last final write covered (the whole
@@ -428,6 +431,7 @@ public:
   mmv::voxelpass::VoxelPrograms RestrictQuad;
   mmv::voxelpass::VoxelPrograms SweepQuad;
   mmv::voxelpass::VoxelPrograms ExponentialQuad;
+  mmv::voxelpass::VoxelPrograms ChangeQuad;
   mmv::voxelpass::VoxelPrograms ProlongQuad;
   mmv::voxelpass::VoxelPrograms FillQuad;
   mmv::voxelpass::VoxelPrograms UpsampleQuad;
@@ -437,6 +441,15 @@ public:
   // atomic counter that stands in for the occlusion query there.
   bool Compute = false;
   unsigned int WriteCounter = 0;
+  // A GL_TEXTURE_2D_ARRAY of depths on the diffusion grid: 1 where the block
+  // exchanges light, 0 elsewhere (ExchangeMaskHolds: made from the current
+  // CoarseFaces). The layered draws of the restriction and the sweeps test
+  // their quad's depth (0.5) against it, so a software rasterizer runs no
+  // shader for blocks the diffusion leaves alone; compute dispatches and
+  // per-slice draws return early in the shader instead.
+  unsigned int ExchangeMask = 0;
+  bool ExchangeMaskHolds = false;
+  bool UploadExchangeMask();
 
   /// The CPU's classification of the current inputs into Classes and
   /// NonEmptyVoxels.
@@ -461,8 +474,11 @@ public:
     vtkOpenGLRenderWindow* context, bool diffusion, bool layered, bool& reallocated);
   vtkShaderProgram* Ready(vtkOpenGLRenderWindow* context, mmv::voxelpass::VoxelPrograms& pass,
     const std::string& body, const std::string& defines, bool lightModel);
+  /// With `exchangingOnly`, a layered fragment draw on the diffusion grid
+  /// skips the blocks ExchangeMask marks 0.
   void DrawLayers(vtkOpenGLRenderWindow* context, mmv::voxelpass::VoxelPrograms& pass,
-    vtkTextureObject* target, bool layered, const int* box = nullptr, int writeMask = 0xF);
+    vtkTextureObject* target, bool layered, const int* box = nullptr, int writeMask = 0xF,
+    bool exchangingOnly = false);
   void Dispatch(vtkOpenGLRenderWindow* context, mmv::voxelpass::VoxelPrograms& pass,
     vtkTextureObject* target, const int* box, int writeMask, bool countWrites);
   unsigned int CountWrites(vtkOpenGLRenderWindow* context, mmv::voxelpass::VoxelPrograms& pass,
@@ -495,6 +511,7 @@ public:
     vtkOpenGLRenderWindow* context, int mask, int stride, bool skipEmpty, bool layered);
   int Diffuse(vtkOpenGLRenderWindow* context, bool layered, int mask, bool skipEmpty);
   void SetDiffusionGridUniforms(vtkShaderProgram* program);
+  void ReleaseDiffusionGridTextures();
   int BackwardEulerSweeps(
     vtkOpenGLRenderWindow* context, vtkShaderProgram* sweep, bool layered, int mask, int& current);
   int ExponentialSweeps(

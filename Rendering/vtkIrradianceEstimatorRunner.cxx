@@ -269,14 +269,23 @@ bool vtkIrradianceEstimator::vtkInternals::Upload(vtkOpenGLRenderWindow* context
     classesKept = false;
   }
   this->TableTexture = NewTexture(context, GL_R32F, GL_RED, GL_FLOAT, true);
-  // The strengths change with the diffusion plan, not at every edit.
+  // The blocks change with the diffusion plan, not at every edit.
   bool strengths = true;
-  if (this->CoarseStrengthChanged || !HasSize(this->CoarseStrengthTexture, c))
+  if (this->CoarseFacesChanged || !HasSize(this->CoarseFacesTextures[0], c))
   {
-    this->CoarseStrengthTexture = NewTexture(context, GL_RG32F, GL_RG, GL_FLOAT, false);
-    strengths = this->CoarseStrengthTexture->Create3DFromRaw(
-      c[0], c[1], c[2], 2, VTK_FLOAT, this->CoarseStrength.data());
-    this->CoarseStrengthChanged = !strengths;
+    for (size_t t = 0; t < this->CoarseFacesTextures.size(); ++t)
+    {
+      auto& texture = this->CoarseFacesTextures[t];
+      texture = NewTexture(context, GL_RGBA32F, GL_RGBA, GL_FLOAT, t == 1);
+      strengths = strengths &&
+        texture->Create3DFromRaw(c[0], c[1], c[2], 4, VTK_FLOAT, this->CoarseFaces[t].data());
+    }
+    this->CoarseFacesChanged = !strengths;
+    this->ExchangeMaskHolds = false;
+  }
+  if (strengths && !this->ExchangeMaskHolds && !this->Compute && layered)
+  {
+    this->ExchangeMaskHolds = this->UploadExchangeMask();
   }
   ++this->VolumeUploads;
   this->Uploaded = this->ScalarsUploaded && classes && strengths &&
@@ -614,7 +623,8 @@ vtkShaderProgram* vtkIrradianceEstimator::vtkInternals::Ready(vtkOpenGLRenderWin
 // Every slice of `target` in one instanced draw into the whole 3D texture
 // (layered rendering), or, with `layered` off, one draw per slice.
 void vtkIrradianceEstimator::vtkInternals::DrawLayers(vtkOpenGLRenderWindow* context,
-  VoxelPrograms& pass, vtkTextureObject* target, bool layered, const int* box, int writeMask)
+  VoxelPrograms& pass, vtkTextureObject* target, bool layered, const int* box, int writeMask,
+  bool exchangingOnly)
 {
   if (IsEmptyBox(box))
   {
@@ -642,13 +652,26 @@ void vtkIrradianceEstimator::vtkInternals::DrawLayers(vtkOpenGLRenderWindow* con
   this->Framebuffer->Bind();
   if (layered)
   {
+    const bool masked = exchangingOnly && this->ExchangeMaskHolds;
     glFramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, target->GetHandle(), 0);
+    if (masked)
+    {
+      glFramebufferTexture(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, this->ExchangeMask, 0);
+      state->vtkglEnable(GL_DEPTH_TEST);
+      state->vtkglDepthFunc(GL_LESS);
+      state->vtkglDepthMask(GL_FALSE);
+    }
     this->Framebuffer->ActivateDrawBuffers(1);
     quad.Program->SetUniformi("firstLayer", first);
     quad.VAO->Bind();
     glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, last - first + 1);
     quad.VAO->Release();
     glFramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, 0, 0);
+    if (masked)
+    {
+      glFramebufferTexture(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, 0, 0);
+      state->vtkglDisable(GL_DEPTH_TEST);
+    }
   }
   for (int z = first; !layered && z <= last; ++z)
   {
@@ -843,9 +866,9 @@ void vtkIrradianceEstimator::vtkInternals::ReleaseScratch(vtkWindow* window)
 void vtkIrradianceEstimator::vtkInternals::Release(vtkWindow* window)
 {
   this->ReleaseScratch(window);
-  for (auto* texture :
-    { &this->ScalarTexture, &this->ClassTexture, &this->TableTexture, &this->CoarseStrengthTexture,
-      &this->LightGridClassTexture, &this->ClassTableTexture, &this->LightGridRangeTexture })
+  for (auto* texture : { &this->ScalarTexture, &this->ClassTexture, &this->TableTexture,
+         &this->CoarseFacesTextures[0], &this->CoarseFacesTextures[1], &this->LightGridClassTexture,
+         &this->ClassTableTexture, &this->LightGridRangeTexture })
   {
     if (*texture)
     {
@@ -886,9 +909,16 @@ void vtkIrradianceEstimator::vtkInternals::Release(vtkWindow* window)
     glDeleteBuffers(1, &this->WriteCounter);
     this->WriteCounter = 0;
   }
-  for (VoxelPrograms* pass : { &this->ShadowQuad, &this->PiecewiseQuad, &this->RestrictQuad,
-         &this->SweepQuad, &this->ExponentialQuad, &this->ProlongQuad, &this->FillQuad,
-         &this->TintQuad, &this->UpsampleQuad, &this->ClassifyQuad, &this->NeededQuad })
+  if (this->ExchangeMask)
+  {
+    glDeleteTextures(1, &this->ExchangeMask);
+    this->ExchangeMask = 0;
+    this->ExchangeMaskHolds = false;
+  }
+  for (VoxelPrograms* pass :
+    { &this->ShadowQuad, &this->PiecewiseQuad, &this->RestrictQuad, &this->SweepQuad,
+      &this->ExponentialQuad, &this->ChangeQuad, &this->ProlongQuad, &this->FillQuad,
+      &this->TintQuad, &this->UpsampleQuad, &this->ClassifyQuad, &this->NeededQuad })
   {
     pass->Release(window);
   }

@@ -23,50 +23,50 @@
 // (vtkSceneTransmittance.h), read once here rather than per ray-cast sample.
 
 uniform sampler3D current; // x of the previous sweep (fill pass: the result)
-uniform sampler3D classes; // s per voxel, < 0 where the voxel is empty
-                           // (Jacobi sweeps: the diffusion grid's strength)
 uniform int dims[3];
 
-// The diffusion grid's s per block (sweeps and the exponential's steps).
-float mmvStrength(ivec3 voxel)
+#ifndef MMV_FILL_PASS
+// The diffusion grid's blocks (mmv::DiffusionBlockTexels): face coefficients
+// c_f (the harmonic mean of the two s over h^2, 0 where a face exchanges
+// nothing), capacity, whether the block scatters.
+uniform sampler3D facesXY; // toward -x, +x, -y, +y
+uniform sampler3D facesZ;  // toward -z, +z; capacity; scatters
+
+// c_f x_f, or 0 where the face exchanges nothing: selected, not multiplied,
+// as the neighbour may never have been drawn and 0 * NaN would be NaN.
+vec4 mmvFaceFlux(float c, vec4 x)
 {
-  return max(texelFetch(classes, voxel, 0).r, 0.0);
+  return c > 0.0 ? c * x : vec4(0.0);
 }
 
-// s = 0 on either side blocks the flux (the arithmetic mean would not).
-float mmvHarmonicMean(float a, float b)
+// The block's face coefficients: toward -x, +x, -y, +y in `xy`, -z, +z in
+// z.xy, its capacity in z.z; and their sum, 0 where it exchanges nothing.
+float mmvFaces(ivec3 voxel, out vec4 xy, out vec4 z)
 {
-  return (a > 0.0 && b > 0.0) ? 2.0 * a * b / (a + b) : 0.0;
+  xy = texelFetch(facesXY, voxel, 0);
+  z = texelFetch(facesZ, voxel, 0);
+  return xy.x + xy.y + xy.z + xy.w + z.x + z.y;
 }
 
-// Over the faces of `voxel` (s > 0) that exchange light: sum of c_f x_f and of
-// c_f, c_f = harmonic mean of the two s over h^2 (inverseH2: 1 / h^2 per
-// axis). Blocks that do not scatter are never drawn: never read them.
-void mmvNeighborSums(ivec3 voxel, float s, sampler3D x, vec3 inverseH2, out vec4 weighted,
-  out float total)
+// Over the faces of `voxel`: the sum of c_f x_f. Written out face by face: a
+// software rasterizer runs a loop over faces with a dynamically indexed
+// coordinate several times slower.
+vec4 mmvNeighborSum(ivec3 voxel, sampler3D x, vec4 xy, vec4 z)
 {
-  weighted = vec4(0.0);
-  total = 0.0;
-  for (int a = 0; a < 3; ++a)
-  {
-    for (int side = -1; side <= 1; side += 2)
-    {
-      ivec3 neighbor = voxel;
-      neighbor[a] += side;
-      if (neighbor[a] >= 0 && neighbor[a] < dims[a])
-      {
-        float c = mmvHarmonicMean(s, mmvStrength(neighbor)) * inverseH2[a];
-        if (c > 0.0)
-        {
-          weighted += c * texelFetch(x, neighbor, 0);
-          total += c;
-        }
-      }
-    }
-  }
+  ivec3 lo = max(voxel - 1, ivec3(0));
+  ivec3 hi = min(voxel + 1, ivec3(dims[0], dims[1], dims[2]) - 1);
+  return mmvFaceFlux(xy.x, texelFetch(x, ivec3(lo.x, voxel.yz), 0)) +
+    mmvFaceFlux(xy.y, texelFetch(x, ivec3(hi.x, voxel.yz), 0)) +
+    mmvFaceFlux(xy.z, texelFetch(x, ivec3(voxel.x, lo.y, voxel.z), 0)) +
+    mmvFaceFlux(xy.w, texelFetch(x, ivec3(voxel.x, hi.y, voxel.z), 0)) +
+    mmvFaceFlux(z.x, texelFetch(x, ivec3(voxel.xy, lo.z), 0)) +
+    mmvFaceFlux(z.y, texelFetch(x, ivec3(voxel.xy, hi.z), 0));
 }
+#endif
 
 #ifdef MMV_FILL_PASS
+
+uniform sampler3D classes; // s per voxel, < 0 where the voxel is empty
 
 #ifdef MMV_SCENE_TRANSMITTANCE
 uniform sampler3D sceneTransmittance; // one channel per light, on a coarser grid
@@ -115,36 +115,29 @@ void mmvVoxelMain()
 // B = I - C^-1 A / R (R the rate bound), mirroring
 // DiffusionSystem::Clenshaw() of Filters/vtkIrradianceDiffusion.cxx:
 //   out = alpha u0 + beta B(current) + gamma previous.
-// A voxel that exchanges nothing keeps u0 exactly.
+// A block that exchanges nothing keeps u0 exactly: it is left unwritten, and
+// the change pass (mmvDiffusionGridFS.glsl) gives it none.
 uniform sampler3D initial;  // u0: the restricted irradiance
 uniform sampler3D previous; // b_k+2
 uniform float alpha;
 uniform float beta;
 uniform float gammaWeight;
 uniform float invRate;      // 1 / R
-uniform vec3 invH2;         // 1 / h^2 per axis, h in data voxels
 
 void mmvVoxelMain()
 {
   ivec3 voxel = ivec3(floor(texCoord * vec2(dims[0], dims[1])), slice);
-  float s = mmvStrength(voxel);
-  vec4 u0 = texelFetch(initial, voxel, 0);
+  vec4 xy;
+  vec4 z;
+  float total = mmvFaces(voxel, xy, z);
+  if (!(total > 0.0))
+  {
+    // It keeps u0, which the change pass knows: its change is 0.
+    mmvLeaveUnwritten();
+  }
   vec4 b = texelFetch(current, voxel, 0);
-  vec4 weighted = vec4(0.0);
-  float total = 0.0;
-  if (s > 0.0)
-  {
-    mmvNeighborSums(voxel, s, current, invH2, weighted, total);
-  }
-  vec4 flux = weighted - total * b;
-  bool exchanges = total > 0.0;
-  if (!exchanges)
-  {
-    mmvWrite(u0);
-    return;
-  }
-  float capacity = texelFetch(classes, voxel, 0).g;
-  vec4 applied = b + invRate * flux / capacity;
+  vec4 applied = b + invRate * (mmvNeighborSum(voxel, current, xy, z) - total * b) / z.z;
+  vec4 u0 = texelFetch(initial, voxel, 0);
   // Weights of 0 select: the first steps' b_k+1 and b_k+2 are zero.
   vec4 result = alpha * u0;
   if (beta != 0.0)
@@ -168,26 +161,22 @@ uniform float omega;        // Chebyshev weight of this sweep (1: plain Jacobi)
 // and an occlusion query counts them.
 uniform float residualThreshold;
 uniform bvec4 residualChannels; // the lights being updated (the others: scratch)
-uniform vec3 invH2;         // 1 / h^2 per axis, h in data voxels
 uniform float dt;
 
 void mmvVoxelMain()
 {
   ivec3 voxel = ivec3(floor(texCoord * vec2(dims[0], dims[1])), slice);
-  float s = mmvStrength(voxel);
-  // The block's capacity (its fraction of scattering voxels); blocks without
-  // any have s = 0 and keep b.
-  float capacity = s > 0.0 ? texelFetch(classes, voxel, 0).g : 1.0;
-  vec4 numerator = capacity * texelFetch(rhs, voxel, 0);
-  float denominator = capacity;
-  if (s > 0.0)
+  vec4 xy;
+  vec4 z;
+  float total = mmvFaces(voxel, xy, z);
+  if (!(total > 0.0))
   {
-    vec4 weighted;
-    float total;
-    mmvNeighborSums(voxel, s, current, invH2, weighted, total);
-    numerator += dt * weighted;
-    denominator += dt * total;
+    // It keeps b, which the change pass knows: its change is 0.
+    mmvLeaveUnwritten();
   }
+  float capacity = z.z;
+  vec4 numerator = capacity * texelFetch(rhs, voxel, 0) + dt * mmvNeighborSum(voxel, current, xy, z);
+  float denominator = capacity + dt * total;
   if (residualThreshold > 0.0)
   {
     vec4 correction = abs(numerator / denominator - texelFetch(current, voxel, 0));

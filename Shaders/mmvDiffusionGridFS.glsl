@@ -5,10 +5,11 @@
 //
 // MMV_RESTRICT (target: diffusion grid): the mean of the irradiance over the
 // block's voxels with s > 0 (0 when none).
+// MMV_CHANGE (target: diffusion grid): the change the diffusion made.
 // Otherwise (prolongation, target: irradiance grid): voxels with s > 0 add
-// the change the diffusion made, interpolated trilinearly at their coarse
-// coordinate (i - (f - 1) / 2) / f over the corner blocks that scatter, and
-// are clamped at 0.
+// that change, interpolated trilinearly at their coarse coordinate
+// (i - (f - 1) / 2) / f over the corner blocks that scatter, and are clamped
+// at 0.
 
 uniform sampler3D fine;    // irradiance before the diffusion (irradiance grid)
 uniform sampler3D classes; // s per voxel, < 0 where the voxel is empty
@@ -42,11 +43,31 @@ void mmvVoxelMain()
   mmvWrite(count > 0 ? sum / float(count) : vec4(0.0));
 }
 
+#elif defined(MMV_CHANGE)
+
+// MMV_CHANGE (target: diffusion grid): the change the diffusion made where
+// the block exchanges light, 0 elsewhere (the sweeps never wrote those
+// blocks: they keep their value), which the prolongation interpolates.
+uniform sampler3D after;   // the diffused irradiance
+uniform sampler3D before;  // the restricted irradiance
+uniform sampler3D facesXY; // face coefficients (mmv::DiffusionBlockTexels)
+uniform sampler3D facesZ;
+
+void mmvVoxelMain()
+{
+  ivec3 block = ivec3(floor(texCoord * vec2(coarseDims[0], coarseDims[1])), slice);
+  vec4 xy = texelFetch(facesXY, block, 0);
+  vec4 z = texelFetch(facesZ, block, 0);
+  // Selected, not multiplied: a block the sweeps never drew may hold NaN.
+  mmvWrite(xy.x + xy.y + xy.z + xy.w + z.x + z.y > 0.0
+      ? texelFetch(after, block, 0) - texelFetch(before, block, 0)
+      : vec4(0.0));
+}
+
 #else
 
-uniform sampler3D after;          // the diffused irradiance (diffusion grid)
-uniform sampler3D before;         // the restricted irradiance (diffusion grid)
-uniform sampler3D coarseStrength; // s per block, 0 where no voxel scatters
+uniform sampler3D change; // MMV_CHANGE's result, linear
+uniform sampler3D blocks; // alpha: 1 where the block scatters, linear
 
 void mmvVoxelMain()
 {
@@ -55,29 +76,16 @@ void mmvVoxelMain()
   if (texelFetch(classes, voxel, 0).r > 0.0)
   {
     vec3 f = vec3(factor[0], factor[1], factor[2]);
-    ivec3 n = ivec3(coarseDims[0], coarseDims[1], coarseDims[2]);
-    vec3 u = clamp((vec3(voxel) - 0.5 * (f - 1.0)) / f, vec3(0.0), vec3(n - 1));
-    ivec3 lo = min(ivec3(u), n - 1);
-    ivec3 hi = min(lo + 1, n - 1);
-    vec3 w = u - vec3(lo);
-    // Trilinear over the corner blocks that scatter, renormalised.
-    vec4 sum = vec4(0.0);
-    float weights = 0.0;
-    for (int corner = 0; corner < 8; ++corner)
-    {
-      bvec3 upper = bvec3((corner & 1) != 0, (corner & 2) != 0, (corner & 4) != 0);
-      ivec3 c = ivec3(upper.x ? hi.x : lo.x, upper.y ? hi.y : lo.y, upper.z ? hi.z : lo.z);
-      float weight = (upper.x ? w.x : 1.0 - w.x) * (upper.y ? w.y : 1.0 - w.y) *
-        (upper.z ? w.z : 1.0 - w.z);
-      if (weight > 0.0 && texelFetch(coarseStrength, c, 0).r > 0.0)
-      {
-        sum += weight * (texelFetch(after, c, 0) - texelFetch(before, c, 0));
-        weights += weight;
-      }
-    }
+    vec3 n = vec3(coarseDims[0], coarseDims[1], coarseDims[2]);
+    vec3 u = clamp((vec3(voxel) - 0.5 * (f - 1.0)) / f, vec3(0.0), n - 1.0);
+    // Trilinear over the corner blocks that scatter, renormalised: the
+    // change is 0 at the others, and the filtered flag sums the weights of
+    // those that scatter.
+    vec3 coordinate = (u + 0.5) / n;
+    float weights = texture(blocks, coordinate).a;
     if (weights > 0.0)
     {
-      value = max(value + sum / weights, vec4(0.0));
+      value = max(value + texture(change, coordinate) / weights, vec4(0.0));
     }
   }
   mmvWrite(value);

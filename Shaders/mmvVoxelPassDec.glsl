@@ -16,6 +16,15 @@ in vec2 texCoord;   // the quad's, at the centre of voxel (i, j)
 vec4 mmvResult = vec4(0.0);
 bool mmvWritten = false;
 
+// Leaves the voxel as it was, at once: a fragment discarded here lets a
+// software rasterizer skip the rest of the shader for a batch whose
+// fragments all left, which a return from mmvVoxelMain() does not.
+#ifdef MMV_COMPUTE
+#define mmvLeaveUnwritten() return
+#else
+#define mmvLeaveUnwritten() discard
+#endif
+
 void mmvWrite(vec4 value)
 {
   mmvResult = value;

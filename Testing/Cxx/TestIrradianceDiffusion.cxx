@@ -531,6 +531,70 @@ TEST(IrradianceResolution, ScreenRuleUsesQuarterOctaves)
   EXPECT_NE(r.Reason.find("user"), std::string::npos);
 }
 
+TEST(IrradianceDiffusion, BlockTexelsHoldEachFaceFromBothSides)
+{
+  // What the GPU's sweeps read per block instead of computing it: the
+  // coefficient of each face, the harmonic mean of s over h^2 of its axis
+  // (anisotropic here), equal from both sides, 0 at the boundary and where
+  // either side does not scatter; the capacity (1 where none) and whether
+  // the block scatters. Their largest row sum over the capacity is
+  // MaxDiffusionRate, the rate the GPU's series is scaled by.
+  const int dims[3] = { 5, 4, 3 };
+  const double spacing[3] = { 1.0, 2.0, 0.5 };
+  const vtkIdType n = 5 * 4 * 3;
+  std::mt19937 random(11);
+  std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
+  std::vector<float> strength(n), capacity(n);
+  for (vtkIdType v = 0; v < n; ++v)
+  {
+    capacity[v] = uniform(random) < 0.25f ? 0.0f : 0.125f + 0.875f * uniform(random);
+    strength[v] = capacity[v] > 0.0f ? 20.0f * uniform(random) * capacity[v] : 0.0f;
+  }
+  std::vector<float> xy, z;
+  mmv::DiffusionBlockTexels(dims, spacing, strength.data(), capacity.data(), xy, z);
+  ASSERT_EQ(xy.size(), static_cast<size_t>(4 * n));
+  ASSERT_EQ(z.size(), static_cast<size_t>(4 * n));
+  // Face `f` (-x, +x, -y, +y, -z, +z) of block v.
+  auto face = [&](vtkIdType v, int f) { return f < 4 ? xy[4 * v + f] : z[4 * v + f - 4]; };
+  const vtkIdType stride[3] = { 1, 5, 20 };
+  int open = 0;
+  int blocked = 0;
+  double maxRate = 0.0;
+  for (vtkIdType v = 0; v < n; ++v)
+  {
+    const int index[3] = { static_cast<int>(v % 5), static_cast<int>((v / 5) % 4),
+      static_cast<int>(v / 20) };
+    double total = 0.0;
+    for (int a = 0; a < 3; ++a)
+    {
+      for (int side = 0; side < 2; ++side)
+      {
+        const int f = 2 * a + side;
+        const int neighbor = index[a] + (side == 0 ? -1 : 1);
+        const bool inside = neighbor >= 0 && neighbor < dims[a];
+        const vtkIdType u = v + (side == 0 ? -stride[a] : stride[a]);
+        const double expected = inside
+          ? mmv::DiffusionFaceStrength(strength[v], strength[u]) / (spacing[a] * spacing[a])
+          : 0.0;
+        ASSERT_NEAR(face(v, f), expected, 1e-6 * expected) << "block " << v << " face " << f;
+        if (inside)
+        {
+          ASSERT_EQ(face(v, f), face(u, f ^ 1)) << "block " << v << " face " << f;
+        }
+        (face(v, f) > 0.0f ? open : blocked) += 1;
+        total += face(v, f);
+      }
+    }
+    EXPECT_EQ(z[4 * v + 2], capacity[v] > 0.0f ? capacity[v] : 1.0f);
+    EXPECT_EQ(z[4 * v + 3], strength[v] > 0.0f ? 1.0f : 0.0f);
+    maxRate = std::max(maxRate, total / z[4 * v + 2]);
+  }
+  EXPECT_GT(open, 50);
+  EXPECT_GT(blocked, 50);
+  EXPECT_NEAR(mmv::MaxDiffusionRate(dims, spacing, strength.data(), capacity.data()), maxRate,
+    1e-6 * maxRate);
+}
+
 TEST(IrradianceDiffusion, CapacityConservesWeightedSumAndMatchesJacobi)
 {
   // (C + dt A) x = C b: the sum of C x is conserved, and plain Jacobi sweeps

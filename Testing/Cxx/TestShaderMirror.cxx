@@ -1,7 +1,6 @@
 // The GLSL in Shaders/ against its C++ mirror: each shader function is run on
 // the GPU (llvmpipe under Xvfb in CI) over a grid of inputs, read back from a
 // float framebuffer and compared with the CPU function of the same name.
-#include "mmvDiffusionFS.h"
 #include "mmvEmission.h"
 #include "mmvLightModel.h"
 #include "mmvPhaseFunction.h"
@@ -933,59 +932,4 @@ TEST(ShaderMirror, MaterialTexturePackingMatchesTheGeneratedTexelNames)
   }
   EXPECT_EQ(read, 7); // all but c_t and s
   textures->ReleaseGraphicsResources(runner.Window);
-}
-
-namespace
-{
-// The definition of GLSL function `signature` in `source`, up to the brace
-// that closes it at the start of a line: the diffusion shader's helpers
-// cannot be compiled without its voxel-pass framework.
-std::string GLSLFunction(const std::string& source, const std::string& signature)
-{
-  const size_t begin = source.find(signature);
-  const size_t end = begin == std::string::npos ? begin : source.find("\n}\n", begin);
-  return end == std::string::npos ? std::string() : source.substr(begin, end + 3 - begin);
-}
-
-// Column block -> a in {0, 0.5, 2, 20}, row -> b from -0.5 to 23 (0 and
-// negative strengths included: they block the flux).
-const char* HarmonicMeanBody = R"(
-void main()
-{
-  float a = float[4](0.0, 0.5, 2.0, 20.0)[int(floor(texCoord.x * 4.0))];
-  float b = -0.5 + 0.5 * floor(texCoord.y * float(SIZE));
-  gl_FragData[0] = vec4(mmvHarmonicMean(a, b), a, b, 0.0);
-}
-)";
-}
-
-TEST(ShaderMirror, DiffusionFaceStrengthMatchesCPU)
-{
-  // mmvHarmonicMean of Shaders/mmvDiffusionFS.glsl against
-  // mmv::DiffusionFaceStrength, the CPU diffusion's face coefficient.
-  const std::string harmonicMean = GLSLFunction(mmvDiffusionFS, "float mmvHarmonicMean(");
-  ASSERT_FALSE(harmonicMean.empty()) << "mmvHarmonicMean not found in mmvDiffusionFS.glsl";
-  ShaderRunner runner;
-  ASSERT_NE(runner.GL, nullptr);
-  std::vector<float> pixels;
-  const std::string body =
-    "#define SIZE " + std::to_string(Size) + "\n" + harmonicMean + HarmonicMeanBody;
-  ASSERT_TRUE(runner.Run(
-    body, [](vtkShaderProgram*) {}, pixels));
-  int blocked = 0;
-  for (int j = 0; j < Size; ++j)
-  {
-    for (int i = 0; i < Size; ++i)
-    {
-      const float* px = &pixels[4 * (j * Size + i)];
-      const double a = px[1];
-      const double b = px[2];
-      ASSERT_EQ(b, -0.5 + 0.5 * j);
-      const double cpu = mmv::DiffusionFaceStrength(a, b);
-      // float against double: one rounding of 2ab / (a + b).
-      ASSERT_NEAR(px[0], cpu, 1e-6 * std::max(1.0, cpu)) << "a " << a << " b " << b;
-      blocked += cpu == 0.0 ? 1 : 0;
-    }
-  }
-  EXPECT_GT(blocked, Size); // a = 0 column block, b <= 0 rows
 }
