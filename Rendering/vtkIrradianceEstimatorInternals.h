@@ -449,6 +449,7 @@ public:
   // per-slice draws return early in the shader instead.
   unsigned int ExchangeMask = 0;
   bool ExchangeMaskHolds = false;
+  bool ExchangeMaskRefused = false; // the framebuffer would not take it
   bool UploadExchangeMask();
 
   /// The CPU's classification of the current inputs into Classes and

@@ -283,7 +283,8 @@ bool vtkIrradianceEstimator::vtkInternals::Upload(vtkOpenGLRenderWindow* context
     this->CoarseFacesChanged = !strengths;
     this->ExchangeMaskHolds = false;
   }
-  if (strengths && !this->ExchangeMaskHolds && !this->Compute && layered)
+  if (strengths && !this->ExchangeMaskHolds && !this->ExchangeMaskRefused && !this->Compute &&
+    layered)
   {
     this->ExchangeMaskHolds = this->UploadExchangeMask();
   }
@@ -652,11 +653,24 @@ void vtkIrradianceEstimator::vtkInternals::DrawLayers(vtkOpenGLRenderWindow* con
   this->Framebuffer->Bind();
   if (layered)
   {
-    const bool masked = exchangingOnly && this->ExchangeMaskHolds;
+    bool masked = exchangingOnly && this->ExchangeMaskHolds;
     glFramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, target->GetHandle(), 0);
     if (masked)
     {
       glFramebufferTexture(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, this->ExchangeMask, 0);
+      // A driver that will not pair a 3D colour target with a depth array
+      // gets the unmasked draw: the shader leaves those blocks alone too,
+      // only later.
+      masked = glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
+      if (!masked)
+      {
+        glFramebufferTexture(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, 0, 0);
+        this->ExchangeMaskHolds = false;
+        this->ExchangeMaskRefused = true;
+      }
+    }
+    if (masked)
+    {
       state->vtkglEnable(GL_DEPTH_TEST);
       state->vtkglDepthFunc(GL_LESS);
       state->vtkglDepthMask(GL_FALSE);
@@ -915,6 +929,7 @@ void vtkIrradianceEstimator::vtkInternals::Release(vtkWindow* window)
     this->ExchangeMask = 0;
     this->ExchangeMaskHolds = false;
   }
+  this->ExchangeMaskRefused = false; // another context may take it
   for (VoxelPrograms* pass :
     { &this->ShadowQuad, &this->PiecewiseQuad, &this->RestrictQuad, &this->SweepQuad,
       &this->ExponentialQuad, &this->ChangeQuad, &this->ProlongQuad, &this->FillQuad,
