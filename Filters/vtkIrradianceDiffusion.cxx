@@ -471,12 +471,14 @@ double ChebyshevWeight(int k, double rho)
 }
 
 void DiffusionBlockTexels(const int dims[3], const double spacing[3], const float* strength,
-  const float* capacity, std::vector<float>& facesXY, std::vector<float>& facesZ)
+  const float* capacity, std::vector<float>& facesXY, std::vector<float>& facesZ,
+  std::vector<float>& exchanges)
 {
   const vtkIdType stride[3] = { 1, dims[0], static_cast<vtkIdType>(dims[0]) * dims[1] };
   const vtkIdType count = stride[2] * dims[2];
   facesXY.assign(4 * count, 0.0f);
   facesZ.assign(4 * count, 0.0f);
+  exchanges.assign(count, 0.0f);
   mmv::For(0, count,
     [&](vtkIdType begin, vtkIdType end)
     {
@@ -499,6 +501,8 @@ void DiffusionBlockTexels(const int dims[3], const double spacing[3], const floa
         facesZ[4 * v + 1] = faces[5];
         facesZ[4 * v + 2] = capacity && capacity[v] > 0.0f ? capacity[v] : 1.0f;
         facesZ[4 * v + 3] = strength[v] > 0.0f ? 1.0f : 0.0f;
+        exchanges[v] =
+          std::any_of(faces, faces + 6, [](float c) { return c > 0.0f; }) ? 1.0f : 0.0f;
       }
     });
 }

@@ -113,11 +113,13 @@ inline float DiffusionFaceCoefficient(double a, double b, double h)
  * toward -x, +x, -y and +y, `facesZ` those toward -z and +z, the capacity
  * (1 where a block has none, as the solvers treat it) and 1 where the block
  * scatters (0 otherwise). A face to a missing neighbour has coefficient 0,
- * the zero-flux boundary. `capacity` may be null (1 everywhere).
+ * the zero-flux boundary. `exchanges` (one float per block) is 1 where a
+ * face coefficient is above 0, the blocks the passes compute, else 0.
+ * `capacity` may be null (1 everywhere).
  */
 VTKMULTIMATERIALVOLUMEFILTERS_EXPORT void DiffusionBlockTexels(const int dims[3],
   const double spacing[3], const float* strength, const float* capacity,
-  std::vector<float>& facesXY, std::vector<float>& facesZ);
+  std::vector<float>& facesXY, std::vector<float>& facesZ, std::vector<float>& exchanges);
 
 /// The largest row sum of the diffusion operator over the capacity (a
 /// Gershgorin bound of its rates), in 1 / unit time; 0 when nothing can move.

@@ -71,7 +71,7 @@ void vtkIrradianceEstimator::vtkInternals::PlanDiffusion(
   // scatters); and the box of the blocks that scatter, the only ones the
   // sweeps change.
   mmv::DiffusionBlockTexels(this->Coarse.Dimensions, this->Coarse.Spacing, coarseStrength.data(),
-    capacity.data(), this->CoarseFaces[0], this->CoarseFaces[1]);
+    capacity.data(), this->CoarseFaces[0], this->CoarseFaces[1], this->CoarseExchanges);
   this->CoarseFacesChanged = true;
   const int* cd = this->Coarse.Dimensions;
   int* box = this->ScatteringBox.Bounds;
@@ -114,31 +114,33 @@ void vtkIrradianceEstimator::vtkInternals::PlanDiffusion(
 }
 
 //------------------------------------------------------------------------------
-// ExchangeMask from CoarseFaces: depth 1 where a block has a face that
-// exchanges light (the shaders' test, mmvFaces() > 0), 0 elsewhere.
+// ExchangeMask's depths from CoarseExchanges, in place while the diffusion
+// grid keeps its size.
 bool vtkIrradianceEstimator::vtkInternals::UploadExchangeMask()
 {
   const int* c = this->Coarse.Dimensions;
-  const std::vector<float>& xy = this->CoarseFaces[0];
-  const std::vector<float>& z = this->CoarseFaces[1];
-  std::vector<float> depth(xy.size() / 4);
-  for (size_t v = 0; v < depth.size(); ++v)
-  {
-    const float total =
-      xy[4 * v] + xy[4 * v + 1] + xy[4 * v + 2] + xy[4 * v + 3] + z[4 * v] + z[4 * v + 1];
-    depth[v] = total > 0.0f ? 1.0f : 0.0f;
-  }
   GLint bound = 0;
   glGetIntegerv(GL_TEXTURE_BINDING_2D_ARRAY, &bound);
+  const bool sameSize = this->ExchangeMask != 0 && this->ExchangeMaskDimensions[0] == c[0] &&
+    this->ExchangeMaskDimensions[1] == c[1] && this->ExchangeMaskDimensions[2] == c[2];
   if (!this->ExchangeMask)
   {
     glGenTextures(1, &this->ExchangeMask);
   }
   glBindTexture(GL_TEXTURE_2D_ARRAY, this->ExchangeMask);
-  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_DEPTH_COMPONENT32F, c[0], c[1], c[2], 0,
-    GL_DEPTH_COMPONENT, GL_FLOAT, depth.data());
+  if (sameSize)
+  {
+    glTexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, 0, c[0], c[1], c[2], GL_DEPTH_COMPONENT, GL_FLOAT,
+      this->CoarseExchanges.data());
+  }
+  else
+  {
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_DEPTH_COMPONENT32F, c[0], c[1], c[2], 0,
+      GL_DEPTH_COMPONENT, GL_FLOAT, this->CoarseExchanges.data());
+    std::copy(c, c + 3, this->ExchangeMaskDimensions);
+  }
   glBindTexture(GL_TEXTURE_2D_ARRAY, static_cast<GLuint>(bound));
   return glGetError() == GL_NO_ERROR;
 }
@@ -162,7 +164,7 @@ int vtkIrradianceEstimator::vtkInternals::Diffuse(
         context, this->ExponentialQuad, mmvDiffusionFS, "#define MMV_EXPONENTIAL\n", false)
     : this->Ready(context, this->SweepQuad, mmvDiffusionFS, "", false);
   vtkShaderProgram* changeProgram =
-    this->Ready(context, this->ChangeQuad, mmvDiffusionGridFS, "#define MMV_CHANGE\n", false);
+    this->Ready(context, this->ChangeQuad, mmvDiffusionFS, "#define MMV_CHANGE\n", false);
   vtkShaderProgram* prolong =
     this->Ready(context, this->ProlongQuad, mmvDiffusionGridFS, "", false);
   if (!restriction || !sweep || !changeProgram || !prolong)
@@ -189,15 +191,13 @@ int vtkIrradianceEstimator::vtkInternals::Diffuse(
   const int change = current == 1 ? 2 : 1; // neither `before` nor `after`
   {
     context->GetShaderCache()->ReadyShaderProgram(changeProgram);
-    ScopedTextures bound{ coarse[current], coarse[0], this->CoarseFacesTextures[0],
-      this->CoarseFacesTextures[1] };
-    changeProgram->SetUniformi("after", coarse[current]->GetTextureUnit());
-    changeProgram->SetUniformi("before", coarse[0]->GetTextureUnit());
-    changeProgram->SetUniformi("facesXY", this->CoarseFacesTextures[0]->GetTextureUnit());
-    changeProgram->SetUniformi("facesZ", this->CoarseFacesTextures[1]->GetTextureUnit());
-    this->SetTransferUniforms(changeProgram);
+    this->SetDiffusionGridUniforms(changeProgram);
+    ScopedTextures bound{ coarse[current], coarse[0] };
+    changeProgram->SetUniformi("current", coarse[current]->GetTextureUnit());
+    changeProgram->SetUniformi("initial", coarse[0]->GetTextureUnit());
     this->DrawLayers(context, this->ChangeQuad, coarse[change], layered,
       DrawBox(this->Plan.Coarse, this->Coarse.Dimensions));
+    this->ReleaseDiffusionGridTextures();
   }
   context->GetShaderCache()->ReadyShaderProgram(prolong);
   ScopedTextures bound{ this->FineScratch[0], this->ClassTexture, coarse[change],

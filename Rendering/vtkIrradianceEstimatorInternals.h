@@ -340,6 +340,7 @@ public:
   mmv::DiffusionSettings Diffusion;
   mmv::DiffusionGrid Coarse;
   std::array<std::vector<float>, 2> CoarseFaces;
+  std::vector<float> CoarseExchanges; // 1 where a block exchanges light: ExchangeMask's depths
   double CoarseMaxRate = 0.0;
   int SubSteps = 0;
   int SweepsPerStep = 0;
@@ -441,13 +442,13 @@ public:
   // atomic counter that stands in for the occlusion query there.
   bool Compute = false;
   unsigned int WriteCounter = 0;
-  // A GL_TEXTURE_2D_ARRAY of depths on the diffusion grid: 1 where the block
-  // exchanges light, 0 elsewhere (ExchangeMaskHolds: made from the current
-  // CoarseFaces). The layered draws of the restriction and the sweeps test
+  // A GL_TEXTURE_2D_ARRAY of depths on the diffusion grid, CoarseExchanges
+  // (ExchangeMaskHolds: the current ones). The layered draws of the restriction and the sweeps test
   // their quad's depth (0.5) against it, so a software rasterizer runs no
   // shader for blocks the diffusion leaves alone; compute dispatches and
   // per-slice draws return early in the shader instead.
   unsigned int ExchangeMask = 0;
+  int ExchangeMaskDimensions[3] = { 0, 0, 0 };
   bool ExchangeMaskHolds = false;
   bool ExchangeMaskRefused = false; // the framebuffer would not take it
   bool UploadExchangeMask();

@@ -275,7 +275,16 @@ bool vtkIrradianceEstimator::vtkInternals::Upload(vtkOpenGLRenderWindow* context
   {
     for (size_t t = 0; t < this->CoarseFacesTextures.size(); ++t)
     {
+      // In place while the grid keeps its size: fresh memory costs more.
       auto& texture = this->CoarseFacesTextures[t];
+      if (HasSize(texture, c) && texture->GetContext() == context)
+      {
+        texture->Activate();
+        glTexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, 0, c[0], c[1], c[2], GL_RGBA, GL_FLOAT,
+          this->CoarseFaces[t].data());
+        texture->Deactivate();
+        continue;
+      }
       texture = NewTexture(context, GL_RGBA32F, GL_RGBA, GL_FLOAT, t == 1);
       strengths = strengths &&
         texture->Create3DFromRaw(c[0], c[1], c[2], 4, VTK_FLOAT, this->CoarseFaces[t].data());
@@ -928,6 +937,7 @@ void vtkIrradianceEstimator::vtkInternals::Release(vtkWindow* window)
     glDeleteTextures(1, &this->ExchangeMask);
     this->ExchangeMask = 0;
     this->ExchangeMaskHolds = false;
+    std::fill(this->ExchangeMaskDimensions, this->ExchangeMaskDimensions + 3, 0);
   }
   this->ExchangeMaskRefused = false; // another context may take it
   for (VoxelPrograms* pass :

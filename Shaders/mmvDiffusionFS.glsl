@@ -108,6 +108,25 @@ void mmvVoxelMain()
   mmvWrite(value);
 }
 
+#elif defined(MMV_CHANGE)
+
+// With MMV_CHANGE (after the sweeps): the change the diffusion made where the
+// block exchanges light, 0 elsewhere (the sweeps never wrote those blocks:
+// they keep their value), which the prolongation (mmvDiffusionGridFS.glsl)
+// interpolates.
+uniform sampler3D initial; // the restricted irradiance
+
+void mmvVoxelMain()
+{
+  ivec3 voxel = ivec3(floor(texCoord * vec2(dims[0], dims[1])), slice);
+  vec4 xy;
+  vec4 z;
+  // Selected, not multiplied: a block the sweeps never drew may hold NaN.
+  mmvWrite(mmvFaces(voxel, xy, z) > 0.0
+      ? texelFetch(current, voxel, 0) - texelFetch(initial, voxel, 0)
+      : vec4(0.0));
+}
+
 #elif defined(MMV_EXPONENTIAL)
 
 // With MMV_EXPONENTIAL (ExponentialDiffusion, vtkIrradianceDiffusion.h):
@@ -116,7 +135,7 @@ void mmvVoxelMain()
 // DiffusionSystem::Clenshaw() of Filters/vtkIrradianceDiffusion.cxx:
 //   out = alpha u0 + beta B(current) + gamma previous.
 // A block that exchanges nothing keeps u0 exactly: it is left unwritten, and
-// the change pass (mmvDiffusionGridFS.glsl) gives it none.
+// the change pass (MMV_CHANGE) gives it none.
 uniform sampler3D initial;  // u0: the restricted irradiance
 uniform sampler3D previous; // b_k+2
 uniform float alpha;

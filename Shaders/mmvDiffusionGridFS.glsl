@@ -5,11 +5,10 @@
 //
 // MMV_RESTRICT (target: diffusion grid): the mean of the irradiance over the
 // block's voxels with s > 0 (0 when none).
-// MMV_CHANGE (target: diffusion grid): the change the diffusion made.
 // Otherwise (prolongation, target: irradiance grid): voxels with s > 0 add
-// that change, interpolated trilinearly at their coarse coordinate
-// (i - (f - 1) / 2) / f over the corner blocks that scatter, and are clamped
-// at 0.
+// the change the diffusion made (mmvDiffusionFS.glsl, MMV_CHANGE),
+// interpolated trilinearly at their coarse coordinate (i - (f - 1) / 2) / f
+// over the corner blocks that scatter, and are clamped at 0.
 
 uniform sampler3D fine;    // irradiance before the diffusion (irradiance grid)
 uniform sampler3D classes; // s per voxel, < 0 where the voxel is empty
@@ -43,30 +42,9 @@ void mmvVoxelMain()
   mmvWrite(count > 0 ? sum / float(count) : vec4(0.0));
 }
 
-#elif defined(MMV_CHANGE)
-
-// MMV_CHANGE (target: diffusion grid): the change the diffusion made where
-// the block exchanges light, 0 elsewhere (the sweeps never wrote those
-// blocks: they keep their value), which the prolongation interpolates.
-uniform sampler3D after;   // the diffused irradiance
-uniform sampler3D before;  // the restricted irradiance
-uniform sampler3D facesXY; // face coefficients (mmv::DiffusionBlockTexels)
-uniform sampler3D facesZ;
-
-void mmvVoxelMain()
-{
-  ivec3 block = ivec3(floor(texCoord * vec2(coarseDims[0], coarseDims[1])), slice);
-  vec4 xy = texelFetch(facesXY, block, 0);
-  vec4 z = texelFetch(facesZ, block, 0);
-  // Selected, not multiplied: a block the sweeps never drew may hold NaN.
-  mmvWrite(xy.x + xy.y + xy.z + xy.w + z.x + z.y > 0.0
-      ? texelFetch(after, block, 0) - texelFetch(before, block, 0)
-      : vec4(0.0));
-}
-
 #else
 
-uniform sampler3D change; // MMV_CHANGE's result, linear
+uniform sampler3D change; // mmvDiffusionFS.glsl's MMV_CHANGE result, linear
 uniform sampler3D blocks; // alpha: 1 where the block scatters, linear
 
 void mmvVoxelMain()

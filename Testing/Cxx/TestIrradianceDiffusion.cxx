@@ -550,10 +550,11 @@ TEST(IrradianceDiffusion, BlockTexelsHoldEachFaceFromBothSides)
     capacity[v] = uniform(random) < 0.25f ? 0.0f : 0.125f + 0.875f * uniform(random);
     strength[v] = capacity[v] > 0.0f ? 20.0f * uniform(random) * capacity[v] : 0.0f;
   }
-  std::vector<float> xy, z;
-  mmv::DiffusionBlockTexels(dims, spacing, strength.data(), capacity.data(), xy, z);
+  std::vector<float> xy, z, exchanges;
+  mmv::DiffusionBlockTexels(dims, spacing, strength.data(), capacity.data(), xy, z, exchanges);
   ASSERT_EQ(xy.size(), static_cast<size_t>(4 * n));
   ASSERT_EQ(z.size(), static_cast<size_t>(4 * n));
+  ASSERT_EQ(exchanges.size(), static_cast<size_t>(n));
   // Face `f` (-x, +x, -y, +y, -z, +z) of block v.
   auto face = [&](vtkIdType v, int f) { return f < 4 ? xy[4 * v + f] : z[4 * v + f - 4]; };
   const vtkIdType stride[3] = { 1, 5, 20 };
@@ -587,6 +588,7 @@ TEST(IrradianceDiffusion, BlockTexelsHoldEachFaceFromBothSides)
     }
     EXPECT_EQ(z[4 * v + 2], capacity[v] > 0.0f ? capacity[v] : 1.0f);
     EXPECT_EQ(z[4 * v + 3], strength[v] > 0.0f ? 1.0f : 0.0f);
+    EXPECT_EQ(exchanges[v], total > 0.0 ? 1.0f : 0.0f) << "block " << v;
     maxRate = std::max(maxRate, total / z[4 * v + 2]);
   }
   EXPECT_GT(open, 50);
