@@ -368,6 +368,20 @@ bool AnyPositive(const float* strength, vtkIdType n)
 namespace mmv
 {
 
+//------------------------------------------------------------------------------
+double FilledBlockShare(const float* capacity, vtkIdType blocks)
+{
+  double all = 0.0;
+  double filled = 0.0;
+  for (vtkIdType b = 0; capacity && b < blocks; ++b)
+  {
+    all += capacity[b];
+    filled += capacity[b] >= 1.0f ? capacity[b] : 0.0f;
+  }
+  return all > 0.0 ? filled / all : 0.0;
+}
+
+//------------------------------------------------------------------------------
 double MaxDiffusionRate(
   const int dims[3], const double spacing[3], const float* strength, const float* capacity)
 {

@@ -327,8 +327,13 @@ int vtkIrradianceEstimator::PrepareSettings(bool& diffusion)
     internals.MultipleScatteringUsed = this->MultipleScattering;
     internals.VolumeChanged = true;
   }
-  diffusion =
-    this->MultipleScattering && this->DiffusionTime > 0.0 && internals.CoarseMaxRate > 0.0;
+  diffusion = this->MultipleScattering && this->DiffusionTime > 0.0 &&
+    internals.Diffusions[0].CoarseMaxRate > 0.0;
+  if (diffusion)
+  {
+    // A light that became dim gets its grid now.
+    internals.PlanStridedDiffusion();
+  }
   const mmv::IndexBox region = internals.Region();
   if (region != internals.RegionUsed)
   {
@@ -416,19 +421,36 @@ bool vtkIrradianceEstimator::UpdateGroup(vtkOpenGLRenderWindow* context, int gro
       internals.UpsamplePass(
         context, stridedMask, stride, this->SkipEmptyVoxels, this->LayeredRendering));
   this->LastEstimationSeconds += elapsed();
-  vtkTextureObject* result = internals.FineScratch[0];
-  if (ok && diffusion)
+  // Each diffusion grid diffuses its lights (the strided ones on their own
+  // where it is coarser), and their final write follows.
+  const bool ownGrid = diffusion && internals.DiffusionOf(stride) == 1;
+  const int lightsOf[2] = { ownGrid ? mask & ~stridedMask : mask, ownGrid ? stridedMask : 0 };
+  const mmv::IndexBox filled = internals.FilledBoxes[group];
+  for (int p = 0; ok && p < 2; ++p)
   {
-    const int sweeps =
-      internals.Diffuse(context, this->LayeredRendering, mask, this->SkipEmptyVoxels);
-    ok = sweeps >= 0;
-    this->DiffusionPasses += std::max(0, sweeps);
-    result = internals.FineScratch[1];
-    this->LastDiffusionSeconds += elapsed();
+    if (lightsOf[p] == 0)
+    {
+      continue;
+    }
+    vtkInternals::DiffusionPlan& plan = internals.Diffusions[p];
+    vtkTextureObject* result = internals.FineScratch[0];
+    if (diffusion && plan.CoarseMaxRate > 0.0)
+    {
+      const int sweeps = internals.Diffuse(
+        context, plan, this->LayeredRendering, lightsOf[p], this->SkipEmptyVoxels);
+      ok = sweeps >= 0;
+      this->DiffusionPasses += std::max(0, sweeps);
+      result = internals.FineScratch[1];
+      this->LastDiffusionSeconds += elapsed();
+    }
+    // Both writes cover what the texture's voxels need (FillPass shrinks
+    // FilledBoxes to what it drew).
+    internals.FilledBoxes[group] = filled;
+    ok = ok &&
+      internals.FillPass(
+        context, result, group, lightsOf[p], this->SkipEmptyVoxels, this->LayeredRendering);
+    this->LastWriteSeconds += elapsed();
   }
-  ok = ok &&
-    internals.FillPass(context, result, group, mask, this->SkipEmptyVoxels, this->LayeredRendering);
-  this->LastWriteSeconds += elapsed();
   if (ok && diffusion)
   {
     this->ReportProgress(context, lights); // the diffusion, with the short write
@@ -472,27 +494,25 @@ void vtkIrradianceEstimator::ReportProgress(vtkOpenGLRenderWindow* context, doub
 }
 
 //------------------------------------------------------------------------------
-void vtkIrradianceEstimator::GetDiffusionGridDimensions(int dims[3]) const
+void vtkIrradianceEstimator::GetDiffusionGridDimensions(int dims[3], int lightGridStride) const
 {
-  for (int a = 0; a < 3; ++a)
-  {
-    dims[a] = this->Internals->Coarse.Dimensions[a];
-  }
+  const auto& plan = this->Internals->Diffusions[this->Internals->DiffusionOf(lightGridStride)];
+  std::copy(plan.Coarse.Dimensions, plan.Coarse.Dimensions + 3, dims);
 }
 
 int vtkIrradianceEstimator::GetDiffusionSubSteps() const
 {
-  return this->Internals->SubSteps;
+  return this->Internals->Diffusions[0].SubSteps;
 }
 
 int vtkIrradianceEstimator::GetDiffusionSweepsPerStep() const
 {
-  return this->Internals->SweepsPerStep;
+  return this->Internals->Diffusions[0].SweepsPerStep;
 }
 
 double vtkIrradianceEstimator::GetDiffusionLength() const
 {
-  return this->Internals->Coarse.DiffusionLength;
+  return this->Internals->Diffusions[0].Coarse.DiffusionLength;
 }
 
 //------------------------------------------------------------------------------
@@ -720,7 +740,10 @@ vtkIdType vtkIrradianceEstimator::GetScratchMemoryBytes() const
                      : 0;
   };
   std::for_each(this->Internals->FineScratch.begin(), this->Internals->FineScratch.end(), add);
-  std::for_each(this->Internals->CoarseScratch.begin(), this->Internals->CoarseScratch.end(), add);
+  for (const auto& plan : this->Internals->Diffusions)
+  {
+    std::for_each(plan.CoarseScratch.begin(), plan.CoarseScratch.end(), add);
+  }
   add(this->Internals->LightGridScratch);
   return bytes;
 }
@@ -811,9 +834,16 @@ void vtkIrradianceEstimator::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "SkipEmptyVoxels: " << this->SkipEmptyVoxels << "\n";
   os << indent << "ShadowEstimation: " << this->ShadowEstimation << "\n";
   os << indent << "PiecewiseShadowSlices: " << this->PiecewiseShadowSlices << "\n";
-  os << indent << "DiffusionGrid: " << internals.Coarse.Dimensions[0] << " "
-     << internals.Coarse.Dimensions[1] << " " << internals.Coarse.Dimensions[2] << " ("
-     << internals.SubSteps << " sub-steps x " << internals.SweepsPerStep << " sweeps)\n";
+  for (const auto& plan : internals.Diffusions)
+  {
+    if (plan.Planned)
+    {
+      os << indent << (&plan == &internals.Diffusions[0] ? "DiffusionGrid: " : "StridedLights: ")
+         << plan.Coarse.Dimensions[0] << " " << plan.Coarse.Dimensions[1] << " "
+         << plan.Coarse.Dimensions[2] << " (" << plan.SubSteps << " sub-steps x "
+         << plan.SweepsPerStep << " sweeps)\n";
+    }
+  }
   os << indent << "LightDirectionTolerance: " << this->LightDirectionTolerance << "\n";
   os << indent << "NumberOfUpdatedLights: " << this->NumberOfUpdatedLights << "\n";
   os << indent << "NumberOfComputedVoxels: " << this->NumberOfComputedVoxels << "\n";

@@ -316,8 +316,10 @@ public:
   ///@}
 
   ///@{
-  /// The diffusion grid of the current inputs and its solve.
-  void GetDiffusionGridDimensions(int dims[3]) const;
+  /// The diffusion grid of the current inputs and its solve; with a light
+  /// grid stride over 1, the grid that lights of that stride diffuse on
+  /// (mmv::LightGridDiffusionSettings).
+  void GetDiffusionGridDimensions(int dims[3], int lightGridStride = 1) const;
   int GetDiffusionSubSteps() const;
   int GetDiffusionSweepsPerStep() const;
   double GetDiffusionLength() const; // in data voxels

@@ -8,12 +8,13 @@
 using namespace mmv::voxelpass;
 
 //------------------------------------------------------------------------------
-// The diffusion grid and how long its solve runs, exactly as the CPU's
-// mmv::DiffuseIrradianceOnDiffusionGrid plans them. The strengths come from
-// the CPU's classes: classified here where the diffusion will run
-// (NeedsCPUClasses). Otherwise no voxel has a strength the diffusion would
-// use (it is off, or the table has no s > 0), and the plan is the one for
-// zero strength everywhere, made without touching the voxels.
+// The diffusion grids and how long their solves run, exactly as the CPU's
+// mmv::DiffuseIrradianceOnDiffusionGrid plans them: the lights' on the
+// irradiance grid now, the strided lights' while one is strided. The
+// strengths come from the CPU's classes: classified here where the diffusion
+// will run (NeedsCPUClasses). Otherwise no voxel has a strength the diffusion
+// would use (it is off, or the table has no s > 0), and the plan is the one
+// for zero strength everywhere, made without touching the voxels.
 void vtkIrradianceEstimator::vtkInternals::PlanDiffusion(
   double time, bool exponential, bool multipleScattering)
 {
@@ -23,6 +24,40 @@ void vtkIrradianceEstimator::vtkInternals::PlanDiffusion(
   {
     this->Classify();
   }
+  for (auto& plan : this->Diffusions)
+  {
+    plan.Planned = false;
+  }
+  this->PlanDiffusionBlocks(this->Diffusions[0], this->Diffusion);
+  this->PlanStridedDiffusion();
+}
+
+void vtkIrradianceEstimator::vtkInternals::PlanStridedDiffusion()
+{
+  const int stride = this->MaxLightGridStride();
+  if (stride > 1 && !this->Diffusions[1].Planned)
+  {
+    this->PlanDiffusionBlocks(
+      this->Diffusions[1], mmv::LightGridDiffusionSettings(this->Diffusion, stride));
+  }
+}
+
+int vtkIrradianceEstimator::vtkInternals::DiffusionOf(int stride) const
+{
+  const DiffusionPlan& strided = this->Diffusions[1];
+  const int* lights = this->Diffusions[0].Coarse.Factor;
+  const bool coarser = stride > 1 && strided.Planned &&
+    !std::equal(strided.Coarse.Factor, strided.Coarse.Factor + 3, lights) &&
+    strided.FilledShare >= mmv::MinimumFilledBlockShare;
+  return coarser ? 1 : 0;
+}
+
+//------------------------------------------------------------------------------
+// One diffusion grid of `settings` for the current classes.
+void vtkIrradianceEstimator::vtkInternals::PlanDiffusionBlocks(
+  DiffusionPlan& plan, const mmv::DiffusionSettings& settings)
+{
+  const double time = settings.Time;
   std::vector<float> strength;
   float maxStrength = 0.0f;
   if (this->ClassesOnCPU)
@@ -36,8 +71,8 @@ void vtkIrradianceEstimator::vtkInternals::PlanDiffusion(
   }
   const double spacing[3] = { this->Grid.DataVoxelsPerVoxel[0], this->Grid.DataVoxelsPerVoxel[1],
     this->Grid.DataVoxelsPerVoxel[2] };
-  this->Coarse =
-    mmv::PlanDiffusionGrid(this->Grid.Dimensions, spacing, maxStrength, this->Diffusion);
+  mmv::DiffusionGrid& grid = plan.Coarse;
+  grid = mmv::PlanDiffusionGrid(this->Grid.Dimensions, spacing, maxStrength, settings);
   if (!this->ClassesOnCPU)
   {
     // Nothing the diffusion would use scatters (NeedsCPUClasses), so none
@@ -46,35 +81,37 @@ void vtkIrradianceEstimator::vtkInternals::PlanDiffusion(
     for (int a = 0; a < 3; ++a)
     {
       const int factor = std::max(1, this->Grid.Dimensions[a]);
-      this->Coarse.Spacing[a] = this->Coarse.Spacing[a] / this->Coarse.Factor[a] * factor;
-      this->Coarse.Factor[a] = factor;
-      this->Coarse.Dimensions[a] = 1;
+      grid.Spacing[a] = grid.Spacing[a] / grid.Factor[a] * factor;
+      grid.Factor[a] = factor;
+      grid.Dimensions[a] = 1;
     }
   }
   std::vector<float> coarseStrength;
   std::vector<float> capacity;
   if (this->ClassesOnCPU)
   {
-    mmv::RestrictToDiffusionGrid(this->Grid.Dimensions, this->Coarse, strength.data(), nullptr,
-      &coarseStrength, nullptr, &capacity);
+    mmv::RestrictToDiffusionGrid(
+      this->Grid.Dimensions, grid, strength.data(), nullptr, &coarseStrength, nullptr, &capacity);
   }
   else
   {
     // What the restriction of zero strength gives.
-    coarseStrength.assign(this->Coarse.GetNumberOfVoxels(), 0.0f);
-    capacity.assign(this->Coarse.GetNumberOfVoxels(), 0.0f);
+    coarseStrength.assign(grid.GetNumberOfVoxels(), 0.0f);
+    capacity.assign(grid.GetNumberOfVoxels(), 0.0f);
   }
-  this->CoarseMaxRate = time > 0.0 ? mmv::MaxDiffusionRate(this->Coarse.Dimensions,
-                                       this->Coarse.Spacing, coarseStrength.data(), capacity.data())
-                                   : 0.0;
+  plan.FilledShare = mmv::FilledBlockShare(capacity.data(), grid.GetNumberOfVoxels());
+  plan.CoarseMaxRate = time > 0.0
+    ? mmv::MaxDiffusionRate(grid.Dimensions, grid.Spacing, coarseStrength.data(), capacity.data())
+    : 0.0;
   // Two RGBA texels per block (face coefficients, capacity, whether it
   // scatters); and the box of the blocks that scatter, the only ones the
   // sweeps change.
-  mmv::DiffusionBlockTexels(this->Coarse.Dimensions, this->Coarse.Spacing, coarseStrength.data(),
-    capacity.data(), this->CoarseFaces[0], this->CoarseFaces[1], this->CoarseExchanges);
-  this->CoarseFacesChanged = true;
-  const int* cd = this->Coarse.Dimensions;
-  int* box = this->ScatteringBox.Bounds;
+  mmv::DiffusionBlockTexels(grid.Dimensions, grid.Spacing, coarseStrength.data(), capacity.data(),
+    plan.CoarseFaces[0], plan.CoarseFaces[1], plan.CoarseExchanges);
+  plan.CoarseFacesChanged = true;
+  plan.Planned = true;
+  const int* cd = grid.Dimensions;
+  int* box = plan.ScatteringBox.Bounds;
   for (int a = 0; a < 3; ++a)
   {
     box[2 * a] = cd[a] - 1;
@@ -93,30 +130,30 @@ void vtkIrradianceEstimator::vtkInternals::PlanDiffusion(
       }
     }
   }
-  if (this->Diffusion.Exponential)
+  if (settings.Exponential)
   {
     // One "sub-step" of as many passes as the series has terms. A quarter of
     // the sweeps' tolerance: the result is stored in 16 bits as well, and the
     // two errors together stay below the sweeps' (1e-3 of the largest
     // irradiance) for two or three more terms.
-    this->ExponentialSeries = mmv::ExponentialChebyshevCoefficients(
-      this->CoarseMaxRate * time, 0.25 * this->Diffusion.SweepTolerance);
-    this->SubSteps = this->ExponentialSeries.empty() ? 0 : 1;
-    this->SweepsPerStep = static_cast<int>(this->ExponentialSeries.size());
-    this->SpectralRadius = 0.0;
+    plan.ExponentialSeries = mmv::ExponentialChebyshevCoefficients(
+      plan.CoarseMaxRate * time, 0.25 * settings.SweepTolerance);
+    plan.SubSteps = plan.ExponentialSeries.empty() ? 0 : 1;
+    plan.SweepsPerStep = static_cast<int>(plan.ExponentialSeries.size());
+    plan.SpectralRadius = 0.0;
     return;
   }
-  this->ExponentialSeries.clear();
-  this->SubSteps = mmv::DiffusionSubSteps(this->CoarseMaxRate, this->Diffusion);
-  const double stiffness = this->CoarseMaxRate * time / this->SubSteps;
-  this->SweepsPerStep = mmv::ChebyshevSweeps(stiffness, this->Diffusion);
-  this->SpectralRadius = mmv::JacobiSpectralRadius(stiffness);
+  plan.ExponentialSeries.clear();
+  plan.SubSteps = mmv::DiffusionSubSteps(plan.CoarseMaxRate, settings);
+  const double stiffness = plan.CoarseMaxRate * time / plan.SubSteps;
+  plan.SweepsPerStep = mmv::ChebyshevSweeps(stiffness, settings);
+  plan.SpectralRadius = mmv::JacobiSpectralRadius(stiffness);
 }
 
 //------------------------------------------------------------------------------
 // ExchangeMask's depths from CoarseExchanges, in place while the diffusion
 // grid keeps its size.
-bool vtkIrradianceEstimator::vtkInternals::UploadExchangeMask()
+bool vtkIrradianceEstimator::vtkInternals::DiffusionPlan::UploadExchangeMask()
 {
   const int* c = this->Coarse.Dimensions;
   GLint bound = 0;
@@ -146,17 +183,51 @@ bool vtkIrradianceEstimator::vtkInternals::UploadExchangeMask()
 }
 
 //------------------------------------------------------------------------------
+void vtkIrradianceEstimator::vtkInternals::DiffusionPlan::ReleaseScratch(vtkWindow* window)
+{
+  for (auto& texture : this->CoarseScratch)
+  {
+    if (texture)
+    {
+      texture->ReleaseGraphicsResources(window);
+      texture = nullptr;
+    }
+  }
+}
+
+void vtkIrradianceEstimator::vtkInternals::DiffusionPlan::Release(vtkWindow* window)
+{
+  this->ReleaseScratch(window);
+  for (auto& texture : this->CoarseFacesTextures)
+  {
+    if (texture)
+    {
+      texture->ReleaseGraphicsResources(window);
+      texture = nullptr;
+    }
+  }
+  this->CoarseFacesChanged = true;
+  if (this->ExchangeMask)
+  {
+    glDeleteTextures(1, &this->ExchangeMask);
+    this->ExchangeMask = 0;
+    this->ExchangeMaskHolds = false;
+    std::fill(this->ExchangeMaskDimensions, this->ExchangeMaskDimensions + 3, 0);
+  }
+}
+
+//------------------------------------------------------------------------------
 // Multiple scattering of FineScratch[0] into FineScratch[1]: restriction to
 // the diffusion grid, the exponential's Chebyshev series (the default) or
 // backward-Euler sub-steps each solved by Chebyshev-accelerated Jacobi sweeps
 // (their number from the error bound, mmv::ChebyshevSweeps), then the
 // prolongation of the change (with `skipEmpty`, onto the occupied bricks
-// alone: the final write reads nothing else). Returns the passes drawn, or
-// -1 on failure.
+// alone: the final write reads nothing else), all on `plan`'s grid. Returns
+// the passes drawn, or -1 on failure.
 int vtkIrradianceEstimator::vtkInternals::Diffuse(
-  vtkOpenGLRenderWindow* context, bool layered, int mask, bool skipEmpty)
+  vtkOpenGLRenderWindow* context, DiffusionPlan& plan, bool layered, int mask, bool skipEmpty)
 {
-  const bool exponential = !this->ExponentialSeries.empty();
+  const bool exponential = !plan.ExponentialSeries.empty();
   vtkShaderProgram* restriction =
     this->Ready(context, this->RestrictQuad, mmvDiffusionGridFS, "#define MMV_RESTRICT\n", false);
   vtkShaderProgram* sweep = exponential
@@ -171,42 +242,41 @@ int vtkIrradianceEstimator::vtkInternals::Diffuse(
   {
     return -1;
   }
-  auto& coarse = this->CoarseScratch;
+  auto& coarse = plan.CoarseScratch;
+  const int* blocks = DrawBox(plan.Blocks, plan.Coarse.Dimensions);
   {
     context->GetShaderCache()->ReadyShaderProgram(restriction);
     ScopedTextures bound{ this->FineScratch[0], this->ClassTexture };
     restriction->SetUniformi("fine", this->FineScratch[0]->GetTextureUnit());
     restriction->SetUniformi("classes", this->ClassTexture->GetTextureUnit());
-    this->SetTransferUniforms(restriction);
+    this->SetTransferUniforms(restriction, plan);
     // Only the blocks that exchange light read their restriction.
-    this->DrawLayers(context, this->RestrictQuad, coarse[0], layered,
-      DrawBox(this->Plan.Coarse, this->Coarse.Dimensions), 0xF, true);
+    this->DrawLayers(context, this->RestrictQuad, coarse[0], layered, blocks, 0xF, &plan);
   }
 
   int current = 0;
   const int sweeps = exponential
-    ? this->ExponentialSweeps(context, sweep, layered, current)
-    : this->BackwardEulerSweeps(context, sweep, layered, mask, current);
+    ? this->ExponentialSweeps(context, plan, sweep, layered, current)
+    : this->BackwardEulerSweeps(context, plan, sweep, layered, mask, current);
 
   const int change = current == 1 ? 2 : 1; // neither `before` nor `after`
   {
     context->GetShaderCache()->ReadyShaderProgram(changeProgram);
-    this->SetDiffusionGridUniforms(changeProgram);
+    SetDiffusionGridUniforms(changeProgram, plan);
     ScopedTextures bound{ coarse[current], coarse[0] };
     changeProgram->SetUniformi("current", coarse[current]->GetTextureUnit());
     changeProgram->SetUniformi("initial", coarse[0]->GetTextureUnit());
-    this->DrawLayers(context, this->ChangeQuad, coarse[change], layered,
-      DrawBox(this->Plan.Coarse, this->Coarse.Dimensions));
-    this->ReleaseDiffusionGridTextures();
+    this->DrawLayers(context, this->ChangeQuad, coarse[change], layered, blocks);
+    ReleaseDiffusionGridTextures(plan);
   }
   context->GetShaderCache()->ReadyShaderProgram(prolong);
   ScopedTextures bound{ this->FineScratch[0], this->ClassTexture, coarse[change],
-    this->CoarseFacesTextures[1] };
+    plan.CoarseFacesTextures[1] };
   prolong->SetUniformi("change", coarse[change]->GetTextureUnit());
-  prolong->SetUniformi("blocks", this->CoarseFacesTextures[1]->GetTextureUnit());
+  prolong->SetUniformi("blocks", plan.CoarseFacesTextures[1]->GetTextureUnit());
   prolong->SetUniformi("fine", this->FineScratch[0]->GetTextureUnit());
   prolong->SetUniformi("classes", this->ClassTexture->GetTextureUnit());
-  this->SetTransferUniforms(prolong);
+  this->SetTransferUniforms(prolong, plan);
   // The final write reads the non-empty voxels alone (the occupied bricks').
   const mmv::IndexBox fine =
     skipEmpty ? this->OccupiedBox(this->Plan.Source, 1) : this->Plan.Source;
@@ -219,22 +289,33 @@ int vtkIrradianceEstimator::vtkInternals::Diffuse(
 }
 
 //------------------------------------------------------------------------------
+// The uniforms of the transfers between the irradiance and diffusion grids.
+void vtkIrradianceEstimator::vtkInternals::SetTransferUniforms(
+  vtkShaderProgram* program, const DiffusionPlan& plan) const
+{
+  program->SetUniform1iv("dims", 3, this->Grid.Dimensions);
+  program->SetUniform1iv("factor", 3, plan.Coarse.Factor);
+  program->SetUniform1iv("coarseDims", 3, plan.Coarse.Dimensions);
+}
+
+//------------------------------------------------------------------------------
 // The diffusion grid's block textures (activated here, deactivated by the
 // caller) and dimensions, for the sweeps and the exponential's steps.
-void vtkIrradianceEstimator::vtkInternals::SetDiffusionGridUniforms(vtkShaderProgram* program)
+void vtkIrradianceEstimator::vtkInternals::SetDiffusionGridUniforms(
+  vtkShaderProgram* program, const DiffusionPlan& plan)
 {
-  for (auto& texture : this->CoarseFacesTextures)
+  for (const auto& texture : plan.CoarseFacesTextures)
   {
     texture->Activate();
   }
-  program->SetUniformi("facesXY", this->CoarseFacesTextures[0]->GetTextureUnit());
-  program->SetUniformi("facesZ", this->CoarseFacesTextures[1]->GetTextureUnit());
-  program->SetUniform1iv("dims", 3, this->Coarse.Dimensions);
+  program->SetUniformi("facesXY", plan.CoarseFacesTextures[0]->GetTextureUnit());
+  program->SetUniformi("facesZ", plan.CoarseFacesTextures[1]->GetTextureUnit());
+  program->SetUniform1iv("dims", 3, plan.Coarse.Dimensions);
 }
 
-void vtkIrradianceEstimator::vtkInternals::ReleaseDiffusionGridTextures()
+void vtkIrradianceEstimator::vtkInternals::ReleaseDiffusionGridTextures(const DiffusionPlan& plan)
 {
-  for (auto& texture : this->CoarseFacesTextures)
+  for (const auto& texture : plan.CoarseFacesTextures)
   {
     texture->Deactivate();
   }
@@ -243,20 +324,19 @@ void vtkIrradianceEstimator::vtkInternals::ReleaseDiffusionGridTextures()
 //------------------------------------------------------------------------------
 // Backward-Euler sub-steps on the diffusion grid, each solved by Chebyshev-
 // accelerated Jacobi sweeps; `current` receives the texture of the result.
-int vtkIrradianceEstimator::vtkInternals::BackwardEulerSweeps(
-  vtkOpenGLRenderWindow* context, vtkShaderProgram* sweep, bool layered, int mask, int& current)
+int vtkIrradianceEstimator::vtkInternals::BackwardEulerSweeps(vtkOpenGLRenderWindow* context,
+  DiffusionPlan& plan, vtkShaderProgram* sweep, bool layered, int mask, int& current)
 {
-  auto& coarse = this->CoarseScratch;
+  auto& coarse = plan.CoarseScratch;
   context->GetShaderCache()->ReadyShaderProgram(sweep);
-  this->SetDiffusionGridUniforms(sweep);
-  sweep->SetUniformf("dt", static_cast<float>(this->Diffusion.Time / this->SubSteps));
+  SetDiffusionGridUniforms(sweep, plan);
+  sweep->SetUniformf("dt", static_cast<float>(this->Diffusion.Time / plan.SubSteps));
   // Stop on the residual: |J(x) - x| <= (1 - rho) tol everywhere bounds the
   // error by tol; checked every few sweeps, the error bound's count at most.
   const float threshold =
-    static_cast<float>((1.0 - this->SpectralRadius) * this->Diffusion.SweepTolerance);
-  const int checkInterval = this->SweepsPerStep >= ResidualCheckMinimumSweeps
-    ? this->SweepsPerStep / 4
-    : this->SweepsPerStep;
+    static_cast<float>((1.0 - plan.SpectralRadius) * this->Diffusion.SweepTolerance);
+  const int checkInterval =
+    plan.SweepsPerStep >= ResidualCheckMinimumSweeps ? plan.SweepsPerStep / 4 : plan.SweepsPerStep;
   sweep->SetUniformf("residualThreshold", 0.0f);
   // Only the lights being updated decide convergence: the scratch's other
   // channels hold whatever the GPU left there.
@@ -265,14 +345,14 @@ int vtkIrradianceEstimator::vtkInternals::BackwardEulerSweeps(
   glUniform4iv(sweep->FindUniform("residualChannels"), 1, residualChannels);
   // Blocks outside ScatteringBox never change and are never read; of the
   // rest, those the region depends on.
-  const mmv::IndexBox box = this->ScatteringBox.Intersected(this->Plan.Coarse);
+  const mmv::IndexBox box = plan.ScatteringBox.Intersected(plan.Blocks);
   int rhs = 0;
   current = 0;
   int sweeps = 0;
-  for (int step = 0; step < this->SubSteps; ++step)
+  for (int step = 0; step < plan.SubSteps; ++step)
   {
     int previous = current;
-    for (int k = 1; k <= this->SweepsPerStep; ++k)
+    for (int k = 1; k <= plan.SweepsPerStep; ++k)
     {
       int next = 1;
       while (next == rhs || next == current || next == previous)
@@ -285,13 +365,13 @@ int vtkIrradianceEstimator::vtkInternals::BackwardEulerSweeps(
         sweep->SetUniformi("current", coarse[current]->GetTextureUnit());
         sweep->SetUniformi("previous", coarse[previous]->GetTextureUnit());
         sweep->SetUniformf(
-          "omega", static_cast<float>(mmv::ChebyshevWeight(k, this->SpectralRadius)));
-        this->DrawLayers(context, this->SweepQuad, coarse[next], layered, box.Bounds, 0xF, true);
+          "omega", static_cast<float>(mmv::ChebyshevWeight(k, plan.SpectralRadius)));
+        this->DrawLayers(context, this->SweepQuad, coarse[next], layered, box.Bounds, 0xF, &plan);
       }
       ++sweeps;
       previous = current;
       current = next;
-      if (k % checkInterval == 0 && k < this->SweepsPerStep)
+      if (k % checkInterval == 0 && k < plan.SweepsPerStep)
       {
         // The check draws into a texture no iterate lives in.
         int scratch = 1;
@@ -317,7 +397,7 @@ int vtkIrradianceEstimator::vtkInternals::BackwardEulerSweeps(
     }
     rhs = current;
   }
-  this->ReleaseDiffusionGridTextures();
+  ReleaseDiffusionGridTextures(plan);
   return sweeps;
 }
 
@@ -326,17 +406,17 @@ int vtkIrradianceEstimator::vtkInternals::BackwardEulerSweeps(
 // recurrence (Shaders/mmvDiffusionFS.glsl, MMV_EXPONENTIAL): b_k = c_k u0 +
 // 2 B b_k+1 - b_k+2 from k = n down to 1, then c_0 u0 + B b_1 - b_2; u0 is
 // the restricted irradiance (texture 0). `current` receives the result.
-int vtkIrradianceEstimator::vtkInternals::ExponentialSweeps(
-  vtkOpenGLRenderWindow* context, vtkShaderProgram* sweep, bool layered, int& current)
+int vtkIrradianceEstimator::vtkInternals::ExponentialSweeps(vtkOpenGLRenderWindow* context,
+  DiffusionPlan& plan, vtkShaderProgram* sweep, bool layered, int& current)
 {
-  auto& coarse = this->CoarseScratch;
+  auto& coarse = plan.CoarseScratch;
   context->GetShaderCache()->ReadyShaderProgram(sweep);
-  this->SetDiffusionGridUniforms(sweep);
-  sweep->SetUniformf("invRate", static_cast<float>(1.0 / this->CoarseMaxRate));
-  const std::vector<double>& c = this->ExponentialSeries;
+  SetDiffusionGridUniforms(sweep, plan);
+  sweep->SetUniformf("invRate", static_cast<float>(1.0 / plan.CoarseMaxRate));
+  const std::vector<double>& c = plan.ExponentialSeries;
   const int n = static_cast<int>(c.size()) - 1;
   // As in BackwardEulerSweeps: the scattering blocks the region depends on.
-  const mmv::IndexBox box = this->ScatteringBox.Intersected(this->Plan.Coarse);
+  const mmv::IndexBox box = plan.ScatteringBox.Intersected(plan.Blocks);
   // b_n+1 = b_n+2 = 0: their weights are 0 and texture 0 stands in for them.
   current = 0;
   int previous = 0;
@@ -355,11 +435,11 @@ int vtkIrradianceEstimator::vtkInternals::ExponentialSweeps(
     sweep->SetUniformf("alpha", static_cast<float>(c[k]));
     sweep->SetUniformf("beta", k == n ? 0.0f : (k == 0 ? 1.0f : 2.0f));
     sweep->SetUniformf("gammaWeight", k >= n - 1 ? 0.0f : -1.0f);
-    this->DrawLayers(context, this->ExponentialQuad, coarse[next], layered, box.Bounds, 0xF, true);
+    this->DrawLayers(context, this->ExponentialQuad, coarse[next], layered, box.Bounds, 0xF, &plan);
     ++passes;
     previous = current;
     current = next;
   }
-  this->ReleaseDiffusionGridTextures();
+  ReleaseDiffusionGridTextures(plan);
   return passes;
 }

@@ -324,9 +324,6 @@ public:
   /// entries are positive (a point's value dragged within the support) and
   /// the scattering keeps every class.
   bool ClassesHold() const;
-  // The diffusion grid's blocks changed since CoarseFacesTextures were made
-  // (PlanDiffusion).
-  bool CoarseFacesChanged = true;
   // The bricks that may hold non-empty voxels (value ranges once per
   // scalars, marked at every upload): the shadow draws shrink to them.
   mmv::VoxelOccupancy Occupancy;
@@ -334,20 +331,64 @@ public:
   /// later pass reads: around the non-empty irradiance voxels, or the
   /// strided points their interpolation reads.
   mmv::IndexBox OccupiedBox(const mmv::IndexBox& box, int stride) const;
-  // The diffusion grid (vtkIrradianceDiffusion.h) with its blocks' texels
+  // One diffusion grid (vtkIrradianceDiffusion.h) with its blocks' texels
   // (mmv::DiffusionBlockTexels: face coefficients, capacity, whether they
-  // scatter) and solve lengths, planned on the CPU.
+  // exchange light) and solve lengths, planned on the CPU, the blocks this
+  // Render() draws, and its textures.
+  struct DiffusionPlan
+  {
+    bool Planned = false; // for the current classes and settings
+    mmv::DiffusionGrid Coarse;
+    std::array<std::vector<float>, 2> CoarseFaces;
+    std::vector<float> CoarseExchanges; // 1 where a block exchanges light: ExchangeMask's depths
+    double CoarseMaxRate = 0.0;
+    double FilledShare = 0.0; // mmv::FilledBlockShare of its blocks
+    int SubSteps = 0;
+    int SweepsPerStep = 0;
+    std::vector<double> ExponentialSeries; // c_k of the exponential integrator
+    double SpectralRadius = 0.0;           // of the Jacobi iteration, for the Chebyshev weights
+    mmv::IndexBox ScatteringBox;           // diffusion-grid blocks with s > 0
+    mmv::IndexBox Blocks; // what the restriction and the sweeps draw (the region's plan)
+    // The blocks changed since CoarseFacesTextures were made.
+    bool CoarseFacesChanged = true;
+    // RGBA32F, of CoarseFaces; the second one linear: its alpha, the blocks
+    // that scatter, weighs the prolongation's corners.
+    std::array<vtkSmartPointer<vtkTextureObject>, 2> CoarseFacesTextures;
+    // [0] restricted, [1..4] rotate through the sweeps (right-hand side,
+    // previous, current and next iterate).
+    std::array<vtkSmartPointer<vtkTextureObject>, 5> CoarseScratch;
+    // A GL_TEXTURE_2D_ARRAY of depths, CoarseExchanges (ExchangeMaskHolds:
+    // the current ones). The layered draws of the restriction and the
+    // sweeps test their quad's depth (0.5) against it, so a software
+    // rasterizer runs no shader for blocks the diffusion leaves alone;
+    // compute dispatches and per-slice draws return early in the shader
+    // instead.
+    unsigned int ExchangeMask = 0;
+    int ExchangeMaskDimensions[3] = { 0, 0, 0 };
+    bool ExchangeMaskHolds = false;
+    /// The passes each reading their neighbours: the series' terms, or
+    /// every Jacobi sweep of every sub-step.
+    int Passes() const
+    {
+      return this->ExponentialSeries.empty() ? this->SubSteps * this->SweepsPerStep
+                                             : static_cast<int>(this->ExponentialSeries.size());
+    }
+    bool UploadExchangeMask();
+    void ReleaseScratch(vtkWindow* window);
+    void Release(vtkWindow* window);
+  };
   mmv::DiffusionSettings Diffusion;
-  mmv::DiffusionGrid Coarse;
-  std::array<std::vector<float>, 2> CoarseFaces;
-  std::vector<float> CoarseExchanges; // 1 where a block exchanges light: ExchangeMask's depths
-  double CoarseMaxRate = 0.0;
-  int SubSteps = 0;
-  int SweepsPerStep = 0;
-  std::vector<double> ExponentialSeries; // c_k of the exponential integrator
-  double SpectralRadius = 0.0;           // of the Jacobi iteration, for the Chebyshev weights
-  mmv::IndexBox ScatteringBox;           // diffusion-grid blocks with s > 0
-  unsigned int ResidualQuery = 0;        // occlusion query counting unconverged blocks
+  // [0]: the lights on the irradiance grid. [1]: those on a strided light
+  // grid (mmv::LightGridDiffusionSettings), planned while one is strided and
+  // used where DiffusionOf picks it.
+  std::array<DiffusionPlan, 2> Diffusions;
+  /// The plan that diffuses lights of grid stride `stride` (an index of
+  /// Diffusions): the strided lights' own where it is coarser than the
+  /// others' and the scattering fills its blocks (mmv::MinimumFilledBlockShare).
+  int DiffusionOf(int stride) const;
+  /// Plans Diffusions[1] for the current classes where a light is strided.
+  void PlanStridedDiffusion();
+  unsigned int ResidualQuery = 0; // occlusion query counting unconverged blocks
 
   // The caller's region (SetRegion; every voxel until then or after
   // ResetRegion), the one the textures hold, and what this Render() draws.
@@ -374,9 +415,6 @@ public:
   // pass reads.
   vtkSmartPointer<vtkTextureObject> ClassTableTexture;
   vtkSmartPointer<vtkTextureObject> TableTexture;
-  // RGBA32F, of CoarseFaces; the second one linear: its alpha, the blocks
-  // that scatter, weighs the prolongation's corners.
-  std::array<vtkSmartPointer<vtkTextureObject>, 2> CoarseFacesTextures;
   std::vector<vtkSmartPointer<vtkTextureObject>> Irradiance;
   // Per irradiance texture, the voxels that may hold non-zero values: zero
   // when it is made, and what the last final write covered (the whole
@@ -401,11 +439,8 @@ public:
     }
   }
   bool TintPass(vtkOpenGLRenderWindow* context, int light, bool layered);
-  // Irradiance grid: [0] shadow rays, [1] after the diffusion. Diffusion
-  // grid: [0] restricted, [1..4] rotate through the sweeps (right-hand side,
-  // previous, current and next iterate).
+  // Irradiance grid: [0] shadow rays, [1] after the diffusion.
   std::array<vtkSmartPointer<vtkTextureObject>, 2> FineScratch;
-  std::array<vtkSmartPointer<vtkTextureObject>, 5> CoarseScratch;
   // The dim lights' transmittance on their strided grid (LightGridStride),
   // before it is interpolated into FineScratch[0]; only while one is dim.
   vtkSmartPointer<vtkTextureObject> LightGridScratch;
@@ -442,16 +477,7 @@ public:
   // atomic counter that stands in for the occlusion query there.
   bool Compute = false;
   unsigned int WriteCounter = 0;
-  // A GL_TEXTURE_2D_ARRAY of depths on the diffusion grid, CoarseExchanges
-  // (ExchangeMaskHolds: the current ones). The layered draws of the restriction and the sweeps test
-  // their quad's depth (0.5) against it, so a software rasterizer runs no
-  // shader for blocks the diffusion leaves alone; compute dispatches and
-  // per-slice draws return early in the shader instead.
-  unsigned int ExchangeMask = 0;
-  int ExchangeMaskDimensions[3] = { 0, 0, 0 };
-  bool ExchangeMaskHolds = false;
-  bool ExchangeMaskRefused = false; // the framebuffer would not take it
-  bool UploadExchangeMask();
+  bool ExchangeMaskRefused = false; // the framebuffer would not take a plan's mask
 
   /// The CPU's classification of the current inputs into Classes and
   /// NonEmptyVoxels.
@@ -467,25 +493,29 @@ public:
   /// Plans the diffusion; classifies on the CPU first where NeedsCPUClasses,
   /// else (no strength anywhere the diffusion would use) plans for none.
   void PlanDiffusion(double time, bool exponential, bool multipleScattering);
+  /// One diffusion grid of `settings` for the current classes.
+  void PlanDiffusionBlocks(DiffusionPlan& plan, const mmv::DiffusionSettings& settings);
 
   bool Upload(vtkOpenGLRenderWindow* context, bool layered);
   /// ClassTexture from ScalarTexture and the tables.
   bool ClassifyOnGPU(vtkOpenGLRenderWindow* context, bool layered);
   void EnsureFramebuffer(vtkOpenGLRenderWindow* context);
+  /// `plan`'s block textures and exchange mask, where they changed.
+  bool UploadDiffusionBlocks(vtkOpenGLRenderWindow* context, DiffusionPlan& plan, bool layered);
   bool AllocateTargets(
     vtkOpenGLRenderWindow* context, bool diffusion, bool layered, bool& reallocated);
   vtkShaderProgram* Ready(vtkOpenGLRenderWindow* context, mmv::voxelpass::VoxelPrograms& pass,
     const std::string& body, const std::string& defines, bool lightModel);
-  /// With `exchangingOnly`, a layered fragment draw on the diffusion grid
-  /// skips the blocks ExchangeMask marks 0.
+  /// With `exchanging`, a layered fragment draw on its diffusion grid skips
+  /// the blocks its ExchangeMask marks 0.
   void DrawLayers(vtkOpenGLRenderWindow* context, mmv::voxelpass::VoxelPrograms& pass,
     vtkTextureObject* target, bool layered, const int* box = nullptr, int writeMask = 0xF,
-    bool exchangingOnly = false);
+    DiffusionPlan* exchanging = nullptr);
   void Dispatch(vtkOpenGLRenderWindow* context, mmv::voxelpass::VoxelPrograms& pass,
     vtkTextureObject* target, const int* box, int writeMask, bool countWrites);
   unsigned int CountWrites(vtkOpenGLRenderWindow* context, mmv::voxelpass::VoxelPrograms& pass,
     vtkTextureObject* target, bool layered, const int* box);
-  void SetTransferUniforms(vtkShaderProgram* program) const;
+  void SetTransferUniforms(vtkShaderProgram* program, const DiffusionPlan& plan) const;
   std::string ShadowRayDefines() const;
   void SetShadowRayUniforms(vtkShaderProgram* program) const;
 
@@ -511,13 +541,14 @@ public:
   /// channels of FineScratch[0] over the estimated box.
   bool UpsamplePass(
     vtkOpenGLRenderWindow* context, int mask, int stride, bool skipEmpty, bool layered);
-  int Diffuse(vtkOpenGLRenderWindow* context, bool layered, int mask, bool skipEmpty);
-  void SetDiffusionGridUniforms(vtkShaderProgram* program);
-  void ReleaseDiffusionGridTextures();
-  int BackwardEulerSweeps(
-    vtkOpenGLRenderWindow* context, vtkShaderProgram* sweep, bool layered, int mask, int& current);
-  int ExponentialSweeps(
-    vtkOpenGLRenderWindow* context, vtkShaderProgram* sweep, bool layered, int& current);
+  int Diffuse(
+    vtkOpenGLRenderWindow* context, DiffusionPlan& plan, bool layered, int mask, bool skipEmpty);
+  static void SetDiffusionGridUniforms(vtkShaderProgram* program, const DiffusionPlan& plan);
+  static void ReleaseDiffusionGridTextures(const DiffusionPlan& plan);
+  int BackwardEulerSweeps(vtkOpenGLRenderWindow* context, DiffusionPlan& plan,
+    vtkShaderProgram* sweep, bool layered, int mask, int& current);
+  int ExponentialSweeps(vtkOpenGLRenderWindow* context, DiffusionPlan& plan,
+    vtkShaderProgram* sweep, bool layered, int& current);
   bool FillPass(vtkOpenGLRenderWindow* context, vtkTextureObject* source, int group, int mask,
     bool skipEmpty, bool layered);
   /// Which lights this update recomputes: all of them (`all`), or those

@@ -220,11 +220,19 @@ bool vtkIrradianceEstimator::vtkInternals::ClassifyOnGPU(
 // Euler, which may stop earlier).
 void vtkIrradianceEstimator::vtkInternals::PlanRegion(bool diffusion)
 {
-  const int passes = this->ExponentialSeries.empty()
-    ? this->SubSteps * this->SweepsPerStep
-    : static_cast<int>(this->ExponentialSeries.size());
+  DiffusionPlan& lights = this->Diffusions[0];
   this->Plan = mmv::PlanIrradianceRegion(
-    this->Region(), this->Grid.Dimensions, diffusion ? &this->Coarse : nullptr, passes);
+    this->Region(), this->Grid.Dimensions, diffusion ? &lights.Coarse : nullptr, lights.Passes());
+  lights.Blocks = this->Plan.Coarse;
+  DiffusionPlan& strided = this->Diffusions[this->DiffusionOf(this->MaxLightGridStride())];
+  if (diffusion && &strided != &lights)
+  {
+    // The shadow rays feed both grids' restrictions.
+    const mmv::IrradianceRegionPlan plan = mmv::PlanIrradianceRegion(
+      this->Region(), this->Grid.Dimensions, &strided.Coarse, strided.Passes());
+    strided.Blocks = plan.Coarse;
+    this->Plan.Estimated = this->Plan.Estimated.United(plan.Estimated);
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -235,7 +243,6 @@ bool vtkIrradianceEstimator::vtkInternals::Upload(vtkOpenGLRenderWindow* context
     return true;
   }
   const int* d = this->Grid.Dimensions;
-  const int* c = this->Coarse.Dimensions;
   const bool scalarsKept =
     this->ScalarsUploaded && this->ScalarTexture && this->ScalarTexture->GetHandle() != 0;
   if (!scalarsKept)
@@ -269,36 +276,8 @@ bool vtkIrradianceEstimator::vtkInternals::Upload(vtkOpenGLRenderWindow* context
     classesKept = false;
   }
   this->TableTexture = NewTexture(context, GL_R32F, GL_RED, GL_FLOAT, true);
-  // The blocks change with the diffusion plan, not at every edit.
-  bool strengths = true;
-  if (this->CoarseFacesChanged || !HasSize(this->CoarseFacesTextures[0], c))
-  {
-    for (size_t t = 0; t < this->CoarseFacesTextures.size(); ++t)
-    {
-      // In place while the grid keeps its size: fresh memory costs more.
-      auto& texture = this->CoarseFacesTextures[t];
-      if (HasSize(texture, c) && texture->GetContext() == context)
-      {
-        texture->Activate();
-        glTexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, 0, c[0], c[1], c[2], GL_RGBA, GL_FLOAT,
-          this->CoarseFaces[t].data());
-        texture->Deactivate();
-        continue;
-      }
-      texture = NewTexture(context, GL_RGBA32F, GL_RGBA, GL_FLOAT, t == 1);
-      strengths = strengths &&
-        texture->Create3DFromRaw(c[0], c[1], c[2], 4, VTK_FLOAT, this->CoarseFaces[t].data());
-    }
-    this->CoarseFacesChanged = !strengths;
-    this->ExchangeMaskHolds = false;
-  }
-  if (strengths && !this->ExchangeMaskHolds && !this->ExchangeMaskRefused && !this->Compute &&
-    layered)
-  {
-    this->ExchangeMaskHolds = this->UploadExchangeMask();
-  }
   ++this->VolumeUploads;
-  this->Uploaded = this->ScalarsUploaded && classes && strengths &&
+  this->Uploaded = this->ScalarsUploaded && classes &&
     this->TableTexture->Create2DFromRaw(
       this->TableSize, this->TableSize, 1, VTK_FLOAT, this->ShadowTable.data());
   this->TintTableTexture = nullptr;
@@ -347,6 +326,42 @@ bool vtkIrradianceEstimator::vtkInternals::ClassesHold() const
     }
   }
   return true;
+}
+
+//------------------------------------------------------------------------------
+// `plan`'s block textures and exchange mask: they change with the plan, not
+// at every edit, and in place while the grid keeps its size (fresh memory
+// costs more).
+bool vtkIrradianceEstimator::vtkInternals::UploadDiffusionBlocks(
+  vtkOpenGLRenderWindow* context, DiffusionPlan& plan, bool layered)
+{
+  const int* c = plan.Coarse.Dimensions;
+  bool ok = true;
+  if (plan.CoarseFacesChanged || !HasSize(plan.CoarseFacesTextures[0], c))
+  {
+    for (size_t t = 0; t < plan.CoarseFacesTextures.size(); ++t)
+    {
+      auto& texture = plan.CoarseFacesTextures[t];
+      if (HasSize(texture, c) && texture->GetContext() == context)
+      {
+        texture->Activate();
+        glTexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, 0, c[0], c[1], c[2], GL_RGBA, GL_FLOAT,
+          plan.CoarseFaces[t].data());
+        texture->Deactivate();
+        continue;
+      }
+      texture = NewTexture(context, GL_RGBA32F, GL_RGBA, GL_FLOAT, t == 1);
+      ok =
+        ok && texture->Create3DFromRaw(c[0], c[1], c[2], 4, VTK_FLOAT, plan.CoarseFaces[t].data());
+    }
+    plan.CoarseFacesChanged = !ok;
+    plan.ExchangeMaskHolds = false;
+  }
+  if (ok && !plan.ExchangeMaskHolds && !this->ExchangeMaskRefused && !this->Compute && layered)
+  {
+    plan.ExchangeMaskHolds = plan.UploadExchangeMask();
+  }
+  return ok;
 }
 
 //------------------------------------------------------------------------------
@@ -437,16 +452,23 @@ bool vtkIrradianceEstimator::vtkInternals::AllocateTargets(
       }
     }
   }
-  for (size_t i = 0; i < this->CoarseScratch.size(); ++i)
+  // The diffusion plans in use (the strided lights' where theirs is coarser)
+  // get their blocks and scratch; kept scratch the diffusion no longer needs
+  // goes.
+  const DiffusionPlan* strided = &this->Diffusions[this->DiffusionOf(stride)];
+  for (DiffusionPlan& plan : this->Diffusions)
   {
-    if (diffusion)
+    if (diffusion && (&plan == &this->Diffusions[0] || &plan == strided))
     {
-      ok = ok && EnsureFloatTexture(context, this->CoarseScratch[i], this->Coarse.Dimensions);
+      ok = ok && this->UploadDiffusionBlocks(context, plan, layered);
+      for (auto& texture : plan.CoarseScratch)
+      {
+        ok = ok && EnsureFloatTexture(context, texture, plan.Coarse.Dimensions);
+      }
     }
-    else if (this->CoarseScratch[i])
+    else
     {
-      this->CoarseScratch[i]->ReleaseGraphicsResources(context);
-      this->CoarseScratch[i] = nullptr;
+      plan.ReleaseScratch(context);
     }
   }
   this->EnsureFramebuffer(context);
@@ -634,7 +656,7 @@ vtkShaderProgram* vtkIrradianceEstimator::vtkInternals::Ready(vtkOpenGLRenderWin
 // (layered rendering), or, with `layered` off, one draw per slice.
 void vtkIrradianceEstimator::vtkInternals::DrawLayers(vtkOpenGLRenderWindow* context,
   VoxelPrograms& pass, vtkTextureObject* target, bool layered, const int* box, int writeMask,
-  bool exchangingOnly)
+  DiffusionPlan* exchanging)
 {
   if (IsEmptyBox(box))
   {
@@ -662,11 +684,11 @@ void vtkIrradianceEstimator::vtkInternals::DrawLayers(vtkOpenGLRenderWindow* con
   this->Framebuffer->Bind();
   if (layered)
   {
-    bool masked = exchangingOnly && this->ExchangeMaskHolds;
+    bool masked = exchanging && exchanging->ExchangeMaskHolds;
     glFramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, target->GetHandle(), 0);
     if (masked)
     {
-      glFramebufferTexture(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, this->ExchangeMask, 0);
+      glFramebufferTexture(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, exchanging->ExchangeMask, 0);
       // A driver that will not pair a 3D colour target with a depth array
       // gets the unmasked draw: the shader leaves those blocks alone too,
       // only later.
@@ -674,7 +696,7 @@ void vtkIrradianceEstimator::vtkInternals::DrawLayers(vtkOpenGLRenderWindow* con
       if (!masked)
       {
         glFramebufferTexture(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, 0, 0);
-        this->ExchangeMaskHolds = false;
+        exchanging->ExchangeMaskHolds = false;
         this->ExchangeMaskRefused = true;
       }
     }
@@ -870,18 +892,17 @@ void vtkIrradianceEstimator::vtkInternals::ReleaseScratch(vtkWindow* window)
     this->LightGridScratch->ReleaseGraphicsResources(window);
     this->LightGridScratch = nullptr;
   }
-  for (auto* scratch : { this->FineScratch.data(), this->CoarseScratch.data() })
+  for (auto& texture : this->FineScratch)
   {
-    const size_t count =
-      scratch == this->FineScratch.data() ? this->FineScratch.size() : this->CoarseScratch.size();
-    for (size_t i = 0; i < count; ++i)
+    if (texture)
     {
-      if (scratch[i])
-      {
-        scratch[i]->ReleaseGraphicsResources(window);
-        scratch[i] = nullptr;
-      }
+      texture->ReleaseGraphicsResources(window);
+      texture = nullptr;
     }
+  }
+  for (auto& plan : this->Diffusions)
+  {
+    plan.ReleaseScratch(window);
   }
 }
 
@@ -889,9 +910,12 @@ void vtkIrradianceEstimator::vtkInternals::ReleaseScratch(vtkWindow* window)
 void vtkIrradianceEstimator::vtkInternals::Release(vtkWindow* window)
 {
   this->ReleaseScratch(window);
+  for (auto& plan : this->Diffusions)
+  {
+    plan.Release(window);
+  }
   for (auto* texture : { &this->ScalarTexture, &this->ClassTexture, &this->TableTexture,
-         &this->CoarseFacesTextures[0], &this->CoarseFacesTextures[1], &this->LightGridClassTexture,
-         &this->ClassTableTexture, &this->LightGridRangeTexture })
+         &this->LightGridClassTexture, &this->ClassTableTexture, &this->LightGridRangeTexture })
   {
     if (*texture)
     {
@@ -931,13 +955,6 @@ void vtkIrradianceEstimator::vtkInternals::Release(vtkWindow* window)
   {
     glDeleteBuffers(1, &this->WriteCounter);
     this->WriteCounter = 0;
-  }
-  if (this->ExchangeMask)
-  {
-    glDeleteTextures(1, &this->ExchangeMask);
-    this->ExchangeMask = 0;
-    this->ExchangeMaskHolds = false;
-    std::fill(this->ExchangeMaskDimensions, this->ExchangeMaskDimensions + 3, 0);
   }
   this->ExchangeMaskRefused = false; // another context may take it
   for (VoxelPrograms* pass :

@@ -12,15 +12,6 @@
 using namespace mmv::voxelpass;
 
 //------------------------------------------------------------------------------
-// The uniforms of the transfers between the irradiance and diffusion grids.
-void vtkIrradianceEstimator::vtkInternals::SetTransferUniforms(vtkShaderProgram* program) const
-{
-  program->SetUniform1iv("dims", 3, this->Grid.Dimensions);
-  program->SetUniform1iv("factor", 3, this->Coarse.Factor);
-  program->SetUniform1iv("coarseDims", 3, this->Coarse.Dimensions);
-}
-
-//------------------------------------------------------------------------------
 // The shadow rays' constants, and MMV_CUTAWAY while something is cut: without
 // it the cutaway test compiles away (Shaders/mmvCutaway.glsl).
 std::string vtkIrradianceEstimator::vtkInternals::ShadowRayDefines() const

@@ -508,6 +508,12 @@ void vtkMultiMaterialIrradianceStage::Record(const mmv::IrradianceResolution& re
            << " (diffusion length " << pass->GetDiffusionLength() << " data voxels, "
            << pass->GetDiffusionSubSteps() << " sub-steps x " << pass->GetDiffusionSweepsPerStep()
            << " sweeps)";
+    int dim[3];
+    pass->GetDiffusionGridDimensions(dim, mmv::DimLightStride);
+    if (!std::equal(dim, dim + 3, coarse))
+    {
+      reason << ", the dim lights' on " << dim[0] << "x" << dim[1] << "x" << dim[2];
+    }
   }
   this->ResolutionReason = reason.str();
   vtkDebugWithObjectMacro(this->In->Reporter,

@@ -8,12 +8,13 @@ pvpython).
         scripts/pvpython Testing/Benchmark/pv_dim_lights.py --out DIR [--quick]
 
 Volumes as pv_lighting_changes.py's (head: smooth, chest: fine structure),
-400 x 400, ParaView's light kit; materials default and `skin`; each setting
+400 x 400, ParaView's light kit; materials default, `skin` and `smoke`; each setting
 in its own view. Each of --changes camera moves (Azimuth 10 degrees) is made
-in both views and rendered once in each (the order alternates). Writes OUT/dim_lights.csv: per volume and
-material the median still frame and shadow seconds of each setting, the
-shadow rays cast (voxel-lights) and the PSNR of the strided image against the
-exact one (the minimum over the moves).
+in both views and rendered once in each (the order alternates). Writes
+OUT/dim_lights.csv: per volume and material the median still frame, shadow
+and diffusion seconds of each setting, the shadow rays cast (voxel-lights)
+and the PSNR of the strided image against the exact one (the minimum over
+the moves).
 """
 
 import argparse
@@ -40,7 +41,7 @@ def parse_args():
     p.add_argument("--out", default=os.path.join(os.getcwd(), "build", "benchmark_dim_lights"))
     p.add_argument("--quick", action="store_true", help="128x128x64, 2 moves")
     p.add_argument("--volumes", default="head,chest")
-    p.add_argument("--presets", default="default,skin")
+    p.add_argument("--presets", default="default,skin,smoke")
     p.add_argument("--changes", type=int, default=None, help="camera moves (default 4)")
     p.add_argument("--view-size", type=int, default=400)
     args, _ = p.parse_known_args()
@@ -88,6 +89,7 @@ def run(name, preset, path, args, writer):
     methods = {strided: make_method(path, preset, strided, args) for strided in (True, False)}
     frames = {True: [], False: []}
     shadows = {True: [], False: []}
+    diffusion = {True: [], False: []}
     rays = {}
     errors = []
     for change in range(args.changes):
@@ -100,6 +102,7 @@ def run(name, preset, path, args, writer):
             frames[strided].append(time.time() - start)
             irradiance = orbit.volume_props(view)[0].GetMapper().GetIrradianceEstimator()
             shadows[strided].append(irradiance.GetLastEstimationSeconds())
+            diffusion[strided].append(irradiance.GetLastDiffusionSeconds())
             rays[strided] = irradiance.GetLastEstimatedVoxels()
             images[strided] = grab(view)
         errors.append(psnr(images[True], images[False]))
@@ -111,6 +114,8 @@ def run(name, preset, path, args, writer):
         "frame_exact_s": statistics.median(frames[False]),
         "shadows_strided_s": statistics.median(shadows[True]),
         "shadows_exact_s": statistics.median(shadows[False]),
+        "diffusion_strided_s": statistics.median(diffusion[True]),
+        "diffusion_exact_s": statistics.median(diffusion[False]),
         "voxel_lights_strided": rays[True], "voxel_lights_exact": rays[False],
         "psnr_db_min": min(errors),
     }
@@ -130,7 +135,8 @@ def main():
     os.makedirs(args.out, exist_ok=True)
     folder = tempfile.mkdtemp(prefix="mmv_dim_lights_")
     fields = ["volume", "material", "grid", "frame_strided_s", "frame_exact_s", "frame_ratio",
-              "shadows_strided_s", "shadows_exact_s", "voxel_lights_strided",
+              "shadows_strided_s", "shadows_exact_s", "diffusion_strided_s",
+              "diffusion_exact_s", "voxel_lights_strided",
               "voxel_lights_exact", "psnr_db_min"]
     with open(os.path.join(args.out, "dim_lights.csv"), "w", newline="") as f:
         writer = csv.DictWriter(f, fieldnames=fields)

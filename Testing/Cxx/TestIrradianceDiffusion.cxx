@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <numeric>
 #include <random>
 #include <vector>
@@ -529,6 +530,41 @@ TEST(IrradianceResolution, ScreenRuleUsesQuarterOctaves)
   r = mmv::ChooseIrradianceResolution(data, 1, 4.0, 0.25, 50.0);
   EXPECT_EQ(r.Dimensions[0], 64);
   EXPECT_NE(r.Reason.find("user"), std::string::npos);
+}
+
+// Layers of scattering on blocks of 2: a layer that fills whole blocks counts
+// in full, a layer thinner than a block, or one that straddles two, not at
+// all; a mixture counts each voxel where it lies.
+TEST(IrradianceDiffusion, FilledBlockShareTellsThinLayersFromThickOnes)
+{
+  const int dims[3] = { 8, 8, 8 };
+  mmv::DiffusionGrid blocks;
+  for (int a = 0; a < 3; ++a)
+  {
+    blocks.Factor[a] = 2;
+    blocks.Dimensions[a] = 4;
+    blocks.Spacing[a] = 2.0;
+  }
+  auto share = [&](const std::function<bool(int)>& scatters)
+  {
+    std::vector<float> strength(512, 0.0f);
+    for (int v = 0; v < 512; ++v)
+    {
+      strength[v] = scatters(v / 64) ? 1.0f : 0.0f; // by the voxel's z
+    }
+    std::vector<float> capacity;
+    mmv::RestrictToDiffusionGrid(
+      dims, blocks, strength.data(), nullptr, nullptr, nullptr, &capacity);
+    return mmv::FilledBlockShare(capacity.data(), static_cast<vtkIdType>(capacity.size()));
+  };
+  EXPECT_EQ(share([](int) { return true; }), 1.0);
+  EXPECT_EQ(share([](int) { return false; }), 0.0);
+  EXPECT_EQ(share([](int z) { return z == 3; }), 0.0);           // one voxel thick
+  EXPECT_EQ(share([](int z) { return z == 2 || z == 3; }), 1.0); // one block thick
+  EXPECT_EQ(share([](int z) { return z == 3 || z == 4; }), 0.0); // across two blocks
+  // 4 layers that fill two block layers and 1 that half fills one: 4 of 5.
+  EXPECT_NEAR(share([](int z) { return z <= 3 || z == 6; }), 0.8, 1e-12);
+  EXPECT_EQ(mmv::FilledBlockShare(nullptr, 4), 0.0);
 }
 
 TEST(IrradianceDiffusion, BlockTexelsHoldEachFaceFromBothSides)

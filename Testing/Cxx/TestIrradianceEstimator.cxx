@@ -886,6 +886,89 @@ TEST(IrradianceEstimator, DiffusionMatchesCPUSolverForEveryStrength)
   }
 }
 
+// A strided light diffuses on a grid of its own, twice as coarse
+// (mmv::LightGridDiffusionSettings): what it gets equals the CPU's diffusion
+// of its transmittance on that grid, and the light on the irradiance grid
+// beside it keeps the default grid, so its values equal the CPU's on that
+// (on the voxels that scatter).
+TEST(IrradianceEstimator, StridedLightsDiffuseOnTheirOwnCoarserGrid)
+{
+  const Context& ctx = SharedContext();
+  ASSERT_NE(ctx.GL, nullptr);
+  Scene scene = TwoBlocks(8.0); // diffusion length 4 data voxels
+  scene.Image = MakeImage({ 48, 48, 48 }, { 1.0, 1.0, 1.0 },
+    [](int i, int j, int k)
+    {
+      if (j < 6 || j > 41 || k < 6 || k > 41)
+      {
+        return 0.0f;
+      }
+      return i >= 6 && i < 24 ? 1.0f : (i >= 24 && i < 42 ? 2.0f : 0.0f);
+    });
+  scene.Lights = { Directional(1.0, 0.6, 0.8), Directional(1.0, 0.6, 0.8) };
+  scene.Strides = { 1, 2 };
+  // The transmittance each light's diffusion starts from, and the result.
+  std::vector<std::vector<float>> direct;
+  std::vector<std::vector<float>> diffused;
+  std::vector<float> classes;
+  int grids[2][3];
+  for (const bool multipleScattering : { false, true })
+  {
+    vtkNew<vtkIrradianceEstimator> pass;
+    pass->SetMultipleScattering(multipleScattering);
+    SetPassInputs(scene, pass);
+    ASSERT_TRUE(pass->Render(ctx.GL));
+    ASSERT_TRUE(pass->ReadBackLights(ctx.GL, 0, 2, multipleScattering ? diffused : direct));
+    pass->ClassifyOnCPU(classes);
+    pass->GetDiffusionGridDimensions(grids[0], 1);
+    pass->GetDiffusionGridDimensions(grids[1], mmv::DimLightStride);
+    pass->ReleaseGraphicsResources(ctx.GL);
+  }
+  const mmv::IrradianceGrid grid = GridOf(scene);
+  const double spacing[3] = { grid.DataVoxelsPerVoxel[0], grid.DataVoxelsPerVoxel[1],
+    grid.DataVoxelsPerVoxel[2] };
+  std::vector<float> strength(classes.size());
+  std::transform(
+    classes.begin(), classes.end(), strength.begin(), [](float c) { return std::max(0.0f, c); });
+  // The diffusion's voxels: the final write gives the empty ones what the
+  // ray cast's interpolation needs of their neighbours.
+  std::vector<bool> empty(classes.size());
+  std::transform(
+    classes.begin(), classes.end(), empty.begin(), [](float c) { return !(c > 0.0f); });
+  mmv::DiffusionSettings settings;
+  settings.Exponential = mmv::DefaultExponentialDiffusion;
+  std::vector<float> onOtherGrid;
+  for (int k = 0; k < 2; ++k)
+  {
+    const int stride = scene.Strides[k];
+    mmv::DiffusionGrid used;
+    std::vector<float> cpu = direct[k];
+    mmv::DiffuseIrradianceOnDiffusionGrid(grid.Dimensions, spacing, strength.data(), cpu.data(),
+      mmv::LightGridDiffusionSettings(settings, stride), &used);
+    for (int a = 0; a < 3; ++a)
+    {
+      EXPECT_EQ(grids[k][a], used.Dimensions[a]) << "light " << k << ", axis " << a;
+      // The strided light's grid: twice as coarse.
+      EXPECT_EQ(used.Dimensions[a], k == 0 ? 24 : 12) << "light " << k << ", axis " << a;
+    }
+    const double diff = MaxDifference(diffused[k], cpu, empty);
+    std::cout << "light " << k << " (stride " << stride << "): diffusion grid "
+              << used.Dimensions[0] << "x" << used.Dimensions[1] << "x" << used.Dimensions[2]
+              << ", GPU vs CPU max |difference| " << diff << std::endl;
+    EXPECT_LE(diff, 0.01) << "light " << k;
+    if (k == 1)
+    {
+      // The grids differ enough to tell which one the GPU used.
+      onOtherGrid = direct[k];
+      mmv::DiffuseIrradianceOnDiffusionGrid(
+        grid.Dimensions, spacing, strength.data(), onOtherGrid.data(), settings);
+      const double apart = MaxDifference(onOtherGrid, cpu, empty);
+      std::cout << "strided light: the two grids' results differ by up to " << apart << std::endl;
+      EXPECT_GT(apart, 10.0 * 0.01); // ten times the tolerance above
+    }
+  }
+}
+
 TEST(IrradianceEstimator, OnlyMovedLightsAreRecomputed)
 {
   const Context& ctx = SharedContext();
