@@ -734,9 +734,9 @@ vtkIdType vtkIrradianceEstimator::GetScratchMemoryBytes() const
   vtkIdType bytes = 0;
   auto add = [&bytes](const vtkSmartPointer<vtkTextureObject>& texture)
   {
-    // RGBA32F: 4 channels of 4 bytes.
+    // 32-bit floats.
     bytes += texture ? static_cast<vtkIdType>(texture->GetWidth()) * texture->GetHeight() *
-        texture->GetDepth() * 16
+        texture->GetDepth() * texture->GetComponents() * 4
                      : 0;
   };
   std::for_each(this->Internals->FineScratch.begin(), this->Internals->FineScratch.end(), add);

@@ -158,8 +158,9 @@ public:
    * (default on): an update then allocates nothing, which on a software
    * rasterizer is a large share of a light update (docs/performance.md,
    * "Irradiance update stages"). The price is holding them: 16 bytes a voxel,
-   * three times that with multiple scattering (GetScratchMemoryBytes). Off:
-   * released after every update.
+   * up to three times that with multiple scattering (GetScratchMemoryBytes;
+   * the diffusion grids' scratch holds as many channels as the lights it
+   * diffuses need). Off: released after every update.
    */
   vtkSetMacro(KeepScratch, bool);
   vtkGetMacro(KeepScratch, bool);

@@ -52,6 +52,22 @@ int vtkIrradianceEstimator::vtkInternals::DiffusionOf(int stride) const
   return coarser ? 1 : 0;
 }
 
+std::array<int, 2> vtkIrradianceEstimator::vtkInternals::ScratchChannels() const
+{
+  std::array<int, 2> channels = { 0, 0 };
+  const bool ownGrid = this->DiffusionOf(this->MaxLightGridStride()) == 1;
+  for (size_t k = 0; k < this->Lights.size(); ++k)
+  {
+    const int plan = ownGrid && this->Lights[k].GridStride > 1 ? 1 : 0;
+    channels[plan] = std::max(channels[plan], static_cast<int>(k % LightsPerTexture) + 1);
+  }
+  for (int& c : channels)
+  {
+    c = this->Compute || c > 2 ? 4 : std::max(c, 1);
+  }
+  return channels;
+}
+
 //------------------------------------------------------------------------------
 // One diffusion grid of `settings` for the current classes.
 void vtkIrradianceEstimator::vtkInternals::PlanDiffusionBlocks(

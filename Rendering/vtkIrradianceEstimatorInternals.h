@@ -128,17 +128,21 @@ inline bool HasSize(vtkTextureObject* t, const int d[3])
 }
 
 /// A float RGBA 3D texture of size d, kept when it already has that size.
-inline bool EnsureFloatTexture(
-  vtkOpenGLRenderWindow* context, vtkSmartPointer<vtkTextureObject>& texture, const int d[3])
+/// A float texture of `d` with 1, 2 or 4 `components` (R32F, RG32F,
+/// RGBA32F), kept while it has them.
+inline bool EnsureFloatTexture(vtkOpenGLRenderWindow* context,
+  vtkSmartPointer<vtkTextureObject>& texture, const int d[3], int components = 4)
 {
-  if (HasSize(texture, d))
+  if (HasSize(texture, d) && texture->GetComponents() == components)
   {
     return true;
   }
+  static const GLenum internal[] = { GL_R32F, GL_RG32F, GL_RGBA32F, GL_RGBA32F };
+  static const GLenum format[] = { GL_RED, GL_RG, GL_RGBA, GL_RGBA };
   // Linear: the prolongation interpolates the diffusion grid; the other
   // passes read with texelFetch, which ignores filtering.
-  texture = NewTexture(context, GL_RGBA32F, GL_RGBA, GL_FLOAT, true);
-  return texture->Allocate3D(d[0], d[1], d[2], 4, VTK_FLOAT);
+  texture = NewTexture(context, internal[components - 1], format[components - 1], GL_FLOAT, true);
+  return texture->Allocate3D(d[0], d[1], d[2], components, VTK_FLOAT);
 }
 
 /// The estimator's lights first .. first + 3 (one output texture's channels)
@@ -386,6 +390,11 @@ public:
   /// Diffusions): the strided lights' own where it is coarser than the
   /// others' and the scattering fills its blocks (mmv::MinimumFilledBlockShare).
   int DiffusionOf(int stride) const;
+  /// The channels each plan's scratch needs: up to the highest channel of a
+  /// light it diffuses, 1, 2 or 4 (a software rasterizer fetches a
+  /// one-channel float texel at about 60 % of an RGBA one's cost); 4 for
+  /// compute dispatches, which store RGBA images.
+  std::array<int, 2> ScratchChannels() const;
   /// Plans Diffusions[1] for the current classes where a light is strided.
   void PlanStridedDiffusion();
   unsigned int ResidualQuery = 0; // occlusion query counting unconverged blocks

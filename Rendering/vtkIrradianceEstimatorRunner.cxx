@@ -456,14 +456,16 @@ bool vtkIrradianceEstimator::vtkInternals::AllocateTargets(
   // get their blocks and scratch; kept scratch the diffusion no longer needs
   // goes.
   const DiffusionPlan* strided = &this->Diffusions[this->DiffusionOf(stride)];
+  const std::array<int, 2> channels = this->ScratchChannels();
   for (DiffusionPlan& plan : this->Diffusions)
   {
     if (diffusion && (&plan == &this->Diffusions[0] || &plan == strided))
     {
       ok = ok && this->UploadDiffusionBlocks(context, plan, layered);
+      const int components = channels[&plan - this->Diffusions.data()];
       for (auto& texture : plan.CoarseScratch)
       {
-        ok = ok && EnsureFloatTexture(context, texture, plan.Coarse.Dimensions);
+        ok = ok && EnsureFloatTexture(context, texture, plan.Coarse.Dimensions, components);
       }
     }
     else

@@ -1,7 +1,8 @@
 // One Jacobi sweep of a 7-point stencil on an RGBA 3D texture, as a layered
 // fragment draw (instanced quads + geometry shader writing gl_Layer, what
 // the irradiance pass did) and as a compute dispatch with imageStore, for
-// RGBA32F and RGBA16F and three work-group shapes; EGL on the first device,
+// RGBA32F, RGBA16F and R32F (the scratch of a diffusion grid that diffuses
+// one light) and three work-group shapes; EGL on the first device,
 // no VTK. The measurement behind vtkIrradianceEstimator's compute
 // dispatches (docs/performance.md, "On a GPU: NVIDIA H100"). The layered
 // draw runs twice more with the voxels outside a centred ball (13 % of the
@@ -184,8 +185,8 @@ int main(int argc, char** argv)
   glewInit();
   glGetError();
   printf("renderer %s, grid %dx%dx%d\n", glGetString(GL_RENDERER), dims[0], dims[1], dims[2]);
-  GLenum fmts[2] = { GL_RGBA32F, GL_RGBA16F };
-  const char* fmtNames[2] = { "rgba32f", "rgba16f" };
+  GLenum fmts[3] = { GL_RGBA32F, GL_RGBA16F, GL_R32F };
+  const char* fmtNames[3] = { "rgba32f", "rgba16f", "r32f" };
   float quad[] = { -1, -1, 1, -1, -1, 1, 1, 1 };
   GLuint vao, vbo;
   glGenVertexArrays(1, &vao);
@@ -199,7 +200,7 @@ int main(int argc, char** argv)
     shader(GL_VERTEX_SHADER, vs), shader(GL_GEOMETRY_SHADER, gs), shader(GL_FRAGMENT_SHADER, fs));
   GLuint fbo;
   glGenFramebuffers(1, &fbo);
-  for (int f = 0; f < 2; ++f)
+  for (int f = 0; f < 3; ++f)
   {
     GLuint t[3];
     for (int i = 0; i < 3; ++i)

@@ -890,7 +890,7 @@ TEST(IrradianceEstimator, DiffusionMatchesCPUSolverForEveryStrength)
 // (mmv::LightGridDiffusionSettings): what it gets equals the CPU's diffusion
 // of its transmittance on that grid, and the light on the irradiance grid
 // beside it keeps the default grid, so its values equal the CPU's on that
-// (on the voxels that scatter).
+// (on the voxels that scatter), by fragment draws and compute dispatches.
 TEST(IrradianceEstimator, StridedLightsDiffuseOnTheirOwnCoarserGrid)
 {
   const Context& ctx = SharedContext();
@@ -907,23 +907,34 @@ TEST(IrradianceEstimator, StridedLightsDiffuseOnTheirOwnCoarserGrid)
     });
   scene.Lights = { Directional(1.0, 0.6, 0.8), Directional(1.0, 0.6, 0.8) };
   scene.Strides = { 1, 2 };
-  // The transmittance each light's diffusion starts from, and the result.
+  // The transmittance each light's diffusion starts from, and the result of
+  // fragment draws and of compute dispatches.
   std::vector<std::vector<float>> direct;
-  std::vector<std::vector<float>> diffused;
+  std::vector<std::vector<float>> diffused[2];
   std::vector<float> classes;
   int grids[2][3];
-  for (const bool multipleScattering : { false, true })
+  vtkIdType scratchBytes[2] = { 0, 0 };
+  for (const int run : { 0, 1, 2 })
   {
     vtkNew<vtkIrradianceEstimator> pass;
-    pass->SetMultipleScattering(multipleScattering);
+    pass->KeepScratchOn();
+    pass->SetMultipleScattering(run > 0);
+    pass->SetComputeShaders(
+      run == 2 ? vtkIrradianceEstimator::ComputeDispatches : vtkIrradianceEstimator::FragmentDraws);
     SetPassInputs(scene, pass);
     ASSERT_TRUE(pass->Render(ctx.GL));
-    ASSERT_TRUE(pass->ReadBackLights(ctx.GL, 0, 2, multipleScattering ? diffused : direct));
+    EXPECT_EQ(pass->GetComputeShadersUsed(), run == 2);
+    ASSERT_TRUE(pass->ReadBackLights(ctx.GL, 0, 2, run > 0 ? diffused[run - 1] : direct));
     pass->ClassifyOnCPU(classes);
     pass->GetDiffusionGridDimensions(grids[0], 1);
     pass->GetDiffusionGridDimensions(grids[1], mmv::DimLightStride);
+    scratchBytes[run == 2 ? 1 : 0] = pass->GetScratchMemoryBytes();
     pass->ReleaseGraphicsResources(ctx.GL);
   }
+  // Fragment draws keep one channel on the first grid (light 0's) and two on
+  // the strided light's (its channel is the second), five textures each;
+  // compute dispatches store RGBA.
+  EXPECT_EQ(scratchBytes[1] - scratchBytes[0], 5 * 4 * (24 * 24 * 24 * 3 + 12 * 12 * 12 * 2));
   const mmv::IrradianceGrid grid = GridOf(scene);
   const double spacing[3] = { grid.DataVoxelsPerVoxel[0], grid.DataVoxelsPerVoxel[1],
     grid.DataVoxelsPerVoxel[2] };
@@ -951,11 +962,15 @@ TEST(IrradianceEstimator, StridedLightsDiffuseOnTheirOwnCoarserGrid)
       // The strided light's grid: twice as coarse.
       EXPECT_EQ(used.Dimensions[a], k == 0 ? 24 : 12) << "light " << k << ", axis " << a;
     }
-    const double diff = MaxDifference(diffused[k], cpu, empty);
-    std::cout << "light " << k << " (stride " << stride << "): diffusion grid "
-              << used.Dimensions[0] << "x" << used.Dimensions[1] << "x" << used.Dimensions[2]
-              << ", GPU vs CPU max |difference| " << diff << std::endl;
-    EXPECT_LE(diff, 0.01) << "light " << k;
+    for (const int compute : { 0, 1 })
+    {
+      const double gpu = MaxDifference(diffused[compute][k], cpu, empty);
+      std::cout << "light " << k << " (stride " << stride << "): diffusion grid "
+                << used.Dimensions[0] << "x" << used.Dimensions[1] << "x" << used.Dimensions[2]
+                << ", GPU (" << (compute ? "compute" : "fragments") << ") vs CPU max |difference| "
+                << gpu << std::endl;
+      EXPECT_LE(gpu, 0.01) << "light " << k << (compute ? ", compute" : ", fragments");
+    }
     if (k == 1)
     {
       // The grids differ enough to tell which one the GPU used.
