@@ -391,8 +391,8 @@ public:
   /// others' and the scattering fills its blocks (mmv::MinimumFilledBlockShare).
   int DiffusionOf(int stride) const;
   /// The channels each plan's scratch needs: up to the highest channel of a
-  /// light it diffuses, 1, 2 or 4 (a software rasterizer fetches a
-  /// one-channel float texel at about 60 % of an RGBA one's cost); 4 for
+  /// light it diffuses, 1, 2 or 4 (a software rasterizer sweeps one-channel
+  /// float texels in about three quarters of an RGBA grid's time); 4 for
   /// compute dispatches, which store RGBA images.
   std::array<int, 2> ScratchChannels() const;
   /// Plans Diffusions[1] for the current classes where a light is strided.
