@@ -95,7 +95,7 @@ VTKMULTIMATERIALVOLUMEFILTERS_EXPORT double FilledBlockShare(
 /// The FilledBlockShare a coarser diffusion grid needs to stand in for the
 /// lights' own (LightGridDiffusionSettings). Measured under the light kit: a
 /// one-voxel shell has 0.03 (29.9 dB on the coarser grid), the MR head's and
-/// the CT's tissue 0.86-0.95 (54-56 dB).
+/// the CT's scattering bodies 0.86-0.95 (54-56 dB).
 constexpr double MinimumFilledBlockShare = 0.5;
 
 struct DiffusionReport

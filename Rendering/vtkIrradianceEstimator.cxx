@@ -421,36 +421,28 @@ bool vtkIrradianceEstimator::UpdateGroup(vtkOpenGLRenderWindow* context, int gro
       internals.UpsamplePass(
         context, stridedMask, stride, this->SkipEmptyVoxels, this->LayeredRendering));
   this->LastEstimationSeconds += elapsed();
-  // Each diffusion grid diffuses its lights (the strided ones on their own
-  // where it is coarser), and their final write follows.
-  const bool ownGrid = diffusion && internals.DiffusionOf(stride) == 1;
-  const int lightsOf[2] = { ownGrid ? mask & ~stridedMask : mask, ownGrid ? stridedMask : 0 };
-  const mmv::IndexBox filled = internals.FilledBoxes[group];
-  for (int p = 0; ok && p < 2; ++p)
+  // Each diffusion grid diffuses its lights into their channels (the
+  // strided ones on their own where DiffusionOf picks it).
+  vtkTextureObject* result = internals.FineScratch[0];
+  if (ok && diffusion)
   {
-    if (lightsOf[p] == 0)
+    const bool ownGrid = internals.DiffusionOf(stride) == 1;
+    const int lightsOf[2] = { ownGrid ? mask & ~stridedMask : mask, ownGrid ? stridedMask : 0 };
+    for (int p = 0; ok && p < 2; ++p)
     {
-      continue;
-    }
-    vtkInternals::DiffusionPlan& plan = internals.Diffusions[p];
-    vtkTextureObject* result = internals.FineScratch[0];
-    if (diffusion && plan.CoarseMaxRate > 0.0)
-    {
-      const int sweeps = internals.Diffuse(
-        context, plan, this->LayeredRendering, lightsOf[p], this->SkipEmptyVoxels);
+      const int sweeps = lightsOf[p] == 0
+        ? 0
+        : internals.Diffuse(context, internals.Diffusions[p], this->LayeredRendering, lightsOf[p],
+            this->SkipEmptyVoxels);
       ok = sweeps >= 0;
       this->DiffusionPasses += std::max(0, sweeps);
-      result = internals.FineScratch[1];
-      this->LastDiffusionSeconds += elapsed();
     }
-    // Both writes cover what the texture's voxels need (FillPass shrinks
-    // FilledBoxes to what it drew).
-    internals.FilledBoxes[group] = filled;
-    ok = ok &&
-      internals.FillPass(
-        context, result, group, lightsOf[p], this->SkipEmptyVoxels, this->LayeredRendering);
-    this->LastWriteSeconds += elapsed();
+    result = internals.FineScratch[1];
+    this->LastDiffusionSeconds += elapsed();
   }
+  ok = ok &&
+    internals.FillPass(context, result, group, mask, this->SkipEmptyVoxels, this->LayeredRendering);
+  this->LastWriteSeconds += elapsed();
   if (ok && diffusion)
   {
     this->ReportProgress(context, lights); // the diffusion, with the short write

@@ -28,18 +28,45 @@ void vtkIrradianceEstimator::vtkInternals::PlanDiffusion(
   {
     plan.Planned = false;
   }
-  this->PlanDiffusionBlocks(this->Diffusions[0], this->Diffusion);
-  this->PlanStridedDiffusion();
+  float maxStrength = 0.0f;
+  const std::vector<float> strength = this->DiffusionStrengths(maxStrength);
+  this->PlanDiffusionBlocks(this->Diffusions[0], this->Diffusion, strength, maxStrength);
+  this->PlanStridedDiffusion(&strength, maxStrength);
 }
 
-void vtkIrradianceEstimator::vtkInternals::PlanStridedDiffusion()
+void vtkIrradianceEstimator::vtkInternals::PlanStridedDiffusion(
+  const std::vector<float>* strength, float maxStrength)
 {
   const int stride = this->MaxLightGridStride();
-  if (stride > 1 && !this->Diffusions[1].Planned)
+  if (stride <= 1 || this->Diffusions[1].Planned)
   {
-    this->PlanDiffusionBlocks(
-      this->Diffusions[1], mmv::LightGridDiffusionSettings(this->Diffusion, stride));
+    return;
   }
+  std::vector<float> made;
+  if (!strength)
+  {
+    made = this->DiffusionStrengths(maxStrength);
+    strength = &made;
+  }
+  this->PlanDiffusionBlocks(this->Diffusions[1],
+    mmv::LightGridDiffusionSettings(this->Diffusion, stride), *strength, maxStrength);
+}
+
+std::vector<float> vtkIrradianceEstimator::vtkInternals::DiffusionStrengths(
+  float& maxStrength) const
+{
+  maxStrength = 0.0f;
+  std::vector<float> strength;
+  if (this->ClassesOnCPU)
+  {
+    strength.resize(this->Classes.size());
+    for (size_t v = 0; v < strength.size(); ++v)
+    {
+      strength[v] = std::max(0.0f, this->Classes[v]);
+      maxStrength = std::max(maxStrength, strength[v]);
+    }
+  }
+  return strength;
 }
 
 int vtkIrradianceEstimator::vtkInternals::DiffusionOf(int stride) const
@@ -48,17 +75,16 @@ int vtkIrradianceEstimator::vtkInternals::DiffusionOf(int stride) const
   const int* lights = this->Diffusions[0].Coarse.Factor;
   const bool coarser = stride > 1 && strided.Planned &&
     !std::equal(strided.Coarse.Factor, strided.Coarse.Factor + 3, lights) &&
-    strided.FilledShare >= mmv::MinimumFilledBlockShare;
+    strided.FilledShare >= mmv::MinimumFilledBlockShare && strided.CoarseMaxRate > 0.0;
   return coarser ? 1 : 0;
 }
 
 std::array<int, 2> vtkIrradianceEstimator::vtkInternals::ScratchChannels() const
 {
   std::array<int, 2> channels = { 0, 0 };
-  const bool ownGrid = this->DiffusionOf(this->MaxLightGridStride()) == 1;
   for (size_t k = 0; k < this->Lights.size(); ++k)
   {
-    const int plan = ownGrid && this->Lights[k].GridStride > 1 ? 1 : 0;
+    const int plan = this->DiffusionOf(this->Lights[k].GridStride);
     channels[plan] = std::max(channels[plan], static_cast<int>(k % LightsPerTexture) + 1);
   }
   for (int& c : channels)
@@ -69,22 +95,11 @@ std::array<int, 2> vtkIrradianceEstimator::vtkInternals::ScratchChannels() const
 }
 
 //------------------------------------------------------------------------------
-// One diffusion grid of `settings` for the current classes.
-void vtkIrradianceEstimator::vtkInternals::PlanDiffusionBlocks(
-  DiffusionPlan& plan, const mmv::DiffusionSettings& settings)
+// One diffusion grid of `settings` for `strength`.
+void vtkIrradianceEstimator::vtkInternals::PlanDiffusionBlocks(DiffusionPlan& plan,
+  const mmv::DiffusionSettings& settings, const std::vector<float>& strength, float maxStrength)
 {
   const double time = settings.Time;
-  std::vector<float> strength;
-  float maxStrength = 0.0f;
-  if (this->ClassesOnCPU)
-  {
-    strength.resize(this->Classes.size());
-    for (size_t v = 0; v < strength.size(); ++v)
-    {
-      strength[v] = std::max(0.0f, this->Classes[v]);
-      maxStrength = std::max(maxStrength, strength[v]);
-    }
-  }
   const double spacing[3] = { this->Grid.DataVoxelsPerVoxel[0], this->Grid.DataVoxelsPerVoxel[1],
     this->Grid.DataVoxelsPerVoxel[2] };
   mmv::DiffusionGrid& grid = plan.Coarse;
@@ -237,8 +252,9 @@ void vtkIrradianceEstimator::vtkInternals::DiffusionPlan::Release(vtkWindow* win
 // the diffusion grid, the exponential's Chebyshev series (the default) or
 // backward-Euler sub-steps each solved by Chebyshev-accelerated Jacobi sweeps
 // (their number from the error bound, mmv::ChebyshevSweeps), then the
-// prolongation of the change (with `skipEmpty`, onto the occupied bricks
-// alone: the final write reads nothing else), all on `plan`'s grid. Returns
+// prolongation of the change into the channels of `mask` (with `skipEmpty`,
+// onto the occupied bricks alone: the final write reads nothing else), all
+// on `plan`'s grid; the other channels keep what another plan wrote. Returns
 // the passes drawn, or -1 on failure.
 int vtkIrradianceEstimator::vtkInternals::Diffuse(
   vtkOpenGLRenderWindow* context, DiffusionPlan& plan, bool layered, int mask, bool skipEmpty)
@@ -299,7 +315,7 @@ int vtkIrradianceEstimator::vtkInternals::Diffuse(
   if (!fine.IsEmpty())
   {
     this->DrawLayers(context, this->ProlongQuad, this->FineScratch[1], layered,
-      DrawBox(fine, this->Grid.Dimensions));
+      DrawBox(fine, this->Grid.Dimensions), mask);
   }
   return sweeps;
 }

@@ -127,7 +127,6 @@ inline bool HasSize(vtkTextureObject* t, const int d[3])
     static_cast<int>(t->GetHeight()) == d[1] && static_cast<int>(t->GetDepth()) == d[2];
 }
 
-/// A float RGBA 3D texture of size d, kept when it already has that size.
 /// A float texture of `d` with 1, 2 or 4 `components` (R32F, RG32F,
 /// RGBA32F), kept while it has them.
 inline bool EnsureFloatTexture(vtkOpenGLRenderWindow* context,
@@ -388,15 +387,17 @@ public:
   std::array<DiffusionPlan, 2> Diffusions;
   /// The plan that diffuses lights of grid stride `stride` (an index of
   /// Diffusions): the strided lights' own where it is coarser than the
-  /// others' and the scattering fills its blocks (mmv::MinimumFilledBlockShare).
+  /// others', the scattering fills its blocks (mmv::MinimumFilledBlockShare)
+  /// and some exchange light on it.
   int DiffusionOf(int stride) const;
   /// The channels each plan's scratch needs: up to the highest channel of a
   /// light it diffuses, 1, 2 or 4 (a software rasterizer sweeps one-channel
   /// float texels in about three quarters of an RGBA grid's time); 4 for
   /// compute dispatches, which store RGBA images.
   std::array<int, 2> ScratchChannels() const;
-  /// Plans Diffusions[1] for the current classes where a light is strided.
-  void PlanStridedDiffusion();
+  /// Plans Diffusions[1] for the current classes where a light is strided
+  /// (`strength` and `maxStrength`: DiffusionStrengths, made here if null).
+  void PlanStridedDiffusion(const std::vector<float>* strength = nullptr, float maxStrength = 0.0f);
   unsigned int ResidualQuery = 0; // occlusion query counting unconverged blocks
 
   // The caller's region (SetRegion; every voxel until then or after
@@ -502,8 +503,12 @@ public:
   /// Plans the diffusion; classifies on the CPU first where NeedsCPUClasses,
   /// else (no strength anywhere the diffusion would use) plans for none.
   void PlanDiffusion(double time, bool exponential, bool multipleScattering);
-  /// One diffusion grid of `settings` for the current classes.
-  void PlanDiffusionBlocks(DiffusionPlan& plan, const mmv::DiffusionSettings& settings);
+  /// The diffusion's strength per irradiance voxel from the CPU's classes
+  /// (0 where empty) and its largest value; empty without CPU classes.
+  std::vector<float> DiffusionStrengths(float& maxStrength) const;
+  /// One diffusion grid of `settings` for `strength` (DiffusionStrengths).
+  void PlanDiffusionBlocks(DiffusionPlan& plan, const mmv::DiffusionSettings& settings,
+    const std::vector<float>& strength, float maxStrength);
 
   bool Upload(vtkOpenGLRenderWindow* context, bool layered);
   /// ClassTexture from ScalarTexture and the tables.
