@@ -226,8 +226,11 @@ bool vtkIrradianceEstimator::Render(vtkOpenGLRenderWindow* context)
       (this->ComputeShaders == ComputeDispatches ||
         !vtkIrradianceComputeProgram::IsSoftwareRenderer());
     this->ComputeShadersUsed = internals.Compute;
+    const bool cpuClasses = this->Classification == CPUClasses ||
+      (this->Classification == GPUClassesUnlessSoftware &&
+        vtkIrradianceComputeProgram::IsSoftwareRenderer());
     bool reallocated = false;
-    ok = internals.Upload(context, this->LayeredRendering) &&
+    ok = internals.Upload(context, this->LayeredRendering, cpuClasses, this->ClassesCopied) &&
       internals.AllocateTargets(context, diffusion, this->LayeredRendering, reallocated);
     glFinish();
     this->LastSetupSeconds =
@@ -849,6 +852,8 @@ void vtkIrradianceEstimator::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "LastEstimationSeconds: " << this->LastEstimationSeconds << "\n";
   os << indent << "LastDiffusionSeconds: " << this->LastDiffusionSeconds << "\n";
   os << indent << "TextureMemoryBytes: " << this->GetTextureMemoryBytes() << "\n";
+  os << indent << "Classification: " << this->Classification
+     << " (last: " << (this->ClassesCopied ? "CPU" : "GPU") << ")\n";
   os << indent << "KeepScratch: " << this->KeepScratch << "\n";
   os << indent << "ScratchMemoryBytes: " << this->GetScratchMemoryBytes() << "\n";
 }

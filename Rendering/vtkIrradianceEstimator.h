@@ -154,6 +154,28 @@ public:
   vtkGetMacro(ComputeShadersUsed, bool);
 
   /**
+   * Where the voxels' classes (which voxels are empty, and each one's
+   * scattering) are made when the data or the opacity's support change: 0,
+   * on the GPU (a pass over the irradiance grid; an opacity edit uploads two
+   * small tables); 1, on the CPU, copied into the texture in place; 2,
+   * automatic (default): on the GPU except on a CPU rasterizer, where that
+   * pass and the dim lights' marks from it cost about 0.45 s a time step on
+   * a 237 x 237 x 119 grid, the CPU's classes and their copy 0.1 s
+   * (docs/performance.md, "Irradiance update stages"). Both give the same
+   * classes.
+   */
+  enum ClassificationPlace
+  {
+    GPUClasses = 0,
+    CPUClasses = 1,
+    GPUClassesUnlessSoftware = 2
+  };
+  vtkSetClampMacro(Classification, int, GPUClasses, GPUClassesUnlessSoftware);
+  vtkGetMacro(Classification, int);
+  /// Whether the last classification was made on the CPU and copied.
+  vtkGetMacro(ClassesCopied, bool);
+
+  /**
    * Keeps the float scratch textures the passes work in between updates
    * (default on): an update then allocates nothing, which on a software
    * rasterizer is a large share of a light update (docs/performance.md,
@@ -376,6 +398,8 @@ protected:
   bool LayeredRendering = true;
   int ComputeShaders = ComputeUnlessSoftware;
   bool ComputeShadersUsed = false;
+  int Classification = GPUClassesUnlessSoftware;
+  bool ClassesCopied = false;
   bool SkipEmptyVoxels = true;
   bool KeepScratch = true;
   int ShadowEstimation = mmv::DefaultIlluminationSettings.ShadowEstimation;

@@ -294,8 +294,9 @@ public:
   int ShadowEstimationUsed = -1; // with PiecewiseSlicesUsed: how the held lights were estimated
   int PiecewiseSlicesUsed = 0;
 
-  // s per voxel (-1 where empty): the GPU computes it into ClassTexture on
-  // every upload (ClassifyOnGPU). The CPU classifies too (Classes) only
+  // s per voxel (-1 where empty): ClassTexture holds it, made at the upload
+  // on the GPU (ClassifyOnGPU) or on the CPU and copied (CopyClasses, not
+  // kept unless the diffusion needs it). The CPU keeps classes (Classes) only
   // where the diffusion plan needs the strengths: multiple scattering on,
   // a positive diffusion time and some s > 0 in the scattering table
   // (NeedsCPUClasses). Otherwise NonEmptyVoxels is counted on the CPU from
@@ -465,6 +466,12 @@ public:
   vtkSmartPointer<vtkTextureObject> LightGridRangeTexture;
   /// LightGridClassTexture, marked on the GPU from ClassTexture.
   bool MarkLightGridNeeded(vtkOpenGLRenderWindow* context, int stride, bool layered);
+  /// Whether LightGridClassTexture holds the marks of the current classes
+  /// for `stride`.
+  bool LightGridNeededHold(int stride) const;
+  /// LightGridClassTexture of the light grid's size for `stride`, its
+  /// contents undefined.
+  bool EnsureLightGridClassTexture(vtkOpenGLRenderWindow* context, int stride);
   /// Per axis a, range[a][2 p] .. range[a][2 p + 1]: the irradiance indices
   /// whose interpolation reads light grid point p (first > last: none).
   void LightGridNeededRanges(int stride, std::array<std::vector<int>, 3>& range) const;
@@ -510,9 +517,15 @@ public:
   void PlanDiffusionBlocks(DiffusionPlan& plan, const mmv::DiffusionSettings& settings,
     const std::vector<float>& strength, float maxStrength);
 
-  bool Upload(vtkOpenGLRenderWindow* context, bool layered);
+  /// The scalars, tables and, where they are stale, the classes: made on
+  /// the CPU and copied where `cpuClasses` (sets `copied`), else on the GPU.
+  bool Upload(vtkOpenGLRenderWindow* context, bool layered, bool cpuClasses, bool& copied);
   /// ClassTexture from ScalarTexture and the tables.
   bool ClassifyOnGPU(vtkOpenGLRenderWindow* context, bool layered);
+  /// ClassTexture from the CPU's classes (Classes, or made here where the
+  /// diffusion did not need them), and the strided lights' needed points
+  /// from the same classes.
+  bool CopyClasses(vtkOpenGLRenderWindow* context);
   void EnsureFramebuffer(vtkOpenGLRenderWindow* context);
   /// `plan`'s block textures and exchange mask, where they changed.
   bool UploadDiffusionBlocks(vtkOpenGLRenderWindow* context, DiffusionPlan& plan, bool layered);

@@ -215,6 +215,50 @@ bool vtkIrradianceEstimator::vtkInternals::ClassifyOnGPU(
 }
 
 //------------------------------------------------------------------------------
+// In place: fresh texture memory costs more than the copy on a software
+// rasterizer. Classifications counts this one as well, so the strided
+// marks made here hold until the next.
+bool vtkIrradianceEstimator::vtkInternals::CopyClasses(vtkOpenGLRenderWindow* context)
+{
+  std::vector<float> made;
+  if (!this->ClassesOnCPU)
+  {
+    ClassifyValues(
+      this->Scalars, this->Grid.Dimensions, this->OpacityTable, this->ScatteringTable, made);
+  }
+  const std::vector<float>& classes = this->ClassesOnCPU ? this->Classes : made;
+  const int* d = this->Grid.Dimensions;
+  this->ClassTexture->Activate();
+  glTexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, 0, d[0], d[1], d[2], GL_RED, GL_FLOAT, classes.data());
+  this->ClassTexture->Deactivate();
+  const int stride = this->MaxLightGridStride();
+  if (stride <= 1)
+  {
+    return true;
+  }
+  if (!this->EnsureLightGridClassTexture(context, stride))
+  {
+    return false;
+  }
+  int c[3];
+  this->LightGridDimensions(stride, c);
+  const std::vector<unsigned char> needed = this->LightGridNeededOnCPU(classes, stride);
+  // Rows of bytes: any length.
+  GLint alignment = 4;
+  glGetIntegerv(GL_UNPACK_ALIGNMENT, &alignment);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  this->LightGridClassTexture->Activate();
+  glTexSubImage3D(
+    GL_TEXTURE_3D, 0, 0, 0, 0, c[0], c[1], c[2], GL_RED, GL_UNSIGNED_BYTE, needed.data());
+  this->LightGridClassTexture->Deactivate();
+  glPixelStorei(GL_UNPACK_ALIGNMENT, alignment);
+  // Upload() counts this classification after it.
+  this->LightGridClassUpload = this->Classifications + 1;
+  this->LightGridClassStride = stride;
+  return true;
+}
+
+//------------------------------------------------------------------------------
 // What this Render() draws for the region; the diffusion's passes each read
 // their input's neighbours (every sweep of every sub-step for backward
 // Euler, which may stop earlier).
@@ -236,7 +280,8 @@ void vtkIrradianceEstimator::vtkInternals::PlanRegion(bool diffusion)
 }
 
 //------------------------------------------------------------------------------
-bool vtkIrradianceEstimator::vtkInternals::Upload(vtkOpenGLRenderWindow* context, bool layered)
+bool vtkIrradianceEstimator::vtkInternals::Upload(
+  vtkOpenGLRenderWindow* context, bool layered, bool cpuClasses, bool& copied)
 {
   if (this->Uploaded && this->ScalarTexture)
   {
@@ -291,7 +336,9 @@ bool vtkIrradianceEstimator::vtkInternals::Upload(vtkOpenGLRenderWindow* context
   {
     // The occupied bricks follow the same classes.
     this->Occupancy.Classify(this->OpacityTable);
-    this->Uploaded = this->ClassifyOnGPU(context, layered);
+    this->Uploaded =
+      cpuClasses ? this->CopyClasses(context) : this->ClassifyOnGPU(context, layered);
+    copied = cpuClasses;
     this->ClassesStale = !this->Uploaded;
     ++this->Classifications;
   }
@@ -569,13 +616,12 @@ std::vector<unsigned char> vtkIrradianceEstimator::vtkInternals::LightGridNeeded
 bool vtkIrradianceEstimator::vtkInternals::MarkLightGridNeeded(
   vtkOpenGLRenderWindow* context, int stride, bool layered)
 {
-  int c[3];
-  this->LightGridDimensions(stride, c);
-  if (this->LightGridClassUpload == this->Classifications && this->LightGridClassStride == stride &&
-    HasSize(this->LightGridClassTexture, c))
+  if (this->LightGridNeededHold(stride))
   {
     return true;
   }
+  int c[3];
+  this->LightGridDimensions(stride, c);
   std::array<std::vector<int>, 3> range;
   this->LightGridNeededRanges(stride, range);
   const int width = std::max({ c[0], c[1], c[2] });
@@ -592,12 +638,8 @@ bool vtkIrradianceEstimator::vtkInternals::MarkLightGridNeeded(
     }
   }
   this->LightGridRangeTexture = NewTexture(context, GL_RG32F, GL_RG, GL_FLOAT, false);
-  bool ok = this->LightGridRangeTexture->Create2DFromRaw(width, 3, 2, VTK_FLOAT, ranges.data());
-  if (ok && !HasSize(this->LightGridClassTexture, c))
-  {
-    this->LightGridClassTexture = NewTexture(context, GL_R8, GL_RED, GL_UNSIGNED_BYTE, false);
-    ok = this->LightGridClassTexture->Allocate3D(c[0], c[1], c[2], 1, VTK_UNSIGNED_CHAR);
-  }
+  bool ok = this->LightGridRangeTexture->Create2DFromRaw(width, 3, 2, VTK_FLOAT, ranges.data()) &&
+    this->EnsureLightGridClassTexture(context, stride);
   vtkShaderProgram* program =
     ok ? this->Ready(context, this->NeededQuad, mmvLightGridNeededFS, "", false) : nullptr;
   if (!program)
@@ -613,6 +655,27 @@ bool vtkIrradianceEstimator::vtkInternals::MarkLightGridNeeded(
   this->LightGridClassUpload = this->Classifications;
   this->LightGridClassStride = stride;
   return true;
+}
+
+bool vtkIrradianceEstimator::vtkInternals::LightGridNeededHold(int stride) const
+{
+  int c[3];
+  this->LightGridDimensions(stride, c);
+  return this->LightGridClassUpload == this->Classifications &&
+    this->LightGridClassStride == stride && HasSize(this->LightGridClassTexture, c);
+}
+
+bool vtkIrradianceEstimator::vtkInternals::EnsureLightGridClassTexture(
+  vtkOpenGLRenderWindow* context, int stride)
+{
+  int c[3];
+  this->LightGridDimensions(stride, c);
+  if (HasSize(this->LightGridClassTexture, c))
+  {
+    return true;
+  }
+  this->LightGridClassTexture = NewTexture(context, GL_R8, GL_RED, GL_UNSIGNED_BYTE, false);
+  return this->LightGridClassTexture->Allocate3D(c[0], c[1], c[2], 1, VTK_UNSIGNED_CHAR);
 }
 
 //------------------------------------------------------------------------------

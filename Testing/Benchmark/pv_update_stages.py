@@ -2,12 +2,14 @@
 
     xvfb-run -a -s "-noreset -screen 0 1280x1024x24" scripts/pvpython \\
         Testing/Benchmark/pv_update_stages.py --data chest.vti [--plugin SO] [--frames 6] \\
-        [--preset skin]
+        [--preset skin] [--series FILE...]
 
 One Multi-Material Volume (default material, or --preset's) of --data in a 400 x 400 view
 under ParaView's light kit, with pv_lightkit_orbit.py's colour and opacity
 maps. Each frame turns the camera 10 degrees and calls StillRender(), so
-every kit light moves and the whole irradiance is recomputed. Prints the
+every kit light moves and the whole irradiance is recomputed. With
+--series, each frame instead shows the next of the given files (time steps
+on one grid; --data is the first) with the camera fixed. Prints the
 medians of the frame and of the stages LastIrradianceStages reports. To
 compare two builds, alternate runs with each build's --plugin (with
 MMV_BUILD_DIR set for scripts/pvpython).
@@ -35,10 +37,13 @@ def main():
     p.add_argument("--data", required=True, help="a .vti with one point array")
     p.add_argument("--frames", type=int, default=6)
     p.add_argument("--preset", default="", help="a MaterialPreset, e.g. skin")
+    p.add_argument("--series", nargs="*", default=[],
+                   help="further time steps of --data: each frame shows the next")
     args, _ = p.parse_known_args()
 
     simple.LoadPlugin(args.plugin, remote=False, ns=globals())
-    source = simple.XMLImageDataReader(FileName=[args.data])
+    steps = [args.data] + args.series
+    source = simple.XMLImageDataReader(FileName=steps)
     view = simple.CreateView("RenderView")
     view.ViewSize = [400, 400]
     view.OrientationAxesVisibility = 0
@@ -55,8 +60,12 @@ def main():
 
     camera = view.GetActiveCamera()
     rows = []
-    for _ in range(args.frames):
-        camera.Azimuth(10.0)
+    times = source.TimestepValues or [0.0]
+    for frame in range(args.frames):
+        if args.series:
+            view.ViewTime = times[(frame + 1) % len(times)]
+        else:
+            camera.Azimuth(10.0)
         start = time.perf_counter()
         view.SMProxy.StillRender()
         row = {"frame": time.perf_counter() - start}

@@ -1303,10 +1303,10 @@ Scene ManyClasses()
 }
 
 // The classes and the strided light grid's needed points are computed on the
-// GPU (an opacity edit uploads two small tables): both equal what the CPU
-// computes from the same inputs, before and after an opacity edit, as
-// fragment draws and as compute dispatches, with multiple scattering on (the
-// CPU classifies too, for the diffusion plan) and off (the GPU alone; the
+// GPU (an opacity edit uploads two small tables), or on the CPU and copied:
+// both equal what the CPU computes from the same inputs, before and after an
+// opacity edit, as fragment draws and as compute dispatches, with multiple
+// scattering on (the CPU classifies for the diffusion plan) and off (the
 // non-empty voxels are then counted from a histogram of the values).
 TEST(IrradianceEstimator, GPUClassesAndNeededPointsMatchTheCPU)
 {
@@ -1319,17 +1319,23 @@ TEST(IrradianceEstimator, GPUClassesAndNeededPointsMatchTheCPU)
     {
       continue;
     }
-    for (const bool multipleScattering : { true, false })
+    // Bit 0: multiple scattering off; bit 1: the classes copied from the CPU.
+    for (const int variant : { 0, 1, 2, 3 })
     {
+      const bool multipleScattering = (variant & 1) == 0;
+      const bool copied = (variant & 2) != 0;
       Scene scene = ManyClasses();
       vtkNew<vtkIrradianceEstimator> pass;
       pass->SetComputeShaders(compute ? vtkIrradianceEstimator::ComputeDispatches
                                       : vtkIrradianceEstimator::FragmentDraws);
+      pass->SetClassification(
+        copied ? vtkIrradianceEstimator::CPUClasses : vtkIrradianceEstimator::GPUClasses);
       pass->SetMultipleScattering(multipleScattering);
       for (const int edit : { 0, 1 })
       {
         const std::string where = std::string(compute ? "compute" : "fragment") +
-          (multipleScattering ? ", multiple scattering" : "") + ", edit " + std::to_string(edit);
+          (copied ? ", copied" : "") + (multipleScattering ? ", multiple scattering" : "") +
+          ", edit " + std::to_string(edit);
         if (edit == 1)
         {
           // An opacity edit: another range empty, another non-empty.
@@ -1344,7 +1350,9 @@ TEST(IrradianceEstimator, GPUClassesAndNeededPointsMatchTheCPU)
         SetPassInputs(scene, pass);
         ASSERT_TRUE(pass->Render(ctx.GL)) << where;
         EXPECT_EQ(pass->GetComputeShadersUsed(), compute) << where;
+        EXPECT_EQ(pass->GetClassesCopied(), copied) << where;
         EXPECT_EQ(pass->GetClassifiedOnCPU(), multipleScattering) << where;
+        EXPECT_EQ(pass->GetNumberOfClassifications(), edit + 1) << where;
         std::vector<float> gpu;
         std::vector<float> cpu;
         ASSERT_TRUE(pass->ReadBackClasses(ctx.GL, gpu)) << where;
@@ -1515,6 +1523,7 @@ TEST(IrradianceEstimator, NonEmptyCountsOfUnusualTablesAndValuesEqualTheCPUs)
   }
 }
 
+// And the classes are made on the CPU there, on the GPU elsewhere.
 TEST(IrradianceEstimator, AutomaticComputeShadersSkipCPURasterizers)
 {
   const Context& ctx = SharedContext();
@@ -1522,6 +1531,7 @@ TEST(IrradianceEstimator, AutomaticComputeShadersSkipCPURasterizers)
   const Scene scene = TwoBlocks(0.0);
   vtkNew<vtkIrradianceEstimator> pass;
   EXPECT_EQ(pass->GetComputeShaders(), vtkIrradianceEstimator::ComputeUnlessSoftware);
+  EXPECT_EQ(pass->GetClassification(), vtkIrradianceEstimator::GPUClassesUnlessSoftware);
   SetPassInputs(scene, pass);
   ASSERT_TRUE(pass->Render(ctx.GL));
   ctx.GL->MakeCurrent();
@@ -1531,6 +1541,7 @@ TEST(IrradianceEstimator, AutomaticComputeShadersSkipCPURasterizers)
   std::cout << "renderer " << renderer << ": compute dispatches " << pass->GetComputeShadersUsed()
             << std::endl;
   EXPECT_EQ(pass->GetComputeShadersUsed(), !cpu && GLEW_VERSION_4_3);
+  EXPECT_EQ(pass->GetClassesCopied(), cpu);
   pass->ReleaseGraphicsResources(ctx.GL);
 }
 
