@@ -407,7 +407,9 @@ void PrefilterScalars(vtkImageData* image, vtkDataArray* scalars, int component,
   {
     taps[a] = MakeAxisTaps(layout, a, dataDims[a], g[a]);
   }
-  // in[(i, j, k)] with strides (1, n0, n0 n1) -> out along `axis`.
+  // in[(i, j, k)] with strides (1, n0, n0 n1) -> out along `axis`. Along y
+  // and z, whole rows along x at once, so every read is contiguous; each
+  // output is the same sum in the same order as along x.
   auto filter =
     [](const auto* in, const int inDims[3], int axis, const AxisTaps& t, int outLength, auto* out)
   {
@@ -417,25 +419,55 @@ void PrefilterScalars(vtkImageData* image, vtkDataArray* scalars, int component,
     const vtkIdType inStride[3] = { 1, inDims[0], static_cast<vtkIdType>(inDims[0]) * inDims[1] };
     const vtkIdType outStride[3] = { 1, outDims[0],
       static_cast<vtkIdType>(outDims[0]) * outDims[1] };
-    const int b = (axis + 1) % 3;
-    const int c = (axis + 2) % 3;
-    mmv::For(0, outDims[c],
+    if (axis == 0)
+    {
+      mmv::For(0, outDims[2],
+        [&](vtkIdType begin, vtkIdType end)
+        {
+          for (vtkIdType z = begin; z < end; ++z)
+          {
+            for (int y = 0; y < outDims[1]; ++y)
+            {
+              const vtkIdType inBase = z * inStride[2] + y * inStride[1];
+              const vtkIdType outBase = z * outStride[2] + y * outStride[1];
+              for (int o = 0; o < outLength; ++o)
+              {
+                double sum = 0.0;
+                for (int n = t.First[o]; n < t.First[o + 1]; ++n)
+                {
+                  sum += t.Weight[n] * static_cast<double>(in[inBase + t.Index[n]]);
+                }
+                out[outBase + o] = static_cast<Out>(sum);
+              }
+            }
+          }
+        });
+      return;
+    }
+    const int other = axis == 1 ? 2 : 1;
+    const int width = inDims[0];
+    mmv::For(0, outDims[other],
       [&](vtkIdType begin, vtkIdType end)
       {
-        for (vtkIdType z = begin; z < end; ++z)
+        std::vector<double> row(width);
+        for (vtkIdType w = begin; w < end; ++w)
         {
-          for (int y = 0; y < outDims[b]; ++y)
+          for (int o = 0; o < outLength; ++o)
           {
-            const vtkIdType inBase = z * inStride[c] + y * inStride[b];
-            const vtkIdType outBase = z * outStride[c] + y * outStride[b];
-            for (int o = 0; o < outLength; ++o)
+            std::fill(row.begin(), row.end(), 0.0);
+            for (int n = t.First[o]; n < t.First[o + 1]; ++n)
             {
-              double sum = 0.0;
-              for (int n = t.First[o]; n < t.First[o + 1]; ++n)
+              const double weight = t.Weight[n];
+              const auto* source = in + w * inStride[other] + t.Index[n] * inStride[axis];
+              for (int x = 0; x < width; ++x)
               {
-                sum += t.Weight[n] * static_cast<double>(in[inBase + t.Index[n] * inStride[axis]]);
+                row[x] += weight * static_cast<double>(source[x]);
               }
-              out[outBase + o * outStride[axis]] = static_cast<Out>(sum);
+            }
+            Out* target = out + w * outStride[other] + o * outStride[axis];
+            for (int x = 0; x < width; ++x)
+            {
+              target[x] = static_cast<Out>(row[x]);
             }
           }
         }
