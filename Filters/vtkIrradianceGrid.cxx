@@ -14,7 +14,6 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
-#include <type_traits>
 #include <vector>
 
 namespace
@@ -387,6 +386,72 @@ AxisTaps MakeAxisTaps(const FootprintLayout& layout, int axis, int dataDim, int 
   }
   return taps;
 }
+
+/// in[(i, j, k)] with strides (1, n0, n0 n1) filtered along `axis` into
+/// `out`. Along y and z, whole rows along x at once, so every read is
+/// contiguous; each output is the same sum in the same order as along x.
+template <typename In, typename Out>
+void FilterAxis(
+  const In* in, const int inDims[3], int axis, const AxisTaps& t, int outLength, Out* out)
+{
+  int outDims[3] = { inDims[0], inDims[1], inDims[2] };
+  outDims[axis] = outLength;
+  const vtkIdType inStride[3] = { 1, inDims[0], static_cast<vtkIdType>(inDims[0]) * inDims[1] };
+  const vtkIdType outStride[3] = { 1, outDims[0], static_cast<vtkIdType>(outDims[0]) * outDims[1] };
+  if (axis == 0)
+  {
+    mmv::For(0, outDims[2],
+      [&](vtkIdType begin, vtkIdType end)
+      {
+        for (vtkIdType z = begin; z < end; ++z)
+        {
+          for (int y = 0; y < outDims[1]; ++y)
+          {
+            const vtkIdType inBase = z * inStride[2] + y * inStride[1];
+            const vtkIdType outBase = z * outStride[2] + y * outStride[1];
+            for (int o = 0; o < outLength; ++o)
+            {
+              double sum = 0.0;
+              for (int n = t.First[o]; n < t.First[o + 1]; ++n)
+              {
+                sum += t.Weight[n] * static_cast<double>(in[inBase + t.Index[n]]);
+              }
+              out[outBase + o] = static_cast<Out>(sum);
+            }
+          }
+        }
+      });
+    return;
+  }
+  const int other = axis == 1 ? 2 : 1;
+  const int width = inDims[0];
+  mmv::For(0, outDims[other],
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      std::vector<double> row(width);
+      for (vtkIdType w = begin; w < end; ++w)
+      {
+        for (int o = 0; o < outLength; ++o)
+        {
+          std::fill(row.begin(), row.end(), 0.0);
+          for (int n = t.First[o]; n < t.First[o + 1]; ++n)
+          {
+            const double weight = t.Weight[n];
+            const auto* source = in + w * inStride[other] + t.Index[n] * inStride[axis];
+            for (int x = 0; x < width; ++x)
+            {
+              row[x] += weight * static_cast<double>(source[x]);
+            }
+          }
+          Out* target = out + w * outStride[other] + o * outStride[axis];
+          for (int x = 0; x < width; ++x)
+          {
+            target[x] = static_cast<Out>(row[x]);
+          }
+        }
+      }
+    });
+}
 }
 
 void PrefilterScalars(vtkImageData* image, vtkDataArray* scalars, int component,
@@ -407,72 +472,6 @@ void PrefilterScalars(vtkImageData* image, vtkDataArray* scalars, int component,
   {
     taps[a] = MakeAxisTaps(layout, a, dataDims[a], g[a]);
   }
-  // in[(i, j, k)] with strides (1, n0, n0 n1) -> out along `axis`. Along y
-  // and z, whole rows along x at once, so every read is contiguous; each
-  // output is the same sum in the same order as along x.
-  auto filter =
-    [](const auto* in, const int inDims[3], int axis, const AxisTaps& t, int outLength, auto* out)
-  {
-    using Out = std::remove_pointer_t<decltype(out)>;
-    int outDims[3] = { inDims[0], inDims[1], inDims[2] };
-    outDims[axis] = outLength;
-    const vtkIdType inStride[3] = { 1, inDims[0], static_cast<vtkIdType>(inDims[0]) * inDims[1] };
-    const vtkIdType outStride[3] = { 1, outDims[0],
-      static_cast<vtkIdType>(outDims[0]) * outDims[1] };
-    if (axis == 0)
-    {
-      mmv::For(0, outDims[2],
-        [&](vtkIdType begin, vtkIdType end)
-        {
-          for (vtkIdType z = begin; z < end; ++z)
-          {
-            for (int y = 0; y < outDims[1]; ++y)
-            {
-              const vtkIdType inBase = z * inStride[2] + y * inStride[1];
-              const vtkIdType outBase = z * outStride[2] + y * outStride[1];
-              for (int o = 0; o < outLength; ++o)
-              {
-                double sum = 0.0;
-                for (int n = t.First[o]; n < t.First[o + 1]; ++n)
-                {
-                  sum += t.Weight[n] * static_cast<double>(in[inBase + t.Index[n]]);
-                }
-                out[outBase + o] = static_cast<Out>(sum);
-              }
-            }
-          }
-        });
-      return;
-    }
-    const int other = axis == 1 ? 2 : 1;
-    const int width = inDims[0];
-    mmv::For(0, outDims[other],
-      [&](vtkIdType begin, vtkIdType end)
-      {
-        std::vector<double> row(width);
-        for (vtkIdType w = begin; w < end; ++w)
-        {
-          for (int o = 0; o < outLength; ++o)
-          {
-            std::fill(row.begin(), row.end(), 0.0);
-            for (int n = t.First[o]; n < t.First[o + 1]; ++n)
-            {
-              const double weight = t.Weight[n];
-              const auto* source = in + w * inStride[other] + t.Index[n] * inStride[axis];
-              for (int x = 0; x < width; ++x)
-              {
-                row[x] += weight * static_cast<double>(source[x]);
-              }
-            }
-            Out* target = out + w * outStride[other] + o * outStride[axis];
-            for (int x = 0; x < width; ++x)
-            {
-              target[x] = static_cast<Out>(row[x]);
-            }
-          }
-        }
-      });
-  };
   // A slab of output slices at a time, from the data slices its z taps
   // read (filtered along x and y once per slab, a few again at the slab's
   // ends): the buffers hold a slab, not the volume. Each output is the same
@@ -506,11 +505,11 @@ void PrefilterScalars(vtkImageData* image, vtkDataArray* scalars, int component,
     buffers.AlongX.resize(static_cast<size_t>(g[0]) * dataDims[1] * depth);
     buffers.AlongY.resize(static_cast<size_t>(g[0]) * g[1] * depth);
     int dims[3] = { dataDims[0], dataDims[1], depth };
-    filter(buffers.Values.data(), dims, 0, taps[0], g[0], buffers.AlongX.data());
+    FilterAxis(buffers.Values.data(), dims, 0, taps[0], g[0], buffers.AlongX.data());
     dims[0] = g[0];
-    filter(buffers.AlongX.data(), dims, 1, taps[1], g[1], buffers.AlongY.data());
+    FilterAxis(buffers.AlongX.data(), dims, 1, taps[1], g[1], buffers.AlongY.data());
     dims[1] = g[1];
-    filter(buffers.AlongY.data(), dims, 2, slabTaps, k1 - k0,
+    FilterAxis(buffers.AlongY.data(), dims, 2, slabTaps, k1 - k0,
       prefiltered.data() + static_cast<size_t>(k0) * g[0] * g[1]);
   }
 }
