@@ -2,8 +2,11 @@
 // (mmvLightGrid.glsl), interpolated trilinearly to every irradiance voxel of
 // the draw; the write mask keeps the other lights' channels. Empty voxels
 // get 0, as the shadow passes give them (the fill pass decides their values).
+// One filtered fetch at the point's coordinate, clamped to the grid (as
+// clamping to the edge texels does): a CPU rasterizer (llvmpipe) filters in
+// about half the time of eight texel fetches and their weights in the shader.
 
-uniform sampler3D lightGrid;    // RGBA32F, the light grid's points
+uniform sampler3D lightGrid;    // RGBA32F, the light grid's points, linear
 uniform int lightGridDims[3];
 uniform vec3 indexToLightGrid;  // irradiance index -> light grid coordinate
 uniform int dims[3];
@@ -17,16 +20,7 @@ void mmvVoxelMain()
     mmvWrite(vec4(0.0));
     return;
   }
-  ivec3 last = ivec3(lightGridDims[0] - 1, lightGridDims[1] - 1, lightGridDims[2] - 1);
-  vec3 q = clamp(vec3(voxel) * indexToLightGrid, vec3(0.0), vec3(last));
-  ivec3 i0 = min(ivec3(q), max(last - 1, ivec3(0)));
-  ivec3 i1 = min(i0 + 1, last);
-  vec3 f = q - vec3(i0);
-  vec4 c00 = mix(texelFetch(lightGrid, i0, 0), texelFetch(lightGrid, ivec3(i1.x, i0.y, i0.z), 0), f.x);
-  vec4 c10 = mix(texelFetch(lightGrid, ivec3(i0.x, i1.y, i0.z), 0),
-    texelFetch(lightGrid, ivec3(i1.x, i1.y, i0.z), 0), f.x);
-  vec4 c01 = mix(texelFetch(lightGrid, ivec3(i0.x, i0.y, i1.z), 0),
-    texelFetch(lightGrid, ivec3(i1.x, i0.y, i1.z), 0), f.x);
-  vec4 c11 = mix(texelFetch(lightGrid, ivec3(i0.x, i1.y, i1.z), 0), texelFetch(lightGrid, i1, 0), f.x);
-  mmvWrite(mix(mix(c00, c10, f.y), mix(c01, c11, f.y), f.z));
+  vec3 n = vec3(lightGridDims[0], lightGridDims[1], lightGridDims[2]);
+  vec3 q = clamp(vec3(voxel) * indexToLightGrid, vec3(0.0), n - 1.0);
+  mmvWrite(textureLod(lightGrid, (q + 0.5) / n, 0.0));
 }
