@@ -221,14 +221,13 @@ bool vtkIrradianceEstimator::Render(vtkOpenGLRenderWindow* context)
     state->vtkglDisable(GL_DEPTH_TEST);
     state->vtkglDisable(GL_SCISSOR_TEST);
     state->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    const bool software = vtkIrradianceComputeProgram::IsSoftwareRenderer();
     internals.Compute = this->ComputeShaders != FragmentDraws &&
       vtkIrradianceComputeProgram::IsSupported() &&
-      (this->ComputeShaders == ComputeDispatches ||
-        !vtkIrradianceComputeProgram::IsSoftwareRenderer());
+      (this->ComputeShaders == ComputeDispatches || !software);
     this->ComputeShadersUsed = internals.Compute;
     const bool cpuClasses = this->Classification == CPUClasses ||
-      (this->Classification == GPUClassesUnlessSoftware &&
-        vtkIrradianceComputeProgram::IsSoftwareRenderer());
+      (this->Classification == GPUClassesUnlessSoftware && software);
     bool reallocated = false;
     ok = internals.Upload(context, this->LayeredRendering, cpuClasses, this->ClassesCopied) &&
       internals.AllocateTargets(context, diffusion, this->LayeredRendering, reallocated);

@@ -216,8 +216,8 @@ bool vtkIrradianceEstimator::vtkInternals::ClassifyOnGPU(
 
 //------------------------------------------------------------------------------
 // In place: fresh texture memory costs more than the copy on a software
-// rasterizer. Classifications counts this one as well, so the strided
-// marks made here hold until the next.
+// rasterizer. The strided marks made here hold until the next
+// classification (Classifications already counts this one).
 bool vtkIrradianceEstimator::vtkInternals::CopyClasses(vtkOpenGLRenderWindow* context)
 {
   std::vector<float> made;
@@ -252,8 +252,7 @@ bool vtkIrradianceEstimator::vtkInternals::CopyClasses(vtkOpenGLRenderWindow* co
     GL_TEXTURE_3D, 0, 0, 0, 0, c[0], c[1], c[2], GL_RED, GL_UNSIGNED_BYTE, needed.data());
   this->LightGridClassTexture->Deactivate();
   glPixelStorei(GL_UNPACK_ALIGNMENT, alignment);
-  // Upload() counts this classification after it.
-  this->LightGridClassUpload = this->Classifications + 1;
+  this->LightGridClassUpload = this->Classifications;
   this->LightGridClassStride = stride;
   return true;
 }
@@ -336,11 +335,11 @@ bool vtkIrradianceEstimator::vtkInternals::Upload(
   {
     // The occupied bricks follow the same classes.
     this->Occupancy.Classify(this->OpacityTable);
+    ++this->Classifications;
     this->Uploaded =
       cpuClasses ? this->CopyClasses(context) : this->ClassifyOnGPU(context, layered);
     copied = cpuClasses;
     this->ClassesStale = !this->Uploaded;
-    ++this->Classifications;
   }
   return this->Uploaded;
 }
