@@ -735,8 +735,9 @@ bool vtkMultiMaterialVolumeMapper::UpdateIrradiance(vtkRenderer* ren, vtkVolume*
   {
     this->WarnOnce("this volume's box overlaps another multi-material volume's: VTK draws "
                    "each volume's ray cast over the other's, not along one ray, so their "
-                   "overlap is blended by drawing order; put data that overlap in one image "
-                   "with several fields (FieldArrays)");
+                   "overlap is blended by drawing order; merge volumes that overlap into one "
+                   "image with a field each (vtkVolumesToFields, ParaView's Volumes To "
+                   "Fields) and shade the fields together (FieldArrays)");
   }
   inputs.Scene = &in.SceneShadows;
   inputs.Settings = this->Settings;

@@ -12,6 +12,7 @@
 #include "vtkMaterialTransferFunction.h"
 #include "vtkMultiMaterialVolumeMapper.h"
 #include "vtkPointData.h"
+#include "vtkVolumesToFields.h"
 
 #include <gtest/gtest.h>
 
@@ -465,4 +466,62 @@ TEST(SeveralFields, BadFieldCountsAndIndicesAreReported)
   EXPECT_FALSE(dependent.Mapper->GetMultiMaterialActive());
   EXPECT_NE(warnings.LastMessage().find("independent components"), std::string::npos)
     << warnings.LastMessage();
+}
+
+namespace
+{
+// `array` of `image` on the points of `extent` alone, as an image of its own
+// on the same lattice.
+vtkSmartPointer<vtkImageData> SubVolume(vtkImageData* image, const char* array, const int extent[6])
+{
+  vtkDataArray* values = image->GetPointData()->GetArray(array);
+  vtkNew<vtkFloatArray> part;
+  part->SetName(array);
+  auto sub = vtkSmartPointer<vtkImageData>::New();
+  sub->SetExtent(const_cast<int*>(extent));
+  part->SetNumberOfTuples(sub->GetNumberOfPoints());
+  vtkIdType id = 0;
+  for (int k = extent[4]; k <= extent[5]; ++k)
+  {
+    for (int j = extent[2]; j <= extent[3]; ++j)
+    {
+      for (int i = extent[0]; i <= extent[1]; ++i)
+      {
+        part->SetValue(id++, values->GetTuple1((static_cast<vtkIdType>(k) * N + j) * N + i));
+      }
+    }
+  }
+  sub->GetPointData()->SetScalars(part);
+  return sub;
+}
+}
+
+// Two volumes, the plate's box inside the floor's, merged into one image
+// whose fields one ray integrates: the image of the same arrays made on one
+// grid, pixel for pixel.
+TEST(SeveralFields, OverlappingVolumesMergedAreOneRaysFields)
+{
+  FieldsScene components(TwoFields());
+  const std::vector<unsigned char> expected = components.Render();
+
+  vtkSmartPointer<vtkImageData> arrays = TwoArrays();
+  const int plateBox[6] = { 6, 25, 6, 25, 16, 25 };
+  const int floorBox[6] = { 0, N - 1, 0, N - 1, 0, N - 1 };
+  vtkNew<vtkVolumesToFields> merge;
+  merge->AddInputData(SubVolume(arrays, "plate", plateBox));
+  merge->AddInputData(SubVolume(arrays, "floor", floorBox));
+  merge->Update();
+  vtkImageData* merged = merge->GetOutput();
+  int dims[3];
+  merged->GetDimensions(dims);
+  EXPECT_EQ(dims[0] * dims[1] * dims[2], N * N * N);
+
+  FieldsScene one(merged);
+  FieldsScene reference(TwoFields()); // the optics of two fields, for the property
+  one.Volume->SetProperty(reference.Property);
+  one.Mapper->SetFieldMaterialTransferFunction(1, reference.FieldMaterials[1]);
+  one.Mapper->AddFieldArray("floor");
+  const std::vector<unsigned char> pixels = one.Render();
+  EXPECT_EQ(one.Mapper->GetNumberOfFields(), 2);
+  EXPECT_EQ(pixels, expected);
 }

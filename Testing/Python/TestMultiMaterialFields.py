@@ -4,6 +4,8 @@ the plate coloured, the floor added with FieldArrays.
   keeps for its name (FieldLookupTables, FieldScalarOpacityFunctions);
 - two fields render as the same scene made of one array with the same maps
   (PSNR >= 40 dB), and the plate's shadow on the floor matches it;
+- two overlapping sources, the plate's box inside the floor's, merged by
+  Volumes To Fields render as the two fields made on one grid;
 - each field keeps its own colour map and material preset;
 - an unknown array, too many arrays or an unknown preset give an error, and
   the coloured array is still drawn."""
@@ -42,10 +44,15 @@ def maps(name, rgb):
 
 
 simple._DisableFirstRenderCameraReset()
-source = simple.ProgrammableSource(OutputDataSetType="vtkImageData", Script=SCRIPT)
-source.ScriptRequestInformation = (
+# Not named `source`: ParaView runs the source's script in this module's
+# namespace, where it defines a function of that name.
+arrays = simple.ProgrammableSource(OutputDataSetType="vtkImageData", Script=SCRIPT)
+arrays.ScriptRequestInformation = (
     "executive = self.GetExecutive()\n"
-    "executive.GetOutputInformation(0).Set(executive.WHOLE_EXTENT(), 0, 31, 0, 31, 0, 31)\n")
+    "info = executive.GetOutputInformation(0)\n"
+    "info.Set(executive.WHOLE_EXTENT(), 0, 31, 0, 31, 0, 31)\n"
+    "info.Set(self.GetOutput().ORIGIN(), -15.5, -15.5, -15.5)\n"
+    "info.Set(self.GetOutput().SPACING(), 1.0, 1.0, 1.0)\n")
 view = mmv.make_view()
 view.OrientationAxesVisibility = 0
 view.CameraPosition = [0.0, 0.0, 120.0]
@@ -57,7 +64,7 @@ mmv.add_directional_light(view, [4.0, 2.0, 100.0])
 
 # --- The same scene as one array ---------------------------------------------
 maps("both", (1.0, 0.9, 0.8))
-one = mmv.show_multi_material(source, view, "both")
+one = mmv.show_multi_material(arrays, view, "both")
 single = mmv.render_image(view, os.path.join(args.temp_dir, "PVFieldsOne.png"))
 checker.check(mmv.info(one, "NumberOfFields") == 1, "one array is one field")
 
@@ -82,6 +89,27 @@ checker.check(mmv.info(two, "MultiMaterialActive") == 1, "two fields are shaded 
 same = mmv.psnr(fields, single)
 print("two fields against one array: %.1f dB" % same)
 checker.check(same >= 40.0, "two fields render as one array with the same maps (%.1f dB)" % same)
+checker.check(errors.take_errors() == "", "no error so far")
+
+# --- Two overlapping sources merged into one image's fields -------------------
+simple.Hide(arrays, view)
+plate_box = simple.ExtractSubset(
+    Input=simple.PassArrays(Input=arrays, PointDataArrays=["plate"]), VOI=[6, 25, 6, 25, 16, 25])
+floor_box = simple.PassArrays(Input=arrays, PointDataArrays=["floor"])
+merged = simple.VolumesToFields(Input=[plate_box, floor_box])
+merged_rep = mmv.show_multi_material(merged, view, "plate")
+merged_rep.FieldArrays = ["floor"]
+merged_rep.FieldMaterialPresets = ["matte"]
+merged_image = mmv.render_image(view, os.path.join(args.temp_dir, "PVFieldsMerged.png"))
+extent = merged.GetDataInformation().GetExtent()
+checker.check(list(extent) == [0, 31, 0, 31, 0, 31], "the merged grid is the floor's (%s)"
+              % list(extent))
+merged_psnr = mmv.psnr(merged_image, fields)
+print("two sources merged against two fields on one grid: %.1f dB" % merged_psnr)
+checker.check(merged_psnr >= 60.0,
+              "merged sources render as the fields made on one grid (%.1f dB)" % merged_psnr)
+simple.Hide(merged, view)
+simple.Show(arrays, view)
 checker.check(errors.take_errors() == "", "no error so far")
 
 # --- Each field its own colour ------------------------------------------------
