@@ -228,6 +228,9 @@ bool vtkIrradianceEstimator::Render(vtkOpenGLRenderWindow* context)
     this->ComputeShadersUsed = internals.Compute;
     const bool cpuClasses = this->Classification == CPUClasses ||
       (this->Classification == GPUClassesUnlessSoftware && software);
+    internals.SeriesOnCPU = this->DiffusionSeries == CPUSeries ||
+      (this->DiffusionSeries == GPUSeriesUnlessSoftware && software);
+    internals.SeriesRanOnCPU = false;
     bool reallocated = false;
     ok = internals.Upload(context, this->LayeredRendering, cpuClasses, this->ClassesCopied) &&
       internals.AllocateTargets(context, diffusion, this->LayeredRendering, reallocated);
@@ -248,6 +251,7 @@ bool vtkIrradianceEstimator::Render(vtkOpenGLRenderWindow* context)
     {
       ok = this->UpdateGroup(context, group, updated, estimation, diffusion);
     }
+    this->SeriesOnCPU = internals.SeriesRanOnCPU;
     if (!this->KeepScratch)
     {
       internals.ReleaseScratch(context);
@@ -853,6 +857,8 @@ void vtkIrradianceEstimator::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "TextureMemoryBytes: " << this->GetTextureMemoryBytes() << "\n";
   os << indent << "Classification: " << this->Classification
      << " (last: " << (this->ClassesCopied ? "CPU" : "GPU") << ")\n";
+  os << indent << "DiffusionSeries: " << this->DiffusionSeries
+     << " (last: " << (this->SeriesOnCPU ? "CPU" : "GPU") << ")\n";
   os << indent << "KeepScratch: " << this->KeepScratch << "\n";
   os << indent << "ScratchMemoryBytes: " << this->GetScratchMemoryBytes() << "\n";
 }

@@ -176,6 +176,27 @@ public:
   vtkGetMacro(ClassesCopied, bool);
 
   /**
+   * Where the diffusion's exponential series (ExponentialDiffusion, the
+   * default) runs: 0, in GPU passes over the diffusion grid; 1, on the CPU,
+   * between a read-back of the restricted irradiance and an upload of the
+   * change; 2, automatic (default): on the GPU except on a CPU rasterizer,
+   * whose fragment draws cost several times the same loops (`smoke`'s time
+   * step on a 237 x 237 x 119 grid: 1.6-1.8 s of passes; docs/performance.md,
+   * "Irradiance update stages"). Both give the same irradiance to rounding.
+   * Backward-Euler diffusion always runs on the GPU.
+   */
+  enum DiffusionSeriesPlace
+  {
+    GPUSeries = 0,
+    CPUSeries = 1,
+    GPUSeriesUnlessSoftware = 2
+  };
+  vtkSetClampMacro(DiffusionSeries, int, GPUSeries, GPUSeriesUnlessSoftware);
+  vtkGetMacro(DiffusionSeries, int);
+  /// Whether the last update ran the series on the CPU.
+  vtkGetMacro(SeriesOnCPU, bool);
+
+  /**
    * Keeps the float scratch textures the passes work in between updates
    * (default on): an update then allocates nothing, which on a software
    * rasterizer is a large share of a light update (docs/performance.md,
@@ -400,6 +421,8 @@ protected:
   bool ComputeShadersUsed = false;
   int Classification = GPUClassesUnlessSoftware;
   bool ClassesCopied = false;
+  int DiffusionSeries = GPUSeriesUnlessSoftware;
+  bool SeriesOnCPU = false;
   bool SkipEmptyVoxels = true;
   bool KeepScratch = true;
   int ShadowEstimation = mmv::DefaultIlluminationSettings.ShadowEstimation;

@@ -216,6 +216,9 @@ bool vtkIrradianceEstimator::vtkInternals::DiffusionPlan::UploadExchangeMask()
 //------------------------------------------------------------------------------
 void vtkIrradianceEstimator::vtkInternals::DiffusionPlan::ReleaseScratch(vtkWindow* window)
 {
+  this->CPUSeries.ReleaseScratch();
+  std::vector<float>().swap(this->Restricted);
+  std::vector<float>().swap(this->Change);
   for (auto& texture : this->CoarseScratch)
   {
     if (texture)
@@ -286,13 +289,22 @@ int vtkIrradianceEstimator::vtkInternals::Diffuse(
     this->DrawLayers(context, this->RestrictQuad, coarse[0], layered, blocks, 0xF, &plan);
   }
 
-  int current = 0;
-  const int sweeps = exponential
-    ? this->ExponentialSweeps(context, plan, sweep, layered, current)
-    : this->BackwardEulerSweeps(context, plan, sweep, layered, mask, current);
-
-  const int change = current == 1 ? 2 : 1; // neither `before` nor `after`
+  int change = 1;
+  int sweeps = 0;
+  if (exponential && this->SeriesOnCPU)
   {
+    sweeps = this->ExponentialSeriesOnCPU(plan, change);
+    if (sweeps < 0)
+    {
+      return -1;
+    }
+  }
+  else
+  {
+    int current = 0;
+    sweeps = exponential ? this->ExponentialSweeps(context, plan, sweep, layered, current)
+                         : this->BackwardEulerSweeps(context, plan, sweep, layered, mask, current);
+    change = current == 1 ? 2 : 1; // neither `before` nor `after`
     context->GetShaderCache()->ReadyShaderProgram(changeProgram);
     SetDiffusionGridUniforms(changeProgram, plan);
     ScopedTextures bound{ coarse[current], coarse[0] };
@@ -318,6 +330,48 @@ int vtkIrradianceEstimator::vtkInternals::Diffuse(
       DrawBox(fine, this->Grid.Dimensions), mask);
   }
   return sweeps;
+}
+
+//------------------------------------------------------------------------------
+// The restricted irradiance comes back whole (the blocks outside Blocks are
+// never read: their faces exchange nothing with the ones inside), the change
+// goes up whole (0 outside the blocks that exchange, as the change pass
+// writes it).
+int vtkIrradianceEstimator::vtkInternals::ExponentialSeriesOnCPU(DiffusionPlan& plan, int change)
+{
+  static const GLenum formats[] = { GL_RED, GL_RG, GL_RGBA, GL_RGBA };
+  vtkTextureObject* restricted = plan.CoarseScratch[0];
+  vtkTextureObject* target = plan.CoarseScratch[change];
+  const int channels = restricted->GetComponents();
+  const GLenum format = formats[channels - 1];
+  const int* d = plan.Coarse.Dimensions;
+  const size_t values = static_cast<size_t>(channels) * d[0] * d[1] * d[2];
+  plan.Restricted.resize(values);
+  plan.Change.resize(values);
+  GLint packAlignment = 4;
+  GLint unpackAlignment = 4;
+  glGetIntegerv(GL_PACK_ALIGNMENT, &packAlignment);
+  glGetIntegerv(GL_UNPACK_ALIGNMENT, &unpackAlignment);
+  glPixelStorei(GL_PACK_ALIGNMENT, 4);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  restricted->Activate();
+  glGetTexImage(GL_TEXTURE_3D, 0, format, GL_FLOAT, plan.Restricted.data());
+  restricted->Deactivate();
+  const mmv::IndexBox box = plan.ScatteringBox.Intersected(plan.Blocks);
+  const bool done = plan.CPUSeries.Change(d, channels, plan.CoarseFaces[0].data(),
+    plan.CoarseFaces[1].data(), box.Bounds, plan.ExponentialSeries, 1.0 / plan.CoarseMaxRate,
+    plan.Restricted.data(), plan.Change.data());
+  if (done)
+  {
+    target->Activate();
+    glTexSubImage3D(
+      GL_TEXTURE_3D, 0, 0, 0, 0, d[0], d[1], d[2], format, GL_FLOAT, plan.Change.data());
+    target->Deactivate();
+  }
+  glPixelStorei(GL_PACK_ALIGNMENT, packAlignment);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, unpackAlignment);
+  this->SeriesRanOnCPU = this->SeriesRanOnCPU || done;
+  return done && glGetError() == GL_NO_ERROR ? static_cast<int>(plan.ExponentialSeries.size()) : -1;
 }
 
 //------------------------------------------------------------------------------

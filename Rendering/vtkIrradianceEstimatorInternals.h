@@ -13,6 +13,7 @@
 
 #include "vtkIrradianceEstimator.h"
 
+#include "vtkBlockDiffusionSeries.h"
 #include "vtkIrradianceComputeProgram.h"
 #include "vtkIrradianceDiffusion.h"
 #include "vtkIrradianceRegion.h"
@@ -361,6 +362,11 @@ public:
     // [0] restricted, [1..4] rotate through the sweeps (right-hand side,
     // previous, current and next iterate).
     std::array<vtkSmartPointer<vtkTextureObject>, 5> CoarseScratch;
+    // The series on the CPU (SeriesOnCPU): the restricted irradiance read
+    // back, the change uploaded, and the iterates between.
+    mmv::BlockDiffusionSeries CPUSeries;
+    std::vector<float> Restricted;
+    std::vector<float> Change;
     // A GL_TEXTURE_2D_ARRAY of depths, CoarseExchanges (ExchangeMaskHolds:
     // the current ones). The layered draws of the restriction and the
     // sweeps test their quad's depth (0.5) against it, so a software
@@ -493,6 +499,10 @@ public:
   // Compute dispatches instead of fragment draws (this update), and the
   // atomic counter that stands in for the occlusion query there.
   bool Compute = false;
+  // The exponential series on the CPU (this update; DiffusionSeries), and
+  // whether a diffusion of it ran there.
+  bool SeriesOnCPU = false;
+  bool SeriesRanOnCPU = false;
   unsigned int WriteCounter = 0;
   bool ExchangeMaskRefused = false; // the framebuffer would not take a plan's mask
 
@@ -576,6 +586,10 @@ public:
     vtkShaderProgram* sweep, bool layered, int mask, int& current);
   int ExponentialSweeps(vtkOpenGLRenderWindow* context, DiffusionPlan& plan,
     vtkShaderProgram* sweep, bool layered, int& current);
+  /// The exponential series of `plan` on the CPU, from its restricted
+  /// irradiance (CoarseScratch[0]) to the change in CoarseScratch[change]:
+  /// the passes it stands for, or -1 on failure.
+  int ExponentialSeriesOnCPU(DiffusionPlan& plan, int change);
   bool FillPass(vtkOpenGLRenderWindow* context, vtkTextureObject* source, int group, int mask,
     bool skipEmpty, bool layered);
   /// Which lights this update recomputes: all of them (`all`), or those

@@ -984,6 +984,85 @@ TEST(IrradianceEstimator, StridedLightsDiffuseOnTheirOwnCoarserGrid)
   }
 }
 
+// The exponential series on the CPU (DiffusionSeries) against the GPU's
+// passes, on the two blocks of the test above: one light (one channel), a
+// light beside a strided one (two diffusion grids, one and two channels),
+// five lights of both kinds (four channels on each grid); weak to strong
+// scattering; fragment draws and compute dispatches. The irradiance agrees
+// to the rounding of the 16-bit texels, from as many terms.
+TEST(IrradianceEstimator, CPUDiffusionSeriesMatchesTheGPU)
+{
+  const Context& ctx = SharedContext();
+  ASSERT_NE(ctx.GL, nullptr);
+  const bool computeSupported = GLEW_VERSION_4_3 != 0;
+  const std::vector<std::vector<int>> strideSets = { { 1 }, { 1, 2 }, { 1, 2, 1, 2, 1 } };
+  int compared = 0;
+  double worst = 0.0;
+  for (const double s : { 1.0, 8.0, 100.0 })
+  {
+    for (const std::vector<int>& strides : strideSets)
+    {
+      for (const bool compute : { false, true })
+      {
+        if (compute && !computeSupported)
+        {
+          continue;
+        }
+        Scene scene = TwoBlocks(s);
+        scene.Image = MakeImage({ 48, 48, 48 }, { 1.0, 1.0, 1.0 },
+          [](int i, int j, int k)
+          {
+            if (j < 6 || j > 41 || k < 6 || k > 41)
+            {
+              return 0.0f;
+            }
+            return i >= 6 && i < 24 ? 1.0f : (i >= 24 && i < 42 ? 2.0f : 0.0f);
+          });
+        scene.Lights.clear();
+        for (size_t l = 0; l < strides.size(); ++l)
+        {
+          scene.Lights.push_back(Directional(1.0 - 0.3 * l, 0.6 + 0.2 * l, 0.8));
+        }
+        scene.Strides = strides;
+        const std::string where = "s " + std::to_string(s) + ", " + std::to_string(strides.size()) +
+          " lights, " + (compute ? "compute" : "fragments");
+        std::vector<std::vector<float>> lights[2];
+        int passes[2] = { 0, 0 };
+        for (const bool onCPU : { false, true })
+        {
+          vtkNew<vtkIrradianceEstimator> pass;
+          pass->SetComputeShaders(compute ? vtkIrradianceEstimator::ComputeDispatches
+                                          : vtkIrradianceEstimator::FragmentDraws);
+          pass->SetDiffusionSeries(
+            onCPU ? vtkIrradianceEstimator::CPUSeries : vtkIrradianceEstimator::GPUSeries);
+          SetPassInputs(scene, pass);
+          ASSERT_TRUE(pass->Render(ctx.GL)) << where;
+          EXPECT_EQ(pass->GetSeriesOnCPU(), onCPU) << where;
+          ASSERT_TRUE(pass->ReadBackLights(
+            ctx.GL, 0, static_cast<int>(strides.size()), lights[onCPU ? 1 : 0]))
+            << where;
+          passes[onCPU ? 1 : 0] = pass->GetDiffusionPasses();
+          pass->ReleaseGraphicsResources(ctx.GL);
+        }
+        EXPECT_GT(passes[0], 0) << where;
+        EXPECT_EQ(passes[1], passes[0]) << where;
+        for (size_t l = 0; l < strides.size(); ++l)
+        {
+          const double diff =
+            MaxDifference(lights[1][l], lights[0][l], std::vector<bool>(lights[0][l].size()));
+          const float brightest = *std::max_element(lights[0][l].begin(), lights[0][l].end());
+          EXPECT_GT(brightest, 0.1f) << where << ", light " << l;
+          EXPECT_LE(diff, 1e-4) << where << ", light " << l;
+          worst = std::max(worst, diff);
+          ++compared;
+        }
+      }
+    }
+  }
+  std::cout << compared << " lights compared, CPU vs GPU series max |difference| " << worst
+            << std::endl;
+}
+
 TEST(IrradianceEstimator, OnlyMovedLightsAreRecomputed)
 {
   const Context& ctx = SharedContext();
