@@ -10,11 +10,11 @@
  * change. The same arithmetic in plain loops over the block texels
  * (mmv::DiffusionBlockTexels) costs a fraction of that, so the estimator
  * reads the restricted irradiance back, runs the series here and uploads the
- * change for the prolongation (vtkIrradianceEstimator::DiffusionSeries).
+ * change for the prolongation (vtkIrradianceEstimator::DiffusionPlace).
  *
  * The operations mirror Shaders/mmvDiffusionFS.glsl (MMV_EXPONENTIAL, then
  * MMV_CHANGE) in float and in the same order, so the two agree to rounding
- * (IrradianceEstimator.CPUDiffusionSeriesMatchesTheGPU):
+ * (IrradianceEstimator.CPUDiffusionMatchesTheGPU):
  *   out = alpha u0 + beta (b + invRate (sum_f c_f b_f - total b) / C)
  *         + gamma b_previous
  * over the blocks of `box` that exchange light (total = sum_f c_f > 0), from

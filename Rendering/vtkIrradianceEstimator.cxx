@@ -228,9 +228,9 @@ bool vtkIrradianceEstimator::Render(vtkOpenGLRenderWindow* context)
     this->ComputeShadersUsed = internals.Compute;
     const bool cpuClasses = this->Classification == CPUClasses ||
       (this->Classification == GPUClassesUnlessSoftware && software);
-    internals.SeriesOnCPU = this->DiffusionSeries == CPUSeries ||
-      (this->DiffusionSeries == GPUSeriesUnlessSoftware && software);
-    internals.SeriesRanOnCPU = false;
+    internals.DiffusionOnCPU = this->DiffusionPlace == CPUDiffusion ||
+      (this->DiffusionPlace == GPUDiffusionUnlessSoftware && software);
+    internals.DiffusionRanOnCPU = false;
     bool reallocated = false;
     ok = internals.Upload(context, this->LayeredRendering, cpuClasses, this->ClassesCopied) &&
       internals.AllocateTargets(context, diffusion, this->LayeredRendering, reallocated);
@@ -251,7 +251,7 @@ bool vtkIrradianceEstimator::Render(vtkOpenGLRenderWindow* context)
     {
       ok = this->UpdateGroup(context, group, updated, estimation, diffusion);
     }
-    this->SeriesOnCPU = internals.SeriesRanOnCPU;
+    this->DiffusedOnCPU = internals.DiffusionRanOnCPU;
     if (!this->KeepScratch)
     {
       internals.ReleaseScratch(context);
@@ -434,6 +434,8 @@ bool vtkIrradianceEstimator::UpdateGroup(vtkOpenGLRenderWindow* context, int gro
   {
     const bool ownGrid = internals.DiffusionOf(stride) == 1;
     const int lightsOf[2] = { ownGrid ? mask & ~stridedMask : mask, ownGrid ? stridedMask : 0 };
+    const bool onCPU = internals.DiffusesOnCPU();
+    ok = !onCPU || internals.ReadFineScratch();
     for (int p = 0; ok && p < 2; ++p)
     {
       const int sweeps = lightsOf[p] == 0
@@ -443,6 +445,7 @@ bool vtkIrradianceEstimator::UpdateGroup(vtkOpenGLRenderWindow* context, int gro
       ok = sweeps >= 0;
       this->DiffusionPasses += std::max(0, sweeps);
     }
+    ok = ok && (!onCPU || internals.UploadDiffusedFine());
     result = internals.FineScratch[1];
     this->LastDiffusionSeconds += elapsed();
   }
@@ -857,8 +860,8 @@ void vtkIrradianceEstimator::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "TextureMemoryBytes: " << this->GetTextureMemoryBytes() << "\n";
   os << indent << "Classification: " << this->Classification
      << " (last: " << (this->ClassesCopied ? "CPU" : "GPU") << ")\n";
-  os << indent << "DiffusionSeries: " << this->DiffusionSeries
-     << " (last: " << (this->SeriesOnCPU ? "CPU" : "GPU") << ")\n";
+  os << indent << "DiffusionPlace: " << this->DiffusionPlace
+     << " (last: " << (this->DiffusedOnCPU ? "CPU" : "GPU") << ")\n";
   os << indent << "KeepScratch: " << this->KeepScratch << "\n";
   os << indent << "ScratchMemoryBytes: " << this->GetScratchMemoryBytes() << "\n";
 }

@@ -176,25 +176,27 @@ public:
   vtkGetMacro(ClassesCopied, bool);
 
   /**
-   * Where the diffusion's exponential series (ExponentialDiffusion, the
-   * default) runs: 0, in GPU passes over the diffusion grid; 1, on the CPU,
-   * between a read-back of the restricted irradiance and an upload of the
-   * change; 2, automatic (default): on the GPU except on a CPU rasterizer,
-   * whose fragment draws cost several times the same loops (`smoke`'s time
-   * step on a 237 x 237 x 119 grid: 1.6-1.8 s of passes; docs/performance.md,
-   * "Irradiance update stages"). Both give the same irradiance to rounding.
-   * Backward-Euler diffusion always runs on the GPU.
+   * Where the diffusion with the exponential series (ExponentialDiffusion,
+   * the default) runs: 0, in GPU passes (restriction to the diffusion grid,
+   * one pass per term of the series, the change, the prolongation); 1, on
+   * the CPU, between a read-back of the irradiance before it and an upload
+   * after it; 2, automatic (default): on the GPU except on a CPU rasterizer,
+   * whose fragment passes cost several times the same loops (`smoke`'s time
+   * step on a 237 x 237 x 119 grid: 2.2-2.7 s of passes against 0.8 s;
+   * docs/performance.md, "Irradiance update stages"). Both give the same
+   * irradiance to a 16-bit texel's rounding. Backward-Euler diffusion
+   * always runs on the GPU.
    */
-  enum DiffusionSeriesPlace
+  enum DiffusionPlace
   {
-    GPUSeries = 0,
-    CPUSeries = 1,
-    GPUSeriesUnlessSoftware = 2
+    GPUDiffusion = 0,
+    CPUDiffusion = 1,
+    GPUDiffusionUnlessSoftware = 2
   };
-  vtkSetClampMacro(DiffusionSeries, int, GPUSeries, GPUSeriesUnlessSoftware);
-  vtkGetMacro(DiffusionSeries, int);
-  /// Whether the last update ran the series on the CPU.
-  vtkGetMacro(SeriesOnCPU, bool);
+  vtkSetClampMacro(DiffusionPlace, int, GPUDiffusion, GPUDiffusionUnlessSoftware);
+  vtkGetMacro(DiffusionPlace, int);
+  /// Whether the last update diffused on the CPU.
+  vtkGetMacro(DiffusedOnCPU, bool);
 
   /**
    * Keeps the float scratch textures the passes work in between updates
@@ -421,8 +423,8 @@ protected:
   bool ComputeShadersUsed = false;
   int Classification = GPUClassesUnlessSoftware;
   bool ClassesCopied = false;
-  int DiffusionSeries = GPUSeriesUnlessSoftware;
-  bool SeriesOnCPU = false;
+  int DiffusionPlace = GPUDiffusionUnlessSoftware;
+  bool DiffusedOnCPU = false;
   bool SkipEmptyVoxels = true;
   bool KeepScratch = true;
   int ShadowEstimation = mmv::DefaultIlluminationSettings.ShadowEstimation;

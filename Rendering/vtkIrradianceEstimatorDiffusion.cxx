@@ -1,6 +1,7 @@
 // vtkIrradianceEstimator: multiple scattering, the diffusion of the
 // transmittance on the diffusion grid.
 #include "vtkIrradianceEstimatorInternals.h"
+#include "vtkMultiMaterialThreads.h"
 
 #include "mmvDiffusionFS.h"
 #include "mmvDiffusionGridFS.h"
@@ -216,7 +217,7 @@ bool vtkIrradianceEstimator::vtkInternals::DiffusionPlan::UploadExchangeMask()
 //------------------------------------------------------------------------------
 void vtkIrradianceEstimator::vtkInternals::DiffusionPlan::ReleaseScratch(vtkWindow* window)
 {
-  this->CPUSeries.ReleaseScratch();
+  this->Series.ReleaseScratch();
   std::vector<float>().swap(this->Restricted);
   std::vector<float>().swap(this->Change);
   for (auto& texture : this->CoarseScratch)
@@ -262,6 +263,10 @@ void vtkIrradianceEstimator::vtkInternals::DiffusionPlan::Release(vtkWindow* win
 int vtkIrradianceEstimator::vtkInternals::Diffuse(
   vtkOpenGLRenderWindow* context, DiffusionPlan& plan, bool layered, int mask, bool skipEmpty)
 {
+  if (this->DiffusesOnCPU())
+  {
+    return this->DiffuseOnCPU(plan, mask, skipEmpty);
+  }
   const bool exponential = !plan.ExponentialSeries.empty();
   vtkShaderProgram* restriction =
     this->Ready(context, this->RestrictQuad, mmvDiffusionGridFS, "#define MMV_RESTRICT\n", false);
@@ -289,22 +294,13 @@ int vtkIrradianceEstimator::vtkInternals::Diffuse(
     this->DrawLayers(context, this->RestrictQuad, coarse[0], layered, blocks, 0xF, &plan);
   }
 
-  int change = 1;
-  int sweeps = 0;
-  if (exponential && this->SeriesOnCPU)
+  int current = 0;
+  const int sweeps = exponential
+    ? this->ExponentialSweeps(context, plan, sweep, layered, current)
+    : this->BackwardEulerSweeps(context, plan, sweep, layered, mask, current);
+
+  const int change = current == 1 ? 2 : 1; // neither `before` nor `after`
   {
-    sweeps = this->ExponentialSeriesOnCPU(plan, change);
-    if (sweeps < 0)
-    {
-      return -1;
-    }
-  }
-  else
-  {
-    int current = 0;
-    sweeps = exponential ? this->ExponentialSweeps(context, plan, sweep, layered, current)
-                         : this->BackwardEulerSweeps(context, plan, sweep, layered, mask, current);
-    change = current == 1 ? 2 : 1; // neither `before` nor `after`
     context->GetShaderCache()->ReadyShaderProgram(changeProgram);
     SetDiffusionGridUniforms(changeProgram, plan);
     ScopedTextures bound{ coarse[current], coarse[0] };
@@ -333,45 +329,67 @@ int vtkIrradianceEstimator::vtkInternals::Diffuse(
 }
 
 //------------------------------------------------------------------------------
-// The restricted irradiance comes back whole (the blocks outside Blocks are
-// never read: their faces exchange nothing with the ones inside), the change
-// goes up whole (0 outside the blocks that exchange, as the change pass
-// writes it).
-int vtkIrradianceEstimator::vtkInternals::ExponentialSeriesOnCPU(DiffusionPlan& plan, int change)
+// The GPU passes' arithmetic (vtkBlockDiffusionSeries.h,
+// vtkDiffusionGridTransfer.h) on the same blocks and voxels. FineOnCPU is
+// diffused in place: the other plan's restriction reads its own channels
+// alone, which this one's prolongation leaves as they were.
+int vtkIrradianceEstimator::vtkInternals::DiffuseOnCPU(
+  DiffusionPlan& plan, int mask, bool skipEmpty)
 {
-  static const GLenum formats[] = { GL_RED, GL_RG, GL_RGBA, GL_RGBA };
-  vtkTextureObject* restricted = plan.CoarseScratch[0];
-  vtkTextureObject* target = plan.CoarseScratch[change];
-  const int channels = restricted->GetComponents();
-  const GLenum format = formats[channels - 1];
+  const int channels = plan.CoarseScratch[0]->GetComponents();
   const int* d = plan.Coarse.Dimensions;
   const size_t values = static_cast<size_t>(channels) * d[0] * d[1] * d[2];
   plan.Restricted.resize(values);
   plan.Change.resize(values);
-  GLint packAlignment = 4;
-  GLint unpackAlignment = 4;
-  glGetIntegerv(GL_PACK_ALIGNMENT, &packAlignment);
-  glGetIntegerv(GL_UNPACK_ALIGNMENT, &unpackAlignment);
-  glPixelStorei(GL_PACK_ALIGNMENT, 4);
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-  restricted->Activate();
-  glGetTexImage(GL_TEXTURE_3D, 0, format, GL_FLOAT, plan.Restricted.data());
-  restricted->Deactivate();
+  const mmv::IndexBox fine =
+    skipEmpty ? this->OccupiedBox(this->Plan.Source, 1) : this->Plan.Source;
   const mmv::IndexBox box = plan.ScatteringBox.Intersected(plan.Blocks);
-  const bool done = plan.CPUSeries.Change(d, channels, plan.CoarseFaces[0].data(),
-    plan.CoarseFaces[1].data(), box.Bounds, plan.ExponentialSeries, 1.0 / plan.CoarseMaxRate,
-    plan.Restricted.data(), plan.Change.data());
-  if (done)
-  {
-    target->Activate();
-    glTexSubImage3D(
-      GL_TEXTURE_3D, 0, 0, 0, 0, d[0], d[1], d[2], format, GL_FLOAT, plan.Change.data());
-    target->Deactivate();
-  }
-  glPixelStorei(GL_PACK_ALIGNMENT, packAlignment);
-  glPixelStorei(GL_UNPACK_ALIGNMENT, unpackAlignment);
-  this->SeriesRanOnCPU = this->SeriesRanOnCPU || done;
-  return done && glGetError() == GL_NO_ERROR ? static_cast<int>(plan.ExponentialSeries.size()) : -1;
+  bool done = false;
+  mmv::RunOnAllCores(
+    [&]()
+    {
+      mmv::RestrictToDiffusionBlocks(this->Grid.Dimensions, this->FineOnCPU.data(),
+        this->Classes.data(), plan.Coarse, channels, plan.Blocks.Bounds, plan.Restricted.data());
+      done = plan.Series.Change(d, channels, plan.CoarseFaces[0].data(), plan.CoarseFaces[1].data(),
+        box.Bounds, plan.ExponentialSeries, 1.0 / plan.CoarseMaxRate, plan.Restricted.data(),
+        plan.Change.data());
+      if (done && !fine.IsEmpty())
+      {
+        mmv::ProlongDiffusionChange(this->Grid.Dimensions, this->FineOnCPU.data(),
+          this->Classes.data(), plan.Coarse, channels, plan.Change.data(),
+          plan.CoarseFaces[1].data(), mask, fine.Bounds, this->FineOnCPU.data());
+      }
+    });
+  this->DiffusionRanOnCPU = this->DiffusionRanOnCPU || done;
+  return done ? static_cast<int>(plan.ExponentialSeries.size()) : -1;
+}
+
+bool vtkIrradianceEstimator::vtkInternals::ReadFineScratch()
+{
+  const int* d = this->Grid.Dimensions;
+  this->FineOnCPU.resize(4 * static_cast<size_t>(d[0]) * d[1] * d[2]);
+  GLint alignment = 4;
+  glGetIntegerv(GL_PACK_ALIGNMENT, &alignment);
+  glPixelStorei(GL_PACK_ALIGNMENT, 4);
+  this->FineScratch[0]->Activate();
+  glGetTexImage(GL_TEXTURE_3D, 0, GL_RGBA, GL_FLOAT, this->FineOnCPU.data());
+  this->FineScratch[0]->Deactivate();
+  glPixelStorei(GL_PACK_ALIGNMENT, alignment);
+  return glGetError() == GL_NO_ERROR;
+}
+
+bool vtkIrradianceEstimator::vtkInternals::UploadDiffusedFine()
+{
+  const int* d = this->Grid.Dimensions;
+  GLint alignment = 4;
+  glGetIntegerv(GL_UNPACK_ALIGNMENT, &alignment);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  this->FineScratch[1]->Activate();
+  glTexSubImage3D(
+    GL_TEXTURE_3D, 0, 0, 0, 0, d[0], d[1], d[2], GL_RGBA, GL_FLOAT, this->FineOnCPU.data());
+  this->FineScratch[1]->Deactivate();
+  glPixelStorei(GL_UNPACK_ALIGNMENT, alignment);
+  return glGetError() == GL_NO_ERROR;
 }
 
 //------------------------------------------------------------------------------

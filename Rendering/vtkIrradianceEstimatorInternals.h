@@ -14,6 +14,7 @@
 #include "vtkIrradianceEstimator.h"
 
 #include "vtkBlockDiffusionSeries.h"
+#include "vtkDiffusionGridTransfer.h"
 #include "vtkIrradianceComputeProgram.h"
 #include "vtkIrradianceDiffusion.h"
 #include "vtkIrradianceRegion.h"
@@ -362,9 +363,9 @@ public:
     // [0] restricted, [1..4] rotate through the sweeps (right-hand side,
     // previous, current and next iterate).
     std::array<vtkSmartPointer<vtkTextureObject>, 5> CoarseScratch;
-    // The series on the CPU (SeriesOnCPU): the restricted irradiance read
-    // back, the change uploaded, and the iterates between.
-    mmv::BlockDiffusionSeries CPUSeries;
+    // The diffusion on the CPU (DiffusesOnCPU): the restricted irradiance,
+    // the series' iterates and its change.
+    mmv::BlockDiffusionSeries Series;
     std::vector<float> Restricted;
     std::vector<float> Change;
     // A GL_TEXTURE_2D_ARRAY of depths, CoarseExchanges (ExchangeMaskHolds:
@@ -499,10 +500,23 @@ public:
   // Compute dispatches instead of fragment draws (this update), and the
   // atomic counter that stands in for the occlusion query there.
   bool Compute = false;
-  // The exponential series on the CPU (this update; DiffusionSeries), and
-  // whether a diffusion of it ran there.
-  bool SeriesOnCPU = false;
-  bool SeriesRanOnCPU = false;
+  // The diffusion on the CPU where it can (this update; DiffusionPlace), and
+  // whether one ran there.
+  bool DiffusionOnCPU = false;
+  bool DiffusionRanOnCPU = false;
+  // The irradiance before the diffusion (FineScratch[0], RGBA), read back
+  // for a diffusion on the CPU, and diffused in place in the lights'
+  // channels before it goes to FineScratch[1].
+  std::vector<float> FineOnCPU;
+  /// Whether this update diffuses on the CPU: asked to, with the
+  /// exponential integrator and the classes the transfers read.
+  bool DiffusesOnCPU() const
+  {
+    return this->DiffusionOnCPU && this->Diffusion.Exponential && this->ClassesOnCPU;
+  }
+  /// FineScratch[0] into FineOnCPU, and FineOnCPU into FineScratch[1].
+  bool ReadFineScratch();
+  bool UploadDiffusedFine();
   unsigned int WriteCounter = 0;
   bool ExchangeMaskRefused = false; // the framebuffer would not take a plan's mask
 
@@ -586,10 +600,10 @@ public:
     vtkShaderProgram* sweep, bool layered, int mask, int& current);
   int ExponentialSweeps(vtkOpenGLRenderWindow* context, DiffusionPlan& plan,
     vtkShaderProgram* sweep, bool layered, int& current);
-  /// The exponential series of `plan` on the CPU, from its restricted
-  /// irradiance (CoarseScratch[0]) to the change in CoarseScratch[change]:
-  /// the passes it stands for, or -1 on failure.
-  int ExponentialSeriesOnCPU(DiffusionPlan& plan, int change);
+  /// Diffuse() on the CPU: restriction, series and prolongation of
+  /// FineOnCPU's channels of `mask`, in place; the passes the series stands
+  /// for.
+  int DiffuseOnCPU(DiffusionPlan& plan, int mask, bool skipEmpty);
   bool FillPass(vtkOpenGLRenderWindow* context, vtkTextureObject* source, int group, int mask,
     bool skipEmpty, bool layered);
   /// Which lights this update recomputes: all of them (`all`), or those

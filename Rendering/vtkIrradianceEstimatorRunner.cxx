@@ -950,6 +950,7 @@ bool vtkIrradianceEstimator::vtkInternals::FillPass(vtkOpenGLRenderWindow* conte
 //------------------------------------------------------------------------------
 void vtkIrradianceEstimator::vtkInternals::ReleaseScratch(vtkWindow* window)
 {
+  std::vector<float>().swap(this->FineOnCPU);
   // The float scratch is 8x the result per texture: not worth keeping.
   if (this->LightGridScratch)
   {

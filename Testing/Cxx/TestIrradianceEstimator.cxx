@@ -984,13 +984,12 @@ TEST(IrradianceEstimator, StridedLightsDiffuseOnTheirOwnCoarserGrid)
   }
 }
 
-// The exponential series on the CPU (DiffusionSeries) against the GPU's
-// passes, on the two blocks of the test above: one light (one channel), a
-// light beside a strided one (two diffusion grids, one and two channels),
-// five lights of both kinds (four channels on each grid); weak to strong
-// scattering; fragment draws and compute dispatches. The irradiance agrees
-// to the rounding of the 16-bit texels, from as many terms.
-TEST(IrradianceEstimator, CPUDiffusionSeriesMatchesTheGPU)
+// The diffusion on the CPU (DiffusionPlace: restriction, series and
+// prolongation) against the GPU's passes, on the two blocks of the test above: one light (one
+// channel), a light beside a strided one (two diffusion grids, one and two channels), five lights
+// of both kinds (four channels on each grid); weak to strong scattering; fragment draws and compute
+// dispatches. The irradiance agrees to the rounding of the 16-bit texels, from as many terms.
+TEST(IrradianceEstimator, CPUDiffusionMatchesTheGPU)
 {
   const Context& ctx = SharedContext();
   ASSERT_NE(ctx.GL, nullptr);
@@ -1033,11 +1032,11 @@ TEST(IrradianceEstimator, CPUDiffusionSeriesMatchesTheGPU)
           vtkNew<vtkIrradianceEstimator> pass;
           pass->SetComputeShaders(compute ? vtkIrradianceEstimator::ComputeDispatches
                                           : vtkIrradianceEstimator::FragmentDraws);
-          pass->SetDiffusionSeries(
-            onCPU ? vtkIrradianceEstimator::CPUSeries : vtkIrradianceEstimator::GPUSeries);
+          pass->SetDiffusionPlace(
+            onCPU ? vtkIrradianceEstimator::CPUDiffusion : vtkIrradianceEstimator::GPUDiffusion);
           SetPassInputs(scene, pass);
           ASSERT_TRUE(pass->Render(ctx.GL)) << where;
-          EXPECT_EQ(pass->GetSeriesOnCPU(), onCPU) << where;
+          EXPECT_EQ(pass->GetDiffusedOnCPU(), onCPU) << where;
           ASSERT_TRUE(pass->ReadBackLights(
             ctx.GL, 0, static_cast<int>(strides.size()), lights[onCPU ? 1 : 0]))
             << where;
@@ -1059,7 +1058,7 @@ TEST(IrradianceEstimator, CPUDiffusionSeriesMatchesTheGPU)
       }
     }
   }
-  std::cout << compared << " lights compared, CPU vs GPU series max |difference| " << worst
+  std::cout << compared << " lights compared, CPU vs GPU diffusion max |difference| " << worst
             << std::endl;
 }
 
