@@ -12,12 +12,13 @@ inline float FaceFlux(float c, float x)
   return c > 0.0f ? c * x : 0.0f;
 }
 
-// One Clenshaw step over the blocks of `box` that exchange light; the others
-// are left unwritten, as the fragment shader leaves them.
-template <int C>
-void ClenshawStep(const int dims[3], const float* facesXY, const float* facesZ, const int box[6],
-  float alpha, float beta, float gamma, float invRate, const float* u0, const float* current,
-  const float* previous, float* next)
+// fn(v, n, xy, z, total) for every block of `box` that exchanges light
+// (total = sum of its face coefficients > 0): v its index, n its six face
+// neighbours' (clamped at the grid's faces, where the coefficient is 0), xy
+// and z its texels. The z slices run in parallel.
+template <typename Fn>
+void ForExchangingBlocks(
+  const int dims[3], const float* facesXY, const float* facesZ, const int box[6], Fn&& fn)
 {
   const vtkIdType sy = dims[0];
   const vtkIdType sz = static_cast<vtkIdType>(dims[0]) * dims[1];
@@ -38,31 +39,44 @@ void ClenshawStep(const int dims[3], const float* facesXY, const float* facesZ, 
             {
               continue;
             }
-            // Clamped at the grid's faces, where the coefficient is 0.
             const vtkIdType n[6] = { i > 0 ? v - 1 : v, i + 1 < dims[0] ? v + 1 : v,
               j > 0 ? v - sy : v, j + 1 < dims[1] ? v + sy : v, k > 0 ? v - sz : v,
               k + 1 < dims[2] ? v + sz : v };
-            for (int c = 0; c < C; ++c)
-            {
-              const float b = current[C * v + c];
-              const float neighbours = FaceFlux(xy[0], current[C * n[0] + c]) +
-                FaceFlux(xy[1], current[C * n[1] + c]) + FaceFlux(xy[2], current[C * n[2] + c]) +
-                FaceFlux(xy[3], current[C * n[3] + c]) + FaceFlux(z[0], current[C * n[4] + c]) +
-                FaceFlux(z[1], current[C * n[5] + c]);
-              const float applied = b + invRate * (neighbours - total * b) / z[2];
-              float result = alpha * u0[C * v + c];
-              if (beta != 0.0f)
-              {
-                result += beta * applied;
-              }
-              if (gamma != 0.0f)
-              {
-                result += gamma * previous[C * v + c];
-              }
-              next[C * v + c] = result;
-            }
+            fn(v, n, xy, z, total);
           }
         }
+      }
+    });
+}
+
+// One Clenshaw step over the blocks of `box` that exchange light; the others
+// are left unwritten, as the fragment shader leaves them.
+template <int C>
+void ClenshawStep(const int dims[3], const float* facesXY, const float* facesZ, const int box[6],
+  float alpha, float beta, float gamma, float invRate, const float* u0, const float* current,
+  const float* previous, float* next)
+{
+  ForExchangingBlocks(dims, facesXY, facesZ, box,
+    [&](vtkIdType v, const vtkIdType* n, const float* xy, const float* z, float total)
+    {
+      for (int c = 0; c < C; ++c)
+      {
+        const float b = current[C * v + c];
+        const float neighbours = FaceFlux(xy[0], current[C * n[0] + c]) +
+          FaceFlux(xy[1], current[C * n[1] + c]) + FaceFlux(xy[2], current[C * n[2] + c]) +
+          FaceFlux(xy[3], current[C * n[3] + c]) + FaceFlux(z[0], current[C * n[4] + c]) +
+          FaceFlux(z[1], current[C * n[5] + c]);
+        const float applied = b + invRate * (neighbours - total * b) / z[2];
+        float result = alpha * u0[C * v + c];
+        if (beta != 0.0f)
+        {
+          result += beta * applied;
+        }
+        if (gamma != 0.0f)
+        {
+          result += gamma * previous[C * v + c];
+        }
+        next[C * v + c] = result;
       }
     });
 }
@@ -96,29 +110,12 @@ void Series(const int dims[3], const float* facesXY, const float* facesZ, const 
   }
   // MMV_CHANGE: the change where a block exchanges light, 0 elsewhere.
   std::fill(change, change + C * blocks, 0.0f);
-  const vtkIdType sy = dims[0];
-  const vtkIdType sz = static_cast<vtkIdType>(dims[0]) * dims[1];
-  mmv::For(box[4], box[5] + 1, 1,
-    [&](vtkIdType kBegin, vtkIdType kEnd)
+  ForExchangingBlocks(dims, facesXY, facesZ, box,
+    [&](vtkIdType v, const vtkIdType*, const float*, const float*, float)
     {
-      for (vtkIdType k = kBegin; k < kEnd; ++k)
+      for (int c = 0; c < C; ++c)
       {
-        for (int j = box[2]; j <= box[3]; ++j)
-        {
-          for (int i = box[0]; i <= box[1]; ++i)
-          {
-            const vtkIdType v = i + j * sy + k * sz;
-            const float* xy = facesXY + 4 * v;
-            const float* z = facesZ + 4 * v;
-            if (xy[0] + xy[1] + xy[2] + xy[3] + z[0] + z[1] > 0.0f)
-            {
-              for (int c = 0; c < C; ++c)
-              {
-                change[C * v + c] = current[C * v + c] - u0[C * v + c];
-              }
-            }
-          }
-        }
+        change[C * v + c] = current[C * v + c] - u0[C * v + c];
       }
     });
 }
