@@ -27,8 +27,9 @@
 
 #include "vtkMultiMaterialVolumeFiltersModule.h" // export macro
 
-#include <array>  // scratch
-#include <vector> // coefficients, scratch
+#include <array>   // scratch
+#include <cstddef> // size_t
+#include <vector>  // coefficients, scratch
 
 namespace mmv
 {
@@ -50,6 +51,11 @@ public:
 
   /// Frees the iterates kept between calls.
   void ReleaseScratch();
+  /// Bytes of the iterates kept between calls.
+  size_t GetBytes() const
+  {
+    return 4 * (this->Iterates[0].size() + this->Iterates[1].size() + this->Iterates[2].size());
+  }
 
 private:
   std::array<std::vector<float>, 3> Iterates;

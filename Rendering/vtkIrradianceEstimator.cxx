@@ -744,8 +744,11 @@ vtkIdType vtkIrradianceEstimator::GetScratchMemoryBytes() const
   for (const auto& plan : this->Internals->Diffusions)
   {
     std::for_each(plan.CoarseScratch.begin(), plan.CoarseScratch.end(), add);
+    bytes += static_cast<vtkIdType>(plan.CPUScratchBytes());
   }
   add(this->Internals->LightGridScratch);
+  // A diffusion on the CPU: its copy of the irradiance.
+  bytes += static_cast<vtkIdType>(4 * this->Internals->FineOnCPU.size());
   return bytes;
 }
 

@@ -205,12 +205,15 @@ public:
    * "Irradiance update stages"). The price is holding them: 16 bytes a voxel,
    * up to three times that with multiple scattering (GetScratchMemoryBytes;
    * the diffusion grids' scratch holds as many channels as the lights it
-   * diffuses need). Off: released after every update.
+   * diffuses need; a diffusion on the CPU holds its buffers in main memory
+   * instead of the diffusion grids' textures). Off: released after every
+   * update.
    */
   vtkSetMacro(KeepScratch, bool);
   vtkGetMacro(KeepScratch, bool);
   vtkBooleanMacro(KeepScratch, bool);
-  /// GPU memory the scratch textures hold now, in bytes.
+  /// Memory the scratch holds now, in bytes: its textures, and the buffers
+  /// of a diffusion on the CPU.
   vtkIdType GetScratchMemoryBytes() const;
 
   /// Empty voxels cost nothing (default on): the shadow draws cover only

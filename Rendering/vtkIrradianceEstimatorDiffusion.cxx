@@ -220,6 +220,11 @@ void vtkIrradianceEstimator::vtkInternals::DiffusionPlan::ReleaseScratch(vtkWind
   this->Series.ReleaseScratch();
   std::vector<float>().swap(this->Restricted);
   std::vector<float>().swap(this->Change);
+  this->ReleaseScratchTextures(window);
+}
+
+void vtkIrradianceEstimator::vtkInternals::DiffusionPlan::ReleaseScratchTextures(vtkWindow* window)
+{
   for (auto& texture : this->CoarseScratch)
   {
     if (texture)
@@ -230,9 +235,9 @@ void vtkIrradianceEstimator::vtkInternals::DiffusionPlan::ReleaseScratch(vtkWind
   }
 }
 
-void vtkIrradianceEstimator::vtkInternals::DiffusionPlan::Release(vtkWindow* window)
+void vtkIrradianceEstimator::vtkInternals::DiffusionPlan::ReleaseTextures(vtkWindow* window)
 {
-  this->ReleaseScratch(window);
+  this->ReleaseScratchTextures(window);
   for (auto& texture : this->CoarseFacesTextures)
   {
     if (texture)
@@ -249,6 +254,12 @@ void vtkIrradianceEstimator::vtkInternals::DiffusionPlan::Release(vtkWindow* win
     this->ExchangeMaskHolds = false;
     std::fill(this->ExchangeMaskDimensions, this->ExchangeMaskDimensions + 3, 0);
   }
+}
+
+void vtkIrradianceEstimator::vtkInternals::DiffusionPlan::Release(vtkWindow* window)
+{
+  this->ReleaseScratch(window);
+  this->ReleaseTextures(window);
 }
 
 //------------------------------------------------------------------------------
@@ -336,7 +347,7 @@ int vtkIrradianceEstimator::vtkInternals::Diffuse(
 int vtkIrradianceEstimator::vtkInternals::DiffuseOnCPU(
   DiffusionPlan& plan, int mask, bool skipEmpty)
 {
-  const int channels = plan.CoarseScratch[0]->GetComponents();
+  const int channels = this->ScratchChannels()[&plan - this->Diffusions.data()];
   const int* d = plan.Coarse.Dimensions;
   const size_t values = static_cast<size_t>(channels) * d[0] * d[1] * d[2];
   plan.Restricted.resize(values);

@@ -385,8 +385,17 @@ public:
                                              : static_cast<int>(this->ExponentialSeries.size());
     }
     bool UploadExchangeMask();
+    /// The scratch: textures and the CPU's buffers.
     void ReleaseScratch(vtkWindow* window);
+    void ReleaseScratchTextures(vtkWindow* window);
+    /// Every texture (scratch, blocks, exchange mask); the CPU's buffers stay.
+    void ReleaseTextures(vtkWindow* window);
     void Release(vtkWindow* window);
+    /// Bytes of the CPU's buffers.
+    size_t CPUScratchBytes() const
+    {
+      return 4 * (this->Restricted.size() + this->Change.size()) + this->Series.GetBytes();
+    }
   };
   mmv::DiffusionSettings Diffusion;
   // [0]: the lights on the irradiance grid. [1]: those on a strided light

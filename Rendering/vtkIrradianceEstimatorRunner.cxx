@@ -501,11 +501,22 @@ bool vtkIrradianceEstimator::vtkInternals::AllocateTargets(
   // The diffusion plans in use (the strided lights' where theirs is coarser)
   // get their blocks and scratch; kept scratch the diffusion no longer needs
   // goes.
+  // A diffusion on the CPU reads the blocks' texels and keeps its buffers
+  // on the CPU: the plans' textures go, and nothing is uploaded for them.
   const DiffusionPlan* strided = &this->Diffusions[this->DiffusionOf(stride)];
   const std::array<int, 2> channels = this->ScratchChannels();
+  const bool onCPU = diffusion && this->DiffusesOnCPU();
+  if (!onCPU)
+  {
+    std::vector<float>().swap(this->FineOnCPU);
+  }
   for (DiffusionPlan& plan : this->Diffusions)
   {
-    if (diffusion && (&plan == &this->Diffusions[0] || &plan == strided))
+    if (onCPU)
+    {
+      plan.ReleaseTextures(context);
+    }
+    else if (diffusion && (&plan == &this->Diffusions[0] || &plan == strided))
     {
       ok = ok && this->UploadDiffusionBlocks(context, plan, layered);
       const int components = channels[&plan - this->Diffusions.data()];

@@ -918,6 +918,8 @@ TEST(IrradianceEstimator, StridedLightsDiffuseOnTheirOwnCoarserGrid)
   {
     vtkNew<vtkIrradianceEstimator> pass;
     pass->KeepScratchOn();
+    // The GPU passes' textures are counted below.
+    pass->SetDiffusionPlace(vtkIrradianceEstimator::GPUDiffusion);
     pass->SetMultipleScattering(run > 0);
     pass->SetComputeShaders(
       run == 2 ? vtkIrradianceEstimator::ComputeDispatches : vtkIrradianceEstimator::FragmentDraws);
