@@ -76,9 +76,13 @@ void Resample(vtkImageData* input, vtkDataArray* field, const double origin[3],
     axes[a] = AxisSamples(dims[a], origin[a], spacing[a], inputDims[a],
       inputOrigin[a] + extent[2 * a] * inputSpacing[a], inputSpacing[a]);
   }
-  // One float copy of the values: arrays of any type and memory layout.
-  vtkNew<vtkFloatArray> values;
-  values->DeepCopy(field);
+  // Floats as they are; other types and layouts as one float copy.
+  vtkSmartPointer<vtkFloatArray> values = vtkFloatArray::FastDownCast(field);
+  if (!values)
+  {
+    values = vtkSmartPointer<vtkFloatArray>::New();
+    values->DeepCopy(field);
+  }
   const float* v = values->GetPointer(0);
   const vtkIdType sx = 1;
   const vtkIdType sy = inputDims[0];
@@ -122,21 +126,6 @@ void Resample(vtkImageData* input, vtkDataArray* field, const double origin[3],
     });
 }
 
-bool IsIdentity(const double direction[9])
-{
-  for (int r = 0; r < 3; ++r)
-  {
-    for (int c = 0; c < 3; ++c)
-    {
-      if (direction[3 * r + c] != (r == c ? 1.0 : 0.0))
-      {
-        return false;
-      }
-    }
-  }
-  return true;
-}
-
 // `name`, or with "_2", "_3", ... where an earlier field took it.
 std::string UniqueName(const char* name, int input, std::set<std::string>& taken)
 {
@@ -150,11 +139,6 @@ std::string UniqueName(const char* name, int input, std::set<std::string>& taken
   return unique;
 }
 } // namespace
-
-vtkVolumesToFields::vtkVolumesToFields()
-{
-  this->SetNumberOfInputPorts(1);
-}
 
 int vtkVolumesToFields::FillInputPortInformation(int, vtkInformation* info)
 {
@@ -281,11 +265,11 @@ int vtkVolumesToFields::RequestInformation(
       {
         info->Get(vtkDataObject::SPACING(), box.Spacing);
       }
-      double direction[9];
       if (info->Has(vtkDataObject::DIRECTION()))
       {
-        info->Get(vtkDataObject::DIRECTION(), direction);
-        box.AxisAligned = IsIdentity(direction);
+        vtkNew<vtkMatrix3x3> direction;
+        info->Get(vtkDataObject::DIRECTION(), direction->GetData());
+        box.AxisAligned = direction->IsIdentity();
       }
     }
   }

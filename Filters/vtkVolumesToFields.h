@@ -70,7 +70,7 @@ public:
     const double* spacings, double origin[3], double spacing[3], int dimensions[3]);
 
 protected:
-  vtkVolumesToFields();
+  vtkVolumesToFields() = default;
   ~vtkVolumesToFields() override = default;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;

@@ -204,43 +204,32 @@ TEST(VolumesToFields, BadInputsAreErrorsWithAnEmptyOutput)
   vtkImageData* out = Merge(merge, { ok, ok });
   ASSERT_EQ(out->GetNumberOfPoints(), 64);
 
-  // Five volumes: one ray shades at most four fields. The last good output
-  // does not stay.
-  out = Merge(merge, { ok, ok, ok, ok, ok });
-  EXPECT_GE(errors.Errors(), 1);
-  EXPECT_NE(errors.LastMessage().find("5 inputs"), std::string::npos) << errors.LastMessage();
-  EXPECT_EQ(out->GetNumberOfPoints(), 0);
-
+  // Each merge is refused with an error naming the cause, and leaves an
+  // empty output (the last good one does not stay).
+  const auto refused = [&](std::initializer_list<vtkImageData*> volumes, const char* cause)
+  {
+    errors.Reset();
+    vtkImageData* output = Merge(merge, volumes);
+    EXPECT_GE(errors.Errors(), 1) << cause;
+    EXPECT_NE(errors.LastMessage().find(cause), std::string::npos) << errors.LastMessage();
+    EXPECT_EQ(output->GetNumberOfPoints(), 0) << cause;
+  };
+  // Five volumes: one ray shades at most four fields.
+  refused({ ok, ok, ok, ok, ok }, "5 inputs");
   // A rotated volume.
-  errors.Reset();
   auto rotated = Volume("r", dims, origin, spacing, [](double, double, double) { return 1.0; });
   rotated->SetDirectionMatrix(0, 1, 0, 1, 0, 0, 0, 0, 1);
-  out = Merge(merge, { ok, rotated });
-  EXPECT_GE(errors.Errors(), 1);
-  EXPECT_NE(errors.LastMessage().find("direction"), std::string::npos) << errors.LastMessage();
-  EXPECT_EQ(out->GetNumberOfPoints(), 0);
-
+  refused({ ok, rotated }, "direction");
   // No one-component point array.
-  errors.Reset();
   auto noField = vtkSmartPointer<vtkImageData>::New();
   noField->SetDimensions(4, 4, 4);
-  out = Merge(merge, { ok, noField });
-  EXPECT_GE(errors.Errors(), 1);
-  EXPECT_NE(errors.LastMessage().find("input 1 has no one-component"), std::string::npos)
-    << errors.LastMessage();
-  EXPECT_EQ(out->GetNumberOfPoints(), 0);
-
+  refused({ ok, noField }, "input 1 has no one-component");
   // A fine volume over a large box asks for too many points.
-  errors.Reset();
   const double far[3] = { 1000, 0, 0 };
   const double fine[3] = { 0.01, 0.01, 0.01 };
   auto distant = Volume("d", dims, far, fine, [](double, double, double) { return 1.0; });
   merge->SetMaximumNumberOfPoints(1000000);
-  out = Merge(merge, { ok, distant });
-  EXPECT_GE(errors.Errors(), 1);
-  EXPECT_NE(errors.LastMessage().find("MaximumNumberOfPoints"), std::string::npos)
-    << errors.LastMessage();
-  EXPECT_EQ(out->GetNumberOfPoints(), 0);
+  refused({ ok, distant }, "MaximumNumberOfPoints");
 
   // Good inputs again: the filter recovers.
   errors.Reset();
