@@ -233,13 +233,14 @@ void ComputeTint(
 }
 
 bool SweepPiecewiseShadowRays(vtkAlgorithm* self, const RayContext& ctx,
-  const mmv::LightSource& light, int slicesPerChunk, const std::vector<unsigned char>& nonEmpty,
-  double progress, double progressSpan, std::vector<float>& transmittance, vtkIdType& rays)
+  const mmv::LightSource& light, const glm::dvec3& sweepDirection, int slicesPerChunk,
+  const std::vector<unsigned char>& nonEmpty, double progress, double progressSpan,
+  std::vector<float>& transmittance, vtkIdType& rays)
 {
   const mmv::IrradianceGrid& grid = *ctx.Irradiance;
   const int* dims = grid.Dimensions;
-  const glm::dvec3 indexDir = ctx.PhysicalToIndex * light.ToLight;
-  const mmv::ShadowSweep sweep = mmv::PlanShadowSweep(dims, indexDir, slicesPerChunk);
+  const bool point = light.Kind != mmv::DirectionalLight;
+  const mmv::ShadowSweep sweep = mmv::PlanShadowSweep(dims, sweepDirection, slicesPerChunk);
   transmittance.assign(grid.GetNumberOfVoxels(), 0.0f);
   const int a = sweep.Axis;
   const int b = (a + 1) % 3;
@@ -262,13 +263,23 @@ bool SweepPiecewiseShadowRays(vtkAlgorithm* self, const RayContext& ctx,
           const int slice = first + static_cast<int>(n / sliceSize);
           const vtkIdType v =
             slice * stride[a] + (n % dims[b]) * stride[b] + ((n % sliceSize) / dims[b]) * stride[c];
-          if (!nonEmpty[v] && slice != read)
+          const glm::dvec3 start = grid.IndexOfVoxel(v);
+          const glm::dvec3 x = grid.IndexToPhysical(start);
+          // Outside a spot light's cone a voxel's own value is 0.
+          const bool unlit = point && mmv::mmvLightGeometryTerm(light, x) <= 0.0;
+          if ((!nonEmpty[v] || unlit) && slice != read)
           {
             continue;
           }
           ++local;
-          const glm::dvec3 start = grid.IndexOfVoxel(v);
+          double lightDistance = -1.0;
+          const glm::dvec3 indexDir =
+            ctx.PhysicalToIndex * mmv::mmvDirectionToLight(light, x, lightDistance);
           double exit = ExitDistance(grid, start, indexDir);
+          if (lightDistance >= 0.0)
+          {
+            exit = std::min(exit, lightDistance);
+          }
           double far = 1.0;
           double distance = 0.0;
           if (mmv::ReachesSweepPlane(start[a], indexDir[a], plane, exit, distance))

@@ -1,8 +1,9 @@
 /**
  * @file   vtkIrradianceShadowRays.h
  * @brief  The CPU shadow rays of vtkIrradianceVolumeFilter: full rays per
- *         voxel, piecewise rays swept along a directional light
- *         (vtkShadowSweep.h), and the per-channel tint of selective
+ *         voxel, piecewise rays swept along a directional light or a point
+ *         light outside the grid (vtkShadowSweep.h), and the per-channel
+ *         tint of selective
  *         absorption. The GLSL twins: Shaders/mmvShadowRay.glsl and
  *         mmvPiecewiseShadowFS.glsl.
  */
@@ -44,16 +45,18 @@ void ComputeTint(
   const RayContext& ctx, const mmv::LightSource& light, int divisor, float* out, vtkIdType& rays);
 
 /**
- * Piecewise shadow rays of directional light `light` (vtkShadowSweep.h) into
- * `transmittance`, one value per voxel of the grid: the non-empty ones, and
- * the empty ones on the slices a later chunk reads (the rest stay 0).
- * Progress (from `progress` over `progressSpan`) and AbortExecute of `self`
- * are handled between chunks; returns false when aborted. Adds the rays
- * cast to `rays`.
+ * Piecewise shadow rays of `light` swept along `sweepDirection`
+ * (mmv::ShadowSweepDirection, vtkShadowSweep.h) into `transmittance`, one
+ * value per voxel of the grid, without a point light's falloff: the
+ * non-empty voxels (of a spot light, those inside its cone), and every
+ * voxel of the slices a later chunk reads (the rest stay 0). Progress (from
+ * `progress` over `progressSpan`) and AbortExecute of `self` are handled
+ * between chunks; returns false when aborted. Adds the rays cast to `rays`.
  */
 bool SweepPiecewiseShadowRays(vtkAlgorithm* self, const RayContext& ctx,
-  const mmv::LightSource& light, int slicesPerChunk, const std::vector<unsigned char>& nonEmpty,
-  double progress, double progressSpan, std::vector<float>& transmittance, vtkIdType& rays);
+  const mmv::LightSource& light, const glm::dvec3& sweepDirection, int slicesPerChunk,
+  const std::vector<unsigned char>& nonEmpty, double progress, double progressSpan,
+  std::vector<float>& transmittance, vtkIdType& rays);
 
 /**
  * Shadow rays of one light for every computed voxel into `irradiance`, in

@@ -265,14 +265,22 @@ bool ShadowLights(vtkAlgorithm* self, const RayContext& ctx, const std::vector<L
     const double progress = 0.1 + 0.8 * l / tasks.size();
     const double span = 0.8 / tasks.size();
     bool finished = true;
-    if (mmv::UsesPiecewiseShadowRays(estimation, tasks[l].Source))
+    const mmv::IrradianceGrid& grid = *ctx.Irradiance;
+    const glm::dvec3 sweep = mmv::ShadowSweepDirection(
+      estimation, tasks[l].Source, grid.Dimensions, ctx.PhysicalToIndex, grid.Origin);
+    if (sweep != glm::dvec3(0.0))
     {
-      finished = mmv::shadowrays::SweepPiecewiseShadowRays(
-        self, ctx, tasks[l].Source, slicesPerChunk, nonEmpty, progress, span, transmittance, rays);
+      finished = mmv::shadowrays::SweepPiecewiseShadowRays(self, ctx, tasks[l].Source, sweep,
+        slicesPerChunk, nonEmpty, progress, span, transmittance, rays);
+      // A point or spot light's falloff and cone, as CastShadowRays applies them.
+      const bool point = tasks[l].Source.Kind != mmv::DirectionalLight;
       float* irradiance = arrays[l]->GetPointer(0);
       for (const vtkIdType v : computed)
       {
-        irradiance[v] = transmittance[v];
+        irradiance[v] = point ? static_cast<float>(mmv::mmvLightGeometryTerm(tasks[l].Source,
+                                                     grid.IndexToPhysical(grid.IndexOfVoxel(v))) *
+                                  transmittance[v])
+                              : transmittance[v];
       }
     }
     else

@@ -135,10 +135,10 @@ public:
   vtkGetMacro(ShadowStepScale, double);
 
   /**
-   * How directional lights are estimated (mmv::ShadowEstimation,
-   * vtkShadowSweep.h): 1, piecewise shadow rays swept along the light
-   * (default; O(n^3 K) for an n^3 grid), or 0, full shadow rays (exact,
-   * O(n^4)). Point and spot lights always take full rays.
+   * How lights are estimated (mmv::ShadowEstimation, vtkShadowSweep.h): 1,
+   * piecewise shadow rays swept along the light (default; O(n^3 K) for an
+   * n^3 grid), or 0, full shadow rays (exact, O(n^4)). Point and spot
+   * lights inside the grid always take full rays.
    */
   vtkSetClampMacro(ShadowEstimation, int, 0, 1);
   vtkGetMacro(ShadowEstimation, int);

@@ -116,8 +116,7 @@ inline glm::dvec3 mmvSkyRadiance(const glm::dvec4& material, const glm::dvec4& s
   const glm::dvec3 f1n = mean * glm::dot(s1, n) + (slope * n) * (sky.x / 3.0);
   const glm::dvec3 e = glm::max(0.25 * f0 + 0.5 * f1n, glm::dvec3(0.0));
   const double diffuse = 1.0 - glm::clamp(material.z, 0.0, 1.0);
-  return ((1.0 - surface) * f0 / (4.0 * M_PI) + surface * diffuse * e / M_PI) *
-    glm::dvec3(segment);
+  return ((1.0 - surface) * f0 / (4.0 * M_PI) + surface * diffuse * e / M_PI) * glm::dvec3(segment);
 }
 
 } // namespace mmv

@@ -1,7 +1,8 @@
 /**
  * @file   vtkShadowSweep.h
  * @brief  The order in which piecewise shadow rays fill the irradiance grid
- *         for one directional light; the CPU filter and the GPU estimator share it.
+ *         for one directional light (the CPU filter and the GPU estimator
+ *         share it), or on the GPU for a point or spot light outside the grid.
  *
  * A full shadow ray crosses the whole grid, so estimating a directional
  * light costs O(n^4) for an n^3 grid. Piecewise shadow rays (as in Hernell,
@@ -35,13 +36,6 @@
 
 namespace mmv
 {
-
-/// Whether `light` is estimated by piecewise rays under `estimation`:
-/// directional lights only (point and spot lights take full rays).
-inline bool UsesPiecewiseShadowRays(int estimation, const LightSource& light)
-{
-  return estimation == PiecewiseShadowRays && light.Kind == DirectionalLight;
-}
 
 struct ShadowSweep
 {
@@ -85,6 +79,72 @@ struct ShadowSweep
   }
 };
 
+/**
+ * Point and spot lights outside the grid sweep as well. Along an index axis
+ * on which the light lies beyond the grid, every voxel's ray toward the
+ * light crosses that axis's slices in order, nearest the light first, and
+ * the rest of the ray from where it crosses a slice is that point's own ray:
+ * so a ray may end on a slice computed before, as a directional light's
+ * does. Returns the index-space direction to plan the sweep with (a unit
+ * vector along that axis, toward the light), or (0, 0, 0) where the light at
+ * index-space position `light` lies within half a voxel of the grid's extent
+ * on every axis (full rays). Of the axes it lies beyond, the one whose rays
+ * cross its slices most steeply (the largest smallest cosine over the
+ * grid's corners), so that rays march the least between slices.
+ */
+inline glm::dvec3 PointLightSweepDirection(const int dims[3], const glm::dvec3& light)
+{
+  glm::dvec3 best(0.0);
+  double bestCosine = 0.0;
+  for (int a = 0; a < 3; ++a)
+  {
+    const double high = dims[a] - 1.0;
+    if (light[a] >= -0.5 && light[a] <= high + 0.5)
+    {
+      continue;
+    }
+    double cosine = 1.0;
+    for (int corner = 0; corner < 8; ++corner)
+    {
+      glm::dvec3 c;
+      for (int b = 0; b < 3; ++b)
+      {
+        c[b] = (corner >> b) & 1 ? dims[b] - 1.0 : 0.0;
+      }
+      const glm::dvec3 d = light - c;
+      cosine = std::min(cosine, std::abs(d[a]) / glm::length(d));
+    }
+    if (cosine > bestCosine)
+    {
+      bestCosine = cosine;
+      best = glm::dvec3(0.0);
+      best[a] = light[a] > high ? 1.0 : -1.0;
+    }
+  }
+  return best;
+}
+
+/**
+ * The index-space direction `light`'s piecewise rays are swept with on a
+ * grid of `dims` points where physical point p has index toIndex (p -
+ * origin), or (0, 0, 0) where the light takes full rays: under
+ * PiecewiseShadowRays a directional light sweeps toward itself, a point or
+ * spot light along PointLightSweepDirection.
+ */
+inline glm::dvec3 ShadowSweepDirection(int estimation, const LightSource& light, const int dims[3],
+  const glm::dmat3& toIndex, const glm::dvec3& origin)
+{
+  if (estimation != PiecewiseShadowRays)
+  {
+    return glm::dvec3(0.0);
+  }
+  if (light.Kind == DirectionalLight)
+  {
+    return toIndex * light.ToLight;
+  }
+  return PointLightSweepDirection(dims, toIndex * (light.Position - origin));
+}
+
 /// The sweep for index-space direction `toLight` (need not be unit length).
 inline ShadowSweep PlanShadowSweep(const int dims[3], const glm::dvec3& toLight, int slicesPerChunk)
 {
@@ -107,15 +167,17 @@ inline ShadowSweep PlanShadowSweep(const int dims[3], const glm::dvec3& toLight,
  * out exactly as a sweep of the whole grid computes them (vtkIrradianceRegion.h):
  * the region's voxels in the chunk, and the voxels of its read slice that
  * the next chunk's draw interpolates. `toLight` is the index-space direction
- * the sweep was planned with. Walks from the farthest chunk toward the
- * light; a chunk upstream of the region draws a patch of one slice. An
- * empty box: nothing to draw. `nonEmpty`, when given, shrinks the region's
- * part of each chunk to the voxels whose own values matter (the non-empty
- * ones, VoxelOccupancy::Shrink); the read slices are added after it.
+ * the sweep was planned with; for a point or spot light, `pointLight` is the
+ * light's index-space position, toward which the rays converge. Walks from the farthest chunk
+ * toward the light; a chunk upstream of the region draws a patch of one slice. An empty box:
+ * nothing to draw. `nonEmpty`, when given, shrinks the region's part of each chunk to the voxels
+ * whose own values matter (the non-empty ones, VoxelOccupancy::Shrink); the read slices are added
+ * after it.
  */
 inline std::vector<IndexBox> PlanSweepBoxes(const ShadowSweep& sweep, const int dims[3],
   const glm::dvec3& toLight, const IndexBox& region,
-  const std::function<IndexBox(const IndexBox&)>& nonEmpty = nullptr)
+  const std::function<IndexBox(const IndexBox&)>& nonEmpty = nullptr,
+  const glm::dvec3* pointLight = nullptr)
 {
   const int axis = sweep.Axis;
   std::vector<IndexBox> boxes(sweep.GetNumberOfChunks());
@@ -137,7 +199,10 @@ inline std::vector<IndexBox> PlanSweepBoxes(const ShadowSweep& sweep, const int 
     }
     // A ray from voxel v reaches `plane` at in-slice coordinate
     // v_e + (plane - v_axis) toLight_e / toLight_axis (linear in v: the
-    // box's corners bound it), where the shader reads the bilinear pair
+    // box's corners bound it), toward a point light L at
+    // L_e + (v_e - L_e) (plane - L_axis) / (v_axis - L_axis) (a central
+    // projection from L, which lies beyond the grid along the axis: the
+    // corners bound it too), where the shader reads the bilinear pair
     // min(floor(clamped), n - 2) and one more (Shaders/mmvPiecewiseShadowFS.glsl);
     // one voxel more on each side covers float rounding.
     read.Bounds[2 * axis] = plane;
@@ -155,7 +220,11 @@ inline std::vector<IndexBox> PlanSweepBoxes(const ShadowSweep& sweep, const int 
       {
         for (int t = 0; t < 2; ++t)
         {
-          const double q = needed.Bounds[2 * e + t] + (plane - needed.Bounds[2 * axis + s]) * slope;
+          const double ve = needed.Bounds[2 * e + t];
+          const double va = needed.Bounds[2 * axis + s];
+          const double q = pointLight ? (*pointLight)[e] +
+              (ve - (*pointLight)[e]) * (plane - (*pointLight)[axis]) / (va - (*pointLight)[axis])
+                                      : ve + (plane - va) * slope;
           lo = std::min(lo, q);
           hi = std::max(hi, q);
         }

@@ -224,9 +224,9 @@ public:
   vtkGetMacro(SkipEmptyVoxels, bool);
 
   /**
-   * How directional lights are estimated (mmv::ShadowEstimation): 1,
-   * piecewise shadow rays swept along the light (default; vtkShadowSweep.h),
-   * or 0, full shadow rays. Point and spot lights always take full rays.
+   * How lights are estimated (mmv::ShadowEstimation): 1, piecewise shadow
+   * rays swept along the light (default; vtkShadowSweep.h), or 0, full
+   * shadow rays. Point and spot lights inside the grid always take full rays.
    * Piecewise rays need glTextureBarrier (OpenGL 4.5); without it the estimator
    * warns once and takes full rays.
    */

@@ -497,6 +497,7 @@ public:
   vtkSmartPointer<vtkOpenGLFramebufferObject> Framebuffer;
   mmv::voxelpass::VoxelPrograms ShadowQuad;
   mmv::voxelpass::VoxelPrograms PiecewiseQuad;
+  mmv::voxelpass::VoxelPrograms PointSweepQuad; // point and spot lights' piecewise rays
   mmv::voxelpass::VoxelPrograms RestrictQuad;
   mmv::voxelpass::VoxelPrograms SweepQuad;
   mmv::voxelpass::VoxelPrograms ExponentialQuad;
@@ -588,6 +589,9 @@ public:
   void LightGridRatio(int stride, double ratio[3]) const;
   vtkTextureObject* LightGridTarget(int stride) const;
   vtkTextureObject* LightGridClasses(int stride) const;
+  /// Physical point p's index on the light grid of `stride` is this matrix
+  /// times (p - the grid's origin).
+  glm::dmat3 LightGridPhysicalToIndex(int stride) const;
   void SetLightGridUniforms(vtkShaderProgram* program, int stride) const;
   /// The largest grid stride of the lights (1: every light on the
   /// irradiance grid).
@@ -595,6 +599,9 @@ public:
 
   bool ShadowPass(
     vtkOpenGLRenderWindow* context, int group, int mask, int stride, bool skipEmpty, bool layered);
+  /// The index-space direction light `light`'s piecewise rays are swept
+  /// with on its light grid under `estimation`; (0, 0, 0): full rays.
+  glm::dvec3 SweepDirection(int light, int estimation) const;
   bool PiecewiseShadowPass(
     vtkOpenGLRenderWindow* context, int light, int slicesPerChunk, bool skipEmpty, bool layered);
   /// The lights of `mask` of a strided light grid, interpolated into their

@@ -1033,10 +1033,10 @@ void vtkIrradianceEstimator::vtkInternals::Release(vtkWindow* window)
     this->WriteCounter = 0;
   }
   this->ExchangeMaskRefused = false; // another context may take it
-  for (VoxelPrograms* pass :
-    { &this->ShadowQuad, &this->PiecewiseQuad, &this->RestrictQuad, &this->SweepQuad,
-      &this->ExponentialQuad, &this->ChangeQuad, &this->ProlongQuad, &this->FillQuad,
-      &this->TintQuad, &this->UpsampleQuad, &this->ClassifyQuad, &this->NeededQuad })
+  for (VoxelPrograms* pass : { &this->ShadowQuad, &this->PiecewiseQuad, &this->PointSweepQuad,
+         &this->RestrictQuad, &this->SweepQuad, &this->ExponentialQuad, &this->ChangeQuad,
+         &this->ProlongQuad, &this->FillQuad, &this->TintQuad, &this->UpsampleQuad,
+         &this->ClassifyQuad, &this->NeededQuad })
   {
     pass->Release(window);
   }

@@ -58,6 +58,15 @@ void vtkIrradianceEstimator::vtkInternals::LightGridRatio(int stride, double rat
   }
 }
 
+glm::dmat3 vtkIrradianceEstimator::vtkInternals::LightGridPhysicalToIndex(int stride) const
+{
+  double ratio[3];
+  this->LightGridRatio(stride, ratio);
+  const glm::dmat3 scale(
+    glm::dvec3(ratio[0], 0.0, 0.0), glm::dvec3(0.0, ratio[1], 0.0), glm::dvec3(0.0, 0.0, ratio[2]));
+  return scale * this->Grid.PhysicalToIndexMatrix();
+}
+
 vtkTextureObject* vtkIrradianceEstimator::vtkInternals::LightGridTarget(int stride) const
 {
   return stride > 1 ? this->LightGridScratch.Get() : this->FineScratch[0].Get();
@@ -228,31 +237,44 @@ bool vtkIrradianceEstimator::vtkInternals::TintPass(
 }
 
 //------------------------------------------------------------------------------
-// Piecewise shadow rays of directional light `light` into its channel of
-// FineScratch[0] (vtkShadowSweep.h): one draw per chunk of slices, nearest
-// the light first; a texture barrier lets each chunk read what the earlier
-// ones wrote into the same texture.
+// The index-space direction light `light`'s piecewise rays are swept with on
+// its light grid (mmv::ShadowSweepDirection), or (0, 0, 0): full rays.
+glm::dvec3 vtkIrradianceEstimator::vtkInternals::SweepDirection(int light, int estimation) const
+{
+  const mmv::LightSource& source = this->Lights[light];
+  int d[3];
+  this->LightGridDimensions(source.GridStride, d);
+  return mmv::ShadowSweepDirection(
+    estimation, source, d, this->LightGridPhysicalToIndex(source.GridStride), this->Grid.Origin);
+}
+
+//------------------------------------------------------------------------------
+// Piecewise shadow rays of light `light` (directional, or a point or spot
+// light with a sweep direction) into its channel of FineScratch[0]
+// (vtkShadowSweep.h): one draw per chunk of slices, nearest the light first;
+// a texture barrier lets each chunk read what the earlier ones wrote into
+// the same texture. A point or spot light's channel then takes its
+// geometry term in one more draw.
 bool vtkIrradianceEstimator::vtkInternals::PiecewiseShadowPass(
   vtkOpenGLRenderWindow* context, int light, int slicesPerChunk, bool skipEmpty, bool layered)
 {
-  vtkShaderProgram* program = this->Ready(context, this->PiecewiseQuad,
-    std::string(mmvShadowRay) + mmvLightGrid + mmvPiecewiseShadowFS, this->ShadowRayDefines(),
-    false);
+  const mmv::LightSource& source = this->Lights[light];
+  const bool point = source.Kind != mmv::DirectionalLight;
+  VoxelPrograms& pass = point ? this->PointSweepQuad : this->PiecewiseQuad;
+  vtkShaderProgram* program =
+    this->Ready(context, pass, std::string(mmvShadowRay) + mmvLightGrid + mmvPiecewiseShadowFS,
+      this->ShadowRayDefines() + (point ? "#define MMV_POINT_SWEEP\n" : ""), point);
   if (!program)
   {
     return false;
   }
-  const mmv::LightSource& source = this->Lights[light];
   // The sweep runs over the light's grid: a strided grid takes chunks of as
   // many irradiance slices as the irradiance grid's, so each ray marches as
   // far before it reads an earlier chunk.
   const int stride = source.GridStride;
   int d[3];
   this->LightGridDimensions(stride, d);
-  double ratio[3];
-  this->LightGridRatio(stride, ratio);
-  const glm::dvec3 toLightIndex = glm::dvec3(ratio[0], ratio[1], ratio[2]) *
-    (this->Grid.PhysicalToIndexMatrix() * source.ToLight);
+  const glm::dvec3 toLightIndex = this->SweepDirection(light, mmv::PiecewiseShadowRays);
   const mmv::ShadowSweep sweep =
     mmv::PlanShadowSweep(d, toLightIndex, std::max(1, slicesPerChunk / stride));
   // Each chunk draws what the region's voxels depend on (its whole slab
@@ -265,8 +287,10 @@ bool vtkIrradianceEstimator::vtkInternals::PiecewiseShadowPass(
   {
     nonEmpty = [this, stride](const mmv::IndexBox& box) { return this->OccupiedBox(box, stride); };
   }
+  const glm::dvec3 lightIndex =
+    this->LightGridPhysicalToIndex(stride) * (source.Position - this->Grid.Origin);
   const std::vector<mmv::IndexBox> boxes =
-    mmv::PlanSweepBoxes(sweep, d, toLightIndex, estimated, nonEmpty);
+    mmv::PlanSweepBoxes(sweep, d, toLightIndex, estimated, nonEmpty, point ? &lightIndex : nullptr);
   glm::vec3 toLight(source.ToLight);
   const int channel = light % LightsPerTexture;
   vtkTextureObject* target = this->LightGridTarget(stride);
@@ -279,6 +303,15 @@ bool vtkIrradianceEstimator::vtkInternals::PiecewiseShadowPass(
   program->SetUniformi("channel", channel);
   program->SetUniformi("computeEmptyVoxels", skipEmpty ? 0 : 1);
   program->SetUniformi("sweepAxis", sweep.Axis);
+  if (point)
+  {
+    glm::mat3 toWorld(this->Grid.IndexToPhysicalMatrix());
+    const glm::vec3 origin(this->Grid.Origin);
+    program->SetUniform3f("origin", glm::value_ptr(origin));
+    program->SetUniformMatrix3x3("indexToWorld", glm::value_ptr(toWorld));
+    program->SetUniformi("applyGeometry", 0);
+    mmv::SetLightUniforms(program, &source, nullptr, 1, LightsPerTexture);
+  }
   for (int chunk = 0; chunk < sweep.GetNumberOfChunks(); ++chunk)
   {
     const mmv::IndexBox& box = boxes[chunk];
@@ -298,7 +331,16 @@ bool vtkIrradianceEstimator::vtkInternals::PiecewiseShadowPass(
       glTextureBarrier();
     }
     // The write mask keeps the other lights' channels.
-    this->DrawLayers(context, this->PiecewiseQuad, target, layered, box.Bounds, 1 << channel);
+    this->DrawLayers(context, pass, target, layered, box.Bounds, 1 << channel);
+  }
+  if (point)
+  {
+    program->SetUniformi("applyGeometry", 1);
+    if (!this->Compute)
+    {
+      glTextureBarrier();
+    }
+    this->DrawLayers(context, pass, target, layered, DrawBox(estimated, d), 1 << channel);
   }
   return true;
 }

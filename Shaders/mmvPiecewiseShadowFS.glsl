@@ -8,6 +8,13 @@
 // prelude, mmv::ShadowRayGLSLPrelude(), mmvShadowRay.glsl and
 // mmvLightGrid.glsl: the voxels, slices and planes are the light grid's, the
 // rays march in the irradiance grid's index space.
+//
+// With MMV_POINT_SWEEP (and the light model) the light is light 0 of the
+// light uniforms, a point or spot light outside the grid
+// (mmv::PointLightSweepDirection): each voxel's ray runs toward the light's
+// position, and the channel holds pure transmittance until a last draw with
+// applyGeometry multiplies each voxel's by its falloff and cone
+// (mmvLightGeometryTerm), as the full rays of mmvIrradianceFS.glsl write it.
 
 uniform sampler3D transmittance; // the target itself: earlier chunks' results
 uniform int channel;             // the light's channel in it
@@ -17,6 +24,11 @@ uniform int sweepAxis;
 uniform int sweepPlane;          // -1: the first chunk, rays run to the boundary
 uniform int readSlice;           // the slice the next chunk reads (-1: none)
 uniform bool computeEmptyVoxels; // on: every voxel (to measure what skipping saves)
+#ifdef MMV_POINT_SWEEP
+uniform vec3 origin;
+uniform mat3 indexToWorld;
+uniform bool applyGeometry; // the last draw: transmittance x the light's geometry term
+#endif
 
 // mmv::ReachesSweepPlane: does the ray reach the plane before leaving the box?
 // `plane` is the plane's coordinate along the axis (irradiance index).
@@ -67,14 +79,37 @@ void mmvVoxelMain()
 {
   ivec3 voxel = mmvTargetVoxel();
   vec3 start = vec3(voxel) * targetToIndex;
-  if (!computeEmptyVoxels && voxel[sweepAxis] != readSlice && mmvLightGridIsEmpty(voxel))
+#ifdef MMV_POINT_SWEEP
+  vec3 x = origin + indexToWorld * start;
+  float geometry = mmvLightGeometryTerm(mmv_lightKind[0], mmv_lightPosition[0],
+    mmv_lightSpotAxis[0], mmv_lightCosCone[0], mmv_lightSpotExponent[0],
+    mmv_lightAttenuation[0], mmv_lightRadius[0], x);
+  if (applyGeometry)
   {
-    // Empty, and no later chunk reads it: the fill pass decides its value.
+    // Each fragment reads only its own texel, written by an earlier draw.
+    mmvWrite(vec4(geometry * texelFetch(transmittance, voxel, 0)[channel]));
+    return;
+  }
+  float lightDistance;
+  vec3 indexDir = worldToIndex * mmvDirectionToLight(mmv_lightKind[0], mmv_lightPosition[0],
+    mmv_lightToLight[0], x, lightDistance);
+  bool unlit = geometry <= 0.0; // outside a spot light's cone
+#else
+  vec3 indexDir = worldToIndex * toLight;
+  bool unlit = false;
+#endif
+  if (!computeEmptyVoxels && voxel[sweepAxis] != readSlice &&
+    (unlit || mmvLightGridIsEmpty(voxel)))
+  {
+    // Empty or unlit, and no later chunk reads it: its value is 0, or the
+    // fill pass decides it.
     mmvWrite(vec4(0.0));
     return;
   }
-  vec3 indexDir = worldToIndex * toLight;
   float exitDistance = mmvExitDistance(start, indexDir);
+#ifdef MMV_POINT_SWEEP
+  exitDistance = min(exitDistance, lightDistance);
+#endif
   float far = 1.0;
   float distance;
   float plane = sweepPlane < 0 ? -1.0 : float(sweepPlane) * targetToIndex[sweepAxis];

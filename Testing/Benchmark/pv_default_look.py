@@ -20,21 +20,22 @@ luminance 0-255 over the pixels Volume draws, its ratio to Volume's, and
 the 95th percentile: the lit surfaces) and prints the CSV.
 """
 
-import argparse
 import csv
 import os
 import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
+sys.path.insert(0, os.path.join(HERE, "..", "Python"))
 
 from paraview import simple  # noqa: E402
 from paraview.vtk.util import numpy_support  # noqa: E402
-from vtkmodules.vtkIOImage import vtkPNGReader, vtkPNGWriter  # noqa: E402
+from vtkmodules.vtkIOImage import vtkPNGWriter  # noqa: E402
 from vtkmodules.vtkCommonDataModel import vtkImageData  # noqa: E402
 import numpy  # noqa: E402
 
 import pv_lightkit_orbit as orbit  # noqa: E402
+from mmv_testing import read_png  # noqa: E402
 
 # ParaView 5.11's default background colour.
 BACKGROUND = [0.32, 0.34, 0.43]
@@ -57,26 +58,13 @@ PANELS = [
 
 
 def parse_args():
-    p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    p.add_argument("--plugin", default=orbit.DEFAULT_PLUGIN)
-    p.add_argument("--data", default=os.path.join(orbit.ROOT, "Testing", "Data", "headsq.vti"))
-    p.add_argument("--out", default=os.path.join(orbit.ROOT, "docs"))
+    p = orbit.head_parser(__doc__, os.path.join(orbit.ROOT, "docs"))
     p.add_argument("--dims", type=int, nargs=3, default=[256, 256, 128])
     args, _ = p.parse_known_args()
     args.view_size = 320
     args.zoom = 1.3
     args.paraview_lod = False
     return args
-
-
-def read_png(path):
-    reader = vtkPNGReader()
-    reader.SetFileName(path)
-    reader.Update()
-    image = reader.GetOutput()
-    w, h, _ = image.GetDimensions()
-    pixels = numpy_support.vtk_to_numpy(image.GetPointData().GetScalars())
-    return pixels.reshape(h, w, -1)[:, :, :3].astype(numpy.float64)
 
 
 def write_png(path, rgb):
@@ -98,10 +86,7 @@ def luminance(rgb):
 
 def main():
     args = parse_args()
-    os.makedirs(args.out, exist_ok=True)
-    problem = orbit.load_plugin(args.plugin)
-    if problem:
-        print("ERROR: " + problem)
+    if not orbit.start(args):
         return 1
     source, _, _ = orbit.resampled_head(args)
     images = []

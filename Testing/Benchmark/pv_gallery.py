@@ -31,10 +31,7 @@ import pv_spot_light  # noqa: E402
 
 
 def parse_args():
-    p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    p.add_argument("--plugin", default=orbit.DEFAULT_PLUGIN)
-    p.add_argument("--data", default=os.path.join(orbit.ROOT, "Testing", "Data", "headsq.vti"))
-    p.add_argument("--out", default=os.path.join(orbit.ROOT, "docs"))
+    p = orbit.head_parser(__doc__, os.path.join(orbit.ROOT, "docs"))
     p.add_argument("--dims", type=int, nargs=3, default=[256, 256, 128])
     args, _ = p.parse_known_args()
     args.view_size = 400
@@ -45,10 +42,7 @@ def parse_args():
 
 def main():
     args = parse_args()
-    os.makedirs(args.out, exist_ok=True)
-    problem = orbit.load_plugin(args.plugin)
-    if problem:
-        print("ERROR: " + problem)
+    if not orbit.start(args):
         return 1
     source, _, center = orbit.resampled_head(args)
 

@@ -10,7 +10,9 @@ Volumes (256 x 256 x 128, --quick 128 x 128 x 64):
   chest  Testing/Benchmark/mmv_fine_volume.py: a 2-voxel skin, ribs and
          vessels 1-2 voxels thick, which keep the full irradiance grid
 
-Methods, each in its own 400 x 400 view with ParaView's default light kit,
+Methods, each in its own 400 x 400 view with ParaView's default light kit
+(--spot: the light kit off and one Light Inspector spot light in scene
+coordinates, as pv_spot_light.py adds it, 600 units away, cone 25 degrees),
 rendered round-robin (the order rotates at every change):
   pv-volume   ParaView "Volume", Shade on (the reference of every ratio)
   mmv-default "Multi-Material Volume", default material
@@ -52,6 +54,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 import mmv_fine_volume  # noqa: E402
 import pv_lightkit_orbit as orbit  # noqa: E402
+import pv_spot_light  # noqa: E402
 
 MMV = orbit.MMV
 ARRAY = orbit.ARRAY
@@ -94,6 +97,8 @@ def parse_args():
     p.add_argument("--steps", type=int, default=8, help="time steps of the series")
     p.add_argument("--view-size", type=int, default=400)
     p.add_argument("--no-plot", action="store_true")
+    p.add_argument("--spot", action="store_true",
+                   help="one scene spot light instead of the light kit")
     args, _ = p.parse_known_args()
     args.dims = [128, 128, 64] if args.quick else [256, 256, 128]
     args.paraview_lod = False  # never LOD geometry instead of the volume
@@ -183,6 +188,16 @@ def frame(method, volume, sequence, change, writer, records):
     return seconds
 
 
+def light_view(view, source, args):
+    """With --spot: the light kit off and the spot light in its place."""
+    if not args.spot:
+        return
+    view.UseLight = 0
+    bounds = source.GetDataInformation().GetBounds()
+    center = [0.5 * (bounds[2 * a] + bounds[2 * a + 1]) for a in range(3)]
+    pv_spot_light.add_spot(view, center, argparse.Namespace(distance=600.0, cone=25.0))
+
+
 def run_volume(name, args, methods, folder, writer, records, checks):
     paths = write_series(name, args, folder)
     source = simple.XMLImageDataReader(FileName=paths)
@@ -200,6 +215,7 @@ def run_volume(name, args, methods, folder, writer, records, checks):
             continue
         m.rep = rep
         orbit.place_camera(m.view, args)
+        light_view(m.view, source, args)
         active.append(m)
     lut, pwf = orbit.setup_transfer_functions()
     for m in active:
@@ -275,6 +291,7 @@ def run_volume(name, args, methods, folder, writer, records, checks):
         view.ViewTime = m.view.ViewTime
         rep = orbit.show(orbit.Method(m.name, m.representation, m.props, None), source, view)
         orbit.place_camera(view, args)
+        light_view(view, source, args)
         view.SMProxy.StillRender()
         fresh = info(m.representation, rep).get("IrradianceResolutionInfo", "").split(" ")[0]
         checks.append({"volume": name, "method": m.name, "kept_grid": kept, "fresh_grid": fresh,

@@ -144,6 +144,26 @@ def log(text):
     sys.stdout.flush()
 
 
+def head_parser(doc, out):
+    """The options of a script on the MR head: --plugin, --data, --out
+    (default `out`); its description is the first line of `doc`."""
+    p = argparse.ArgumentParser(description=doc.split("\n")[0])
+    p.add_argument("--plugin", default=DEFAULT_PLUGIN)
+    p.add_argument("--data", default=os.path.join(ROOT, "Testing", "Data", "headsq.vti"))
+    p.add_argument("--out", default=out)
+    return p
+
+
+def start(args):
+    """A script's start: args.out made, the plugin loaded. False (and the
+    reason printed) if the plugin does not load."""
+    os.makedirs(args.out, exist_ok=True)
+    problem = load_plugin(args.plugin)
+    if problem:
+        print("ERROR: " + problem)
+    return problem is None
+
+
 def load_plugin(path):
     """As mmv_testing.load_plugin: a path, or by name from PV_PLUGIN_PATH."""
     try:

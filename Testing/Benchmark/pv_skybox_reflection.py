@@ -62,10 +62,7 @@ def write_sky(path, width=256, height=128):
 
 def main():
     args = parse_args()
-    os.makedirs(args.out, exist_ok=True)
-    problem = orbit.load_plugin(args.plugin)
-    if problem:
-        print("ERROR: " + problem)
+    if not orbit.start(args):
         return 1
     sky_path = os.path.join(args.out, "sky.png")
     write_sky(sky_path)

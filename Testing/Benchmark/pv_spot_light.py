@@ -22,7 +22,6 @@ luminance (0.2126 R + 0.7152 G + 0.0722 B, 0-255) is taken over that mask.
 Writes OUT/spot_light.csv and OUT/spot_<method>.png.
 """
 
-import argparse
 import csv
 import math
 import os
@@ -40,10 +39,7 @@ from mmv_testing import read_png  # noqa: E402
 
 
 def parse_args():
-    p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    p.add_argument("--plugin", default=orbit.DEFAULT_PLUGIN)
-    p.add_argument("--data", default=os.path.join(orbit.ROOT, "Testing", "Data", "headsq.vti"))
-    p.add_argument("--out", default=os.path.join(os.getcwd(), "build", "spot_light"))
+    p = orbit.head_parser(__doc__, os.path.join(os.getcwd(), "build", "spot_light"))
     p.add_argument("--quick", action="store_true", help="128x128x64")
     p.add_argument("--distance", type=float, default=600.0)
     p.add_argument("--cone", type=float, default=25.0)
@@ -72,10 +68,7 @@ def add_spot(view, center, args):
 
 def main():
     args = parse_args()
-    os.makedirs(args.out, exist_ok=True)
-    problem = orbit.load_plugin(args.plugin)
-    if problem:
-        print("ERROR: " + problem)
+    if not orbit.start(args):
         return 1
     source, bounds, center = orbit.resampled_head(args)
     spacing = min((bounds[2 * a + 1] - bounds[2 * a]) / (args.dims[a] - 1) for a in range(3))

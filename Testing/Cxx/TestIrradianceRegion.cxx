@@ -1,7 +1,8 @@
 // What a region of the irradiance grid depends on (vtkIrradianceRegion.h,
 // mmv::PlanSweepBoxes of vtkShadowSweep.h): every voxel the piecewise
 // shadow sweep reads on the way to a region, found by following the
-// shader's reads one voxel at a time, lies in the box its chunk draws; and
+// shader's reads one voxel at a time, lies in the box its chunk draws (for
+// a directional light and for a point light beyond the grid); and
 // the boxes stay small where the region allows. The GPU pass's region
 // equals its whole grid bit for bit (TestIrradianceEstimator.cxx).
 #include "vtkIrradianceRegion.h"
@@ -24,9 +25,14 @@ using Voxel = std::array<int, 3>;
 /// The slice voxels Shaders/mmvPiecewiseShadowFS.glsl's mmvSampleSlice
 /// fetches for a ray from `v` toward `toLight` that reaches slice `plane`
 /// (rays that leave the grid first read nothing: a superset is checked).
-void SliceReads(const int dims[3], int axis, int plane, const Voxel& v, const glm::dvec3& toLight,
-  std::set<Voxel>& reads)
+/// With `pointLight`, the ray runs toward that index-space position instead.
+void SliceReads(const int dims[3], int axis, int plane, const Voxel& v, glm::dvec3 toLight,
+  std::set<Voxel>& reads, const glm::dvec3* pointLight)
 {
+  if (pointLight)
+  {
+    toLight = *pointLight - glm::dvec3(v[0], v[1], v[2]);
+  }
   const double distance = (plane - v[axis]) / toLight[axis];
   int low[3];
   int count[3] = { 1, 1, 1 };
@@ -57,11 +63,12 @@ void SliceReads(const int dims[3], int axis, int plane, const Voxel& v, const gl
 /// Follows the reads from `region` chunk by chunk toward the light and
 /// checks that each needed voxel lies in its chunk's box. Returns the
 /// number of voxels the boxes draw.
-long long CheckSweepBoxes(
-  const int dims[3], const glm::dvec3& toLight, int slicesPerChunk, const mmv::IndexBox& region)
+long long CheckSweepBoxes(const int dims[3], const glm::dvec3& toLight, int slicesPerChunk,
+  const mmv::IndexBox& region, const glm::dvec3* pointLight = nullptr)
 {
   const mmv::ShadowSweep sweep = mmv::PlanShadowSweep(dims, toLight, slicesPerChunk);
-  const std::vector<mmv::IndexBox> boxes = mmv::PlanSweepBoxes(sweep, dims, toLight, region);
+  const std::vector<mmv::IndexBox> boxes =
+    mmv::PlanSweepBoxes(sweep, dims, toLight, region, nullptr, pointLight);
   EXPECT_EQ(static_cast<int>(boxes.size()), sweep.GetNumberOfChunks());
   std::set<Voxel> needed;
   for (int k = region.Bounds[4]; k <= region.Bounds[5]; ++k)
@@ -91,12 +98,27 @@ long long CheckSweepBoxes(
         << "chunk " << chunk << " misses voxel " << v[0] << " " << v[1] << " " << v[2];
       if (plane >= 0)
       {
-        SliceReads(dims, sweep.Axis, plane, v, toLight, reads);
+        SliceReads(dims, sweep.Axis, plane, v, toLight, reads, pointLight);
       }
     }
     needed.insert(reads.begin(), reads.end());
   }
   return drawn;
+}
+
+/// A box between two random points of a `dims` grid.
+mmv::IndexBox RandomBox(std::mt19937& random, const int dims[3])
+{
+  mmv::IndexBox box;
+  for (int a = 0; a < 3; ++a)
+  {
+    std::uniform_int_distribution<int> index(0, dims[a] - 1);
+    const int p = index(random);
+    const int q = index(random);
+    box.Bounds[2 * a] = std::min(p, q);
+    box.Bounds[2 * a + 1] = std::max(p, q);
+  }
+  return box;
 }
 
 } // namespace
@@ -116,15 +138,7 @@ TEST(IrradianceRegion, SweepBoxesHoldEveryVoxelTheRegionReadsOnTheWayToTheLight)
         toLight = glm::dvec3(0.0);
         toLight[trial] = trial == 1 ? -1.0 : 1.0; // along an axis: no in-slice shift
       }
-      mmv::IndexBox region;
-      for (int a = 0; a < 3; ++a)
-      {
-        std::uniform_int_distribution<int> index(0, grid[a] - 1);
-        const int p = index(random);
-        const int q = index(random);
-        region.Bounds[2 * a] = std::min(p, q);
-        region.Bounds[2 * a + 1] = std::max(p, q);
-      }
+      const mmv::IndexBox region = RandomBox(random, grid.data());
       for (const int k : { 1, 3, 16 })
       {
         SCOPED_TRACE(::testing::Message() << "grid " << grid[0] << "x" << grid[1] << "x" << grid[2]
@@ -133,6 +147,73 @@ TEST(IrradianceRegion, SweepBoxesHoldEveryVoxelTheRegionReadsOnTheWayToTheLight)
       }
     }
   }
+}
+
+// A point or spot light beyond the grid: the rays converge on it, and the
+// boxes still hold every slice voxel they read.
+TEST(IrradianceRegion, SweepBoxesHoldEveryVoxelTheRegionReadsTowardAPointLight)
+{
+  std::mt19937 random(11);
+  const std::vector<std::array<int, 3>> grids = { { 17, 13, 11 }, { 9, 1, 12 }, { 24, 24, 24 } };
+  for (const auto& grid : grids)
+  {
+    int swept = 0;
+    for (int trial = 0; trial < 12; ++trial)
+    {
+      // Anywhere within three grid widths, most of it outside the grid.
+      glm::dvec3 light;
+      for (int a = 0; a < 3; ++a)
+      {
+        std::uniform_real_distribution<double> at(-3.0 * grid[a], 4.0 * grid[a]);
+        light[a] = at(random);
+      }
+      const glm::dvec3 toLight = mmv::PointLightSweepDirection(grid.data(), light);
+      if (toLight == glm::dvec3(0.0))
+      {
+        continue;
+      }
+      ++swept;
+      const mmv::IndexBox region = RandomBox(random, grid.data());
+      for (const int k : { 1, 3, 16 })
+      {
+        SCOPED_TRACE(::testing::Message()
+          << "grid " << grid[0] << "x" << grid[1] << "x" << grid[2] << ", light " << light[0] << " "
+          << light[1] << " " << light[2] << ", K " << k);
+        CheckSweepBoxes(grid.data(), toLight, k, region, &light);
+        CheckSweepBoxes(grid.data(), toLight, k, mmv::IndexBox::Whole(grid.data()), &light);
+      }
+    }
+    EXPECT_GE(swept, 8);
+  }
+}
+
+// The axis a point light sweeps along: one it lies beyond (by more than half
+// a voxel), the steepest for the grid's rays; none from within the grid.
+TEST(IrradianceRegion, PointLightSweepsAlongTheSteepestAxisItLiesBeyond)
+{
+  const int dims[3] = { 10, 10, 10 };
+  EXPECT_EQ(mmv::PointLightSweepDirection(dims, glm::dvec3(30.0, 4.0, 5.0)), glm::dvec3(1, 0, 0));
+  EXPECT_EQ(mmv::PointLightSweepDirection(dims, glm::dvec3(4.0, -20.0, 5.0)), glm::dvec3(0, -1, 0));
+  EXPECT_EQ(mmv::PointLightSweepDirection(dims, glm::dvec3(4.0, 4.0, 4.0)), glm::dvec3(0.0));
+  EXPECT_EQ(mmv::PointLightSweepDirection(dims, glm::dvec3(4.0, 4.0, 9.4)), glm::dvec3(0.0));
+  EXPECT_EQ(mmv::PointLightSweepDirection(dims, glm::dvec3(4.0, 4.0, 9.6)), glm::dvec3(0, 0, 1));
+  // Beyond x by 6 and beyond z by 31: the rays cross z's slices at cos >= 0.89, x's at 0.15.
+  EXPECT_EQ(mmv::PointLightSweepDirection(dims, glm::dvec3(15.0, 4.0, 40.0)), glm::dvec3(0, 0, 1));
+  // Directional lights sweep toward themselves; full rays sweep nothing.
+  mmv::LightSource point;
+  point.Kind = mmv::PointLight;
+  point.Position = glm::dvec3(3.0, 30.0, 4.0);
+  const glm::dmat3 half(0.5); // index = (p - origin) / 2
+  const glm::dvec3 origin(-2.0, 0.0, 0.0);
+  // (3, 30, 4) is index (2.5, 15, 2): beyond y.
+  EXPECT_EQ(mmv::ShadowSweepDirection(mmv::PiecewiseShadowRays, point, dims, half, origin),
+    glm::dvec3(0, 1, 0));
+  EXPECT_EQ(
+    mmv::ShadowSweepDirection(mmv::FullShadowRays, point, dims, half, origin), glm::dvec3(0.0));
+  mmv::LightSource directional;
+  directional.ToLight = glm::dvec3(0.0, 0.6, 0.8);
+  EXPECT_EQ(mmv::ShadowSweepDirection(mmv::PiecewiseShadowRays, directional, dims, half, origin),
+    glm::dvec3(0.0, 0.3, 0.4));
 }
 
 TEST(IrradianceRegion, SweepBoxesOfAWholeGridAreItsSlabs)
