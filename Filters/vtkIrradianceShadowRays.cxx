@@ -103,21 +103,26 @@ double MarchTransmittance(const RayContext& ctx, const glm::dvec3& start,
     [&](double t1, double t2) { return ctx.Table->LookupShadowOpacity(t1, t2); });
 }
 
+/// The ray from index `start` (physical point `x`) toward the light: its
+/// index-space direction per world unit, and how far it runs, to the volume
+/// boundary or the light.
+double RayToLight(const RayContext& ctx, const mmv::LightSource& light, const glm::dvec3& start,
+  const glm::dvec3& x, glm::dvec3& indexDir)
+{
+  double lightDistance = 0.0;
+  indexDir = ctx.PhysicalToIndex * mmv::mmvDirectionToLight(light, x, lightDistance);
+  const double exit = ExitDistance(*ctx.Irradiance, start, indexDir);
+  return lightDistance >= 0.0 ? std::min(exit, lightDistance) : exit;
+}
+
 /// Transmittance from irradiance voxel `v` toward the light: a full shadow
 /// ray, to the volume boundary (or the light).
 double ShadowTransmittance(const RayContext& ctx, const mmv::LightSource& light, vtkIdType v)
 {
   const mmv::IrradianceGrid& grid = *ctx.Irradiance;
   const glm::dvec3 start = grid.IndexOfVoxel(v);
-  const glm::dvec3 x = grid.IndexToPhysical(start);
-  double lightDistance = 0.0;
-  const glm::dvec3 dir = mmv::mmvDirectionToLight(light, x, lightDistance);
-  const glm::dvec3 indexDir = ctx.PhysicalToIndex * dir;
-  double end = ExitDistance(grid, start, indexDir);
-  if (lightDistance >= 0.0)
-  {
-    end = std::min(end, lightDistance);
-  }
+  glm::dvec3 indexDir;
+  const double end = RayToLight(ctx, light, start, grid.IndexToPhysical(start), indexDir);
   return MarchTransmittance(ctx, start, indexDir, end, ctx.Prefiltered[v], 1.0);
 }
 
@@ -199,14 +204,8 @@ void ComputeTint(
       {
         const glm::dvec3 x = tintGrid.IndexToPhysical(tintGrid.IndexOfVoxel(t));
         const glm::dvec3 start = grid.PhysicalToIndex(x);
-        double lightDistance = 0.0;
-        const glm::dvec3 indexDir =
-          ctx.PhysicalToIndex * mmv::mmvDirectionToLight(light, x, lightDistance);
-        double exit = ExitDistance(grid, start, indexDir);
-        if (lightDistance >= 0.0)
-        {
-          exit = std::min(exit, lightDistance);
-        }
+        glm::dvec3 indexDir;
+        const double exit = RayToLight(ctx, light, start, x, indexDir);
         const glm::dvec3 k =
           MarchTint(ctx, start, indexDir, exit, mmv::SampleTrilinear(grid, ctx.Prefiltered, start));
         for (int c = 0; c < 3; ++c)
@@ -272,14 +271,8 @@ bool SweepPiecewiseShadowRays(vtkAlgorithm* self, const RayContext& ctx,
             continue;
           }
           ++local;
-          double lightDistance = -1.0;
-          const glm::dvec3 indexDir =
-            ctx.PhysicalToIndex * mmv::mmvDirectionToLight(light, x, lightDistance);
-          double exit = ExitDistance(grid, start, indexDir);
-          if (lightDistance >= 0.0)
-          {
-            exit = std::min(exit, lightDistance);
-          }
+          glm::dvec3 indexDir;
+          double exit = RayToLight(ctx, light, start, x, indexDir);
           double far = 1.0;
           double distance = 0.0;
           if (mmv::ReachesSweepPlane(start[a], indexDir[a], plane, exit, distance))

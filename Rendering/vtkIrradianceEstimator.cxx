@@ -226,10 +226,10 @@ bool vtkIrradianceEstimator::Render(vtkOpenGLRenderWindow* context)
       vtkIrradianceComputeProgram::IsSupported() &&
       (this->ComputeShaders == ComputeDispatches || !software);
     this->ComputeShadersUsed = internals.Compute;
-    const bool cpuClasses = this->Classification == CPUClasses ||
-      (this->Classification == GPUClassesUnlessSoftware && software);
-    internals.DiffusionOnCPU = this->DiffusionPlace == CPUDiffusion ||
-      (this->DiffusionPlace == GPUDiffusionUnlessSoftware && software);
+    auto onCPU = [software](int place)
+    { return place == OnCPU || (place == OnGPUUnlessSoftware && software); };
+    const bool cpuClasses = onCPU(this->Classification);
+    internals.DiffusionOnCPU = onCPU(this->DiffusionPlace);
     internals.DiffusionRanOnCPU = false;
     bool reallocated = false;
     ok = internals.Upload(context, this->LayeredRendering, cpuClasses, this->ClassesCopied) &&

@@ -153,6 +153,16 @@ public:
   /// Whether the last update ran compute dispatches.
   vtkGetMacro(ComputeShadersUsed, bool);
 
+  /// Where a stage that both the GPU and the CPU can run runs
+  /// (Classification, DiffusionPlace): on the GPU, on the CPU, or
+  /// automatically on the GPU except on a CPU rasterizer.
+  enum WorkPlace
+  {
+    OnGPU = 0,
+    OnCPU = 1,
+    OnGPUUnlessSoftware = 2
+  };
+
   /**
    * Where the voxels' classes (which voxels are empty, and each one's
    * scattering) are made when the data or the opacity's support change: 0,
@@ -162,15 +172,9 @@ public:
    * pass and the dim lights' marks from it cost about 0.45 s a time step on
    * a 237 x 237 x 119 grid, the CPU's classes and their copy 0.1 s
    * (docs/performance.md, "Irradiance update stages"). Both give the same
-   * classes.
+   * classes. (A WorkPlace.)
    */
-  enum ClassificationPlace
-  {
-    GPUClasses = 0,
-    CPUClasses = 1,
-    GPUClassesUnlessSoftware = 2
-  };
-  vtkSetClampMacro(Classification, int, GPUClasses, GPUClassesUnlessSoftware);
+  vtkSetClampMacro(Classification, int, OnGPU, OnGPUUnlessSoftware);
   vtkGetMacro(Classification, int);
   /// Whether the last classification was made on the CPU and copied.
   vtkGetMacro(ClassesCopied, bool);
@@ -185,15 +189,9 @@ public:
    * step on a 237 x 237 x 119 grid: 2.2-2.7 s of passes against 0.8 s;
    * docs/performance.md, "Irradiance update stages"). Both give the same
    * irradiance to a 16-bit texel's rounding. Backward-Euler diffusion
-   * always runs on the GPU.
+   * always runs on the GPU. (A WorkPlace.)
    */
-  enum DiffusionPlace
-  {
-    GPUDiffusion = 0,
-    CPUDiffusion = 1,
-    GPUDiffusionUnlessSoftware = 2
-  };
-  vtkSetClampMacro(DiffusionPlace, int, GPUDiffusion, GPUDiffusionUnlessSoftware);
+  vtkSetClampMacro(DiffusionPlace, int, OnGPU, OnGPUUnlessSoftware);
   vtkGetMacro(DiffusionPlace, int);
   /// Whether the last update diffused on the CPU.
   vtkGetMacro(DiffusedOnCPU, bool);
@@ -424,9 +422,9 @@ protected:
   bool LayeredRendering = true;
   int ComputeShaders = ComputeUnlessSoftware;
   bool ComputeShadersUsed = false;
-  int Classification = GPUClassesUnlessSoftware;
+  int Classification = OnGPUUnlessSoftware;
   bool ClassesCopied = false;
-  int DiffusionPlace = GPUDiffusionUnlessSoftware;
+  int DiffusionPlace = OnGPUUnlessSoftware;
   bool DiffusedOnCPU = false;
   bool SkipEmptyVoxels = true;
   bool KeepScratch = true;

@@ -942,7 +942,7 @@ TEST(IrradianceEstimator, StridedLightsDiffuseOnTheirOwnCoarserGrid)
     vtkNew<vtkIrradianceEstimator> pass;
     pass->KeepScratchOn();
     // The GPU passes' textures are counted below.
-    pass->SetDiffusionPlace(vtkIrradianceEstimator::GPUDiffusion);
+    pass->SetDiffusionPlace(vtkIrradianceEstimator::OnGPU);
     pass->SetMultipleScattering(run > 0);
     pass->SetComputeShaders(
       run == 2 ? vtkIrradianceEstimator::ComputeDispatches : vtkIrradianceEstimator::FragmentDraws);
@@ -1058,7 +1058,7 @@ TEST(IrradianceEstimator, CPUDiffusionMatchesTheGPU)
           pass->SetComputeShaders(compute ? vtkIrradianceEstimator::ComputeDispatches
                                           : vtkIrradianceEstimator::FragmentDraws);
           pass->SetDiffusionPlace(
-            onCPU ? vtkIrradianceEstimator::CPUDiffusion : vtkIrradianceEstimator::GPUDiffusion);
+            onCPU ? vtkIrradianceEstimator::OnCPU : vtkIrradianceEstimator::OnGPU);
           SetPassInputs(scene, pass);
           ASSERT_TRUE(pass->Render(ctx.GL)) << where;
           EXPECT_EQ(pass->GetDiffusedOnCPU(), onCPU) << where;
@@ -1432,7 +1432,7 @@ TEST(IrradianceEstimator, GPUClassesAndNeededPointsMatchTheCPU)
       pass->SetComputeShaders(compute ? vtkIrradianceEstimator::ComputeDispatches
                                       : vtkIrradianceEstimator::FragmentDraws);
       pass->SetClassification(
-        copied ? vtkIrradianceEstimator::CPUClasses : vtkIrradianceEstimator::GPUClasses);
+        copied ? vtkIrradianceEstimator::OnCPU : vtkIrradianceEstimator::OnGPU);
       pass->SetMultipleScattering(multipleScattering);
       for (const int edit : { 0, 1 })
       {
@@ -1634,7 +1634,7 @@ TEST(IrradianceEstimator, AutomaticComputeShadersSkipCPURasterizers)
   const Scene scene = TwoBlocks(0.0);
   vtkNew<vtkIrradianceEstimator> pass;
   EXPECT_EQ(pass->GetComputeShaders(), vtkIrradianceEstimator::ComputeUnlessSoftware);
-  EXPECT_EQ(pass->GetClassification(), vtkIrradianceEstimator::GPUClassesUnlessSoftware);
+  EXPECT_EQ(pass->GetClassification(), vtkIrradianceEstimator::OnGPUUnlessSoftware);
   SetPassInputs(scene, pass);
   ASSERT_TRUE(pass->Render(ctx.GL));
   ctx.GL->MakeCurrent();
