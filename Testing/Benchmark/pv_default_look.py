@@ -34,6 +34,7 @@ from vtkmodules.vtkIOImage import vtkPNGWriter  # noqa: E402
 from vtkmodules.vtkCommonDataModel import vtkImageData  # noqa: E402
 import numpy  # noqa: E402
 
+import pv_gallery  # noqa: E402
 import pv_lightkit_orbit as orbit  # noqa: E402
 from mmv_testing import read_png  # noqa: E402
 
@@ -57,16 +58,6 @@ PANELS = [
 ]
 
 
-def parse_args():
-    p = orbit.head_parser(__doc__, os.path.join(orbit.ROOT, "docs"))
-    p.add_argument("--dims", type=int, nargs=3, default=[256, 256, 128])
-    args, _ = p.parse_known_args()
-    args.view_size = 320
-    args.zoom = 1.3
-    args.paraview_lod = False
-    return args
-
-
 def write_png(path, rgb):
     h, w, _ = rgb.shape
     image = vtkImageData()
@@ -85,7 +76,7 @@ def luminance(rgb):
 
 
 def main():
-    args = parse_args()
+    args = pv_gallery.parse_args(__doc__, view_size=320)
     if not orbit.start(args):
         return 1
     source, _, _ = orbit.resampled_head(args)

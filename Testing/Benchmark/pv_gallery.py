@@ -30,11 +30,13 @@ import pv_lightkit_orbit as orbit  # noqa: E402
 import pv_spot_light  # noqa: E402
 
 
-def parse_args():
-    p = orbit.head_parser(__doc__, os.path.join(orbit.ROOT, "docs"))
+def parse_args(doc=__doc__, view_size=400):
+    """The head's options (written to docs/ by default) for a script
+    described by `doc`, whose views are `view_size` pixels square."""
+    p = orbit.head_parser(doc, os.path.join(orbit.ROOT, "docs"))
     p.add_argument("--dims", type=int, nargs=3, default=[256, 256, 128])
     args, _ = p.parse_known_args()
-    args.view_size = 400
+    args.view_size = view_size
     args.zoom = 1.3
     args.paraview_lod = False
     return args
