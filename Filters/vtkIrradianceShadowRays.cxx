@@ -165,22 +165,34 @@ mmv::IrradianceGrid MakeTintGrid(const mmv::IrradianceGrid& grid, int divisor)
 /// coordinates of index `q` (clamped to the slice). Not mmv::SampleTrilinear:
 /// that also reads the next slice (with weight 0), which this chunk's
 /// threads may be writing.
-double SampleSlice(const int dims[3], const float* values, int axis, int plane, const glm::dvec3& q)
+/// A pyramid sweep's read is clamped to its part of the slice
+/// (mmv::PyramidSliceRange).
+double SampleSlice(const int dims[3], const float* values, const mmv::ShadowSweep& sweep, int plane,
+  const glm::dvec3& q)
 {
+  const int axis = sweep.Axis;
   const int b = (axis + 1) % 3;
   const int c = (axis + 2) % 3;
   int i0[3];
   double f[3];
+  int step[3] = { 0, 0, 0 };
   for (const int a : { b, c })
   {
-    const double x = std::min(std::max(q[a], 0.0), static_cast<double>(dims[a] - 1));
-    i0[a] = std::min(static_cast<int>(x), std::max(dims[a] - 2, 0));
-    f[a] = dims[a] > 1 ? x - i0[a] : 0.0;
+    int lo = 0;
+    int hi = dims[a] - 1;
+    if (sweep.Pyramid)
+    {
+      mmv::PyramidSliceRange(sweep, plane, a, dims[a], lo, hi);
+    }
+    const double x = std::min(std::max(q[a], static_cast<double>(lo)), static_cast<double>(hi));
+    i0[a] = std::min(static_cast<int>(x), std::max(hi - 1, lo));
+    f[a] = hi > lo ? x - i0[a] : 0.0;
+    step[a] = hi > lo ? 1 : 0;
   }
   const vtkIdType stride[3] = { 1, dims[0], static_cast<vtkIdType>(dims[0]) * dims[1] };
   const vtkIdType base = plane * stride[axis] + i0[b] * stride[b] + i0[c] * stride[c];
-  const vtkIdType db = dims[b] > 1 ? stride[b] : 0;
-  const vtkIdType dc = dims[c] > 1 ? stride[c] : 0;
+  const vtkIdType db = step[b] * stride[b];
+  const vtkIdType dc = step[c] * stride[c];
   return (1.0 - f[c]) * ((1.0 - f[b]) * values[base] + f[b] * values[base + db]) +
     f[c] * ((1.0 - f[b]) * values[base + dc] + f[b] * values[base + db + dc]);
 }
@@ -232,15 +244,14 @@ void ComputeTint(
 }
 
 bool SweepPiecewiseShadowRays(vtkAlgorithm* self, const RayContext& ctx,
-  const mmv::LightSource& light, const glm::dvec3& sweepDirection, int slicesPerChunk,
+  const mmv::LightSource& light, const mmv::ShadowSweep& sweep,
   const std::vector<unsigned char>& nonEmpty, double progress, double progressSpan,
   std::vector<float>& transmittance, vtkIdType& rays)
 {
   const mmv::IrradianceGrid& grid = *ctx.Irradiance;
   const int* dims = grid.Dimensions;
   const bool point = light.Kind != mmv::DirectionalLight;
-  const mmv::ShadowSweep sweep = mmv::PlanShadowSweep(dims, sweepDirection, slicesPerChunk);
-  transmittance.assign(grid.GetNumberOfVoxels(), 0.0f);
+  transmittance.resize(grid.GetNumberOfVoxels(), 0.0f);
   const int a = sweep.Axis;
   const int b = (a + 1) % 3;
   const int c = (a + 2) % 3;
@@ -263,6 +274,10 @@ bool SweepPiecewiseShadowRays(vtkAlgorithm* self, const RayContext& ctx,
           const vtkIdType v =
             slice * stride[a] + (n % dims[b]) * stride[b] + ((n % sliceSize) / dims[b]) * stride[c];
           const glm::dvec3 start = grid.IndexOfVoxel(v);
+          if (sweep.Pyramid && !mmv::InSweptPyramid(sweep, glm::vec3(start)))
+          {
+            continue; // another pyramid's
+          }
           const glm::dvec3 x = grid.IndexToPhysical(start);
           // Outside a spot light's cone a voxel's own value is 0.
           const bool unlit = point && mmv::mmvLightGeometryTerm(light, x) <= 0.0;
@@ -275,10 +290,12 @@ bool SweepPiecewiseShadowRays(vtkAlgorithm* self, const RayContext& ctx,
           double exit = RayToLight(ctx, light, start, x, indexDir);
           double far = 1.0;
           double distance = 0.0;
-          if (mmv::ReachesSweepPlane(start[a], indexDir[a], plane, exit, distance))
+          if (mmv::ReachesSweepPlane(start[a], indexDir[a], plane, exit, distance) &&
+            (!sweep.Pyramid || mmv::PyramidReads(sweep, plane, dims)))
           {
             exit = distance;
-            far = SampleSlice(dims, transmittance.data(), a, plane, start + distance * indexDir);
+            far =
+              SampleSlice(dims, transmittance.data(), sweep, plane, start + distance * indexDir);
           }
           transmittance[v] = static_cast<float>(
             MarchTransmittance(ctx, start, indexDir, exit, ctx.Prefiltered[v], far));

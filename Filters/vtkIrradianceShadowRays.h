@@ -13,6 +13,7 @@
 #include "vtkIrradianceGrid.h"          // IrradianceGrid
 #include "vtkMultiMaterialCutaway.h"    // IndexCutaway
 #include "vtkMultiMaterialLightModel.h" // LightSource
+#include "vtkShadowSweep.h"             // ShadowSweep
 #include "vtkType.h"                    // vtkIdType
 
 #include <vector>
@@ -45,16 +46,17 @@ void ComputeTint(
   const RayContext& ctx, const mmv::LightSource& light, int divisor, float* out, vtkIdType& rays);
 
 /**
- * Piecewise shadow rays of `light` swept along `sweepDirection`
- * (mmv::ShadowSweepDirection, vtkShadowSweep.h) into `transmittance`, one
- * value per voxel of the grid, without a point light's falloff: the
- * non-empty voxels (of a spot light, those inside its cone), and every
- * voxel of the slices a later chunk reads (the rest stay 0). Progress (from
- * `progress` over `progressSpan`) and AbortExecute of `self` are handled
- * between chunks; returns false when aborted. Adds the rays cast to `rays`.
+ * Piecewise shadow rays of `light` in `sweep` (one of mmv::PlanLightSweeps,
+ * vtkShadowSweep.h) into `transmittance`, one value per voxel of the grid,
+ * without a point light's falloff: the non-empty voxels of the sweep (of a
+ * pyramid sweep, of its pyramid; of a spot light, those inside its cone),
+ * and every such voxel of the slices a later chunk reads; the others keep
+ * their values. Progress (from `progress` over `progressSpan`) and
+ * AbortExecute of `self` are handled between chunks; returns false when
+ * aborted. Adds the rays cast to `rays`.
  */
 bool SweepPiecewiseShadowRays(vtkAlgorithm* self, const RayContext& ctx,
-  const mmv::LightSource& light, const glm::dvec3& sweepDirection, int slicesPerChunk,
+  const mmv::LightSource& light, const mmv::ShadowSweep& sweep,
   const std::vector<unsigned char>& nonEmpty, double progress, double progressSpan,
   std::vector<float>& transmittance, vtkIdType& rays);
 

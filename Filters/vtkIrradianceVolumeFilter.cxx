@@ -266,12 +266,16 @@ bool ShadowLights(vtkAlgorithm* self, const RayContext& ctx, const std::vector<L
     const double span = 0.8 / tasks.size();
     bool finished = true;
     const mmv::IrradianceGrid& grid = *ctx.Irradiance;
-    const glm::dvec3 sweep = mmv::ShadowSweepDirection(
-      estimation, tasks[l].Source, grid.Dimensions, ctx.PhysicalToIndex, grid.Origin);
-    if (sweep != glm::dvec3(0.0))
+    const std::vector<mmv::ShadowSweep> sweeps = mmv::PlanLightSweeps(estimation, tasks[l].Source,
+      grid.Dimensions, ctx.PhysicalToIndex, grid.Origin, slicesPerChunk);
+    if (!sweeps.empty())
     {
-      finished = mmv::shadowrays::SweepPiecewiseShadowRays(self, ctx, tasks[l].Source, sweep,
-        slicesPerChunk, nonEmpty, progress, span, transmittance, rays);
+      transmittance.assign(grid.GetNumberOfVoxels(), 0.0f);
+      for (size_t s = 0; s < sweeps.size() && finished; ++s)
+      {
+        finished = mmv::shadowrays::SweepPiecewiseShadowRays(self, ctx, tasks[l].Source, sweeps[s],
+          nonEmpty, progress + span * s / sweeps.size(), span / sweeps.size(), transmittance, rays);
+      }
       // A point or spot light's falloff and cone, as CastShadowRays applies them.
       const bool point = tasks[l].Source.Kind != mmv::DirectionalLight;
       float* irradiance = arrays[l]->GetPointer(0);

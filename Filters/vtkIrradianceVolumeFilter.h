@@ -137,8 +137,8 @@ public:
   /**
    * How lights are estimated (mmv::ShadowEstimation, vtkShadowSweep.h): 1,
    * piecewise shadow rays swept along the light (default; O(n^3 K) for an
-   * n^3 grid), or 0, full shadow rays (exact, O(n^4)). Point and spot
-   * lights inside the grid always take full rays.
+   * n^3 grid; around a point or spot light inside the grid in six
+   * pyramids), or 0, full shadow rays (exact, O(n^4)).
    */
   vtkSetClampMacro(ShadowEstimation, int, 0, 1);
   vtkGetMacro(ShadowEstimation, int);

@@ -338,9 +338,8 @@ enum ShadowEstimation : int
   /// One ray per voxel to the volume boundary (Zhang & Ma §5.1): exact,
   /// O(n^4) for an n^3 grid.
   FullShadowRays = 0,
-  /// Piecewise shadow rays swept along the light, for directional lights
-  /// and point and spot lights beyond the grid; point and spot lights inside
-  /// it keep full rays. O(n^3 K).
+  /// Piecewise shadow rays swept along the light (around a point or spot
+  /// light inside the grid, in six pyramids from it outward). O(n^3 K).
   PiecewiseShadowRays = 1
 };
 

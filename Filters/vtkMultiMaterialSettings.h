@@ -36,11 +36,10 @@
  *    mmv::MaxGradientSmoothing: clamped (both reported).
  *  - MultipleScattering: diffusion of the irradiance (skipped when every
  *    material's s is 0).
- *  - ShadowEstimation: directional lights, and point and spot lights beyond
- *    the grid, by mmv::PiecewiseShadowRays (rays ending on a slice computed
- *    before, vtkShadowSweep.h) or mmv::FullShadowRays (one ray per voxel to
- *    the boundary). Point and spot lights inside the grid always take full
- *    rays.
+ *  - ShadowEstimation: mmv::PiecewiseShadowRays (rays ending on a slice
+ *    computed before, vtkShadowSweep.h; around a point or spot light inside
+ *    the grid, in six pyramids) or mmv::FullShadowRays (one ray per voxel to
+ *    the boundary or the light).
  *  - PiecewiseShadowSlices: slices a piecewise shadow ray spans at most;
  *    fewer blur shadow edges more.
  *  - ExponentialDiffusion: the diffusion's time integration, the

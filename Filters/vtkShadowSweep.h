@@ -41,8 +41,14 @@ struct ShadowSweep
 {
   int Axis = 2;               // the dominant index axis of the direction toward the light
   bool TowardPositive = true; // the light lies toward +Axis: the sweep starts at the last slice
-  int Slices = 1;             // grid dimension along Axis
+  int Slices = 1;             // slices swept along Axis
   int SlicesPerChunk = 1;     // K
+  int First = 0;              // the first of them (index order)
+  // A point light inside the grid (InsideLightSweeps): this sweep computes
+  // only the voxels of the light's pyramid on its side of the light along
+  // Axis (InSweptPyramid), and its rays read only that pyramid's slices.
+  bool Pyramid = false;
+  glm::vec3 Light{ 0.0f }; // the light's index-space position, in float as the GPU has it
 
   int GetNumberOfChunks() const
   {
@@ -52,7 +58,7 @@ struct ShadowSweep
   /// The slice at `depth` slices from the light's side.
   int SliceAtDepth(int depth) const
   {
-    return this->TowardPositive ? this->Slices - 1 - depth : depth;
+    return this->First + (this->TowardPositive ? this->Slices - 1 - depth : depth);
   }
 
   /**
@@ -78,6 +84,103 @@ struct ShadowSweep
       : -1;
   }
 };
+
+/**
+ * Whether voxel `voxel` (index) belongs to `sweep`'s pyramid: its offset
+ * from the light is largest along the sweep's axis (ties included), on the
+ * sweep's side of the light (offset >= 0 where the light lies toward -Axis).
+ * Every voxel belongs to one of InsideLightSweeps' pyramids; one on an edge
+ * between pyramids (a tie) to each of them, and each computes it from its
+ * own slices for its own later chunks. In float, as the GPU decides it.
+ * GLSL: mmvInSweptPyramid.
+ */
+inline bool InSweptPyramid(const ShadowSweep& sweep, const glm::vec3& voxel)
+{
+  const glm::vec3 d = voxel - sweep.Light;
+  const float along = std::abs(d[sweep.Axis]);
+  return along >= std::abs(d[(sweep.Axis + 1) % 3]) && along >= std::abs(d[(sweep.Axis + 2) % 3]) &&
+    (d[sweep.Axis] >= 0.0f) == !sweep.TowardPositive;
+}
+
+/**
+ * The in-slice indices along axis `e` that a ray of a pyramid sweep may read
+ * in slice `plane`: those whose offset from the light along `e` is at most
+ * the plane's along the sweep axis, [lo, hi] within [0, n - 1] (lo > hi:
+ * none), compared in float as InSweptPyramid compares them: the pyramid's
+ * own. A ray of the pyramid reaches the plane within them; its bilinear read
+ * is clamped to them. GLSL: mmvPyramidSliceRange.
+ */
+inline void PyramidSliceRange(const ShadowSweep& sweep, int plane, int e, int n, int& lo, int& hi)
+{
+  const float reach = std::abs(static_cast<float>(plane) - sweep.Light[sweep.Axis]);
+  const float at = sweep.Light[e];
+  auto within = [&](int i) { return std::abs(static_cast<float>(i) - at) <= reach; };
+  lo = std::max(0, static_cast<int>(std::ceil(at - reach)));
+  hi = std::min(n - 1, static_cast<int>(std::floor(at + reach)));
+  // Rounding of at -/+ reach may put either end one index off.
+  lo = lo > 0 && within(lo - 1) ? lo - 1 : (lo < n && !within(lo) ? lo + 1 : lo);
+  hi = hi < n - 1 && within(hi + 1) ? hi + 1 : (hi >= 0 && !within(hi) ? hi - 1 : hi);
+}
+
+/**
+ * Whether a pyramid sweep's rays may read slice `plane` of a grid of `dims`:
+ * its part of the slice holds a voxel (near a light close to a face it may
+ * not, and the rays that would end there run on to the light).
+ * GLSL: mmvPyramidReads.
+ */
+inline bool PyramidReads(const ShadowSweep& sweep, int plane, const int dims[3])
+{
+  for (int k = 1; k < 3; ++k)
+  {
+    const int e = (sweep.Axis + k) % 3;
+    int lo, hi;
+    PyramidSliceRange(sweep, plane, e, dims[e], lo, hi);
+    if (lo > hi)
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+/**
+ * A point or spot light inside the grid (PointLightSweepDirection gives
+ * (0, 0, 0)) sweeps six pyramids with their apex at the light, one per side
+ * of it along each axis (InSweptPyramid): in its pyramid a voxel's ray
+ * toward the light keeps the pyramid's axis dominant, so it crosses that
+ * axis's slices in order, nearest the light first, and reaches the previous
+ * chunk's slice within the pyramid's part of it (PyramidSliceRange). Each
+ * sweep reads only its own pyramid, so the sweeps are independent; the
+ * slices of each run from the light's (float, as the GPU has it) outward.
+ * Sides without slices are left out.
+ */
+inline std::vector<ShadowSweep> InsideLightSweeps(
+  const int dims[3], const glm::dvec3& light, int slicesPerChunk)
+{
+  const glm::vec3 apex(light);
+  std::vector<ShadowSweep> sweeps;
+  for (int a = 0; a < 3; ++a)
+  {
+    // The voxels with an offset >= 0 along a: from ceil(light) on.
+    const int split = std::min(std::max(static_cast<int>(std::ceil(apex[a])), 0), dims[a]);
+    for (const bool beyond : { true, false })
+    {
+      ShadowSweep sweep;
+      sweep.Axis = a;
+      sweep.TowardPositive = !beyond;
+      sweep.First = beyond ? split : 0;
+      sweep.Slices = beyond ? dims[a] - split : split;
+      sweep.SlicesPerChunk = std::max(1, slicesPerChunk);
+      sweep.Pyramid = true;
+      sweep.Light = apex;
+      if (sweep.Slices > 0)
+      {
+        sweeps.push_back(sweep);
+      }
+    }
+  }
+  return sweeps;
+}
 
 /**
  * Point and spot lights outside the grid sweep as well. Along an index axis
@@ -163,12 +266,69 @@ inline ShadowSweep PlanShadowSweep(const int dims[3], const glm::dvec3& toLight,
 }
 
 /**
+ * The sweeps of `light`'s piecewise rays on a grid of `dims` points (physical
+ * point p at index toIndex (p - origin)), in order: one toward a directional
+ * light or a point or spot light beyond the grid (ShadowSweepDirection), the
+ * pyramids of one inside it (InsideLightSweeps); none under full rays.
+ */
+inline std::vector<ShadowSweep> PlanLightSweeps(int estimation, const LightSource& light,
+  const int dims[3], const glm::dmat3& toIndex, const glm::dvec3& origin, int slicesPerChunk)
+{
+  const glm::dvec3 direction = ShadowSweepDirection(estimation, light, dims, toIndex, origin);
+  if (direction != glm::dvec3(0.0))
+  {
+    return { PlanShadowSweep(dims, direction, slicesPerChunk) };
+  }
+  if (estimation != PiecewiseShadowRays || light.Kind == DirectionalLight)
+  {
+    return {};
+  }
+  return InsideLightSweeps(dims, toIndex * (light.Position - origin), slicesPerChunk);
+}
+
+/**
+ * The box around what chunk `chunk` of a pyramid sweep (InsideLightSweeps)
+ * may compute on a grid of `dims`: its pyramid's part of the chunk's slices
+ * (the pyramid widens away from the light: its part of the farthest slice)
+ * and of its read slice. The shader leaves the box's voxels outside the
+ * pyramid alone.
+ */
+inline IndexBox PyramidChunkBox(const ShadowSweep& sweep, const int dims[3], int chunk)
+{
+  const int axis = sweep.Axis;
+  int first, last, plane;
+  sweep.GetChunk(chunk, first, last, plane);
+  const int read = sweep.GetReadSlice(chunk);
+  if (read >= 0)
+  {
+    first = std::min(first, read);
+    last = std::max(last, read);
+  }
+  IndexBox box = IndexBox::Whole(dims);
+  box.Bounds[2 * axis] = first;
+  box.Bounds[2 * axis + 1] = last;
+  const int far = std::abs(static_cast<float>(first) - sweep.Light[axis]) >
+      std::abs(static_cast<float>(last) - sweep.Light[axis])
+    ? first
+    : last;
+  for (int e = 0; e < 3; ++e)
+  {
+    if (e != axis)
+    {
+      PyramidSliceRange(sweep, far, e, dims[e], box.Bounds[2 * e], box.Bounds[2 * e + 1]);
+    }
+  }
+  return box;
+}
+
+/**
  * What each chunk of `sweep` must draw so that the voxels of `region` come
  * out exactly as a sweep of the whole grid computes them (vtkIrradianceRegion.h):
  * the region's voxels in the chunk, and the voxels of its read slice that
  * the next chunk's draw interpolates. `toLight` is the index-space direction
  * the sweep was planned with; for a point or spot light, `pointLight` is the
- * light's index-space position, toward which the rays converge. Walks from the farthest chunk
+ * light's index-space position, toward which the rays converge (for a
+ * pyramid sweep, each box is cut to its pyramid's, PyramidChunkBox). Walks from the farthest chunk
  * toward the light; a chunk upstream of the region draws a patch of one slice. An empty box:
  * nothing to draw. `nonEmpty`, when given, shrinks the region's part of each chunk to the voxels
  * whose own values matter (the non-empty ones, VoxelOccupancy::Shrink); the read slices are added
@@ -190,7 +350,11 @@ inline std::vector<IndexBox> PlanSweepBoxes(const ShadowSweep& sweep, const int 
     slab.Bounds[2 * axis] = first;
     slab.Bounds[2 * axis + 1] = last;
     const IndexBox own = region.Intersected(slab);
-    const IndexBox needed = (nonEmpty ? nonEmpty(own) : own).United(read);
+    IndexBox needed = (nonEmpty ? nonEmpty(own) : own).United(read);
+    if (sweep.Pyramid)
+    {
+      needed = needed.Intersected(PyramidChunkBox(sweep, dims, chunk));
+    }
     boxes[chunk] = needed;
     read = IndexBox();
     if (needed.IsEmpty() || plane < 0)

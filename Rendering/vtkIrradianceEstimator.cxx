@@ -353,10 +353,8 @@ int vtkIrradianceEstimator::PrepareSettings(bool& diffusion)
 
 //------------------------------------------------------------------------------
 // The lights of irradiance texture `group` marked in `updated`: their
-// transmittance (directional lights, and point and spot lights beyond the
-// grid, by piecewise rays unless full rays are asked for, the others by full
-// rays, each into its own channel), the
-// diffusion, the final write and the tints.
+// transmittance (by piecewise rays unless full rays are asked for, each
+// into its own channel), the diffusion, the final write and the tints.
 bool vtkIrradianceEstimator::UpdateGroup(vtkOpenGLRenderWindow* context, int group,
   const std::vector<bool>& updated, int estimation, bool diffusion)
 {
@@ -376,7 +374,8 @@ bool vtkIrradianceEstimator::UpdateGroup(vtkOpenGLRenderWindow* context, int gro
       ++this->NumberOfUpdatedLights;
       const bool strided = internals.Lights[k].GridStride > 1;
       stridedMask |= strided ? 1 << l : 0;
-      if (internals.SweepDirection(static_cast<int>(k), estimation) != glm::dvec3(0.0))
+      if (!internals.LightSweeps(static_cast<int>(k), estimation, this->PiecewiseShadowSlices)
+             .empty())
       {
         swept.push_back(static_cast<int>(k));
       }

@@ -223,8 +223,8 @@ public:
 
   /**
    * How lights are estimated (mmv::ShadowEstimation): 1, piecewise shadow
-   * rays swept along the light (default; vtkShadowSweep.h), or 0, full
-   * shadow rays. Point and spot lights inside the grid always take full rays.
+   * rays swept along the light (default; vtkShadowSweep.h; around a point or
+   * spot light inside the grid, in six pyramids), or 0, full shadow rays.
    * Piecewise rays need glTextureBarrier (OpenGL 4.5); without it the estimator
    * warns once and takes full rays.
    */

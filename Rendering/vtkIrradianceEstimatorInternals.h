@@ -497,7 +497,8 @@ public:
   vtkSmartPointer<vtkOpenGLFramebufferObject> Framebuffer;
   mmv::voxelpass::VoxelPrograms ShadowQuad;
   mmv::voxelpass::VoxelPrograms PiecewiseQuad;
-  mmv::voxelpass::VoxelPrograms PointSweepQuad; // point and spot lights' piecewise rays
+  mmv::voxelpass::VoxelPrograms PointSweepQuad;   // point and spot lights' piecewise rays
+  mmv::voxelpass::VoxelPrograms PyramidSweepQuad; // ... around one inside the grid
   mmv::voxelpass::VoxelPrograms RestrictQuad;
   mmv::voxelpass::VoxelPrograms SweepQuad;
   mmv::voxelpass::VoxelPrograms ExponentialQuad;
@@ -602,6 +603,8 @@ public:
   /// The index-space direction light `light`'s piecewise rays are swept
   /// with on its light grid under `estimation`; (0, 0, 0): full rays.
   glm::dvec3 SweepDirection(int light, int estimation) const;
+  /// Its sweeps (mmv::PlanLightSweeps on its light grid); none: full rays.
+  std::vector<mmv::ShadowSweep> LightSweeps(int light, int estimation, int slicesPerChunk) const;
   bool PiecewiseShadowPass(
     vtkOpenGLRenderWindow* context, int light, int slicesPerChunk, bool skipEmpty, bool layered);
   /// The lights of `mask` of a strided light grid, interpolated into their

@@ -1034,9 +1034,9 @@ void vtkIrradianceEstimator::vtkInternals::Release(vtkWindow* window)
   }
   this->ExchangeMaskRefused = false; // another context may take it
   for (VoxelPrograms* pass : { &this->ShadowQuad, &this->PiecewiseQuad, &this->PointSweepQuad,
-         &this->RestrictQuad, &this->SweepQuad, &this->ExponentialQuad, &this->ChangeQuad,
-         &this->ProlongQuad, &this->FillQuad, &this->TintQuad, &this->UpsampleQuad,
-         &this->ClassifyQuad, &this->NeededQuad })
+         &this->PyramidSweepQuad, &this->RestrictQuad, &this->SweepQuad, &this->ExponentialQuad,
+         &this->ChangeQuad, &this->ProlongQuad, &this->FillQuad, &this->TintQuad,
+         &this->UpsampleQuad, &this->ClassifyQuad, &this->NeededQuad })
   {
     pass->Release(window);
   }

@@ -248,22 +248,41 @@ glm::dvec3 vtkIrradianceEstimator::vtkInternals::SweepDirection(int light, int e
     estimation, source, d, this->LightGridPhysicalToIndex(source.GridStride), this->Grid.Origin);
 }
 
+// The sweeps of light `light`'s piecewise rays on its light grid
+// (mmv::PlanLightSweeps), none for full rays.
+std::vector<mmv::ShadowSweep> vtkIrradianceEstimator::vtkInternals::LightSweeps(
+  int light, int estimation, int slicesPerChunk) const
+{
+  const mmv::LightSource& source = this->Lights[light];
+  const int stride = source.GridStride;
+  int d[3];
+  this->LightGridDimensions(stride, d);
+  return mmv::PlanLightSweeps(estimation, source, d, this->LightGridPhysicalToIndex(stride),
+    this->Grid.Origin, std::max(1, slicesPerChunk / stride));
+}
+
 //------------------------------------------------------------------------------
-// Piecewise shadow rays of light `light` (directional, or a point or spot
-// light with a sweep direction) into its channel of FineScratch[0]
-// (vtkShadowSweep.h): one draw per chunk of slices, nearest the light first;
-// a texture barrier lets each chunk read what the earlier ones wrote into
-// the same texture. A point or spot light's channel then takes its
-// geometry term in one more draw.
+// Piecewise shadow rays of light `light` (LightSweeps: one sweep, or six
+// pyramids around a point or spot light inside the grid) into its channel
+// of its light grid's target (vtkShadowSweep.h): one draw per chunk of
+// slices, nearest the light first; a texture barrier lets each chunk read
+// what the earlier ones wrote into the same texture. A point or spot
+// light's channel then takes its geometry term in one more draw.
 bool vtkIrradianceEstimator::vtkInternals::PiecewiseShadowPass(
   vtkOpenGLRenderWindow* context, int light, int slicesPerChunk, bool skipEmpty, bool layered)
 {
   const mmv::LightSource& source = this->Lights[light];
   const bool point = source.Kind != mmv::DirectionalLight;
-  VoxelPrograms& pass = point ? this->PointSweepQuad : this->PiecewiseQuad;
+  const std::vector<mmv::ShadowSweep> sweeps =
+    this->LightSweeps(light, mmv::PiecewiseShadowRays, slicesPerChunk);
+  const bool pyramids = !sweeps.empty() && sweeps[0].Pyramid;
+  VoxelPrograms& pass =
+    pyramids ? this->PyramidSweepQuad : (point ? this->PointSweepQuad : this->PiecewiseQuad);
   vtkShaderProgram* program =
     this->Ready(context, pass, std::string(mmvShadowRay) + mmvLightGrid + mmvPiecewiseShadowFS,
-      this->ShadowRayDefines() + (point ? "#define MMV_POINT_SWEEP\n" : ""), point);
+      this->ShadowRayDefines() + (point ? "#define MMV_POINT_SWEEP\n" : "") +
+        (pyramids ? "#define MMV_PYRAMID_SWEEP\n" : ""),
+      point);
   if (!program)
   {
     return false;
@@ -275,8 +294,6 @@ bool vtkIrradianceEstimator::vtkInternals::PiecewiseShadowPass(
   int d[3];
   this->LightGridDimensions(stride, d);
   const glm::dvec3 toLightIndex = this->SweepDirection(light, mmv::PiecewiseShadowRays);
-  const mmv::ShadowSweep sweep =
-    mmv::PlanShadowSweep(d, toLightIndex, std::max(1, slicesPerChunk / stride));
   // Each chunk draws what the region's voxels depend on (its whole slab
   // for the whole grid).
   const mmv::IndexBox estimated = stride > 1
@@ -289,8 +306,6 @@ bool vtkIrradianceEstimator::vtkInternals::PiecewiseShadowPass(
   }
   const glm::dvec3 lightIndex =
     this->LightGridPhysicalToIndex(stride) * (source.Position - this->Grid.Origin);
-  const std::vector<mmv::IndexBox> boxes =
-    mmv::PlanSweepBoxes(sweep, d, toLightIndex, estimated, nonEmpty, point ? &lightIndex : nullptr);
   glm::vec3 toLight(source.ToLight);
   const int channel = light % LightsPerTexture;
   vtkTextureObject* target = this->LightGridTarget(stride);
@@ -302,7 +317,6 @@ bool vtkIrradianceEstimator::vtkInternals::PiecewiseShadowPass(
   program->SetUniform3f("toLight", glm::value_ptr(toLight));
   program->SetUniformi("channel", channel);
   program->SetUniformi("computeEmptyVoxels", skipEmpty ? 0 : 1);
-  program->SetUniformi("sweepAxis", sweep.Axis);
   if (point)
   {
     glm::mat3 toWorld(this->Grid.IndexToPhysicalMatrix());
@@ -312,26 +326,37 @@ bool vtkIrradianceEstimator::vtkInternals::PiecewiseShadowPass(
     program->SetUniformi("applyGeometry", 0);
     mmv::SetLightUniforms(program, &source, nullptr, 1, LightsPerTexture);
   }
-  for (int chunk = 0; chunk < sweep.GetNumberOfChunks(); ++chunk)
+  for (const mmv::ShadowSweep& sweep : sweeps)
   {
-    const mmv::IndexBox& box = boxes[chunk];
-    if (box.IsEmpty())
+    const std::vector<mmv::IndexBox> boxes = mmv::PlanSweepBoxes(
+      sweep, d, toLightIndex, estimated, nonEmpty, point ? &lightIndex : nullptr);
+    program->SetUniformi("sweepAxis", sweep.Axis);
+    if (pyramids)
     {
-      continue;
+      program->SetUniform3f("pyramidLight", glm::value_ptr(sweep.Light));
+      program->SetUniformi("sweepTowardPositive", sweep.TowardPositive ? 1 : 0);
     }
-    int first, last, plane;
-    sweep.GetChunk(chunk, first, last, plane);
-    this->EstimatedVoxels += box.GetNumberOfVoxels();
-    program->SetUniformi("sweepPlane", plane);
-    program->SetUniformi("readSlice", sweep.GetReadSlice(chunk));
-    // The earlier chunks' writes become visible to this draw's fetches.
-    // (A compute dispatch ends with a memory barrier instead.)
-    if (!this->Compute)
+    for (int chunk = 0; chunk < sweep.GetNumberOfChunks(); ++chunk)
     {
-      glTextureBarrier();
+      const mmv::IndexBox& box = boxes[chunk];
+      if (box.IsEmpty())
+      {
+        continue;
+      }
+      int first, last, plane;
+      sweep.GetChunk(chunk, first, last, plane);
+      this->EstimatedVoxels += box.GetNumberOfVoxels();
+      program->SetUniformi("sweepPlane", plane);
+      program->SetUniformi("readSlice", sweep.GetReadSlice(chunk));
+      // The earlier chunks' writes become visible to this draw's fetches.
+      // (A compute dispatch ends with a memory barrier instead.)
+      if (!this->Compute)
+      {
+        glTextureBarrier();
+      }
+      // The write mask keeps the other lights' channels.
+      this->DrawLayers(context, pass, target, layered, box.Bounds, 1 << channel);
     }
-    // The write mask keeps the other lights' channels.
-    this->DrawLayers(context, pass, target, layered, box.Bounds, 1 << channel);
   }
   if (point)
   {

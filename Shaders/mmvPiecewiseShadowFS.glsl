@@ -11,7 +11,9 @@
 //
 // With MMV_POINT_SWEEP (and the light model) the light is light 0 of the
 // light uniforms, a point or spot light outside the grid
-// (mmv::PointLightSweepDirection): each voxel's ray runs toward the light's
+// (mmv::PointLightSweepDirection), or inside it with MMV_PYRAMID_SWEEP as
+// well, swept in six pyramids (mmv::InsideLightSweeps): each voxel's ray
+// runs toward the light's
 // position, and the channel holds pure transmittance until a last draw with
 // applyGeometry multiplies each voxel's by its falloff and cone
 // (mmvLightGeometryTerm), as the full rays of mmvIrradianceFS.glsl write it.
@@ -24,6 +26,12 @@ uniform int sweepAxis;
 uniform int sweepPlane;          // -1: the first chunk, rays run to the boundary
 uniform int readSlice;           // the slice the next chunk reads (-1: none)
 uniform bool computeEmptyVoxels; // on: every voxel (to measure what skipping saves)
+#ifdef MMV_PYRAMID_SWEEP
+// A point light inside the grid: this draw computes only its pyramid on the
+// side of the light away from sweepTowardPositive (mmv::InsideLightSweeps).
+uniform vec3 pyramidLight; // the light, light grid index
+uniform bool sweepTowardPositive;
+#endif
 #ifdef MMV_POINT_SWEEP
 uniform vec3 origin;
 uniform mat3 indexToWorld;
@@ -46,9 +54,57 @@ bool mmvReachesSweepPlane(float start, float direction, float plane, float exitD
       MMV_SWEEP_PLANE_ABSOLUTE_TOLERANCE;
 }
 
+#ifdef MMV_PYRAMID_SWEEP
+// mmv::InSweptPyramid (vtkShadowSweep.h).
+bool mmvInSweptPyramid(vec3 voxel)
+{
+  vec3 d = voxel - pyramidLight;
+  float along = abs(d[sweepAxis]);
+  return along >= abs(d[(sweepAxis + 1) % 3]) && along >= abs(d[(sweepAxis + 2) % 3]) &&
+    (d[sweepAxis] >= 0.0) == !sweepTowardPositive;
+}
+
+// mmv::PyramidSliceRange: the in-slice indices along axis e of slice `plane`
+// that the pyramid's rays may read (lo > hi: none), compared as
+// mmvInSweptPyramid compares them.
+bool mmvWithinReach(int i, float at, float reach)
+{
+  return abs(float(i) - at) <= reach;
+}
+
+void mmvPyramidSliceRange(int plane, int e, out int lo, out int hi)
+{
+  float reach = abs(float(plane) - pyramidLight[sweepAxis]);
+  float at = pyramidLight[e];
+  int n = targetDims[e];
+  lo = max(0, int(ceil(at - reach)));
+  hi = min(n - 1, int(floor(at + reach)));
+  lo = lo > 0 && mmvWithinReach(lo - 1, at, reach) ? lo - 1
+    : (lo < n && !mmvWithinReach(lo, at, reach) ? lo + 1 : lo);
+  hi = hi < n - 1 && mmvWithinReach(hi + 1, at, reach) ? hi + 1
+    : (hi >= 0 && !mmvWithinReach(hi, at, reach) ? hi - 1 : hi);
+}
+
+// mmv::PyramidReads: the pyramid's part of slice `plane` holds a voxel.
+bool mmvPyramidReads(int plane)
+{
+  for (int k = 1; k < 3; ++k)
+  {
+    int lo;
+    int hi;
+    mmvPyramidSliceRange(plane, (sweepAxis + k) % 3, lo, hi);
+    if (lo > hi)
+    {
+      return false;
+    }
+  }
+  return true;
+}
+#endif
+
 // Bilinear transmittance in light grid slice `plane` at the in-slice
-// coordinates of q (light grid index), clamped to the slice (texelFetch: no
-// filtering reaches another slice).
+// coordinates of q (light grid index), clamped to the slice, or to the
+// pyramid's part of it (texelFetch: no filtering reaches another slice).
 float mmvSampleSlice(int axis, int plane, vec3 q)
 {
   int b = (axis + 1) % 3;
@@ -61,12 +117,23 @@ float mmvSampleSlice(int axis, int plane, vec3 q)
   for (int k = 0; k < 2; ++k)
   {
     int a = k == 0 ? b : c;
-    float x = clamp(q[a], 0.0, float(targetDims[a] - 1));
-    i0[a] = min(int(x), max(targetDims[a] - 2, 0));
-    f[a] = targetDims[a] > 1 ? x - float(i0[a]) : 0.0;
+    int lo = 0;
+    int hi = targetDims[a] - 1;
+#ifdef MMV_PYRAMID_SWEEP
+    mmvPyramidSliceRange(plane, a, lo, hi);
+#endif
+    float x = clamp(q[a], float(lo), float(hi));
+    i0[a] = min(int(x), max(hi - 1, lo));
+    f[a] = hi > lo ? x - float(i0[a]) : 0.0;
+    if (k == 0)
+    {
+      db[b] = hi > lo ? 1 : 0;
+    }
+    else
+    {
+      dc[c] = hi > lo ? 1 : 0;
+    }
   }
-  db[b] = targetDims[b] > 1 ? 1 : 0;
-  dc[c] = targetDims[c] > 1 ? 1 : 0;
   float v00 = texelFetch(transmittance, i0, 0)[channel];
   float v10 = texelFetch(transmittance, i0 + db, 0)[channel];
   float v01 = texelFetch(transmittance, i0 + dc, 0)[channel];
@@ -90,6 +157,12 @@ void mmvVoxelMain()
     mmvWrite(vec4(geometry * texelFetch(transmittance, voxel, 0)[channel]));
     return;
   }
+#ifdef MMV_PYRAMID_SWEEP
+  if (!mmvInSweptPyramid(vec3(voxel)))
+  {
+    return; // another pyramid's: it keeps its value
+  }
+#endif
   float lightDistance;
   vec3 indexDir = worldToIndex * mmvDirectionToLight(mmv_lightKind[0], mmv_lightPosition[0],
     mmv_lightToLight[0], x, lightDistance);
@@ -113,7 +186,12 @@ void mmvVoxelMain()
   float far = 1.0;
   float distance;
   float plane = sweepPlane < 0 ? -1.0 : float(sweepPlane) * targetToIndex[sweepAxis];
-  if (mmvReachesSweepPlane(start[sweepAxis], indexDir[sweepAxis], plane, exitDistance, distance))
+  bool reaches =
+    mmvReachesSweepPlane(start[sweepAxis], indexDir[sweepAxis], plane, exitDistance, distance);
+#ifdef MMV_PYRAMID_SWEEP
+  reaches = reaches && mmvPyramidReads(sweepPlane);
+#endif
+  if (reaches)
   {
     exitDistance = distance;
     far = mmvSampleSlice(sweepAxis, sweepPlane, (start + distance * indexDir) / targetToIndex);

@@ -1,20 +1,23 @@
-"""Point and spot lights outside the data: piecewise rays swept toward the
-light against one full ray per voxel (run with pvpython).
+"""Point and spot lights outside or inside the data: piecewise rays swept
+toward the light against one full ray per voxel (run with pvpython).
 
     xvfb-run -a -s "-noreset -screen 0 1280x1024x24" \\
-        scripts/pvpython Testing/Benchmark/pv_point_light_sweep.py [--out DIR] [--edits N]
+        scripts/pvpython Testing/Benchmark/pv_point_light_sweep.py [--out DIR] [--edits N] \\
+        [--distance 600] [--lights spot,point]
 
 Volumes (256 x 256 x 128): the MR head (Testing/Data/headsq.vti resampled)
 and the fine chest of mmv_fine_volume.py, with pv_lightkit_orbit.py's colour
 and opacity maps, a front camera, 400 x 400, the light kit off. Lights, one
-at a time, as the Light Inspector adds them 600 units from the data's centre:
-a spot light (cone 25 degrees) and a point light (cone 120: wider than
-90 degrees, VTK shines it as a point light).
+at a time, as the Light Inspector adds them --distance units from the data's
+centre (600: outside the data; 30: inside it): a spot light (cone 25
+degrees) and a point light (cone 120: wider than 90 degrees, VTK shines it as
+a point light).
 
 Methods, each in its own view, rendered in turn after every change:
 Multi-Material Volume at its defaults (ShadowEstimation 1: piecewise rays,
 which a point or spot light beyond the data sweeps toward itself) and with
-ShadowEstimation 0 (full rays). Each opacity edit (+0.02 on the 1100 point,
+ShadowEstimation 0 (full rays). A light inside the data is swept in six
+pyramids around it. Each opacity edit (+0.02 on the 1100 point,
 as pv_lighting_changes.py drags it) recomputes the light's irradiance.
 
 Writes OUT/point_light_sweep.csv: per volume, light and method, the median
@@ -48,6 +51,9 @@ LIGHTS = [("spot", 25.0), ("point", 120.0)]
 def parse_args():
     p = orbit.head_parser(__doc__, os.path.join(os.getcwd(), "build", "point_light_sweep"))
     p.add_argument("--edits", type=int, default=3)
+    p.add_argument("--distance", type=float, default=600.0,
+                   help="the light's distance from the data's centre")
+    p.add_argument("--lights", default="spot,point", help="of spot,point")
     args, _ = p.parse_known_args()
     args.dims = [256, 256, 128]
     args.view_size = 400
@@ -72,7 +78,7 @@ def run(volume, source, center, light_name, cone, args, writer, folder):
         view.UseLight = 0
         rep = orbit.show(orbit.Method(name, orbit.MMV, props, None), source, view)
         orbit.place_camera(view, args)
-        pv_spot_light.add_spot(view, center, argparse.Namespace(distance=600.0, cone=cone))
+        pv_spot_light.add_spot(view, center, argparse.Namespace(distance=args.distance, cone=cone))
         view.SMProxy.StillRender()
         views.append((name, view, rep, [], []))
     _, pwf = orbit.setup_transfer_functions()
@@ -125,6 +131,8 @@ def main():
         for volume, source, center in (("head", head, head_center),
                                        ("chest", chest, chest_center)):
             for light_name, cone in LIGHTS:
+                if light_name not in args.lights.split(","):
+                    continue
                 run(volume, source, center, light_name, cone, args, writer, folder)
     return 0
 

@@ -187,6 +187,159 @@ TEST(IrradianceRegion, SweepBoxesHoldEveryVoxelTheRegionReadsTowardAPointLight)
   }
 }
 
+namespace
+{
+// A point light inside the grid: its pyramid sweeps (InsideLightSweeps),
+// run over the boxes PlanSweepBoxes gives for `region` as the GPU runs them
+// (a chunk computes its pyramid's voxels in its box). Every voxel lies in a
+// pyramid, within its sweep's slices; every region voxel is computed; and
+// every computed voxel's ray that reaches its plane inside the grid reads
+// only texels an earlier chunk of the same sweep computed (its bilinear pair
+// in the previous slice, clamped to PyramidSliceRange, as
+// Shaders/mmvPiecewiseShadowFS.glsl reads them).
+void CheckInsideLightSweeps(
+  const int dims[3], const glm::dvec3& light, int slicesPerChunk, const mmv::IndexBox& region)
+{
+  const std::vector<mmv::ShadowSweep> sweeps = mmv::InsideLightSweeps(dims, light, slicesPerChunk);
+  const vtkIdType n = static_cast<vtkIdType>(dims[0]) * dims[1] * dims[2];
+  std::vector<int> pyramids(n, 0);
+  auto id = [&](int i, int j, int k)
+  { return i + dims[0] * (j + static_cast<vtkIdType>(dims[1]) * k); };
+  for (const mmv::ShadowSweep& sweep : sweeps)
+  {
+    ASSERT_TRUE(sweep.Pyramid);
+    std::vector<char> computed(n, 0);
+    const int a = sweep.Axis;
+    const std::vector<mmv::IndexBox> boxes =
+      mmv::PlanSweepBoxes(sweep, dims, glm::dvec3(0.0), region, nullptr, &light);
+    for (int chunk = 0; chunk < sweep.GetNumberOfChunks(); ++chunk)
+    {
+      int first, last, plane;
+      sweep.GetChunk(chunk, first, last, plane);
+      std::vector<vtkIdType> made;
+      int v[3];
+      for (v[2] = 0; v[2] < dims[2]; ++v[2])
+      {
+        for (v[1] = 0; v[1] < dims[1]; ++v[1])
+        {
+          for (v[0] = 0; v[0] < dims[0]; ++v[0])
+          {
+            const glm::vec3 voxel(v[0], v[1], v[2]);
+            if (v[a] < first || v[a] > last || !mmv::InSweptPyramid(sweep, voxel))
+            {
+              continue;
+            }
+            ++pyramids[id(v[0], v[1], v[2])];
+            if (!boxes[chunk].Contains(v))
+            {
+              ASSERT_FALSE(region.Contains(v))
+                << "a region voxel left out, chunk " << chunk << " voxel " << v[0] << " " << v[1]
+                << " " << v[2] << " axis " << a << " tp " << sweep.TowardPositive << " box "
+                << boxes[chunk].Bounds[0] << "-" << boxes[chunk].Bounds[1] << " "
+                << boxes[chunk].Bounds[2] << "-" << boxes[chunk].Bounds[3] << " "
+                << boxes[chunk].Bounds[4] << "-" << boxes[chunk].Bounds[5] << " region "
+                << region.Bounds[0] << "-" << region.Bounds[1] << " " << region.Bounds[2] << "-"
+                << region.Bounds[3] << " " << region.Bounds[4] << "-" << region.Bounds[5];
+              continue;
+            }
+            made.push_back(id(v[0], v[1], v[2]));
+            if (plane < 0)
+            {
+              continue;
+            }
+            // Where the ray toward the light crosses the plane, and the
+            // texels the read interpolates.
+            const glm::dvec3 start(v[0], v[1], v[2]);
+            const double t = (plane - start[a]) / (light[a] - start[a]);
+            ASSERT_GT(t, 0.0);
+            ASSERT_LE(t, 1.0);
+            const glm::dvec3 q = start + t * (light - start);
+            bool inside = true;
+            for (int e = 0; e < 3; ++e)
+            {
+              inside = inside && q[e] >= -1e-9 && q[e] <= dims[e] - 1 + 1e-9;
+            }
+            if (!inside || !mmv::PyramidReads(sweep, plane, dims))
+            {
+              continue; // the ray leaves the grid first, or runs on to the light
+            }
+            int lo[3], hi[3], i0[3], i1[3];
+            for (int e = 0; e < 3; ++e)
+            {
+              if (e == a)
+              {
+                i0[e] = i1[e] = plane;
+                continue;
+              }
+              mmv::PyramidSliceRange(sweep, plane, e, dims[e], lo[e], hi[e]);
+              ASSERT_LE(lo[e], hi[e]);
+              const double x = std::min(std::max(q[e], double(lo[e])), double(hi[e]));
+              i0[e] = std::min(static_cast<int>(x), std::max(hi[e] - 1, lo[e]));
+              i1[e] = hi[e] > lo[e] ? i0[e] + 1 : i0[e];
+            }
+            for (int k = i0[2]; k <= i1[2]; ++k)
+            {
+              for (int j = i0[1]; j <= i1[1]; ++j)
+              {
+                for (int i = i0[0]; i <= i1[0]; ++i)
+                {
+                  ASSERT_TRUE(computed[id(i, j, k)])
+                    << "chunk " << chunk << " of the sweep along " << a << " reads " << i << " "
+                    << j << " " << k << " before it is computed";
+                }
+              }
+            }
+          }
+        }
+      }
+      for (const vtkIdType m : made)
+      {
+        computed[m] = 1;
+      }
+    }
+  }
+  EXPECT_EQ(std::count(pyramids.begin(), pyramids.end(), 0), 0) << "a voxel in no pyramid";
+}
+} // namespace
+
+// A point light inside the grid sweeps six pyramids: on any grid, from any
+// position inside it (on voxels, halfway between them, anywhere), for the
+// whole grid and a region, every voxel, and every read already made.
+TEST(IrradianceRegion, InsideLightPyramidsSweepEveryVoxelAndReadOnlyWhatIsMade)
+{
+  std::mt19937 random(5);
+  const std::vector<std::array<int, 3>> grids = { { 17, 13, 11 }, { 24, 24, 24 }, { 9, 2, 12 } };
+  for (const auto& grid : grids)
+  {
+    std::vector<glm::dvec3> lights = { glm::dvec3(4.0, 1.0, 5.0), glm::dvec3(4.5, 0.5, 5.5),
+      glm::dvec3(0.0, 0.0, 0.0), glm::dvec3(grid[0] - 1.0, grid[1] - 1.0, 3.0),
+      glm::dvec3(-0.4, 0.7, grid[2] - 0.6) };
+    for (int trial = 0; trial < 6; ++trial)
+    {
+      glm::dvec3 light;
+      for (int a = 0; a < 3; ++a)
+      {
+        std::uniform_real_distribution<double> at(-0.5, grid[a] - 0.5);
+        light[a] = at(random);
+      }
+      lights.push_back(light);
+    }
+    for (const glm::dvec3& light : lights)
+    {
+      ASSERT_EQ(mmv::PointLightSweepDirection(grid.data(), light), glm::dvec3(0.0));
+      const mmv::IndexBox region = RandomBox(random, grid.data());
+      for (const int k : { 1, 3, 16 })
+      {
+        SCOPED_TRACE(::testing::Message()
+          << "grid " << grid[0] << "x" << grid[1] << "x" << grid[2] << ", light " << light[0] << " "
+          << light[1] << " " << light[2] << ", K " << k);
+        CheckInsideLightSweeps(grid.data(), light, k, mmv::IndexBox::Whole(grid.data()));
+        CheckInsideLightSweeps(grid.data(), light, k, region);
+      }
+    }
+  }
+}
+
 // The axis a point light sweeps along: one it lies beyond (by more than half
 // a voxel), the steepest for the grid's rays; none from within the grid.
 TEST(IrradianceRegion, PointLightSweepsAlongTheSteepestAxisItLiesBeyond)

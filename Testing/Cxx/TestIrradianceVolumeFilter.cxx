@@ -3,6 +3,7 @@
 // sparsity, diffusion on/off, resolution choice and error handling.
 #include "vtkIrradianceGrid.h"
 #include "vtkIrradianceVolumeFilter.h"
+#include "vtkShadowSweep.h"
 
 #include "mmvTestUtilities.h"
 #include "vtkCallbackCommand.h"
@@ -305,7 +306,26 @@ TEST(IrradianceVolumeFilter, PointLightFalloffOutsideAndInsideTheVolume)
     }
   }
   EXPECT_GT(clamped, 20); // the clamp was exercised
-  EXPECT_EQ(filter->GetNumberOfShadowRays(), 2 * out->GetNumberOfPoints());
+  // The light outside casts one ray per voxel. The one inside is swept in six
+  // pyramids around it (index (4, 4, 1)): one ray per voxel, and one more
+  // per further pyramid for the voxels on their edges.
+  const int dims[3] = { 21, 21, 3 };
+  vtkIdType swept = 0;
+  for (const mmv::ShadowSweep& sweep :
+    mmv::InsideLightSweeps(dims, glm::dvec3(4.0, 4.0, 1.0), mmv::DefaultPiecewiseShadowSlices))
+  {
+    for (vtkIdType v = 0; v < out->GetNumberOfPoints(); ++v)
+    {
+      const glm::vec3 index(v % 21, (v / 21) % 21, v / (21 * 21));
+      const int slice = static_cast<int>(index[sweep.Axis]);
+      swept += slice >= sweep.First && slice < sweep.First + sweep.Slices &&
+          mmv::InSweptPyramid(sweep, index)
+        ? 1
+        : 0;
+    }
+  }
+  EXPECT_GT(swept, out->GetNumberOfPoints());
+  EXPECT_EQ(filter->GetNumberOfShadowRays(), out->GetNumberOfPoints() + swept);
 }
 
 TEST(IrradianceVolumeFilter, SpotLightIsPointLightTimesCosExponentInsideTheConeAndZeroOutside)
