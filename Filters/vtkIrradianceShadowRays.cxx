@@ -162,28 +162,22 @@ mmv::IrradianceGrid MakeTintGrid(const mmv::IrradianceGrid& grid, int divisor)
 }
 
 /// Bilinear value of `values` in slice `plane` of axis `axis` at the in-slice
-/// coordinates of index `q` (clamped to the slice). Not mmv::SampleTrilinear:
-/// that also reads the next slice (with weight 0), which this chunk's
-/// threads may be writing.
-/// A pyramid sweep's read is clamped to its part of the slice
-/// (mmv::PyramidSliceRange).
-double SampleSlice(const int dims[3], const float* values, const mmv::ShadowSweep& sweep, int plane,
+/// coordinates of index `q`, clamped to the part of the slice in `range`
+/// (mmv::SliceReadRange). Not mmv::SampleTrilinear: that also reads the next
+/// slice (with weight 0), which this chunk's threads may be writing.
+double SampleSlice(const int dims[3], const float* values, int axis, int plane, const int range[4],
   const glm::dvec3& q)
 {
-  const int axis = sweep.Axis;
   const int b = (axis + 1) % 3;
   const int c = (axis + 2) % 3;
   int i0[3];
   double f[3];
   int step[3] = { 0, 0, 0 };
-  for (const int a : { b, c })
+  for (int k = 0; k < 2; ++k)
   {
-    int lo = 0;
-    int hi = dims[a] - 1;
-    if (sweep.Pyramid)
-    {
-      mmv::PyramidSliceRange(sweep, plane, a, dims[a], lo, hi);
-    }
+    const int a = k == 0 ? b : c;
+    const int lo = range[2 * k];
+    const int hi = range[2 * k + 1];
     const double x = std::min(std::max(q[a], static_cast<double>(lo)), static_cast<double>(hi));
     i0[a] = std::min(static_cast<int>(x), std::max(hi - 1, lo));
     f[a] = hi > lo ? x - i0[a] : 0.0;
@@ -263,6 +257,8 @@ bool SweepPiecewiseShadowRays(vtkAlgorithm* self, const RayContext& ctx,
     int first, last, plane;
     sweep.GetChunk(chunk, first, last, plane);
     const int read = sweep.GetReadSlice(chunk);
+    int range[4];
+    const bool reads = plane >= 0 && mmv::SliceReadRange(sweep, plane, dims, range);
     const vtkIdType sliceSize = static_cast<vtkIdType>(dims[b]) * dims[c];
     mmv::For(0, sliceSize * (last - first + 1),
       [&](vtkIdType begin, vtkIdType end)
@@ -290,12 +286,11 @@ bool SweepPiecewiseShadowRays(vtkAlgorithm* self, const RayContext& ctx,
           double exit = RayToLight(ctx, light, start, x, indexDir);
           double far = 1.0;
           double distance = 0.0;
-          if (mmv::ReachesSweepPlane(start[a], indexDir[a], plane, exit, distance) &&
-            (!sweep.Pyramid || mmv::PyramidReads(sweep, plane, dims)))
+          if (reads && mmv::ReachesSweepPlane(start[a], indexDir[a], plane, exit, distance))
           {
             exit = distance;
             far =
-              SampleSlice(dims, transmittance.data(), sweep, plane, start + distance * indexDir);
+              SampleSlice(dims, transmittance.data(), a, plane, range, start + distance * indexDir);
           }
           transmittance[v] = static_cast<float>(
             MarchTransmittance(ctx, start, indexDir, exit, ctx.Prefiltered[v], far));

@@ -108,7 +108,7 @@ inline bool InSweptPyramid(const ShadowSweep& sweep, const glm::vec3& voxel)
  * the plane's along the sweep axis, [lo, hi] within [0, n - 1] (lo > hi:
  * none), compared in float as InSweptPyramid compares them: the pyramid's
  * own. A ray of the pyramid reaches the plane within them; its bilinear read
- * is clamped to them. GLSL: mmvPyramidSliceRange.
+ * is clamped to them (SliceReadRange).
  */
 inline void PyramidSliceRange(const ShadowSweep& sweep, int plane, int e, int n, int& lo, int& hi)
 {
@@ -123,24 +123,29 @@ inline void PyramidSliceRange(const ShadowSweep& sweep, int plane, int e, int n,
 }
 
 /**
- * Whether a pyramid sweep's rays may read slice `plane` of a grid of `dims`:
- * its part of the slice holds a voxel (near a light close to a face it may
- * not, and the rays that would end there run on to the light).
- * GLSL: mmvPyramidReads.
+ * The part of slice `plane` that `sweep`'s rays may read, as
+ * {lo, hi} of in-slice axis (Axis + 1) % 3 and then of (Axis + 2) % 3 in
+ * `range`: the whole slice, or a pyramid's part of it (PyramidSliceRange).
+ * Returns whether it holds a voxel; where it does not (a pyramid's part of a
+ * slice near a light close to a face), the rays that would end on the slice
+ * run on to the light. It is the same for every ray of a chunk: the GPU
+ * takes it as the uniform sliceRange (Shaders/mmvPiecewiseShadowFS.glsl).
  */
-inline bool PyramidReads(const ShadowSweep& sweep, int plane, const int dims[3])
+inline bool SliceReadRange(const ShadowSweep& sweep, int plane, const int dims[3], int range[4])
 {
-  for (int k = 1; k < 3; ++k)
+  bool holds = true;
+  for (int k = 0; k < 2; ++k)
   {
-    const int e = (sweep.Axis + k) % 3;
-    int lo, hi;
-    PyramidSliceRange(sweep, plane, e, dims[e], lo, hi);
-    if (lo > hi)
+    const int e = (sweep.Axis + 1 + k) % 3;
+    range[2 * k] = 0;
+    range[2 * k + 1] = dims[e] - 1;
+    if (sweep.Pyramid)
     {
-      return false;
+      PyramidSliceRange(sweep, plane, e, dims[e], range[2 * k], range[2 * k + 1]);
     }
+    holds = holds && range[2 * k] <= range[2 * k + 1];
   }
-  return true;
+  return holds;
 }
 
 /**

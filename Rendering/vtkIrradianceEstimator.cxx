@@ -364,7 +364,7 @@ bool vtkIrradianceEstimator::UpdateGroup(vtkOpenGLRenderWindow* context, int gro
   int fullMask = 0;        // full rays on the irradiance grid
   int stridedFullMask = 0; // full rays on the strided light grid
   int stridedMask = 0;     // every light on the strided grid
-  std::vector<int> swept;
+  std::vector<std::pair<int, std::vector<mmv::ShadowSweep>>> swept;
   for (int l = 0; l < LightsPerTexture; ++l)
   {
     const size_t k = static_cast<size_t>(group * LightsPerTexture + l);
@@ -374,10 +374,11 @@ bool vtkIrradianceEstimator::UpdateGroup(vtkOpenGLRenderWindow* context, int gro
       ++this->NumberOfUpdatedLights;
       const bool strided = internals.Lights[k].GridStride > 1;
       stridedMask |= strided ? 1 << l : 0;
-      if (!internals.LightSweeps(static_cast<int>(k), estimation, this->PiecewiseShadowSlices)
-             .empty())
+      std::vector<mmv::ShadowSweep> sweeps =
+        internals.LightSweeps(static_cast<int>(k), estimation, this->PiecewiseShadowSlices);
+      if (!sweeps.empty())
       {
-        swept.push_back(static_cast<int>(k));
+        swept.emplace_back(static_cast<int>(k), std::move(sweeps));
       }
       else
       {
@@ -410,11 +411,11 @@ bool vtkIrradianceEstimator::UpdateGroup(vtkOpenGLRenderWindow* context, int gro
   {
     this->ReportProgress(context, PopCount(fullMask | stridedFullMask));
   }
-  for (const int k : swept)
+  for (const auto& light : swept)
   {
     ok = ok &&
       internals.PiecewiseShadowPass(
-        context, k, this->PiecewiseShadowSlices, this->SkipEmptyVoxels, this->LayeredRendering);
+        context, light.first, light.second, this->SkipEmptyVoxels, this->LayeredRendering);
     if (ok)
     {
       this->ReportProgress(context, 1.0);

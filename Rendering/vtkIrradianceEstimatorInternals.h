@@ -600,13 +600,10 @@ public:
 
   bool ShadowPass(
     vtkOpenGLRenderWindow* context, int group, int mask, int stride, bool skipEmpty, bool layered);
-  /// The index-space direction light `light`'s piecewise rays are swept
-  /// with on its light grid under `estimation`; (0, 0, 0): full rays.
-  glm::dvec3 SweepDirection(int light, int estimation) const;
   /// Its sweeps (mmv::PlanLightSweeps on its light grid); none: full rays.
   std::vector<mmv::ShadowSweep> LightSweeps(int light, int estimation, int slicesPerChunk) const;
-  bool PiecewiseShadowPass(
-    vtkOpenGLRenderWindow* context, int light, int slicesPerChunk, bool skipEmpty, bool layered);
+  bool PiecewiseShadowPass(vtkOpenGLRenderWindow* context, int light,
+    const std::vector<mmv::ShadowSweep>& sweeps, bool skipEmpty, bool layered);
   /// The lights of `mask` of a strided light grid, interpolated into their
   /// channels of FineScratch[0] over the estimated box.
   bool UpsamplePass(

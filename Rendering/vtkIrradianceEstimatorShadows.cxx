@@ -237,17 +237,6 @@ bool vtkIrradianceEstimator::vtkInternals::TintPass(
 }
 
 //------------------------------------------------------------------------------
-// The index-space direction light `light`'s piecewise rays are swept with on
-// its light grid (mmv::ShadowSweepDirection), or (0, 0, 0): full rays.
-glm::dvec3 vtkIrradianceEstimator::vtkInternals::SweepDirection(int light, int estimation) const
-{
-  const mmv::LightSource& source = this->Lights[light];
-  int d[3];
-  this->LightGridDimensions(source.GridStride, d);
-  return mmv::ShadowSweepDirection(
-    estimation, source, d, this->LightGridPhysicalToIndex(source.GridStride), this->Grid.Origin);
-}
-
 // The sweeps of light `light`'s piecewise rays on its light grid
 // (mmv::PlanLightSweeps), none for full rays.
 std::vector<mmv::ShadowSweep> vtkIrradianceEstimator::vtkInternals::LightSweeps(
@@ -262,19 +251,17 @@ std::vector<mmv::ShadowSweep> vtkIrradianceEstimator::vtkInternals::LightSweeps(
 }
 
 //------------------------------------------------------------------------------
-// Piecewise shadow rays of light `light` (LightSweeps: one sweep, or six
-// pyramids around a point or spot light inside the grid) into its channel
-// of its light grid's target (vtkShadowSweep.h): one draw per chunk of
-// slices, nearest the light first; a texture barrier lets each chunk read
+// Piecewise shadow rays of light `light` in its `sweeps` (LightSweeps: one,
+// or six pyramids around a point or spot light inside the grid) into its
+// channel of its light grid's target (vtkShadowSweep.h): one draw per chunk
+// of slices, nearest the light first; a texture barrier lets each chunk read
 // what the earlier ones wrote into the same texture. A point or spot
 // light's channel then takes its geometry term in one more draw.
-bool vtkIrradianceEstimator::vtkInternals::PiecewiseShadowPass(
-  vtkOpenGLRenderWindow* context, int light, int slicesPerChunk, bool skipEmpty, bool layered)
+bool vtkIrradianceEstimator::vtkInternals::PiecewiseShadowPass(vtkOpenGLRenderWindow* context,
+  int light, const std::vector<mmv::ShadowSweep>& sweeps, bool skipEmpty, bool layered)
 {
   const mmv::LightSource& source = this->Lights[light];
   const bool point = source.Kind != mmv::DirectionalLight;
-  const std::vector<mmv::ShadowSweep> sweeps =
-    this->LightSweeps(light, mmv::PiecewiseShadowRays, slicesPerChunk);
   const bool pyramids = !sweeps.empty() && sweeps[0].Pyramid;
   VoxelPrograms& pass =
     pyramids ? this->PyramidSweepQuad : (point ? this->PointSweepQuad : this->PiecewiseQuad);
@@ -293,7 +280,11 @@ bool vtkIrradianceEstimator::vtkInternals::PiecewiseShadowPass(
   const int stride = source.GridStride;
   int d[3];
   this->LightGridDimensions(stride, d);
-  const glm::dvec3 toLightIndex = this->SweepDirection(light, mmv::PiecewiseShadowRays);
+  // The boxes follow a directional light's parallel rays, or a point or spot
+  // light's converging on its position.
+  const glm::dmat3 toIndex = this->LightGridPhysicalToIndex(stride);
+  const glm::dvec3 toLightIndex = toIndex * source.ToLight;
+  const glm::dvec3 lightIndex = toIndex * (source.Position - this->Grid.Origin);
   // Each chunk draws what the region's voxels depend on (its whole slab
   // for the whole grid).
   const mmv::IndexBox estimated = stride > 1
@@ -304,8 +295,6 @@ bool vtkIrradianceEstimator::vtkInternals::PiecewiseShadowPass(
   {
     nonEmpty = [this, stride](const mmv::IndexBox& box) { return this->OccupiedBox(box, stride); };
   }
-  const glm::dvec3 lightIndex =
-    this->LightGridPhysicalToIndex(stride) * (source.Position - this->Grid.Origin);
   glm::vec3 toLight(source.ToLight);
   const int channel = light % LightsPerTexture;
   vtkTextureObject* target = this->LightGridTarget(stride);
@@ -346,8 +335,14 @@ bool vtkIrradianceEstimator::vtkInternals::PiecewiseShadowPass(
       int first, last, plane;
       sweep.GetChunk(chunk, first, last, plane);
       this->EstimatedVoxels += box.GetNumberOfVoxels();
+      int range[4] = { 0, -1, 0, -1 }; // the first chunk reads no slice
+      if (plane >= 0)
+      {
+        mmv::SliceReadRange(sweep, plane, d, range);
+      }
       program->SetUniformi("sweepPlane", plane);
       program->SetUniformi("readSlice", sweep.GetReadSlice(chunk));
+      program->SetUniform1iv("sliceRange", 4, range);
       // The earlier chunks' writes become visible to this draw's fetches.
       // (A compute dispatch ends with a memory barrier instead.)
       if (!this->Compute)

@@ -25,6 +25,10 @@ uniform vec3 toLight;            // unit, world space
 uniform int sweepAxis;
 uniform int sweepPlane;          // -1: the first chunk, rays run to the boundary
 uniform int readSlice;           // the slice the next chunk reads (-1: none)
+// The part of sweepPlane the rays may read, {lo, hi} along in-slice axes
+// (sweepAxis + 1) % 3 and (sweepAxis + 2) % 3 (mmv::SliceReadRange): the
+// whole slice, or a pyramid's part of it; lo > hi: none, rays run on.
+uniform int sliceRange[4];
 uniform bool computeEmptyVoxels; // on: every voxel (to measure what skipping saves)
 #ifdef MMV_PYRAMID_SWEEP
 // A point light inside the grid: this draw computes only its pyramid on the
@@ -63,48 +67,11 @@ bool mmvInSweptPyramid(vec3 voxel)
   return along >= abs(d[(sweepAxis + 1) % 3]) && along >= abs(d[(sweepAxis + 2) % 3]) &&
     (d[sweepAxis] >= 0.0) == !sweepTowardPositive;
 }
-
-// mmv::PyramidSliceRange: the in-slice indices along axis e of slice `plane`
-// that the pyramid's rays may read (lo > hi: none), compared as
-// mmvInSweptPyramid compares them.
-bool mmvWithinReach(int i, float at, float reach)
-{
-  return abs(float(i) - at) <= reach;
-}
-
-void mmvPyramidSliceRange(int plane, int e, out int lo, out int hi)
-{
-  float reach = abs(float(plane) - pyramidLight[sweepAxis]);
-  float at = pyramidLight[e];
-  int n = targetDims[e];
-  lo = max(0, int(ceil(at - reach)));
-  hi = min(n - 1, int(floor(at + reach)));
-  lo = lo > 0 && mmvWithinReach(lo - 1, at, reach) ? lo - 1
-    : (lo < n && !mmvWithinReach(lo, at, reach) ? lo + 1 : lo);
-  hi = hi < n - 1 && mmvWithinReach(hi + 1, at, reach) ? hi + 1
-    : (hi >= 0 && !mmvWithinReach(hi, at, reach) ? hi - 1 : hi);
-}
-
-// mmv::PyramidReads: the pyramid's part of slice `plane` holds a voxel.
-bool mmvPyramidReads(int plane)
-{
-  for (int k = 1; k < 3; ++k)
-  {
-    int lo;
-    int hi;
-    mmvPyramidSliceRange(plane, (sweepAxis + k) % 3, lo, hi);
-    if (lo > hi)
-    {
-      return false;
-    }
-  }
-  return true;
-}
 #endif
 
 // Bilinear transmittance in light grid slice `plane` at the in-slice
-// coordinates of q (light grid index), clamped to the slice, or to the
-// pyramid's part of it (texelFetch: no filtering reaches another slice).
+// coordinates of q (light grid index), clamped to sliceRange (texelFetch: no
+// filtering reaches another slice).
 float mmvSampleSlice(int axis, int plane, vec3 q)
 {
   int b = (axis + 1) % 3;
@@ -117,23 +84,14 @@ float mmvSampleSlice(int axis, int plane, vec3 q)
   for (int k = 0; k < 2; ++k)
   {
     int a = k == 0 ? b : c;
-    int lo = 0;
-    int hi = targetDims[a] - 1;
-#ifdef MMV_PYRAMID_SWEEP
-    mmvPyramidSliceRange(plane, a, lo, hi);
-#endif
+    int lo = sliceRange[2 * k];
+    int hi = sliceRange[2 * k + 1];
     float x = clamp(q[a], float(lo), float(hi));
     i0[a] = min(int(x), max(hi - 1, lo));
     f[a] = hi > lo ? x - float(i0[a]) : 0.0;
-    if (k == 0)
-    {
-      db[b] = hi > lo ? 1 : 0;
-    }
-    else
-    {
-      dc[c] = hi > lo ? 1 : 0;
-    }
   }
+  db[b] = sliceRange[1] > sliceRange[0] ? 1 : 0;
+  dc[c] = sliceRange[3] > sliceRange[2] ? 1 : 0;
   float v00 = texelFetch(transmittance, i0, 0)[channel];
   float v10 = texelFetch(transmittance, i0 + db, 0)[channel];
   float v01 = texelFetch(transmittance, i0 + dc, 0)[channel];
@@ -186,12 +144,8 @@ void mmvVoxelMain()
   float far = 1.0;
   float distance;
   float plane = sweepPlane < 0 ? -1.0 : float(sweepPlane) * targetToIndex[sweepAxis];
-  bool reaches =
-    mmvReachesSweepPlane(start[sweepAxis], indexDir[sweepAxis], plane, exitDistance, distance);
-#ifdef MMV_PYRAMID_SWEEP
-  reaches = reaches && mmvPyramidReads(sweepPlane);
-#endif
-  if (reaches)
+  if (sliceRange[0] <= sliceRange[1] && sliceRange[2] <= sliceRange[3] &&
+    mmvReachesSweepPlane(start[sweepAxis], indexDir[sweepAxis], plane, exitDistance, distance))
   {
     exitDistance = distance;
     far = mmvSampleSlice(sweepAxis, sweepPlane, (start + distance * indexDir) / targetToIndex);

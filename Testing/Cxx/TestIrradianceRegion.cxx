@@ -195,7 +195,7 @@ namespace
 // pyramid, within its sweep's slices; every region voxel is computed; and
 // every computed voxel's ray that reaches its plane inside the grid reads
 // only texels an earlier chunk of the same sweep computed (its bilinear pair
-// in the previous slice, clamped to PyramidSliceRange, as
+// in the previous slice, clamped to SliceReadRange, as
 // Shaders/mmvPiecewiseShadowFS.glsl reads them).
 void CheckInsideLightSweeps(
   const int dims[3], const glm::dvec3& light, int slicesPerChunk, const mmv::IndexBox& region)
@@ -259,23 +259,25 @@ void CheckInsideLightSweeps(
             {
               inside = inside && q[e] >= -1e-9 && q[e] <= dims[e] - 1 + 1e-9;
             }
-            if (!inside || !mmv::PyramidReads(sweep, plane, dims))
+            int range[4];
+            if (!inside || !mmv::SliceReadRange(sweep, plane, dims, range))
             {
               continue; // the ray leaves the grid first, or runs on to the light
             }
-            int lo[3], hi[3], i0[3], i1[3];
-            for (int e = 0; e < 3; ++e)
+            int i0[3], i1[3];
+            for (int k = 0; k < 3; ++k)
             {
-              if (e == a)
+              const int e = (a + k) % 3;
+              if (k == 0)
               {
                 i0[e] = i1[e] = plane;
                 continue;
               }
-              mmv::PyramidSliceRange(sweep, plane, e, dims[e], lo[e], hi[e]);
-              ASSERT_LE(lo[e], hi[e]);
-              const double x = std::min(std::max(q[e], double(lo[e])), double(hi[e]));
-              i0[e] = std::min(static_cast<int>(x), std::max(hi[e] - 1, lo[e]));
-              i1[e] = hi[e] > lo[e] ? i0[e] + 1 : i0[e];
+              const int lo = range[2 * (k - 1)];
+              const int hi = range[2 * (k - 1) + 1];
+              const double x = std::min(std::max(q[e], double(lo)), double(hi));
+              i0[e] = std::min(static_cast<int>(x), std::max(hi - 1, lo));
+              i1[e] = hi > lo ? i0[e] + 1 : i0[e];
             }
             for (int k = i0[2]; k <= i1[2]; ++k)
             {
