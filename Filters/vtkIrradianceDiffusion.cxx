@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <mutex>
 #include <vector>
 
 namespace
@@ -484,18 +485,23 @@ double ChebyshevWeight(int k, double rho)
   return omega;
 }
 
-void DiffusionBlockTexels(const int dims[3], const double spacing[3], const float* strength,
+double DiffusionBlockTexels(const int dims[3], const double spacing[3], const float* strength,
   const float* capacity, std::vector<float>& facesXY, std::vector<float>& facesZ,
   std::vector<float>& exchanges)
 {
   const vtkIdType stride[3] = { 1, dims[0], static_cast<vtkIdType>(dims[0]) * dims[1] };
   const vtkIdType count = stride[2] * dims[2];
-  facesXY.assign(4 * count, 0.0f);
-  facesZ.assign(4 * count, 0.0f);
-  exchanges.assign(count, 0.0f);
+  // Every texel is written below: vectors kept from the last plan are
+  // reused without a fill.
+  facesXY.resize(4 * count);
+  facesZ.resize(4 * count);
+  exchanges.resize(count);
+  std::mutex maxRateMutex;
+  double maxRate = 0.0;
   mmv::For(0, count,
     [&](vtkIdType begin, vtkIdType end)
     {
+      double chunkMax = 0.0;
       for (vtkIdType v = begin; v < end; ++v)
       {
         const int index[3] = { static_cast<int>(v % dims[0]),
@@ -517,8 +523,20 @@ void DiffusionBlockTexels(const int dims[3], const double spacing[3], const floa
         facesZ[4 * v + 3] = strength[v] > 0.0f ? 1.0f : 0.0f;
         exchanges[v] =
           std::any_of(faces, faces + 6, [](float c) { return c > 0.0f; }) ? 1.0f : 0.0f;
+        // The row sum in DiffusionSystem::RowSum's order (toward + then -
+        // per axis), so the rate equals MaxDiffusionRate's bit for bit.
+        double sum = 0.0;
+        for (int a = 0; a < 3; ++a)
+        {
+          sum += faces[2 * a + 1];
+          sum += faces[2 * a];
+        }
+        chunkMax = std::max(chunkMax, sum / static_cast<double>(facesZ[4 * v + 2]));
       }
+      std::lock_guard<std::mutex> lock(maxRateMutex);
+      maxRate = std::max(maxRate, chunkMax);
     });
+  return maxRate;
 }
 
 DiffusionGrid PlanDiffusionGrid(
@@ -569,6 +587,32 @@ void RestrictToDiffusionGrid(const int dims[3], const DiffusionGrid& coarse, con
   }
   const int* cd = coarse.Dimensions;
   const int* f = coarse.Factor;
+  if (f[0] == 1 && f[1] == 1 && f[2] == 1)
+  {
+    // Every block is one voxel (a diffusion length of a few voxels): what
+    // the loop below gives, without its index arithmetic per voxel.
+    mmv::For(0, count,
+      [&](vtkIdType begin, vtkIdType end)
+      {
+        for (vtkIdType v = begin; v < end; ++v)
+        {
+          const bool scatters = strength[v] > 0.0f;
+          if (coarseStrength)
+          {
+            (*coarseStrength)[v] = scatters ? strength[v] : 0.0f;
+          }
+          if (coarseIrradiance && scatters)
+          {
+            (*coarseIrradiance)[v] = fine ? fine[v] : 0.0f;
+          }
+          if (coarseCapacity)
+          {
+            (*coarseCapacity)[v] = scatters ? 1.0f : 0.0f;
+          }
+        }
+      });
+    return;
+  }
   mmv::For(0, count,
     [&](vtkIdType begin, vtkIdType end)
     {

@@ -6,6 +6,8 @@
 #include "mmvDiffusionFS.h"
 #include "mmvDiffusionGridFS.h"
 
+#include <mutex>
+
 using namespace mmv::voxelpass;
 
 //------------------------------------------------------------------------------
@@ -61,11 +63,19 @@ std::vector<float> vtkIrradianceEstimator::vtkInternals::DiffusionStrengths(
   if (this->ClassesOnCPU)
   {
     strength.resize(this->Classes.size());
-    for (size_t v = 0; v < strength.size(); ++v)
-    {
-      strength[v] = std::max(0.0f, this->Classes[v]);
-      maxStrength = std::max(maxStrength, strength[v]);
-    }
+    std::mutex maxMutex;
+    mmv::For(0, static_cast<vtkIdType>(strength.size()),
+      [&](vtkIdType begin, vtkIdType end)
+      {
+        float chunkMax = 0.0f;
+        for (vtkIdType v = begin; v < end; ++v)
+        {
+          strength[v] = std::max(0.0f, this->Classes[v]);
+          chunkMax = std::max(chunkMax, strength[v]);
+        }
+        std::lock_guard<std::mutex> lock(maxMutex);
+        maxStrength = std::max(maxStrength, chunkMax);
+      });
   }
   return strength;
 }
@@ -132,14 +142,13 @@ void vtkIrradianceEstimator::vtkInternals::PlanDiffusionBlocks(DiffusionPlan& pl
     capacity.assign(grid.GetNumberOfVoxels(), 0.0f);
   }
   plan.FilledShare = mmv::FilledBlockShare(capacity.data(), grid.GetNumberOfVoxels());
-  plan.CoarseMaxRate = time > 0.0
-    ? mmv::MaxDiffusionRate(grid.Dimensions, grid.Spacing, coarseStrength.data(), capacity.data())
-    : 0.0;
   // Two RGBA texels per block (face coefficients, capacity, whether it
-  // scatters); and the box of the blocks that scatter, the only ones the
-  // sweeps change.
-  mmv::DiffusionBlockTexels(grid.Dimensions, grid.Spacing, coarseStrength.data(), capacity.data(),
-    plan.CoarseFaces[0], plan.CoarseFaces[1], plan.CoarseExchanges);
+  // scatters), the largest rate from the same faces; and the box of the
+  // blocks that scatter, the only ones the sweeps change.
+  const double maxRate =
+    mmv::DiffusionBlockTexels(grid.Dimensions, grid.Spacing, coarseStrength.data(), capacity.data(),
+      plan.CoarseFaces[0], plan.CoarseFaces[1], plan.CoarseExchanges);
+  plan.CoarseMaxRate = time > 0.0 ? maxRate : 0.0;
   plan.CoarseFacesChanged = true;
   plan.Planned = true;
   const int* cd = grid.Dimensions;

@@ -37,6 +37,8 @@ def main():
     p.add_argument("--data", required=True, help="a .vti with one point array")
     p.add_argument("--frames", type=int, default=6)
     p.add_argument("--preset", default="", help="a MaterialPreset, e.g. skin")
+    p.add_argument("--cache", action="store_true",
+                   help="with --series: ParaView's animation caching on, as the scene sets it")
     p.add_argument("--series", nargs="*", default=[],
                    help="further time steps of --data: each frame shows the next")
     args, _ = p.parse_known_args()
@@ -64,6 +66,9 @@ def main():
     for frame in range(args.frames):
         if args.series:
             view.ViewTime = times[(frame + 1) % len(times)]
+            if args.cache:
+                view.UseCache = 1
+                view.CacheKey = view.ViewTime
         else:
             camera.Azimuth(10.0)
         start = time.perf_counter()

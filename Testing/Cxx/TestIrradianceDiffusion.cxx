@@ -5,6 +5,7 @@
 #include "vtkIrradianceDiffusion.h"
 #include "vtkIrradianceGrid.h"
 #include "vtkMultiMaterialParameters.h"
+#include "vtkMultiMaterialThreads.h"
 
 #include "vtkSMPTools.h"
 
@@ -13,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <numeric>
 #include <random>
 #include <vector>
@@ -534,6 +536,54 @@ TEST(IrradianceResolution, ScreenRuleUsesQuarterOctaves)
   EXPECT_NE(r.Reason.find("user"), std::string::npos);
 }
 
+// A diffusion grid of one-voxel blocks (a diffusion length of a few voxels)
+// restricts to each voxel's own values: its strength where it scatters, its
+// irradiance there, capacity 1; zero where the strength is zero, negative or
+// not a number.
+TEST(IrradianceDiffusion, RestrictionOntoOneVoxelBlocksKeepsEachVoxel)
+{
+  const int dims[3] = { 7, 5, 4 };
+  mmv::DiffusionGrid blocks;
+  for (int a = 0; a < 3; ++a)
+  {
+    blocks.Factor[a] = 1;
+    blocks.Dimensions[a] = dims[a];
+    blocks.Spacing[a] = 1.5;
+  }
+  const vtkIdType n = 7 * 5 * 4;
+  std::mt19937 random(5);
+  std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
+  std::vector<float> strength(n), fine(n);
+  for (vtkIdType v = 0; v < n; ++v)
+  {
+    const float u = uniform(random);
+    strength[v] = u < 0.2f ? 0.0f
+      : u < 0.3f           ? -1.0f
+      : u < 0.35f          ? std::numeric_limits<float>::quiet_NaN()
+                           : 10.0f * uniform(random);
+    fine[v] = uniform(random);
+  }
+  const float* const irradiances[2] = { fine.data(), nullptr };
+  for (const float* irradiance : irradiances)
+  {
+    std::vector<float> coarseStrength, coarseIrradiance, capacity;
+    mmv::RestrictToDiffusionGrid(
+      dims, blocks, strength.data(), irradiance, &coarseStrength, &coarseIrradiance, &capacity);
+    ASSERT_EQ(coarseStrength.size(), static_cast<size_t>(n));
+    int scattering = 0;
+    for (vtkIdType v = 0; v < n; ++v)
+    {
+      const bool scatters = strength[v] > 0.0f;
+      scattering += scatters ? 1 : 0;
+      EXPECT_EQ(coarseStrength[v], scatters ? strength[v] : 0.0f) << "voxel " << v;
+      EXPECT_EQ(coarseIrradiance[v], scatters && irradiance ? fine[v] : 0.0f) << "voxel " << v;
+      EXPECT_EQ(capacity[v], scatters ? 1.0f : 0.0f) << "voxel " << v;
+    }
+    EXPECT_GT(scattering, 70);
+    EXPECT_LT(scattering, 120);
+  }
+}
+
 // Layers of scattering on blocks of 2: a layer that fills whole blocks counts
 // in full, a layer thinner than a block, or one that straddles two, not at
 // all; a mixture counts each voxel where it lies.
@@ -589,7 +639,8 @@ TEST(IrradianceDiffusion, BlockTexelsHoldEachFaceFromBothSides)
     strength[v] = capacity[v] > 0.0f ? 20.0f * uniform(random) * capacity[v] : 0.0f;
   }
   std::vector<float> xy, z, exchanges;
-  mmv::DiffusionBlockTexels(dims, spacing, strength.data(), capacity.data(), xy, z, exchanges);
+  const double texelsRate =
+    mmv::DiffusionBlockTexels(dims, spacing, strength.data(), capacity.data(), xy, z, exchanges);
   ASSERT_EQ(xy.size(), static_cast<size_t>(4 * n));
   ASSERT_EQ(z.size(), static_cast<size_t>(4 * n));
   ASSERT_EQ(exchanges.size(), static_cast<size_t>(n));
@@ -633,6 +684,29 @@ TEST(IrradianceDiffusion, BlockTexelsHoldEachFaceFromBothSides)
   EXPECT_GT(blocked, 50);
   EXPECT_NEAR(mmv::MaxDiffusionRate(dims, spacing, strength.data(), capacity.data()), maxRate,
     1e-6 * maxRate);
+  // The rate the texels return is the operator's, bit for bit.
+  EXPECT_EQ(texelsRate, mmv::MaxDiffusionRate(dims, spacing, strength.data(), capacity.data()));
+  std::vector<float> none(n, 0.0f);
+  EXPECT_EQ(mmv::DiffusionBlockTexels(dims, spacing, none.data(), nullptr, xy, z, exchanges), 0.0);
+  // On a grid of many chunks, on every core: the chunks' maxima combine to it.
+  const int large[3] = { 61, 47, 33 };
+  const vtkIdType m = 61 * 47 * 33;
+  std::vector<float> largeStrength(m), largeCapacity(m);
+  for (vtkIdType v = 0; v < m; ++v)
+  {
+    largeCapacity[v] = uniform(random) < 0.25f ? 0.0f : 0.125f + 0.875f * uniform(random);
+    largeStrength[v] = largeCapacity[v] > 0.0f ? 20.0f * uniform(random) * largeCapacity[v] : 0.0f;
+  }
+  double largeRate = 0.0;
+  mmv::RunOnAllCores(
+    [&]()
+    {
+      largeRate = mmv::DiffusionBlockTexels(
+        large, spacing, largeStrength.data(), largeCapacity.data(), xy, z, exchanges);
+    });
+  EXPECT_GT(largeRate, 0.0);
+  EXPECT_EQ(
+    largeRate, mmv::MaxDiffusionRate(large, spacing, largeStrength.data(), largeCapacity.data()));
 }
 
 TEST(IrradianceDiffusion, CapacityConservesWeightedSumAndMatchesJacobi)
