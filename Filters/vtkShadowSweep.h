@@ -50,9 +50,31 @@ struct ShadowSweep
   bool Pyramid = false;
   glm::vec3 Light{ 0.0f }; // the light's index-space position, in float as the GPU has it
 
+  /**
+   * Slices of the first chunk: the chunks after it start at multiples of
+   * SlicesPerChunk in index order, wherever the sweep starts. A rasterizer
+   * shades a chunk along x or y as a strip of that many texels in every
+   * layer, in blocks aligned to the texture (llvmpipe: 4 x 4 texels); a strip
+   * that starts inside a block shades one block more.
+   */
+  int GetFirstChunkSlices() const
+  {
+    const int k = this->SlicesPerChunk;
+    const int lead =
+      this->TowardPositive ? (this->First + this->Slices - 1) % k + 1 : k - this->First % k;
+    return std::min(this->Slices, lead);
+  }
+
   int GetNumberOfChunks() const
   {
-    return (this->Slices + this->SlicesPerChunk - 1) / this->SlicesPerChunk;
+    const int rest = this->Slices - this->GetFirstChunkSlices();
+    return 1 + (rest + this->SlicesPerChunk - 1) / this->SlicesPerChunk;
+  }
+
+  /// Depth (slices from the light's side) of chunk `c`'s first slice.
+  int GetChunkDepth(int c) const
+  {
+    return c == 0 ? 0 : this->GetFirstChunkSlices() + (c - 1) * this->SlicesPerChunk;
   }
 
   /// The slice at `depth` slices from the light's side.
@@ -68,8 +90,8 @@ struct ShadowSweep
    */
   void GetChunk(int c, int& first, int& last, int& plane) const
   {
-    const int nearest = c * this->SlicesPerChunk;
-    const int farthest = std::min(this->Slices, nearest + this->SlicesPerChunk) - 1;
+    const int nearest = this->GetChunkDepth(c);
+    const int farthest = std::min(this->Slices, this->GetChunkDepth(c + 1)) - 1;
     first = std::min(this->SliceAtDepth(nearest), this->SliceAtDepth(farthest));
     last = std::max(this->SliceAtDepth(nearest), this->SliceAtDepth(farthest));
     plane = c == 0 ? -1 : this->SliceAtDepth(nearest - 1);
@@ -79,9 +101,8 @@ struct ShadowSweep
   /// its empty voxels are computed too, the chunk's other empty voxels not.
   int GetReadSlice(int c) const
   {
-    return c + 1 < this->GetNumberOfChunks()
-      ? this->SliceAtDepth((c + 1) * this->SlicesPerChunk - 1)
-      : -1;
+    return c + 1 < this->GetNumberOfChunks() ? this->SliceAtDepth(this->GetChunkDepth(c + 1) - 1)
+                                             : -1;
   }
 };
 

@@ -15,6 +15,7 @@
 #include <cmath>
 #include <random>
 #include <set>
+#include <string>
 #include <vector>
 
 namespace
@@ -384,6 +385,64 @@ TEST(IrradianceRegion, SweepBoxesOfAWholeGridAreItsSlabs)
     sweep.GetChunk(chunk, first, last, plane);
     const int slab[6] = { 0, 9, 0, 11, first, last };
     EXPECT_TRUE(std::equal(slab, slab + 6, boxes[chunk].Bounds)) << "chunk " << chunk;
+  }
+}
+
+// The chunks tile the swept slices once, nearest the light first, each
+// reading the slice just before it; every chunk but the first starts at a
+// multiple of K in index order (the rasterizer's blocks), in both
+// directions, from any first slice (a pyramid's) and for any K.
+TEST(IrradianceRegion, SweepChunksTileTheSlicesAndStartAtMultiplesOfK)
+{
+  for (const bool towardPositive : { true, false })
+  {
+    for (const int first : { 0, 3, 17 })
+    {
+      for (const int slices : { 1, 5, 16, 37, 119 })
+      {
+        for (const int k : { 1, 3, 4, 16 })
+        {
+          mmv::ShadowSweep sweep;
+          sweep.TowardPositive = towardPositive;
+          sweep.First = first;
+          sweep.Slices = slices;
+          sweep.SlicesPerChunk = k;
+          const std::string what = "toward +: " + std::to_string(towardPositive) + ", first " +
+            std::to_string(first) + ", " + std::to_string(slices) + " slices, K " +
+            std::to_string(k);
+          std::vector<int> covered(slices, 0);
+          int nearestPrevious = -1;
+          for (int chunk = 0; chunk < sweep.GetNumberOfChunks(); ++chunk)
+          {
+            int lo, hi, plane;
+            sweep.GetChunk(chunk, lo, hi, plane);
+            ASSERT_LE(lo, hi) << what;
+            EXPECT_LE(hi - lo + 1, k) << what;
+            for (int slice = lo; slice <= hi; ++slice)
+            {
+              ASSERT_GE(slice - first, 0) << what;
+              ASSERT_LT(slice - first, slices) << what;
+              ++covered[slice - first];
+            }
+            // The slice nearest the light, and the one its rays end on.
+            const int nearest = towardPositive ? hi : lo;
+            EXPECT_EQ(plane, chunk == 0 ? -1 : nearestPrevious) << what << ", chunk " << chunk;
+            EXPECT_EQ(plane, chunk == 0 ? -1 : nearest + (towardPositive ? 1 : -1)) << what;
+            if (chunk > 0)
+            {
+              // Its side toward the light's end of the grid lies on a multiple of K.
+              EXPECT_EQ((towardPositive ? hi + 1 : lo) % k, 0) << what << ", chunk " << chunk;
+            }
+            nearestPrevious = towardPositive ? lo : hi;
+            EXPECT_EQ(sweep.GetReadSlice(chunk),
+              chunk + 1 < sweep.GetNumberOfChunks() ? nearestPrevious : -1)
+              << what;
+          }
+          EXPECT_TRUE(std::all_of(covered.begin(), covered.end(), [](int c) { return c == 1; }))
+            << what;
+        }
+      }
+    }
   }
 }
 
