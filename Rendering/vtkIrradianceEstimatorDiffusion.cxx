@@ -130,24 +130,39 @@ void vtkIrradianceEstimator::vtkInternals::PlanDiffusionBlocks(DiffusionPlan& pl
   }
   std::vector<float> coarseStrength;
   std::vector<float> capacity;
-  if (this->ClassesOnCPU)
+  const float* blockStrength = nullptr;
+  const float* blockCapacity = nullptr;
+  if (this->ClassesOnCPU && grid.Factor[0] == 1 && grid.Factor[1] == 1 && grid.Factor[2] == 1)
   {
-    mmv::RestrictToDiffusionGrid(
-      this->Grid.Dimensions, grid, strength.data(), nullptr, &coarseStrength, nullptr, &capacity);
+    // Blocks of one voxel (a diffusion length of a few voxels) are the
+    // voxels: the restriction would copy the strengths (never negative) and
+    // give capacity 1 where they scatter, which the texels take as 1
+    // everywhere (none elsewhere); every scattering block is filled.
+    blockStrength = strength.data();
+    plan.FilledShare = maxStrength > 0.0f ? 1.0 : 0.0;
   }
   else
   {
-    // What the restriction of zero strength gives.
-    coarseStrength.assign(grid.GetNumberOfVoxels(), 0.0f);
-    capacity.assign(grid.GetNumberOfVoxels(), 0.0f);
+    if (this->ClassesOnCPU)
+    {
+      mmv::RestrictToDiffusionGrid(
+        this->Grid.Dimensions, grid, strength.data(), nullptr, &coarseStrength, nullptr, &capacity);
+    }
+    else
+    {
+      // What the restriction of zero strength gives.
+      coarseStrength.assign(grid.GetNumberOfVoxels(), 0.0f);
+      capacity.assign(grid.GetNumberOfVoxels(), 0.0f);
+    }
+    blockStrength = coarseStrength.data();
+    blockCapacity = capacity.data();
+    plan.FilledShare = mmv::FilledBlockShare(capacity.data(), grid.GetNumberOfVoxels());
   }
-  plan.FilledShare = mmv::FilledBlockShare(capacity.data(), grid.GetNumberOfVoxels());
   // Two RGBA texels per block (face coefficients, capacity, whether it
   // scatters), the largest rate from the same faces; and the box of the
   // blocks that scatter, the only ones the sweeps change.
-  const double maxRate =
-    mmv::DiffusionBlockTexels(grid.Dimensions, grid.Spacing, coarseStrength.data(), capacity.data(),
-      plan.CoarseFaces[0], plan.CoarseFaces[1], plan.CoarseExchanges);
+  const double maxRate = mmv::DiffusionBlockTexels(grid.Dimensions, grid.Spacing, blockStrength,
+    blockCapacity, plan.CoarseFaces[0], plan.CoarseFaces[1], plan.CoarseExchanges);
   plan.CoarseMaxRate = time > 0.0 ? maxRate : 0.0;
   plan.CoarseFacesChanged = true;
   plan.Planned = true;
@@ -158,9 +173,9 @@ void vtkIrradianceEstimator::vtkInternals::PlanDiffusionBlocks(DiffusionPlan& pl
     box[2 * a] = cd[a] - 1;
     box[2 * a + 1] = 0;
   }
-  for (size_t c = 0; c < coarseStrength.size(); ++c)
+  for (vtkIdType c = 0; c < grid.GetNumberOfVoxels(); ++c)
   {
-    if (coarseStrength[c] > 0.0f)
+    if (blockStrength[c] > 0.0f)
     {
       const int index[3] = { static_cast<int>(c % cd[0]), static_cast<int>((c / cd[0]) % cd[1]),
         static_cast<int>(c / (static_cast<size_t>(cd[0]) * cd[1])) };

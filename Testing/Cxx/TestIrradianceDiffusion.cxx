@@ -688,6 +688,19 @@ TEST(IrradianceDiffusion, BlockTexelsHoldEachFaceFromBothSides)
   EXPECT_EQ(texelsRate, mmv::MaxDiffusionRate(dims, spacing, strength.data(), capacity.data()));
   std::vector<float> none(n, 0.0f);
   EXPECT_EQ(mmv::DiffusionBlockTexels(dims, spacing, none.data(), nullptr, xy, z, exchanges), 0.0);
+  // Capacity 1 where a block scatters and 0 elsewhere (one-voxel blocks) is
+  // no capacity at all.
+  std::vector<float> scattering(n);
+  std::transform(strength.begin(), strength.end(), scattering.begin(),
+    [](float s) { return s > 0.0f ? 1.0f : 0.0f; });
+  std::vector<float> xyOnes, zOnes, exchangesOnes;
+  const double onesRate = mmv::DiffusionBlockTexels(
+    dims, spacing, strength.data(), scattering.data(), xyOnes, zOnes, exchangesOnes);
+  EXPECT_EQ(
+    onesRate, mmv::DiffusionBlockTexels(dims, spacing, strength.data(), nullptr, xy, z, exchanges));
+  EXPECT_EQ(xyOnes, xy);
+  EXPECT_EQ(zOnes, z);
+  EXPECT_EQ(exchangesOnes, exchanges);
   // On a grid of many chunks, on every core: the chunks' maxima combine to it.
   const int large[3] = { 61, 47, 33 };
   const vtkIdType m = 61 * 47 * 33;
