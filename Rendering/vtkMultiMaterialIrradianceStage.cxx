@@ -326,6 +326,7 @@ bool vtkMultiMaterialIrradianceStage::Update(
   this->HeldKept = stepBudget > 0 &&
     this->Steps.Store(window, stepKey(), this->Estimator, this->HeldLights, stepBudget);
   stages.Tables = this->TablesSeconds;
+  stages.Inputs = this->InputsSeconds;
   stages.Shadows = this->Estimator->GetLastEstimationSeconds();
   stages.Diffusion = this->Estimator->GetLastDiffusionSeconds();
   stages.Setup = this->Estimator->GetLastSetupSeconds();
@@ -472,8 +473,10 @@ bool vtkMultiMaterialIrradianceStage::ComputeOn(vtkIrradianceEstimator* pass,
   pass->SetExponentialDiffusion(this->In->Settings.ExponentialDiffusion);
   pass->SetLightDirectionTolerance(this->In->Settings.LightDirectionTolerance);
   pass->SetCutaway(cutaway);
+  const Clock::time_point inputsStart = Clock::now();
   pass->SetInputs(grid, prefiltered, n, shadow->GetShadowOpacityTable(), shadowStep,
     opacityTable.data(), scatteringTable.data(), sources, version);
+  this->InputsSeconds = SecondsSince(inputsStart);
   // Under MPI the tint marches the global pre-filtered values, as the grey
   // shadows do, so tinted shadows cross the ranks too.
   pass->SetTintTable(shadow->GetShadowTintTable()); // nullptr: grey, no tints
@@ -525,9 +528,9 @@ std::string mmv::IrradianceStageSeconds::Report() const
 {
   char text[256];
   std::snprintf(text, sizeof(text),
-    "probe %.3f s, prefilter %.3f s, shadow table %.3f s, setup %.3f s, shadows %.3f s, "
-    "diffusion %.3f s, write %.3f s, pass %.3f s, total %.3f s",
-    this->Probe, this->Prefilter, this->Tables, this->Setup, this->Shadows, this->Diffusion,
-    this->Write, this->Pass, this->Total);
+    "probe %.3f s, prefilter %.3f s, shadow table %.3f s, inputs %.3f s, setup %.3f s, "
+    "shadows %.3f s, diffusion %.3f s, write %.3f s, pass %.3f s, total %.3f s",
+    this->Probe, this->Prefilter, this->Tables, this->Inputs, this->Setup, this->Shadows,
+    this->Diffusion, this->Write, this->Pass, this->Total);
   return text;
 }

@@ -57,6 +57,7 @@ struct VTKMULTIMATERIALVOLUME_EXPORT IrradianceStageSeconds
   double Probe = 0.0;
   double Prefilter = 0.0;
   double Tables = 0.0;    // the shadow rays' pre-integrated table
+  double Inputs = 0.0;    // the estimator's inputs: classes on the CPU, the diffusion plan
   double Shadows = 0.0;   // the transmittance toward every updated light
   double Diffusion = 0.0; // multiple scattering
   double Setup = 0.0;     // the estimator's uploads and texture allocations
@@ -182,6 +183,7 @@ private:
   std::string ResolutionReason;
   mmv::IrradianceStageSeconds Stages;
   double TablesSeconds = 0.0;
+  double InputsSeconds = 0.0;
 
   // The current Update()'s arguments.
   const mmv::IrradianceStageInputs* In = nullptr;

@@ -319,7 +319,8 @@ public:
   /// The irradiance (and diffusion) resolution in use, and why it was chosen.
   const char* GetIrradianceResolutionReason();
   /// Seconds of each stage of the last irradiance update: the error probe,
-  /// the pre-filter, the shadow table, the shadows, the diffusion, the estimator
+  /// the pre-filter, the shadow table, the estimator's inputs (classes on the
+  /// CPU and the diffusion plan), the shadows, the diffusion, the estimator
   /// and the whole update.
   std::string GetLastIrradianceStages();
   /// Wall-clock seconds of each stage of the last render's preparation on

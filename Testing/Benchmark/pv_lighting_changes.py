@@ -78,8 +78,8 @@ TARGETS = {
 }
 # Sequences whose target is a ratio to the method's own still frame.
 OWN_STILL = ("colour", "series-2")
-STAGES = ["probe", "prefilter", "shadow table", "setup", "shadows", "diffusion", "write", "pass",
-          "total"]
+STAGES = ["probe", "prefilter", "shadow table", "inputs", "setup", "shadows", "diffusion", "write",
+          "pass", "total"]
 INFO = ["IrradianceUpdateCount", "IrradianceProbeCount", "IrradianceCacheHitCount",
         "LastIrradianceStages", "IrradianceResolutionInfo", "SkyUpdateCount", "LastSkySeconds"]
 
@@ -374,15 +374,15 @@ def main():
     log("%-6s %-8s %-12s %9s %8s %8s %6s %4s %4s %4s  %s" % (
         "volume", "sequence", "method", "median s", "x Volume", "x still", "target", "upd", "prb",
         "cpy",
-        "stages (median s): probe/prefilter/table/setup/shadows/diffusion/write/total"))
+        "stages (median s): probe/prefilter/table/inputs/setup/shadows/diffusion/write/total"))
     for r in rows:
         log("%-6s %-8s %-12s %9s %8s %8s %6s %4s %4s %4s  %s" % (
             r["volume"], r["sequence"], r["method"], r["median_s"], r["ratio_to_pv_volume"],
             r["ratio_to_own_still"], (r["target"] + (" " + r["met"] if r["met"] else "")),
             r["irradiance_updates"], r["probes"], r["irradiance_copies"],
             "/".join(r["%s_s" % s.replace(" ", "_")] or "-" for s in
-                     ["probe", "prefilter", "shadow table", "setup", "shadows", "diffusion",
-                      "write", "total"]) +
+                     ["probe", "prefilter", "shadow table", "inputs", "setup", "shadows",
+                      "diffusion", "write", "total"]) +
             (" sky %s s x%d" % (r["sky_s"], r["sky_updates"]) if r["sky_updates"] else "")))
     log("wrote %s" % path)
     if checks:

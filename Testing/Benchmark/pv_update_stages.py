@@ -28,7 +28,7 @@ from paraview import simple  # noqa: E402
 
 import pv_lightkit_orbit as orbit  # noqa: E402
 
-STAGES = ("prefilter", "setup", "shadows", "diffusion", "write", "total")
+STAGES = ("prefilter", "inputs", "setup", "shadows", "diffusion", "write", "total")
 
 
 def main():

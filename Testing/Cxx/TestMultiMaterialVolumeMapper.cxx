@@ -33,6 +33,8 @@
 #include <cstdio>
 #include <functional>
 #include <initializer_list>
+#include <map>
+#include <sstream>
 #include <string>
 #include <unistd.h>
 #include <utility>
@@ -1213,6 +1215,55 @@ TEST(MultiMaterialVolumeMapper, AnOpacityEditEveryFrameKeepsTheMemoryFlat)
   std::printf("resident growth over 90 updates: %.2f MB\n", grown / 1048576.0);
   EXPECT_GT(settled, 0.0);
   EXPECT_LT(grown, 16.0 * 1048576.0) << grown / 1048576.0 << " MB";
+}
+
+TEST(MultiMaterialVolumeMapper, StageReportNamesEveryStageInsideTheWholeUpdate)
+{
+  // An opacity edit with multiple scattering runs every stage of an update
+  // but the probe and the pre-filter; each is reported, none is negative, and
+  // the stages that run one after another fit in the whole update.
+  ProbeScene scene(ThinShell, 0.8);
+  scene.Materials->AddNode(1.0, 0.1, 0.9, 0.0, 1.0, 1.0, 8.0, 0.0);
+  scene.Mapper->MultipleScatteringOn();
+  scene.Window->Render();
+  scene.Opacity->AddPoint(1.0, 0.6);
+  scene.Window->Render();
+  std::map<std::string, double> seconds;
+  std::istringstream report(scene.Mapper->GetLastIrradianceStages());
+  std::string part;
+  while (std::getline(report, part, ','))
+  {
+    // " name words 0.012 s"
+    std::istringstream words(part);
+    std::string word, name;
+    std::vector<std::string> all;
+    while (words >> word)
+    {
+      all.push_back(word);
+    }
+    ASSERT_GE(all.size(), 3u) << part;
+    EXPECT_EQ(all.back(), "s") << part;
+    for (size_t w = 0; w + 2 < all.size(); ++w)
+    {
+      name += (w ? " " : "") + all[w];
+    }
+    seconds[name] = std::stod(all[all.size() - 2]);
+  }
+  const char* const names[] = { "probe", "prefilter", "shadow table", "inputs", "setup", "shadows",
+    "diffusion", "write", "pass", "total" };
+  for (const char* name : names)
+  {
+    ASSERT_EQ(seconds.count(name), 1u) << name;
+    EXPECT_GE(seconds[name], 0.0) << name;
+  }
+  EXPECT_EQ(seconds.size(), 10u);
+  EXPECT_GT(seconds["shadows"], 0.0);
+  EXPECT_GT(seconds["diffusion"], 0.0);
+  // Reported to the millisecond: each rounding may add half of one.
+  EXPECT_LE(seconds["setup"] + seconds["shadows"] + seconds["diffusion"] + seconds["write"],
+    seconds["pass"] + 0.002);
+  EXPECT_LE(seconds["prefilter"] + seconds["shadow table"] + seconds["inputs"] + seconds["pass"],
+    seconds["total"] + 0.002);
 }
 
 TEST(MultiMaterialVolumeMapper, KeptScratchGivesTheImagesOfFreshScratch)
