@@ -325,13 +325,7 @@ bool vtkMultiMaterialIrradianceStage::Update(
   this->Cache->Store(volumeKey, this->HeldLights, dims);
   this->HeldKept = stepBudget > 0 &&
     this->Steps.Store(window, stepKey(), this->Estimator, this->HeldLights, stepBudget);
-  stages.Tables = this->TablesSeconds;
-  stages.Inputs = this->InputsSeconds;
-  stages.Shadows = this->Estimator->GetLastEstimationSeconds();
-  stages.Diffusion = this->Estimator->GetLastDiffusionSeconds();
-  stages.Setup = this->Estimator->GetLastSetupSeconds();
-  stages.Write = this->Estimator->GetLastWriteSeconds();
-  stages.Pass = this->Estimator->GetLastRenderSeconds();
+  this->AddEstimatorStages(stages);
   stages.Total = SecondsSince(start);
   this->Stages = stages;
   if (this->In->Reporter->GetProgress() < 1.0)
@@ -487,6 +481,17 @@ bool vtkMultiMaterialIrradianceStage::ComputeOn(vtkIrradianceEstimator* pass,
     return false;
   }
   return true;
+}
+
+void vtkMultiMaterialIrradianceStage::AddEstimatorStages(mmv::IrradianceStageSeconds& stages) const
+{
+  stages.Tables = this->TablesSeconds;
+  stages.Inputs = this->InputsSeconds;
+  stages.Shadows = this->Estimator->GetLastEstimationSeconds();
+  stages.Diffusion = this->Estimator->GetLastDiffusionSeconds();
+  stages.Setup = this->Estimator->GetLastSetupSeconds();
+  stages.Write = this->Estimator->GetLastWriteSeconds();
+  stages.Pass = this->Estimator->GetLastRenderSeconds();
 }
 
 void vtkMultiMaterialIrradianceStage::Record(const mmv::IrradianceResolution& resolution)

@@ -166,6 +166,8 @@ private:
     const mmv::Cutaway& cutaway, const mmv::IrradianceGrid& grid,
     const std::vector<float>& prefiltered, unsigned long version,
     const std::vector<mmv::LightSource>& sources, bool scattering);
+  /// The last ComputeOn()'s stages: its tables, inputs and the estimator's own.
+  void AddEstimatorStages(mmv::IrradianceStageSeconds& stages) const;
   void Record(const mmv::IrradianceResolution& resolution);
 
   // What the irradiance volume was computed from, and the estimator's inputs
