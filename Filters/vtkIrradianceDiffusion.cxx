@@ -587,32 +587,6 @@ void RestrictToDiffusionGrid(const int dims[3], const DiffusionGrid& coarse, con
   }
   const int* cd = coarse.Dimensions;
   const int* f = coarse.Factor;
-  if (f[0] == 1 && f[1] == 1 && f[2] == 1)
-  {
-    // Every block is one voxel (a diffusion length of a few voxels): what
-    // the loop below gives, without its index arithmetic per voxel.
-    mmv::For(0, count,
-      [&](vtkIdType begin, vtkIdType end)
-      {
-        for (vtkIdType v = begin; v < end; ++v)
-        {
-          const bool scatters = strength[v] > 0.0f;
-          if (coarseStrength)
-          {
-            (*coarseStrength)[v] = scatters ? strength[v] : 0.0f;
-          }
-          if (coarseIrradiance && scatters)
-          {
-            (*coarseIrradiance)[v] = fine ? fine[v] : 0.0f;
-          }
-          if (coarseCapacity)
-          {
-            (*coarseCapacity)[v] = scatters ? 1.0f : 0.0f;
-          }
-        }
-      });
-    return;
-  }
   mmv::For(0, count,
     [&](vtkIdType begin, vtkIdType end)
     {

@@ -118,7 +118,7 @@ void mmvVoxelMain()
 #ifdef MMV_PYRAMID_SWEEP
   if (!mmvInSweptPyramid(vec3(voxel)))
   {
-    return; // another pyramid's: it keeps its value
+    mmvLeaveUnwritten(); // another pyramid's: it keeps its value
   }
 #endif
   float lightDistance;
