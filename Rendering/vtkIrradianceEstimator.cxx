@@ -684,8 +684,9 @@ bool vtkIrradianceEstimator::ReadBackClasses(
 void vtkIrradianceEstimator::ClassifyOnCPU(std::vector<float>& classes) const
 {
   const vtkInternals& internals = *this->Internals;
+  std::vector<unsigned char> nonEmpty;
   vtkInternals::ClassifyValues(internals.Scalars, internals.Grid.Dimensions, internals.OpacityTable,
-    internals.ScatteringTable, classes);
+    internals.ScatteringTable, classes, nonEmpty);
 }
 
 bool vtkIrradianceEstimator::GetClassifiedOnCPU() const

@@ -22,10 +22,10 @@ using namespace mmv::voxelpass;
 //------------------------------------------------------------------------------
 vtkIdType vtkIrradianceEstimator::vtkInternals::ClassifyValues(const std::vector<float>& scalars,
   const int dims[3], const std::vector<float>& opacity, const std::vector<float>& scattering,
-  std::vector<float>& classes)
+  std::vector<float>& classes, std::vector<unsigned char>& nonEmptyVoxel)
 {
   classes.resize(scalars.size());
-  std::vector<unsigned char> nonEmptyVoxel(scalars.size());
+  nonEmptyVoxel.resize(scalars.size());
   // On all cores: the whole grid at every opacity edit that needs it.
   std::atomic<vtkIdType> nonEmptyVoxels(0);
   mmv::For(0, static_cast<vtkIdType>(scalars.size()),
@@ -70,10 +70,11 @@ vtkIdType vtkIrradianceEstimator::vtkInternals::ClassifyValues(const std::vector
 
 void vtkIrradianceEstimator::vtkInternals::Classify()
 {
-  this->NonEmptyVoxels = ClassifyValues(
-    this->Scalars, this->Grid.Dimensions, this->OpacityTable, this->ScatteringTable, this->Classes);
+  this->NonEmptyVoxels = ClassifyValues(this->Scalars, this->Grid.Dimensions, this->OpacityTable,
+    this->ScatteringTable, this->Classes, this->NonEmptyScratch);
   this->ClassesOnCPU = true;
-  this->BuildValueHistogram(); // for ClassesHold at the next edit
+  std::vector<float>().swap(this->UploadedClasses); // Classes serve the uploads now
+  this->BuildValueHistogram();                      // for ClassesHold at the next edit
 }
 
 bool vtkIrradianceEstimator::vtkInternals::NeedsCPUClasses(
@@ -220,13 +221,12 @@ bool vtkIrradianceEstimator::vtkInternals::ClassifyOnGPU(
 // classification (Classifications already counts this one).
 bool vtkIrradianceEstimator::vtkInternals::CopyClasses(vtkOpenGLRenderWindow* context)
 {
-  std::vector<float> made;
   if (!this->ClassesOnCPU)
   {
-    ClassifyValues(
-      this->Scalars, this->Grid.Dimensions, this->OpacityTable, this->ScatteringTable, made);
+    ClassifyValues(this->Scalars, this->Grid.Dimensions, this->OpacityTable, this->ScatteringTable,
+      this->UploadedClasses, this->NonEmptyScratch);
   }
-  const std::vector<float>& classes = this->ClassesOnCPU ? this->Classes : made;
+  const std::vector<float>& classes = this->ClassesOnCPU ? this->Classes : this->UploadedClasses;
   const int* d = this->Grid.Dimensions;
   this->ClassTexture->Activate();
   glTexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, 0, d[0], d[1], d[2], GL_RED, GL_FLOAT, classes.data());

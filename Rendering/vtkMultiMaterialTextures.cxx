@@ -3,6 +3,7 @@
 #include "vtkTextureCopy.h"
 
 #include "vtkDataArray.h"
+#include "vtkIrradianceComputeProgram.h"
 #include "vtkMaterialTransferFunction.h"
 #include "vtkMultiMaterialParameters.h"
 #include "vtkObjectFactory.h"
@@ -236,16 +237,23 @@ bool vtkMultiMaterialTextures::UploadGradientSlabs(
   const vtkIdType sliceSize = static_cast<vtkIdType>(dims[0]) * dims[1];
   const int slab =
     static_cast<int>(std::max<vtkIdType>(1, (1 << 20) / std::max<vtkIdType>(1, sliceSize)));
-  // Each slab's gradients are computed straight into a pixel buffer that
-  // the driver copies into the texture on its own (a GPU's DMA): from
+  // On a GPU each slab's gradients are computed straight into a pixel
+  // buffer that the driver copies into the texture on its own (DMA): from
   // client memory the copy waits on the CPU, about as long as computing
   // them on 16 cores. Orphaned per slab, so a slab never waits for the
-  // last one's copy; client memory where a buffer cannot be mapped.
-  if (!this->SlabBuffer)
+  // last one's copy. A software renderer copies on the CPU either way, and
+  // each orphaned buffer is fresh memory (page faults, about 4 ms per MB on
+  // llvmpipe): there, and where a buffer cannot be mapped, the slabs go
+  // through client memory that is kept.
+  const bool staged = !vtkIrradianceComputeProgram::IsSoftwareRenderer();
+  if (staged && !this->SlabBuffer)
   {
     this->SlabBuffer = vtkSmartPointer<vtkPixelBufferObject>::New();
   }
-  this->SlabBuffer->SetContext(this->Gradient->GetContext());
+  if (staged)
+  {
+    this->SlabBuffer->SetContext(this->Gradient->GetContext());
+  }
   this->Gradient->Activate();
   GLint alignment = 4;
   glGetIntegerv(GL_UNPACK_ALIGNMENT, &alignment);
@@ -254,8 +262,9 @@ bool vtkMultiMaterialTextures::UploadGradientSlabs(
   {
     const int last = std::min(dims[2] - 1, first + slab - 1);
     const size_t bytes = 3 * sizeof(unsigned short) * sliceSize * (last - first + 1);
-    auto* mapped = static_cast<unsigned short*>(
-      this->SlabBuffer->MapUnpackedBuffer(static_cast<unsigned int>(bytes)));
+    auto* mapped = staged ? static_cast<unsigned short*>(
+                              this->SlabBuffer->MapUnpackedBuffer(static_cast<unsigned int>(bytes)))
+                          : nullptr;
     if (mapped)
     {
       mmv::ComputeHalfValueGradients(

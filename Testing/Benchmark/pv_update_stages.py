@@ -28,7 +28,7 @@ from paraview import simple  # noqa: E402
 
 import pv_lightkit_orbit as orbit  # noqa: E402
 
-STAGES = ("prefilter", "inputs", "setup", "shadows", "diffusion", "write", "total")
+STAGES = ("probe", "prefilter", "shadow table", "inputs", "setup", "shadows", "diffusion", "write", "pass", "total")
 
 
 def main():
