@@ -323,8 +323,10 @@ bool vtkMultiMaterialIrradianceStage::Update(
   }
   this->HeldLights = this->Estimator->GetComputedLights();
   this->Cache->Store(volumeKey, this->HeldLights, dims);
+  const Clock::time_point keepStart = Clock::now();
   this->HeldKept = stepBudget > 0 &&
     this->Steps.Store(window, stepKey(), this->Estimator, this->HeldLights, stepBudget);
+  stages.Keep = SecondsSince(keepStart);
   this->AddEstimatorStages(stages);
   stages.Total = SecondsSince(start);
   this->Stages = stages;
@@ -534,8 +536,8 @@ std::string mmv::IrradianceStageSeconds::Report() const
   char text[256];
   std::snprintf(text, sizeof(text),
     "probe %.3f s, prefilter %.3f s, shadow table %.3f s, inputs %.3f s, setup %.3f s, "
-    "shadows %.3f s, diffusion %.3f s, write %.3f s, pass %.3f s, total %.3f s",
+    "shadows %.3f s, diffusion %.3f s, write %.3f s, keep %.3f s, pass %.3f s, total %.3f s",
     this->Probe, this->Prefilter, this->Tables, this->Inputs, this->Setup, this->Shadows,
-    this->Diffusion, this->Write, this->Pass, this->Total);
+    this->Diffusion, this->Write, this->Keep, this->Pass, this->Total);
   return text;
 }

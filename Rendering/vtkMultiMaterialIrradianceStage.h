@@ -62,6 +62,7 @@ struct VTKMULTIMATERIALVOLUME_EXPORT IrradianceStageSeconds
   double Diffusion = 0.0; // multiple scattering
   double Setup = 0.0;     // the estimator's uploads and texture allocations
   double Write = 0.0;     // the final write into the irradiance textures
+  double Keep = 0.0;      // the copy kept for a series' later loops (animation caching)
   double Pass = 0.0;      // the whole GPU pass (shadows, diffusion, final write)
   double Total = 0.0;     // the whole update
   /// "probe 0.000 s, prefilter 0.012 s, ...": the information property's text.

@@ -79,7 +79,7 @@ TARGETS = {
 # Sequences whose target is a ratio to the method's own still frame.
 OWN_STILL = ("colour", "series-2")
 STAGES = ["probe", "prefilter", "shadow table", "inputs", "setup", "shadows", "diffusion", "write",
-          "pass", "total"]
+          "keep", "pass", "total"]
 INFO = ["IrradianceUpdateCount", "IrradianceProbeCount", "IrradianceCacheHitCount",
         "LastIrradianceStages", "IrradianceResolutionInfo", "SkyUpdateCount", "LastSkySeconds"]
 
@@ -374,7 +374,7 @@ def main():
     log("%-6s %-8s %-12s %9s %8s %8s %6s %4s %4s %4s  %s" % (
         "volume", "sequence", "method", "median s", "x Volume", "x still", "target", "upd", "prb",
         "cpy",
-        "stages (median s): probe/prefilter/table/inputs/setup/shadows/diffusion/write/total"))
+        "stages (median s): probe/prefilter/table/inputs/setup/shadows/diffusion/write/keep/total"))
     for r in rows:
         log("%-6s %-8s %-12s %9s %8s %8s %6s %4s %4s %4s  %s" % (
             r["volume"], r["sequence"], r["method"], r["median_s"], r["ratio_to_pv_volume"],
@@ -382,7 +382,7 @@ def main():
             r["irradiance_updates"], r["probes"], r["irradiance_copies"],
             "/".join(r["%s_s" % s.replace(" ", "_")] or "-" for s in
                      ["probe", "prefilter", "shadow table", "inputs", "setup", "shadows",
-                      "diffusion", "write", "total"]) +
+                      "diffusion", "write", "keep", "total"]) +
             (" sky %s s x%d" % (r["sky_s"], r["sky_updates"]) if r["sky_updates"] else "")))
     log("wrote %s" % path)
     if checks:

@@ -28,7 +28,8 @@ from paraview import simple  # noqa: E402
 
 import pv_lightkit_orbit as orbit  # noqa: E402
 
-STAGES = ("probe", "prefilter", "shadow table", "inputs", "setup", "shadows", "diffusion", "write", "pass", "total")
+STAGES = ("probe", "prefilter", "shadow table", "inputs", "setup", "shadows", "diffusion", "write",
+          "keep", "pass", "total")
 
 
 def main():
