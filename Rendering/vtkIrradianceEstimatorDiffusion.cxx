@@ -32,7 +32,7 @@ void vtkIrradianceEstimator::vtkInternals::PlanDiffusion(
     plan.Planned = false;
   }
   float maxStrength = 0.0f;
-  const std::vector<float> strength = this->DiffusionStrengths(maxStrength);
+  const std::vector<float>& strength = this->DiffusionStrengths(maxStrength);
   this->PlanDiffusionBlocks(this->Diffusions[0], this->Diffusion, strength, maxStrength);
   this->PlanStridedDiffusion(&strength, maxStrength);
 }
@@ -45,24 +45,26 @@ void vtkIrradianceEstimator::vtkInternals::PlanStridedDiffusion(
   {
     return;
   }
-  std::vector<float> made;
   if (!strength)
   {
-    made = this->DiffusionStrengths(maxStrength);
-    strength = &made;
+    strength = &this->DiffusionStrengths(maxStrength);
   }
   this->PlanDiffusionBlocks(this->Diffusions[1],
     mmv::LightGridDiffusionSettings(this->Diffusion, stride), *strength, maxStrength);
 }
 
-std::vector<float> vtkIrradianceEstimator::vtkInternals::DiffusionStrengths(
-  float& maxStrength) const
+const std::vector<float>& vtkIrradianceEstimator::vtkInternals::DiffusionStrengths(
+  float& maxStrength)
 {
   maxStrength = 0.0f;
-  std::vector<float> strength;
-  if (this->ClassesOnCPU)
+  std::vector<float>& strength = this->StrengthScratch;
+  if (!this->ClassesOnCPU)
   {
-    strength.resize(this->Classes.size());
+    strength.clear(); // its capacity stays
+  }
+  else
+  {
+    strength.resize(this->Classes.size()); // every element written below
     std::mutex maxMutex;
     mmv::For(0, static_cast<vtkIdType>(strength.size()),
       [&](vtkIdType begin, vtkIdType end)

@@ -552,7 +552,10 @@ public:
   void PlanDiffusion(double time, bool exponential, bool multipleScattering);
   /// The diffusion's strength per irradiance voxel from the CPU's classes
   /// (0 where empty) and its largest value; empty without CPU classes.
-  std::vector<float> DiffusionStrengths(float& maxStrength) const;
+  /// Made into StrengthScratch, which it returns.
+  const std::vector<float>& DiffusionStrengths(float& maxStrength);
+  // Kept between plans: a new one at every time step would be fresh memory.
+  std::vector<float> StrengthScratch;
   /// One diffusion grid of `settings` for `strength` (DiffusionStrengths).
   void PlanDiffusionBlocks(DiffusionPlan& plan, const mmv::DiffusionSettings& settings,
     const std::vector<float>& strength, float maxStrength);
