@@ -2,7 +2,7 @@
 
     xvfb-run -a -s "-noreset -screen 0 1280x1024x24" scripts/pvpython \\
         Testing/Benchmark/pv_update_stages.py --data chest.vti [--plugin SO] [--frames 6] \\
-        [--preset skin] [--series FILE...]
+        [--preset skin] [--series FILE... [--cache] [--loops 3]]
 
 One Multi-Material Volume (default material, or --preset's) of --data in a 400 x 400 view
 under ParaView's light kit, with pv_lightkit_orbit.py's colour and opacity
@@ -10,7 +10,10 @@ maps. Each frame turns the camera 10 degrees and calls StillRender(), so
 every kit light moves and the whole irradiance is recomputed. With
 --series, each frame instead shows the next of the given files (time steps
 on one grid; --data is the first) with the camera fixed. Prints the
-medians of the frame and of the stages LastIrradianceStages reports. To
+medians of the frame and of the stages LastIrradianceStages reports. With
+--series and --loops N, plays the series N times instead (each step read
+before its timed frame) and prints each loop's median frame and that of a
+still frame with nothing changed. To
 compare two builds, alternate runs with each build's --plugin (with
 MMV_BUILD_DIR set for scripts/pvpython).
 """
@@ -42,6 +45,8 @@ def main():
                    help="with --series: ParaView's animation caching on, as the scene sets it")
     p.add_argument("--series", nargs="*", default=[],
                    help="further time steps of --data: each frame shows the next")
+    p.add_argument("--loops", type=int, default=0,
+                   help="with --series: play it this many times, print each loop's median")
     args, _ = p.parse_known_args()
 
     simple.LoadPlugin(args.plugin, remote=False, ns=globals())
@@ -64,6 +69,9 @@ def main():
     camera = view.GetActiveCamera()
     rows = []
     times = source.TimestepValues or [0.0]
+    if args.series and args.loops > 0:
+        play_loops(view, source, times, args)
+        return
     for frame in range(args.frames):
         if args.series:
             view.ViewTime = times[(frame + 1) % len(times)]
@@ -84,6 +92,34 @@ def main():
     for name in ("frame",) + STAGES:
         print("%-10s median %.3f s" % (name, statistics.median(r.get(name, 0.0) for r in rows)))
     print("grid: %s" % rep.GetProperty("IrradianceResolutionInfo").GetData())
+
+
+def play_loops(view, source, times, args):
+    """Each loop's median frame over the series' steps (the first loop from
+    its second step: the view shows the first), then a still frame's."""
+    if args.cache:
+        view.UseCache = 1
+        view.CacheKey = times[0]
+    view.SMProxy.StillRender()
+    for loop in range(args.loops):
+        frames = []
+        for k, t in enumerate(times):
+            if loop == 0 and k == 0:
+                continue
+            source.UpdatePipeline(t)
+            if args.cache:
+                view.CacheKey = t
+            view.ViewTime = t
+            start = time.perf_counter()
+            view.SMProxy.StillRender()
+            frames.append(time.perf_counter() - start)
+        print("loop %d     median %.3f s" % (loop + 1, statistics.median(frames)))
+    still = []
+    for _ in range(4):
+        start = time.perf_counter()
+        view.SMProxy.StillRender()
+        still.append(time.perf_counter() - start)
+    print("still      median %.3f s" % statistics.median(still))
 
 
 if __name__ == "__main__":
