@@ -305,8 +305,8 @@ public:
   // ValueHistogram, without the voxels (CountNonEmptyVoxels).
   std::vector<float> Classes;
   // Classes made only to be uploaded, and ClassifyValues' scratch: kept
-  // between updates, since fresh memory costs page faults on every time
-  // step (about 4 ms per MB on llvmpipe).
+  // between updates, since fresh memory at every time step costs page
+  // faults (about 4 ms per MB on the development VM).
   std::vector<float> UploadedClasses;
   std::vector<unsigned char> NonEmptyScratch;
   bool ClassesOnCPU = false; // Classes and NonEmptyVoxels hold the current inputs'

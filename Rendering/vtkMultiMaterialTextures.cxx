@@ -242,9 +242,9 @@ bool vtkMultiMaterialTextures::UploadGradientSlabs(
   // client memory the copy waits on the CPU, about as long as computing
   // them on 16 cores. Orphaned per slab, so a slab never waits for the
   // last one's copy. A software renderer copies on the CPU either way, and
-  // each orphaned buffer is fresh memory (page faults, about 4 ms per MB on
-  // llvmpipe): there, and where a buffer cannot be mapped, the slabs go
-  // through client memory that is kept.
+  // each orphaned buffer is fresh host memory (page faults: about 4 ms per
+  // MB on the development VM): there, and where a buffer cannot be mapped,
+  // the slabs go through client memory that is kept.
   const bool staged = !vtkIrradianceComputeProgram::IsSoftwareRenderer();
   if (staged && !this->SlabBuffer)
   {
