@@ -297,17 +297,16 @@ public:
   int PiecewiseSlicesUsed = 0;
 
   // s per voxel (-1 where empty): ClassTexture holds it, made at the upload
-  // on the GPU (ClassifyOnGPU) or on the CPU and copied (CopyClasses, not
-  // kept unless the diffusion needs it). The CPU keeps classes (Classes) only
-  // where the diffusion plan needs the strengths: multiple scattering on,
-  // a positive diffusion time and some s > 0 in the scattering table
-  // (NeedsCPUClasses). Otherwise NonEmptyVoxels is counted on the CPU from
-  // ValueHistogram, without the voxels (CountNonEmptyVoxels).
+  // on the GPU (ClassifyOnGPU) or on the CPU and copied (CopyClasses). The
+  // CPU's classes (Classes) hold the current inputs' only where the
+  // diffusion plan needs the strengths: multiple scattering on, a positive
+  // diffusion time and some s > 0 in the scattering table (NeedsCPUClasses;
+  // ClassesOnCPU). Otherwise Classes is CopyClasses' buffer, and
+  // NonEmptyVoxels is counted on the CPU from ValueHistogram, without the
+  // voxels (CountNonEmptyVoxels). Classes and ClassifyValues' scratch are
+  // kept between updates: fresh memory at every time step costs page faults
+  // (about 4 ms per MB on the development VM).
   std::vector<float> Classes;
-  // Classes made only to be uploaded, and ClassifyValues' scratch: kept
-  // between updates, since fresh memory at every time step costs page
-  // faults (about 4 ms per MB on the development VM).
-  std::vector<float> UploadedClasses;
   std::vector<unsigned char> NonEmptyScratch;
   bool ClassesOnCPU = false; // Classes and NonEmptyVoxels hold the current inputs'
   vtkIdType NonEmptyVoxels = 0;

@@ -73,8 +73,7 @@ void vtkIrradianceEstimator::vtkInternals::Classify()
   this->NonEmptyVoxels = ClassifyValues(this->Scalars, this->Grid.Dimensions, this->OpacityTable,
     this->ScatteringTable, this->Classes, this->NonEmptyScratch);
   this->ClassesOnCPU = true;
-  std::vector<float>().swap(this->UploadedClasses); // Classes serve the uploads now
-  this->BuildValueHistogram();                      // for ClassesHold at the next edit
+  this->BuildValueHistogram(); // for ClassesHold at the next edit
 }
 
 bool vtkIrradianceEstimator::vtkInternals::NeedsCPUClasses(
@@ -223,10 +222,11 @@ bool vtkIrradianceEstimator::vtkInternals::CopyClasses(vtkOpenGLRenderWindow* co
 {
   if (!this->ClassesOnCPU)
   {
+    // Made for the upload only: ClassesOnCPU stays off.
     ClassifyValues(this->Scalars, this->Grid.Dimensions, this->OpacityTable, this->ScatteringTable,
-      this->UploadedClasses, this->NonEmptyScratch);
+      this->Classes, this->NonEmptyScratch);
   }
-  const std::vector<float>& classes = this->ClassesOnCPU ? this->Classes : this->UploadedClasses;
+  const std::vector<float>& classes = this->Classes;
   const int* d = this->Grid.Dimensions;
   this->ClassTexture->Activate();
   glTexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, 0, d[0], d[1], d[2], GL_RED, GL_FLOAT, classes.data());

@@ -246,12 +246,12 @@ bool vtkMultiMaterialTextures::UploadGradientSlabs(
   // MB on the development VM): there, and where a buffer cannot be mapped,
   // the slabs go through client memory that is kept.
   const bool staged = !vtkIrradianceComputeProgram::IsSoftwareRenderer();
-  if (staged && !this->SlabBuffer)
-  {
-    this->SlabBuffer = vtkSmartPointer<vtkPixelBufferObject>::New();
-  }
   if (staged)
   {
+    if (!this->SlabBuffer)
+    {
+      this->SlabBuffer = vtkSmartPointer<vtkPixelBufferObject>::New();
+    }
     this->SlabBuffer->SetContext(this->Gradient->GetContext());
   }
   this->Gradient->Activate();

@@ -41,7 +41,6 @@ transfer functions and time step.
 import argparse
 import csv
 import os
-import re
 import statistics
 import sys
 import tempfile
@@ -78,8 +77,7 @@ TARGETS = {
 }
 # Sequences whose target is a ratio to the method's own still frame.
 OWN_STILL = ("colour", "series-2")
-STAGES = ["probe", "prefilter", "shadow table", "inputs", "setup", "shadows", "diffusion", "write",
-          "keep", "pass", "total"]
+STAGES = orbit.STAGES
 INFO = ["IrradianceUpdateCount", "IrradianceProbeCount", "IrradianceCacheHitCount",
         "LastIrradianceStages", "IrradianceResolutionInfo", "SkyUpdateCount", "LastSkySeconds"]
 
@@ -156,16 +154,6 @@ def info(representation, rep):
     return orbit.read_info(rep, INFO) if representation == MMV else {}
 
 
-def stage_seconds(text):
-    """{stage: seconds} from LastIrradianceStages."""
-    out = {}
-    for part in (text or "").split(","):
-        m = re.match(r"\s*([a-z ]+?) ([0-9.eE+-]+) s\s*$", part)
-        if m:
-            out[m.group(1)] = float(m.group(2))
-    return out
-
-
 def frame(method, volume, sequence, change, writer, records):
     before = info(method.representation, method.rep)
     t0 = time.perf_counter()
@@ -175,7 +163,7 @@ def frame(method, volume, sequence, change, writer, records):
     updates = after.get("IrradianceUpdateCount", 0) - before.get("IrradianceUpdateCount", 0)
     probes = after.get("IrradianceProbeCount", 0) - before.get("IrradianceProbeCount", 0)
     copies = after.get("IrradianceCacheHitCount", 0) - before.get("IrradianceCacheHitCount", 0)
-    stages = stage_seconds(after.get("LastIrradianceStages")) if updates else {}
+    stages = orbit.stage_seconds(after.get("LastIrradianceStages")) if updates else {}
     if after.get("SkyUpdateCount", 0) != before.get("SkyUpdateCount", 0):
         stages["sky"] = after.get("LastSkySeconds", 0.0)
     row = [volume, sequence, method.name, change, "%.4f" % seconds, updates, probes, copies]
@@ -380,9 +368,7 @@ def main():
             r["volume"], r["sequence"], r["method"], r["median_s"], r["ratio_to_pv_volume"],
             r["ratio_to_own_still"], (r["target"] + (" " + r["met"] if r["met"] else "")),
             r["irradiance_updates"], r["probes"], r["irradiance_copies"],
-            "/".join(r["%s_s" % s.replace(" ", "_")] or "-" for s in
-                     ["probe", "prefilter", "shadow table", "inputs", "setup", "shadows",
-                      "diffusion", "write", "keep", "total"]) +
+            "/".join(r["%s_s" % s.replace(" ", "_")] or "-" for s in STAGES if s != "pass") +
             (" sky %s s x%d" % (r["sky_s"], r["sky_updates"]) if r["sky_updates"] else "")))
     log("wrote %s" % path)
     if checks:

@@ -45,6 +45,7 @@ import argparse
 import csv
 import math
 import os
+import re
 import statistics
 import sys
 import time
@@ -185,6 +186,21 @@ def psnr(a, b):
         return float("nan")
     mse = float(numpy.mean((a - b) ** 2))
     return float("inf") if mse == 0.0 else 10.0 * math.log10(255.0 ** 2 / mse)
+
+
+# The stages LastIrradianceStages reports, in its order.
+STAGES = ("probe", "prefilter", "shadow table", "inputs", "setup", "shadows", "diffusion", "write",
+          "keep", "pass", "total")
+
+
+def stage_seconds(text):
+    """{stage: seconds} from LastIrradianceStages ("probe 0.000 s, ...")."""
+    out = {}
+    for part in (text or "").split(","):
+        m = re.match(r"\s*([a-z ]+?) ([0-9.eE+-]+) s\s*$", part)
+        if m:
+            out[m.group(1)] = float(m.group(2))
+    return out
 
 
 def read_info(rep, names=None):

@@ -64,11 +64,8 @@ def parse_args():
 
 def shadow_seconds(rep):
     rep.UpdatePropertyInformation()
-    for part in rep.GetProperty("LastIrradianceStages").GetData().split(", "):
-        words = part.split()
-        if words and words[0] == "shadows":
-            return float(words[-2])
-    return float("nan")
+    stages = orbit.stage_seconds(rep.GetProperty("LastIrradianceStages").GetData())
+    return stages.get("shadows", float("nan"))
 
 
 def run(volume, source, center, light_name, cone, args, writer, folder):

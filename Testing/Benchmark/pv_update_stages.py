@@ -31,10 +31,6 @@ from paraview import simple  # noqa: E402
 
 import pv_lightkit_orbit as orbit  # noqa: E402
 
-STAGES = ("probe", "prefilter", "shadow table", "inputs", "setup", "shadows", "diffusion", "write",
-          "keep", "pass", "total")
-
-
 def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     p.add_argument("--plugin", default=orbit.DEFAULT_PLUGIN)
@@ -84,12 +80,9 @@ def main():
         view.SMProxy.StillRender()
         row = {"frame": time.perf_counter() - start}
         rep.UpdatePropertyInformation()
-        # "probe 0.000 s, prefilter 0.012 s, ...": name, seconds, "s".
-        for part in rep.GetProperty("LastIrradianceStages").GetData().split(", "):
-            words = part.split()
-            row[" ".join(words[:-2])] = float(words[-2])
+        row.update(orbit.stage_seconds(rep.GetProperty("LastIrradianceStages").GetData()))
         rows.append(row)
-    for name in ("frame",) + STAGES:
+    for name in ("frame",) + orbit.STAGES:
         print("%-10s median %.3f s" % (name, statistics.median(r.get(name, 0.0) for r in rows)))
     print("grid: %s" % rep.GetProperty("IrradianceResolutionInfo").GetData())
 
