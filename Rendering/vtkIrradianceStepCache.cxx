@@ -122,14 +122,16 @@ bool vtkIrradianceStepCache::Store(vtkOpenGLRenderWindow* context, const Key& ke
   {
     bytes += mmv::TextureBytes(texture);
   }
-  if (!context || !mmv::CanCopyTextures() || sources.empty() || bytes > budgetBytes)
+  this->Trim(budgetBytes);
+  if (!context || !mmv::CanCopyTextures() || sources.empty() ||
+    !mmv::MakeRoomForStep(this->Entries, this->Bytes, bytes, budgetBytes,
+      [this](std::list<Entry>::iterator entry) { this->Drop(entry); }))
   {
-    this->Trim(budgetBytes);
     return false;
   }
-  this->Trim(budgetBytes - bytes);
   Entry entry;
   entry.EntryKey = key;
+  entry.Data = mmv::KeptStepData(key.Scalars, key.ScalarsTime);
   entry.ComputedLights = computed;
   entry.Bytes = bytes;
   for (vtkTextureObject* texture : sources)

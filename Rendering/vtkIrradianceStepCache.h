@@ -9,7 +9,9 @@
  * again. An entry holds copies of the irradiance (and tint) textures for one
  * input and everything the irradiance depends on; a later frame with the
  * same key gets them copied back into the estimator instead of recomputing.
- * Entries beyond the memory budget are dropped, least recently used first.
+ * Entries whose data can never come back are dropped for new ones; entries
+ * whose data can are kept, and a step that finds no room is not kept
+ * (vtkKeptStep.h). A budget lowered drops the least recently used first.
  *
  * The key names the data by its scalar array and that array's modification
  * time: a modified or new array never matches (modification times only
@@ -19,6 +21,7 @@
 #define vtkIrradianceStepCache_h
 
 #include "vtkIrradianceInputCache.h"      // VolumeKey
+#include "vtkKeptStep.h"                  // KeptStepData
 #include "vtkMultiMaterialLightModel.h"   // LightSource
 #include "vtkMultiMaterialVolumeModule.h" // export macro
 #include "vtkSmartPointer.h"              // entries' textures
@@ -44,7 +47,7 @@ public:
     /// named by the fields below.
     vtkIrradianceInputCache::VolumeKey Volume;
     vtkMTimeType MaterialsTime = 0;
-    const void* Scalars = nullptr;
+    vtkDataArray* Scalars = nullptr; // identity only: it may be gone
     vtkMTimeType ScalarsTime = 0;
     int DataDimensions[3] = { 0, 0, 0 };
     double Origin[3] = { 0.0, 0.0, 0.0 };
@@ -73,9 +76,9 @@ public:
     std::vector<mmv::LightSource>& computed);
 
   /// Keeps a copy of `pass`'s textures, which hold the light placements
-  /// `computed`, under `key` if it fits in `budgetBytes`, dropping the
-  /// entries lit otherwise, then the least recently used to make room. False: nothing kept (no
-  /// budget, too large, or no copy support).
+  /// `computed`, under `key` if it fits in `budgetBytes` once the entries lit
+  /// otherwise and those whose data cannot come back are dropped. False:
+  /// nothing kept (no room, or no copy support).
   bool Store(vtkOpenGLRenderWindow* context, const Key& key, vtkIrradianceEstimator* pass,
     const std::vector<mmv::LightSource>& computed, size_t budgetBytes);
 
@@ -91,6 +94,7 @@ private:
   struct Entry
   {
     Key EntryKey;
+    mmv::KeptStepData Data;
     std::vector<vtkSmartPointer<vtkTextureObject>> Textures; // irradiance, then tints
     std::vector<mmv::LightSource> ComputedLights;
     size_t Bytes = 0;

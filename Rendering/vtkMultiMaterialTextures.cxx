@@ -321,11 +321,10 @@ bool vtkMultiMaterialTextures::RestoreKeptGradient(
   vtkDataArray* scalars, const int dims[3], const double range[2], const double smoothing[3])
 {
   this->TrimKeptGradients(this->KeptBudget);
-  const vtkMTimeType time = scalars->GetMTime();
   for (auto kept = this->Kept.begin(); kept != this->Kept.end(); ++kept)
   {
-    if (kept->Scalars == scalars && kept->ScalarsTime == time && kept->Range[0] == range[0] &&
-      kept->Range[1] == range[1] && std::equal(dims, dims + 3, kept->Dimensions) &&
+    if (kept->Data.Is(scalars) && kept->Range[0] == range[0] && kept->Range[1] == range[1] &&
+      std::equal(dims, dims + 3, kept->Dimensions) &&
       std::equal(smoothing, smoothing + 3, kept->Smoothing))
     {
       // Only into a texture of its size: the grid's earlier steps'.
@@ -335,7 +334,7 @@ bool vtkMultiMaterialTextures::RestoreKeptGradient(
       }
       mmv::CopyTexture3D(kept->Texture, this->Gradient);
       this->UploadedScalars = scalars;
-      this->UploadedScalarsTime = time;
+      this->UploadedScalarsTime = scalars->GetMTime();
       std::copy(range, range + 2, this->UploadedGradientRange);
       std::copy(smoothing, smoothing + 3, this->UploadedGradientSmoothing);
       std::copy(dims, dims + 3, this->GradientDimensions);
@@ -351,12 +350,13 @@ bool vtkMultiMaterialTextures::RestoreKeptGradient(
 void vtkMultiMaterialTextures::KeepGradient(vtkOpenGLRenderWindow* context)
 {
   const size_t bytes = mmv::TextureBytes(this->Gradient);
-  if (this->KeptBudget < bytes || !mmv::CanCopyTextures())
+  this->TrimKeptGradients(this->KeptBudget);
+  if (!mmv::CanCopyTextures() ||
+    !mmv::MakeRoomForStep(this->Kept, this->KeptBytes, bytes, this->KeptBudget,
+      [this](std::list<KeptGradient>::iterator kept) { this->DropKeptGradient(kept); }))
   {
-    this->TrimKeptGradients(this->KeptBudget);
     return;
   }
-  this->TrimKeptGradients(this->KeptBudget - bytes);
   KeptGradient kept;
   kept.Texture = mmv::NewTextureLike(context, this->Gradient);
   if (!kept.Texture)
@@ -364,8 +364,7 @@ void vtkMultiMaterialTextures::KeepGradient(vtkOpenGLRenderWindow* context)
     return;
   }
   mmv::CopyTexture3D(this->Gradient, kept.Texture);
-  kept.Scalars = this->UploadedScalars;
-  kept.ScalarsTime = this->UploadedScalarsTime;
+  kept.Data = mmv::KeptStepData(this->UploadedScalars, this->UploadedScalarsTime);
   std::copy(this->UploadedGradientRange, this->UploadedGradientRange + 2, kept.Range);
   std::copy(this->UploadedGradientSmoothing, this->UploadedGradientSmoothing + 3, kept.Smoothing);
   std::copy(this->GradientDimensions, this->GradientDimensions + 3, kept.Dimensions);
@@ -379,11 +378,15 @@ void vtkMultiMaterialTextures::TrimKeptGradients(size_t bytes)
 {
   while (!this->Kept.empty() && this->KeptBytes > bytes)
   {
-    KeptGradient& oldest = this->Kept.back();
-    oldest.Texture->ReleaseGraphicsResources(oldest.Texture->GetContext());
-    this->KeptBytes -= oldest.Bytes;
-    this->Kept.pop_back();
+    this->DropKeptGradient(std::prev(this->Kept.end()));
   }
+}
+
+void vtkMultiMaterialTextures::DropKeptGradient(std::list<KeptGradient>::iterator kept)
+{
+  kept->Texture->ReleaseGraphicsResources(kept->Texture->GetContext());
+  this->KeptBytes -= kept->Bytes;
+  this->Kept.erase(kept);
 }
 
 void vtkMultiMaterialTextures::Activate()

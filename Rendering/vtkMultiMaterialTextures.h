@@ -17,6 +17,7 @@
 #ifndef vtkMultiMaterialTextures_h
 #define vtkMultiMaterialTextures_h
 
+#include "vtkKeptStep.h"                  // kept gradients
 #include "vtkMultiMaterialVolumeModule.h" // export macro
 #include "vtkNew.h"
 #include "vtkObject.h"
@@ -120,8 +121,7 @@ private:
   int GradientUploads = 0;
   struct KeptGradient
   {
-    vtkDataArray* Scalars = nullptr;
-    vtkMTimeType ScalarsTime = 0;
+    mmv::KeptStepData Data;
     double Range[2] = { 0.0, 0.0 };
     double Smoothing[3] = { 0.0, 0.0, 0.0 };
     int Dimensions[3] = { 0, 0, 0 };
@@ -141,6 +141,7 @@ private:
     vtkDataArray* scalars, const int dims[3], const double range[2], const double smoothing[3]);
   void KeepGradient(vtkOpenGLRenderWindow* context);
   void TrimKeptGradients(size_t bytes);
+  void DropKeptGradient(std::list<KeptGradient>::iterator kept);
   std::list<KeptGradient> Kept; // most recently used first
   size_t KeptBytes = 0;
   size_t KeptBudget = 0;

@@ -43,6 +43,8 @@ def main():
                    help="further time steps of --data: each frame shows the next")
     p.add_argument("--loops", type=int, default=0,
                    help="with --series: play it this many times, print each loop's median")
+    p.add_argument("--cache-mb", type=float, default=None,
+                   help="IrradianceCacheMB (the budget for kept steps; default the property's)")
     args, _ = p.parse_known_args()
 
     simple.LoadPlugin(args.plugin, remote=False, ns=globals())
@@ -57,6 +59,8 @@ def main():
     rep.SetRepresentationType("Multi-Material Volume")
     if args.preset:
         rep.MaterialPreset = args.preset
+    if args.cache_mb is not None:
+        rep.IrradianceCacheMB = args.cache_mb
     simple.GetColorTransferFunction(array).RGBPoints = orbit.RGB_POINTS
     simple.GetOpacityTransferFunction(array).Points = orbit.OPACITY_POINTS
     simple.ResetCamera(view)
@@ -66,7 +70,7 @@ def main():
     rows = []
     times = source.TimestepValues or [0.0]
     if args.series and args.loops > 0:
-        play_loops(view, source, times, args)
+        play_loops(view, rep, source, times, args)
         return
     for frame in range(args.frames):
         if args.series:
@@ -87,15 +91,21 @@ def main():
     print("grid: %s" % rep.GetProperty("IrradianceResolutionInfo").GetData())
 
 
-def play_loops(view, source, times, args):
+def play_loops(view, rep, source, times, args):
     """Each loop's median frame over the series' steps (the first loop from
     its second step: the view shows the first), then a still frame's."""
     if args.cache:
         view.UseCache = 1
         view.CacheKey = times[0]
     view.SMProxy.StillRender()
+    def counts():
+        rep.UpdatePropertyInformation()
+        return [rep.GetProperty(name).GetData()
+                for name in ("IrradianceUpdateCount", "IrradianceCacheHitCount")]
+
     for loop in range(args.loops):
         frames = []
+        before = counts()
         for k, t in enumerate(times):
             if loop == 0 and k == 0:
                 continue
@@ -106,7 +116,9 @@ def play_loops(view, source, times, args):
             start = time.perf_counter()
             view.SMProxy.StillRender()
             frames.append(time.perf_counter() - start)
-        print("loop %d     median %.3f s" % (loop + 1, statistics.median(frames)))
+        after = counts()
+        print("loop %d     median %.3f s  (%d updates, %d copies)" % (
+            loop + 1, statistics.median(frames), after[0] - before[0], after[1] - before[1]))
     still = []
     for _ in range(4):
         start = time.perf_counter()

@@ -25,6 +25,7 @@
 #include "vtkOpenGLRenderPass.h"
 #include "vtkPointData.h"
 #include "vtkRenderer.h"
+#include "vtkWeakPointer.h"
 #include "vtk_glew.h"
 
 #include <gtest/gtest.h>
@@ -1161,6 +1162,112 @@ TEST(MultiMaterialVolumeMapper, KeptStepsComeBackWithoutAnUpdate)
   scene.Mapper->SetIrradianceCacheMB(0.0);
   show(2);
   EXPECT_EQ(scene.Mapper->GetIrradianceCacheBytes(), 0u);
+}
+
+TEST(MultiMaterialVolumeMapper, ASeriesLongerThanTheBudgetKeepsItsFirstSteps)
+{
+  // Four steps, room for two: the first two kept are copies on every later
+  // loop; the other two are computed each time and never push the first two
+  // out (which would leave no copy for the next loop). Once with room for
+  // two irradiance copies, once with room for two gradient volumes (and
+  // every irradiance copy).
+  ProbeScene scene(SmoothBlob, 0.3);
+  std::vector<vtkSmartPointer<vtkImageData>> steps;
+  for (int k = 0; k < 4; ++k)
+  {
+    steps.push_back(
+      mmvtest::MakeVolume(Dims, [k](int i, int j, int l) { return SmoothBlob(i, j - 2 * k, l); }));
+  }
+  const auto show = [&scene, &steps](size_t k)
+  {
+    scene.Mapper->SetInputData(steps[k]);
+    scene.Window->Render();
+  };
+  show(0);
+  int dims[3];
+  scene.Mapper->GetIrradianceDimensions(dims);
+  // Five light-kit lights: 10 bytes an irradiance voxel; the gradient
+  // volume is RGB16F on the data's points.
+  const size_t entry = 10u * static_cast<size_t>(dims[0]) * dims[1] * dims[2];
+  const size_t gradient = 6u * Dims * Dims * Dims;
+  ASSERT_LT(entry * 4, gradient * 5 / 2) << "the second budget must hold every irradiance copy";
+  std::vector<std::vector<unsigned char>> first;
+  for (size_t budget : { entry * 5 / 2, gradient * 5 / 2 })
+  {
+    const int irradianceKept = static_cast<int>(std::min<size_t>(4, budget / entry));
+    const int gradientsKept = static_cast<int>(std::min<size_t>(4, budget / gradient));
+    scene.Mapper->SetIrradianceCacheMB(budget / 1048576.0);
+    for (size_t k = 0; k < steps.size(); ++k)
+    {
+      show(k);
+      if (first.size() < steps.size())
+      {
+        first.push_back(scene.Pixels());
+      }
+    }
+    for (int loop = 2; loop <= 3; ++loop)
+    {
+      const int updates = scene.Mapper->GetIrradianceUpdateCount();
+      const int hits = scene.Mapper->GetIrradianceCacheHitCount();
+      const int gradients = scene.Mapper->GetGradientUploadCount();
+      for (size_t k = 0; k < steps.size(); ++k)
+      {
+        show(k);
+        EXPECT_EQ(mmvtest::PSNR(scene.Pixels(), first[k]), INFINITY)
+          << budget << " bytes, loop " << loop << ", step " << k;
+      }
+      EXPECT_EQ(scene.Mapper->GetIrradianceCacheHitCount(), hits + irradianceKept) << budget;
+      EXPECT_EQ(scene.Mapper->GetIrradianceUpdateCount(), updates + 4 - irradianceKept) << budget;
+      EXPECT_EQ(scene.Mapper->GetGradientUploadCount(), gradients + 4 - gradientsKept) << budget;
+      EXPECT_EQ(scene.Mapper->GetIrradianceCacheBytes(), irradianceKept * entry) << budget;
+    }
+  }
+}
+
+TEST(MultiMaterialVolumeMapper, CopiesOfDataThatCannotComeBackAreDropped)
+{
+  // Steps written into one array in place (a simulation in situ), then steps
+  // whose data objects are deleted once shown: no step can come back, so
+  // their copies are dropped instead of filling the budget.
+  ProbeScene scene(SmoothBlob, 0.3);
+  scene.Mapper->SetIrradianceCacheMB(64.0);
+  vtkSmartPointer<vtkImageData> image = mmvtest::MakeVolume(Dims, SmoothBlob);
+  scene.Mapper->SetInputData(image);
+  scene.Window->Render();
+  int dims[3];
+  scene.Mapper->GetIrradianceDimensions(dims);
+  const size_t entry = 10u * static_cast<size_t>(dims[0]) * dims[1] * dims[2];
+  vtkDataArray* array = image->GetPointData()->GetScalars();
+  for (int step = 1; step <= 3; ++step)
+  {
+    const int updates = scene.Mapper->GetIrradianceUpdateCount();
+    for (vtkIdType t = 0; t < array->GetNumberOfTuples(); ++t)
+    {
+      array->SetTuple1(t, 0.9 * array->GetTuple1(t));
+    }
+    array->Modified();
+    scene.Window->Render();
+    EXPECT_EQ(scene.Mapper->GetIrradianceUpdateCount(), updates + 1) << "in place, step " << step;
+    EXPECT_EQ(scene.Mapper->GetIrradianceCacheBytes(), entry) << "in place, step " << step;
+  }
+  // Data objects deleted once the next replaces them. VTK's ray caster
+  // holds a shallow copy of its last input until it draws the next, so a
+  // step's copy is dropped when the step after next is kept: never more than
+  // the shown step and the one before.
+  vtkWeakPointer<vtkDataArray> shown = array;
+  image = nullptr;
+  for (int step = 1; step <= 3; ++step)
+  {
+    vtkWeakPointer<vtkDataArray> before = shown;
+    vtkSmartPointer<vtkImageData> next =
+      mmvtest::MakeVolume(Dims, [step](int i, int j, int k) { return SmoothBlob(i, j - step, k); });
+    shown = next->GetPointData()->GetScalars();
+    scene.Mapper->SetInputData(next);
+    next = nullptr;
+    scene.Window->Render();
+    EXPECT_EQ(before.GetPointer(), nullptr) << "deleted, step " << step;
+    EXPECT_EQ(scene.Mapper->GetIrradianceCacheBytes(), 2 * entry) << "deleted, step " << step;
+  }
 }
 
 namespace
