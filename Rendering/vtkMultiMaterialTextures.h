@@ -18,6 +18,7 @@
 #define vtkMultiMaterialTextures_h
 
 #include "vtkKeptStep.h"                  // kept gradients
+#include "vtkKeptTexture.h"               // kept gradients
 #include "vtkMultiMaterialVolumeModule.h" // export macro
 #include "vtkNew.h"
 #include "vtkObject.h"
@@ -28,6 +29,7 @@
 #include <cstddef>
 #include <functional> // table entries
 #include <list>       // kept gradients
+#include <memory>     // kept gradients
 #include <vector>     // slab scratch
 
 class vtkDataArray;
@@ -125,7 +127,7 @@ private:
     double Range[2] = { 0.0, 0.0 };
     double Smoothing[3] = { 0.0, 0.0, 0.0 };
     int Dimensions[3] = { 0, 0, 0 };
-    vtkSmartPointer<vtkTextureObject> Texture;
+    std::unique_ptr<mmv::KeptTexture> Texture;
     size_t Bytes = 0;
   };
   bool UploadGradientSlabs(vtkDataArray* scalars, const int dims[3], const double range[2]);
