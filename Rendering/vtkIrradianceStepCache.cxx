@@ -78,7 +78,7 @@ bool vtkIrradianceStepCache::Restore(vtkOpenGLRenderWindow* context, const Key& 
 {
   auto entry = std::find_if(this->Entries.begin(), this->Entries.end(),
     [&key](const Entry& e) { return e.EntryKey == key; });
-  if (entry == this->Entries.end() || !context)
+  if (entry == this->Entries.end() || !context || !mmv::CanCopyTextures())
   {
     return false;
   }
@@ -86,7 +86,7 @@ bool vtkIrradianceStepCache::Restore(vtkOpenGLRenderWindow* context, const Key& 
   bool fits = targets.size() == entry->Textures.size();
   for (size_t t = 0; fits && t < targets.size(); ++t)
   {
-    fits = entry->Textures[t]->Fits(targets[t]);
+    fits = targets[t] && mmv::SameTextureSize(targets[t], entry->Textures[t]);
   }
   if (!fits)
   {
@@ -94,7 +94,7 @@ bool vtkIrradianceStepCache::Restore(vtkOpenGLRenderWindow* context, const Key& 
   }
   for (size_t t = 0; t < targets.size(); ++t)
   {
-    entry->Textures[t]->CopyInto(targets[t]);
+    mmv::CopyTexture3D(entry->Textures[t], targets[t]);
   }
   // The estimator's record of what its textures hold is no longer true.
   pass->InvalidateComputedLights();
@@ -123,7 +123,7 @@ bool vtkIrradianceStepCache::Store(vtkOpenGLRenderWindow* context, const Key& ke
     bytes += mmv::TextureBytes(texture);
   }
   this->Trim(budgetBytes);
-  if (!context || sources.empty() ||
+  if (!context || !mmv::CanCopyTextures() || sources.empty() ||
     !mmv::MakeRoomForStep(this->Entries, this->Bytes, bytes, budgetBytes,
       [this](std::list<Entry>::iterator entry) { this->Drop(entry); }))
   {
@@ -136,12 +136,17 @@ bool vtkIrradianceStepCache::Store(vtkOpenGLRenderWindow* context, const Key& ke
   entry.Bytes = bytes;
   for (vtkTextureObject* texture : sources)
   {
-    std::unique_ptr<mmv::KeptTexture> copy = mmv::KeptTexture::Make(context, texture);
+    vtkSmartPointer<vtkTextureObject> copy = mmv::NewTextureLike(context, texture);
     if (!copy)
     {
+      for (auto& made : entry.Textures)
+      {
+        made->ReleaseGraphicsResources(context);
+      }
       return false;
     }
-    entry.Textures.push_back(std::move(copy));
+    mmv::CopyTexture3D(texture, copy);
+    entry.Textures.push_back(copy);
   }
   this->Entries.push_front(std::move(entry));
   this->Bytes += bytes;
@@ -159,8 +164,12 @@ void vtkIrradianceStepCache::Trim(size_t budgetBytes)
 
 void vtkIrradianceStepCache::Drop(std::list<Entry>::iterator entry)
 {
-  // (The context is current wherever entries are dropped: a render, or
-  // ReleaseGraphicsResources.)
+  for (auto& texture : entry->Textures)
+  {
+    // The context is current wherever entries are dropped (a render, or
+    // ReleaseGraphicsResources).
+    texture->ReleaseGraphicsResources(texture->GetContext());
+  }
   this->Bytes -= entry->Bytes;
   this->Entries.erase(entry);
 }

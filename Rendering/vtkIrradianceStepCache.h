@@ -1,7 +1,8 @@
 /**
  * @class   vtkIrradianceStepCache
  * @brief   The irradiance of earlier inputs (the steps of a time series),
- *          kept so that data coming back costs a copy, not an update.
+ *          kept on the GPU so that data coming back costs a copy, not an
+ *          update.
  *
  * ParaView's animation caching keeps each time step's data object, so the
  * second loop through a series hands the mapper the same scalar arrays
@@ -21,14 +22,13 @@
 
 #include "vtkIrradianceInputCache.h"      // VolumeKey
 #include "vtkKeptStep.h"                  // KeptStepData
-#include "vtkKeptTexture.h"               // entries
 #include "vtkMultiMaterialLightModel.h"   // LightSource
 #include "vtkMultiMaterialVolumeModule.h" // export macro
+#include "vtkSmartPointer.h"              // entries' textures
 #include "vtkType.h"                      // vtkMTimeType
 
 #include <cstddef>
 #include <list>
-#include <memory>
 #include <vector>
 
 class vtkDataArray;
@@ -95,7 +95,7 @@ private:
   {
     Key EntryKey;
     mmv::KeptStepData Data;
-    std::vector<std::unique_ptr<mmv::KeptTexture>> Textures; // irradiance, then tints
+    std::vector<vtkSmartPointer<vtkTextureObject>> Textures; // irradiance, then tints
     std::vector<mmv::LightSource> ComputedLights;
     size_t Bytes = 0;
   };

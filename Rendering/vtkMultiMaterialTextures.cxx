@@ -328,11 +328,11 @@ bool vtkMultiMaterialTextures::RestoreKeptGradient(
       std::equal(smoothing, smoothing + 3, kept->Smoothing))
     {
       // Only into a texture of its size: the grid's earlier steps'.
-      if (!kept->Texture->Fits(this->Gradient))
+      if (!this->Gradient->GetHandle() || !mmv::SameTextureSize(kept->Texture, this->Gradient))
       {
         return false;
       }
-      kept->Texture->CopyInto(this->Gradient);
+      mmv::CopyTexture3D(kept->Texture, this->Gradient);
       this->UploadedScalars = scalars;
       this->UploadedScalarsTime = scalars->GetMTime();
       std::copy(range, range + 2, this->UploadedGradientRange);
@@ -351,24 +351,26 @@ void vtkMultiMaterialTextures::KeepGradient(vtkOpenGLRenderWindow* context)
 {
   const size_t bytes = mmv::TextureBytes(this->Gradient);
   this->TrimKeptGradients(this->KeptBudget);
-  if (!mmv::MakeRoomForStep(this->Kept, this->KeptBytes, bytes, this->KeptBudget,
-        [this](std::list<KeptGradient>::iterator kept) { this->DropKeptGradient(kept); }))
+  if (!mmv::CanCopyTextures() ||
+    !mmv::MakeRoomForStep(this->Kept, this->KeptBytes, bytes, this->KeptBudget,
+      [this](std::list<KeptGradient>::iterator kept) { this->DropKeptGradient(kept); }))
   {
     return;
   }
   KeptGradient kept;
-  kept.Texture = mmv::KeptTexture::Make(context, this->Gradient);
+  kept.Texture = mmv::NewTextureLike(context, this->Gradient);
   if (!kept.Texture)
   {
     return;
   }
+  mmv::CopyTexture3D(this->Gradient, kept.Texture);
   kept.Data = mmv::KeptStepData(this->UploadedScalars, this->UploadedScalarsTime);
   std::copy(this->UploadedGradientRange, this->UploadedGradientRange + 2, kept.Range);
   std::copy(this->UploadedGradientSmoothing, this->UploadedGradientSmoothing + 3, kept.Smoothing);
   std::copy(this->GradientDimensions, this->GradientDimensions + 3, kept.Dimensions);
   kept.Bytes = bytes;
   this->KeptBytes += bytes;
-  this->Kept.push_front(std::move(kept));
+  this->Kept.push_front(kept);
   this->GradientKept = true;
 }
 
@@ -382,6 +384,7 @@ void vtkMultiMaterialTextures::TrimKeptGradients(size_t bytes)
 
 void vtkMultiMaterialTextures::DropKeptGradient(std::list<KeptGradient>::iterator kept)
 {
+  kept->Texture->ReleaseGraphicsResources(kept->Texture->GetContext());
   this->KeptBytes -= kept->Bytes;
   this->Kept.erase(kept);
 }

@@ -18,7 +18,6 @@
 #define vtkMultiMaterialTextures_h
 
 #include "vtkKeptStep.h"                  // kept gradients
-#include "vtkKeptTexture.h"               // kept gradients
 #include "vtkMultiMaterialVolumeModule.h" // export macro
 #include "vtkNew.h"
 #include "vtkObject.h"
@@ -29,7 +28,6 @@
 #include <cstddef>
 #include <functional> // table entries
 #include <list>       // kept gradients
-#include <memory>     // kept gradients
 #include <vector>     // slab scratch
 
 class vtkDataArray;
@@ -127,7 +125,7 @@ private:
     double Range[2] = { 0.0, 0.0 };
     double Smoothing[3] = { 0.0, 0.0, 0.0 };
     int Dimensions[3] = { 0, 0, 0 };
-    std::unique_ptr<mmv::KeptTexture> Texture;
+    vtkSmartPointer<vtkTextureObject> Texture;
     size_t Bytes = 0;
   };
   bool UploadGradientSlabs(vtkDataArray* scalars, const int dims[3], const double range[2]);

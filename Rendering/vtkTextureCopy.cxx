@@ -40,6 +40,13 @@ size_t TextureBytes(vtkTextureObject* texture)
   return TexelBytes(texture) * texture->GetWidth() * texture->GetHeight() * texture->GetDepth();
 }
 
+bool SameTextureSize(vtkTextureObject* a, vtkTextureObject* b)
+{
+  return a->GetWidth() == b->GetWidth() && a->GetHeight() == b->GetHeight() &&
+    a->GetDepth() == b->GetDepth() && a->GetComponents() == b->GetComponents() &&
+    a->GetVTKDataType() == b->GetVTKDataType();
+}
+
 void CopyTexture3D(vtkTextureObject* from, vtkTextureObject* to)
 {
   glCopyImageSubData(from->GetHandle(), GL_TEXTURE_3D, 0, 0, 0, 0, to->GetHandle(), GL_TEXTURE_3D,

@@ -1,8 +1,8 @@
 /**
  * @file   vtkTextureCopy.h
- * @brief  GPU-side copies of 3D textures (how vtkKeptTexture keeps a time
- *         step's irradiance and gradient volume on a GPU), and the sampling
- *         the mapper's volume textures share.
+ * @brief  GPU-side copies of 3D textures (what the irradiance and gradient
+ *         volumes of earlier time steps are kept as), and the sampling the
+ *         mapper's volume textures share.
  */
 #ifndef vtkTextureCopy_h
 #define vtkTextureCopy_h
@@ -20,6 +20,8 @@ namespace mmv
 bool CanCopyTextures();
 /// Bytes of `texture` on the GPU (16-bit formats counted as such).
 size_t TextureBytes(vtkTextureObject* texture);
+/// Same size, components and type: one can be copied into the other.
+bool SameTextureSize(vtkTextureObject* a, vtkTextureObject* b);
 /// Copies all of 3D texture `from` into `to` (SameTextureSize) on the GPU.
 void CopyTexture3D(vtkTextureObject* from, vtkTextureObject* to);
 /// An uninitialised 3D texture of `like`'s size and format (null: failed).
