@@ -19,8 +19,9 @@
  *  - IrradianceCacheMB: GPU memory for the irradiance of earlier inputs, so
  *    that data coming back (a series' second loop, with ParaView's animation
  *    caching) costs a copy instead of an update (vtkIrradianceStepCache);
- *    their gradient volumes take as much again. Not kept for a piece of a
- *    volume in pieces.
+ *    their gradient volumes take as much again. A series longer than the
+ *    budget keeps its first steps. Not kept for a piece of a volume in
+ *    pieces.
  *  - IrradianceScale: the irradiance grid as a fraction of the data's
  *    (0 < x <= 1); 0 chooses it from the budget, the screen and the error
  *    probe. Above 1: used as 1; negative or NaN: 0 (both reported).

@@ -370,6 +370,14 @@ def main():
             r["irradiance_updates"], r["probes"], r["irradiance_copies"],
             "/".join(r["%s_s" % s.replace(" ", "_")] or "-" for s in STAGES if s != "pass") +
             (" sky %s s x%d" % (r["sky_s"], r["sky_updates"]) if r["sky_updates"] else "")))
+    for r in rows:
+        if r["sequence"] == "series" and r["method"] != "pv-volume" and \
+                r["irradiance_updates"] < r["frames"]:
+            # The chest moves by sin(2 pi k / steps): with steps = 2 mod 4
+            # two neighbouring steps hold the same values.
+            log("warning: %s %s: %d of %d first-loop steps updated nothing (the same values "
+                "as the step before); the median mixes them in (--steps 8 has none)" % (
+                    r["volume"], r["method"], r["frames"] - r["irradiance_updates"], r["frames"]))
     log("wrote %s" % path)
     if checks:
         orbit.write_csv(os.path.join(args.out, "grid_check.csv"), checks)
