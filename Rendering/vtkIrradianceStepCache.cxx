@@ -13,7 +13,7 @@
 bool vtkIrradianceStepCache::Key::operator==(const Key& o) const
 {
   return this->Volume == o.Volume && this->MaterialsTime == o.MaterialsTime &&
-    this->Scalars == o.Scalars && this->ScalarsTime == o.ScalarsTime &&
+    this->Data == o.Data &&
     std::equal(this->DataDimensions, this->DataDimensions + 3, o.DataDimensions) &&
     std::equal(this->Origin, this->Origin + 3, o.Origin) &&
     std::equal(this->Spacing, this->Spacing + 3, o.Spacing) &&
@@ -44,8 +44,7 @@ vtkIrradianceStepCache::Key vtkIrradianceStepCache::MakeKey(
   // The version counts samplings, which a new step's range also bumps.
   key.Volume.MaterialVersion = 0;
   key.MaterialsTime = materialsTime;
-  key.Scalars = scalars;
-  key.ScalarsTime = scalars ? scalars->GetMTime() : 0;
+  key.Data = mmv::KeptStepData(scalars, scalars ? scalars->GetMTime() : 0);
   if (image)
   {
     image->GetDimensions(key.DataDimensions);
@@ -122,7 +121,6 @@ bool vtkIrradianceStepCache::Store(vtkOpenGLRenderWindow* context, const Key& ke
   {
     bytes += mmv::TextureBytes(texture);
   }
-  this->Trim(budgetBytes);
   if (!context || !mmv::CanCopyTextures() || sources.empty() ||
     !mmv::MakeRoomForStep(this->Entries, this->Bytes, bytes, budgetBytes,
       [this](std::list<Entry>::iterator entry) { this->Drop(entry); }))
@@ -131,7 +129,6 @@ bool vtkIrradianceStepCache::Store(vtkOpenGLRenderWindow* context, const Key& ke
   }
   Entry entry;
   entry.EntryKey = key;
-  entry.Data = mmv::KeptStepData(key.Scalars, key.ScalarsTime);
   entry.ComputedLights = computed;
   entry.Bytes = bytes;
   for (vtkTextureObject* texture : sources)

@@ -47,8 +47,7 @@ public:
     /// named by the fields below.
     vtkIrradianceInputCache::VolumeKey Volume;
     vtkMTimeType MaterialsTime = 0;
-    vtkDataArray* Scalars = nullptr; // identity only: it may be gone
-    vtkMTimeType ScalarsTime = 0;
+    mmv::KeptStepData Data; // the scalar array and its modification time
     int DataDimensions[3] = { 0, 0, 0 };
     double Origin[3] = { 0.0, 0.0, 0.0 };
     double Spacing[3] = { 0.0, 0.0, 0.0 };
@@ -77,8 +76,8 @@ public:
 
   /// Keeps a copy of `pass`'s textures, which hold the light placements
   /// `computed`, under `key` if it fits in `budgetBytes` once the entries lit
-  /// otherwise and those whose data cannot come back are dropped. False:
-  /// nothing kept (no room, or no copy support).
+  /// otherwise and those whose data cannot come back are dropped (a lowered
+  /// budget is Trim's). False: nothing kept (no room, or no copy support).
   bool Store(vtkOpenGLRenderWindow* context, const Key& key, vtkIrradianceEstimator* pass,
     const std::vector<mmv::LightSource>& computed, size_t budgetBytes);
 
@@ -94,10 +93,10 @@ private:
   struct Entry
   {
     Key EntryKey;
-    mmv::KeptStepData Data;
     std::vector<vtkSmartPointer<vtkTextureObject>> Textures; // irradiance, then tints
     std::vector<mmv::LightSource> ComputedLights;
     size_t Bytes = 0;
+    bool CanReturn() const { return this->EntryKey.Data.CanReturn(); }
   };
   static std::vector<vtkTextureObject*> PassTextures(vtkIrradianceEstimator* pass);
   void Drop(std::list<Entry>::iterator entry);

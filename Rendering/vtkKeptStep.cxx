@@ -19,4 +19,9 @@ bool KeptStepData::CanReturn() const
 {
   return this->Is(this->Scalars);
 }
+
+bool KeptStepData::operator==(const KeptStepData& o) const
+{
+  return this->Scalars == o.Scalars && this->Time == o.Time;
+}
 }

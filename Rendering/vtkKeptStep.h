@@ -35,14 +35,16 @@ public:
   bool Is(vtkDataArray* scalars) const;
   /// The array still exists and is unmodified since.
   bool CanReturn() const;
+  /// The same array at the same modification time.
+  bool operator==(const KeptStepData& o) const;
 
 private:
   vtkWeakPointer<vtkDataArray> Scalars;
   vtkMTimeType Time = 0;
 };
 
-/// Room for `bytes` more under `budget` among `entries` (each with a `Data`),
-/// which hold `used` bytes: drops the entries whose data cannot come back
+/// Room for `bytes` more under `budget` among `entries` (each with a
+/// `CanReturn()`), which hold `used` bytes: drops the entries whose data cannot come back
 /// (`drop(iterator)` releases one and lowers `used`), never another. False:
 /// what is left leaves no room.
 template <class Entry, class Drop>
@@ -52,7 +54,7 @@ bool MakeRoomForStep(
   for (auto entry = entries.begin(); entry != entries.end();)
   {
     const auto next = std::next(entry);
-    if (!entry->Data.CanReturn())
+    if (!entry->CanReturn())
     {
       drop(entry);
     }

@@ -127,6 +127,7 @@ private:
     int Dimensions[3] = { 0, 0, 0 };
     vtkSmartPointer<vtkTextureObject> Texture;
     size_t Bytes = 0;
+    bool CanReturn() const { return this->Data.CanReturn(); }
   };
   bool UploadGradientSlabs(vtkDataArray* scalars, const int dims[3], const double range[2]);
   bool UploadGradientVolume(vtkDataArray* scalars, const int dims[3], const double range[2],

@@ -98,14 +98,11 @@ def play_loops(view, rep, source, times, args):
         view.UseCache = 1
         view.CacheKey = times[0]
     view.SMProxy.StillRender()
-    def counts():
-        rep.UpdatePropertyInformation()
-        return [rep.GetProperty(name).GetData()
-                for name in ("IrradianceUpdateCount", "IrradianceCacheHitCount")]
+    counters = ["IrradianceUpdateCount", "IrradianceCacheHitCount"]
 
     for loop in range(args.loops):
         frames = []
-        before = counts()
+        before = orbit.read_info(rep, counters)
         for k, t in enumerate(times):
             if loop == 0 and k == 0:
                 continue
@@ -116,9 +113,9 @@ def play_loops(view, rep, source, times, args):
             start = time.perf_counter()
             view.SMProxy.StillRender()
             frames.append(time.perf_counter() - start)
-        after = counts()
+        after = orbit.read_info(rep, counters)
         print("loop %d     median %.3f s  (%d updates, %d copies)" % (
-            loop + 1, statistics.median(frames), after[0] - before[0], after[1] - before[1]))
+            loop + 1, statistics.median(frames), *(after[c] - before[c] for c in counters)))
     still = []
     for _ in range(4):
         start = time.perf_counter()
