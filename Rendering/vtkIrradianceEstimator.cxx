@@ -198,6 +198,9 @@ bool vtkIrradianceEstimator::Render(vtkOpenGLRenderWindow* context)
   {
     return false;
   }
+  // From here on the own textures are written and shown.
+  internals.ShownIrradiance.clear();
+  internals.ShownTint.clear();
   bool diffusion = false;
   const int estimation = this->PrepareSettings(diffusion);
   glFinish();
@@ -520,7 +523,9 @@ double vtkIrradianceEstimator::GetDiffusionLength() const
 //------------------------------------------------------------------------------
 vtkTextureObject* vtkIrradianceEstimator::GetIrradianceTexture(int i) const
 {
-  const auto& textures = this->Internals->Irradiance;
+  const vtkInternals& internals = *this->Internals;
+  const auto& textures =
+    internals.ShownIrradiance.empty() ? internals.Irradiance : internals.ShownIrradiance;
   return i >= 0 && i < static_cast<int>(textures.size()) ? textures[i].Get() : nullptr;
 }
 
@@ -550,15 +555,21 @@ const std::vector<mmv::LightSource>& vtkIrradianceEstimator::GetComputedLights()
   return this->Internals->ComputedLights;
 }
 
-void vtkIrradianceEstimator::InvalidateComputedLights()
+void vtkIrradianceEstimator::ShowKeptTextures(
+  const std::vector<vtkTextureObject*>& irradiance, const std::vector<vtkTextureObject*>& tints)
 {
-  // (The textures were written from elsewhere: anything may be non-zero.)
-  for (mmv::IndexBox& box : this->Internals->FilledBoxes)
-  {
-    box = mmv::IndexBox::Whole(this->Internals->Grid.Dimensions);
-  }
-  this->Internals->VolumeChanged = true;
+  vtkInternals& internals = *this->Internals;
+  internals.ShownIrradiance.assign(irradiance.begin(), irradiance.end());
+  internals.ShownTint.assign(tints.begin(), tints.end());
+  // The own textures keep what they hold (and their filled boxes); the
+  // placements they hold are no longer those shown.
+  internals.VolumeChanged = true;
   this->Modified();
+}
+
+bool vtkIrradianceEstimator::ShowsKeptTextures() const
+{
+  return !this->Internals->ShownIrradiance.empty();
 }
 
 //------------------------------------------------------------------------------
@@ -779,7 +790,8 @@ bool vtkIrradianceEstimator::IsTinted() const
 
 vtkTextureObject* vtkIrradianceEstimator::GetTintTexture(int light) const
 {
-  const auto& tint = this->Internals->Tint;
+  const vtkInternals& internals = *this->Internals;
+  const auto& tint = internals.ShownIrradiance.empty() ? internals.Tint : internals.ShownTint;
   return light >= 0 && light < static_cast<int>(tint.size()) ? tint[light].Get() : nullptr;
 }
 

@@ -276,9 +276,16 @@ public:
   /// first Render() or after a failed one).
   const std::vector<mmv::LightSource>& GetComputedLights() const;
 
-  /// The textures were overwritten from outside (vtkIrradianceStepCache):
-  /// the next Render() recomputes every light.
-  void InvalidateComputedLights();
+#ifndef __VTK_WRAP__
+  /// Shows `irradiance` and `tints` (a kept step's copies of this
+  /// estimator's textures, of their sizes: vtkIrradianceStepCache) in place
+  /// of its own until the next Render() or release, which recomputes every
+  /// light into its own textures: showing a kept step copies nothing.
+  void ShowKeptTextures(
+    const std::vector<vtkTextureObject*>& irradiance, const std::vector<vtkTextureObject*>& tints);
+  /// Whether ShowKeptTextures' textures are shown.
+  bool ShowsKeptTextures() const;
+#endif
 
   /**
    * The tint table of a non-white transmission colour
@@ -292,7 +299,7 @@ public:
    */
   void SetTintTable(const float* tintTable);
   bool IsTinted() const;
-  /// Light k's tint texture (nullptr when grey or before Render()).
+  /// Light k's tint texture shown (nullptr when grey or before Render()).
   vtkTextureObject* GetTintTexture(int light) const;
   void GetTintDimensions(int dims[3]) const;
   /// Light k's tint, 3 floats (r, g, b) per tint voxel, x fastest.
@@ -327,7 +334,8 @@ public:
   void SetProgressCallback(std::function<void(double)> callback);
 #endif
 
-  /// RGBA16 3D texture holding lights 4i..4i+3 (nullptr before Render()).
+  /// RGBA16 3D texture holding lights 4i..4i+3 shown (nullptr before
+  /// Render()): the estimator's own or a kept step's (ShowKeptTextures).
   vtkTextureObject* GetIrradianceTexture(int i) const;
   /// The pre-filtered scalars (R32F, linear) and the shadow-opacity table the
   /// shadow rays march, for other marches through the same extinction (the

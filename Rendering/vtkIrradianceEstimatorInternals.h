@@ -447,6 +447,11 @@ public:
   vtkSmartPointer<vtkTextureObject> ClassTableTexture;
   vtkSmartPointer<vtkTextureObject> TableTexture;
   std::vector<vtkSmartPointer<vtkTextureObject>> Irradiance;
+  // A kept step's irradiance and tint textures shown instead of the own
+  // (ShowKeptTextures) until the next Render(): held here, as the step
+  // cache may drop them meanwhile.
+  std::vector<vtkSmartPointer<vtkTextureObject>> ShownIrradiance;
+  std::vector<vtkSmartPointer<vtkTextureObject>> ShownTint;
   // Per irradiance texture, the voxels that may hold non-zero values: zero
   // when it is made, and what the last final write covered (the whole
   // grid after a copy from elsewhere).

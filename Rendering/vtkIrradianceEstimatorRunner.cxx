@@ -985,6 +985,9 @@ void vtkIrradianceEstimator::vtkInternals::ReleaseScratch(vtkWindow* window)
 //------------------------------------------------------------------------------
 void vtkIrradianceEstimator::vtkInternals::Release(vtkWindow* window)
 {
+  // A kept step's textures are the step cache's.
+  this->ShownIrradiance.clear();
+  this->ShownTint.clear();
   this->ReleaseScratch(window);
   for (auto& plan : this->Diffusions)
   {

@@ -77,7 +77,7 @@ bool vtkIrradianceStepCache::Restore(vtkOpenGLRenderWindow* context, const Key& 
 {
   auto entry = std::find_if(this->Entries.begin(), this->Entries.end(),
     [&key](const Entry& e) { return e.EntryKey == key; });
-  if (entry == this->Entries.end() || !context || !mmv::CanCopyTextures())
+  if (entry == this->Entries.end() || !context)
   {
     return false;
   }
@@ -89,14 +89,12 @@ bool vtkIrradianceStepCache::Restore(vtkOpenGLRenderWindow* context, const Key& 
   }
   if (!fits)
   {
-    return false; // the estimator's textures were allocated for another grid
+    return false; // the estimator's textures are of another grid or layout
   }
-  for (size_t t = 0; t < targets.size(); ++t)
-  {
-    mmv::CopyTexture3D(entry->Textures[t], targets[t]);
-  }
-  // The estimator's record of what its textures hold is no longer true.
-  pass->InvalidateComputedLights();
+  // Shown as they are: nothing is copied.
+  const auto irradianceEnd = entry->Textures.begin() + pass->GetNumberOfIrradianceTextures();
+  pass->ShowKeptTextures(std::vector<vtkTextureObject*>(entry->Textures.begin(), irradianceEnd),
+    std::vector<vtkTextureObject*>(irradianceEnd, entry->Textures.end()));
   computed = entry->ComputedLights;
   this->Entries.splice(this->Entries.begin(), this->Entries, entry);
   return true;
@@ -164,8 +162,12 @@ void vtkIrradianceStepCache::Drop(std::list<Entry>::iterator entry)
   for (auto& texture : entry->Textures)
   {
     // The context is current wherever entries are dropped (a render, or
-    // ReleaseGraphicsResources).
-    texture->ReleaseGraphicsResources(texture->GetContext());
+    // ReleaseGraphicsResources). One the estimator still shows goes with
+    // its last reference there.
+    if (texture->GetReferenceCount() == 1)
+    {
+      texture->ReleaseGraphicsResources(texture->GetContext());
+    }
   }
   this->Bytes -= entry->Bytes;
   this->Entries.erase(entry);

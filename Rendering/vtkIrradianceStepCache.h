@@ -8,7 +8,8 @@
  * second loop through a series hands the mapper the same scalar arrays
  * again. An entry holds copies of the irradiance (and tint) textures for one
  * input and everything the irradiance depends on; a later frame with the
- * same key gets them copied back into the estimator instead of recomputing.
+ * same key has the estimator show them as they are instead of recomputing
+ * (nothing is copied back).
  * Entries whose data can never come back are dropped for new ones; entries
  * whose data can are kept, and a step that finds no room is not kept
  * (vtkKeptStep.h). A budget lowered drops the least recently used first.
@@ -67,10 +68,11 @@ public:
     vtkImageData* image, vtkDataArray* scalars, const std::vector<mmv::LightSource>& lights,
     const int dims[3]);
 
-  /// Copies the entry of `key`, if there is one, into `pass`'s textures
-  /// (when they have its sizes) and has the estimator recompute every light at
-  /// its next update; `computed` gets the light placements the copy holds.
-  /// False: no such entry, or the estimator's textures have other sizes.
+  /// Has `pass` show the entry of `key`, if there is one, in place of its
+  /// own textures (when they have its sizes) until its next update, which
+  /// recomputes every light; `computed` gets the light placements the entry
+  /// holds. False: no such entry, or the estimator's textures have other
+  /// sizes.
   bool Restore(vtkOpenGLRenderWindow* context, const Key& key, vtkIrradianceEstimator* pass,
     std::vector<mmv::LightSource>& computed);
 

@@ -375,7 +375,7 @@ bool vtkMultiMaterialIrradianceStage::KeepsHeld(const vtkIrradianceUpdatePlan& p
     return true;
   }
   // Data seen before with everything else the same (a series' earlier step):
-  // its kept irradiance is copied back.
+  // its kept irradiance is shown.
   std::vector<mmv::LightSource> restored;
   if (stepBudget > 0 && this->Steps.Restore(window, stepKey(), this->Estimator, restored))
   {

@@ -100,7 +100,7 @@ struct IrradianceStageReport
   int DiffusionPasses = 0; // of that update
   double Seconds = 0.0;    // the estimator's time, when lights were recomputed
   bool Deferred = false;   // an interactive frame kept a stale irradiance
-  bool CacheHit = false;   // an earlier input's irradiance was copied back
+  bool CacheHit = false;   // an earlier input's kept irradiance is shown
   bool GridSet = false;    // Dimensions hold the grid now in use
   int Dimensions[3] = { 0, 0, 0 };
   std::vector<std::string> Warnings;
@@ -147,7 +147,7 @@ private:
     const double range[2], const vtkIrradianceInputCache::VolumeKey& volumeKey,
     const mmv::Cutaway& cutaway, double bound, int maxAxis, mmv::IrradianceResolution& resolution);
   /// Keeps the held irradiance when `plan` (to `now`) allows it: current,
-  /// kept while interacting, nothing visible, or a kept step copied back.
+  /// kept while interacting, nothing visible, or a kept step shown.
   /// False: the caller recomputes what the plan marks.
   bool KeepsHeld(const vtkIrradianceUpdatePlan& plan, const vtkIrradianceUpdatePlan::Inputs& now,
     vtkOpenGLRenderWindow* window, const double range[2], size_t stepBudget,

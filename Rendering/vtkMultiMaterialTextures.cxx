@@ -189,6 +189,8 @@ bool vtkMultiMaterialTextures::UpdateGradientTexture(vtkOpenGLRenderWindow* cont
     const int fit = std::max(std::min(dims[a], 2), static_cast<int>(dims[a] * shrink));
     textureDims[a] = largest > 1 ? std::min(fit, largest) : fit;
   }
+  // From here on the own texture is written and shown.
+  this->ShownGradient = nullptr;
   this->Gradient->SetContext(context);
   // Half floats: 6 bytes a voxel, and 11 bits of mantissa keep the faint
   // gradients of soft tissue that 8-bit normals would flatten.
@@ -327,12 +329,13 @@ bool vtkMultiMaterialTextures::RestoreKeptGradient(
       std::equal(dims, dims + 3, kept->Dimensions) &&
       std::equal(smoothing, smoothing + 3, kept->Smoothing))
     {
-      // Only into a texture of its size: the grid's earlier steps'.
+      // Only in place of a texture of its size (the grid's earlier steps'),
+      // which GradientTextureDimensions describes; shown as it is.
       if (!this->Gradient->GetHandle() || !mmv::SameTextureSize(kept->Texture, this->Gradient))
       {
         return false;
       }
-      mmv::CopyTexture3D(kept->Texture, this->Gradient);
+      this->ShownGradient = kept->Texture;
       this->UploadedScalars = scalars;
       this->UploadedScalarsTime = scalars->GetMTime();
       std::copy(range, range + 2, this->UploadedGradientRange);
@@ -349,7 +352,8 @@ bool vtkMultiMaterialTextures::RestoreKeptGradient(
 
 void vtkMultiMaterialTextures::KeepGradient(vtkOpenGLRenderWindow* context)
 {
-  const size_t bytes = mmv::TextureBytes(this->Gradient);
+  vtkTextureObject* shown = this->GetGradientTexture();
+  const size_t bytes = mmv::TextureBytes(shown);
   this->TrimKeptGradients(this->KeptBudget);
   if (!mmv::CanCopyTextures() ||
     !mmv::MakeRoomForStep(this->Kept, this->KeptBytes, bytes, this->KeptBudget,
@@ -358,12 +362,12 @@ void vtkMultiMaterialTextures::KeepGradient(vtkOpenGLRenderWindow* context)
     return;
   }
   KeptGradient kept;
-  kept.Texture = mmv::NewTextureLike(context, this->Gradient);
+  kept.Texture = mmv::NewTextureLike(context, shown);
   if (!kept.Texture)
   {
     return;
   }
-  mmv::CopyTexture3D(this->Gradient, kept.Texture);
+  mmv::CopyTexture3D(shown, kept.Texture);
   kept.Data = mmv::KeptStepData(this->UploadedScalars, this->UploadedScalarsTime);
   std::copy(this->UploadedGradientRange, this->UploadedGradientRange + 2, kept.Range);
   std::copy(this->UploadedGradientSmoothing, this->UploadedGradientSmoothing + 3, kept.Smoothing);
@@ -384,7 +388,11 @@ void vtkMultiMaterialTextures::TrimKeptGradients(size_t bytes)
 
 void vtkMultiMaterialTextures::DropKeptGradient(std::list<KeptGradient>::iterator kept)
 {
-  kept->Texture->ReleaseGraphicsResources(kept->Texture->GetContext());
+  // One still shown goes with ShownGradient's reference.
+  if (kept->Texture != this->ShownGradient)
+  {
+    kept->Texture->ReleaseGraphicsResources(kept->Texture->GetContext());
+  }
   this->KeptBytes -= kept->Bytes;
   this->Kept.erase(kept);
 }
@@ -394,7 +402,7 @@ void vtkMultiMaterialTextures::Activate()
   this->SegmentColor->Activate();
   this->SegmentPosition->Activate();
   this->Material->Activate();
-  this->Gradient->Activate();
+  this->GetGradientTexture()->Activate();
 }
 
 void vtkMultiMaterialTextures::Deactivate()
@@ -402,7 +410,7 @@ void vtkMultiMaterialTextures::Deactivate()
   this->SegmentColor->Deactivate();
   this->SegmentPosition->Deactivate();
   this->Material->Deactivate();
-  this->Gradient->Deactivate();
+  this->GetGradientTexture()->Deactivate();
 }
 
 vtkIdType vtkMultiMaterialTextures::GetMemoryBytes() const
@@ -423,6 +431,11 @@ void vtkMultiMaterialTextures::ReleaseGraphicsResources(vtkWindow* window)
   this->SegmentPosition->ReleaseGraphicsResources(window);
   this->Material->ReleaseGraphicsResources(window);
   this->Gradient->ReleaseGraphicsResources(window);
+  if (this->ShownGradient)
+  {
+    this->ShownGradient->ReleaseGraphicsResources(window);
+    this->ShownGradient = nullptr;
+  }
   if (this->SlabBuffer)
   {
     this->SlabBuffer->SetContext(nullptr); // deletes the buffer

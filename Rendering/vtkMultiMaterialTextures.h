@@ -75,14 +75,20 @@ public:
     const double smoothing[3] = nullptr);
 
   /// GPU memory for the gradient volumes of earlier inputs (the steps of a
-  /// series), so data coming back is copied instead of recomputed and
-  /// uploaded; least recently used first out. 0 (the default): none.
+  /// series), so data coming back shows its kept copy instead of one
+  /// recomputed and uploaded (vtkKeptStep.h says which stay). 0 (the
+  /// default): none.
   void SetKeptGradientBytes(size_t bytes);
   vtkGetMacro(KeptGradientHits, int);
   size_t GetKeptGradientBytes() const { return this->KeptBytes; }
 
   vtkTextureObject* GetSegmentColorTexture() { return this->SegmentColor; }
-  vtkTextureObject* GetGradientTexture() { return this->Gradient; }
+  /// The gradient volume shown: the own texture, or the kept copy of data
+  /// that came back (until the next upload).
+  vtkTextureObject* GetGradientTexture()
+  {
+    return this->ShownGradient ? this->ShownGradient.Get() : this->Gradient.Get();
+  }
   /// Texels of the gradient texture: the data's dimensions, or fewer along
   /// axes longer than the largest 3D texture (spanning the same points).
   const int* GetGradientTextureDimensions() const { return this->GradientTextureDimensions; }
@@ -144,9 +150,12 @@ private:
   void TrimKeptGradients(size_t bytes);
   void DropKeptGradient(std::list<KeptGradient>::iterator kept);
   std::list<KeptGradient> Kept; // most recently used first
+  // A kept copy shown in place of Gradient (RestoreKeptGradient), held here
+  // as a trim may drop it from Kept meanwhile.
+  vtkSmartPointer<vtkTextureObject> ShownGradient;
   size_t KeptBytes = 0;
   size_t KeptBudget = 0;
-  bool GradientKept = false; // Kept holds a copy of what Gradient holds
+  bool GradientKept = false; // Kept holds a copy of the gradient volume shown
   int KeptGradientHits = 0;
   vtkDataArray* UploadedScalars = nullptr;
   vtkMTimeType UploadedScalarsTime = 0;

@@ -64,6 +64,12 @@ vtkSmartPointer<vtkTextureObject> NewTextureLike(
   texture->SetInternalFormat(like->GetInternalFormat(type, components, false));
   texture->SetFormat(like->GetFormat(type, components, false));
   texture->SetDataType(like->GetDataType(type));
+  // Sampled as the original (a kept copy is shown in its place).
+  texture->SetMinificationFilter(like->GetMinificationFilter());
+  texture->SetMagnificationFilter(like->GetMagnificationFilter());
+  texture->SetWrapS(like->GetWrapS());
+  texture->SetWrapT(like->GetWrapT());
+  texture->SetWrapR(like->GetWrapR());
   if (!texture->Allocate3D(like->GetWidth(), like->GetHeight(), like->GetDepth(), components, type))
   {
     return nullptr;

@@ -24,7 +24,8 @@ size_t TextureBytes(vtkTextureObject* texture);
 bool SameTextureSize(vtkTextureObject* a, vtkTextureObject* b);
 /// Copies all of 3D texture `from` into `to` (SameTextureSize) on the GPU.
 void CopyTexture3D(vtkTextureObject* from, vtkTextureObject* to);
-/// An uninitialised 3D texture of `like`'s size and format (null: failed).
+/// An uninitialised 3D texture of `like`'s size, format and sampling (null:
+/// failed).
 vtkSmartPointer<vtkTextureObject> NewTextureLike(
   vtkOpenGLRenderWindow* context, vtkTextureObject* like);
 /// Linear filtering, clamped to the edge along every axis.

@@ -9,6 +9,7 @@
 #include "vtkDataArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationObjectBaseVectorKey.h"
+#include "vtkIrradianceEstimator.h"
 #include "vtkIrradianceGrid.h"
 #include "vtkIrradianceResolutionProbe.h"
 #include "vtkIrradianceVolumeFilter.h"
@@ -1088,16 +1089,22 @@ TEST(MultiMaterialVolumeMapper, KeptStepsComeBackWithoutAnUpdate)
   const size_t entry = 10u * static_cast<size_t>(dims[0]) * dims[1] * dims[2];
   EXPECT_EQ(scene.Mapper->GetIrradianceCacheBytes(), 3 * entry);
 
-  // The second loop: copies, not updates (of the irradiance or the
-  // gradient volume), and the very same images.
+  // The second loop: the kept copies shown as they are, not updates (of
+  // the irradiance or the gradient volume), and the very same images.
   const int updates = scene.Mapper->GetIrradianceUpdateCount();
   const int gradients = scene.Mapper->GetGradientUploadCount();
+  vtkIrradianceEstimator* estimator = scene.Mapper->GetIrradianceEstimator();
+  std::vector<vtkTextureObject*> shown;
   for (size_t k = 0; k < steps.size(); ++k)
   {
     show(k);
     EXPECT_EQ(scene.Mapper->GetIrradianceCacheHitCount(), static_cast<int>(k + 1));
     EXPECT_EQ(mmvtest::PSNR(scene.Pixels(), first[k]), INFINITY) << "second loop, step " << k;
+    EXPECT_TRUE(estimator->ShowsKeptTextures()) << "second loop, step " << k;
+    shown.push_back(estimator->GetIrradianceTexture(0));
   }
+  EXPECT_NE(shown[0], shown[1]);
+  EXPECT_NE(shown[1], shown[2]);
   EXPECT_EQ(scene.Mapper->GetIrradianceUpdateCount(), updates);
   EXPECT_EQ(scene.Mapper->GetGradientUploadCount(), gradients);
 
@@ -1109,9 +1116,14 @@ TEST(MultiMaterialVolumeMapper, KeptStepsComeBackWithoutAnUpdate)
   EXPECT_EQ(scene.Mapper->GetIrradianceUpdateCount(), updates + 1);
   EXPECT_EQ(mmvtest::PSNR(scene.Pixels(), first[0]), INFINITY);
   EXPECT_EQ(scene.Mapper->GetIrradianceCacheBytes(), 2 * entry);
+  // The update wrote the estimator's own textures, not a kept copy shown
+  // before it: step 2's copy is the one shown in the second loop, intact.
+  EXPECT_FALSE(estimator->ShowsKeptTextures());
   show(2);
   EXPECT_EQ(scene.Mapper->GetIrradianceUpdateCount(), updates + 1);
   EXPECT_EQ(scene.Mapper->GetIrradianceCacheHitCount(), 4);
+  EXPECT_EQ(estimator->GetIrradianceTexture(0), shown[2]);
+  EXPECT_EQ(mmvtest::PSNR(scene.Pixels(), first[2]), INFINITY);
 
   // The pass last computed step 0 but holds step 2's copy; with step 0's
   // entry dropped, step 0 comes back through a full update, not through
