@@ -25,10 +25,14 @@ Sequences, each change followed by one timed StillRender() per view:
   orbit     Azimuth 10 degrees: the light kit follows the camera
   opacity   one opacity point's value dragged (+0.02 per change)
   colour    the colour map edited (no opacity change)
-  series    a generated series of 8 steps on the same grid, with ParaView's
-            animation caching on (series-2: the second loop, whose target
-            is one ray cast per step); each step is read before the timed
-            renders, so no method pays for the reader
+  series    a generated series of 8 steps on the same grid with ParaView's
+            animation caching on: the first loop also keeps each step for
+            the next (series-2: the second loop, whose target is one ray
+            cast per step)
+  steps     the same series played once more, as ParaView plays it by
+            default (animation caching off: every step is new)
+  (each step is read before the timed renders, so no method pays for the
+  reader)
 
 Writes OUT/changes.csv (one row per volume, sequence and method: medians,
 ratios to pv-volume, irradiance updates, probes, the median seconds of each
@@ -65,16 +69,18 @@ METHODS = [
     ("mmv-sky", MMV, {"EnvironmentLighting": 1.0}),
     ("mmv-smoke", MMV, {"MaterialPreset": "smoke"}),
 ]
-SEQUENCES = ["still", "orbit", "opacity", "colour", "series"]
+SEQUENCES = ["still", "orbit", "opacity", "colour", "series", "steps"]
 # Targets (ratio to pv-volume's median of the same sequence; colour: to the
 # method's own still frame).
 TARGETS = {
     ("orbit", "mmv-default"): 1.25, ("orbit", "mmv-skin"): 2.0,
     ("opacity", "mmv-default"): 1.25, ("opacity", "mmv-skin"): 1.5,
-    ("series", "mmv-default"): 1.25, ("series", "mmv-smoke"): 1.5,
+    ("steps", "mmv-default"): 1.25, ("steps", "mmv-smoke"): 1.5,
     ("colour", "mmv-default"): 1.05, ("colour", "mmv-skin"): 1.05,
     ("series-2", "mmv-default"): 1.05, ("series-2", "mmv-smoke"): 1.05,
 }
+# The sequences of time steps (the other methods skip them).
+TIME_STEPS = ("steps", "series", "series-2")
 # Sequences whose target is a ratio to the method's own still frame.
 OWN_STILL = ("colour", "series-2")
 STAGES = orbit.STAGES
@@ -219,10 +225,10 @@ def run_volume(name, args, methods, folder, writer, records, checks):
         shift = count[0] % len(active)
         count[0] += 1
         for m in active[shift:] + active[:shift]:
-            if sequence.startswith("series") and m.name not in ("pv-volume", "mmv-default", "mmv-smoke",
-                                                                  "mmv-sky"):
+            if sequence in TIME_STEPS and m.name not in ("pv-volume", "mmv-default", "mmv-smoke",
+                                                         "mmv-sky"):
                 continue
-            if sequence not in ("still", "series", "series-2") and m.name == "mmv-smoke":
+            if sequence not in ("still",) + TIME_STEPS and m.name == "mmv-smoke":
                 continue
             frame(m, name, sequence, change, writer, records)
 
@@ -250,6 +256,17 @@ def run_volume(name, args, methods, folder, writer, records, checks):
                 points[9] = 0.6 + 0.04 * (c % 4)  # the 900 point's green
                 lut.RGBPoints = points
             each("colour", c, recolour)
+    def play(sequence, steps):
+        for k, t in steps:
+            def step(t=t):
+                # Read the step untimed, so that no method pays for
+                # reading it by rendering first.
+                source.UpdatePipeline(t)
+                for m in active:
+                    m.view.CacheKey = t
+                    m.view.ViewTime = t
+            each(sequence, k, step)
+
     if "series" in wanted:
         # ParaView's animation caching on (what the animation scene sets on
         # each view), from the step the views show, untimed.
@@ -257,18 +274,15 @@ def run_volume(name, args, methods, folder, writer, records, checks):
             m.view.UseCache = 1
             m.view.CacheKey = times[0]
             m.view.SMProxy.StillRender()
-        for loop in range(2):
-            for k, t in enumerate(times):
-                if loop == 0 and k == 0:
-                    continue  # the views already show step 0
-                def step(t=t):
-                    # Read the step untimed, so that no method pays for
-                    # reading it by rendering first.
-                    source.UpdatePipeline(t)
-                    for m in active:
-                        m.view.CacheKey = t
-                        m.view.ViewTime = t
-                each("series" if loop == 0 else "series-2", k, step)
+        # The views already show step 0.
+        play("series", list(enumerate(times))[1:])
+        play("series-2", list(enumerate(times)))
+    if "steps" in wanted:
+        # ParaView's default: no animation caching, so nothing is kept and
+        # every step is new (from the last one shown, the first again).
+        for m in active:
+            m.view.UseCache = 0
+        play("steps", list(enumerate(times)) if "series" in wanted else list(enumerate(times))[1:])
     # The grid the kept probe choice gives against a fresh probe of the
     # final transfer functions and step (a new representation measures).
     for m in active:
@@ -371,7 +385,7 @@ def main():
             "/".join(r["%s_s" % s.replace(" ", "_")] or "-" for s in STAGES if s != "pass") +
             (" sky %s s x%d" % (r["sky_s"], r["sky_updates"]) if r["sky_updates"] else "")))
     for r in rows:
-        if r["sequence"] == "series" and r["method"] != "pv-volume" and \
+        if r["sequence"] in ("steps", "series") and r["method"] != "pv-volume" and \
                 r["irradiance_updates"] < r["frames"]:
             # The chest moves by sin(2 pi k / steps): with steps = 2 mod 4
             # two neighbouring steps hold the same values.
