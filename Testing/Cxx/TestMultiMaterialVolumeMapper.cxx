@@ -1174,6 +1174,21 @@ TEST(MultiMaterialVolumeMapper, KeptStepsComeBackWithoutAnUpdate)
   scene.Mapper->SetIrradianceCacheMB(0.0);
   show(2);
   EXPECT_EQ(scene.Mapper->GetIrradianceCacheBytes(), 0u);
+
+  // Released while a kept step is shown: the next frame computes it again,
+  // the same image.
+  scene.Mapper->SetIrradianceCacheMB(64.0);
+  show(0);
+  show(2);
+  show(0);
+  ASSERT_TRUE(estimator->ShowsKeptTextures());
+  const std::vector<unsigned char> kept = scene.Pixels();
+  scene.Mapper->ReleaseGraphicsResources(scene.Window);
+  EXPECT_FALSE(estimator->ShowsKeptTextures());
+  EXPECT_EQ(scene.Mapper->GetIrradianceCacheBytes(), 0u);
+  scene.Window->Render();
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+  EXPECT_EQ(mmvtest::PSNR(scene.Pixels(), kept), INFINITY) << "after the release";
 }
 
 TEST(MultiMaterialVolumeMapper, ASeriesLongerThanTheBudgetKeepsItsFirstSteps)
