@@ -21,6 +21,7 @@
 #include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
 #include "vtkPResampleToImage.h"
+#include "vtkPVGeneralSettings.h"
 #include "vtkPVRenderView.h"
 #include "vtkPVView.h"
 #include "vtkPointData.h"
@@ -223,9 +224,14 @@ void vtkPVMultiMaterialVolumeRepresentation::UpdateMapperParameters()
   mapper->SetAutoAdjustSampleDistances(this->AutoAdjustSampleDistances);
   mapper->SetLockSampleDistanceToInputSpacing(this->LockSampleDistanceToInputSpacing);
   // Earlier steps come back as the same data objects only from the view's
-  // animation cache; without it every step is new data.
+  // animation cache; without it every step is new data. The scene turns the
+  // view's cache on for its own frames only: the setting keeps the budget
+  // through the renders between them (a screenshot, the GUI's repaint),
+  // which would otherwise drop every kept step before the next loop.
   auto* view = vtkPVView::SafeDownCast(this->GetView());
-  mapper->SetIrradianceCacheMB(view && view->GetUseCache() ? this->IrradianceCacheMB : 0.0);
+  const bool caching = (view && view->GetUseCache()) ||
+    vtkPVGeneralSettings::GetInstance()->GetCacheGeometryForAnimation();
+  mapper->SetIrradianceCacheMB(caching ? this->IrradianceCacheMB : 0.0);
 }
 
 //------------------------------------------------------------------------------

@@ -127,7 +127,8 @@ public:
   void SetDimLightCoarsening(bool coarsening);
   void SetLightDirectionTolerance(double degrees);
   /// GPU memory for the irradiance of earlier time steps, used while the
-  /// view caches them (Cache Geometry For Animation); otherwise none.
+  /// view caches them or Cache Geometry For Animation is on (the scene
+  /// caches its own frames only); otherwise none.
   void SetIrradianceCacheMB(double megabytes);
   void SetReflectionSource(int source);
   void SetReflectionVisibility(int visibility);

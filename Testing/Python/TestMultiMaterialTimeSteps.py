@@ -1,7 +1,8 @@
 """A series played twice with ParaView's animation caching (the view's
 UseCache and CacheKey, as the animation scene sets them): the second loop is
 lit from the kept irradiance (IrradianceCacheHitCount), with no update and
-the same images; without caching every step is new data and recomputes."""
+the same images; without caching every step is new data and recomputes. The
+animation scene's own loops keep their steps through a render between them."""
 
 import os
 
@@ -74,6 +75,31 @@ for k in range(3):
 play(0, "uncached")
 checker.check(mmv.info(rep, "IrradianceCacheHitCount") == hits, "no copies without caching")
 checker.check(mmv.info(rep, "IrradianceUpdateCount") > updates, "without caching the steps update")
+
+# As the animation scene plays the series with Cache Geometry For Animation
+# on, in a view of its own: the scene turns the view's cache on for its own
+# frames only, and a render between two loops (a screenshot, the GUI's
+# repaint) keeps the kept steps.
+simple.Delete(rep)
+simple.Delete(view)
+settings = simple.GetSettingsProxy("GeneralSettings")
+settings.CacheGeometryForAnimation = 1
+played_reader = simple.XMLImageDataReader(FileName=paths)
+view = mmv.make_view()
+rep = mmv.show_volume(played_reader, view)
+scene = simple.GetAnimationScene()
+scene.UpdateAnimationUsingDataTimeSteps()
+scene.Play()
+simple.Render(view)
+hits = mmv.info(rep, "IrradianceCacheHitCount")
+updates = mmv.info(rep, "IrradianceUpdateCount")
+scene.Play()
+played = mmv.info(rep, "IrradianceCacheHitCount") - hits
+checker.check(played == 3, "the scene's second loop is lit by copies (%d of 3)" % played)
+checker.check(mmv.info(rep, "IrradianceUpdateCount") == updates,
+              "no update in the scene's second loop (%d -> %d)" % (
+                  updates, mmv.info(rep, "IrradianceUpdateCount")))
+settings.CacheGeometryForAnimation = 0
 
 reported = errors.take_errors()
 checker.check(reported == "", "no VTK error (%r)" % reported)
