@@ -453,8 +453,7 @@ public:
   std::vector<vtkSmartPointer<vtkTextureObject>> ShownIrradiance;
   std::vector<vtkSmartPointer<vtkTextureObject>> ShownTint;
   // Per irradiance texture, the voxels that may hold non-zero values: zero
-  // when it is made, and what the last final write covered (the whole
-  // grid after a copy from elsewhere).
+  // when it is made, and what the last final write covered.
   std::vector<mmv::IndexBox> FilledBoxes;
   // The tint of a non-white transmission colour: its table (4 floats per
   // entry; empty when grey), and one RGBA16F texture per light on the tint
