@@ -159,15 +159,11 @@ void vtkIrradianceStepCache::Trim(size_t budgetBytes)
 
 void vtkIrradianceStepCache::Drop(std::list<Entry>::iterator entry)
 {
+  // The context is current wherever entries are dropped (a render, or
+  // ReleaseGraphicsResources).
   for (auto& texture : entry->Textures)
   {
-    // The context is current wherever entries are dropped (a render, or
-    // ReleaseGraphicsResources). One the estimator still shows goes with
-    // its last reference there.
-    if (texture->GetReferenceCount() == 1)
-    {
-      texture->ReleaseGraphicsResources(texture->GetContext());
-    }
+    mmv::ReleaseUnlessShown(texture);
   }
   this->Bytes -= entry->Bytes;
   this->Entries.erase(entry);

@@ -92,9 +92,11 @@ vtkMultiMaterialIrradianceStage::~vtkMultiMaterialIrradianceStage() = default;
 
 void vtkMultiMaterialIrradianceStage::ReleaseGraphicsResources(vtkWindow* window)
 {
+  // The estimator first: it stops showing a kept step, so the step cache
+  // releases every copy here.
+  this->Estimator->ReleaseGraphicsResources(window);
   this->Steps.ReleaseGraphicsResources(window);
   this->HeldKept = false;
-  this->Estimator->ReleaseGraphicsResources(window);
   this->Probe->ReleaseGraphicsResources(window);
   this->Cache->Invalidate();
 }

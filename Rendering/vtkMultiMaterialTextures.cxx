@@ -388,11 +388,7 @@ void vtkMultiMaterialTextures::TrimKeptGradients(size_t bytes)
 
 void vtkMultiMaterialTextures::DropKeptGradient(std::list<KeptGradient>::iterator kept)
 {
-  // One still shown goes with ShownGradient's reference.
-  if (kept->Texture != this->ShownGradient)
-  {
-    kept->Texture->ReleaseGraphicsResources(kept->Texture->GetContext());
-  }
+  mmv::ReleaseUnlessShown(kept->Texture);
   this->KeptBytes -= kept->Bytes;
   this->Kept.erase(kept);
 }
@@ -431,11 +427,8 @@ void vtkMultiMaterialTextures::ReleaseGraphicsResources(vtkWindow* window)
   this->SegmentPosition->ReleaseGraphicsResources(window);
   this->Material->ReleaseGraphicsResources(window);
   this->Gradient->ReleaseGraphicsResources(window);
-  if (this->ShownGradient)
-  {
-    this->ShownGradient->ReleaseGraphicsResources(window);
-    this->ShownGradient = nullptr;
-  }
+  // Before the trim, which then releases every kept copy.
+  this->ShownGradient = nullptr;
   if (this->SlabBuffer)
   {
     this->SlabBuffer->SetContext(nullptr); // deletes the buffer

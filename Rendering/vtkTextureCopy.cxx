@@ -54,6 +54,15 @@ void CopyTexture3D(vtkTextureObject* from, vtkTextureObject* to)
     static_cast<GLsizei>(from->GetDepth()));
 }
 
+void ReleaseUnlessShown(vtkTextureObject* texture)
+{
+  // The caller's reference is the kept list's own.
+  if (texture->GetReferenceCount() == 1)
+  {
+    texture->ReleaseGraphicsResources(texture->GetContext());
+  }
+}
+
 vtkSmartPointer<vtkTextureObject> NewTextureLike(
   vtkOpenGLRenderWindow* context, vtkTextureObject* like)
 {

@@ -24,6 +24,10 @@ size_t TextureBytes(vtkTextureObject* texture);
 bool SameTextureSize(vtkTextureObject* a, vtkTextureObject* b);
 /// Copies all of 3D texture `from` into `to` (SameTextureSize) on the GPU.
 void CopyTexture3D(vtkTextureObject* from, vtkTextureObject* to);
+/// Releases a kept copy's GPU memory now, unless something else still holds
+/// it (a kept step shown in place of a texture of its own): that holder's
+/// last reference releases it then. Needs the texture's context current.
+void ReleaseUnlessShown(vtkTextureObject* texture);
 /// An uninitialised 3D texture of `like`'s size, format and sampling (null:
 /// failed).
 vtkSmartPointer<vtkTextureObject> NewTextureLike(
