@@ -186,6 +186,7 @@ bool vtkIrradianceEstimator::Render(vtkOpenGLRenderWindow* context)
   this->NumberOfComputedVoxels = 0;
   this->DiffusionPasses = 0;
   this->NumberOfUpdatedLights = 0;
+  this->NumberOfLightsSweptOnCPU = 0;
   this->LastEstimatedVoxels = 0;
   this->LastEstimationSeconds = 0.0;
   this->LastDiffusionSeconds = 0.0;
@@ -233,6 +234,7 @@ bool vtkIrradianceEstimator::Render(vtkOpenGLRenderWindow* context)
     { return place == OnCPU || (place == OnGPUUnlessSoftware && software); };
     const bool cpuClasses = onCPU(this->Classification);
     internals.DiffusionOnCPU = onCPU(this->DiffusionPlace);
+    internals.SweepsOnCPU = onCPU(this->ShadowRaysPlace);
     internals.DiffusionRanOnCPU = false;
     bool reallocated = false;
     ok = internals.Upload(context, this->LayeredRendering, cpuClasses, this->ClassesCopied) &&
@@ -403,9 +405,15 @@ bool vtkIrradianceEstimator::UpdateGroup(vtkOpenGLRenderWindow* context, int gro
     return seconds;
   };
   const int lights = PopCount(mask);
-  bool ok = fullMask == 0 ||
-    internals.ShadowPass(
-      context, group, fullMask, 1, this->SkipEmptyVoxels, this->LayeredRendering);
+  // The CPU's sweeps first: their upload sets every channel of its box.
+  const size_t sweptLights = swept.size();
+  bool ok = internals.SweepOnCPU(
+    swept, this->SkipEmptyVoxels, [this, context]() { this->ReportProgress(context, 1.0); });
+  this->NumberOfLightsSweptOnCPU += static_cast<int>(sweptLights - swept.size());
+  ok = ok &&
+    (fullMask == 0 ||
+      internals.ShadowPass(
+        context, group, fullMask, 1, this->SkipEmptyVoxels, this->LayeredRendering));
   ok = ok &&
     (stridedFullMask == 0 ||
       internals.ShadowPass(
@@ -762,6 +770,11 @@ vtkIdType vtkIrradianceEstimator::GetScratchMemoryBytes() const
   add(this->Internals->LightGridScratch);
   // A diffusion on the CPU: its copy of the irradiance.
   bytes += static_cast<vtkIdType>(4 * this->Internals->FineOnCPU.size());
+  // Shadow rays on the CPU: their targets' contents.
+  for (const auto& buffer : this->Internals->SweptOnCPU)
+  {
+    bytes += static_cast<vtkIdType>(4 * buffer.size());
+  }
   return bytes;
 }
 
@@ -879,6 +892,8 @@ void vtkIrradianceEstimator::PrintSelf(ostream& os, vtkIndent indent)
      << " (last: " << (this->ClassesCopied ? "CPU" : "GPU") << ")\n";
   os << indent << "DiffusionPlace: " << this->DiffusionPlace
      << " (last: " << (this->DiffusedOnCPU ? "CPU" : "GPU") << ")\n";
+  os << indent << "ShadowRaysPlace: " << this->ShadowRaysPlace
+     << " (last: " << this->NumberOfLightsSweptOnCPU << " light(s) on the CPU)\n";
   os << indent << "KeepScratch: " << this->KeepScratch << "\n";
   os << indent << "ScratchMemoryBytes: " << this->GetScratchMemoryBytes() << "\n";
 }

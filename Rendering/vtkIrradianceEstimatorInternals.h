@@ -502,6 +502,13 @@ public:
   /// The CPU's marks (255 where needed, 0 elsewhere) from `classes`, x fastest.
   std::vector<unsigned char> LightGridNeededOnCPU(
     const std::vector<float>& classes, int stride) const;
+  // The classes and the strided marks as CopyClasses made and copied them,
+  // with the classification they belong to (Classifications then): the
+  // shadow rays on the CPU read them where they are the current ones.
+  vtkIdType CopiedClassesStamp = -1;
+  std::vector<unsigned char> CopiedLightGridNeeded;
+  vtkIdType CopiedLightGridNeededStamp = -1;
+  int CopiedLightGridNeededStride = 0;
   vtkSmartPointer<vtkOpenGLFramebufferObject> Framebuffer;
   mmv::voxelpass::VoxelPrograms ShadowQuad;
   mmv::voxelpass::VoxelPrograms PiecewiseQuad;
@@ -615,6 +622,29 @@ public:
   std::vector<mmv::ShadowSweep> LightSweeps(int light, int estimation, int slicesPerChunk) const;
   bool PiecewiseShadowPass(vtkOpenGLRenderWindow* context, int light,
     const std::vector<mmv::ShadowSweep>& sweeps, bool skipEmpty, bool layered);
+  /// The region's estimated box on the light grid of `stride`.
+  mmv::IndexBox EstimatedOnLightGrid(int stride) const;
+  /// Each chunk's box of light `light`'s `sweep` (mmv::PlanSweepBoxes): what
+  /// the pass draws, and the CPU computes.
+  std::vector<mmv::IndexBox> SweepBoxes(
+    int light, const mmv::ShadowSweep& sweep, bool skipEmpty) const;
+  // Where a directional light's piecewise rays run (this update;
+  // ShadowRaysPlace), and the light grid targets' contents they make there,
+  // kept between updates (fresh memory costs page faults): [0] the
+  // irradiance grid's (FineScratch[0]), [1] the strided grid's.
+  bool SweepsOnCPU = false;
+  std::array<std::vector<float>, 2> SweptOnCPU;
+  /// Whether light `light`'s sweeps run on the CPU in this update: a
+  /// directional light's, nothing cut, the CPU's classes (and strided marks)
+  /// current.
+  bool SweepsLightOnCPU(int light, const std::vector<mmv::ShadowSweep>& sweeps) const;
+  /// The lights of `swept` that run on the CPU (SweepsLightOnCPU), swept
+  /// into SweptOnCPU and uploaded into their targets; they leave `swept`,
+  /// whose other lights the passes draw after. Before any pass of the
+  /// group: an upload sets every channel of the box it covers. Calls
+  /// `lightDone` after each light's sweep.
+  bool SweepOnCPU(std::vector<std::pair<int, std::vector<mmv::ShadowSweep>>>& swept, bool skipEmpty,
+    const std::function<void()>& lightDone);
   /// The lights of `mask` of a strided light grid, interpolated into their
   /// channels of FineScratch[0] over the estimated box.
   bool UpsamplePass(

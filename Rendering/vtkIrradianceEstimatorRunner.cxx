@@ -231,6 +231,7 @@ bool vtkIrradianceEstimator::vtkInternals::CopyClasses(vtkOpenGLRenderWindow* co
   this->ClassTexture->Activate();
   glTexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, 0, d[0], d[1], d[2], GL_RED, GL_FLOAT, classes.data());
   this->ClassTexture->Deactivate();
+  this->CopiedClassesStamp = this->Classifications;
   const int stride = this->MaxLightGridStride();
   if (stride <= 1)
   {
@@ -242,7 +243,10 @@ bool vtkIrradianceEstimator::vtkInternals::CopyClasses(vtkOpenGLRenderWindow* co
   }
   int c[3];
   this->LightGridDimensions(stride, c);
-  const std::vector<unsigned char> needed = this->LightGridNeededOnCPU(classes, stride);
+  this->CopiedLightGridNeeded = this->LightGridNeededOnCPU(classes, stride);
+  this->CopiedLightGridNeededStamp = this->Classifications;
+  this->CopiedLightGridNeededStride = stride;
+  const std::vector<unsigned char>& needed = this->CopiedLightGridNeeded;
   // Rows of bytes: any length.
   GLint alignment = 4;
   glGetIntegerv(GL_UNPACK_ALIGNMENT, &alignment);
@@ -962,6 +966,10 @@ bool vtkIrradianceEstimator::vtkInternals::FillPass(vtkOpenGLRenderWindow* conte
 void vtkIrradianceEstimator::vtkInternals::ReleaseScratch(vtkWindow* window)
 {
   std::vector<float>().swap(this->FineOnCPU);
+  for (auto& buffer : this->SweptOnCPU)
+  {
+    std::vector<float>().swap(buffer);
+  }
   // The float scratch is 8x the result per texture: not worth keeping.
   if (this->LightGridScratch)
   {

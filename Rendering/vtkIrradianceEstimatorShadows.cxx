@@ -8,6 +8,8 @@
 #include "mmvLightGridUpsampleFS.h"
 #include "mmvPiecewiseShadowFS.h"
 #include "mmvShadowRay.h"
+#include "vtkMultiMaterialThreads.h"
+#include "vtkSweptTransmittance.h"
 
 using namespace mmv::voxelpass;
 
@@ -156,9 +158,7 @@ bool vtkIrradianceEstimator::vtkInternals::ShadowPass(
   SetLightUniforms(program, this->Lights, group * LightsPerTexture, mask);
   int dims[3];
   this->LightGridDimensions(stride, dims);
-  const mmv::IndexBox estimated = stride > 1
-    ? mmv::ResampledBox(this->Plan.Estimated, this->Grid.Dimensions, dims)
-    : this->Plan.Estimated;
+  const mmv::IndexBox estimated = this->EstimatedOnLightGrid(stride);
   const mmv::IndexBox box = skipEmpty ? this->OccupiedBox(estimated, stride) : estimated;
   this->DrawLayers(
     context, this->ShadowQuad, this->LightGridTarget(stride), layered, DrawBox(box, dims));
@@ -280,21 +280,6 @@ bool vtkIrradianceEstimator::vtkInternals::PiecewiseShadowPass(vtkOpenGLRenderWi
   const int stride = source.GridStride;
   int d[3];
   this->LightGridDimensions(stride, d);
-  // The boxes follow a directional light's parallel rays, or a point or spot
-  // light's converging on its position.
-  const glm::dmat3 toIndex = this->LightGridPhysicalToIndex(stride);
-  const glm::dvec3 toLightIndex = toIndex * source.ToLight;
-  const glm::dvec3 lightIndex = toIndex * (source.Position - this->Grid.Origin);
-  // Each chunk draws what the region's voxels depend on (its whole slab
-  // for the whole grid).
-  const mmv::IndexBox estimated = stride > 1
-    ? mmv::ResampledBox(this->Plan.Estimated, this->Grid.Dimensions, d)
-    : this->Plan.Estimated;
-  std::function<mmv::IndexBox(const mmv::IndexBox&)> nonEmpty;
-  if (skipEmpty)
-  {
-    nonEmpty = [this, stride](const mmv::IndexBox& box) { return this->OccupiedBox(box, stride); };
-  }
   glm::vec3 toLight(source.ToLight);
   const int channel = light % LightsPerTexture;
   vtkTextureObject* target = this->LightGridTarget(stride);
@@ -317,8 +302,7 @@ bool vtkIrradianceEstimator::vtkInternals::PiecewiseShadowPass(vtkOpenGLRenderWi
   }
   for (const mmv::ShadowSweep& sweep : sweeps)
   {
-    const std::vector<mmv::IndexBox> boxes = mmv::PlanSweepBoxes(
-      sweep, d, toLightIndex, estimated, nonEmpty, point ? &lightIndex : nullptr);
+    const std::vector<mmv::IndexBox> boxes = this->SweepBoxes(light, sweep, skipEmpty);
     program->SetUniformi("sweepAxis", sweep.Axis);
     if (pyramids)
     {
@@ -360,7 +344,152 @@ bool vtkIrradianceEstimator::vtkInternals::PiecewiseShadowPass(vtkOpenGLRenderWi
     {
       glTextureBarrier();
     }
-    this->DrawLayers(context, pass, target, layered, DrawBox(estimated, d), 1 << channel);
+    this->DrawLayers(
+      context, pass, target, layered, DrawBox(this->EstimatedOnLightGrid(stride), d), 1 << channel);
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+mmv::IndexBox vtkIrradianceEstimator::vtkInternals::EstimatedOnLightGrid(int stride) const
+{
+  int d[3];
+  this->LightGridDimensions(stride, d);
+  return stride > 1 ? mmv::ResampledBox(this->Plan.Estimated, this->Grid.Dimensions, d)
+                    : this->Plan.Estimated;
+}
+
+// What each chunk computes: what the region's voxels depend on (its whole
+// slab for the whole grid), along a directional light's parallel rays or a
+// point or spot light's converging on its position.
+std::vector<mmv::IndexBox> vtkIrradianceEstimator::vtkInternals::SweepBoxes(
+  int light, const mmv::ShadowSweep& sweep, bool skipEmpty) const
+{
+  const mmv::LightSource& source = this->Lights[light];
+  const int stride = source.GridStride;
+  int d[3];
+  this->LightGridDimensions(stride, d);
+  const glm::dmat3 toIndex = this->LightGridPhysicalToIndex(stride);
+  const glm::dvec3 lightIndex = toIndex * (source.Position - this->Grid.Origin);
+  std::function<mmv::IndexBox(const mmv::IndexBox&)> nonEmpty;
+  if (skipEmpty)
+  {
+    nonEmpty = [this, stride](const mmv::IndexBox& box) { return this->OccupiedBox(box, stride); };
+  }
+  return mmv::PlanSweepBoxes(sweep, d, toIndex * source.ToLight, this->EstimatedOnLightGrid(stride),
+    nonEmpty, source.Kind != mmv::DirectionalLight ? &lightIndex : nullptr);
+}
+
+//------------------------------------------------------------------------------
+bool vtkIrradianceEstimator::vtkInternals::SweepsLightOnCPU(
+  int light, const std::vector<mmv::ShadowSweep>& sweeps) const
+{
+  const mmv::LightSource& source = this->Lights[light];
+  if (!this->SweepsOnCPU || source.Kind != mmv::DirectionalLight || sweeps.size() != 1 ||
+    sweeps[0].Pyramid || !this->Cut.IsEmpty())
+  {
+    return false;
+  }
+  return source.GridStride > 1 ? this->CopiedLightGridNeededStamp == this->Classifications &&
+      this->CopiedLightGridNeededStride == source.GridStride
+                               : this->CopiedClassesStamp == this->Classifications;
+}
+
+// Each target's lights in one buffer of as many channels as its highest
+// light's, uploaded once over what they computed.
+bool vtkIrradianceEstimator::vtkInternals::SweepOnCPU(
+  std::vector<std::pair<int, std::vector<mmv::ShadowSweep>>>& swept, bool skipEmpty,
+  const std::function<void()>& lightDone)
+{
+  std::vector<std::pair<int, std::vector<mmv::ShadowSweep>>> onCPU;
+  std::vector<std::pair<int, std::vector<mmv::ShadowSweep>>> onGPU;
+  std::array<int, 2> channels = { 0, 0 };
+  for (auto& light : swept)
+  {
+    if (this->SweepsLightOnCPU(light.first, light.second))
+    {
+      int& n = channels[this->Lights[light.first].GridStride > 1 ? 1 : 0];
+      n = std::max(n, light.first % LightsPerTexture + 1);
+      onCPU.push_back(std::move(light));
+    }
+    else
+    {
+      onGPU.push_back(std::move(light));
+    }
+  }
+  swept.swap(onGPU);
+  std::array<mmv::IndexBox, 2> covered;
+  mmv::RunOnAllCores(
+    [&]()
+    {
+      for (const auto& light : onCPU)
+      {
+        const mmv::LightSource& source = this->Lights[light.first];
+        const int stride = source.GridStride;
+        const int t = stride > 1 ? 1 : 0;
+        mmv::SweptTransmittanceInputs inputs;
+        this->LightGridDimensions(stride, inputs.TargetDimensions);
+        const int* d = inputs.TargetDimensions;
+        std::vector<float>& buffer = this->SweptOnCPU[t];
+        buffer.resize(static_cast<size_t>(channels[t]) * d[0] * d[1] * d[2]);
+        std::copy(this->Grid.Dimensions, this->Grid.Dimensions + 3, inputs.Dimensions);
+        inputs.Scalars = this->Scalars.data();
+        inputs.ShadowTable = this->ShadowTable.data();
+        inputs.TableSize = this->TableSize;
+        inputs.StepLength = static_cast<float>(this->StepLength);
+        inputs.WorldToIndex = glm::mat3(this->Grid.PhysicalToIndexMatrix());
+        double ratio[3];
+        this->LightGridRatio(stride, ratio);
+        for (int a = 0; a < 3; ++a)
+        {
+          // As SetLightGridUniforms gives the shader.
+          inputs.TargetToIndex[a] = static_cast<float>(1.0 / ratio[a]);
+        }
+        inputs.Strided = stride > 1;
+        inputs.Classes = this->Classes.data();
+        inputs.Needed = this->CopiedLightGridNeeded.data();
+        inputs.SkipEmpty = skipEmpty;
+        const mmv::ShadowSweep& sweep = light.second[0];
+        const std::vector<mmv::IndexBox> boxes = this->SweepBoxes(light.first, sweep, skipEmpty);
+        this->EstimatedVoxels += mmv::SweepTransmittanceOnCPU(inputs, glm::vec3(source.ToLight),
+          sweep, boxes, buffer.data(), channels[t], light.first % LightsPerTexture);
+        for (const mmv::IndexBox& box : boxes)
+        {
+          covered[t] = covered[t].United(box);
+        }
+        lightDone();
+      }
+    });
+  static const GLenum formats[] = { GL_RED, GL_RG, GL_RGB, GL_RGBA };
+  for (int t = 0; t < 2; ++t)
+  {
+    if (covered[t].IsEmpty())
+    {
+      continue;
+    }
+    int d[3];
+    this->LightGridDimensions(t == 1 ? this->MaxLightGridStride() : 1, d);
+    const int* b = covered[t].Bounds;
+    const vtkIdType first =
+      b[0] + static_cast<vtkIdType>(d[0]) * (b[2] + static_cast<vtkIdType>(d[1]) * b[4]);
+    vtkTextureObject* target = t == 1 ? this->LightGridScratch.Get() : this->FineScratch[0].Get();
+    GLint rowLength = 0;
+    GLint imageHeight = 0;
+    GLint alignment = 4;
+    glGetIntegerv(GL_UNPACK_ROW_LENGTH, &rowLength);
+    glGetIntegerv(GL_UNPACK_IMAGE_HEIGHT, &imageHeight);
+    glGetIntegerv(GL_UNPACK_ALIGNMENT, &alignment);
+    glPixelStorei(GL_UNPACK_ROW_LENGTH, d[0]);
+    glPixelStorei(GL_UNPACK_IMAGE_HEIGHT, d[1]);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    target->Activate();
+    glTexSubImage3D(GL_TEXTURE_3D, 0, b[0], b[2], b[4], b[1] - b[0] + 1, b[3] - b[2] + 1,
+      b[5] - b[4] + 1, formats[channels[t] - 1], GL_FLOAT,
+      this->SweptOnCPU[t].data() + first * channels[t]);
+    target->Deactivate();
+    glPixelStorei(GL_UNPACK_ROW_LENGTH, rowLength);
+    glPixelStorei(GL_UNPACK_IMAGE_HEIGHT, imageHeight);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, alignment);
   }
   return true;
 }

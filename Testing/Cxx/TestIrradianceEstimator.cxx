@@ -1440,6 +1440,10 @@ TEST(IrradianceEstimator, GPUClassesAndNeededPointsMatchTheCPU)
                                       : vtkIrradianceEstimator::FragmentDraws);
       pass->SetClassification(
         copied ? vtkIrradianceEstimator::OnCPU : vtkIrradianceEstimator::OnGPU);
+      // The rays where the classes go (the CPU's sweeps read copied classes
+      // only), so that the results below compare like with like.
+      pass->SetShadowRaysPlace(
+        copied ? vtkIrradianceEstimator::OnCPU : vtkIrradianceEstimator::OnGPU);
       pass->SetMultipleScattering(multipleScattering);
       for (const int edit : { 0, 1 })
       {
@@ -1562,6 +1566,8 @@ TEST(IrradianceEstimator, GPUClassesAndNeededPointsMatchTheCPU)
         vtkNew<vtkIrradianceEstimator> fresh;
         fresh->SetComputeShaders(compute ? vtkIrradianceEstimator::ComputeDispatches
                                          : vtkIrradianceEstimator::FragmentDraws);
+        fresh->SetClassification(pass->GetClassification());
+        fresh->SetShadowRaysPlace(pass->GetShadowRaysPlace());
         SetPassInputs(scene, fresh);
         ASSERT_TRUE(fresh->Render(ctx.GL));
         EXPECT_GT(fresh->GetDiffusionPasses(), 0);
@@ -1808,6 +1814,109 @@ TEST(IrradianceEstimator, ARegionEqualsTheWholeGridInsideIt)
         }
         whole->ReleaseGraphicsResources(ctx.GL);
       }
+    }
+  }
+}
+
+// The CPU's sweeps (ShadowRaysPlace, mmv::SweepTransmittanceOnCPU) against
+// the fragment passes they stand in for: lights swept along every axis both
+// ways, on the irradiance grid and on strided grids whose points fall on
+// irradiance voxels (odd sizes) or between them (even), anisotropic
+// spacing, every voxel or the occupied ones, and a region.
+TEST(IrradianceEstimator, SweepsOnTheCPUMatchThePasses)
+{
+  const Context& ctx = SharedContext();
+  ASSERT_NE(ctx.GL, nullptr);
+  const std::array<double, 3> directions[] = { { 1.0, 0.3, 0.2 }, { -0.9, 0.4, -0.3 },
+    { 0.2, 1.0, 0.5 }, { 0.3, -1.0, 0.2 }, { 0.1, 0.2, 1.0 }, { -0.4, 0.3, -1.0 },
+    { 1.0, 1.0, 1.0 } };
+  struct Variant
+  {
+    std::array<int, 3> Dims;
+    std::array<double, 3> Spacing;
+    bool SkipEmpty;
+    bool Region;
+  };
+  const Variant variants[] = { { { 25, 25, 25 }, { 1.0, 1.0, 1.0 }, true, false },
+    { { 24, 26, 21 }, { 1.0, 1.3, 0.8 }, true, false },
+    { { 25, 25, 25 }, { 1.0, 1.0, 1.0 }, false, false },
+    { { 24, 26, 21 }, { 1.0, 1.3, 0.8 }, true, true } };
+  for (const Variant& variant : variants)
+  {
+    SCOPED_TRACE(::testing::Message()
+      << variant.Dims[0] << "x" << variant.Dims[1] << "x" << variant.Dims[2]
+      << (variant.SkipEmpty ? "" : ", every voxel") << (variant.Region ? ", a region" : ""));
+    Scene scene;
+    // A shell, a rod and a slab with gaps: shadow edges at every angle.
+    scene.Image = MakeImage(variant.Dims, variant.Spacing,
+      [&](int i, int j, int k)
+      {
+        const double x = i - 0.5 * variant.Dims[0];
+        const double y = j - 0.5 * variant.Dims[1];
+        const double z = k - 0.5 * variant.Dims[2];
+        const double r = std::sqrt(x * x + y * y + z * z);
+        if (std::abs(r - 7.0) < 1.2)
+        {
+          return 2.0f;
+        }
+        if (std::abs(x - 3.0) < 1.5 && std::abs(z + 2.0) < 1.5)
+        {
+          return 1.0f;
+        }
+        return k == 3 && (i + j) % 5 != 0 ? 1.5f : 0.0f;
+      });
+    scene.Opacity = vtkSmartPointer<vtkPiecewiseFunction>::New();
+    scene.Opacity->AddPoint(0.0, 0.0);
+    scene.Opacity->AddPoint(0.5, 0.0);
+    scene.Opacity->AddPoint(1.0, 0.2);
+    scene.Opacity->AddPoint(2.0, 0.6);
+    scene.Material = vtkSmartPointer<vtkMaterialTransferFunction>::New();
+    scene.Material->AddNode(1.0, 0.2, 0.7, 0.2, 20.0, 1.0, 0.0, 0.0);
+    scene.Material->AddNode(2.0, 0.2, 0.7, 0.2, 20.0, 2.0, 0.0, 0.0);
+    for (const auto& d : directions)
+    {
+      scene.Lights.push_back(Directional(d[0], d[1], d[2]));
+    }
+    scene.Strides = { 1, 2, 1, 2, 2, 1, 2 };
+    scene.Slices = 4; // several chunks per sweep on this small grid
+    const int region[6] = { 2, 15, 5, 20, 0, 12 };
+    std::vector<std::vector<float>> results[2];
+    for (const int place : { vtkIrradianceEstimator::OnGPU, vtkIrradianceEstimator::OnCPU })
+    {
+      vtkNew<vtkIrradianceEstimator> pass;
+      pass->SetMultipleScattering(false);
+      pass->SetSkipEmptyVoxels(variant.SkipEmpty);
+      pass->SetComputeShaders(vtkIrradianceEstimator::FragmentDraws);
+      pass->SetClassification(vtkIrradianceEstimator::OnCPU);
+      pass->SetShadowRaysPlace(place);
+      SetPassInputs(scene, pass);
+      if (variant.Region)
+      {
+        pass->SetRegion(region);
+      }
+      ASSERT_TRUE(pass->Render(ctx.GL));
+      EXPECT_EQ(pass->GetNumberOfLightsSweptOnCPU(),
+        place == vtkIrradianceEstimator::OnCPU ? static_cast<int>(scene.Lights.size()) : 0);
+      auto& result = results[place == vtkIrradianceEstimator::OnCPU ? 1 : 0];
+      result.resize(scene.Lights.size());
+      for (size_t l = 0; l < scene.Lights.size(); ++l)
+      {
+        ASSERT_TRUE(pass->ReadBack(ctx.GL, static_cast<int>(l), result[l]));
+      }
+      pass->ReleaseGraphicsResources(ctx.GL);
+    }
+    const mmv::IndexBox whole = mmv::IndexBox::Whole(variant.Dims.data());
+    const int* box = variant.Region ? region : whole.Bounds;
+    for (size_t l = 0; l < scene.Lights.size(); ++l)
+    {
+      const double worst = MaxDifferenceIn(results[1][l], results[0][l], variant.Dims.data(), box);
+      const float darkest = *std::min_element(results[0][l].begin(), results[0][l].end());
+      std::cout << "light " << l << ": CPU against the passes, max |difference| " << worst
+                << ", darkest " << darkest << "\n";
+      // Both are stored in 16 bits: a difference of the floats below 1e-5
+      // moves a texel by at most one step.
+      EXPECT_LE(worst, 1.0 / 65535.0 + 1e-7) << "light " << l;
+      EXPECT_LT(darkest, 0.6f) << "light " << l << " casts a shadow";
     }
   }
 }

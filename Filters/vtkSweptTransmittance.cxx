@@ -1,0 +1,491 @@
+#include "vtkSweptTransmittance.h"
+
+#include "vtkMultiMaterialParameters.h" // shadow-ray constants
+#include "vtkMultiMaterialThreads.h"    // mmv::For
+
+#include <algorithm>
+#include <cmath>
+
+namespace mmv
+{
+namespace
+{
+
+// The shadow-ray constants as the shader sees them (ShadowRayGLSLPrelude).
+const float MinTransmittance = static_cast<float>(MinShadowTransmittance);
+const float StepTolerance = static_cast<float>(ShadowStepToleranceFloat);
+const float RestTolerance = static_cast<float>(ShadowRestTolerance);
+const float PlaneRelativeTolerance = static_cast<float>(SweepPlaneRelativeTolerance);
+const float PlaneAbsoluteTolerance = static_cast<float>(SweepPlaneAbsoluteTolerance);
+
+// One sweep of one light: the shader's functions on the CPU arrays.
+class Sweeper
+{
+public:
+  Sweeper(const SweptTransmittanceInputs& inputs, const glm::vec3& toLight,
+    const ShadowSweep& sweep, float* target, int channels, int channel)
+    : In(inputs)
+    , Direction(inputs.WorldToIndex * toLight)
+    , Axis(sweep.Axis)
+    , Target(target)
+    , Channels(channels)
+    , Channel(channel)
+  {
+    const int* d = inputs.Dimensions;
+    this->ScalarStride[0] = 1;
+    this->ScalarStride[1] = d[0];
+    this->ScalarStride[2] = static_cast<vtkIdType>(d[0]) * d[1];
+    const int* t = inputs.TargetDimensions;
+    this->TargetStride[0] = 1;
+    this->TargetStride[1] = t[0];
+    this->TargetStride[2] = static_cast<vtkIdType>(t[0]) * t[1];
+  }
+
+  vtkIdType Chunk(const ShadowSweep& sweep, int chunk, const IndexBox& box);
+
+private:
+  // mmvSampleScalar: trilinear, the edge texels clamped.
+  float SampleScalar(const glm::vec3& index) const
+  {
+    int lo[3];
+    int hi[3];
+    float f[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      const float x = index[a];
+      const float below = std::floor(x);
+      f[a] = x - below;
+      const int last = this->In.Dimensions[a] - 1;
+      const int i = static_cast<int>(below);
+      lo[a] = std::min(std::max(i, 0), last);
+      hi[a] = std::min(std::max(i + 1, 0), last);
+    }
+    const float* s = this->In.Scalars;
+    auto at = [&](int i, int j, int k)
+    { return s[i + j * this->ScalarStride[1] + k * this->ScalarStride[2]]; };
+    const float c00 =
+      at(lo[0], lo[1], lo[2]) + f[0] * (at(hi[0], lo[1], lo[2]) - at(lo[0], lo[1], lo[2]));
+    const float c10 =
+      at(lo[0], hi[1], lo[2]) + f[0] * (at(hi[0], hi[1], lo[2]) - at(lo[0], hi[1], lo[2]));
+    const float c01 =
+      at(lo[0], lo[1], hi[2]) + f[0] * (at(hi[0], lo[1], hi[2]) - at(lo[0], lo[1], hi[2]));
+    const float c11 =
+      at(lo[0], hi[1], hi[2]) + f[0] * (at(hi[0], hi[1], hi[2]) - at(lo[0], hi[1], hi[2]));
+    const float c0 = c00 + f[1] * (c10 - c00);
+    const float c1 = c01 + f[1] * (c11 - c01);
+    return c0 + f[2] * (c1 - c0);
+  }
+
+  // mmvShadowOpacity: the table, bilinear, the edge entries clamped.
+  float ShadowOpacity(float t1, float t2) const
+  {
+    const int n = this->In.TableSize;
+    // Clamped; a NaN value reads entry 0 (an index from it would be undefined).
+    const float x = (t1 > 0.0f ? std::min(t1, 1.0f) : 0.0f) * static_cast<float>(n - 1);
+    const float y = (t2 > 0.0f ? std::min(t2, 1.0f) : 0.0f) * static_cast<float>(n - 1);
+    const int i = std::min(static_cast<int>(x), n - 2);
+    const int j = std::min(static_cast<int>(y), n - 2);
+    const float fx = x - static_cast<float>(i);
+    const float fy = y - static_cast<float>(j);
+    const float* row = this->In.ShadowTable + static_cast<vtkIdType>(j) * n + i;
+    const float a = row[0] + fx * (row[1] - row[0]);
+    const float b = row[n] + fx * (row[n + 1] - row[n]);
+    return a + fy * (b - a);
+  }
+
+  // mmvExitDistance.
+  float ExitDistance(const glm::vec3& p) const
+  {
+    float t = 3.0e38f;
+    for (int a = 0; a < 3; ++a)
+    {
+      const float d = this->Direction[a];
+      if (d > 0.0f)
+      {
+        t = std::min(t, (static_cast<float>(this->In.Dimensions[a] - 1) - p[a]) / d);
+      }
+      else if (d < 0.0f)
+      {
+        t = std::min(t, -p[a] / d);
+      }
+    }
+    return std::max(t, 0.0f);
+  }
+
+  // mmvReachesSweepPlane.
+  static bool ReachesPlane(
+    float start, float direction, float plane, float exitDistance, float& distance)
+  {
+    distance = 0.0f;
+    if (plane < 0.0f || direction == 0.0f)
+    {
+      return false;
+    }
+    distance = (plane - start) / direction;
+    return distance >= 0.0f &&
+      distance <= exitDistance * (1.0f + PlaneRelativeTolerance) + PlaneAbsoluteTolerance;
+  }
+
+  // mmvSampleSlice: bilinear in light grid slice `plane` at q's in-slice
+  // coordinates, clamped to the read range.
+  float SampleSlice(int plane, const glm::vec3& q, const int range[4]) const
+  {
+    const int b = (this->Axis + 1) % 3;
+    const int c = (this->Axis + 2) % 3;
+    int i0[3] = { 0, 0, 0 };
+    i0[this->Axis] = plane;
+    float f[3] = { 0.0f, 0.0f, 0.0f };
+    for (int k = 0; k < 2; ++k)
+    {
+      const int a = k == 0 ? b : c;
+      const int lo = range[2 * k];
+      const int hi = range[2 * k + 1];
+      const float x = std::min(std::max(q[a], static_cast<float>(lo)), static_cast<float>(hi));
+      i0[a] = std::min(static_cast<int>(x), std::max(hi - 1, lo));
+      f[a] = hi > lo ? x - static_cast<float>(i0[a]) : 0.0f;
+    }
+    const vtkIdType db = range[1] > range[0] ? this->TargetStride[b] : 0;
+    const vtkIdType dc = range[3] > range[2] ? this->TargetStride[c] : 0;
+    const vtkIdType base =
+      i0[0] * this->TargetStride[0] + i0[1] * this->TargetStride[1] + i0[2] * this->TargetStride[2];
+    auto value = [&](vtkIdType p) { return this->Target[p * this->Channels + this->Channel]; };
+    const float v00 = value(base);
+    const float v10 = value(base + db);
+    const float v01 = value(base + dc);
+    const float v11 = value(base + db + dc);
+    return (1.0f - f[c]) * ((1.0f - f[b]) * v00 + f[b] * v10) +
+      f[c] * ((1.0f - f[b]) * v01 + f[b] * v11);
+  }
+
+  // mmvMarchTransmittance.
+  float March(const glm::vec3& start, float end, float startValue, float transmittance) const
+  {
+    const float h = this->In.StepLength;
+    const int steps = static_cast<int>(std::floor(end / h + StepTolerance));
+    float previous = startValue;
+    for (int n = 1; n <= steps; ++n)
+    {
+      if (transmittance < MinTransmittance)
+      {
+        return transmittance;
+      }
+      const float next = this->SampleScalar(start + (static_cast<float>(n) * h) * this->Direction);
+      transmittance *= 1.0f - this->ShadowOpacity(previous, next);
+      previous = next;
+    }
+    const float rest = end - static_cast<float>(steps) * h;
+    if (rest > RestTolerance * h && transmittance >= MinTransmittance)
+    {
+      const float next = this->SampleScalar(start + end * this->Direction);
+      const float alpha = this->ShadowOpacity(previous, next);
+      transmittance *= std::pow(std::max(0.0f, 1.0f - alpha), rest / h);
+    }
+    return transmittance;
+  }
+
+  glm::vec3 Start(const int v[3]) const
+  {
+    return glm::vec3(v[0], v[1], v[2]) * this->In.TargetToIndex;
+  }
+
+  bool IsEmpty(const int v[3]) const
+  {
+    const vtkIdType p = v[0] + v[1] * this->TargetStride[1] + v[2] * this->TargetStride[2];
+    return this->In.Strided ? this->In.Needed[p] == 0 : this->In.Classes[p] < 0.0f;
+  }
+
+  float StartValue(const int v[3], const glm::vec3& start) const
+  {
+    return this->In.Strided
+      ? this->SampleScalar(start)
+      : this->In.Scalars[v[0] + v[1] * this->ScalarStride[1] + v[2] * this->ScalarStride[2]];
+  }
+
+  // The shader's main for one point, given the chunk's plane (-1: none) and
+  // read range.
+  float Point(const int v[3], int plane, const int range[4]) const
+  {
+    const glm::vec3 start = this->Start(v);
+    float exitDistance = this->ExitDistance(start);
+    float far = 1.0f;
+    float distance;
+    const float planeCoord =
+      plane < 0 ? -1.0f : static_cast<float>(plane) * this->In.TargetToIndex[this->Axis];
+    if (range[0] <= range[1] && range[2] <= range[3] &&
+      ReachesPlane(
+        start[this->Axis], this->Direction[this->Axis], planeCoord, exitDistance, distance))
+    {
+      exitDistance = distance;
+      far = this->SampleSlice(
+        plane, (start + distance * this->Direction) / this->In.TargetToIndex, range);
+    }
+    return this->March(start, exitDistance, this->StartValue(v, start), far);
+  }
+
+  void Row(int rowAxis, int v[3], int first, int last, int plane, int readSlice, const int range[4],
+    std::vector<float>& scratch) const;
+
+  const SweptTransmittanceInputs& In;
+  const glm::vec3 Direction; // toward the light, irradiance index per world unit
+  const int Axis;
+  float* Target;
+  const int Channels;
+  const int Channel;
+  vtkIdType ScalarStride[3];
+  vtkIdType TargetStride[3];
+};
+
+//------------------------------------------------------------------------------
+// The points [first, last] along rowAxis of the row through v. Points whose
+// rays end on the same distance (all that reach the chunk's plane, or, in
+// the first chunk, all that leave through the sweep's far face) march
+// together: the weights across the row are the row's; the others, and the
+// ends of the run, point by point.
+void Sweeper::Row(int rowAxis, int v[3], int first, int last, int plane, int readSlice,
+  const int range[4], std::vector<float>& scratch) const
+{
+  const int axis = this->Axis;
+  const bool skip = this->In.SkipEmpty && v[axis] != readSlice;
+  auto write = [&](int x, float value)
+  {
+    v[rowAxis] = x;
+    const vtkIdType p = v[0] + v[1] * this->TargetStride[1] + v[2] * this->TargetStride[2];
+    this->Target[p * this->Channels + this->Channel] = value;
+  };
+  // The points computed: the row's span of non-empty ones (all on a read slice).
+  int lo = first;
+  int hi = last;
+  if (skip)
+  {
+    while (lo <= hi && (v[rowAxis] = lo, this->IsEmpty(v)))
+    {
+      write(lo++, 0.0f);
+    }
+    while (hi >= lo && (v[rowAxis] = hi, this->IsEmpty(v)))
+    {
+      write(hi--, 0.0f);
+    }
+  }
+  if (lo > hi)
+  {
+    return;
+  }
+  // The distance the run's rays end at, exactly as each point computes it.
+  const glm::vec3 dir = this->Direction;
+  v[rowAxis] = lo;
+  const glm::vec3 rowStart = this->Start(v); // its rowAxis component is lo's
+  const bool planeRead = plane >= 0 && range[0] <= range[1] && range[2] <= range[3];
+  float end;
+  if (planeRead)
+  {
+    end = (static_cast<float>(plane) * this->In.TargetToIndex[axis] - rowStart[axis]) / dir[axis];
+  }
+  else
+  {
+    end = dir[axis] > 0.0f
+      ? (static_cast<float>(this->In.Dimensions[axis] - 1) - rowStart[axis]) / dir[axis]
+      : -rowStart[axis] / dir[axis];
+    end = std::max(end, 0.0f);
+  }
+  // The run: points whose own computation gives `end` (contiguous: the exit
+  // along the row is monotonic in the point).
+  auto inRun = [&](int x)
+  {
+    v[rowAxis] = x;
+    const glm::vec3 start = this->Start(v);
+    const float exitDistance = this->ExitDistance(start);
+    if (!planeRead)
+    {
+      return exitDistance == end;
+    }
+    float distance;
+    return ReachesPlane(start[axis], dir[axis],
+             static_cast<float>(plane) * this->In.TargetToIndex[axis], exitDistance, distance) &&
+      distance == end;
+  };
+  int r0 = lo;
+  while (r0 <= hi && !inRun(r0))
+  {
+    ++r0;
+  }
+  int r1 = hi;
+  while (r1 >= r0 && !inRun(r1))
+  {
+    --r1;
+  }
+  auto single = [&](int x)
+  {
+    v[rowAxis] = x;
+    write(x, skip && this->IsEmpty(v) ? 0.0f : this->Point(v, plane, range));
+  };
+  for (int x = lo; x <= std::min(hi, r0 - 1); ++x)
+  {
+    single(x);
+  }
+  for (int x = std::max(lo, r1 + 1); x <= hi; ++x)
+  {
+    single(x);
+  }
+  if (r0 > r1)
+  {
+    return;
+  }
+  const int count = r1 - r0 + 1;
+  scratch.resize(4 * static_cast<size_t>(count));
+  float* previous = scratch.data();
+  float* transmittance = previous + count;
+  float* startAlong = transmittance + count;
+  float* next = startAlong + count;
+  for (int i = 0; i < count; ++i)
+  {
+    v[rowAxis] = r0 + i;
+    const glm::vec3 start = this->Start(v);
+    startAlong[i] = start[rowAxis];
+    previous[i] = this->StartValue(v, start);
+    transmittance[i] = planeRead
+      ? this->SampleSlice(plane, (start + end * dir) / this->In.TargetToIndex, range)
+      : 1.0f;
+  }
+  // The samples: along the row each point's own weight, across it the row's.
+  const int c = 3 - axis - rowAxis;
+  const vtkIdType strideAlong = this->ScalarStride[rowAxis];
+  const int lastAlong = this->In.Dimensions[rowAxis] - 1;
+  auto sampleRow = [&](const glm::vec3& offset, float* out)
+  {
+    int lo2[2];
+    int hi2[2];
+    float f2[2];
+    const int axes[2] = { c, axis };
+    for (int k = 0; k < 2; ++k)
+    {
+      const int a = axes[k];
+      const float x = rowStart[a] + offset[a];
+      const float below = std::floor(x);
+      f2[k] = x - below;
+      const int lastA = this->In.Dimensions[a] - 1;
+      const int i = static_cast<int>(below);
+      lo2[k] = std::min(std::max(i, 0), lastA);
+      hi2[k] = std::min(std::max(i + 1, 0), lastA);
+    }
+    const float* s = this->In.Scalars;
+    const float* p00 = s + lo2[0] * this->ScalarStride[c] + lo2[1] * this->ScalarStride[axis];
+    const float* p10 = s + hi2[0] * this->ScalarStride[c] + lo2[1] * this->ScalarStride[axis];
+    const float* p01 = s + lo2[0] * this->ScalarStride[c] + hi2[1] * this->ScalarStride[axis];
+    const float* p11 = s + hi2[0] * this->ScalarStride[c] + hi2[1] * this->ScalarStride[axis];
+    const float fc = f2[0];
+    const float fa = f2[1];
+    const float along = offset[rowAxis];
+    for (int i = 0; i < count; ++i)
+    {
+      // In the run every sample lies in the grid: truncation is the floor
+      // (a rounding below 0 weights texel 0 by 1 + x, x ~ -1e-7).
+      const float x = startAlong[i] + along;
+      const int i0 = static_cast<int>(x);
+      const float f = x - static_cast<float>(i0);
+      const vtkIdType a0 = i0 * strideAlong;
+      const vtkIdType a1 = std::min(i0 + 1, lastAlong) * strideAlong;
+      const float b00 = p00[a0] + f * (p00[a1] - p00[a0]);
+      const float b10 = p10[a0] + f * (p10[a1] - p10[a0]);
+      const float b01 = p01[a0] + f * (p01[a1] - p01[a0]);
+      const float b11 = p11[a0] + f * (p11[a1] - p11[a0]);
+      const float e0 = b00 + fc * (b10 - b00);
+      const float e1 = b01 + fc * (b11 - b01);
+      out[i] = e0 + fa * (e1 - e0);
+    }
+  };
+  const float h = this->In.StepLength;
+  const int steps = static_cast<int>(std::floor(end / h + StepTolerance));
+  for (int n = 1; n <= steps; ++n)
+  {
+    sampleRow((static_cast<float>(n) * h) * dir, next);
+    bool any = false;
+    for (int i = 0; i < count; ++i)
+    {
+      const float t = transmittance[i];
+      if (t >= MinTransmittance)
+      {
+        transmittance[i] = t * (1.0f - this->ShadowOpacity(previous[i], next[i]));
+        any = true;
+      }
+      previous[i] = next[i];
+    }
+    if (!any)
+    {
+      break;
+    }
+  }
+  const float rest = end - static_cast<float>(steps) * h;
+  if (rest > RestTolerance * h)
+  {
+    sampleRow(end * dir, next);
+    for (int i = 0; i < count; ++i)
+    {
+      if (transmittance[i] >= MinTransmittance)
+      {
+        const float alpha = this->ShadowOpacity(previous[i], next[i]);
+        transmittance[i] *= std::pow(std::max(0.0f, 1.0f - alpha), rest / h);
+      }
+    }
+  }
+  for (int i = 0; i < count; ++i)
+  {
+    v[rowAxis] = r0 + i;
+    write(r0 + i, skip && this->IsEmpty(v) ? 0.0f : transmittance[i]);
+  }
+}
+
+//------------------------------------------------------------------------------
+vtkIdType Sweeper::Chunk(const ShadowSweep& sweep, int chunk, const IndexBox& box)
+{
+  if (box.IsEmpty())
+  {
+    return 0;
+  }
+  int first, last, plane;
+  sweep.GetChunk(chunk, first, last, plane);
+  int range[4] = { 0, -1, 0, -1 }; // the first chunk reads no slice
+  if (plane >= 0)
+  {
+    SliceReadRange(sweep, plane, this->In.TargetDimensions, range);
+  }
+  const int readSlice = sweep.GetReadSlice(chunk);
+  // Rows along an in-slice axis: every point of a row lies on one slice.
+  const int rowAxis = this->Axis == 0 ? 1 : 0;
+  const int c = 3 - this->Axis - rowAxis;
+  const int* b = box.Bounds;
+  const vtkIdType across = b[2 * c + 1] - b[2 * c] + 1;
+  const vtkIdType rows = across * (b[2 * this->Axis + 1] - b[2 * this->Axis] + 1);
+  mmv::For(0, rows,
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      std::vector<float> scratch;
+      for (vtkIdType r = begin; r < end; ++r)
+      {
+        int v[3];
+        v[c] = b[2 * c] + static_cast<int>(r % across);
+        v[this->Axis] = b[2 * this->Axis] + static_cast<int>(r / across);
+        v[rowAxis] = b[2 * rowAxis];
+        this->Row(rowAxis, v, b[2 * rowAxis], b[2 * rowAxis + 1], plane, readSlice, range, scratch);
+      }
+    });
+  return box.GetNumberOfVoxels();
+}
+
+} // namespace
+
+//------------------------------------------------------------------------------
+vtkIdType SweepTransmittanceOnCPU(const SweptTransmittanceInputs& inputs, const glm::vec3& toLight,
+  const ShadowSweep& sweep, const std::vector<IndexBox>& boxes, float* target, int channels,
+  int channel)
+{
+  Sweeper sweeper(inputs, toLight, sweep, target, channels, channel);
+  vtkIdType points = 0;
+  for (int chunk = 0; chunk < sweep.GetNumberOfChunks() && chunk < static_cast<int>(boxes.size());
+       ++chunk)
+  {
+    points += sweeper.Chunk(sweep, chunk, boxes[chunk]);
+  }
+  return points;
+}
+
+} // namespace mmv
