@@ -313,6 +313,32 @@ void Sweeper::Row(int rowAxis, int v[3], int first, int last, int plane, int rea
   {
     --r1;
   }
+  const float h = this->In.StepLength;
+  const int steps = static_cast<int>(std::floor(end / h + StepTolerance));
+  const float rest = end - static_cast<float>(steps) * h;
+  const bool restSampled = rest > RestTolerance * h;
+  // Where the light grid's points fall on irradiance points along the row
+  // (the irradiance grid itself, or a stride that divides it), the weight
+  // along the row is the row's as well; the run then keeps the points whose
+  // samples' texels along the row all lie in it (no clamp).
+  const float toIndexAlong = this->In.TargetToIndex[rowAxis];
+  const int ratio = static_cast<int>(toIndexAlong);
+  const bool shared = toIndexAlong >= 1.0f && static_cast<float>(ratio) == toIndexAlong;
+  const int lastAlong = this->In.Dimensions[rowAxis] - 1;
+  if (shared && r0 <= r1)
+  {
+    double lowest = 0.0;
+    double highest = 0.0;
+    for (int n = 1; n <= steps + (restSampled ? 1 : 0); ++n)
+    {
+      const float offset =
+        n <= steps ? ((static_cast<float>(n) * h) * dir)[rowAxis] : (end * dir)[rowAxis];
+      lowest = std::min(lowest, static_cast<double>(std::floor(offset)));
+      highest = std::max(highest, static_cast<double>(std::floor(offset)));
+    }
+    r0 = std::max(r0, static_cast<int>(std::ceil(-lowest / ratio)));
+    r1 = std::min(r1, static_cast<int>(std::floor((lastAlong - 1 - highest) / ratio)));
+  }
   auto single = [&](int x)
   {
     v[rowAxis] = x;
@@ -346,10 +372,10 @@ void Sweeper::Row(int rowAxis, int v[3], int first, int last, int plane, int rea
       ? this->SampleSlice(plane, (start + end * dir) / this->In.TargetToIndex, range)
       : 1.0f;
   }
-  // The samples: along the row each point's own weight, across it the row's.
+  // The samples: across the row the row's weights; along it the row's too
+  // where they are shared, else each point's own.
   const int c = 3 - axis - rowAxis;
   const vtkIdType strideAlong = this->ScalarStride[rowAxis];
-  const int lastAlong = this->In.Dimensions[rowAxis] - 1;
   auto sampleRow = [&](const glm::vec3& offset, float* out)
   {
     int lo2[2];
@@ -374,12 +400,52 @@ void Sweeper::Row(int rowAxis, int v[3], int first, int last, int plane, int rea
     const float* p11 = s + hi2[0] * this->ScalarStride[c] + hi2[1] * this->ScalarStride[axis];
     const float fc = f2[0];
     const float fa = f2[1];
-    const float along = offset[rowAxis];
+    const float o = offset[rowAxis];
+    if (shared)
+    {
+      const float below = std::floor(o);
+      const float f = o - below;
+      const vtkIdType first =
+        (static_cast<vtkIdType>(ratio) * r0 + static_cast<vtkIdType>(below)) * strideAlong;
+      const vtkIdType step = ratio * strideAlong;
+      const float* q00 = p00 + first;
+      const float* q10 = p10 + first;
+      const float* q01 = p01 + first;
+      const float* q11 = p11 + first;
+      if (step == 1)
+      {
+        // Contiguous: the compiler vectorises it.
+        for (int i = 0; i < count; ++i)
+        {
+          const float b00 = q00[i] + f * (q00[i + 1] - q00[i]);
+          const float b10 = q10[i] + f * (q10[i + 1] - q10[i]);
+          const float b01 = q01[i] + f * (q01[i + 1] - q01[i]);
+          const float b11 = q11[i] + f * (q11[i + 1] - q11[i]);
+          const float e0 = b00 + fc * (b10 - b00);
+          const float e1 = b01 + fc * (b11 - b01);
+          out[i] = e0 + fa * (e1 - e0);
+        }
+        return;
+      }
+      for (int i = 0; i < count; ++i)
+      {
+        const vtkIdType a0 = i * step;
+        const vtkIdType a1 = a0 + strideAlong;
+        const float b00 = q00[a0] + f * (q00[a1] - q00[a0]);
+        const float b10 = q10[a0] + f * (q10[a1] - q10[a0]);
+        const float b01 = q01[a0] + f * (q01[a1] - q01[a0]);
+        const float b11 = q11[a0] + f * (q11[a1] - q11[a0]);
+        const float e0 = b00 + fc * (b10 - b00);
+        const float e1 = b01 + fc * (b11 - b01);
+        out[i] = e0 + fa * (e1 - e0);
+      }
+      return;
+    }
     for (int i = 0; i < count; ++i)
     {
       // In the run every sample lies in the grid: truncation is the floor
       // (a rounding below 0 weights texel 0 by 1 + x, x ~ -1e-7).
-      const float x = startAlong[i] + along;
+      const float x = startAlong[i] + o;
       const int i0 = static_cast<int>(x);
       const float f = x - static_cast<float>(i0);
       const vtkIdType a0 = i0 * strideAlong;
@@ -393,8 +459,6 @@ void Sweeper::Row(int rowAxis, int v[3], int first, int last, int plane, int rea
       out[i] = e0 + fa * (e1 - e0);
     }
   };
-  const float h = this->In.StepLength;
-  const int steps = static_cast<int>(std::floor(end / h + StepTolerance));
   for (int n = 1; n <= steps; ++n)
   {
     sampleRow((static_cast<float>(n) * h) * dir, next);
@@ -414,8 +478,7 @@ void Sweeper::Row(int rowAxis, int v[3], int first, int last, int plane, int rea
       break;
     }
   }
-  const float rest = end - static_cast<float>(steps) * h;
-  if (rest > RestTolerance * h)
+  if (restSampled)
   {
     sampleRow(end * dir, next);
     for (int i = 0; i < count; ++i)
