@@ -39,6 +39,23 @@ public:
     this->TargetStride[0] = 1;
     this->TargetStride[1] = t[0];
     this->TargetStride[2] = static_cast<vtkIdType>(t[0]) * t[1];
+    // The table's clear corner: entries [0, z]^2 all 0. A segment whose ends
+    // both lie below ClearBelow reads only those (x < z - 1/2, so x + 1 <= z)
+    // and lets everything through: the march skips its lookup.
+    const int n = inputs.TableSize;
+    const float* table = inputs.ShadowTable;
+    int z = -1;
+    for (bool clear = true; clear && z + 1 < n;)
+    {
+      const int next = z + 1;
+      for (int k = 0; clear && k <= next; ++k)
+      {
+        clear = table[static_cast<vtkIdType>(next) * n + k] == 0.0f &&
+          table[static_cast<vtkIdType>(k) * n + next] == 0.0f;
+      }
+      z = clear ? next : z;
+    }
+    this->ClearBelow = z > 0 ? (static_cast<float>(z) - 0.5f) / static_cast<float>(n - 1) : -1.0f;
   }
 
   vtkIdType Chunk(const ShadowSweep& sweep, int chunk, const IndexBox& box);
@@ -233,6 +250,7 @@ private:
   const int Channel;
   vtkIdType ScalarStride[3];
   vtkIdType TargetStride[3];
+  float ClearBelow;
 };
 
 //------------------------------------------------------------------------------
@@ -468,7 +486,10 @@ void Sweeper::Row(int rowAxis, int v[3], int first, int last, int plane, int rea
       const float t = transmittance[i];
       if (t >= MinTransmittance)
       {
-        transmittance[i] = t * (1.0f - this->ShadowOpacity(previous[i], next[i]));
+        if (!(previous[i] < this->ClearBelow && next[i] < this->ClearBelow))
+        {
+          transmittance[i] = t * (1.0f - this->ShadowOpacity(previous[i], next[i]));
+        }
         any = true;
       }
       previous[i] = next[i];
