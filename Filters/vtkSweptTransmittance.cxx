@@ -18,6 +18,32 @@ const float RestTolerance = static_cast<float>(ShadowRestTolerance);
 const float PlaneRelativeTolerance = static_cast<float>(SweepPlaneRelativeTolerance);
 const float PlaneAbsoluteTolerance = static_cast<float>(SweepPlaneAbsoluteTolerance);
 
+// The texels around x along an axis of n points, the edge ones clamped,
+// and the upper one's weight: linear filtering with clamp-to-edge.
+inline void Texels(float x, int n, int& lo, int& hi, float& f)
+{
+  const float below = std::floor(x);
+  f = x - below;
+  const int i = static_cast<int>(below);
+  lo = std::min(std::max(i, 0), n - 1);
+  hi = std::min(std::max(i + 1, 0), n - 1);
+}
+
+// Trilinear: along a row between offsets a0 and a1 (weight f) in each of the
+// four rows p00, p10 (the next across, weight fc), p01 and p11 (the next
+// along the sweep, weight fa).
+inline float Trilinear(const float* p00, const float* p10, const float* p01, const float* p11,
+  vtkIdType a0, vtkIdType a1, float f, float fc, float fa)
+{
+  const float b00 = p00[a0] + f * (p00[a1] - p00[a0]);
+  const float b10 = p10[a0] + f * (p10[a1] - p10[a0]);
+  const float b01 = p01[a0] + f * (p01[a1] - p01[a0]);
+  const float b11 = p11[a0] + f * (p11[a1] - p11[a0]);
+  const float e0 = b00 + fc * (b10 - b00);
+  const float e1 = b01 + fc * (b11 - b01);
+  return e0 + fa * (e1 - e0);
+}
+
 // One sweep of one light: the shader's functions on the CPU arrays.
 class Sweeper
 {
@@ -69,28 +95,12 @@ private:
     float f[3];
     for (int a = 0; a < 3; ++a)
     {
-      const float x = index[a];
-      const float below = std::floor(x);
-      f[a] = x - below;
-      const int last = this->In.Dimensions[a] - 1;
-      const int i = static_cast<int>(below);
-      lo[a] = std::min(std::max(i, 0), last);
-      hi[a] = std::min(std::max(i + 1, 0), last);
+      Texels(index[a], this->In.Dimensions[a], lo[a], hi[a], f[a]);
     }
-    const float* s = this->In.Scalars;
-    auto at = [&](int i, int j, int k)
-    { return s[i + j * this->ScalarStride[1] + k * this->ScalarStride[2]]; };
-    const float c00 =
-      at(lo[0], lo[1], lo[2]) + f[0] * (at(hi[0], lo[1], lo[2]) - at(lo[0], lo[1], lo[2]));
-    const float c10 =
-      at(lo[0], hi[1], lo[2]) + f[0] * (at(hi[0], hi[1], lo[2]) - at(lo[0], hi[1], lo[2]));
-    const float c01 =
-      at(lo[0], lo[1], hi[2]) + f[0] * (at(hi[0], lo[1], hi[2]) - at(lo[0], lo[1], hi[2]));
-    const float c11 =
-      at(lo[0], hi[1], hi[2]) + f[0] * (at(hi[0], hi[1], hi[2]) - at(lo[0], hi[1], hi[2]));
-    const float c0 = c00 + f[1] * (c10 - c00);
-    const float c1 = c01 + f[1] * (c11 - c01);
-    return c0 + f[2] * (c1 - c0);
+    const vtkIdType* stride = this->ScalarStride;
+    auto row = [&](int j, int k) { return this->In.Scalars + j * stride[1] + k * stride[2]; };
+    return Trilinear(row(lo[1], lo[2]), row(hi[1], lo[2]), row(lo[1], hi[2]), row(hi[1], hi[2]),
+      lo[0], hi[0], f[0], f[1], f[2]);
   }
 
   // mmvShadowOpacity: the table, bilinear, the edge entries clamped.
@@ -239,7 +249,40 @@ private:
     return this->March(start, exitDistance, this->StartValue(v, start), far);
   }
 
+  // The points of one row that march together (Row).
+  struct Run
+  {
+    int RowAxis = 0;
+    int First = 0; // the run's points along RowAxis
+    int Last = -1;
+    glm::vec3 RowStart{ 0.0f }; // the row's start, at its first point
+    bool PlaneRead = false;     // the rays end on the chunk's plane
+    float End = 0.0f;           // where each of them ends
+    int Steps = 0;
+    bool RestSampled = false;
+    bool Shared = false; // the weight along the row is the row's as well
+    int Ratio = 1;       // irradiance points per light grid point along the row
+  };
+
+  // Step n's offset from a point (n = Steps + 1: the end).
+  glm::vec3 Offset(const Run& run, int n) const
+  {
+    return n <= run.Steps ? (static_cast<float>(n) * this->In.StepLength) * this->Direction
+                          : run.End * this->Direction;
+  }
+
+  void Write(const int v[3], float value) const
+  {
+    const vtkIdType p = v[0] + v[1] * this->TargetStride[1] + v[2] * this->TargetStride[2];
+    this->Target[p * this->Channels + this->Channel] = value;
+  }
+
   void Row(int rowAxis, int v[3], int first, int last, int plane, int readSlice, const int range[4],
+    std::vector<float>& scratch) const;
+  Run PlanRun(int rowAxis, int v[3], int lo, int hi, int plane, const int range[4]) const;
+  void SampleRun(
+    const Run& run, const float* startAlong, const glm::vec3& offset, float* out) const;
+  void MarchRun(const Run& run, int v[3], int plane, const int range[4], bool skip,
     std::vector<float>& scratch) const;
 
   const SweptTransmittanceInputs& In;
@@ -254,127 +297,197 @@ private:
 };
 
 //------------------------------------------------------------------------------
-// The points [first, last] along rowAxis of the row through v. Points whose
-// rays end on the same distance (all that reach the chunk's plane, or, in
-// the first chunk, all that leave through the sweep's far face) march
-// together: the weights across the row are the row's; the others, and the
-// ends of the run, point by point.
+// The points [first, last] along rowAxis of the row through v: the empty
+// ones at its ends get 0 (off a read slice), the run marches together, the
+// others point by point.
 void Sweeper::Row(int rowAxis, int v[3], int first, int last, int plane, int readSlice,
   const int range[4], std::vector<float>& scratch) const
 {
-  const int axis = this->Axis;
-  const bool skip = this->In.SkipEmpty && v[axis] != readSlice;
-  auto write = [&](int x, float value)
-  {
-    v[rowAxis] = x;
-    const vtkIdType p = v[0] + v[1] * this->TargetStride[1] + v[2] * this->TargetStride[2];
-    this->Target[p * this->Channels + this->Channel] = value;
-  };
-  // The points computed: the row's span of non-empty ones (all on a read slice).
+  const bool skip = this->In.SkipEmpty && v[this->Axis] != readSlice;
   int lo = first;
   int hi = last;
   if (skip)
   {
     while (lo <= hi && (v[rowAxis] = lo, this->IsEmpty(v)))
     {
-      write(lo++, 0.0f);
+      this->Write(v, 0.0f);
+      ++lo;
     }
     while (hi >= lo && (v[rowAxis] = hi, this->IsEmpty(v)))
     {
-      write(hi--, 0.0f);
+      this->Write(v, 0.0f);
+      --hi;
     }
   }
   if (lo > hi)
   {
     return;
   }
-  // The distance the run's rays end at, exactly as each point computes it.
-  const glm::vec3 dir = this->Direction;
-  v[rowAxis] = lo;
-  const glm::vec3 rowStart = this->Start(v); // its rowAxis component is lo's
-  const bool planeRead = plane >= 0 && range[0] <= range[1] && range[2] <= range[3];
-  float end;
-  if (planeRead)
+  const Run run = this->PlanRun(rowAxis, v, lo, hi, plane, range);
+  for (int x = lo; x <= hi; ++x)
   {
-    end = (static_cast<float>(plane) * this->In.TargetToIndex[axis] - rowStart[axis]) / dir[axis];
+    if (x == run.First && run.First <= run.Last)
+    {
+      x = run.Last;
+      continue;
+    }
+    v[rowAxis] = x;
+    this->Write(v, skip && this->IsEmpty(v) ? 0.0f : this->Point(v, plane, range));
+  }
+  if (run.First <= run.Last)
+  {
+    this->MarchRun(run, v, plane, range, skip, scratch);
+  }
+}
+
+//------------------------------------------------------------------------------
+// The run of the points [lo, hi] of the row through v: those whose rays end
+// at the same distance, computed as each point computes it (all that reach
+// the chunk's plane, or, in the first chunk, all that leave through the
+// sweep's far face; contiguous, as the exit along the row is monotonic in
+// the point); where the weight along the row is shared, only those whose
+// samples' texels along the row all lie in it (no clamp).
+Sweeper::Run Sweeper::PlanRun(
+  int rowAxis, int v[3], int lo, int hi, int plane, const int range[4]) const
+{
+  const int axis = this->Axis;
+  const glm::vec3 dir = this->Direction;
+  Run run;
+  run.RowAxis = rowAxis;
+  v[rowAxis] = lo;
+  run.RowStart = this->Start(v);
+  run.PlaneRead = plane >= 0 && range[0] <= range[1] && range[2] <= range[3];
+  const float planeCoord = static_cast<float>(plane) * this->In.TargetToIndex[axis];
+  if (run.PlaneRead)
+  {
+    run.End = (planeCoord - run.RowStart[axis]) / dir[axis];
   }
   else
   {
-    end = dir[axis] > 0.0f
-      ? (static_cast<float>(this->In.Dimensions[axis] - 1) - rowStart[axis]) / dir[axis]
-      : -rowStart[axis] / dir[axis];
-    end = std::max(end, 0.0f);
+    run.End = std::max(0.0f,
+      dir[axis] > 0.0f
+        ? (static_cast<float>(this->In.Dimensions[axis] - 1) - run.RowStart[axis]) / dir[axis]
+        : -run.RowStart[axis] / dir[axis]);
   }
-  // The run: points whose own computation gives `end` (contiguous: the exit
-  // along the row is monotonic in the point).
   auto inRun = [&](int x)
   {
     v[rowAxis] = x;
     const glm::vec3 start = this->Start(v);
     const float exitDistance = this->ExitDistance(start);
-    if (!planeRead)
-    {
-      return exitDistance == end;
-    }
     float distance;
-    return ReachesPlane(start[axis], dir[axis],
-             static_cast<float>(plane) * this->In.TargetToIndex[axis], exitDistance, distance) &&
-      distance == end;
+    return run.PlaneRead
+      ? ReachesPlane(start[axis], dir[axis], planeCoord, exitDistance, distance) &&
+        distance == run.End
+      : exitDistance == run.End;
   };
-  int r0 = lo;
-  while (r0 <= hi && !inRun(r0))
+  run.First = lo;
+  while (run.First <= hi && !inRun(run.First))
   {
-    ++r0;
+    ++run.First;
   }
-  int r1 = hi;
-  while (r1 >= r0 && !inRun(r1))
+  run.Last = hi;
+  while (run.Last >= run.First && !inRun(run.Last))
   {
-    --r1;
+    --run.Last;
   }
   const float h = this->In.StepLength;
-  const int steps = static_cast<int>(std::floor(end / h + StepTolerance));
-  const float rest = end - static_cast<float>(steps) * h;
-  const bool restSampled = rest > RestTolerance * h;
-  // Where the light grid's points fall on irradiance points along the row
-  // (the irradiance grid itself, or a stride that divides it), the weight
-  // along the row is the row's as well; the run then keeps the points whose
-  // samples' texels along the row all lie in it (no clamp).
+  run.Steps = static_cast<int>(std::floor(run.End / h + StepTolerance));
+  run.RestSampled = run.End - static_cast<float>(run.Steps) * h > RestTolerance * h;
   const float toIndexAlong = this->In.TargetToIndex[rowAxis];
-  const int ratio = static_cast<int>(toIndexAlong);
-  const bool shared = toIndexAlong >= 1.0f && static_cast<float>(ratio) == toIndexAlong;
-  const int lastAlong = this->In.Dimensions[rowAxis] - 1;
-  if (shared && r0 <= r1)
+  run.Ratio = static_cast<int>(toIndexAlong);
+  run.Shared = toIndexAlong >= 1.0f && static_cast<float>(run.Ratio) == toIndexAlong;
+  if (run.Shared && run.First <= run.Last)
   {
     double lowest = 0.0;
     double highest = 0.0;
-    for (int n = 1; n <= steps + (restSampled ? 1 : 0); ++n)
+    for (int n = 1; n <= run.Steps + (run.RestSampled ? 1 : 0); ++n)
     {
-      const float offset =
-        n <= steps ? ((static_cast<float>(n) * h) * dir)[rowAxis] : (end * dir)[rowAxis];
-      lowest = std::min(lowest, static_cast<double>(std::floor(offset)));
-      highest = std::max(highest, static_cast<double>(std::floor(offset)));
+      const double below = std::floor(this->Offset(run, n)[rowAxis]);
+      lowest = std::min(lowest, below);
+      highest = std::max(highest, below);
     }
-    r0 = std::max(r0, static_cast<int>(std::ceil(-lowest / ratio)));
-    r1 = std::min(r1, static_cast<int>(std::floor((lastAlong - 1 - highest) / ratio)));
+    const int lastAlong = this->In.Dimensions[rowAxis] - 1;
+    run.First = std::max(run.First, static_cast<int>(std::ceil(-lowest / run.Ratio)));
+    run.Last =
+      std::min(run.Last, static_cast<int>(std::floor((lastAlong - 1 - highest) / run.Ratio)));
   }
-  auto single = [&](int x)
+  return run;
+}
+
+//------------------------------------------------------------------------------
+// The run's values at `offset` from each of its points (startAlong: their
+// starts along the row): across the row and along the sweep the row's
+// weights; along it the row's too where shared, else each point's own.
+void Sweeper::SampleRun(
+  const Run& run, const float* startAlong, const glm::vec3& offset, float* out) const
+{
+  const int rowAxis = run.RowAxis;
+  const int c = 3 - this->Axis - rowAxis;
+  int lo[2];
+  int hi[2];
+  float f[2];
+  const int axes[2] = { c, this->Axis };
+  for (int k = 0; k < 2; ++k)
   {
-    v[rowAxis] = x;
-    write(x, skip && this->IsEmpty(v) ? 0.0f : this->Point(v, plane, range));
-  };
-  for (int x = lo; x <= std::min(hi, r0 - 1); ++x)
-  {
-    single(x);
+    Texels(
+      run.RowStart[axes[k]] + offset[axes[k]], this->In.Dimensions[axes[k]], lo[k], hi[k], f[k]);
   }
-  for (int x = std::max(lo, r1 + 1); x <= hi; ++x)
+  const vtkIdType* stride = this->ScalarStride;
+  auto row = [&](int i, int k)
+  { return this->In.Scalars + i * stride[c] + k * stride[this->Axis]; };
+  const float* p00 = row(lo[0], lo[1]);
+  const float* p10 = row(hi[0], lo[1]);
+  const float* p01 = row(lo[0], hi[1]);
+  const float* p11 = row(hi[0], hi[1]);
+  const int count = run.Last - run.First + 1;
+  const vtkIdType along = stride[rowAxis];
+  const float o = offset[rowAxis];
+  if (run.Shared)
   {
-    single(x);
-  }
-  if (r0 > r1)
-  {
+    const float below = std::floor(o);
+    const float w = o - below;
+    const vtkIdType first =
+      (static_cast<vtkIdType>(run.Ratio) * run.First + static_cast<vtkIdType>(below)) * along;
+    const vtkIdType step = run.Ratio * along;
+    if (step == 1)
+    {
+      // Contiguous: vectorised.
+      const float* q00 = p00 + first;
+      const float* q10 = p10 + first;
+      const float* q01 = p01 + first;
+      const float* q11 = p11 + first;
+      for (int i = 0; i < count; ++i)
+      {
+        out[i] = Trilinear(q00, q10, q01, q11, i, i + 1, w, f[0], f[1]);
+      }
+      return;
+    }
+    for (int i = 0; i < count; ++i)
+    {
+      const vtkIdType a0 = first + i * step;
+      out[i] = Trilinear(p00, p10, p01, p11, a0, a0 + along, w, f[0], f[1]);
+    }
     return;
   }
-  const int count = r1 - r0 + 1;
+  const int lastAlong = this->In.Dimensions[rowAxis] - 1;
+  for (int i = 0; i < count; ++i)
+  {
+    // In the run every sample lies in the grid: truncation is the floor
+    // (a rounding below 0 weights texel 0 by 1 + x, x ~ -1e-7).
+    const float x = startAlong[i] + o;
+    const int i0 = static_cast<int>(x);
+    out[i] = Trilinear(p00, p10, p01, p11, i0 * along, std::min(i0 + 1, lastAlong) * along,
+      x - static_cast<float>(i0), f[0], f[1]);
+  }
+}
+
+//------------------------------------------------------------------------------
+// The shader's march for every point of the run at once, then its writes.
+void Sweeper::MarchRun(const Run& run, int v[3], int plane, const int range[4], bool skip,
+  std::vector<float>& scratch) const
+{
+  const int rowAxis = run.RowAxis;
+  const int count = run.Last - run.First + 1;
   scratch.resize(4 * static_cast<size_t>(count));
   float* previous = scratch.data();
   float* transmittance = previous + count;
@@ -382,104 +495,18 @@ void Sweeper::Row(int rowAxis, int v[3], int first, int last, int plane, int rea
   float* next = startAlong + count;
   for (int i = 0; i < count; ++i)
   {
-    v[rowAxis] = r0 + i;
+    v[rowAxis] = run.First + i;
     const glm::vec3 start = this->Start(v);
     startAlong[i] = start[rowAxis];
     previous[i] = this->StartValue(v, start);
-    transmittance[i] = planeRead
-      ? this->SampleSlice(plane, (start + end * dir) / this->In.TargetToIndex, range)
+    transmittance[i] = run.PlaneRead
+      ? this->SampleSlice(
+          plane, (start + run.End * this->Direction) / this->In.TargetToIndex, range)
       : 1.0f;
   }
-  // The samples: across the row the row's weights; along it the row's too
-  // where they are shared, else each point's own.
-  const int c = 3 - axis - rowAxis;
-  const vtkIdType strideAlong = this->ScalarStride[rowAxis];
-  auto sampleRow = [&](const glm::vec3& offset, float* out)
+  for (int n = 1; n <= run.Steps; ++n)
   {
-    int lo2[2];
-    int hi2[2];
-    float f2[2];
-    const int axes[2] = { c, axis };
-    for (int k = 0; k < 2; ++k)
-    {
-      const int a = axes[k];
-      const float x = rowStart[a] + offset[a];
-      const float below = std::floor(x);
-      f2[k] = x - below;
-      const int lastA = this->In.Dimensions[a] - 1;
-      const int i = static_cast<int>(below);
-      lo2[k] = std::min(std::max(i, 0), lastA);
-      hi2[k] = std::min(std::max(i + 1, 0), lastA);
-    }
-    const float* s = this->In.Scalars;
-    const float* p00 = s + lo2[0] * this->ScalarStride[c] + lo2[1] * this->ScalarStride[axis];
-    const float* p10 = s + hi2[0] * this->ScalarStride[c] + lo2[1] * this->ScalarStride[axis];
-    const float* p01 = s + lo2[0] * this->ScalarStride[c] + hi2[1] * this->ScalarStride[axis];
-    const float* p11 = s + hi2[0] * this->ScalarStride[c] + hi2[1] * this->ScalarStride[axis];
-    const float fc = f2[0];
-    const float fa = f2[1];
-    const float o = offset[rowAxis];
-    if (shared)
-    {
-      const float below = std::floor(o);
-      const float f = o - below;
-      const vtkIdType first =
-        (static_cast<vtkIdType>(ratio) * r0 + static_cast<vtkIdType>(below)) * strideAlong;
-      const vtkIdType step = ratio * strideAlong;
-      const float* q00 = p00 + first;
-      const float* q10 = p10 + first;
-      const float* q01 = p01 + first;
-      const float* q11 = p11 + first;
-      if (step == 1)
-      {
-        // Contiguous: the compiler vectorises it.
-        for (int i = 0; i < count; ++i)
-        {
-          const float b00 = q00[i] + f * (q00[i + 1] - q00[i]);
-          const float b10 = q10[i] + f * (q10[i + 1] - q10[i]);
-          const float b01 = q01[i] + f * (q01[i + 1] - q01[i]);
-          const float b11 = q11[i] + f * (q11[i + 1] - q11[i]);
-          const float e0 = b00 + fc * (b10 - b00);
-          const float e1 = b01 + fc * (b11 - b01);
-          out[i] = e0 + fa * (e1 - e0);
-        }
-        return;
-      }
-      for (int i = 0; i < count; ++i)
-      {
-        const vtkIdType a0 = i * step;
-        const vtkIdType a1 = a0 + strideAlong;
-        const float b00 = q00[a0] + f * (q00[a1] - q00[a0]);
-        const float b10 = q10[a0] + f * (q10[a1] - q10[a0]);
-        const float b01 = q01[a0] + f * (q01[a1] - q01[a0]);
-        const float b11 = q11[a0] + f * (q11[a1] - q11[a0]);
-        const float e0 = b00 + fc * (b10 - b00);
-        const float e1 = b01 + fc * (b11 - b01);
-        out[i] = e0 + fa * (e1 - e0);
-      }
-      return;
-    }
-    for (int i = 0; i < count; ++i)
-    {
-      // In the run every sample lies in the grid: truncation is the floor
-      // (a rounding below 0 weights texel 0 by 1 + x, x ~ -1e-7).
-      const float x = startAlong[i] + o;
-      const int i0 = static_cast<int>(x);
-      const float f = x - static_cast<float>(i0);
-      const vtkIdType a0 = i0 * strideAlong;
-      const vtkIdType a1 = std::min(i0 + 1, lastAlong) * strideAlong;
-      const float b00 = p00[a0] + f * (p00[a1] - p00[a0]);
-      const float b10 = p10[a0] + f * (p10[a1] - p10[a0]);
-      const float b01 = p01[a0] + f * (p01[a1] - p01[a0]);
-      const float b11 = p11[a0] + f * (p11[a1] - p11[a0]);
-      const float e0 = b00 + fc * (b10 - b00);
-      const float e1 = b01 + fc * (b11 - b01);
-      out[i] = e0 + fa * (e1 - e0);
-    }
-  };
-  for (int n = 1; n <= steps; ++n)
-  {
-    sampleRow((static_cast<float>(n) * h) * dir, next);
+    this->SampleRun(run, startAlong, this->Offset(run, n), next);
     bool any = false;
     for (int i = 0; i < count; ++i)
     {
@@ -499,9 +526,11 @@ void Sweeper::Row(int rowAxis, int v[3], int first, int last, int plane, int rea
       break;
     }
   }
-  if (restSampled)
+  if (run.RestSampled)
   {
-    sampleRow(end * dir, next);
+    const float h = this->In.StepLength;
+    const float rest = run.End - static_cast<float>(run.Steps) * h;
+    this->SampleRun(run, startAlong, this->Offset(run, run.Steps + 1), next);
     for (int i = 0; i < count; ++i)
     {
       if (transmittance[i] >= MinTransmittance)
@@ -513,8 +542,8 @@ void Sweeper::Row(int rowAxis, int v[3], int first, int last, int plane, int rea
   }
   for (int i = 0; i < count; ++i)
   {
-    v[rowAxis] = r0 + i;
-    write(r0 + i, skip && this->IsEmpty(v) ? 0.0f : transmittance[i]);
+    v[rowAxis] = run.First + i;
+    this->Write(v, skip && this->IsEmpty(v) ? 0.0f : transmittance[i]);
   }
 }
 

@@ -7,18 +7,20 @@
  * A rasterizer shades every voxel of a chunk as a fragment that locates and
  * weights each sample of its ray anew. Toward a directional light the rays
  * are parallel: along a row of voxels (an axis other than the sweep's) the
- * samples of step n lie at the same offset from each voxel, so the weights
- * across the row and along the sweep are the row's, and only the weight
- * along the row is the voxel's. The rows run in parallel. On llvmpipe this
- * takes about a third of the fragment passes' time for the same rays (docs/
- * performance.md, "Shadow rays on the CPU").
+ * samples of step n lie at the same offset from each voxel, so the row
+ * shares the weights across it and along the sweep, and along it as well
+ * where the light grid's points fall on irradiance points; each step is
+ * then a fixed stencil over the row, vectorised, and the rows run in
+ * parallel. Voxels whose rays leave the grid sideways take the shader's
+ * arithmetic point by point. On llvmpipe the light kit's key light takes
+ * about a quarter of its fragment passes' time (docs/performance.md,
+ * "Shadow rays on the CPU").
  *
  * The arithmetic is the shader's step for step (start, exit, plane, march,
  * rest, the bilinear read of the previous chunk's slice, early
- * termination); a sample's position is the voxel's plus the step's offset
- * rounded once per row instead of once per voxel, which moves a weight by
- * at most a float's rounding of the grid's size (the mirror test bounds the
- * difference from the pass at 1e-5).
+ * termination); a shared weight is the step offset's, where the pass rounds
+ * the voxel's position plus it, a difference of a float's rounding of the
+ * grid's size. The mirror test holds the two within one 16-bit step.
  */
 #ifndef vtkSweptTransmittance_h
 #define vtkSweptTransmittance_h

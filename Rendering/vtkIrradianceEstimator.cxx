@@ -406,14 +406,11 @@ bool vtkIrradianceEstimator::UpdateGroup(vtkOpenGLRenderWindow* context, int gro
   };
   const int lights = PopCount(mask);
   // The CPU's sweeps first: their upload sets every channel of its box.
-  const size_t sweptLights = swept.size();
-  bool ok = internals.SweepOnCPU(
+  this->NumberOfLightsSweptOnCPU += internals.SweepOnCPU(
     swept, this->SkipEmptyVoxels, [this, context]() { this->ReportProgress(context, 1.0); });
-  this->NumberOfLightsSweptOnCPU += static_cast<int>(sweptLights - swept.size());
-  ok = ok &&
-    (fullMask == 0 ||
-      internals.ShadowPass(
-        context, group, fullMask, 1, this->SkipEmptyVoxels, this->LayeredRendering));
+  bool ok = fullMask == 0 ||
+    internals.ShadowPass(
+      context, group, fullMask, 1, this->SkipEmptyVoxels, this->LayeredRendering);
   ok = ok &&
     (stridedFullMask == 0 ||
       internals.ShadowPass(

@@ -202,8 +202,8 @@ public:
    * CPU (mmv::SweepTransmittanceOnCPU), uploaded into the pass's target; 2,
    * automatic (default): on the GPU except on a CPU rasterizer, where the
    * parallel rays share their weights across a row (the light kit's five
-   * lights on a 237 x 237 x 119 grid: 0.22 s against 0.65 s of passes;
-   * docs/performance.md, "Shadow rays on the CPU"). The CPU needs its own
+   * lights on a 237 x 237 x 119 grid: 0.23 s against about 0.55 s of
+   * passes; docs/performance.md, "Shadow rays on the CPU"). The CPU needs its own
    * classes (Classification on the CPU, the default there) and nothing cut;
    * point and spot lights, and lights under full rays, stay on the GPU.
    * Both give the same transmittance to 1e-5. (A WorkPlace.)

@@ -642,8 +642,8 @@ public:
   /// into SweptOnCPU and uploaded into their targets; they leave `swept`,
   /// whose other lights the passes draw after. Before any pass of the
   /// group: an upload sets every channel of the box it covers. Calls
-  /// `lightDone` after each light's sweep.
-  bool SweepOnCPU(std::vector<std::pair<int, std::vector<mmv::ShadowSweep>>>& swept, bool skipEmpty,
+  /// `lightDone` after each light's sweep; returns how many it swept.
+  int SweepOnCPU(std::vector<std::pair<int, std::vector<mmv::ShadowSweep>>>& swept, bool skipEmpty,
     const std::function<void()>& lightDone);
   /// The lights of `mask` of a strided light grid, interpolated into their
   /// channels of FineScratch[0] over the estimated box.

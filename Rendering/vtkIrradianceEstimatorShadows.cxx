@@ -397,7 +397,7 @@ bool vtkIrradianceEstimator::vtkInternals::SweepsLightOnCPU(
 
 // Each target's lights in one buffer of as many channels as its highest
 // light's, uploaded once over what they computed.
-bool vtkIrradianceEstimator::vtkInternals::SweepOnCPU(
+int vtkIrradianceEstimator::vtkInternals::SweepOnCPU(
   std::vector<std::pair<int, std::vector<mmv::ShadowSweep>>>& swept, bool skipEmpty,
   const std::function<void()>& lightDone)
 {
@@ -491,5 +491,5 @@ bool vtkIrradianceEstimator::vtkInternals::SweepOnCPU(
     glPixelStorei(GL_UNPACK_IMAGE_HEIGHT, imageHeight);
     glPixelStorei(GL_UNPACK_ALIGNMENT, alignment);
   }
-  return true;
+  return static_cast<int>(onCPU.size());
 }

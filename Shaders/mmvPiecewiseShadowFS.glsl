@@ -4,7 +4,9 @@
 // transmittance an earlier chunk wrote into this same texture (a texture
 // barrier separates the chunks' draws, and a chunk never reads its own
 // slices). Mirrors SweepPiecewiseShadowRays() of
-// Filters/vtkIrradianceVolumeFilter.cxx. Prepended by the pass: the material
+// Filters/vtkIrradianceVolumeFilter.cxx, and a directional light's sweep
+// mmv::SweepTransmittanceOnCPU (Filters/vtkSweptTransmittance.h, which a
+// CPU rasterizer runs instead). Prepended by the pass: the material
 // prelude, mmv::ShadowRayGLSLPrelude(), mmvShadowRay.glsl and
 // mmvLightGrid.glsl: the voxels, slices and planes are the light grid's, the
 // rays march in the irradiance grid's index space.
