@@ -571,7 +571,9 @@ vtkIdType Sweeper::Chunk(const ShadowSweep& sweep, int chunk, const IndexBox& bo
   mmv::For(0, rows,
     [&](vtkIdType begin, vtkIdType end)
     {
-      std::vector<float> scratch;
+      // Per thread, kept: an update sweeps thousands of row blocks, and
+      // allocating for each would churn the heap.
+      thread_local std::vector<float> scratch;
       for (vtkIdType r = begin; r < end; ++r)
       {
         int v[3];

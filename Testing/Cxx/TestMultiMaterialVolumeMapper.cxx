@@ -1348,7 +1348,14 @@ TEST(MultiMaterialVolumeMapper, AnOpacityEditEveryFrameKeepsTheMemoryFlat)
   const double grown = ResidentBytes() - settled;
   std::printf("resident growth over 90 updates: %.2f MB\n", grown / 1048576.0);
   EXPECT_GT(settled, 0.0);
+#if defined(__SANITIZE_ADDRESS__)
+  // AddressSanitizer keeps freed blocks in quarantine (256 MB) instead of
+  // reusing them, so the resident size grows with every block freed (38 MB
+  // here with the shadow passes on the GPU); LeakSanitizer checks for leaks
+  // in that build instead.
+#else
   EXPECT_LT(grown, 16.0 * 1048576.0) << grown / 1048576.0 << " MB";
+#endif
 }
 
 TEST(MultiMaterialVolumeMapper, StageReportNamesEveryStageInsideTheWholeUpdate)
