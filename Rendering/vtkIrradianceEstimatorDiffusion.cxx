@@ -2,6 +2,7 @@
 // transmittance on the diffusion grid.
 #include "vtkIrradianceEstimatorInternals.h"
 #include "vtkMultiMaterialThreads.h"
+#include "vtkTextureCopy.h"
 
 #include "mmvDiffusionFS.h"
 #include "mmvDiffusionGridFS.h"
@@ -417,15 +418,7 @@ bool vtkIrradianceEstimator::vtkInternals::ReadFineScratch()
 
 bool vtkIrradianceEstimator::vtkInternals::UploadDiffusedFine()
 {
-  const int* d = this->Grid.Dimensions;
-  GLint alignment = 4;
-  glGetIntegerv(GL_UNPACK_ALIGNMENT, &alignment);
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-  this->FineScratch[1]->Activate();
-  glTexSubImage3D(
-    GL_TEXTURE_3D, 0, 0, 0, 0, d[0], d[1], d[2], GL_RGBA, GL_FLOAT, this->FineOnCPU.data());
-  this->FineScratch[1]->Deactivate();
-  glPixelStorei(GL_UNPACK_ALIGNMENT, alignment);
+  mmv::UploadTextureBox(this->FineScratch[1], nullptr, GL_RGBA, GL_FLOAT, this->FineOnCPU.data());
   return glGetError() == GL_NO_ERROR;
 }
 

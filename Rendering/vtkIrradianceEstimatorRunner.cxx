@@ -2,6 +2,7 @@
 // or compute dispatches, the textures they read and write) and the final
 // write into the irradiance textures.
 #include "vtkIrradianceEstimatorInternals.h"
+#include "vtkTextureCopy.h"
 
 #include "vtkIrradianceUpdatePlan.h"
 #include "vtkMultiMaterialVolumeGeometry.h" // SamePointsMap
@@ -241,21 +242,12 @@ bool vtkIrradianceEstimator::vtkInternals::CopyClasses(vtkOpenGLRenderWindow* co
   {
     return false;
   }
-  int c[3];
-  this->LightGridDimensions(stride, c);
   this->CopiedLightGridNeeded = this->LightGridNeededOnCPU(classes, stride);
   this->CopiedLightGridNeededStamp = this->Classifications;
   this->CopiedLightGridNeededStride = stride;
-  const std::vector<unsigned char>& needed = this->CopiedLightGridNeeded;
   // Rows of bytes: any length.
-  GLint alignment = 4;
-  glGetIntegerv(GL_UNPACK_ALIGNMENT, &alignment);
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  this->LightGridClassTexture->Activate();
-  glTexSubImage3D(
-    GL_TEXTURE_3D, 0, 0, 0, 0, c[0], c[1], c[2], GL_RED, GL_UNSIGNED_BYTE, needed.data());
-  this->LightGridClassTexture->Deactivate();
-  glPixelStorei(GL_UNPACK_ALIGNMENT, alignment);
+  mmv::UploadTextureBox(this->LightGridClassTexture, nullptr, GL_RED, GL_UNSIGNED_BYTE,
+    this->CopiedLightGridNeeded.data(), 1);
   this->LightGridClassUpload = this->Classifications;
   this->LightGridClassStride = stride;
   return true;

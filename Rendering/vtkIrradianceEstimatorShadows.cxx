@@ -10,6 +10,7 @@
 #include "mmvShadowRay.h"
 #include "vtkMultiMaterialThreads.h"
 #include "vtkSweptTransmittance.h"
+#include "vtkTextureCopy.h"
 
 using namespace mmv::voxelpass;
 
@@ -418,7 +419,19 @@ int vtkIrradianceEstimator::vtkInternals::SweepOnCPU(
     }
   }
   swept.swap(onGPU);
+  // What every light reads; the light grid's part per light.
+  mmv::SweptTransmittanceInputs inputs;
+  std::copy(this->Grid.Dimensions, this->Grid.Dimensions + 3, inputs.Dimensions);
+  inputs.Scalars = this->Scalars.data();
+  inputs.ShadowTable = this->ShadowTable.data();
+  inputs.TableSize = this->TableSize;
+  inputs.StepLength = static_cast<float>(this->StepLength);
+  inputs.WorldToIndex = glm::mat3(this->Grid.PhysicalToIndexMatrix());
+  inputs.Classes = this->Classes.data();
+  inputs.Needed = this->CopiedLightGridNeeded.data();
+  inputs.SkipEmpty = skipEmpty;
   std::array<mmv::IndexBox, 2> covered;
+  std::array<int, 2> strides = { 1, 1 };
   mmv::RunOnAllCores(
     [&]()
     {
@@ -427,17 +440,11 @@ int vtkIrradianceEstimator::vtkInternals::SweepOnCPU(
         const mmv::LightSource& source = this->Lights[light.first];
         const int stride = source.GridStride;
         const int t = stride > 1 ? 1 : 0;
-        mmv::SweptTransmittanceInputs inputs;
+        strides[t] = stride;
         this->LightGridDimensions(stride, inputs.TargetDimensions);
         const int* d = inputs.TargetDimensions;
         std::vector<float>& buffer = this->SweptOnCPU[t];
         buffer.resize(static_cast<size_t>(channels[t]) * d[0] * d[1] * d[2]);
-        std::copy(this->Grid.Dimensions, this->Grid.Dimensions + 3, inputs.Dimensions);
-        inputs.Scalars = this->Scalars.data();
-        inputs.ShadowTable = this->ShadowTable.data();
-        inputs.TableSize = this->TableSize;
-        inputs.StepLength = static_cast<float>(this->StepLength);
-        inputs.WorldToIndex = glm::mat3(this->Grid.PhysicalToIndexMatrix());
         double ratio[3];
         this->LightGridRatio(stride, ratio);
         for (int a = 0; a < 3; ++a)
@@ -446,9 +453,6 @@ int vtkIrradianceEstimator::vtkInternals::SweepOnCPU(
           inputs.TargetToIndex[a] = static_cast<float>(1.0 / ratio[a]);
         }
         inputs.Strided = stride > 1;
-        inputs.Classes = this->Classes.data();
-        inputs.Needed = this->CopiedLightGridNeeded.data();
-        inputs.SkipEmpty = skipEmpty;
         const mmv::ShadowSweep& sweep = light.second[0];
         const std::vector<mmv::IndexBox> boxes = this->SweepBoxes(light.first, sweep, skipEmpty);
         this->EstimatedVoxels += mmv::SweepTransmittanceOnCPU(inputs, glm::vec3(source.ToLight),
@@ -463,33 +467,11 @@ int vtkIrradianceEstimator::vtkInternals::SweepOnCPU(
   static const GLenum formats[] = { GL_RED, GL_RG, GL_RGB, GL_RGBA };
   for (int t = 0; t < 2; ++t)
   {
-    if (covered[t].IsEmpty())
+    if (!covered[t].IsEmpty())
     {
-      continue;
+      mmv::UploadTextureBox(this->LightGridTarget(strides[t]), covered[t].Bounds,
+        formats[channels[t] - 1], GL_FLOAT, this->SweptOnCPU[t].data());
     }
-    int d[3];
-    this->LightGridDimensions(t == 1 ? this->MaxLightGridStride() : 1, d);
-    const int* b = covered[t].Bounds;
-    const vtkIdType first =
-      b[0] + static_cast<vtkIdType>(d[0]) * (b[2] + static_cast<vtkIdType>(d[1]) * b[4]);
-    vtkTextureObject* target = t == 1 ? this->LightGridScratch.Get() : this->FineScratch[0].Get();
-    GLint rowLength = 0;
-    GLint imageHeight = 0;
-    GLint alignment = 4;
-    glGetIntegerv(GL_UNPACK_ROW_LENGTH, &rowLength);
-    glGetIntegerv(GL_UNPACK_IMAGE_HEIGHT, &imageHeight);
-    glGetIntegerv(GL_UNPACK_ALIGNMENT, &alignment);
-    glPixelStorei(GL_UNPACK_ROW_LENGTH, d[0]);
-    glPixelStorei(GL_UNPACK_IMAGE_HEIGHT, d[1]);
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    target->Activate();
-    glTexSubImage3D(GL_TEXTURE_3D, 0, b[0], b[2], b[4], b[1] - b[0] + 1, b[3] - b[2] + 1,
-      b[5] - b[4] + 1, formats[channels[t] - 1], GL_FLOAT,
-      this->SweptOnCPU[t].data() + first * channels[t]);
-    target->Deactivate();
-    glPixelStorei(GL_UNPACK_ROW_LENGTH, rowLength);
-    glPixelStorei(GL_UNPACK_IMAGE_HEIGHT, imageHeight);
-    glPixelStorei(GL_UNPACK_ALIGNMENT, alignment);
   }
   return static_cast<int>(onCPU.size());
 }

@@ -94,4 +94,33 @@ void UseLinearClamped(vtkTextureObject* texture)
   texture->SetWrapT(vtkTextureObject::ClampToEdge);
   texture->SetWrapR(vtkTextureObject::ClampToEdge);
 }
+
+void UploadTextureBox(vtkTextureObject* texture, const int* box, unsigned int format,
+  unsigned int type, const void* volume, int alignment)
+{
+  const int dims[3] = { static_cast<int>(texture->GetWidth()),
+    static_cast<int>(texture->GetHeight()), static_cast<int>(texture->GetDepth()) };
+  const int whole[6] = { 0, dims[0] - 1, 0, dims[1] - 1, 0, dims[2] - 1 };
+  const int* b = box ? box : whole;
+  const size_t components = format == GL_RED ? 1 : format == GL_RG ? 2 : format == GL_RGB ? 3 : 4;
+  const size_t bytes = type == GL_FLOAT ? 4 : type == GL_UNSIGNED_SHORT ? 2 : 1;
+  const size_t first =
+    b[0] + static_cast<size_t>(dims[0]) * (b[2] + static_cast<size_t>(dims[1]) * b[4]);
+  GLint rowLength = 0;
+  GLint imageHeight = 0;
+  GLint unpackAlignment = 4;
+  glGetIntegerv(GL_UNPACK_ROW_LENGTH, &rowLength);
+  glGetIntegerv(GL_UNPACK_IMAGE_HEIGHT, &imageHeight);
+  glGetIntegerv(GL_UNPACK_ALIGNMENT, &unpackAlignment);
+  glPixelStorei(GL_UNPACK_ROW_LENGTH, dims[0]);
+  glPixelStorei(GL_UNPACK_IMAGE_HEIGHT, dims[1]);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, alignment);
+  texture->Activate();
+  glTexSubImage3D(GL_TEXTURE_3D, 0, b[0], b[2], b[4], b[1] - b[0] + 1, b[3] - b[2] + 1,
+    b[5] - b[4] + 1, format, type, static_cast<const char*>(volume) + first * components * bytes);
+  texture->Deactivate();
+  glPixelStorei(GL_UNPACK_ROW_LENGTH, rowLength);
+  glPixelStorei(GL_UNPACK_IMAGE_HEIGHT, imageHeight);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, unpackAlignment);
+}
 }

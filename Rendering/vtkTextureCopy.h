@@ -34,6 +34,12 @@ vtkSmartPointer<vtkTextureObject> NewTextureLike(
   vtkOpenGLRenderWindow* context, vtkTextureObject* like);
 /// Linear filtering, clamped to the edge along every axis.
 void UseLinearClamped(vtkTextureObject* texture);
+/// Writes box `box` (index bounds; null: all) of 3D texture `texture` from
+/// `volume`, the whole texture's texels (x fastest, `format` and `type`),
+/// in place (no new texture memory), rows aligned to `alignment` bytes.
+/// The unpacking state comes back as it was.
+void UploadTextureBox(vtkTextureObject* texture, const int* box, unsigned int format,
+  unsigned int type, const void* volume, int alignment = 4);
 }
 
 #endif
