@@ -187,6 +187,7 @@ bool vtkIrradianceEstimator::Render(vtkOpenGLRenderWindow* context)
   this->DiffusionPasses = 0;
   this->NumberOfUpdatedLights = 0;
   this->NumberOfLightsSweptOnCPU = 0;
+  this->NumberOfTexturesWrittenOnCPU = 0;
   this->LastEstimatedVoxels = 0;
   this->LastEstimationSeconds = 0.0;
   this->LastDiffusionSeconds = 0.0;
@@ -364,34 +365,29 @@ bool vtkIrradianceEstimator::UpdateGroup(vtkOpenGLRenderWindow* context, int gro
   const std::vector<bool>& updated, int estimation, bool diffusion)
 {
   vtkInternals& internals = *this->Internals;
-  const int stride = internals.MaxLightGridStride();
-  int mask = 0;
-  int fullMask = 0;        // full rays on the irradiance grid
-  int stridedFullMask = 0; // full rays on the strided light grid
-  int stridedMask = 0;     // every light on the strided grid
-  std::vector<std::pair<int, std::vector<mmv::ShadowSweep>>> swept;
+  GroupLights lights;
   for (int l = 0; l < LightsPerTexture; ++l)
   {
     const size_t k = static_cast<size_t>(group * LightsPerTexture + l);
     if (k < internals.Lights.size() && updated[k])
     {
-      mask |= 1 << l;
+      lights.Mask |= 1 << l;
       ++this->NumberOfUpdatedLights;
       const bool strided = internals.Lights[k].GridStride > 1;
-      stridedMask |= strided ? 1 << l : 0;
+      lights.StridedMask |= strided ? 1 << l : 0;
       std::vector<mmv::ShadowSweep> sweeps =
         internals.LightSweeps(static_cast<int>(k), estimation, this->PiecewiseShadowSlices);
       if (!sweeps.empty())
       {
-        swept.emplace_back(static_cast<int>(k), std::move(sweeps));
+        lights.Swept.emplace_back(static_cast<int>(k), std::move(sweeps));
       }
       else
       {
-        (strided ? stridedFullMask : fullMask) |= 1 << l;
+        (strided ? lights.StridedFullMask : lights.FullMask) |= 1 << l;
       }
     }
   }
-  if (mask == 0)
+  if (lights.Mask == 0)
   {
     return true;
   }
@@ -404,10 +400,49 @@ bool vtkIrradianceEstimator::UpdateGroup(vtkOpenGLRenderWindow* context, int gro
     stage = now;
     return seconds;
   };
-  const int lights = PopCount(mask);
   // The CPU's sweeps first: their upload sets every channel of its box.
-  this->NumberOfLightsSweptOnCPU += internals.SweepOnCPU(
-    swept, this->SkipEmptyVoxels, [this, context]() { this->ReportProgress(context, 1.0); });
+  // Where they are all the group's lights, the CPU makes the texels too.
+  const bool writeOnCPU = (lights.FullMask | lights.StridedFullMask) == 0 &&
+    internals.WritesOnCPU(group, lights.Mask, lights.Swept, diffusion);
+  this->NumberOfLightsSweptOnCPU += internals.SweepOnCPU(lights.Swept, this->SkipEmptyVoxels,
+    !writeOnCPU, [this, context]() { this->ReportProgress(context, 1.0); });
+  bool ok = true;
+  if (writeOnCPU)
+  {
+    this->LastEstimationSeconds += elapsed();
+    internals.WriteOnCPU(group, this->SkipEmptyVoxels);
+    this->LastWriteSeconds += elapsed();
+    ++this->NumberOfTexturesWrittenOnCPU;
+  }
+  else
+  {
+    ok = this->PassesOfGroup(context, group, lights, diffusion, elapsed);
+  }
+  for (int l = 0; ok && !internals.Tint.empty() && l < LightsPerTexture; ++l)
+  {
+    if ((lights.Mask & (1 << l)) != 0)
+    {
+      ok = internals.TintPass(context, group * LightsPerTexture + l, this->LayeredRendering);
+    }
+  }
+  if (!internals.Tint.empty())
+  {
+    this->LastEstimationSeconds += elapsed();
+  }
+  return ok;
+}
+
+//------------------------------------------------------------------------------
+// The passes of UpdateGroup for what the CPU did not sweep: shadows, the
+// dim lights' upsampling, the diffusion and the final write. `elapsed`
+// returns the seconds since its last call, once the GPU is done.
+bool vtkIrradianceEstimator::PassesOfGroup(vtkOpenGLRenderWindow* context, int group,
+  const GroupLights& lights, bool diffusion, const std::function<double()>& elapsed)
+{
+  vtkInternals& internals = *this->Internals;
+  const int stride = internals.MaxLightGridStride();
+  const int fullMask = lights.FullMask;
+  const int stridedFullMask = lights.StridedFullMask;
   bool ok = fullMask == 0 ||
     internals.ShadowPass(
       context, group, fullMask, 1, this->SkipEmptyVoxels, this->LayeredRendering);
@@ -419,7 +454,7 @@ bool vtkIrradianceEstimator::UpdateGroup(vtkOpenGLRenderWindow* context, int gro
   {
     this->ReportProgress(context, PopCount(fullMask | stridedFullMask));
   }
-  for (const auto& light : swept)
+  for (const auto& light : lights.Swept)
   {
     ok = ok &&
       internals.PiecewiseShadowPass(
@@ -432,17 +467,19 @@ bool vtkIrradianceEstimator::UpdateGroup(vtkOpenGLRenderWindow* context, int gro
   // The dim lights' grid, interpolated to the irradiance grid: from here on
   // they are lit as the others.
   ok = ok &&
-    (stridedMask == 0 ||
+    (lights.StridedMask == 0 ||
       internals.UpsamplePass(
-        context, stridedMask, stride, this->SkipEmptyVoxels, this->LayeredRendering));
+        context, lights.StridedMask, stride, this->SkipEmptyVoxels, this->LayeredRendering));
   this->LastEstimationSeconds += elapsed();
   // Each diffusion grid diffuses its lights into their channels (the
   // strided ones on their own where DiffusionOf picks it).
+  const int mask = lights.Mask;
   vtkTextureObject* result = internals.FineScratch[0];
   if (ok && diffusion)
   {
     const bool ownGrid = internals.DiffusionOf(stride) == 1;
-    const int lightsOf[2] = { ownGrid ? mask & ~stridedMask : mask, ownGrid ? stridedMask : 0 };
+    const int lightsOf[2] = { ownGrid ? mask & ~lights.StridedMask : mask,
+      ownGrid ? lights.StridedMask : 0 };
     const bool onCPU = internals.DiffusesOnCPU();
     ok = !onCPU || internals.ReadFineScratch();
     for (int p = 0; ok && p < 2; ++p)
@@ -463,18 +500,7 @@ bool vtkIrradianceEstimator::UpdateGroup(vtkOpenGLRenderWindow* context, int gro
   this->LastWriteSeconds += elapsed();
   if (ok && diffusion)
   {
-    this->ReportProgress(context, lights); // the diffusion, with the short write
-  }
-  for (int l = 0; ok && !internals.Tint.empty() && l < LightsPerTexture; ++l)
-  {
-    if ((mask & (1 << l)) != 0)
-    {
-      ok = internals.TintPass(context, group * LightsPerTexture + l, this->LayeredRendering);
-    }
-  }
-  if (!internals.Tint.empty())
-  {
-    this->LastEstimationSeconds += elapsed();
+    this->ReportProgress(context, PopCount(mask)); // the diffusion, with the short write
   }
   return ok;
 }
@@ -772,6 +798,8 @@ vtkIdType vtkIrradianceEstimator::GetScratchMemoryBytes() const
   {
     bytes += static_cast<vtkIdType>(4 * buffer.size());
   }
+  // The final write on the CPU: one texture's texels.
+  bytes += static_cast<vtkIdType>(2 * this->Internals->WrittenOnCPU.size());
   return bytes;
 }
 

@@ -199,10 +199,12 @@ public:
   /**
    * Where a directional light's piecewise shadow rays run: 0, in fragment
    * passes (Shaders/mmvPiecewiseShadowFS.glsl), one per chunk; 1, on the
-   * CPU (mmv::SweepTransmittanceOnCPU), uploaded into the pass's target; 2,
-   * automatic (default): on the GPU except on a CPU rasterizer, where the
-   * parallel rays share their weights across a row (the light kit's five
-   * lights on a 237 x 237 x 119 grid: 0.23 s against about 0.55 s of
+   * CPU (mmv::SweepTransmittanceOnCPU), uploaded into the pass's target, or,
+   * where the CPU swept every light of an irradiance texture, written into
+   * its texels there too (mmv::WriteIrradianceTexels); 2, automatic
+   * (default): on the GPU except on a CPU rasterizer, where the parallel
+   * rays share their weights across a row (the light kit's five lights on a
+   * 237 x 237 x 119 grid: 0.26 s with the write against about 0.7 s of
    * passes; docs/performance.md, "Shadow rays on the CPU"). The CPU needs its own
    * classes (Classification on the CPU, the default there) and nothing cut;
    * point and spot lights, and lights under full rays, stay on the GPU.
@@ -212,6 +214,11 @@ public:
   vtkGetMacro(ShadowRaysPlace, int);
   /// The lights whose shadow rays the last update swept on the CPU.
   vtkGetMacro(NumberOfLightsSweptOnCPU, int);
+  /// The irradiance textures the last update wrote on the CPU: those whose
+  /// lights it all swept there, without multiple scattering or other
+  /// volumes' shadows (mmv::WriteIrradianceTexels, the final write's
+  /// arithmetic in place of its passes).
+  vtkGetMacro(NumberOfTexturesWrittenOnCPU, int);
 
   /**
    * Keeps the float scratch textures the passes work in between updates
@@ -453,6 +460,7 @@ protected:
   bool DiffusedOnCPU = false;
   int ShadowRaysPlace = OnGPUUnlessSoftware;
   int NumberOfLightsSweptOnCPU = 0;
+  int NumberOfTexturesWrittenOnCPU = 0;
   bool SkipEmptyVoxels = true;
   bool KeepScratch = true;
   int ShadowEstimation = mmv::DefaultIlluminationSettings.ShadowEstimation;
@@ -477,6 +485,10 @@ private:
   int PrepareSettings(bool& diffusion);
   bool UpdateGroup(vtkOpenGLRenderWindow* context, int group, const std::vector<bool>& updated,
     int estimation, bool diffusion);
+  // The updated lights of one irradiance texture (vtkIrradianceEstimatorInternals.h).
+  struct GroupLights;
+  bool PassesOfGroup(vtkOpenGLRenderWindow* context, int group, const GroupLights& lights,
+    bool diffusion, const std::function<double()>& elapsed);
   // Finishes the GPU's work, adds `units` to what is done and calls the
   // progress callback (nothing without one).
   void ReportProgress(vtkOpenGLRenderWindow* context, double units);

@@ -18,6 +18,7 @@
 #include "vtkIrradianceComputeProgram.h"
 #include "vtkIrradianceDiffusion.h"
 #include "vtkIrradianceRegion.h"
+#include "vtkIrradianceTexels.h"
 #include "vtkMultiMaterialLightTolerance.h"
 #include "vtkMultiMaterialLightUniforms.h"
 #include "vtkMultiMaterialParameters.h"
@@ -64,16 +65,8 @@ constexpr int LightsPerTexture = mmv::IrradianceLightsPerTexture;
 /// sub-steps too saves sweeps but costs more in waiting than it saves.)
 constexpr int ResidualCheckMinimumSweeps = 12;
 
-/// The class of an empty voxel (Shaders/mmvClassifyFS.glsl writes the same):
-/// -1 - m, m the bits of its non-empty face neighbours (bit 2 a: the one
-/// below on axis a, 2 a + 1: above). Negative, so every pass that asks
-/// "empty?" reads them alike; the final write averages the neighbours m names.
-inline float EmptyVoxelClass(int neighbors)
-{
-  return -1.0f - static_cast<float>(neighbors);
-}
-
-using mmv::LookupTable; // vtkTableLookup.h
+using mmv::EmptyVoxelClass; // vtkIrradianceTexels.h
+using mmv::LookupTable;     // vtkTableLookup.h
 
 /// A voxel pass: system declarations, `defines`, optionally the light
 /// model, the voxel-pass declarations, `body`, then main(); as a fragment
@@ -634,6 +627,10 @@ public:
   // irradiance grid's (FineScratch[0]), [1] the strided grid's.
   bool SweepsOnCPU = false;
   std::array<std::vector<float>, 2> SweptOnCPU;
+  std::array<int, 2> SweptChannels = { 0, 0 }; // floats per point of each, this update
+  // The final write on the CPU (WriteOnCPU): an irradiance texture's
+  // texels, the whole grid, kept like SweptOnCPU.
+  std::vector<unsigned short> WrittenOnCPU;
   /// Whether light `light`'s sweeps run on the CPU in this update: a
   /// directional light's, nothing cut, the CPU's classes (and strided marks)
   /// current.
@@ -644,7 +641,20 @@ public:
   /// group: an upload sets every channel of the box it covers. Calls
   /// `lightDone` after each light's sweep; returns how many it swept.
   int SweepOnCPU(std::vector<std::pair<int, std::vector<mmv::ShadowSweep>>>& swept, bool skipEmpty,
-    const std::function<void()>& lightDone);
+    bool upload, const std::function<void()>& lightDone);
+  /// Whether group `group`'s final write runs on the CPU (WriteOnCPU) in
+  /// this update: every light of the group updated (`mask`) and swept on
+  /// the CPU (`swept`, none left to passes), nothing diffused, no other
+  /// volume's transmittance, the CPU's classes current.
+  bool WritesOnCPU(int group, int mask,
+    const std::vector<std::pair<int, std::vector<mmv::ShadowSweep>>>& swept, bool diffusion) const;
+  /// The final write of group `group` from SweptOnCPU (mmv::WriteIrradianceTexels),
+  /// uploaded over the box the fill pass would draw.
+  void WriteOnCPU(int group, bool skipEmpty);
+  /// The box the final write of group `group` covers in this update, which
+  /// it records: the region's occupied voxels and their neighbours, and
+  /// what an earlier write reached there.
+  mmv::IndexBox FillBox(int group, bool skipEmpty);
   /// The lights of `mask` of a strided light grid, interpolated into their
   /// channels of FineScratch[0] over the estimated box.
   bool UpsamplePass(
@@ -672,6 +682,17 @@ public:
   std::vector<bool> GivenMarks; // the caller's (SetLightsToUpdate), for one Render()
   void ReleaseScratch(vtkWindow* window);
   void Release(vtkWindow* window);
+};
+
+// The updated lights of one irradiance texture, by how their shadows are
+// estimated (bit l: the texture's light l).
+struct vtkIrradianceEstimator::GroupLights
+{
+  int Mask = 0;            // every updated light
+  int FullMask = 0;        // full rays on the irradiance grid
+  int StridedFullMask = 0; // full rays on the strided light grid
+  int StridedMask = 0;     // every light on the strided grid
+  std::vector<std::pair<int, std::vector<mmv::ShadowSweep>>> Swept; // piecewise
 };
 
 #endif

@@ -935,9 +935,21 @@ bool vtkIrradianceEstimator::vtkInternals::FillPass(vtkOpenGLRenderWindow* conte
     program->SetUniform3f("sceneScale", scale);
     program->SetUniform3f("sceneBias", bias);
   }
+  const mmv::IndexBox drawn = this->FillBox(group, skipEmpty);
+  if (!drawn.IsEmpty())
+  {
+    this->DrawLayers(context, this->FillQuad, this->Irradiance[group], layered,
+      DrawBox(drawn, this->Grid.Dimensions), mask);
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+mmv::IndexBox vtkIrradianceEstimator::vtkInternals::FillBox(int group, bool skipEmpty)
+{
   // Beyond the occupied bricks and their neighbours every voxel is empty
   // with empty neighbours: the write gives it 0, which it holds already
-  // unless an earlier write reached it (a support that shrank). The draw
+  // unless an earlier write reached it (a support that shrank). The write
   // covers both, on the region.
   const mmv::IndexBox& region = this->Plan.Region;
   const mmv::IndexBox needed = skipEmpty
@@ -946,12 +958,7 @@ bool vtkIrradianceEstimator::vtkInternals::FillPass(vtkOpenGLRenderWindow* conte
   mmv::IndexBox& filled = this->FilledBoxes[group];
   const mmv::IndexBox drawn = needed.United(filled.Intersected(region));
   filled = filled.Intersected(region) == filled ? needed : needed.United(filled);
-  if (!drawn.IsEmpty())
-  {
-    this->DrawLayers(context, this->FillQuad, this->Irradiance[group], layered,
-      DrawBox(drawn, this->Grid.Dimensions), mask);
-  }
-  return true;
+  return drawn;
 }
 
 //------------------------------------------------------------------------------
@@ -962,6 +969,7 @@ void vtkIrradianceEstimator::vtkInternals::ReleaseScratch(vtkWindow* window)
   {
     std::vector<float>().swap(buffer);
   }
+  std::vector<unsigned short>().swap(this->WrittenOnCPU);
   // The float scratch is 8x the result per texture: not worth keeping.
   if (this->LightGridScratch)
   {

@@ -397,9 +397,10 @@ bool vtkIrradianceEstimator::vtkInternals::SweepsLightOnCPU(
 }
 
 // Each target's lights in one buffer of as many channels as its highest
-// light's, uploaded once over what they computed.
+// light's, uploaded once over what they computed (unless the final write
+// runs on the CPU too).
 int vtkIrradianceEstimator::vtkInternals::SweepOnCPU(
-  std::vector<std::pair<int, std::vector<mmv::ShadowSweep>>>& swept, bool skipEmpty,
+  std::vector<std::pair<int, std::vector<mmv::ShadowSweep>>>& swept, bool skipEmpty, bool upload,
   const std::function<void()>& lightDone)
 {
   std::vector<std::pair<int, std::vector<mmv::ShadowSweep>>> onCPU;
@@ -464,8 +465,9 @@ int vtkIrradianceEstimator::vtkInternals::SweepOnCPU(
         lightDone();
       }
     });
+  this->SweptChannels = channels;
   static const GLenum formats[] = { GL_RED, GL_RG, GL_RGB, GL_RGBA };
-  for (int t = 0; t < 2; ++t)
+  for (int t = 0; upload && t < 2; ++t)
   {
     if (!covered[t].IsEmpty())
     {
@@ -474,4 +476,65 @@ int vtkIrradianceEstimator::vtkInternals::SweepOnCPU(
     }
   }
   return static_cast<int>(onCPU.size());
+}
+
+//------------------------------------------------------------------------------
+bool vtkIrradianceEstimator::vtkInternals::WritesOnCPU(int group, int mask,
+  const std::vector<std::pair<int, std::vector<mmv::ShadowSweep>>>& swept, bool diffusion) const
+{
+  const int lights =
+    std::min(LightsPerTexture, static_cast<int>(this->Lights.size()) - group * LightsPerTexture);
+  const bool scene =
+    static_cast<size_t>(group) < this->SceneTransmittance.size() && this->SceneTransmittance[group];
+  return this->SweepsOnCPU && !diffusion && !scene && mask == (1 << lights) - 1 &&
+    static_cast<int>(swept.size()) == lights && this->CopiedClassesStamp == this->Classifications &&
+    std::all_of(swept.begin(), swept.end(),
+      [this](const std::pair<int, std::vector<mmv::ShadowSweep>>& light)
+      { return this->SweepsLightOnCPU(light.first, light.second); });
+}
+
+//------------------------------------------------------------------------------
+void vtkIrradianceEstimator::vtkInternals::WriteOnCPU(int group, bool skipEmpty)
+{
+  const int first = group * LightsPerTexture;
+  const int lights = std::min(LightsPerTexture, static_cast<int>(this->Lights.size()) - first);
+  mmv::IrradianceTexelInputs inputs;
+  std::copy(this->Grid.Dimensions, this->Grid.Dimensions + 3, inputs.Dimensions);
+  inputs.Classes = this->Classes.data();
+  inputs.Lights = lights;
+  int stride = 1;
+  for (int l = 0; l < lights; ++l)
+  {
+    const int lightStride = this->Lights[first + l].GridStride;
+    inputs.StridedMask |= lightStride > 1 ? 1 << l : 0;
+    stride = std::max(stride, lightStride);
+  }
+  inputs.Fine = this->SweptOnCPU[0].data();
+  inputs.FineChannels = this->SweptChannels[0];
+  if (inputs.StridedMask != 0)
+  {
+    inputs.LightGrid = this->SweptOnCPU[1].data();
+    inputs.LightGridChannels = this->SweptChannels[1];
+    this->LightGridDimensions(stride, inputs.LightGridDimensions);
+    double ratio[3];
+    this->LightGridRatio(stride, ratio);
+    // As UpsamplePass gives the shader.
+    inputs.IndexToLightGrid = glm::vec3(ratio[0], ratio[1], ratio[2]);
+  }
+  const int channels = mmv::IrradianceTextureChannels(lights);
+  const size_t size = static_cast<size_t>(channels) * this->Grid.GetNumberOfVoxels();
+  if (this->WrittenOnCPU.size() < size)
+  {
+    this->WrittenOnCPU.resize(size);
+  }
+  const mmv::IndexBox box = this->FillBox(group, skipEmpty);
+  mmv::RunOnAllCores(
+    [&]() { mmv::WriteIrradianceTexels(inputs, box, channels, this->WrittenOnCPU.data()); });
+  static const GLenum formats[] = { GL_RED, GL_RG, GL_RGBA, GL_RGBA };
+  if (!box.IsEmpty())
+  {
+    // Rows of 2-byte texels: aligned to 2.
+    mmv::UploadTextureBox(this->Irradiance[group], box.Bounds, formats[channels - 1],
+      GL_UNSIGNED_SHORT, this->WrittenOnCPU.data(), 2);
+  }
 }

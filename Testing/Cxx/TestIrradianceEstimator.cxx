@@ -1818,11 +1818,13 @@ TEST(IrradianceEstimator, ARegionEqualsTheWholeGridInsideIt)
   }
 }
 
-// The CPU's sweeps (ShadowRaysPlace, mmv::SweepTransmittanceOnCPU) against
-// the fragment passes they stand in for: lights swept along every axis both
-// ways, on the irradiance grid and on strided grids whose points fall on
-// irradiance voxels (odd sizes) or between them (even), anisotropic
-// spacing, every voxel or the occupied ones, and a region.
+// The CPU's sweeps (ShadowRaysPlace, mmv::SweepTransmittanceOnCPU) and
+// final write (mmv::WriteIrradianceTexels) against the fragment passes they
+// stand in for: lights swept along every axis both ways, on the irradiance
+// grid and on strided grids whose points fall on irradiance voxels (odd
+// sizes) or between them (even), anisotropic spacing, every voxel or the
+// occupied ones, and a region; then one light swept again, written by the
+// pass that keeps the texture's other channels.
 TEST(IrradianceEstimator, SweepsOnTheCPUMatchThePasses)
 {
   const Context& ctx = SharedContext();
@@ -1880,7 +1882,9 @@ TEST(IrradianceEstimator, SweepsOnTheCPUMatchThePasses)
     scene.Strides = { 1, 2, 1, 2, 2, 1, 2 };
     scene.Slices = 4; // several chunks per sweep on this small grid
     const int region[6] = { 2, 15, 5, 20, 0, 12 };
-    std::vector<std::vector<float>> results[2];
+    // [2]: the CPU's sweeps again for one light, whose texture's other
+    // lights the final write's pass keeps.
+    std::vector<std::vector<float>> results[3];
     for (const int place : { vtkIrradianceEstimator::OnGPU, vtkIrradianceEstimator::OnCPU })
     {
       vtkNew<vtkIrradianceEstimator> pass;
@@ -1895,13 +1899,29 @@ TEST(IrradianceEstimator, SweepsOnTheCPUMatchThePasses)
         pass->SetRegion(region);
       }
       ASSERT_TRUE(pass->Render(ctx.GL));
-      EXPECT_EQ(pass->GetNumberOfLightsSweptOnCPU(),
-        place == vtkIrradianceEstimator::OnCPU ? static_cast<int>(scene.Lights.size()) : 0);
-      auto& result = results[place == vtkIrradianceEstimator::OnCPU ? 1 : 0];
-      result.resize(scene.Lights.size());
-      for (size_t l = 0; l < scene.Lights.size(); ++l)
+      const bool onCPU = place == vtkIrradianceEstimator::OnCPU;
+      EXPECT_EQ(
+        pass->GetNumberOfLightsSweptOnCPU(), onCPU ? static_cast<int>(scene.Lights.size()) : 0);
+      // Both textures' lights all swept there: the CPU makes their texels.
+      EXPECT_EQ(pass->GetNumberOfTexturesWrittenOnCPU(), onCPU ? 2 : 0);
+      auto readBack = [&](std::vector<std::vector<float>>& result)
       {
-        ASSERT_TRUE(pass->ReadBack(ctx.GL, static_cast<int>(l), result[l]));
+        result.resize(scene.Lights.size());
+        for (size_t l = 0; l < scene.Lights.size(); ++l)
+        {
+          ASSERT_TRUE(pass->ReadBack(ctx.GL, static_cast<int>(l), result[l]));
+        }
+      };
+      readBack(results[onCPU ? 1 : 0]);
+      if (onCPU)
+      {
+        std::vector<bool> marks(scene.Lights.size(), false);
+        marks[5] = true;
+        pass->SetLightsToUpdate(marks);
+        ASSERT_TRUE(pass->Render(ctx.GL));
+        EXPECT_EQ(pass->GetNumberOfLightsSweptOnCPU(), 1);
+        EXPECT_EQ(pass->GetNumberOfTexturesWrittenOnCPU(), 0);
+        readBack(results[2]);
       }
       pass->ReleaseGraphicsResources(ctx.GL);
     }
@@ -1910,12 +1930,14 @@ TEST(IrradianceEstimator, SweepsOnTheCPUMatchThePasses)
     for (size_t l = 0; l < scene.Lights.size(); ++l)
     {
       const double worst = MaxDifferenceIn(results[1][l], results[0][l], variant.Dims.data(), box);
+      const double again = MaxDifferenceIn(results[2][l], results[0][l], variant.Dims.data(), box);
       const float darkest = *std::min_element(results[0][l].begin(), results[0][l].end());
       std::cout << "light " << l << ": CPU against the passes, max |difference| " << worst
-                << ", darkest " << darkest << "\n";
+                << " (one light again: " << again << "), darkest " << darkest << "\n";
       // Both are stored in 16 bits: a difference of the floats below 1e-5
       // moves a texel by at most one step.
       EXPECT_LE(worst, 1.0 / 65535.0 + 1e-7) << "light " << l;
+      EXPECT_LE(again, 1.0 / 65535.0 + 1e-7) << "light " << l;
       EXPECT_LT(darkest, 0.6f) << "light " << l << " casts a shadow";
     }
   }

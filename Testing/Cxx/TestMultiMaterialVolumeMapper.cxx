@@ -1456,13 +1456,15 @@ TEST(MultiMaterialVolumeMapper, KeptScratchGivesTheImagesOfFreshScratch)
   kept.Mapper->MultipleScatteringOff();
   kept.Window->Render();
   // Shadow rays on the CPU (a CPU rasterizer's default) hold their targets'
-  // contents too: the key light's channel, and the dim lights' four.
+  // contents too: the key light's channel, and the dim lights' four; and
+  // the final write there, the texels of a texture of four lights.
+  vtkIrradianceEstimator* estimator = kept.Mapper->GetIrradianceEstimator();
   const vtkIdType sweptOnCPU =
-    kept.Mapper->GetIrradianceEstimator()->GetNumberOfLightsSweptOnCPU() > 0
-    ? 4 * (voxels + 4 * lightGridVoxels)
-    : 0;
-  EXPECT_EQ(kept.Mapper->GetIrradianceEstimator()->GetScratchMemoryBytes(),
-    16 * (voxels + lightGridVoxels) + sweptOnCPU);
+    estimator->GetNumberOfLightsSweptOnCPU() > 0 ? 4 * (voxels + 4 * lightGridVoxels) : 0;
+  const vtkIdType writtenOnCPU =
+    estimator->GetNumberOfTexturesWrittenOnCPU() > 0 ? 2 * 4 * voxels : 0;
+  EXPECT_EQ(estimator->GetScratchMemoryBytes(),
+    16 * (voxels + lightGridVoxels) + sweptOnCPU + writtenOnCPU);
 }
 
 namespace
