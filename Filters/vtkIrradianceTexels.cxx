@@ -108,6 +108,19 @@ public:
     }
   }
 
+  void GatherRow(int y, int z, int x0, int x1, float* values) const
+  {
+    const vtkIdType row = y * this->Stride[1] + z * this->Stride[2];
+    for (int x = x0; x <= x1; ++x)
+    {
+      const vtkIdType v = row + x;
+      if (this->In.Classes[v] >= 0.0f)
+      {
+        this->Value(x, y, z, v, values + v * this->Channels);
+      }
+    }
+  }
+
 private:
   // A non-empty voxel's value per light: the light grid's trilinear
   // interpolation for a strided light, else the sweep's.
@@ -168,6 +181,22 @@ private:
   std::vector<AxisTexels> Axes; // x, y, z; only with strided lights
 };
 
+// Row(y, z, first, last) for every row of `box`, on all cores.
+template <typename RowFunction>
+void ForRows(const IndexBox& box, RowFunction&& row)
+{
+  const int* b = box.Bounds;
+  const int rows = b[3] - b[2] + 1;
+  mmv::For(0, static_cast<vtkIdType>(rows) * (b[5] - b[4] + 1), 0,
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      for (vtkIdType r = begin; r < end; ++r)
+      {
+        row(b[2] + static_cast<int>(r % rows), b[4] + static_cast<int>(r / rows), b[0], b[1]);
+      }
+    });
+}
+
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -179,17 +208,19 @@ void WriteIrradianceTexels(
     return;
   }
   const TexelWriter writer(inputs, channels, texels);
-  const int* b = box.Bounds;
-  const int rows = b[3] - b[2] + 1;
-  mmv::For(0, static_cast<vtkIdType>(rows) * (b[5] - b[4] + 1), 0,
-    [&](vtkIdType begin, vtkIdType end)
-    {
-      for (vtkIdType r = begin; r < end; ++r)
-      {
-        writer.Row(
-          b[2] + static_cast<int>(r % rows), b[4] + static_cast<int>(r / rows), b[0], b[1]);
-      }
-    });
+  ForRows(box, [&](int y, int z, int x0, int x1) { writer.Row(y, z, x0, x1); });
+}
+
+//------------------------------------------------------------------------------
+void GatherIrradianceValues(
+  const IrradianceTexelInputs& inputs, const IndexBox& box, int channels, float* values)
+{
+  if (box.IsEmpty())
+  {
+    return;
+  }
+  const TexelWriter writer(inputs, channels, nullptr);
+  ForRows(box, [&](int y, int z, int x0, int x1) { writer.GatherRow(y, z, x0, x1, values); });
 }
 
 } // namespace mmv

@@ -68,6 +68,16 @@ struct IrradianceTexelInputs
 VTKMULTIMATERIALVOLUMEFILTERS_EXPORT void WriteIrradianceTexels(
   const IrradianceTexelInputs& inputs, const IndexBox& box, int channels, unsigned short* texels);
 
+/**
+ * What the final write reads at the non-empty voxels of box `box`: each
+ * light's value (the light grid's interpolation for a strided light, else
+ * the sweep's) into channels [0, inputs.Lights) of `values` (`channels`
+ * floats per voxel, the whole grid, x fastest), as the multiple scattering
+ * on the CPU takes them; other voxels and channels keep theirs.
+ */
+VTKMULTIMATERIALVOLUMEFILTERS_EXPORT void GatherIrradianceValues(
+  const IrradianceTexelInputs& inputs, const IndexBox& box, int channels, float* values);
+
 } // namespace mmv
 
 #endif

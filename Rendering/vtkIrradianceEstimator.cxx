@@ -409,10 +409,20 @@ bool vtkIrradianceEstimator::UpdateGroup(vtkOpenGLRenderWindow* context, int gro
   bool ok = true;
   if (writeOnCPU)
   {
+    // The sweeps' values go straight to the diffusion, or to the texels.
     this->LastEstimationSeconds += elapsed();
-    internals.WriteOnCPU(group, this->SkipEmptyVoxels);
+    if (diffusion)
+    {
+      internals.GatherOnCPU(group, this->SkipEmptyVoxels);
+      ok = this->DiffuseGroup(context, lights, elapsed);
+    }
+    internals.WriteOnCPU(group, this->SkipEmptyVoxels, diffusion);
     this->LastWriteSeconds += elapsed();
     ++this->NumberOfTexturesWrittenOnCPU;
+    if (ok && diffusion)
+    {
+      this->ReportProgress(context, PopCount(lights.Mask)); // the diffusion, with the write
+    }
   }
   else
   {
@@ -471,29 +481,14 @@ bool vtkIrradianceEstimator::PassesOfGroup(vtkOpenGLRenderWindow* context, int g
       internals.UpsamplePass(
         context, lights.StridedMask, stride, this->SkipEmptyVoxels, this->LayeredRendering));
   this->LastEstimationSeconds += elapsed();
-  // Each diffusion grid diffuses its lights into their channels (the
-  // strided ones on their own where DiffusionOf picks it).
   const int mask = lights.Mask;
   vtkTextureObject* result = internals.FineScratch[0];
   if (ok && diffusion)
   {
-    const bool ownGrid = internals.DiffusionOf(stride) == 1;
-    const int lightsOf[2] = { ownGrid ? mask & ~lights.StridedMask : mask,
-      ownGrid ? lights.StridedMask : 0 };
     const bool onCPU = internals.DiffusesOnCPU();
-    ok = !onCPU || internals.ReadFineScratch();
-    for (int p = 0; ok && p < 2; ++p)
-    {
-      const int sweeps = lightsOf[p] == 0
-        ? 0
-        : internals.Diffuse(context, internals.Diffusions[p], this->LayeredRendering, lightsOf[p],
-            this->SkipEmptyVoxels);
-      ok = sweeps >= 0;
-      this->DiffusionPasses += std::max(0, sweeps);
-    }
-    ok = ok && (!onCPU || internals.UploadDiffusedFine());
+    ok = (!onCPU || internals.ReadFineScratch()) && this->DiffuseGroup(context, lights, elapsed) &&
+      (!onCPU || internals.UploadDiffusedFine());
     result = internals.FineScratch[1];
-    this->LastDiffusionSeconds += elapsed();
   }
   ok = ok &&
     internals.FillPass(context, result, group, mask, this->SkipEmptyVoxels, this->LayeredRendering);
@@ -502,6 +497,31 @@ bool vtkIrradianceEstimator::PassesOfGroup(vtkOpenGLRenderWindow* context, int g
   {
     this->ReportProgress(context, PopCount(mask)); // the diffusion, with the short write
   }
+  return ok;
+}
+
+//------------------------------------------------------------------------------
+// Each diffusion grid diffuses its lights into their channels (the strided
+// ones on their own where DiffusionOf picks it): FineScratch[0] into
+// FineScratch[1], or FineOnCPU in place.
+bool vtkIrradianceEstimator::DiffuseGroup(
+  vtkOpenGLRenderWindow* context, const GroupLights& lights, const std::function<double()>& elapsed)
+{
+  vtkInternals& internals = *this->Internals;
+  const bool ownGrid = internals.DiffusionOf(internals.MaxLightGridStride()) == 1;
+  const int lightsOf[2] = { ownGrid ? lights.Mask & ~lights.StridedMask : lights.Mask,
+    ownGrid ? lights.StridedMask : 0 };
+  bool ok = true;
+  for (int p = 0; ok && p < 2; ++p)
+  {
+    const int sweeps = lightsOf[p] == 0
+      ? 0
+      : internals.Diffuse(context, internals.Diffusions[p], this->LayeredRendering, lightsOf[p],
+          this->SkipEmptyVoxels);
+    ok = sweeps >= 0;
+    this->DiffusionPasses += std::max(0, sweeps);
+  }
+  this->LastDiffusionSeconds += elapsed();
   return ok;
 }
 

@@ -215,9 +215,10 @@ public:
   /// The lights whose shadow rays the last update swept on the CPU.
   vtkGetMacro(NumberOfLightsSweptOnCPU, int);
   /// The irradiance textures the last update wrote on the CPU: those whose
-  /// lights it all swept there, without multiple scattering or other
-  /// volumes' shadows (mmv::WriteIrradianceTexels, the final write's
-  /// arithmetic in place of its passes).
+  /// lights it all swept there, without multiple scattering or with it
+  /// diffused there too (DiffusionPlace), and without other volumes'
+  /// shadows (mmv::WriteIrradianceTexels, the final write's arithmetic in
+  /// place of its passes).
   vtkGetMacro(NumberOfTexturesWrittenOnCPU, int);
 
   /**
@@ -489,6 +490,8 @@ private:
   struct GroupLights;
   bool PassesOfGroup(vtkOpenGLRenderWindow* context, int group, const GroupLights& lights,
     bool diffusion, const std::function<double()>& elapsed);
+  bool DiffuseGroup(vtkOpenGLRenderWindow* context, const GroupLights& lights,
+    const std::function<double()>& elapsed);
   // Finishes the GPU's work, adds `units` to what is done and calls the
   // progress callback (nothing without one).
   void ReportProgress(vtkOpenGLRenderWindow* context, double units);

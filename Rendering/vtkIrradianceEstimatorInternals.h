@@ -644,13 +644,20 @@ public:
     bool upload, const std::function<void()>& lightDone);
   /// Whether group `group`'s final write runs on the CPU (WriteOnCPU) in
   /// this update: every light of the group updated (`mask`) and swept on
-  /// the CPU (`swept`, none left to passes), nothing diffused, no other
-  /// volume's transmittance, the CPU's classes current.
+  /// the CPU (`swept`, none left to passes), no diffusion or one on the CPU,
+  /// no other volume's transmittance, the CPU's classes current.
   bool WritesOnCPU(int group, int mask,
     const std::vector<std::pair<int, std::vector<mmv::ShadowSweep>>>& swept, bool diffusion) const;
-  /// The final write of group `group` from SweptOnCPU (mmv::WriteIrradianceTexels),
-  /// uploaded over the box the fill pass would draw.
-  void WriteOnCPU(int group, bool skipEmpty);
+  /// What the final write of group `group` reads from the CPU's sweeps.
+  mmv::IrradianceTexelInputs SweptTexelInputs(int group) const;
+  /// Group `group`'s values from the CPU's sweeps into FineOnCPU for the
+  /// diffusion on the CPU (mmv::GatherIrradianceValues): what the sweeps'
+  /// upload, the upsampling pass and ReadFineScratch give it.
+  void GatherOnCPU(int group, bool skipEmpty);
+  /// The final write of group `group` (mmv::WriteIrradianceTexels) from
+  /// SweptOnCPU, or from FineOnCPU once `diffused`, uploaded over the box
+  /// the fill pass would draw.
+  void WriteOnCPU(int group, bool skipEmpty, bool diffused);
   /// The box the final write of group `group` covers in this update, which
   /// it records: the region's occupied voxels and their neighbours, and
   /// what an earlier write reached there.

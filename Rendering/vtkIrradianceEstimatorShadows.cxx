@@ -486,24 +486,24 @@ bool vtkIrradianceEstimator::vtkInternals::WritesOnCPU(int group, int mask,
     std::min(LightsPerTexture, static_cast<int>(this->Lights.size()) - group * LightsPerTexture);
   const bool scene =
     static_cast<size_t>(group) < this->SceneTransmittance.size() && this->SceneTransmittance[group];
-  return this->SweepsOnCPU && !diffusion && !scene && mask == (1 << lights) - 1 &&
-    static_cast<int>(swept.size()) == lights && this->CopiedClassesStamp == this->Classifications &&
+  return this->SweepsOnCPU && (!diffusion || this->DiffusesOnCPU()) && !scene &&
+    mask == (1 << lights) - 1 && static_cast<int>(swept.size()) == lights &&
+    this->CopiedClassesStamp == this->Classifications &&
     std::all_of(swept.begin(), swept.end(),
       [this](const std::pair<int, std::vector<mmv::ShadowSweep>>& light)
       { return this->SweepsLightOnCPU(light.first, light.second); });
 }
 
 //------------------------------------------------------------------------------
-void vtkIrradianceEstimator::vtkInternals::WriteOnCPU(int group, bool skipEmpty)
+mmv::IrradianceTexelInputs vtkIrradianceEstimator::vtkInternals::SweptTexelInputs(int group) const
 {
   const int first = group * LightsPerTexture;
-  const int lights = std::min(LightsPerTexture, static_cast<int>(this->Lights.size()) - first);
   mmv::IrradianceTexelInputs inputs;
   std::copy(this->Grid.Dimensions, this->Grid.Dimensions + 3, inputs.Dimensions);
   inputs.Classes = this->Classes.data();
-  inputs.Lights = lights;
+  inputs.Lights = std::min(LightsPerTexture, static_cast<int>(this->Lights.size()) - first);
   int stride = 1;
-  for (int l = 0; l < lights; ++l)
+  for (int l = 0; l < inputs.Lights; ++l)
   {
     const int lightStride = this->Lights[first + l].GridStride;
     inputs.StridedMask |= lightStride > 1 ? 1 << l : 0;
@@ -521,7 +521,34 @@ void vtkIrradianceEstimator::vtkInternals::WriteOnCPU(int group, bool skipEmpty)
     // As UpsamplePass gives the shader.
     inputs.IndexToLightGrid = glm::vec3(ratio[0], ratio[1], ratio[2]);
   }
-  const int channels = mmv::IrradianceTextureChannels(lights);
+  return inputs;
+}
+
+//------------------------------------------------------------------------------
+void vtkIrradianceEstimator::vtkInternals::GatherOnCPU(int group, bool skipEmpty)
+{
+  const int* d = this->Grid.Dimensions;
+  this->FineOnCPU.resize(4 * static_cast<size_t>(d[0]) * d[1] * d[2]);
+  // The box UpsamplePass draws: the non-empty voxels the diffusion reads.
+  const mmv::IndexBox box =
+    skipEmpty ? this->OccupiedBox(this->Plan.Estimated, 1) : this->Plan.Estimated;
+  const mmv::IrradianceTexelInputs inputs = this->SweptTexelInputs(group);
+  mmv::RunOnAllCores(
+    [&]() { mmv::GatherIrradianceValues(inputs, box, 4, this->FineOnCPU.data()); });
+}
+
+//------------------------------------------------------------------------------
+void vtkIrradianceEstimator::vtkInternals::WriteOnCPU(int group, bool skipEmpty, bool diffused)
+{
+  mmv::IrradianceTexelInputs inputs = this->SweptTexelInputs(group);
+  if (diffused)
+  {
+    // Every light's values diffused in FineOnCPU, on the irradiance grid.
+    inputs.Fine = this->FineOnCPU.data();
+    inputs.FineChannels = 4;
+    inputs.StridedMask = 0;
+  }
+  const int channels = mmv::IrradianceTextureChannels(inputs.Lights);
   const size_t size = static_cast<size_t>(channels) * this->Grid.GetNumberOfVoxels();
   if (this->WrittenOnCPU.size() < size)
   {

@@ -1838,16 +1838,20 @@ TEST(IrradianceEstimator, SweepsOnTheCPUMatchThePasses)
     std::array<double, 3> Spacing;
     bool SkipEmpty;
     bool Region;
+    double Scattering; // > 0: diffused on the CPU
   };
-  const Variant variants[] = { { { 25, 25, 25 }, { 1.0, 1.0, 1.0 }, true, false },
-    { { 24, 26, 21 }, { 1.0, 1.3, 0.8 }, true, false },
-    { { 25, 25, 25 }, { 1.0, 1.0, 1.0 }, false, false },
-    { { 24, 26, 21 }, { 1.0, 1.3, 0.8 }, true, true } };
+  const Variant variants[] = { { { 25, 25, 25 }, { 1.0, 1.0, 1.0 }, true, false, 0.0 },
+    { { 24, 26, 21 }, { 1.0, 1.3, 0.8 }, true, false, 0.0 },
+    { { 25, 25, 25 }, { 1.0, 1.0, 1.0 }, false, false, 0.0 },
+    { { 24, 26, 21 }, { 1.0, 1.3, 0.8 }, true, true, 0.0 },
+    { { 25, 25, 25 }, { 1.0, 1.0, 1.0 }, true, false, 4.0 },
+    { { 24, 26, 21 }, { 1.0, 1.3, 0.8 }, false, false, 4.0 } };
   for (const Variant& variant : variants)
   {
     SCOPED_TRACE(::testing::Message()
       << variant.Dims[0] << "x" << variant.Dims[1] << "x" << variant.Dims[2]
-      << (variant.SkipEmpty ? "" : ", every voxel") << (variant.Region ? ", a region" : ""));
+      << (variant.SkipEmpty ? "" : ", every voxel") << (variant.Region ? ", a region" : "")
+      << (variant.Scattering > 0.0 ? ", diffused" : ""));
     Scene scene;
     // A shell, a rod and a slab with gaps: shadow edges at every angle.
     scene.Image = MakeImage(variant.Dims, variant.Spacing,
@@ -1873,8 +1877,8 @@ TEST(IrradianceEstimator, SweepsOnTheCPUMatchThePasses)
     scene.Opacity->AddPoint(1.0, 0.2);
     scene.Opacity->AddPoint(2.0, 0.6);
     scene.Material = vtkSmartPointer<vtkMaterialTransferFunction>::New();
-    scene.Material->AddNode(1.0, 0.2, 0.7, 0.2, 20.0, 1.0, 0.0, 0.0);
-    scene.Material->AddNode(2.0, 0.2, 0.7, 0.2, 20.0, 2.0, 0.0, 0.0);
+    scene.Material->AddNode(1.0, 0.2, 0.7, 0.2, 20.0, 1.0, variant.Scattering, 0.0);
+    scene.Material->AddNode(2.0, 0.2, 0.7, 0.2, 20.0, 2.0, variant.Scattering, 0.0);
     for (const auto& d : directions)
     {
       scene.Lights.push_back(Directional(d[0], d[1], d[2]));
@@ -1888,7 +1892,8 @@ TEST(IrradianceEstimator, SweepsOnTheCPUMatchThePasses)
     for (const int place : { vtkIrradianceEstimator::OnGPU, vtkIrradianceEstimator::OnCPU })
     {
       vtkNew<vtkIrradianceEstimator> pass;
-      pass->SetMultipleScattering(false);
+      pass->SetMultipleScattering(variant.Scattering > 0.0);
+      pass->SetDiffusionPlace(vtkIrradianceEstimator::OnCPU);
       pass->SetSkipEmptyVoxels(variant.SkipEmpty);
       pass->SetComputeShaders(vtkIrradianceEstimator::FragmentDraws);
       pass->SetClassification(vtkIrradianceEstimator::OnCPU);
@@ -1904,6 +1909,7 @@ TEST(IrradianceEstimator, SweepsOnTheCPUMatchThePasses)
         pass->GetNumberOfLightsSweptOnCPU(), onCPU ? static_cast<int>(scene.Lights.size()) : 0);
       // Both textures' lights all swept there: the CPU makes their texels.
       EXPECT_EQ(pass->GetNumberOfTexturesWrittenOnCPU(), onCPU ? 2 : 0);
+      EXPECT_EQ(pass->GetDiffusedOnCPU(), variant.Scattering > 0.0);
       auto readBack = [&](std::vector<std::vector<float>>& result)
       {
         result.resize(scene.Lights.size());
