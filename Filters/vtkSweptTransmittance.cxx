@@ -6,6 +6,10 @@
 #include <algorithm>
 #include <cmath>
 
+#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
+#include <immintrin.h>
+#endif
+
 namespace mmv
 {
 namespace
@@ -42,6 +46,117 @@ inline float Trilinear(const float* p00, const float* p10, const float* p01, con
   const float e0 = b00 + fc * (b10 - b00);
   const float e1 = b01 + fc * (b11 - b01);
   return e0 + fa * (e1 - e0);
+}
+
+// mmvShadowOpacity: the table (n x n), bilinear, the edge entries clamped.
+inline float ShadowOpacityOf(const float* table, int n, float t1, float t2)
+{
+  // Clamped; a NaN value reads entry 0 (an index from it would be undefined).
+  const float x = (t1 > 0.0f ? std::min(t1, 1.0f) : 0.0f) * static_cast<float>(n - 1);
+  const float y = (t2 > 0.0f ? std::min(t2, 1.0f) : 0.0f) * static_cast<float>(n - 1);
+  const int i = std::min(static_cast<int>(x), n - 2);
+  const int j = std::min(static_cast<int>(y), n - 2);
+  const float fx = x - static_cast<float>(i);
+  const float fy = y - static_cast<float>(j);
+  const float* row = table + static_cast<vtkIdType>(j) * n + i;
+  const float a = row[0] + fx * (row[1] - row[0]);
+  const float b = row[n] + fx * (row[n + 1] - row[n]);
+  return a + fy * (b - a);
+}
+
+// One step of a run's march, points [first, count): each point still lit
+// (transmittance t >= MinTransmittance) whose segment from `previous` to
+// `next` leaves the table's clear corner takes t (1 - alpha); `previous`
+// becomes `next`. Returns whether any point was still lit.
+inline bool MarchStep(int first, int count, const float* table, int n, float clearBelow,
+  float* transmittance, float* previous, const float* next)
+{
+  bool any = false;
+  for (int i = first; i < count; ++i)
+  {
+    const float t = transmittance[i];
+    if (t >= MinTransmittance)
+    {
+      if (!(previous[i] < clearBelow && next[i] < clearBelow))
+      {
+        transmittance[i] = t * (1.0f - ShadowOpacityOf(table, n, previous[i], next[i]));
+      }
+      any = true;
+    }
+    previous[i] = next[i];
+  }
+  return any;
+}
+
+#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
+#define MMV_MARCH_AVX2
+// MarchStep eight points at a time, the table read by masked gathers: a
+// scalar march branches on each point's transmittance and clear corner and
+// reads its four entries one by one (the light kit's shadows on the chest:
+// 0.18 s against 0.22-0.23 s on the development VM). The same operations
+// in the same order, without FMA (none is enabled here), so every value is
+// the scalar one, bit for bit.
+__attribute__((target("avx2"))) bool MarchStepAVX2(int count, const float* table, int n,
+  float clearBelow, float* transmittance, float* previous, const float* next)
+{
+  const __m256 minimum = _mm256_set1_ps(MinTransmittance);
+  const __m256 clear = _mm256_set1_ps(clearBelow);
+  const __m256 zero = _mm256_setzero_ps();
+  const __m256 one = _mm256_set1_ps(1.0f);
+  const __m256 scale = _mm256_set1_ps(static_cast<float>(n - 1));
+  const __m256i lastEntry = _mm256_set1_epi32(n - 2);
+  const __m256i rowLength = _mm256_set1_epi32(n);
+  int lit = 0;
+  int i = 0;
+  for (; i + 8 <= count; i += 8)
+  {
+    const __m256 t = _mm256_loadu_ps(transmittance + i);
+    const __m256 p = _mm256_loadu_ps(previous + i);
+    const __m256 q = _mm256_loadu_ps(next + i);
+    const __m256 active = _mm256_cmp_ps(t, minimum, _CMP_GE_OQ);
+    const __m256 inCorner =
+      _mm256_and_ps(_mm256_cmp_ps(p, clear, _CMP_LT_OQ), _mm256_cmp_ps(q, clear, _CMP_LT_OQ));
+    const __m256 lookup = _mm256_andnot_ps(inCorner, active);
+    lit |= _mm256_movemask_ps(active);
+    if (_mm256_movemask_ps(lookup) != 0)
+    {
+      // max(v, 0) gives 0 for NaN (its second operand), as the scalar clamp.
+      const __m256 x = _mm256_mul_ps(_mm256_min_ps(_mm256_max_ps(p, zero), one), scale);
+      const __m256 y = _mm256_mul_ps(_mm256_min_ps(_mm256_max_ps(q, zero), one), scale);
+      const __m256i ix = _mm256_min_epi32(_mm256_cvttps_epi32(x), lastEntry);
+      const __m256i iy = _mm256_min_epi32(_mm256_cvttps_epi32(y), lastEntry);
+      const __m256 fx = _mm256_sub_ps(x, _mm256_cvtepi32_ps(ix));
+      const __m256 fy = _mm256_sub_ps(y, _mm256_cvtepi32_ps(iy));
+      const __m256i at = _mm256_add_epi32(_mm256_mullo_epi32(iy, rowLength), ix);
+      const __m256 r00 = _mm256_mask_i32gather_ps(zero, table, at, lookup, 4);
+      const __m256 r01 = _mm256_mask_i32gather_ps(zero, table + 1, at, lookup, 4);
+      const __m256 r10 = _mm256_mask_i32gather_ps(zero, table + n, at, lookup, 4);
+      const __m256 r11 = _mm256_mask_i32gather_ps(zero, table + n + 1, at, lookup, 4);
+      const __m256 a = _mm256_add_ps(r00, _mm256_mul_ps(fx, _mm256_sub_ps(r01, r00)));
+      const __m256 b = _mm256_add_ps(r10, _mm256_mul_ps(fx, _mm256_sub_ps(r11, r10)));
+      const __m256 alpha = _mm256_add_ps(a, _mm256_mul_ps(fy, _mm256_sub_ps(b, a)));
+      const __m256 shaded = _mm256_mul_ps(t, _mm256_sub_ps(one, alpha));
+      _mm256_storeu_ps(transmittance + i, _mm256_blendv_ps(t, shaded, lookup));
+    }
+    _mm256_storeu_ps(previous + i, q);
+  }
+  const bool rest = MarchStep(i, count, table, n, clearBelow, transmittance, previous, next);
+  return lit != 0 || rest;
+}
+#endif
+
+// MarchStep over [0, count), eight at a time where the CPU has AVX2.
+inline bool MarchStepAll(int count, const float* table, int n, float clearBelow,
+  float* transmittance, float* previous, const float* next)
+{
+#ifdef MMV_MARCH_AVX2
+  static const bool avx2 = __builtin_cpu_supports("avx2");
+  if (avx2)
+  {
+    return MarchStepAVX2(count, table, n, clearBelow, transmittance, previous, next);
+  }
+#endif
+  return MarchStep(0, count, table, n, clearBelow, transmittance, previous, next);
 }
 
 // One sweep of one light: the shader's functions on the CPU arrays.
@@ -103,21 +218,9 @@ private:
       lo[0], hi[0], f[0], f[1], f[2]);
   }
 
-  // mmvShadowOpacity: the table, bilinear, the edge entries clamped.
   float ShadowOpacity(float t1, float t2) const
   {
-    const int n = this->In.TableSize;
-    // Clamped; a NaN value reads entry 0 (an index from it would be undefined).
-    const float x = (t1 > 0.0f ? std::min(t1, 1.0f) : 0.0f) * static_cast<float>(n - 1);
-    const float y = (t2 > 0.0f ? std::min(t2, 1.0f) : 0.0f) * static_cast<float>(n - 1);
-    const int i = std::min(static_cast<int>(x), n - 2);
-    const int j = std::min(static_cast<int>(y), n - 2);
-    const float fx = x - static_cast<float>(i);
-    const float fy = y - static_cast<float>(j);
-    const float* row = this->In.ShadowTable + static_cast<vtkIdType>(j) * n + i;
-    const float a = row[0] + fx * (row[1] - row[0]);
-    const float b = row[n] + fx * (row[n + 1] - row[n]);
-    return a + fy * (b - a);
+    return ShadowOpacityOf(this->In.ShadowTable, this->In.TableSize, t1, t2);
   }
 
   // mmvExitDistance.
@@ -507,21 +610,8 @@ void Sweeper::MarchRun(const Run& run, int v[3], int plane, const int range[4], 
   for (int n = 1; n <= run.Steps; ++n)
   {
     this->SampleRun(run, startAlong, this->Offset(run, n), next);
-    bool any = false;
-    for (int i = 0; i < count; ++i)
-    {
-      const float t = transmittance[i];
-      if (t >= MinTransmittance)
-      {
-        if (!(previous[i] < this->ClearBelow && next[i] < this->ClearBelow))
-        {
-          transmittance[i] = t * (1.0f - this->ShadowOpacity(previous[i], next[i]));
-        }
-        any = true;
-      }
-      previous[i] = next[i];
-    }
-    if (!any)
+    if (!MarchStepAll(count, this->In.ShadowTable, this->In.TableSize, this->ClearBelow,
+          transmittance, previous, next))
     {
       break;
     }
