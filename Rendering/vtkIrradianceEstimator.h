@@ -204,7 +204,7 @@ public:
    * its texels there too (mmv::WriteIrradianceTexels); 2, automatic
    * (default): on the GPU except on a CPU rasterizer, where the parallel
    * rays share their weights across a row (the light kit's five lights on a
-   * 237 x 237 x 119 grid: 0.26 s with the write against about 0.7 s of
+   * 237 x 237 x 119 grid: 0.22 s with the write against about 0.7 s of
    * passes; docs/performance.md, "Shadow rays on the CPU"). The CPU needs its own
    * classes (Classification on the CPU, the default there) and nothing cut;
    * point and spot lights, and lights under full rays, stay on the GPU.
