@@ -404,6 +404,10 @@ bool vtkIrradianceEstimator::UpdateGroup(vtkOpenGLRenderWindow* context, int gro
   // Where they are all the group's lights, the CPU makes the texels too.
   const bool writeOnCPU = (lights.FullMask | lights.StridedFullMask) == 0 &&
     internals.WritesOnCPU(group, lights.Mask, lights.Swept, diffusion);
+  if (!writeOnCPU && !internals.EnsurePassScratch(context, diffusion))
+  {
+    return false;
+  }
   this->NumberOfLightsSweptOnCPU += internals.SweepOnCPU(lights.Swept, this->SkipEmptyVoxels,
     !writeOnCPU, [this, context]() { this->ReportProgress(context, 1.0); });
   bool ok = true;

@@ -229,8 +229,10 @@ public:
    * up to three times that with multiple scattering (GetScratchMemoryBytes;
    * the diffusion grids' scratch holds as many channels as the lights it
    * diffuses need; a diffusion on the CPU holds its buffers in main memory
-   * instead of the diffusion grids' textures). Off: released after every
-   * update.
+   * instead of the diffusion grids' textures; where the CPU sweeps the
+   * shadow rays, the textures are made when a pass first needs them, and
+   * an update that writes every irradiance texture on the CPU needs none).
+   * Off: released after every update.
    */
   vtkSetMacro(KeepScratch, bool);
   vtkGetMacro(KeepScratch, bool);

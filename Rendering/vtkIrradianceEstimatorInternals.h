@@ -642,6 +642,9 @@ public:
   /// `lightDone` after each light's sweep; returns how many it swept.
   int SweepOnCPU(std::vector<std::pair<int, std::vector<mmv::ShadowSweep>>>& swept, bool skipEmpty,
     bool upload, const std::function<void()>& lightDone);
+  /// The passes' float scratch (FineScratch, the strided light grid's),
+  /// made where AllocateTargets left it to the first pass that needs it.
+  bool EnsurePassScratch(vtkOpenGLRenderWindow* context, bool diffusion);
   /// Whether group `group`'s final write runs on the CPU (WriteOnCPU) in
   /// this update: every light of the group updated (`mask`) and swept on
   /// the CPU (`swept`, none left to passes), no diffusion or one on the CPU,

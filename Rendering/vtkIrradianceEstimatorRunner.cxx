@@ -461,12 +461,16 @@ bool vtkIrradianceEstimator::vtkInternals::AllocateTargets(
       reallocated = true;
     }
   }
+  // Where the CPU sweeps the shadow rays, an update that writes every
+  // texture there uses no pass scratch: the passes make it when they first
+  // need it (EnsurePassScratch).
+  const bool onDemand = this->SweepsOnCPU;
   for (size_t i = 0; i < this->FineScratch.size(); ++i)
   {
     // Kept scratch the diffusion no longer needs goes.
     if (i == 0 || diffusion)
     {
-      ok = ok && EnsureFloatTexture(context, this->FineScratch[i], d);
+      ok = ok && (onDemand || EnsureFloatTexture(context, this->FineScratch[i], d));
     }
     else if (this->FineScratch[i])
     {
@@ -479,7 +483,7 @@ bool vtkIrradianceEstimator::vtkInternals::AllocateTargets(
   {
     int lightDims[3];
     this->LightGridDimensions(stride, lightDims);
-    ok = ok && EnsureFloatTexture(context, this->LightGridScratch, lightDims) &&
+    ok = ok && (onDemand || EnsureFloatTexture(context, this->LightGridScratch, lightDims)) &&
       this->MarkLightGridNeeded(context, stride, layered);
   }
   else
@@ -527,6 +531,23 @@ bool vtkIrradianceEstimator::vtkInternals::AllocateTargets(
     }
   }
   this->EnsureFramebuffer(context);
+  return ok;
+}
+
+//------------------------------------------------------------------------------
+bool vtkIrradianceEstimator::vtkInternals::EnsurePassScratch(
+  vtkOpenGLRenderWindow* context, bool diffusion)
+{
+  const int* d = this->Grid.Dimensions;
+  bool ok = EnsureFloatTexture(context, this->FineScratch[0], d) &&
+    (!diffusion || EnsureFloatTexture(context, this->FineScratch[1], d));
+  const int stride = this->MaxLightGridStride();
+  if (ok && stride > 1)
+  {
+    int lightDims[3];
+    this->LightGridDimensions(stride, lightDims);
+    ok = EnsureFloatTexture(context, this->LightGridScratch, lightDims);
+  }
   return ok;
 }
 

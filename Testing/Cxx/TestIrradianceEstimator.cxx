@@ -1921,6 +1921,7 @@ TEST(IrradianceEstimator, SweepsOnTheCPUMatchThePasses)
       readBack(results[onCPU ? 1 : 0]);
       if (onCPU)
       {
+        const vtkIdType scratch = pass->GetScratchMemoryBytes();
         std::vector<bool> marks(scene.Lights.size(), false);
         marks[5] = true;
         pass->SetLightsToUpdate(marks);
@@ -1928,6 +1929,17 @@ TEST(IrradianceEstimator, SweepsOnTheCPUMatchThePasses)
         EXPECT_EQ(pass->GetNumberOfLightsSweptOnCPU(), 1);
         EXPECT_EQ(pass->GetNumberOfTexturesWrittenOnCPU(), 0);
         readBack(results[2]);
+        // The passes' float scratch appears only now that a pass writes:
+        // RGBA32F on the irradiance grid (two with the diffusion) and on
+        // the strided light grid.
+        const mmv::IrradianceGrid grid = GridOf(scene);
+        vtkIdType lightGridPoints = 1;
+        for (int a = 0; a < 3; ++a)
+        {
+          lightGridPoints *= mmv::LightGridDimension(grid.Dimensions[a], 2);
+        }
+        const vtkIdType fine = (variant.Scattering > 0.0 ? 2 : 1) * grid.GetNumberOfVoxels();
+        EXPECT_EQ(pass->GetScratchMemoryBytes() - scratch, 16 * (fine + lightGridPoints));
       }
       pass->ReleaseGraphicsResources(ctx.GL);
     }
