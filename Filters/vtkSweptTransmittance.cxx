@@ -623,7 +623,9 @@ void Sweeper::MarchRun(const Run& run, int v[3], int plane, const int range[4], 
     this->SampleRun(run, startAlong, this->Offset(run, run.Steps + 1), next);
     for (int i = 0; i < count; ++i)
     {
-      if (transmittance[i] >= MinTransmittance)
+      // In the clear corner alpha is 0 and the power 1, exactly: no pow.
+      if (transmittance[i] >= MinTransmittance &&
+        !(previous[i] < this->ClearBelow && next[i] < this->ClearBelow))
       {
         const float alpha = this->ShadowOpacity(previous[i], next[i]);
         transmittance[i] *= std::pow(std::max(0.0f, 1.0f - alpha), rest / h);
