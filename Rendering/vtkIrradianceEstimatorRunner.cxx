@@ -463,28 +463,17 @@ bool vtkIrradianceEstimator::vtkInternals::AllocateTargets(
   }
   // Where the CPU sweeps the shadow rays, an update that writes every
   // texture there uses no pass scratch: the passes make it when they first
-  // need it (EnsurePassScratch).
-  const bool onDemand = this->SweepsOnCPU;
-  for (size_t i = 0; i < this->FineScratch.size(); ++i)
+  // need it. Kept scratch the diffusion no longer needs goes.
+  ok = ok && (this->SweepsOnCPU || this->EnsurePassScratch(context, diffusion));
+  if (!diffusion && this->FineScratch[1])
   {
-    // Kept scratch the diffusion no longer needs goes.
-    if (i == 0 || diffusion)
-    {
-      ok = ok && (onDemand || EnsureFloatTexture(context, this->FineScratch[i], d));
-    }
-    else if (this->FineScratch[i])
-    {
-      this->FineScratch[i]->ReleaseGraphicsResources(context);
-      this->FineScratch[i] = nullptr;
-    }
+    this->FineScratch[1]->ReleaseGraphicsResources(context);
+    this->FineScratch[1] = nullptr;
   }
   const int stride = this->MaxLightGridStride();
   if (stride > 1)
   {
-    int lightDims[3];
-    this->LightGridDimensions(stride, lightDims);
-    ok = ok && (onDemand || EnsureFloatTexture(context, this->LightGridScratch, lightDims)) &&
-      this->MarkLightGridNeeded(context, stride, layered);
+    ok = ok && this->MarkLightGridNeeded(context, stride, layered);
   }
   else
   {
