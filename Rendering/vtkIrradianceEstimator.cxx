@@ -402,8 +402,7 @@ bool vtkIrradianceEstimator::UpdateGroup(vtkOpenGLRenderWindow* context, int gro
   };
   // The CPU's sweeps first: their upload sets every channel of its box.
   // Where they are all the group's lights, the CPU makes the texels too.
-  const bool writeOnCPU = (lights.FullMask | lights.StridedFullMask) == 0 &&
-    internals.WritesOnCPU(group, lights.Mask, lights.Swept, diffusion);
+  const bool writeOnCPU = internals.WritesOnCPU(group, lights.Mask, lights.Swept, diffusion);
   if (!writeOnCPU && !internals.EnsurePassScratch(context, diffusion))
   {
     return false;

@@ -229,9 +229,9 @@ public:
    * up to three times that with multiple scattering (GetScratchMemoryBytes;
    * the diffusion grids' scratch holds as many channels as the lights it
    * diffuses need; a diffusion on the CPU holds its buffers in main memory
-   * instead of the diffusion grids' textures; where the CPU sweeps the
-   * shadow rays, the textures are made when a pass first needs them, and
-   * an update that writes every irradiance texture on the CPU needs none).
+   * instead of the diffusion grids' textures; the fine textures are made
+   * when a pass first needs them, and an update that writes every
+   * irradiance texture on the CPU needs none).
    * Off: released after every update.
    */
   vtkSetMacro(KeepScratch, bool);

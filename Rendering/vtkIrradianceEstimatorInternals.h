@@ -608,6 +608,13 @@ public:
   /// The largest grid stride of the lights (1: every light on the
   /// irradiance grid).
   int MaxLightGridStride() const;
+  /// The lights irradiance texture `group` holds (the last may hold fewer
+  /// than LightsPerTexture).
+  int LightsInTexture(int group) const
+  {
+    return std::min(mmv::IrradianceLightsPerTexture,
+      static_cast<int>(this->Lights.size()) - group * mmv::IrradianceLightsPerTexture);
+  }
 
   bool ShadowPass(
     vtkOpenGLRenderWindow* context, int group, int mask, int stride, bool skipEmpty, bool layered);
@@ -643,7 +650,8 @@ public:
   int SweepOnCPU(std::vector<std::pair<int, std::vector<mmv::ShadowSweep>>>& swept, bool skipEmpty,
     bool upload, const std::function<void()>& lightDone);
   /// The passes' float scratch (FineScratch, the strided light grid's),
-  /// made where AllocateTargets left it to the first pass that needs it.
+  /// made when a group first goes to the passes: an update whose textures
+  /// the CPU writes needs none.
   bool EnsurePassScratch(vtkOpenGLRenderWindow* context, bool diffusion);
   /// Whether group `group`'s final write runs on the CPU (WriteOnCPU) in
   /// this update: every light of the group updated (`mask`) and swept on

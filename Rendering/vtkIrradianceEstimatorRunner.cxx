@@ -420,9 +420,7 @@ bool vtkIrradianceEstimator::vtkInternals::AllocateTargets(
   {
     // As many channels as lights (the last texture may hold fewer than 4),
     // so the memory is what mmv::IrradianceBytesPerVoxel counts.
-    const int lights = std::min(LightsPerTexture,
-      static_cast<int>(this->Lights.size()) - static_cast<int>(t) * LightsPerTexture);
-    const int channels = mmv::IrradianceTextureChannels(lights);
+    const int channels = mmv::IrradianceTextureChannels(this->LightsInTexture(static_cast<int>(t)));
     vtkSmartPointer<vtkTextureObject>& texture = this->Irradiance[t];
     if (!HasSize(texture, d) || texture->GetComponents() != channels)
     {
@@ -461,10 +459,9 @@ bool vtkIrradianceEstimator::vtkInternals::AllocateTargets(
       reallocated = true;
     }
   }
-  // Where the CPU sweeps the shadow rays, an update that writes every
-  // texture there uses no pass scratch: the passes make it when they first
-  // need it. Kept scratch the diffusion no longer needs goes.
-  ok = ok && (this->SweepsOnCPU || this->EnsurePassScratch(context, diffusion));
+  // The passes make their float scratch when they run (EnsurePassScratch):
+  // an update that writes every texture on the CPU needs none. Kept scratch
+  // the diffusion no longer needs goes.
   if (!diffusion && this->FineScratch[1])
   {
     this->FineScratch[1]->ReleaseGraphicsResources(context);

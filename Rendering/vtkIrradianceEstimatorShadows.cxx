@@ -482,8 +482,7 @@ int vtkIrradianceEstimator::vtkInternals::SweepOnCPU(
 bool vtkIrradianceEstimator::vtkInternals::WritesOnCPU(int group, int mask,
   const std::vector<std::pair<int, std::vector<mmv::ShadowSweep>>>& swept, bool diffusion) const
 {
-  const int lights =
-    std::min(LightsPerTexture, static_cast<int>(this->Lights.size()) - group * LightsPerTexture);
+  const int lights = this->LightsInTexture(group);
   const bool scene =
     static_cast<size_t>(group) < this->SceneTransmittance.size() && this->SceneTransmittance[group];
   return this->SweepsOnCPU && (!diffusion || this->DiffusesOnCPU()) && !scene &&
@@ -501,13 +500,10 @@ mmv::IrradianceTexelInputs vtkIrradianceEstimator::vtkInternals::SweptTexelInput
   mmv::IrradianceTexelInputs inputs;
   std::copy(this->Grid.Dimensions, this->Grid.Dimensions + 3, inputs.Dimensions);
   inputs.Classes = this->Classes.data();
-  inputs.Lights = std::min(LightsPerTexture, static_cast<int>(this->Lights.size()) - first);
-  int stride = 1;
+  inputs.Lights = this->LightsInTexture(group);
   for (int l = 0; l < inputs.Lights; ++l)
   {
-    const int lightStride = this->Lights[first + l].GridStride;
-    inputs.StridedMask |= lightStride > 1 ? 1 << l : 0;
-    stride = std::max(stride, lightStride);
+    inputs.StridedMask |= this->Lights[first + l].GridStride > 1 ? 1 << l : 0;
   }
   inputs.Fine = this->SweptOnCPU[0].data();
   inputs.FineChannels = this->SweptChannels[0];
@@ -515,6 +511,8 @@ mmv::IrradianceTexelInputs vtkIrradianceEstimator::vtkInternals::SweptTexelInput
   {
     inputs.LightGrid = this->SweptOnCPU[1].data();
     inputs.LightGridChannels = this->SweptChannels[1];
+    // The strided lights' grid, as UpsamplePass reads it.
+    const int stride = this->MaxLightGridStride();
     this->LightGridDimensions(stride, inputs.LightGridDimensions);
     double ratio[3];
     this->LightGridRatio(stride, ratio);
@@ -548,7 +546,8 @@ void vtkIrradianceEstimator::vtkInternals::WriteOnCPU(int group, bool skipEmpty,
     inputs.FineChannels = 4;
     inputs.StridedMask = 0;
   }
-  const int channels = mmv::IrradianceTextureChannels(inputs.Lights);
+  vtkTextureObject* texture = this->Irradiance[group];
+  const int channels = texture->GetComponents();
   const size_t size = static_cast<size_t>(channels) * this->Grid.GetNumberOfVoxels();
   if (this->WrittenOnCPU.size() < size)
   {
@@ -557,11 +556,11 @@ void vtkIrradianceEstimator::vtkInternals::WriteOnCPU(int group, bool skipEmpty,
   const mmv::IndexBox box = this->FillBox(group, skipEmpty);
   mmv::RunOnAllCores(
     [&]() { mmv::WriteIrradianceTexels(inputs, box, channels, this->WrittenOnCPU.data()); });
-  static const GLenum formats[] = { GL_RED, GL_RG, GL_RGBA, GL_RGBA };
   if (!box.IsEmpty())
   {
-    // Rows of 2-byte texels: aligned to 2.
-    mmv::UploadTextureBox(this->Irradiance[group], box.Bounds, formats[channels - 1],
-      GL_UNSIGNED_SHORT, this->WrittenOnCPU.data(), 2);
+    // In the texture's own format; rows of 2-byte texels: aligned to 2.
+    mmv::UploadTextureBox(texture, box.Bounds,
+      texture->GetFormat(VTK_UNSIGNED_SHORT, channels, false), GL_UNSIGNED_SHORT,
+      this->WrittenOnCPU.data(), 2);
   }
 }
